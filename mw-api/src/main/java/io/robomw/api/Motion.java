@@ -1,0 +1,136 @@
+package io.robomw.api;
+
+import java.util.concurrent.CompletableFuture;
+
+/**
+ * Driving and the robot's other actuators.
+ *
+ * <p>Units: metres, radians, seconds. A positive distance drives forwards, a positive angle turns
+ * left (anti-clockwise), increasing the heading. Speeds are magnitudes and must be positive.
+ *
+ * <p>Each verb comes in two forms: the plain one blocks until the motion is complete; the
+ * {@code ...Async} form returns at once, and its future completes when the motion does. A motion
+ * interrupted by a newer command on the same motors ends with {@link CommandPreemptedException}
+ * (thrown, or completing the future exceptionally). A robot whose link to the hardware fails ends
+ * its motions with {@link RobotLinkException}.
+ */
+public interface Motion {
+
+    /**
+     * Drives straight. Blocks until the robot has covered the distance.
+     *
+     * @param distance metres; negative drives backwards
+     * @param speed    metres per second, &gt; 0 and at most the robot's maximum
+     * @throws UnsupportedActionException if the robot cannot drive, or the speed is above its maximum
+     */
+    default void move(double distance, double speed) {
+        Futures.await(moveAsync(distance, speed));
+    }
+
+    /**
+     * Starts driving straight and returns at once.
+     *
+     * @param distance metres; negative drives backwards
+     * @param speed    metres per second, &gt; 0
+     * @return completes when the robot has covered the distance
+     * @throws UnsupportedActionException at once if the robot cannot do it
+     */
+    CompletableFuture<Void> moveAsync(double distance, double speed);
+
+    /**
+     * Turns on the spot. Blocks until the turn is complete.
+     *
+     * @param radians angle; positive turns left (anti-clockwise)
+     * @param speed   angular speed in radians per second, &gt; 0
+     */
+    default void turn(double radians, double speed) {
+        Futures.await(turnAsync(radians, speed));
+    }
+
+    /**
+     * Starts a turn on the spot and returns at once.
+     *
+     * @param radians angle; positive turns left (anti-clockwise)
+     * @param speed   angular speed in radians per second, &gt; 0
+     * @return completes when the turn is complete
+     */
+    CompletableFuture<Void> turnAsync(double radians, double speed);
+
+    /**
+     * Drives along a circular arc. Blocks until done.
+     *
+     * @param radius metres from the arc's centre to the robot's centre; positive centre on the left
+     * @param angle  radians of arc to drive; positive drives forwards
+     * @param speed  metres per second of the robot's centre, &gt; 0
+     */
+    default void arc(double radius, double angle, double speed) {
+        Futures.await(arcAsync(radius, angle, speed));
+    }
+
+    /**
+     * Starts driving along an arc and returns at once.
+     *
+     * @param radius metres, positive centre on the left
+     * @param angle  radians of arc
+     * @param speed  metres per second of the robot's centre
+     * @return completes when the arc is done
+     */
+    CompletableFuture<Void> arcAsync(double radius, double angle, double speed);
+
+    /**
+     * Drives continuously at the given velocities and returns at once. This is a continuous
+     * command: it must be repeated within the robot's watchdog timeout (default 0.5 s) or the
+     * motors stop by themselves, so a crashed program cannot leave a robot driving.
+     *
+     * @param linearSpeed  metres per second, negative backwards
+     * @param angularSpeed radians per second, positive turns left
+     */
+    void drive(double linearSpeed, double angularSpeed);
+
+    /**
+     * Stops every motor at once. This command has safety priority: no normal command interrupts
+     * it while it runs. Blocks until the stop has been handed to the hardware.
+     */
+    void stop();
+
+    /**
+     * Climbs or descends. Only robots with {@link Capability#AIR} can; every other robot throws.
+     *
+     * @param metres positive climbs
+     * @param speed  metres per second, &gt; 0
+     * @throws UnsupportedActionException if the robot cannot fly
+     */
+    default void changeAltitude(double metres, double speed) {
+        Futures.await(changeAltitudeAsync(metres, speed));
+    }
+
+    /**
+     * Non-blocking form of {@link #changeAltitude}.
+     *
+     * @param metres positive climbs
+     * @param speed  metres per second
+     * @return completes when the altitude is reached
+     */
+    CompletableFuture<Void> changeAltitudeAsync(double metres, double speed);
+
+    /**
+     * Runs a named action of an extra actuator (a gripper, an arm), as listed by
+     * {@link Robot#actions()}, for example {@code perform("gripper.close")}. Blocks until done.
+     *
+     * @param action the action's name, {@code actuator.action}
+     * @param args   the action's arguments, if its description asks for any (for example an angle in radians)
+     * @throws UnsupportedActionException if the robot has no such action, or the arguments do not fit it
+     */
+    default void perform(String action, double... args) {
+        Futures.await(performAsync(action, args));
+    }
+
+    /**
+     * Non-blocking form of {@link #perform}.
+     *
+     * @param action the action's name
+     * @param args   its arguments
+     * @return completes when the action is done
+     */
+    CompletableFuture<Void> performAsync(String action, double... args);
+}

@@ -1,0 +1,68 @@
+package io.robomw.api;
+
+import io.robomw.api.spi.PlatformServices;
+import io.robomw.api.spi.RobotFactory;
+
+import java.net.URI;
+import java.nio.file.Path;
+import java.util.ServiceLoader;
+import java.util.stream.Collectors;
+
+/**
+ * Opens robots. The implementations are found at run time ({@link RobotFactory} through
+ * {@link ServiceLoader}): {@code mw-config} opens robots from YAML descriptions, {@code mw-agents}
+ * opens robots served by another process.
+ */
+public final class Robots {
+
+    private Robots() {
+    }
+
+    /**
+     * Opens the robot a YAML description file describes, and connects to its hardware.
+     *
+     * @param description the robot's YAML file
+     * @return the robot; close it when done
+     * @throws RobotException if the file is invalid (the message names file, line and column) or the link cannot be opened
+     */
+    public static Robot open(Path description) {
+        return open(description, PlatformServices.none());
+    }
+
+    /**
+     * Opens a robot from its description, giving its platform extra services (for example the
+     * simulated world a {@code platform: sim} robot lives in).
+     *
+     * @param description the robot's YAML file
+     * @param services    services for the platform
+     * @return the robot
+     */
+    public static Robot open(Path description, PlatformServices services) {
+        return factory("file").open(description.toUri(), services);
+    }
+
+    /**
+     * Connects to a robot served by another process, for example
+     * {@code Robots.remote("tcp://127.0.0.1:7000/nxt-1")}. Its {@code move}, {@code turn} and
+     * {@code getValue} run on the remote robot, with the same errors as local calls.
+     *
+     * @param address the robot's address; the scheme chooses the transport
+     * @return the remote robot
+     */
+    public static Robot remote(String address) {
+        URI uri = URI.create(address);
+        return factory(uri.getScheme()).open(uri, PlatformServices.none());
+    }
+
+    private static RobotFactory factory(String scheme) {
+        ServiceLoader<RobotFactory> loader = ServiceLoader.load(RobotFactory.class, Robots.class.getClassLoader());
+        return loader.stream()
+                .map(ServiceLoader.Provider::get)
+                .filter(f -> f.scheme().equals(scheme))
+                .findFirst()
+                .orElseThrow(() -> new RobotException("no robot factory for '" + scheme + "' robots on the class path (found: "
+                        + ServiceLoader.load(RobotFactory.class, Robots.class.getClassLoader()).stream()
+                        .map(p -> p.get().scheme()).collect(Collectors.joining(", "))
+                        + "); add the module that provides it (mw-config for files, mw-agents for remote robots)"));
+    }
+}

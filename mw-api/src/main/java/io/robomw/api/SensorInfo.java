@@ -1,0 +1,11 @@
+package io.robomw.api;
+
+/**
+ * One sensor of a robot, as {@link Robot#sensors()} lists it.
+ *
+ * @param name     its name in the description
+ * @param type     what it measures
+ * @param position where it sits
+ */
+public record SensorInfo(String name, SensorType type, Position position) {
+}

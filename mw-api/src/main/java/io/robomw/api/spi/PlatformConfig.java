@@ -1,0 +1,52 @@
+package io.robomw.api.spi;
+
+import io.robomw.api.Clock;
+
+import java.time.Duration;
+import java.util.List;
+import java.util.Objects;
+
+/**
+ * What a platform is told about the robot it opens.
+ *
+ * @param robotName       the robot's name, for thread names and error messages
+ * @param platformName    the {@code platform:} value
+ * @param connection      the {@code connection:} block
+ * @param motorPorts      the ports of every motor the description uses (wheels and actuators)
+ * @param sensors         the sensors
+ * @param cyclePeriod     period of the execution action thread
+ * @param watchdogTimeout default timeout of continuous commands; {@link Duration#ZERO} is off
+ * @param clock           the source of time
+ * @param services        services the program handed over (a simulated world...)
+ */
+public record PlatformConfig(String robotName, String platformName, ConnectionSettings connection,
+                             List<String> motorPorts, List<SensorChannel> sensors,
+                             Duration cyclePeriod, Duration watchdogTimeout, Clock clock,
+                             PlatformServices services) {
+
+    /** Checks and copies. */
+    public PlatformConfig {
+        Objects.requireNonNull(robotName, "robotName");
+        Objects.requireNonNull(platformName, "platformName");
+        Objects.requireNonNull(connection, "connection");
+        motorPorts = List.copyOf(motorPorts);
+        sensors = List.copyOf(sensors);
+        Objects.requireNonNull(cyclePeriod, "cyclePeriod");
+        Objects.requireNonNull(watchdogTimeout, "watchdogTimeout");
+        Objects.requireNonNull(clock, "clock");
+        Objects.requireNonNull(services, "services");
+        if (cyclePeriod.isZero() || cyclePeriod.isNegative()) {
+            throw new IllegalArgumentException(robotName + ": cyclePeriod must be > 0, got " + cyclePeriod);
+        }
+    }
+
+    /**
+     * @param name a sensor name
+     * @return the sensor
+     * @throws IllegalArgumentException if there is none of that name
+     */
+    public SensorChannel sensor(String name) {
+        return sensors.stream().filter(s -> s.name().equals(name)).findFirst()
+                .orElseThrow(() -> new IllegalArgumentException(robotName + " has no sensor named '" + name + "'"));
+    }
+}
