@@ -1,0 +1,57 @@
+package io.robomw.config.description;
+
+import io.robomw.api.Capability;
+import io.robomw.api.spi.ConnectionSettings;
+
+import java.time.Duration;
+import java.util.List;
+import java.util.Objects;
+import java.util.Optional;
+import java.util.Set;
+import java.util.stream.Stream;
+
+/**
+ * A robot's physical description, as read from its YAML file: what hardware it is, how its
+ * wheels are laid out, what sensors and actuators it has. Immutable; a reload makes a new one.
+ *
+ * @param name            the robot's name
+ * @param platform        the {@code platform:} value that picks the driver
+ * @param connection      the {@code connection:} block
+ * @param cyclePeriod     the execution action thread's period
+ * @param watchdogTimeout continuous commands stop unless repeated within this; zero = off
+ * @param capabilities    ground, air, water
+ * @param drive           the drive model, if the robot drives
+ * @param body            size and mass, for the simulator
+ * @param sensors         the sensors
+ * @param actuators       extra actuators with named actions
+ * @param source          the file it was read from, for messages
+ */
+public record RobotDescription(String name, String platform, ConnectionSettings connection,
+                               Duration cyclePeriod, Duration watchdogTimeout,
+                               Set<Capability> capabilities, Optional<DifferentialDrive> drive,
+                               Body body, List<SensorSpec> sensors, List<ActuatorSpec> actuators,
+                               String source) {
+
+    /** Copies collections. */
+    public RobotDescription {
+        Objects.requireNonNull(name, "name");
+        Objects.requireNonNull(platform, "platform");
+        capabilities = Set.copyOf(capabilities);
+        sensors = List.copyOf(sensors);
+        actuators = List.copyOf(actuators);
+    }
+
+    /** @return every motor port the description uses: wheels first, then actuators */
+    public List<String> motorPorts() {
+        Stream<String> wheels = drive.stream().flatMap(d -> Stream.of(d.left().port(), d.right().port()));
+        return Stream.concat(wheels, actuators.stream().map(ActuatorSpec::port)).toList();
+    }
+
+    /**
+     * @param sensorName a sensor name
+     * @return that sensor, if present
+     */
+    public Optional<SensorSpec> sensor(String sensorName) {
+        return sensors.stream().filter(s -> s.name().equals(sensorName)).findFirst();
+    }
+}

@@ -1,0 +1,232 @@
+package io.robomw.config.description;
+
+import io.robomw.api.Capability;
+import io.robomw.api.Position;
+import io.robomw.api.SensorType;
+import io.robomw.api.spi.ConnectionSettings;
+import io.robomw.config.yaml.MappingReader;
+import io.robomw.config.yaml.YamlDocument;
+
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.HashMap;
+import java.util.HashSet;
+import java.util.LinkedHashMap;
+import java.util.LinkedHashSet;
+import java.util.List;
+import java.util.Map;
+import java.util.Optional;
+import java.util.OptionalDouble;
+import java.util.Set;
+
+/**
+ * Reads a robot description from YAML and checks it completely: every problem (unknown key, wrong
+ * type, missing port, two sensors on one port, a port used twice...) is reported with file, line
+ * and column, all at once. A description that has any problem is never returned, so nothing is
+ * started from a bad file. The keys are documented in {@code docs/robot-yaml.md}.
+ *
+ * <p>Stateless and thread-safe.
+ */
+public final class RobotDescriptionLoader {
+
+    /** The default execution action thread rate. */
+    public static final double DEFAULT_CYCLE_HZ = 100;
+    /** The default watchdog timeout of continuous commands, seconds. */
+    public static final double DEFAULT_WATCHDOG_SECONDS = 0.5;
+
+    /**
+     * @param file a robot YAML file
+     * @return its description
+     * @throws DescriptionException listing every problem
+     */
+    public RobotDescription load(Path file) {
+        return read(YamlDocument.read(file));
+    }
+
+    /**
+     * @param yaml   YAML text
+     * @param source its name in messages
+     * @return its description
+     * @throws DescriptionException listing every problem
+     */
+    public RobotDescription parse(String yaml, String source) {
+        return read(YamlDocument.parse(yaml, source));
+    }
+
+    private RobotDescription read(MappingReader root) {
+        String source = root.problems().file();
+        String name = root.requireText("name");
+        String platform = root.requireText("platform");
+        Map<String, Object> connection = root.plainMap("connection");
+        double cycleHz = root.number("cycle_hz", DEFAULT_CYCLE_HZ, "between 1 and 1000", v -> v >= 1 && v <= 1000);
+        double watchdog = root.number("watchdog", DEFAULT_WATCHDOG_SECONDS, ">= 0 seconds (0 turns it off)", v -> v >= 0 && v <= 3600);
+        Set<Capability> capabilities = new LinkedHashSet<>(root.enumList("capabilities", Capability.class));
+        if (!root.has("capabilities")) {
+            capabilities.add(Capability.GROUND);
+        }
+        Optional<DifferentialDrive> drive = root.mapping("drive").flatMap(this::drive);
+        Body body = root.mapping("body").map(this::body).orElse(Body.DEFAULT);
+        List<Read<SensorSpec>> sensors = root.mappingList("sensors").stream()
+                .flatMap(m -> sensor(m).map(s -> new Read<>(s, m)).stream()).toList();
+        List<Read<ActuatorSpec>> actuators = root.mappingList("actuators").stream()
+                .flatMap(m -> actuator(m).map(a -> new Read<>(a, m)).stream()).toList();
+        checkPorts(drive, sensors, actuators);
+        root.finish();
+        root.problems().throwIfAny();
+        return new RobotDescription(name, platform, new ConnectionSettings(connection, source),
+                Duration.ofNanos(Math.round(1e9 / cycleHz)), Duration.ofNanos(Math.round(watchdog * 1e9)),
+                capabilities, drive, body, sensors.stream().map(Read::value).toList(),
+                actuators.stream().map(Read::value).toList(), source);
+    }
+
+    private Optional<DifferentialDrive> drive(MappingReader m) {
+        String type = m.text("type").orElse("differential");
+        if (!type.equals("differential")) {
+            m.problem("type", "must be 'differential' (two driven wheels on one axle), got '" + type + "'");
+        }
+        double wheel = m.requireNumber("wheel_diameter", "> 0 metres", v -> v > 0 && v < 10);
+        double track = m.requireNumber("track_width", "> 0 metres", v -> v > 0 && v < 100);
+        double gear = m.number("gear_ratio", 1, "> 0", v -> v > 0);
+        double max = m.requireNumber("max_speed", "> 0 metres per second", v -> v > 0 && v < 1000);
+        int ticks = m.integer("encoder_ticks_per_revolution", 360);
+        if (ticks < 0) {
+            m.problem("encoder_ticks_per_revolution", "must be >= 0 (0 = no encoders), got " + ticks);
+        }
+        Optional<DifferentialDrive.Wheel> left = m.requireMapping("left").map(this::wheel);
+        Optional<DifferentialDrive.Wheel> right = m.requireMapping("right").map(this::wheel);
+        if (left.isPresent() && right.isPresent() && left.get().port().equals(right.get().port())) {
+            m.problem("right", "port " + right.get().port() + " is already used by the left wheel; each wheel needs its own motor port");
+        }
+        m.finish();
+        if (left.isEmpty() || right.isEmpty() || Double.isNaN(wheel) || Double.isNaN(track) || Double.isNaN(max) || ticks < 0) {
+            return Optional.empty();
+        }
+        if (left.get().port().equals(right.get().port())) {
+            return Optional.empty();
+        }
+        return Optional.of(new DifferentialDrive(wheel, track, gear, max, ticks, left.get(), right.get()));
+    }
+
+    private DifferentialDrive.Wheel wheel(MappingReader m) {
+        DifferentialDrive.Wheel w = new DifferentialDrive.Wheel(m.requireText("port"), m.bool("reversed", false));
+        m.finish();
+        return w;
+    }
+
+    private Body body(MappingReader m) {
+        Body b = new Body(
+                m.number("length", Body.DEFAULT.length(), "> 0 metres", v -> v > 0),
+                m.number("width", Body.DEFAULT.width(), "> 0 metres", v -> v > 0),
+                m.number("mass", Body.DEFAULT.mass(), "> 0 kilograms", v -> v > 0),
+                m.number("friction", Body.DEFAULT.friction(), ">= 0", v -> v >= 0));
+        m.finish();
+        return b;
+    }
+
+    private Optional<SensorSpec> sensor(MappingReader m) {
+        String name = m.requireText("name");
+        SensorType type = m.enumValue("type", SensorType.class, null);
+        Position position = m.enumValue("position", Position.class, null);
+        String port = m.requireText("port");
+        Conversion conversion = m.mapping("conversion").map(this::conversion).orElse(Conversion.IDENTITY);
+        Map<String, Object> options = m.plainMap("options");
+        m.finish();
+        if (name.isEmpty() || type == null || position == null || port.isEmpty()) {
+            return Optional.empty();
+        }
+        return Optional.of(new SensorSpec(name, type, position, port, conversion, options));
+    }
+
+    private Conversion conversion(MappingReader m) {
+        double scale = m.number("scale", 1, "a finite number", Double::isFinite);
+        double offset = m.number("offset", 0, "a finite number", Double::isFinite);
+        List<Conversion.Point> table = new ArrayList<>();
+        for (MappingReader.NumberRow row : m.numberRows("table")) {
+            if (row.values().length != 2) {
+                m.problems().add(row.mark(), "'" + m.path() + ".table' rows must be [raw, value] pairs");
+            } else if (!table.isEmpty() && row.values()[0] <= table.get(table.size() - 1).raw()) {
+                m.problems().add(row.mark(), "'" + m.path() + ".table' raw values must increase, got " + row.values()[0]
+                        + " after " + table.get(table.size() - 1).raw());
+            } else {
+                table.add(new Conversion.Point(row.values()[0], row.values()[1]));
+            }
+        }
+        if (m.has("table") && (m.has("scale") || m.has("offset"))) {
+            m.problem("table", "give either a table or scale/offset, not both");
+        }
+        OptionalDouble threshold = m.optionalNumber("threshold", "a finite number", Double::isFinite);
+        boolean below = m.bool("true_below", false);
+        OptionalDouble lux = m.optionalNumber("lux_at_full_scale", "> 0", v -> v > 0);
+        m.finish();
+        return new Conversion(scale, offset, table, threshold, below, lux);
+    }
+
+    private Optional<ActuatorSpec> actuator(MappingReader m) {
+        String name = m.requireText("name");
+        String port = m.requireText("port");
+        Map<String, ActuatorSpec.Action> actions = new LinkedHashMap<>();
+        m.requireMapping("actions").ifPresent(a -> {
+            for (String actionName : a.keys()) {
+                a.mapping(actionName).ifPresent(spec -> {
+                    OptionalDouble degrees = OptionalDouble.empty();
+                    if (!spec.text("degrees").map("argument"::equals).orElse(false)) {
+                        degrees = spec.optionalNumber("degrees", "a number of motor degrees, or 'argument'", Double::isFinite);
+                        if (degrees.isEmpty() && !spec.has("degrees")) {
+                            spec.problem("degrees", "missing: give motor degrees, or 'argument' to take the angle when performed");
+                        }
+                    }
+                    double speed = spec.requireNumber("speed", "> 0 motor degrees per second", v -> v > 0);
+                    spec.finish();
+                    actions.put(actionName, new ActuatorSpec.Action(degrees, speed));
+                });
+            }
+            a.finish();
+        });
+        m.finish();
+        if (name.isEmpty() || port.isEmpty()) {
+            return Optional.empty();
+        }
+        if (name.contains(".")) {
+            m.problem("name", "must not contain '.', which separates actuator and action in perform(\"name.action\")");
+        }
+        return Optional.of(new ActuatorSpec(name, port, actions));
+    }
+
+    private void checkPorts(Optional<DifferentialDrive> drive, List<Read<SensorSpec>> sensors, List<Read<ActuatorSpec>> actuators) {
+        Map<String, String> motorUse = new LinkedHashMap<>();
+        drive.ifPresent(d -> {
+            motorUse.put(d.left().port(), "the left wheel");
+            motorUse.put(d.right().port(), "the right wheel");
+        });
+        for (Read<ActuatorSpec> a : actuators) {
+            String previous = motorUse.putIfAbsent(a.value().port(), "actuator '" + a.value().name() + "'");
+            if (previous != null) {
+                a.node().problem("port", "motor port " + a.value().port() + " is already used by " + previous);
+            }
+        }
+        Map<String, String> inputUse = new HashMap<>();
+        Set<String> names = new HashSet<>();
+        for (Read<SensorSpec> read : sensors) {
+            SensorSpec s = read.value();
+            if (!names.add(s.name())) {
+                read.node().problem("name", "two sensors are named '" + s.name() + "'; names must be unique");
+            }
+            if (s.type() == SensorType.TACHO) {
+                if (!motorUse.containsKey(s.port())) {
+                    read.node().problem("port", "a tacho sensor must be on a motor port the description uses ("
+                            + String.join(", ", motorUse.keySet()) + "), got " + s.port());
+                }
+                continue;
+            }
+            String previous = inputUse.putIfAbsent(s.port(), s.name());
+            if (previous != null) {
+                read.node().problem("port", "input port " + s.port() + " already has sensor '" + previous + "'; one sensor per port");
+            }
+        }
+    }
+
+    /** A value read from a mapping, with the mapping, for checks across several values. */
+    private record Read<T>(T value, MappingReader node) {
+    }
+}

@@ -1,0 +1,393 @@
+package io.robomw.config.robot;
+
+import io.robomw.api.Agency;
+import io.robomw.api.Agent;
+import io.robomw.api.AgentRef;
+import io.robomw.api.Capability;
+import io.robomw.api.Message;
+import io.robomw.api.MessageListener;
+import io.robomw.api.Messaging;
+import io.robomw.api.Pose;
+import io.robomw.api.Position;
+import io.robomw.api.ReturnType;
+import io.robomw.api.Robot;
+import io.robomw.api.SensorInfo;
+import io.robomw.api.SensorType;
+import io.robomw.api.UnsupportedActionException;
+import io.robomw.api.spi.CommandPriority;
+import io.robomw.api.spi.MotorCommand;
+import io.robomw.api.spi.MotorTarget;
+import io.robomw.api.spi.RobotPlatform;
+import io.robomw.config.description.ActuatorSpec;
+import io.robomw.config.description.DifferentialDrive;
+import io.robomw.config.description.RobotDescription;
+import io.robomw.config.description.SensorSpec;
+import io.robomw.config.kinematics.DifferentialKinematics;
+import io.robomw.config.kinematics.Odometry;
+import io.robomw.config.kinematics.WheelMotion;
+import io.robomw.config.sensing.SensorConverter;
+
+import java.io.Serializable;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Locale;
+import java.util.Set;
+import java.util.UUID;
+import java.util.concurrent.CompletableFuture;
+import java.util.function.Supplier;
+import java.util.stream.Collectors;
+
+/**
+ * The Configuration Layer's robot: checks each instruction against the robot's description,
+ * turns it into motor rotations or sensor reads with the description's geometry and conversions,
+ * and hands it to the platform. Every call reads the description in force at that moment, so a
+ * reload applies to the next command.
+ *
+ * <p>Messaging and agents are delegated to the components given at construction; without them
+ * those calls throw {@link UnsupportedActionException}.
+ *
+ * <p>Thread-safe. Odometry is updated under a lock whenever a motion starts or ends, on
+ * {@link #drive}, and on {@link #pose()}.
+ */
+public final class ConfiguredRobot implements Robot {
+
+    private final Supplier<RobotDescription> description;
+    private final RobotPlatform platform;
+    private final Messaging messaging;
+    private final Agency agency;
+    private final AutoCloseable onClose;
+    private final Object odometryLock = new Object();
+    private Odometry odometry;
+    private DifferentialDrive odometryDrive;
+    private volatile boolean closed;
+
+    /**
+     * @param description the description in force (read on every call)
+     * @param platform    the opened platform
+     * @param messaging   the messaging component, or {@code null}
+     * @param agency      the agent runtime, or {@code null}
+     * @param onClose     closed after the platform (a description watcher), or {@code null}
+     */
+    public ConfiguredRobot(Supplier<RobotDescription> description, RobotPlatform platform,
+                           Messaging messaging, Agency agency, AutoCloseable onClose) {
+        this.description = description;
+        this.platform = platform;
+        this.messaging = messaging;
+        this.agency = agency;
+        this.onClose = onClose;
+    }
+
+    @Override
+    public String name() {
+        return description.get().name();
+    }
+
+    @Override
+    public Set<Capability> capabilities() {
+        return description.get().capabilities();
+    }
+
+    @Override
+    public List<SensorInfo> sensors() {
+        return description.get().sensors().stream().map(s -> new SensorInfo(s.name(), s.type(), s.position())).toList();
+    }
+
+    @Override
+    public List<String> actions() {
+        List<String> out = new ArrayList<>();
+        for (ActuatorSpec a : description.get().actuators()) {
+            a.actions().keySet().stream().sorted().forEach(action -> out.add(a.name() + "." + action));
+        }
+        return out;
+    }
+
+    /** @return the platform this robot drives, for tools that need the raw level */
+    public RobotPlatform platform() {
+        return platform;
+    }
+
+    // ---- Motion ----
+
+    @Override
+    public CompletableFuture<Void> moveAsync(double distance, double speed) {
+        String action = String.format(Locale.ROOT, "move(%.3f, %.3f)", distance, speed);
+        DifferentialKinematics k = groundDrive(action);
+        requireFinite(action, distance, "distance");
+        requireSpeed(action, speed, speed, k);
+        return runWheels(action, k, k.move(distance, speed));
+    }
+
+    @Override
+    public CompletableFuture<Void> turnAsync(double radians, double speed) {
+        String action = String.format(Locale.ROOT, "turn(%.4f, %.4f)", radians, speed);
+        DifferentialKinematics k = groundDrive(action);
+        requireFinite(action, radians, "angle");
+        requirePositive(action, speed, "angular speed");
+        requireSpeed(action, speed * k.drive().trackWidth() / 2, speed, k);
+        return runWheels(action, k, k.turn(radians, speed));
+    }
+
+    @Override
+    public CompletableFuture<Void> arcAsync(double radius, double angle, double speed) {
+        String action = String.format(Locale.ROOT, "arc(%.3f, %.4f, %.3f)", radius, angle, speed);
+        DifferentialKinematics k = groundDrive(action);
+        requireFinite(action, radius, "radius");
+        requireFinite(action, angle, "angle");
+        requirePositive(action, speed, "speed");
+        WheelMotion m = k.arc(radius, angle, speed);
+        double fastest = Math.max(m.leftDegreesPerSecond(), m.rightDegreesPerSecond()) / k.motorDegreesPerMetre();
+        requireSpeed(action, fastest, speed, k);
+        return runWheels(action, k, m);
+    }
+
+    @Override
+    public void drive(double linearSpeed, double angularSpeed) {
+        String action = String.format(Locale.ROOT, "drive(%.3f, %.3f)", linearSpeed, angularSpeed);
+        DifferentialKinematics k = groundDrive(action);
+        requireFinite(action, linearSpeed, "linear speed");
+        requireFinite(action, angularSpeed, "angular speed");
+        WheelMotion m = k.velocity(linearSpeed, angularSpeed);
+        double fastest = Math.max(Math.abs(m.leftDegreesPerSecond()), Math.abs(m.rightDegreesPerSecond())) / k.motorDegreesPerMetre();
+        requireSpeed(action, fastest, Math.abs(linearSpeed), k);
+        updateOdometry();
+        DifferentialDrive d = k.drive();
+        platform.run(new MotorCommand(action, List.of(
+                MotorTarget.run(d.left().port(), m.leftDegreesPerSecond()),
+                MotorTarget.run(d.right().port(), m.rightDegreesPerSecond())),
+                CommandPriority.NORMAL, description.get().watchdogTimeout()));
+    }
+
+    @Override
+    public void stop() {
+        platform.stopAll();
+        updateOdometry();
+    }
+
+    @Override
+    public CompletableFuture<Void> changeAltitudeAsync(double metres, double speed) {
+        String action = String.format(Locale.ROOT, "changeAltitude(%.3f, %.3f)", metres, speed);
+        if (!can(Capability.AIR)) {
+            throw new UnsupportedActionException(name(), action, "it is a " + capabilities() + " robot, not an AIR one");
+        }
+        throw new UnsupportedActionException(name(), action, "platform '" + description.get().platform() + "' has no altitude control");
+    }
+
+    @Override
+    public CompletableFuture<Void> performAsync(String action, double... args) {
+        String call = "perform(\"" + action + "\")";
+        int dot = action.indexOf('.');
+        String actuatorName = dot < 0 ? action : action.substring(0, dot);
+        ActuatorSpec actuator = description.get().actuators().stream().filter(a -> a.name().equals(actuatorName)).findFirst()
+                .orElseThrow(() -> new UnsupportedActionException(name(), call, "it has no actuator '" + actuatorName + "'; its actions are " + actions()));
+        ActuatorSpec.Action spec = dot < 0 ? null : actuator.actions().get(action.substring(dot + 1));
+        if (spec == null) {
+            throw new UnsupportedActionException(name(), call, "its actions are " + actions());
+        }
+        double degrees;
+        if (spec.degrees().isPresent()) {
+            if (args.length != 0) {
+                throw new UnsupportedActionException(name(), call, "this action takes no arguments, got " + args.length);
+            }
+            degrees = spec.degrees().getAsDouble();
+        } else {
+            if (args.length != 1 || !Double.isFinite(args[0])) {
+                throw new UnsupportedActionException(name(), call, "this action takes one angle in radians");
+            }
+            degrees = Math.toDegrees(args[0]);
+        }
+        return platform.run(MotorCommand.of(call, List.of(MotorTarget.rotate(actuator.port(), degrees, spec.degreesPerSecond()))));
+    }
+
+    // ---- Perception ----
+
+    @Override
+    public CompletableFuture<Double> getValueAsync(Position position, SensorType type, ReturnType returnType) {
+        RobotDescription d = description.get();
+        SensorSpec sensor = d.sensors().stream().filter(s -> s.position() == position && s.type() == type).findFirst()
+                .orElseThrow(() -> new UnsupportedActionException(name(), "getValue(" + position + ", " + type + ", " + returnType + ")",
+                        "it has no " + type + " sensor at " + position + "; its sensors are " + describeSensors(d)));
+        return read(sensor, returnType);
+    }
+
+    @Override
+    public CompletableFuture<Double> getValueAsync(String sensorName, ReturnType returnType) {
+        RobotDescription d = description.get();
+        SensorSpec sensor = d.sensor(sensorName).orElseThrow(() -> new UnsupportedActionException(name(),
+                "getValue(\"" + sensorName + "\", " + returnType + ")", "it has no sensor named '" + sensorName + "'; its sensors are " + describeSensors(d)));
+        return read(sensor, returnType);
+    }
+
+    private CompletableFuture<Double> read(SensorSpec sensor, ReturnType returnType) {
+        String robot = name();
+        SensorConverter.check(robot, sensor, returnType);
+        return platform.readRaw(sensor.name()).thenApply(raw -> SensorConverter.convert(robot, sensor, raw, returnType));
+    }
+
+    @Override
+    public Pose pose() {
+        return updateOdometry();
+    }
+
+    @Override
+    public void resetPose(Pose pose) {
+        synchronized (odometryLock) {
+            updateOdometry();
+            if (odometry != null) {
+                odometry.reset(pose);
+            }
+        }
+    }
+
+    // ---- Messaging and agents ----
+
+    @Override
+    public UUID sendMessage(String name, String host, String pass, String topic, Serializable object, String function) {
+        return messaging("sendMessage").sendMessage(name, host, pass, topic, object, function);
+    }
+
+    @Override
+    public Message waitForReply(String topic, String host) {
+        return messaging("waitForReply").waitForReply(topic, host);
+    }
+
+    @Override
+    public Message waitForReply(String topic, String host, Duration timeout) {
+        return messaging("waitForReply").waitForReply(topic, host, timeout);
+    }
+
+    @Override
+    public void publishMessage(String topic, Serializable object, String function, String password) {
+        messaging("publishMessage").publishMessage(topic, object, function, password);
+    }
+
+    @Override
+    public void subscribeMessage(String topic, String password) {
+        messaging("subscribeMessage").subscribeMessage(topic, password);
+    }
+
+    @Override
+    public void addMessageListener(String topic, String password, MessageListener listener) {
+        messaging("addMessageListener").addMessageListener(topic, password, listener);
+    }
+
+    @Override
+    public void removeMessageListener(String topic, MessageListener listener) {
+        messaging("removeMessageListener").removeMessageListener(topic, listener);
+    }
+
+    @Override
+    public AgentRef sendAgent(String host, Agent agent) {
+        return agency("sendAgent").sendAgent(host, agent);
+    }
+
+    @Override
+    public List<AgentRef> dispatchClones(Agent agent, String... hosts) {
+        return agency("dispatchClones").dispatchClones(agent, hosts);
+    }
+
+    @Override
+    public void close() {
+        if (closed) {
+            return;
+        }
+        closed = true;
+        try {
+            platform.close();
+        } finally {
+            if (onClose != null) {
+                try {
+                    onClose.close();
+                } catch (Exception e) {
+                    org.slf4j.LoggerFactory.getLogger(ConfiguredRobot.class).warn("closing {}: {}", name(), e.toString());
+                }
+            }
+        }
+    }
+
+    @Override
+    public String toString() {
+        return "Robot[" + name() + " on " + description.get().platform() + "]";
+    }
+
+    // ---- helpers ----
+
+    private DifferentialKinematics groundDrive(String action) {
+        RobotDescription d = description.get();
+        if (!d.capabilities().contains(Capability.GROUND)) {
+            throw new UnsupportedActionException(d.name(), action, "it is a " + d.capabilities() + " robot, not a GROUND one");
+        }
+        return d.drive().map(DifferentialKinematics::new)
+                .orElseThrow(() -> new UnsupportedActionException(d.name(), action, "its description has no drive"));
+    }
+
+    private CompletableFuture<Void> runWheels(String action, DifferentialKinematics k, WheelMotion m) {
+        DifferentialDrive d = k.drive();
+        updateOdometry();
+        CompletableFuture<Void> done = platform.run(MotorCommand.of(action, List.of(
+                MotorTarget.rotate(d.left().port(), m.leftDegrees(), m.leftDegreesPerSecond()),
+                MotorTarget.rotate(d.right().port(), m.rightDegrees(), m.rightDegreesPerSecond()))));
+        return done.whenComplete((v, e) -> updateOdometry());
+    }
+
+    private Pose updateOdometry() {
+        RobotDescription d = description.get();
+        if (d.drive().isEmpty()) {
+            throw new UnsupportedActionException(d.name(), "pose()", "its description has no drive to estimate a pose from");
+        }
+        DifferentialDrive drive = d.drive().get();
+        if (!platform.hasEncoder(drive.left().port()) || !platform.hasEncoder(drive.right().port())) {
+            throw new UnsupportedActionException(d.name(), "pose()", "its wheel motors have no encoders");
+        }
+        synchronized (odometryLock) {
+            double left = platform.motorDegrees(drive.left().port());
+            double right = platform.motorDegrees(drive.right().port());
+            if (odometry == null || !drive.equals(odometryDrive)) {
+                Pose from = odometry == null ? Pose.ORIGIN : odometry.pose();
+                odometry = new Odometry(new DifferentialKinematics(drive));
+                odometry.reset(from);
+                odometryDrive = drive;
+            }
+            return odometry.update(left, right);
+        }
+    }
+
+    private void requireSpeed(String action, double wheelSpeed, double asked, DifferentialKinematics k) {
+        requirePositive(action, asked, "speed");
+        if (wheelSpeed > k.drive().maxSpeed() * (1 + 1e-9)) {
+            throw new UnsupportedActionException(name(), action, String.format(Locale.ROOT,
+                    "a wheel would need %.3f m/s, above its maximum of %.3f m/s (drive.max_speed)", wheelSpeed, k.drive().maxSpeed()));
+        }
+    }
+
+    private void requirePositive(String action, double value, String what) {
+        if (!(value > 0) || !Double.isFinite(value)) {
+            throw new UnsupportedActionException(name(), action, what + " must be a number > 0, got " + value);
+        }
+    }
+
+    private void requireFinite(String action, double value, String what) {
+        if (!Double.isFinite(value)) {
+            throw new UnsupportedActionException(name(), action, what + " must be a finite number, got " + value);
+        }
+    }
+
+    private static String describeSensors(RobotDescription d) {
+        return d.sensors().isEmpty() ? "none" : d.sensors().stream()
+                .map(s -> s.name() + " (" + s.type() + " at " + s.position() + ")").collect(Collectors.joining(", "));
+    }
+
+    private Messaging messaging(String action) {
+        if (messaging == null) {
+            throw new UnsupportedActionException(name(), action, "no messaging component was set up for it (mw-agents provides one)");
+        }
+        return messaging;
+    }
+
+    private Agency agency(String action) {
+        if (agency == null) {
+            throw new UnsupportedActionException(name(), action, "no agent runtime was set up for it (run it on an agent host: mw host)");
+        }
+        return agency;
+    }
+}
