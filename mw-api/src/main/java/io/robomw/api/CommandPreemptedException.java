@@ -15,4 +15,18 @@ public class CommandPreemptedException extends RobotException {
     public CommandPreemptedException(String command, String by) {
         super("command '" + command + "' was interrupted by '" + by + "', which needs the same actuators");
     }
+
+    private CommandPreemptedException(String message) {
+        super(message);
+    }
+
+    /**
+     * @param command the refused command
+     * @param holder  the command that holds its actuators and may not be interrupted
+     * @return the exception for a command that was refused because its actuators are held
+     */
+    public static CommandPreemptedException refused(String command, String holder) {
+        return new CommandPreemptedException("command '" + command + "' was refused: its actuators are held by '" + holder
+                + "', which a command of its priority may not interrupt");
+    }
 }

@@ -1,0 +1,200 @@
+package io.robomw.platform;
+
+import io.robomw.api.Clock;
+import io.robomw.api.RobotLinkException;
+import io.robomw.api.spi.MotorCommand;
+import io.robomw.api.spi.PlatformConfig;
+import io.robomw.api.spi.RobotPlatform;
+import io.robomw.api.spi.SensorChannel;
+import io.robomw.api.SensorType;
+import io.robomw.api.ReturnType;
+import io.robomw.platform.exec.ExecutionActionThread;
+import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.sensor.Sensor;
+import io.robomw.platform.sensor.SensorPlatform;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import java.io.IOException;
+import java.util.LinkedHashMap;
+import java.util.Map;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.locks.LockSupport;
+
+/**
+ * A running robot platform assembled from the Platform Layer's parts: an
+ * {@link ExecutionActionThread}, a driver's {@link GenericMotorPlatform} and
+ * {@link SensorPlatform}, and the link they talk over. Drivers' {@code PlatformProvider}s build one
+ * of these; the Configuration Layer sees only {@link RobotPlatform}.
+ *
+ * <p>With the wall clock, {@link #start()} starts the action thread and (for
+ * {@link LinkThreading#OWN_THREAD}) a link thread named {@code <robot>-link} that services the
+ * motor link once per cycle. A link failure is reported to the action thread, which stops every
+ * command; the link thread keeps trying, so a driver that reopens its link in {@code runImpl} or
+ * {@code pollFeedback} recovers by itself.
+ */
+public final class BrickPlatform implements RobotPlatform {
+
+    private static final Logger LOG = LoggerFactory.getLogger(BrickPlatform.class);
+
+    private final PlatformConfig config;
+    private final ExecutionActionThread actionThread;
+    private final GenericMotorPlatform motors;
+    private final Map<String, Sensor> sensors = new LinkedHashMap<>();
+    private final LinkThreading threading;
+    private final AutoCloseable link;
+    private volatile boolean running;
+    private volatile boolean linkDown;
+    private Thread linkThread;
+
+    /**
+     * Creates every sensor of the description.
+     *
+     * @param config        the platform's configuration
+     * @param motors        the driver's motor platform
+     * @param sensorPlatform the driver's sensor platform
+     * @param threading     where the link side runs
+     * @param link          closed last, or {@code null}
+     * @throws IOException if a sensor cannot be set up
+     */
+    public BrickPlatform(PlatformConfig config, GenericMotorPlatform motors, SensorPlatform sensorPlatform,
+                         LinkThreading threading, AutoCloseable link) throws IOException {
+        this.config = config;
+        this.motors = motors;
+        this.threading = threading;
+        this.link = link;
+        this.actionThread = new ExecutionActionThread(config.robotName(), config.clock(), config.cyclePeriod());
+        motors.cyclePeriod(config.cyclePeriod());
+        for (SensorChannel channel : config.sensors()) {
+            Sensor sensor = channel.type() == SensorType.TACHO
+                    ? sensorPlatform.selectMotorSensor(channel.port(), channel.type(), ReturnType.RAW)
+                    : sensorPlatform.createSensor(channel);
+            sensors.put(channel.name(), sensor);
+        }
+        actionThread.addCycleListener(this::afterCycle);
+    }
+
+    /** @return the execution action thread, which a simulation cycles itself */
+    public ExecutionActionThread actionThread() {
+        return actionThread;
+    }
+
+    /** @return the motor platform */
+    public GenericMotorPlatform motors() {
+        return motors;
+    }
+
+    /**
+     * Starts the threads, if the clock is the wall clock; a simulation cycles a platform on a
+     * simulated clock itself.
+     *
+     * @return this
+     */
+    public BrickPlatform start() {
+        if (config.clock() != Clock.system()) {
+            return this;
+        }
+        running = true;
+        if (threading == LinkThreading.OWN_THREAD) {
+            linkThread = new Thread(this::linkLoop, config.robotName() + "-link");
+            linkThread.setDaemon(true);
+            linkThread.start();
+        }
+        actionThread.start();
+        return this;
+    }
+
+    private void afterCycle() {
+        boolean changed = motors.flushOutputs();
+        if (threading == LinkThreading.INLINE) {
+            serviceLink();
+        } else if (changed && linkThread != null) {
+            LockSupport.unpark(linkThread);
+        }
+    }
+
+    private void linkLoop() {
+        long period = config.cyclePeriod().toNanos();
+        while (running) {
+            serviceLink();
+            LockSupport.parkNanos(this, linkDown ? period * 10 : period);
+        }
+    }
+
+    private void serviceLink() {
+        try {
+            motors.serviceLink();
+            if (linkDown) {
+                linkDown = false;
+                LOG.info("robot '{}': link restored", config.robotName());
+            }
+        } catch (IOException e) {
+            if (!linkDown) {
+                linkDown = true;
+                LOG.warn("robot '{}': link failed: {}", config.robotName(), e.getMessage());
+                actionThread.linkFailed(config.platformName(), e);
+            }
+        }
+    }
+
+    @Override
+    public CompletableFuture<Void> run(MotorCommand command) {
+        if (linkDown) {
+            return CompletableFuture.failedFuture(new RobotLinkException("robot '" + config.robotName()
+                    + "': its link is down; command '" + command.name() + "' was not run", null));
+        }
+        return actionThread.submit(motors.container(command));
+    }
+
+    @Override
+    public void stopAll() {
+        actionThread.submit(motors.stopContainer());
+    }
+
+    @Override
+    public CompletableFuture<Double> readRaw(String sensorName) {
+        Sensor sensor = sensors.get(sensorName);
+        if (sensor == null) {
+            return CompletableFuture.failedFuture(new IllegalArgumentException("robot '" + config.robotName() + "' has no sensor '" + sensorName + "'"));
+        }
+        return sensor.readRaw();
+    }
+
+    @Override
+    public double motorDegrees(String port) {
+        return motors.motorDegrees(port);
+    }
+
+    @Override
+    public boolean hasEncoder(String port) {
+        return motors.ports().contains(port) && motors.hasEncoder(port);
+    }
+
+    /**
+     * Stops every motor, hands the stop to the hardware, stops the threads and closes the link.
+     */
+    @Override
+    public void close() {
+        running = false;
+        actionThread.close();
+        if (linkThread != null) {
+            LockSupport.unpark(linkThread);
+            try {
+                linkThread.join(2000);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        }
+        motors.flushOutputs();
+        if (!linkDown) {
+            serviceLink();
+        }
+        if (link != null) {
+            try {
+                link.close();
+            } catch (Exception e) {
+                LOG.warn("robot '{}': closing its link: {}", config.robotName(), e.toString());
+            }
+        }
+    }
+}

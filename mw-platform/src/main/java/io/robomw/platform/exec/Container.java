@@ -1,0 +1,228 @@
+package io.robomw.platform.exec;
+
+import io.robomw.api.spi.CommandPriority;
+
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Objects;
+import java.util.Set;
+import java.util.concurrent.CompletableFuture;
+
+/**
+ * One command in the execution action thread: the actuators it requires, action objects run when
+ * it starts, logic objects evaluated each cycle until all hold, and an end action run when it
+ * finishes or is interrupted. Its {@link #completion()} future tells the caller how it ended.
+ *
+ * <p>Build with {@link #builder(String)}. Once submitted, a container is touched only by the
+ * action thread.
+ */
+public final class Container {
+
+    private final String name;
+    private final Set<String> requirements;
+    private final CommandPriority priority;
+    private final InterruptionBehavior interruptionBehavior;
+    private final List<ActionObject> actions;
+    private final List<LogicObject> logic;
+    private final EndAction endAction;
+    private final long watchdogNanos;
+    private final CompletableFuture<Void> completion = new CompletableFuture<>();
+
+    private boolean[] satisfied;
+    private long startedAt;
+
+    private Container(Builder b) {
+        this.name = b.name;
+        this.requirements = Set.copyOf(b.requirements);
+        this.priority = b.priority;
+        this.interruptionBehavior = b.interruptionBehavior;
+        this.actions = List.copyOf(b.actions);
+        this.logic = List.copyOf(b.logic);
+        this.endAction = b.endAction;
+        this.watchdogNanos = b.watchdog.toNanos();
+    }
+
+    /**
+     * @param name the container's name, used in logs and in errors given to callers
+     * @return a builder
+     */
+    public static Builder builder(String name) {
+        return new Builder(name);
+    }
+
+    /** @return its name */
+    public String name() {
+        return name;
+    }
+
+    /** @return the actuators it requires */
+    public Set<String> requirements() {
+        return requirements;
+    }
+
+    /** @return its priority */
+    public CommandPriority priority() {
+        return priority;
+    }
+
+    /** @return what a same-priority newcomer does to it */
+    public InterruptionBehavior interruptionBehavior() {
+        return interruptionBehavior;
+    }
+
+    /** @return completes when it finishes; fails when it is interrupted, refused or fails */
+    public CompletableFuture<Void> completion() {
+        return completion;
+    }
+
+    void start(long now) {
+        startedAt = now;
+        satisfied = new boolean[logic.size()];
+        for (ActionObject a : actions) {
+            a.start(now);
+        }
+    }
+
+    /** @return whether every logic object now holds */
+    boolean evaluate(long now) {
+        boolean all = true;
+        for (int i = 0; i < satisfied.length; i++) {
+            if (!satisfied[i]) {
+                satisfied[i] = logic.get(i).evaluate(now);
+                all &= satisfied[i];
+            }
+        }
+        return all;
+    }
+
+    boolean watchdogExpired(long now) {
+        return watchdogNanos > 0 && now - startedAt > watchdogNanos;
+    }
+
+    Duration watchdog() {
+        return Duration.ofNanos(watchdogNanos);
+    }
+
+    void end(boolean interrupted) {
+        endAction.end(interrupted);
+    }
+
+    @Override
+    public String toString() {
+        return "Container[" + name + " " + requirements + " " + priority + "]";
+    }
+
+    /** What a container does when it ends. */
+    @FunctionalInterface
+    public interface EndAction {
+        /**
+         * @param interrupted whether it ended before its logic held
+         */
+        void end(boolean interrupted);
+    }
+
+    /** Builds a container. */
+    public static final class Builder {
+        private final String name;
+        private final java.util.Set<String> requirements = new java.util.LinkedHashSet<>();
+        private CommandPriority priority = CommandPriority.NORMAL;
+        private InterruptionBehavior interruptionBehavior = InterruptionBehavior.CANCEL_SELF;
+        private final List<ActionObject> actions = new ArrayList<>();
+        private final List<LogicObject> logic = new ArrayList<>();
+        private EndAction endAction = interrupted -> { };
+        private Duration watchdog = Duration.ZERO;
+
+        private Builder(String name) {
+            this.name = Objects.requireNonNull(name, "name");
+        }
+
+        /**
+         * @param actuators actuators this container needs exclusively
+         * @return this
+         */
+        public Builder requires(String... actuators) {
+            requirements.addAll(List.of(actuators));
+            return this;
+        }
+
+        /**
+         * @param actuators actuators this container needs exclusively
+         * @return this
+         */
+        public Builder requires(java.util.Collection<String> actuators) {
+            requirements.addAll(actuators);
+            return this;
+        }
+
+        /**
+         * @param value the priority (default NORMAL)
+         * @return this
+         */
+        public Builder priority(CommandPriority value) {
+            priority = Objects.requireNonNull(value);
+            return this;
+        }
+
+        /**
+         * @param value the interruption behavior (default CANCEL_SELF)
+         * @return this
+         */
+        public Builder interruptionBehavior(InterruptionBehavior value) {
+            interruptionBehavior = Objects.requireNonNull(value);
+            return this;
+        }
+
+        /**
+         * @param action run once at start
+         * @return this
+         */
+        public Builder action(ActionObject action) {
+            actions.add(Objects.requireNonNull(action));
+            return this;
+        }
+
+        /**
+         * @param condition evaluated each cycle until it holds
+         * @return this
+         */
+        public Builder logic(LogicObject condition) {
+            logic.add(Objects.requireNonNull(condition));
+            return this;
+        }
+
+        /**
+         * @param action run when the container ends, finished or interrupted
+         * @return this
+         */
+        public Builder onEnd(EndAction action) {
+            endAction = Objects.requireNonNull(action);
+            return this;
+        }
+
+        /**
+         * @param timeout end the container (and run its end action) this long after it started,
+         *                unless it finished; a continuous command is "refreshed" by submitting a new
+         *                container for the same actuators. {@link Duration#ZERO} is off.
+         * @return this
+         */
+        public Builder watchdog(Duration timeout) {
+            if (timeout.isNegative()) {
+                throw new IllegalArgumentException("watchdog timeout must be >= 0, got " + timeout);
+            }
+            watchdog = timeout;
+            return this;
+        }
+
+        /**
+         * @return the container
+         * @throws IllegalArgumentException if it requires no actuator
+         */
+        public Container build() {
+            if (requirements.isEmpty()) {
+                throw new IllegalArgumentException("container '" + name + "' requires no actuator; every container must name the actuators it drives");
+            }
+            return new Container(this);
+        }
+    }
+}

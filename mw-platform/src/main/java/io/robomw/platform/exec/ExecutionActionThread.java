@@ -1,0 +1,342 @@
+package io.robomw.platform.exec;
+
+import io.robomw.api.Clock;
+import io.robomw.api.CommandPreemptedException;
+import io.robomw.api.RobotException;
+import io.robomw.api.RobotLinkException;
+import io.robomw.api.spi.CommandPriority;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.HashMap;
+import java.util.LinkedHashSet;
+import java.util.List;
+import java.util.Map;
+import java.util.Queue;
+import java.util.Set;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.ConcurrentLinkedQueue;
+import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.atomic.AtomicLong;
+import java.util.concurrent.atomic.AtomicReference;
+import java.util.concurrent.locks.LockSupport;
+
+/**
+ * The paper's execution action thread: a real-time repository of containers, cycled at a fixed
+ * rate. It knows which actuators are in motion, and which container holds each one.
+ *
+ * <h2>Rules</h2>
+ * <ul>
+ *   <li><b>Clash:</b> a container that needs an actuator another holds interrupts it (the most
+ *   recent wins) and the interrupted caller gets {@link CommandPreemptedException}; unless the
+ *   holder has a higher {@link CommandPriority}, or the same priority and
+ *   {@link InterruptionBehavior#CANCEL_INCOMING}, in which case the newcomer is refused.</li>
+ *   <li><b>Watchdog:</b> a container with a watchdog timeout ends when it has run that long
+ *   without being replaced by a newer one (continuous commands are refreshed that way).</li>
+ *   <li><b>Link failure:</b> after {@link #linkFailed}, every container ends with
+ *   {@link RobotLinkException} and runs its end action (stopping its motors).</li>
+ * </ul>
+ *
+ * <h2>Threads</h2>
+ * {@link #submit} and {@link #linkFailed} may be called from any thread. Everything else happens
+ * in {@link #cycle()}, called either by the thread {@link #start()} creates (named
+ * {@code <robot>-action}, paced by the wall clock) or, with a simulated clock, by the simulation,
+ * never by both. Action objects, logic objects, end actions and cycle listeners all run on the
+ * cycling thread, one at a time; they must not block. Exceptions they throw end their container
+ * with that exception, are logged and counted, and the loop goes on.
+ */
+public final class ExecutionActionThread implements AutoCloseable {
+
+    private static final Logger LOG = LoggerFactory.getLogger(ExecutionActionThread.class);
+
+    private final String robot;
+    private final Clock clock;
+    private final long periodNanos;
+    private final Queue<Container> incoming = new ConcurrentLinkedQueue<>();
+    private final AtomicReference<RobotLinkException> linkFailure = new AtomicReference<>();
+    private final List<Runnable> cycleListeners = new CopyOnWriteArrayList<>();
+    private final AtomicReference<Thread> thread = new AtomicReference<>();
+    private final AtomicLong cycles = new AtomicLong();
+    private final AtomicLong overruns = new AtomicLong();
+    private final AtomicLong errors = new AtomicLong();
+    private volatile boolean running;
+    private volatile boolean closed;
+    private volatile Set<String> inUse = Set.of();
+
+    // Touched only by the cycling thread:
+    private final Map<String, Container> holders = new HashMap<>();
+    private final List<Container> active = new ArrayList<>();
+
+    /**
+     * @param robot  the robot's name, for the thread's name and messages
+     * @param clock  the clock cycles are timed with
+     * @param period the cycle period (10 ms for the default 100 Hz)
+     */
+    public ExecutionActionThread(String robot, Clock clock, Duration period) {
+        if (period.isZero() || period.isNegative()) {
+            throw new IllegalArgumentException("cycle period must be > 0, got " + period);
+        }
+        this.robot = robot;
+        this.clock = clock;
+        this.periodNanos = period.toNanos();
+    }
+
+    /** @return the cycle period */
+    public Duration period() {
+        return Duration.ofNanos(periodNanos);
+    }
+
+    /** @return the clock */
+    public Clock clock() {
+        return clock;
+    }
+
+    /**
+     * Queues a container; it starts at the next cycle, subject to the clash rules.
+     *
+     * @param container the container
+     * @return its completion future
+     */
+    public CompletableFuture<Void> submit(Container container) {
+        if (closed) {
+            container.completion().completeExceptionally(new RobotException("robot '" + robot + "' is closed; command '" + container.name() + "' was not run"));
+            return container.completion();
+        }
+        incoming.add(container);
+        return container.completion();
+    }
+
+    /**
+     * Reports that the link to the hardware failed: at the next cycle every container ends with
+     * {@link RobotLinkException} and its end action stops its motors.
+     *
+     * @param link  the link, for the message
+     * @param cause the failure
+     */
+    public void linkFailed(String link, Throwable cause) {
+        linkFailure.compareAndSet(null, new RobotLinkException("robot '" + robot + "': link " + link + " failed: " + cause.getMessage()
+                + "; its motors were stopped", cause));
+    }
+
+    /**
+     * @param listener run at the end of every cycle, on the cycling thread (a motor platform
+     *                 hands its new outputs to its link there)
+     */
+    public void addCycleListener(Runnable listener) {
+        cycleListeners.add(listener);
+    }
+
+    /** @return the actuators held by running containers, as of the last cycle */
+    public Set<String> actuatorsInUse() {
+        return inUse;
+    }
+
+    /** @return cycles run so far */
+    public long cycles() {
+        return cycles.get();
+    }
+
+    /** @return cycles that took longer than the period */
+    public long overruns() {
+        return overruns.get();
+    }
+
+    /** @return exceptions thrown by actions, logic, end actions and listeners */
+    public long errors() {
+        return errors.get();
+    }
+
+    /**
+     * Runs one cycle, in this order:
+     * <ol>
+     *   <li>If the link failed, end every container with {@link RobotLinkException}.</li>
+     *   <li>Admit queued containers in the order they were submitted, applying the clash rules,
+     *   and start each admitted one (its action objects run).</li>
+     *   <li>End containers whose watchdog expired.</li>
+     *   <li>Evaluate the logic objects of every running container; end those whose logic all holds.</li>
+     *   <li>Run the cycle listeners.</li>
+     * </ol>
+     *
+     * @return the number of containers running after the cycle (0 = nothing to do)
+     */
+    public int cycle() {
+        long start = clock.nanoTime();
+        RobotLinkException failure = linkFailure.getAndSet(null);
+        if (failure != null) {
+            for (Container c : List.copyOf(active)) {
+                finish(c, true, failure);
+            }
+        }
+        for (Container c; (c = incoming.poll()) != null; ) {
+            admit(c, start);
+        }
+        for (Container c : List.copyOf(active)) {
+            if (c.watchdogExpired(start)) {
+                LOG.warn("robot '{}': watchdog stopped '{}': not refreshed within {} ms", robot, c.name(), c.watchdog().toMillis());
+                finish(c, true, new RobotException("robot '" + robot + "': watchdog stopped '" + c.name() + "': it was not refreshed within "
+                        + c.watchdog().toMillis() + " ms"));
+            }
+        }
+        for (Container c : List.copyOf(active)) {
+            boolean done;
+            try {
+                done = c.evaluate(start);
+            } catch (RuntimeException e) {
+                fail(c, e);
+                continue;
+            }
+            if (done) {
+                finish(c, false, null);
+            }
+        }
+        for (Runnable listener : cycleListeners) {
+            try {
+                listener.run();
+            } catch (RuntimeException e) {
+                errors.incrementAndGet();
+                LOG.error("robot '{}': a cycle listener failed", robot, e);
+            }
+        }
+        inUse = Set.copyOf(holders.keySet());
+        cycles.incrementAndGet();
+        if (clock.nanoTime() - start > periodNanos && clock == Clock.system()) {
+            long n = overruns.incrementAndGet();
+            if (Long.bitCount(n) == 1) {
+                LOG.warn("robot '{}': execution action thread overran its {} µs period ({} overruns so far)", robot, periodNanos / 1000, n);
+            }
+        }
+        return active.size();
+    }
+
+    private void admit(Container c, long now) {
+        Set<Container> clashing = new LinkedHashSet<>();
+        for (String actuator : c.requirements()) {
+            Container holder = holders.get(actuator);
+            if (holder != null) {
+                clashing.add(holder);
+            }
+        }
+        for (Container holder : clashing) {
+            boolean holderWins = holder.priority().compareTo(c.priority()) > 0
+                    || (holder.priority() == c.priority() && holder.interruptionBehavior() == InterruptionBehavior.CANCEL_INCOMING);
+            if (holderWins) {
+                LOG.debug("robot '{}': refused '{}', held by '{}'", robot, c.name(), holder.name());
+                c.completion().completeExceptionally(CommandPreemptedException.refused(c.name(), holder.name()));
+                return;
+            }
+        }
+        for (Container holder : clashing) {
+            finish(holder, true, new CommandPreemptedException(holder.name(), c.name()));
+        }
+        for (String actuator : c.requirements()) {
+            holders.put(actuator, c);
+        }
+        active.add(c);
+        try {
+            c.start(now);
+        } catch (RuntimeException e) {
+            fail(c, e);
+        }
+    }
+
+    private void fail(Container c, RuntimeException e) {
+        errors.incrementAndGet();
+        LOG.error("robot '{}': command '{}' failed", robot, c.name(), e);
+        finish(c, true, e);
+    }
+
+    /** Removes the container first, so an end action that submits or fails cannot see it again. */
+    private void finish(Container c, boolean interrupted, Throwable cause) {
+        if (!active.remove(c)) {
+            return;
+        }
+        for (String actuator : c.requirements()) {
+            holders.remove(actuator, c);
+        }
+        try {
+            c.end(interrupted);
+        } catch (RuntimeException e) {
+            errors.incrementAndGet();
+            LOG.error("robot '{}': end action of '{}' failed", robot, c.name(), e);
+        }
+        if (cause == null) {
+            c.completion().complete(null);
+        } else {
+            c.completion().completeExceptionally(cause);
+        }
+    }
+
+    /**
+     * Starts the real-time thread that cycles at the period, on the wall clock. Only once.
+     *
+     * @throws IllegalStateException if the clock is not the wall clock (a simulation cycles
+     *                               itself) or the thread was already started
+     */
+    public void start() {
+        if (clock != Clock.system()) {
+            throw new IllegalStateException("robot '" + robot + "' runs on a simulated clock; its simulation calls cycle()");
+        }
+        Thread t = new Thread(this::loop, robot + "-action");
+        if (!thread.compareAndSet(null, t)) {
+            throw new IllegalStateException("the execution action thread of '" + robot + "' was already started");
+        }
+        running = true;
+        t.setDaemon(true);
+        t.setPriority(Thread.MAX_PRIORITY);
+        t.start();
+    }
+
+    private void loop() {
+        long next = clock.nanoTime();
+        while (running) {
+            try {
+                cycle();
+            } catch (RuntimeException e) {
+                errors.incrementAndGet();
+                LOG.error("robot '{}': execution action thread cycle failed", robot, e);
+            }
+            next += periodNanos;
+            long now = clock.nanoTime();
+            if (next < now) {
+                next = now;
+            }
+            while (running && (now = clock.nanoTime()) < next) {
+                LockSupport.parkNanos(this, next - now);
+            }
+        }
+    }
+
+    /**
+     * Stops the thread (waiting for its current cycle), then ends every container, queued or
+     * running, as interrupted. Idempotent.
+     */
+    @Override
+    public void close() {
+        if (closed) {
+            return;
+        }
+        closed = true;
+        running = false;
+        Thread t = thread.get();
+        if (t != null && t != Thread.currentThread()) {
+            LockSupport.unpark(t);
+            try {
+                t.join(Duration.ofSeconds(2).toMillis());
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        }
+        RobotException closing = new RobotException("robot '" + robot + "' was closed");
+        for (Container c; (c = incoming.poll()) != null; ) {
+            c.completion().completeExceptionally(closing);
+        }
+        for (Container c : List.copyOf(active)) {
+            finish(c, true, closing);
+        }
+        for (Runnable listener : cycleListeners) {
+            listener.run();
+        }
+    }
+}

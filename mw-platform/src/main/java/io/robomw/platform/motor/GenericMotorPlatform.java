@@ -1,0 +1,269 @@
+package io.robomw.platform.motor;
+
+import io.robomw.api.Clock;
+import io.robomw.api.spi.CommandPriority;
+import io.robomw.api.spi.MotorCommand;
+import io.robomw.api.spi.MotorTarget;
+import io.robomw.platform.exec.Container;
+
+import java.io.IOException;
+import java.util.ArrayList;
+import java.util.LinkedHashMap;
+import java.util.List;
+import java.util.Map;
+import java.util.Set;
+import java.util.concurrent.ConcurrentHashMap;
+
+/**
+ * The paper's motor platform: turns motor commands into containers for the execution action
+ * thread, keeps each motor's wanted state, and hands changed states to the driver's
+ * {@link #runImpl(List)}. A platform writer subclasses it and implements {@code runImpl} (encode
+ * the brick's motor telegrams) and, for motors with encoders, {@link #pollFeedback()}.
+ *
+ * <h2>Threads</h2>
+ * Two sides, so the action thread never waits for I/O:
+ * <ul>
+ *   <li>the <b>action side</b> ({@link #container}, {@link #stopContainer}, {@link #flushOutputs})
+ *   runs on the execution action thread: it sets wanted states and, once per cycle, publishes the
+ *   changed ones;</li>
+ *   <li>the <b>link side</b> ({@link #serviceLink}) runs on the platform's link thread (or inline,
+ *   for a simulator without I/O): it calls {@code runImpl} with the published states, then
+ *   {@code pollFeedback}, which reports encoder readings with {@link #reportDegrees}.</li>
+ * </ul>
+ * Encoder readings and published states cross between the sides through concurrent maps.
+ *
+ * <h2>Reaching a target</h2>
+ * A logic object per motor watches its rotation since the container started, and stops the motor
+ * when the rotation is within half a cycle's travel of the target. A motor without encoder is
+ * stopped by time: {@code degrees / speed} after the start.
+ */
+public abstract class GenericMotorPlatform {
+
+    private final String robot;
+    private final Clock clock;
+    private final Set<String> ports;
+    private final List<String> portOrder;
+    private final Map<String, MotorState> wanted = new LinkedHashMap<>();
+    private final Map<String, MotorState> published = new ConcurrentHashMap<>();
+    private final Map<String, MotorState> changed = new LinkedHashMap<>();
+    private final Map<String, Double> degrees = new ConcurrentHashMap<>();
+    private final Map<String, Double> startDegrees = new LinkedHashMap<>();
+    private volatile long cyclePeriodNanos = 10_000_000L;
+
+    /**
+     * @param robot the robot's name, for messages
+     * @param clock the clock the action thread runs on
+     * @param ports every motor port this platform drives
+     */
+    protected GenericMotorPlatform(String robot, Clock clock, List<String> ports) {
+        this.robot = robot;
+        this.clock = clock;
+        this.ports = Set.copyOf(ports);
+        this.portOrder = List.copyOf(ports);
+        for (String port : ports) {
+            wanted.put(port, MotorState.stopped(port, MotorState.StopMode.BRAKE));
+        }
+    }
+
+    /**
+     * Pushes motor states to the hardware. Called on the link side with the states that changed
+     * since the last call, in port order of the description.
+     *
+     * @param motors the changed motors
+     * @throws IOException if the link failed; the platform reports it to the action thread
+     */
+    protected abstract void runImpl(List<MotorState> motors) throws IOException;
+
+    /**
+     * Reads encoders and reports them with {@link #reportDegrees}. Called on the link side after
+     * every {@link #runImpl}. The default reads nothing.
+     *
+     * @throws IOException if the link failed
+     */
+    protected void pollFeedback() throws IOException {
+    }
+
+    /**
+     * @param port a motor port
+     * @return whether this motor has an encoder (default: every motor)
+     */
+    public boolean hasEncoder(String port) {
+        return true;
+    }
+
+    /** @return the robot's name */
+    public String robot() {
+        return robot;
+    }
+
+    /** @return the motor ports */
+    public Set<String> ports() {
+        return ports;
+    }
+
+    /**
+     * @param period the execution action thread's period, used to anticipate targets
+     */
+    public void cyclePeriod(java.time.Duration period) {
+        cyclePeriodNanos = period.toNanos();
+    }
+
+    /**
+     * Records an encoder reading. Called by drivers from {@link #pollFeedback()}, or by a
+     * simulator.
+     *
+     * @param port    the motor port
+     * @param reading degrees of the motor shaft
+     */
+    protected final void reportDegrees(String port, double reading) {
+        degrees.put(port, reading);
+    }
+
+    /**
+     * @param port a motor port
+     * @return the last encoder reading, degrees
+     */
+    public double motorDegrees(String port) {
+        requirePort(port);
+        return degrees.getOrDefault(port, 0.0);
+    }
+
+    // ---- action side ----
+
+    /**
+     * Builds the container of a motor command: it starts every motor, stops each when its target
+     * is reached, and on interruption stops them all (braking).
+     *
+     * @param command the command
+     * @return its container
+     */
+    public Container container(MotorCommand command) {
+        List<MotorTarget> targets = command.targets();
+        List<String> names = new ArrayList<>();
+        for (MotorTarget t : targets) {
+            requirePort(t.port());
+            names.add(t.port());
+        }
+        Container.Builder b = Container.builder(command.name())
+                .requires(names)
+                .priority(command.priority())
+                .watchdog(command.watchdogTimeout());
+        long[] startedAt = new long[1];
+        b.action(now -> {
+            startedAt[0] = now;
+            for (MotorTarget t : targets) {
+                startDegrees.put(t.port(), motorDegrees(t.port()));
+                setWanted(new MotorState(t.port(), t.degrees() == 0 ? 0 : t.degreesPerSecond(), t.degrees(), MotorState.StopMode.BRAKE));
+            }
+        });
+        for (MotorTarget t : targets) {
+            if (t.continuous()) {
+                continue;
+            }
+            b.logic(now -> {
+                if (reached(t, now - startedAt[0])) {
+                    setWanted(MotorState.stopped(t.port(), MotorState.StopMode.BRAKE));
+                    return true;
+                }
+                return false;
+            });
+        }
+        if (targets.stream().allMatch(MotorTarget::continuous)) {
+            b.logic(now -> false);
+        }
+        b.onEnd(interrupted -> {
+            for (MotorTarget t : targets) {
+                setWanted(MotorState.stopped(t.port(), MotorState.StopMode.BRAKE));
+            }
+        });
+        return b.build();
+    }
+
+    /**
+     * @return a safety-priority container that stops every motor at once and holds them for one
+     *         cycle, so that no normal command queued in the same cycle can restart them
+     */
+    public Container stopContainer() {
+        return Container.builder("stop")
+                .requires(ports)
+                .priority(CommandPriority.SAFETY)
+                .action(now -> ports.forEach(p -> setWanted(MotorState.stopped(p, MotorState.StopMode.BRAKE))))
+                .logic(now -> true)
+                .build();
+    }
+
+    private boolean reached(MotorTarget t, long elapsedNanos) {
+        double speed = Math.abs(t.degreesPerSecond());
+        if (t.degrees() == 0 || speed == 0) {
+            return true;
+        }
+        if (!hasEncoder(t.port())) {
+            return elapsedNanos >= t.degrees() / speed * 1e9;
+        }
+        double turned = Math.abs(motorDegrees(t.port()) - startDegrees.getOrDefault(t.port(), 0.0));
+        double lead = speed * cyclePeriodNanos / 2e9;
+        return turned >= t.degrees() - lead;
+    }
+
+    private void setWanted(MotorState state) {
+        MotorState before = wanted.put(state.port(), state);
+        if (!state.equals(before)) {
+            changed.put(state.port(), state);
+        }
+    }
+
+    /**
+     * Publishes the states changed during this cycle for the link side. Called by the action
+     * thread at the end of each cycle.
+     *
+     * @return whether anything changed
+     */
+    public boolean flushOutputs() {
+        if (changed.isEmpty()) {
+            return false;
+        }
+        published.putAll(changed);
+        changed.clear();
+        return true;
+    }
+
+    // ---- link side ----
+
+    /**
+     * Sends published states with {@link #runImpl}, then polls feedback. Called by the link
+     * thread each cycle, or inline by a simulator.
+     *
+     * @throws IOException if the link failed; unsent states are kept and sent on the next call
+     */
+    public final void serviceLink() throws IOException {
+        if (!published.isEmpty()) {
+            List<MotorState> batch = new ArrayList<>();
+            for (String port : portOrder) {
+                MotorState s = published.remove(port);
+                if (s != null) {
+                    batch.add(s);
+                }
+            }
+            try {
+                runImpl(batch);
+            } catch (IOException | RuntimeException e) {
+                for (MotorState s : batch) {
+                    published.putIfAbsent(s.port(), s);
+                }
+                throw e;
+            }
+        }
+        pollFeedback();
+    }
+
+    private void requirePort(String port) {
+        if (!ports.contains(port)) {
+            throw new IllegalArgumentException("robot '" + robot + "' has no motor on port " + port + "; its motor ports are " + ports);
+        }
+    }
+
+    /** @return the clock */
+    protected Clock clock() {
+        return clock;
+    }
+}

@@ -1,0 +1,52 @@
+package io.robomw.platform.sensor;
+
+import io.robomw.api.ReturnType;
+import io.robomw.api.SensorType;
+import io.robomw.api.spi.SensorChannel;
+import io.robomw.platform.motor.GenericMotorPlatform;
+
+import java.io.IOException;
+import java.util.concurrent.CompletableFuture;
+
+/**
+ * The paper's sensor platform: sets up a robot's sensors on its brick and reads them. A platform
+ * writer implements {@link #createSensor} (configure the input port, return a reader);
+ * {@link #selectMotorSensor} gives a motor's encoder as a sensor.
+ */
+public abstract class SensorPlatform {
+
+    private final GenericMotorPlatform motors;
+
+    /**
+     * @param motors the motor platform whose encoders {@link #selectMotorSensor} reads
+     */
+    protected SensorPlatform(GenericMotorPlatform motors) {
+        this.motors = motors;
+    }
+
+    /**
+     * Sets up one sensor on the brick (its input mode, say) and returns its reader.
+     *
+     * @param sensorObject the sensor as the description gives it
+     * @return its reader
+     * @throws IOException if the brick refused or did not answer
+     */
+    public abstract Sensor createSensor(SensorChannel sensorObject) throws IOException;
+
+    /**
+     * A motor's built-in sensor. The default gives the encoder ({@link SensorType#TACHO}) in motor
+     * degrees; the return type is converted above this layer.
+     *
+     * @param motorPort  the motor port
+     * @param type       the sensor type
+     * @param returnType the unit the program wants (checked above; raw degrees are returned here)
+     * @return its reader
+     * @throws IllegalArgumentException if the motor has no such sensor
+     */
+    public Sensor selectMotorSensor(String motorPort, SensorType type, ReturnType returnType) {
+        if (type != SensorType.TACHO || !motors.hasEncoder(motorPort)) {
+            throw new IllegalArgumentException("robot '" + motors.robot() + "': motor " + motorPort + " has no " + type + " sensor");
+        }
+        return () -> CompletableFuture.completedFuture(motors.motorDegrees(motorPort));
+    }
+}
