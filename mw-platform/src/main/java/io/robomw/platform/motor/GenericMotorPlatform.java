@@ -34,7 +34,9 @@ import java.util.concurrent.ConcurrentHashMap;
  *
  * <h2>Reaching a target</h2>
  * A logic object per motor watches its rotation since the container started, and stops the motor
- * when the rotation is within half a cycle's travel of the target. A motor without encoder is
+ * when the rotation is within half a cycle's travel of the target. The last encoder reading is
+ * extrapolated by the commanded speed over its age, so a link's feedback delay does not become
+ * overshoot. A motor without encoder is
  * stopped by time: {@code degrees / speed} after the start.
  */
 public abstract class GenericMotorPlatform {
@@ -46,7 +48,7 @@ public abstract class GenericMotorPlatform {
     private final Map<String, MotorState> wanted = new LinkedHashMap<>();
     private final Map<String, MotorState> published = new ConcurrentHashMap<>();
     private final Map<String, MotorState> changed = new LinkedHashMap<>();
-    private final Map<String, Double> degrees = new ConcurrentHashMap<>();
+    private final Map<String, Reading> degrees = new ConcurrentHashMap<>();
     private final Map<String, Double> startDegrees = new LinkedHashMap<>();
     private volatile long cyclePeriodNanos = 10_000_000L;
 
@@ -116,7 +118,11 @@ public abstract class GenericMotorPlatform {
      * @param reading degrees of the motor shaft
      */
     protected final void reportDegrees(String port, double reading) {
-        degrees.put(port, reading);
+        degrees.put(port, new Reading(reading, clock.nanoTime()));
+    }
+
+    /** An encoder reading and the clock time it was reported at. */
+    private record Reading(double degrees, long atNanos) {
     }
 
     /**
@@ -125,7 +131,8 @@ public abstract class GenericMotorPlatform {
      */
     public double motorDegrees(String port) {
         requirePort(port);
-        return degrees.getOrDefault(port, 0.0);
+        Reading r = degrees.get(port);
+        return r == null ? 0.0 : r.degrees();
     }
 
     // ---- action side ----
@@ -200,9 +207,23 @@ public abstract class GenericMotorPlatform {
         if (!hasEncoder(t.port())) {
             return elapsedNanos >= t.degrees() / speed * 1e9;
         }
-        double turned = Math.abs(motorDegrees(t.port()) - startDegrees.getOrDefault(t.port(), 0.0));
+        double turned = Math.abs(estimatedDegrees(t) - startDegrees.getOrDefault(t.port(), 0.0));
         double lead = speed * cyclePeriodNanos / 2e9;
         return turned >= t.degrees() - lead;
+    }
+
+    /**
+     * The encoder reading moved on by the commanded speed for the reading's age (at most three
+     * cycles): feedback arrives at least one link round trip late, and stopping on stale readings
+     * would overshoot by that much.
+     */
+    private double estimatedDegrees(MotorTarget t) {
+        Reading r = degrees.get(t.port());
+        if (r == null) {
+            return 0.0;
+        }
+        long age = Math.min(Math.max(0, clock.nanoTime() - r.atNanos()), 3 * cyclePeriodNanos);
+        return r.degrees() + t.degreesPerSecond() * age / 1e9;
     }
 
     private void setWanted(MotorState state) {

@@ -1,0 +1,203 @@
+package io.robomw.platform.motor;
+
+import io.robomw.api.CommandPreemptedException;
+import io.robomw.api.ManualClock;
+import io.robomw.api.RobotLinkException;
+import io.robomw.api.spi.ConnectionSettings;
+import io.robomw.api.spi.MotorCommand;
+import io.robomw.api.spi.MotorTarget;
+import io.robomw.api.spi.PlatformConfig;
+import io.robomw.api.spi.PlatformServices;
+import io.robomw.api.spi.SensorChannel;
+import io.robomw.platform.BrickPlatform;
+import io.robomw.platform.LinkThreading;
+import io.robomw.platform.sensor.Sensor;
+import io.robomw.platform.sensor.SensorPlatform;
+import org.junit.jupiter.api.AfterEach;
+import org.junit.jupiter.api.Test;
+
+import java.io.IOException;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.HashMap;
+import java.util.List;
+import java.util.Map;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.ExecutionException;
+import java.util.concurrent.TimeUnit;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertInstanceOf;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+/**
+ * The motor platform and BrickPlatform on a manual clock, with a fake driver whose motors turn at
+ * exactly the commanded speed between cycles.
+ */
+class GenericMotorPlatformTest {
+
+    private static final Duration PERIOD = Duration.ofMillis(10);
+
+    private final ManualClock clock = new ManualClock();
+    private final FakeMotors motors = new FakeMotors(clock);
+    private BrickPlatform platform;
+
+    /** Motors that integrate their speed over simulated time; records what runImpl got. */
+    static final class FakeMotors extends GenericMotorPlatform {
+        final List<List<MotorState>> sent = new ArrayList<>();
+        final Map<String, Double> speed = new HashMap<>(Map.of("B", 0.0, "C", 0.0));
+        final Map<String, Double> position = new HashMap<>(Map.of("B", 0.0, "C", 0.0));
+        IOException failNext;
+
+        FakeMotors(ManualClock clock) {
+            super("fake", clock, List.of("B", "C"));
+        }
+
+        @Override
+        protected void runImpl(List<MotorState> motors) throws IOException {
+            if (failNext != null) {
+                throw failNext;
+            }
+            sent.add(motors);
+            motors.forEach(m -> speed.put(m.port(), m.degreesPerSecond()));
+        }
+
+        @Override
+        protected void pollFeedback() {
+            position.forEach(this::reportDegrees);
+        }
+
+        void advance(Duration dt) {
+            speed.forEach((port, dps) -> position.merge(port, dps * dt.toNanos() / 1e9, Double::sum));
+        }
+    }
+
+    private BrickPlatform open() throws IOException {
+        PlatformConfig config = new PlatformConfig("fake", "fake", new ConnectionSettings(Map.of(), "test"), List.of("B", "C"),
+                List.of(new SensorChannel("left-tacho", io.robomw.api.SensorType.TACHO, "B", Map.of()),
+                        new SensorChannel("sonar", io.robomw.api.SensorType.SONAR, "S4", Map.of())),
+                PERIOD, Duration.ofMillis(500), clock, PlatformServices.none());
+        SensorPlatform sensors = new SensorPlatform(motors) {
+            @Override
+            public Sensor createSensor(SensorChannel sensorObject) {
+                return () -> CompletableFuture.completedFuture(42.0);
+            }
+        };
+        platform = new BrickPlatform(config, motors, sensors, LinkThreading.INLINE, null).start();
+        return platform;
+    }
+
+    @AfterEach
+    void close() {
+        if (platform != null) {
+            platform.close();
+        }
+    }
+
+    /** One simulated cycle: motors move for a period, then the action thread cycles. */
+    private void step() {
+        motors.advance(PERIOD);
+        clock.advance(PERIOD);
+        platform.actionThread().cycle();
+    }
+
+    private void stepUntilDone(CompletableFuture<?> f, int maxCycles) {
+        for (int i = 0; i < maxCycles && !f.isDone(); i++) {
+            step();
+        }
+        assertTrue(f.isDone(), "not done after " + maxCycles + " cycles");
+    }
+
+    @Test
+    void shouldStopEachMotorWithinHalfCycleOfItsTarget() throws Exception {
+        open();
+        CompletableFuture<Void> move = platform.run(MotorCommand.of("move", List.of(
+                MotorTarget.rotate("B", 720, 360), MotorTarget.rotate("C", -360, 180))));
+        stepUntilDone(move, 1000);
+        move.get(0, TimeUnit.SECONDS);
+        step();
+        assertEquals(720, motors.position.get("B"), 360 * PERIOD.toMillis() / 2000.0, "B within half a cycle of travel");
+        assertEquals(-360, motors.position.get("C"), 180 * PERIOD.toMillis() / 2000.0);
+        assertEquals(0.0, motors.speed.get("B"));
+        assertEquals(0.0, motors.speed.get("C"));
+    }
+
+    @Test
+    void shouldSendOnlyChangedMotorsToRunImpl() throws Exception {
+        open();
+        platform.run(MotorCommand.of("b only", List.of(MotorTarget.run("B", 100))));
+        step();
+        assertEquals(List.of(new MotorState("B", 100, Double.POSITIVE_INFINITY, MotorState.StopMode.BRAKE)), motors.sent.get(0));
+        int before = motors.sent.size();
+        step();
+        step();
+        assertEquals(before, motors.sent.size(), "nothing changed, nothing sent");
+    }
+
+    @Test
+    void shouldStopAllMotorsAndRefuseNormalCommandsInTheSameCycle() throws Exception {
+        open();
+        CompletableFuture<Void> run = platform.run(MotorCommand.of("run", List.of(MotorTarget.run("B", 100), MotorTarget.run("C", 100))));
+        step();
+        platform.stopAll();
+        CompletableFuture<Void> sneaky = platform.run(MotorCommand.of("sneaky", List.of(MotorTarget.run("B", 50))));
+        step();
+        assertInstanceOf(CommandPreemptedException.class, assertThrows(ExecutionException.class, () -> run.get(0, TimeUnit.SECONDS)).getCause());
+        assertInstanceOf(CommandPreemptedException.class, assertThrows(ExecutionException.class, () -> sneaky.get(0, TimeUnit.SECONDS)).getCause());
+        assertEquals(0.0, motors.speed.get("B"));
+        assertEquals(0.0, motors.speed.get("C"));
+    }
+
+    @Test
+    void shouldFailCommandsAndReportLinkDownWhenRunImplThrows() throws Exception {
+        open();
+        motors.failNext = new IOException("brick unplugged");
+        CompletableFuture<Void> move = platform.run(MotorCommand.of("move", List.of(MotorTarget.rotate("B", 720, 360))));
+        step();
+        step();
+        RobotLinkException e = assertInstanceOf(RobotLinkException.class, assertThrows(ExecutionException.class, () -> move.get(0, TimeUnit.SECONDS)).getCause());
+        assertTrue(e.getMessage().contains("brick unplugged"), e.getMessage());
+        assertTrue(platform.run(MotorCommand.of("again", List.of(MotorTarget.run("B", 1)))).isCompletedExceptionally(), "refused while the link is down");
+
+        motors.failNext = null;
+        step();
+        CompletableFuture<Void> after = platform.run(MotorCommand.of("after", List.of(MotorTarget.rotate("B", 10, 360))));
+        stepUntilDone(after, 100);
+        after.get(0, TimeUnit.SECONDS);
+    }
+
+    @Test
+    void shouldReadTachoThroughMotorSensorAndOtherSensorsThroughDriver() throws Exception {
+        open();
+        platform.run(MotorCommand.of("move", List.of(MotorTarget.rotate("B", 90, 90))));
+        for (int i = 0; i < 50; i++) {
+            step();
+        }
+        assertEquals(motors.position.get("B"), platform.readRaw("left-tacho").get(0, TimeUnit.SECONDS), 1e-9);
+        assertEquals(42.0, platform.readRaw("sonar").get(0, TimeUnit.SECONDS));
+        assertTrue(platform.readRaw("nothing").isCompletedExceptionally());
+    }
+
+    @Test
+    void shouldRejectCommandForUnknownPort() throws Exception {
+        open();
+        IllegalArgumentException e = assertThrows(IllegalArgumentException.class,
+                () -> platform.run(MotorCommand.of("bad", List.of(MotorTarget.run("Z", 1)))));
+        assertTrue(e.getMessage().contains("port Z"), e.getMessage());
+        assertFalse(platform.hasEncoder("Z"));
+    }
+
+    @Test
+    void shouldStopMotorsWhenContinuousCommandIsNotRefreshed() throws Exception {
+        open();
+        platform.run(new MotorCommand("drive", List.of(MotorTarget.run("B", 100)), io.robomw.api.spi.CommandPriority.NORMAL, Duration.ofMillis(500)));
+        step();
+        assertEquals(100.0, motors.speed.get("B"));
+        for (int i = 0; i < 52; i++) {
+            step();
+        }
+        assertEquals(0.0, motors.speed.get("B"), "the watchdog stopped the motor");
+    }
+}
