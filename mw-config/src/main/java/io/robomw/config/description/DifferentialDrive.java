@@ -40,7 +40,18 @@ public record DifferentialDrive(double wheelDiameter, double trackWidth, double 
      *
      * @param port     the motor port
      * @param reversed whether the motor is mounted so that its forward drives the wheel backwards
+     * @param counter  the input port that counts this wheel's encoder pulses, for bricks whose
+     *                 motors have no encoder of their own (a fischertechnik impulse wheel on a
+     *                 digital input); empty when the motor port has its own encoder
      */
-    public record Wheel(String port, boolean reversed) {
+    public record Wheel(String port, boolean reversed, java.util.Optional<String> counter) {
+
+        /**
+         * @param port     the motor port
+         * @param reversed whether the motor is mounted reversed
+         */
+        public Wheel(String port, boolean reversed) {
+            this(port, reversed, java.util.Optional.empty());
+        }
     }
 }

@@ -109,7 +109,7 @@ public final class RobotDescriptionLoader {
     }
 
     private DifferentialDrive.Wheel wheel(MappingReader m) {
-        DifferentialDrive.Wheel w = new DifferentialDrive.Wheel(m.requireText("port"), m.bool("reversed", false));
+        DifferentialDrive.Wheel w = new DifferentialDrive.Wheel(m.requireText("port"), m.bool("reversed", false), m.text("counter"));
         m.finish();
         return w;
     }
@@ -206,6 +206,10 @@ public final class RobotDescriptionLoader {
             }
         }
         Map<String, String> inputUse = new HashMap<>();
+        drive.ifPresent(d -> {
+            d.left().counter().ifPresent(c -> inputUse.put(c, "the left wheel's counter"));
+            d.right().counter().ifPresent(c -> inputUse.put(c, "the right wheel's counter"));
+        });
         Set<String> names = new HashSet<>();
         for (Read<SensorSpec> read : sensors) {
             SensorSpec s = read.value();
@@ -219,9 +223,9 @@ public final class RobotDescriptionLoader {
                 }
                 continue;
             }
-            String previous = inputUse.putIfAbsent(s.port(), s.name());
+            String previous = inputUse.putIfAbsent(s.port(), "sensor '" + s.name() + "'");
             if (previous != null) {
-                read.node().problem("port", "input port " + s.port() + " already has sensor '" + previous + "'; one sensor per port");
+                read.node().problem("port", "input port " + s.port() + " is already used by " + previous + "; one sensor per port");
             }
         }
     }
