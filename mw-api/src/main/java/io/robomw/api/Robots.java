@@ -50,8 +50,20 @@ public final class Robots {
      * @return the remote robot
      */
     public static Robot remote(String address) {
+        return remote(address, PlatformServices.none());
+    }
+
+    /**
+     * Connects to a robot served by another process, with settings for the connection (for
+     * example TLS keys or the payload allow-list, as the transport's factory documents).
+     *
+     * @param address  the robot's address; the scheme chooses the transport
+     * @param services settings for the connection, looked up by type
+     * @return the remote robot; close it when done
+     */
+    public static Robot remote(String address, PlatformServices services) {
         URI uri = URI.create(address);
-        return factory(uri.getScheme()).open(uri, PlatformServices.none());
+        return factory(uri.getScheme()).open(uri, services);
     }
 
     private static RobotFactory factory(String scheme) {

@@ -257,6 +257,16 @@ public final class ConfiguredRobot implements Robot {
     }
 
     @Override
+    public Message waitForReply(UUID correlationId, Duration timeout) {
+        return messaging("waitForReply").waitForReply(correlationId, timeout);
+    }
+
+    @Override
+    public void replyMessage(Message request, Serializable object, String function) {
+        messaging("replyMessage").replyMessage(request, object, function);
+    }
+
+    @Override
     public void publishMessage(String topic, Serializable object, String function, String password) {
         messaging("publishMessage").publishMessage(topic, object, function, password);
     }

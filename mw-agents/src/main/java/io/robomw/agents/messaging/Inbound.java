@@ -1,0 +1,169 @@
+package io.robomw.agents.messaging;
+
+import io.robomw.agents.messaging.frame.Frame;
+import io.robomw.agents.messaging.frame.FrameCodec;
+import io.robomw.agents.messaging.frame.FrameException;
+import io.robomw.agents.messaging.frame.FrameKind;
+import io.robomw.agents.messaging.security.FrameMac;
+import io.robomw.agents.messaging.security.PayloadCodec;
+import io.robomw.agents.messaging.security.PayloadRejectedException;
+import io.robomw.agents.messaging.security.ReplayGuard;
+import io.robomw.agents.messaging.spi.Channel;
+import io.robomw.api.Message;
+import io.robomw.api.MessageListener;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import javax.crypto.SecretKey;
+import java.io.Serializable;
+import java.time.Instant;
+
+/**
+ * What a node does with each received frame, in this order: decode it; ignore its own frames
+ * (multicast loops them back); count datagram losses; then by kind: record a (un)subscription;
+ * or find the topic (or, for a reply, the request), check the receiver's name, authenticate
+ * (HMAC, freshness, replay) if the topic has a password, deserialize the payload through the
+ * allow-list, and deliver it. Every refusal is counted and logged; refused requests get an
+ * {@link FrameKind#ERROR} answer when it is safe to tell (not for authentication failures).
+ *
+ * <p>Runs on the transports' receiving threads; listeners run there too.
+ */
+final class Inbound {
+
+    private static final Logger LOG = LoggerFactory.getLogger(Inbound.class);
+
+    private final MessagingNode node;
+    private final NodeCounters counters;
+    private final LossDetector losses;
+    private final ReplayGuard replays = new ReplayGuard();
+    private final FrameMac mac;
+    private final PayloadCodec payloads;
+    private final int maxFrameSize;
+    private final long maxSkewMicros;
+
+    Inbound(MessagingNode node, NodeCounters counters, FrameMac mac, PayloadCodec payloads, MessagingSettings settings) {
+        this.node = node;
+        this.counters = counters;
+        this.losses = new LossDetector(counters);
+        this.mac = mac;
+        this.payloads = payloads;
+        this.maxFrameSize = settings.maxFrameSize();
+        this.maxSkewMicros = settings.maxClockSkew().toNanos() / 1000;
+    }
+
+    void onFrame(byte[] buf, int offset, int length, Channel from) {
+        try {
+            Frame f = FrameCodec.decode(buf, offset, length, maxFrameSize);
+            if (f.source() == node.id()) {
+                return;
+            }
+            if (!from.isConnection()) {
+                losses.observe(from.peer(), f.source(), f.streamSequence());
+            }
+            switch (f.kind()) {
+                case SUBSCRIBE -> node.remoteSubscribers().subscribe(f.topic(), from);
+                case UNSUBSCRIBE -> node.remoteSubscribers().unsubscribe(f.topic(), from);
+                case MESSAGE, PUBLISH -> onMessage(f, buf, offset, length, from);
+                case REPLY, ERROR -> onReply(f, buf, offset, length, from);
+                default -> throw new IllegalStateException("unhandled kind " + f.kind());
+            }
+        } catch (FrameException e) {
+            counters.drop(e.reason(), from.peer(), e.getMessage());
+        } catch (RuntimeException e) {
+            counters.drop(DropReason.MALFORMED, from.peer(), "frame could not be handled: " + e);
+        }
+    }
+
+    private void onMessage(Frame f, byte[] buf, int offset, int length, Channel from) throws FrameException {
+        boolean request = f.kind() == FrameKind.MESSAGE;
+        LocalTopics.Topic topic = node.topics().get(f.topic());
+        if (topic == null || (!request && !topic.subscribed)) {
+            if (request) {
+                counters.drop(DropReason.NO_LISTENER, from.peer(), "message for topic '" + f.topic() + "', which nobody here listens to");
+                refuse(f, from, "no listener for topic '" + f.topic() + "' at node '" + node.name() + "'");
+            } else {
+                counters.dropQuietly(DropReason.NO_LISTENER);
+            }
+            return;
+        }
+        if (request && !node.answersTo(f.receiver())) {
+            counters.drop(DropReason.UNKNOWN_RECEIVER, from.peer(), "message for '" + f.receiver() + "'; this node answers to " + node.names());
+            refuse(f, from, "no receiver named '" + f.receiver() + "' here; this node answers to " + node.names());
+            return;
+        }
+        authenticate(topic.key, f, buf, offset, length, from);
+        Serializable payload;
+        try {
+            payload = payloads.decode(f.payloadType(), f.payload());
+        } catch (PayloadRejectedException e) {
+            counters.drop(DropReason.REJECTED_CLASS, from.peer(), "topic '" + f.topic() + "' from '" + f.sender() + "': " + e.getMessage());
+            if (request) {
+                refuse(f, from, e.getMessage());
+            }
+            return;
+        }
+        Message message = new Message(f.sender(), f.topic(), f.function(), payload, f.correlationId(), instant(f.timestampMicros()));
+        if (request) {
+            node.receivedRequests().put(f.correlationId(), new MessagingNode.Origin(from, topic.key));
+        }
+        counters.in();
+        for (MessageListener listener : topic.listeners) {
+            try {
+                listener.onMessage(message);
+            } catch (RuntimeException e) {
+                counters.listenerError();
+                LOG.warn("node '{}': a listener of topic '{}' failed on a message from '{}': {}", node.name(), f.topic(), f.sender(), e.toString(), e);
+            }
+        }
+    }
+
+    private void onReply(Frame f, byte[] buf, int offset, int length, Channel from) throws FrameException {
+        MessagingNode.Sent sent = node.sentRequests().get(f.correlationId());
+        if (sent == null) {
+            counters.drop(DropReason.UNSOLICITED_REPLY, from.peer(), "reply " + f.correlationId() + " to no request sent from here");
+            return;
+        }
+        authenticate(sent.key(), f, buf, offset, length, from);
+        Serializable payload;
+        try {
+            payload = payloads.decode(f.payloadType(), f.payload());
+        } catch (PayloadRejectedException e) {
+            counters.drop(DropReason.REJECTED_CLASS, from.peer(), "reply on topic '" + f.topic() + "' from '" + f.sender() + "': " + e.getMessage());
+            return;
+        }
+        Message message = new Message(f.sender(), f.topic(), f.function(), payload, f.correlationId(), instant(f.timestampMicros()));
+        counters.in();
+        String error = f.kind() == FrameKind.ERROR ? String.valueOf(payload) : null;
+        node.replies().arrived(new Replies.Reply(message, sent.host(), error));
+    }
+
+    private void authenticate(SecretKey key, Frame f, byte[] buf, int offset, int length, Channel from) throws FrameException {
+        if (key == null) {
+            return;
+        }
+        if (!f.authenticated()) {
+            throw new FrameException(DropReason.MISSING_MAC, "topic '" + f.topic() + "' is password-protected and the frame from '"
+                    + f.sender() + "' has no HMAC");
+        }
+        if (!mac.verify(key, buf, offset, length)) {
+            throw new FrameException(DropReason.BAD_MAC, "HMAC check failed on topic '" + f.topic() + "' from '" + f.sender()
+                    + "' (wrong password, or the frame was altered)");
+        }
+        if (!ReplayGuard.fresh(f.timestampMicros(), MessagingNode.nowMicros(), maxSkewMicros)) {
+            throw new FrameException(DropReason.STALE, "frame from '" + f.sender() + "' is timestamped " + instant(f.timestampMicros())
+                    + ", further than " + maxSkewMicros / 1_000_000 + " s from this host's clock");
+        }
+        if (!replays.accept(f.source(), f.messageNumber())) {
+            throw new FrameException(DropReason.REPLAYED, "frame " + f.messageNumber() + " of source " + Long.toHexString(f.source())
+                    + " from '" + f.sender() + "' was already received");
+        }
+    }
+
+    private void refuse(Frame f, Channel from, String why) {
+        node.sendError(f, from, why);
+    }
+
+    static Instant instant(long micros) {
+        return Instant.ofEpochSecond(Math.floorDiv(micros, 1_000_000L), Math.floorMod(micros, 1_000_000L) * 1000);
+    }
+}

@@ -1,0 +1,743 @@
+package io.robomw.agents.messaging;
+
+import io.robomw.agents.messaging.frame.Frame;
+import io.robomw.agents.messaging.frame.FrameCodec;
+import io.robomw.agents.messaging.frame.FrameKind;
+import io.robomw.agents.messaging.security.FrameMac;
+import io.robomw.agents.messaging.security.PayloadCodec;
+import io.robomw.agents.messaging.security.TopicKeys;
+import io.robomw.agents.messaging.spi.Channel;
+import io.robomw.agents.messaging.spi.Endpoint;
+import io.robomw.agents.messaging.spi.Link;
+import io.robomw.agents.messaging.spi.Transport;
+import io.robomw.agents.messaging.spi.TransportContext;
+import io.robomw.agents.messaging.spi.TransportProvider;
+import io.robomw.api.Message;
+import io.robomw.api.MessageListener;
+import io.robomw.api.Messaging;
+import io.robomw.api.MessagingException;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import javax.crypto.SecretKey;
+import java.io.IOException;
+import java.io.Serializable;
+import java.security.SecureRandom;
+import java.time.Duration;
+import java.time.Instant;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Map;
+import java.util.Objects;
+import java.util.ServiceLoader;
+import java.util.Set;
+import java.util.UUID;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.ExecutionException;
+import java.util.concurrent.Executors;
+import java.util.concurrent.ScheduledExecutorService;
+import java.util.concurrent.ThreadFactory;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.TimeoutException;
+import java.util.concurrent.atomic.AtomicInteger;
+import java.util.concurrent.atomic.AtomicLong;
+import java.util.function.Predicate;
+
+/**
+ * A messaging node: the paper's communication component for one robot, agent host or program.
+ *
+ * <p>A node <em>binds</em> addresses where it receives ({@code tcp://127.0.0.1:7000},
+ * {@code rmi://127.0.0.1:1099/robot}, {@code udp://...}), <em>connects</em> to peers whose
+ * publications it wants, and <em>joins</em> multicast groups; the transports are found by scheme
+ * through the SPI in {@link io.robomw.agents.messaging.spi}. Messages to a host it has no link to
+ * open one on demand.
+ *
+ * <pre>{@code
+ * try (MessagingNode node = MessagingNode.builder("nxt-1").bind("tcp://127.0.0.1:0").build()) {
+ *     node.addMessageListener("cmd", "secret", m -> node.replyMessage(m, "done", "ok"));
+ *     ...
+ * }
+ * }</pre>
+ *
+ * <p>Publications go to every peer that subscribed to the topic over a connection or UDP, and to
+ * every multicast group the node joined; a node never receives its own publications. Listeners
+ * run on the receiving thread of the link the message came on (one per TCP connection, one per
+ * datagram socket): a listener that takes long delays the messages behind it on that link, and
+ * must not wait for a reply that would come on the same link (that wait is refused).
+ *
+ * <p>Thread-safe. Close it to close every socket and thread it opened.
+ */
+public final class MessagingNode implements Messaging, AutoCloseable {
+
+    private static final Logger LOG = LoggerFactory.getLogger(MessagingNode.class);
+    private static final int REMEMBERED_REQUESTS = 65_536;
+
+    /** Where a received request came from, for its reply. */
+    record Origin(Channel channel, SecretKey key) {
+    }
+
+    /** A request this node sent, for routing and checking its reply. */
+    record Sent(String host, SecretKey key) {
+    }
+
+    private final String name;
+    private final long id;
+    private final MessagingSettings settings;
+    private final Set<String> names = ConcurrentHashMap.newKeySet();
+    private final AtomicLong messageNumbers = new AtomicLong();
+    private final AtomicInteger threadNumbers = new AtomicInteger();
+    private final NodeCounters counters;
+    private final TopicKeys keys = new TopicKeys();
+    private final FrameMac mac = new FrameMac();
+    private final PayloadCodec payloads;
+    private final LocalTopics topics;
+    private final RemoteSubscribers remoteSubscribers = new RemoteSubscribers();
+    private final Replies replies = new Replies();
+    private final BoundedMap<UUID, Sent> sentRequests = new BoundedMap<>(REMEMBERED_REQUESTS);
+    private final BoundedMap<UUID, Origin> receivedRequests = new BoundedMap<>(REMEMBERED_REQUESTS);
+    private final Inbound inbound;
+    private final Map<String, TransportProvider> providers = new ConcurrentHashMap<>();
+    private final Map<String, Transport> transports = new ConcurrentHashMap<>();
+    private final Map<String, Link> links = new ConcurrentHashMap<>();
+    private final List<Endpoint> endpoints = new CopyOnWriteArrayList<>();
+    private final Set<Channel> connections = ConcurrentHashMap.newKeySet();
+    private final List<Address> peers = new CopyOnWriteArrayList<>();
+    private final ScheduledExecutorService housekeeping;
+    private final Context context = new Context();
+    private volatile boolean closed;
+
+    private MessagingNode(String name, MessagingSettings settings, ClassLoader classLoader) {
+        this.name = name;
+        this.settings = settings;
+        this.id = new SecureRandom().nextLong();
+        this.names.add(name);
+        this.counters = new NodeCounters(name);
+        this.payloads = new PayloadCodec(settings.allowList(), classLoader);
+        this.topics = new LocalTopics(name);
+        this.inbound = new Inbound(this, counters, mac, payloads, settings);
+        for (TransportProvider p : ServiceLoader.load(TransportProvider.class, MessagingNode.class.getClassLoader())) {
+            providers.putIfAbsent(p.scheme(), p);
+        }
+        this.housekeeping = Executors.newSingleThreadScheduledExecutor(context.threads("housekeeping"));
+        long period = settings.subscriptionRefresh().toMillis();
+        housekeeping.scheduleWithFixedDelay(this::keepHouse, period, period, TimeUnit.MILLISECONDS);
+    }
+
+    /**
+     * @param name the node's name: the sender name of its messages, and a receiver name it answers to
+     * @return a builder
+     */
+    public static Builder builder(String name) {
+        return new Builder(name);
+    }
+
+    /** Builds a node: settings, then where it binds, connects and joins. */
+    public static final class Builder {
+        private final String name;
+        private MessagingSettings settings = MessagingSettings.defaults();
+        private ClassLoader classLoader = Thread.currentThread().getContextClassLoader();
+        private final List<String> binds = new ArrayList<>();
+        private final List<String> connects = new ArrayList<>();
+
+        private Builder(String name) {
+            if (name == null || name.isBlank()) {
+                throw new IllegalArgumentException("a messaging node needs a name, got '" + name + "'");
+            }
+            this.name = name;
+        }
+
+        /** @param s the settings @return this builder */
+        public Builder settings(MessagingSettings s) {
+            this.settings = Objects.requireNonNull(s, "settings");
+            return this;
+        }
+
+        /** @param loader where payload classes are loaded from (default: the building thread's context loader) @return this builder */
+        public Builder classLoader(ClassLoader loader) {
+            this.classLoader = Objects.requireNonNull(loader, "classLoader");
+            return this;
+        }
+
+        /** @param address where to receive: tcp, udp, rmi (listen) or multicast (join) @return this builder */
+        public Builder bind(String address) {
+            binds.add(address);
+            return this;
+        }
+
+        /** @param address a peer whose publications this node subscribes to; reconnected when lost @return this builder */
+        public Builder connect(String address) {
+            connects.add(address);
+            return this;
+        }
+
+        /**
+         * @return the started node
+         * @throws MessagingException if an address cannot be bound (a connect that fails is retried in the background)
+         */
+        public MessagingNode build() {
+            MessagingNode node = new MessagingNode(name, settings, classLoader == null ? MessagingNode.class.getClassLoader() : classLoader);
+            try {
+                for (String b : binds) {
+                    node.bind(b);
+                }
+                for (String c : connects) {
+                    node.connect(c);
+                }
+            } catch (RuntimeException e) {
+                node.close();
+                throw e;
+            }
+            return node;
+        }
+    }
+
+    // ---- configuration ----
+
+    /**
+     * Starts receiving at an address.
+     *
+     * @param address tcp, udp or rmi to listen; multicast to join the group
+     * @return the address bound, with the real port
+     */
+    public Address bind(String address) {
+        Address a = Address.parse(address);
+        try {
+            Endpoint e = transport(a.scheme()).bind(a);
+            endpoints.add(e);
+            LOG.info("node '{}' receiving at {}", name, e.address());
+            return e.address();
+        } catch (IOException e) {
+            throw new MessagingException("node '" + name + "' cannot bind " + address + ": " + e.getMessage(), e);
+        }
+    }
+
+    /**
+     * Connects to a peer whose publications this node wants; the subscriptions are sent to it now
+     * and whenever the link is re-established. A peer that cannot be reached now is retried in
+     * the background.
+     *
+     * @param address the peer
+     */
+    public void connect(String address) {
+        Address a = Address.parse(address);
+        transport(a.scheme());
+        peers.add(a);
+        try {
+            link(a);
+        } catch (MessagingException e) {
+            LOG.warn("node '{}': {}; retrying every {}", name, e.getMessage(), settings.subscriptionRefresh());
+        }
+    }
+
+    /**
+     * Makes this node answer messages addressed to another name as well (a robot it serves).
+     *
+     * @param receiverName the name
+     */
+    public void answerTo(String receiverName) {
+        names.add(receiverName);
+    }
+
+    /** @return the node's name */
+    public String name() {
+        return name;
+    }
+
+    /** @return the addresses it receives at, with real ports */
+    public List<Address> boundAddresses() {
+        return endpoints.stream().map(Endpoint::address).toList();
+    }
+
+    /**
+     * @param scheme a scheme
+     * @return the first address bound with that scheme, as text
+     * @throws IllegalStateException if none is
+     */
+    public String address(String scheme) {
+        return boundAddresses().stream().filter(a -> a.scheme().equals(scheme)).findFirst().map(Address::toString)
+                .orElseThrow(() -> new IllegalStateException("node '" + name + "' has no " + scheme + " address; it is bound at " + boundAddresses()));
+    }
+
+    /** @return its counters */
+    public MessagingStats stats() {
+        return counters.snapshot();
+    }
+
+    /**
+     * @param topic a topic
+     * @return how many peers (over connections or UDP) currently subscribe to it here
+     */
+    public int subscriberCount(String topic) {
+        return remoteSubscribers.count(topic);
+    }
+
+    /** @return the settings */
+    public MessagingSettings settings() {
+        return settings;
+    }
+
+    // ---- Messaging ----
+
+    @Override
+    public UUID sendMessage(String name, String host, String pass, String topic, Serializable object, String function) {
+        Outgoing out = prepare(FrameKind.MESSAGE, name, host, pass, topic, object, function);
+        transmit(out);
+        return out.correlationId;
+    }
+
+    /**
+     * Sends a request and returns a future of its reply, registered before the request leaves
+     * (so no reply can be missed).
+     *
+     * @param name     the receiver's name
+     * @param host     its address
+     * @param pass     the topic password, or {@code null}
+     * @param topic    the topic
+     * @param object   the payload
+     * @param function the function
+     * @param timeout  how long to wait for the reply
+     * @return completes with the reply, or fails with {@link MessagingException} (timeout, refusal, link closed)
+     */
+    public CompletableFuture<Message> request(String name, String host, String pass, String topic, Serializable object,
+                                              String function, Duration timeout) {
+        Outgoing out = prepare(FrameKind.MESSAGE, name, host, pass, topic, object, function);
+        UUID id = out.correlationId;
+        CompletableFuture<Message> reply = replies.await(out.link.address().toString(), r -> r.message().correlationId().equals(id));
+        try {
+            transmit(out);
+        } catch (RuntimeException e) {
+            replies.cancel(reply);
+            throw e;
+        }
+        return withTimeout(reply, timeout, () -> "no reply to " + id + " on topic '" + topic + "' from " + host + " within " + timeout);
+    }
+
+    @Override
+    public Message waitForReply(String topic, String host) {
+        return waitForReply(topic, host, settings.replyTimeout());
+    }
+
+    @Override
+    public Message waitForReply(String topic, String host, Duration timeout) {
+        String h = Address.parse(host).toString();
+        refuseWaitOnDeliveryThread(h);
+        return await(replies.await(h, r -> r.host().equals(h) && r.message().topic().equals(topic)), timeout,
+                () -> "no reply on topic '" + topic + "' from " + h + " within " + timeout
+                        + "; check that the receiver runs, listens to the topic and replies");
+    }
+
+    @Override
+    public Message waitForReply(UUID correlationId, Duration timeout) {
+        Sent sent = sentRequests.get(correlationId);
+        if (sent == null) {
+            throw new MessagingException("node '" + name + "' sent no request with correlation id " + correlationId + " (or forgot it: it keeps the last "
+                    + REMEMBERED_REQUESTS + ")");
+        }
+        refuseWaitOnDeliveryThread(sent.host());
+        return await(replies.await(sent.host(), r -> r.message().correlationId().equals(correlationId)), timeout,
+                () -> "no reply to " + correlationId + " from " + sent.host() + " within " + timeout);
+    }
+
+    @Override
+    public void replyMessage(Message request, Serializable object, String function) {
+        Origin origin = receivedRequests.get(request.correlationId());
+        if (origin == null) {
+            throw new MessagingException("node '" + name + "' cannot reply to " + request.correlationId() + " on topic '" + request.topic()
+                    + "': no such request was received here by sendMessage (publications cannot be answered), or it is one of more than "
+                    + REMEMBERED_REQUESTS + " since");
+        }
+        byte[] frame = encode(FrameKind.REPLY, request.correlationId(), request.sender(), request.topic(), object, function, origin.key());
+        send(origin.channel(), frame);
+    }
+
+    @Override
+    public void publishMessage(String topic, Serializable object, String function, String password) {
+        SecretKey key = keys.key(requireTopic(topic), password);
+        topics.checkIfRegistered(topic, key);
+        long n = messageNumbers.incrementAndGet();
+        byte[] frame = encode(FrameKind.PUBLISH, n, new UUID(id, n), "", topic, object, function, key);
+        for (Channel c : remoteSubscribers.of(topic)) {
+            try {
+                c.send(frame);
+                counters.out();
+            } catch (IOException e) {
+                LOG.warn("node '{}': closing {}, a subscriber of '{}': {}", name, c.peer(), topic, e.getMessage());
+                remoteSubscribers.forget(c);
+                c.close();
+            }
+        }
+        for (Endpoint e : endpoints) {
+            try {
+                if (e.broadcast(frame)) {
+                    counters.out();
+                }
+            } catch (IOException ex) {
+                throw new MessagingException("node '" + name + "' cannot publish on " + e.address() + ": " + ex.getMessage(), ex);
+            }
+        }
+    }
+
+    @Override
+    public void subscribeMessage(String topic, String password) {
+        LocalTopics.Topic t = topics.register(requireTopic(topic), keys.key(topic, password));
+        t.subscribed = true;
+        byte[] frame = control(FrameKind.SUBSCRIBE, topic);
+        for (Channel c : subscriptionTargets()) {
+            trySend(c, frame);
+        }
+    }
+
+    @Override
+    public void addMessageListener(String topic, String password, MessageListener listener) {
+        Objects.requireNonNull(listener, "listener");
+        topics.register(requireTopic(topic), keys.key(topic, password)).listeners.add(listener);
+    }
+
+    @Override
+    public void removeMessageListener(String topic, MessageListener listener) {
+        LocalTopics.Topic t = topics.get(topic);
+        if (t != null) {
+            t.listeners.remove(listener);
+        }
+    }
+
+    /** Closes every link, endpoint, transport and thread. Idempotent. */
+    @Override
+    public void close() {
+        if (closed) {
+            return;
+        }
+        closed = true;
+        housekeeping.shutdownNow();
+        transports.values().forEach(t -> {
+            try {
+                t.close();
+            } catch (RuntimeException e) {
+                LOG.warn("node '{}': closing a transport: {}", name, e.toString());
+            }
+        });
+        links.clear();
+        endpoints.clear();
+        connections.clear();
+    }
+
+    @Override
+    public String toString() {
+        return "MessagingNode[" + name + " at " + boundAddresses() + "]";
+    }
+
+    // ---- used by Inbound ----
+
+    long id() {
+        return id;
+    }
+
+    boolean answersTo(String receiver) {
+        return receiver.isEmpty() || receiver.equals("*") || names.contains(receiver);
+    }
+
+    Set<String> names() {
+        return Set.copyOf(names);
+    }
+
+    LocalTopics topics() {
+        return topics;
+    }
+
+    RemoteSubscribers remoteSubscribers() {
+        return remoteSubscribers;
+    }
+
+    Replies replies() {
+        return replies;
+    }
+
+    BoundedMap<UUID, Sent> sentRequests() {
+        return sentRequests;
+    }
+
+    BoundedMap<UUID, Origin> receivedRequests() {
+        return receivedRequests;
+    }
+
+    void sendError(Frame request, Channel to, String why) {
+        byte[] frame = encode(FrameKind.ERROR, request.correlationId(), request.sender(), request.topic(), why, "error", null);
+        trySend(to, frame);
+    }
+
+    static long nowMicros() {
+        Instant now = Instant.now();
+        return now.getEpochSecond() * 1_000_000L + now.getNano() / 1000;
+    }
+
+    // ---- internals ----
+
+    private record Outgoing(Link link, UUID correlationId, byte[] frame, Sent sent) {
+    }
+
+    private Outgoing prepare(FrameKind kind, String receiver, String host, String pass, String topic, Serializable object, String function) {
+        Objects.requireNonNull(receiver, "name");
+        Objects.requireNonNull(host, "host");
+        SecretKey key = keys.key(requireTopic(topic), pass);
+        topics.checkIfRegistered(topic, key);
+        Link link = link(Address.parse(host));
+        long n = messageNumbers.incrementAndGet();
+        UUID correlationId = new UUID(id, n);
+        byte[] frame = encode(kind, n, correlationId, receiver, topic, object, function, key);
+        return new Outgoing(link, correlationId, frame, new Sent(link.address().toString(), key));
+    }
+
+    private void transmit(Outgoing out) {
+        sentRequests.put(out.correlationId, out.sent);
+        try {
+            out.link.send(out.frame);
+            counters.out();
+        } catch (IOException e) {
+            dropLink(out.link, e.getMessage());
+            throw new MessagingException("node '" + name + "' cannot send to " + out.link.address() + ": " + e.getMessage(), e);
+        }
+    }
+
+    private void send(Channel channel, byte[] frame) {
+        try {
+            channel.send(frame);
+            counters.out();
+        } catch (IOException e) {
+            channel.close();
+            throw new MessagingException("node '" + name + "' cannot send to " + channel.peer() + ": " + e.getMessage(), e);
+        }
+    }
+
+    private void trySend(Channel channel, byte[] frame) {
+        try {
+            channel.send(frame);
+            counters.out();
+        } catch (IOException e) {
+            LOG.debug("node '{}': cannot send to {}: {}", name, channel.peer(), e.toString());
+            channel.close();
+        }
+    }
+
+    private byte[] encode(FrameKind kind, UUID correlationId, String receiver, String topic, Serializable object, String function, SecretKey key) {
+        return encode(kind, messageNumbers.incrementAndGet(), correlationId, receiver, topic, object, function, key);
+    }
+
+    private byte[] encode(FrameKind kind, long number, UUID correlationId, String receiver, String topic, Serializable object,
+                          String function, SecretKey key) {
+        PayloadCodec.Encoded payload;
+        try {
+            payload = payloads.encode(object);
+        } catch (IllegalArgumentException e) {
+            throw new MessagingException("node '" + name + "' cannot send on topic '" + topic + "': " + e.getMessage(), e);
+        }
+        Frame f = new Frame(kind, 0, id, number, correlationId, nowMicros(), name, receiver, topic,
+                function == null ? "" : function, payload.type(), payload.bytes(), key != null);
+        byte[] bytes = FrameCodec.encode(f, key != null);
+        if (bytes.length > settings.maxFrameSize()) {
+            throw new MessagingException("node '" + name + "': a frame on topic '" + topic + "' would be " + bytes.length
+                    + " bytes, above the maximum frame size of " + settings.maxFrameSize() + "; send less, or raise maxFrameSize on both sides");
+        }
+        if (key != null) {
+            mac.sign(key, bytes);
+        }
+        return bytes;
+    }
+
+    private byte[] control(FrameKind kind, String topic) {
+        long n = messageNumbers.incrementAndGet();
+        return encode(kind, n, new UUID(id, n), "", topic, null, "", null);
+    }
+
+    private List<Channel> subscriptionTargets() {
+        List<Channel> targets = new ArrayList<>(connections);
+        for (Link l : links.values()) {
+            if (!l.isConnection() && !l.address().scheme().equals("multicast")) {
+                targets.add(l);
+            }
+        }
+        return targets;
+    }
+
+    private Link link(Address address) {
+        if (closed) {
+            throw new MessagingException("node '" + name + "' is closed");
+        }
+        String key = address.toString();
+        Link existing = links.get(key);
+        if (existing != null && existing.isOpen()) {
+            return existing;
+        }
+        synchronized (links) {
+            existing = links.get(key);
+            if (existing != null && existing.isOpen()) {
+                return existing;
+            }
+            try {
+                Link l = transport(address.scheme()).connect(address);
+                links.put(key, l);
+                if (!l.isConnection() && !address.scheme().equals("multicast")) {
+                    topics.subscribed().forEach(topic -> trySend(l, control(FrameKind.SUBSCRIBE, topic)));
+                }
+                return l;
+            } catch (IOException e) {
+                throw new MessagingException("node '" + name + "' cannot reach " + address + ": " + e.getMessage(), e);
+            }
+        }
+    }
+
+    private void dropLink(Link link, String why) {
+        links.remove(link.address().toString(), link);
+        link.close();
+        replies.linkClosed(link.address().toString(), why);
+    }
+
+    private Transport transport(String scheme) {
+        return transports.computeIfAbsent(scheme, s -> {
+            TransportProvider p = providers.get(s);
+            if (p == null) {
+                throw new MessagingException("no transport for '" + s + "' addresses; available: " + providers.keySet()
+                        + " (add a TransportProvider to the class path for more)");
+            }
+            return p.create(context);
+        });
+    }
+
+    private void refuseWaitOnDeliveryThread(String host) {
+        Link l = links.get(host);
+        if (l != null && l.deliversOn(Thread.currentThread())) {
+            throw new IllegalStateException("node '" + name + "': waitForReply from " + host + " was called on the thread that delivers "
+                    + host + "'s messages (inside a MessageListener), so the reply could never arrive; wait on another thread");
+        }
+    }
+
+    private static String requireTopic(String topic) {
+        if (topic == null || topic.isEmpty()) {
+            throw new IllegalArgumentException("topic must not be empty");
+        }
+        return topic;
+    }
+
+    private CompletableFuture<Message> withTimeout(CompletableFuture<Message> reply, Duration timeout, java.util.function.Supplier<String> why) {
+        CompletableFuture<Message> timed = new CompletableFuture<>();
+        var timer = housekeeping.schedule(() -> {
+            if (timed.completeExceptionally(new MessagingException(why.get()))) {
+                replies.cancel(reply);
+            }
+        }, timeout.toNanos(), TimeUnit.NANOSECONDS);
+        reply.whenComplete((m, e) -> {
+            timer.cancel(false);
+            if (e == null) {
+                timed.complete(m);
+            } else {
+                timed.completeExceptionally(e);
+            }
+        });
+        return timed;
+    }
+
+    private Message await(CompletableFuture<Message> reply, Duration timeout, java.util.function.Supplier<String> why) {
+        try {
+            return reply.get(timeout.toNanos(), TimeUnit.NANOSECONDS);
+        } catch (TimeoutException e) {
+            replies.cancel(reply);
+            throw new MessagingException("node '" + name + "': " + why.get());
+        } catch (InterruptedException e) {
+            replies.cancel(reply);
+            Thread.currentThread().interrupt();
+            throw new MessagingException("node '" + name + "': interrupted while waiting for a reply", e);
+        } catch (ExecutionException e) {
+            if (e.getCause() instanceof MessagingException m) {
+                throw new MessagingException(m.getMessage(), m);
+            }
+            throw new MessagingException("node '" + name + "': " + e.getCause(), e.getCause());
+        }
+    }
+
+    private void keepHouse() {
+        try {
+            long now = System.nanoTime();
+            long limit = settings.sendTimeout().toNanos();
+            for (Channel c : connections) {
+                if (c.stuck(now, limit)) {
+                    LOG.warn("node '{}': closing {}: it has not read for {}", name, c.peer(), settings.sendTimeout());
+                    c.close();
+                }
+            }
+            for (Address peer : peers) {
+                Link l = links.get(peer.toString());
+                if (l == null || !l.isOpen()) {
+                    try {
+                        link(peer);
+                        LOG.info("node '{}': connected to {}", name, peer);
+                    } catch (MessagingException e) {
+                        LOG.debug("node '{}': still cannot reach {}: {}", name, peer, e.getMessage());
+                    }
+                }
+            }
+            List<String> subscribed = topics.subscribed();
+            for (Link l : links.values()) {
+                if (!l.isConnection() && !l.address().scheme().equals("multicast")) {
+                    subscribed.forEach(topic -> trySend(l, control(FrameKind.SUBSCRIBE, topic)));
+                }
+            }
+            remoteSubscribers.expire(now, 5 * settings.subscriptionRefresh().toNanos());
+        } catch (RuntimeException e) {
+            LOG.warn("node '{}': housekeeping failed: {}", name, e.toString(), e);
+        }
+    }
+
+    /** The node as its transports see it. */
+    private final class Context implements TransportContext {
+
+        @Override
+        public String nodeName() {
+            return name;
+        }
+
+        @Override
+        public MessagingSettings settings() {
+            return settings;
+        }
+
+        @Override
+        public void onFrame(byte[] buf, int offset, int length, Channel from) {
+            inbound.onFrame(buf, offset, length, from);
+        }
+
+        @Override
+        public void dropped(DropReason reason, String where, String detail) {
+            counters.drop(reason, where, detail);
+        }
+
+        @Override
+        public void opened(Channel channel) {
+            connections.add(channel);
+            for (String topic : topics.subscribed()) {
+                trySend(channel, control(FrameKind.SUBSCRIBE, topic));
+            }
+        }
+
+        @Override
+        public void closed(Channel channel) {
+            connections.remove(channel);
+            remoteSubscribers.forget(channel);
+            for (Map.Entry<String, Link> e : links.entrySet()) {
+                if (e.getValue() == channel) {
+                    links.remove(e.getKey(), e.getValue());
+                    replies.linkClosed(e.getKey(), "connection closed");
+                }
+            }
+        }
+
+        @Override
+        public ThreadFactory threads(String role) {
+            return r -> {
+                Thread t = new Thread(r, "mw-msg-" + name + "-" + role + "-" + threadNumbers.incrementAndGet());
+                t.setDaemon(true);
+                return t;
+            };
+        }
+    }
+}

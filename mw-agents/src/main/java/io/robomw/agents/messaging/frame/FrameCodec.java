@@ -1,0 +1,255 @@
+package io.robomw.agents.messaging.frame;
+
+import io.robomw.agents.messaging.DropReason;
+
+import java.lang.invoke.MethodHandles;
+import java.lang.invoke.VarHandle;
+import java.nio.ByteOrder;
+import java.nio.charset.StandardCharsets;
+import java.util.UUID;
+
+/**
+ * The RoboMW frame: one message, request, reply or subscription on any transport. All integers
+ * are big-endian; lengths are unsigned.
+ *
+ * <pre>
+ *  0                   1                   2                   3
+ *  0 1 2 3 4 5 6 7 8 9 0 1 2 3 4 5 6 7 8 9 0 1 2 3 4 5 6 7 8 9 0 1
+ * +-------------------------------+---------------+---------------+
+ * |         MAGIC 'R' 'M'         |   VERSION 1   |     KIND      |  0
+ * +-------------------------------+---------------+---------------+
+ * |                FRAME LENGTH (whole frame, with MAC)           |  4
+ * +---------------------------------------------------------------+
+ * |           STREAM SEQUENCE (per link; NOT covered by the MAC)  |  8
+ * |                                                               |
+ * +---------------+---------------+-------------------------------+
+ * |     FLAGS     | PAYLOAD TYPE  |         SENDER LENGTH         | 16
+ * +---------------+---------------+-------------------------------+
+ * |        RECEIVER LENGTH        |          TOPIC LENGTH         | 20
+ * +-------------------------------+-------------------------------+
+ * |        FUNCTION LENGTH        |          RESERVED 0           | 24
+ * +-------------------------------+-------------------------------+
+ * |                        PAYLOAD LENGTH                         | 28
+ * +---------------------------------------------------------------+
+ * |                 SOURCE (random id of the sending node)        | 32
+ * +---------------------------------------------------------------+
+ * |                 MESSAGE NUMBER (per source)                   | 40
+ * +---------------------------------------------------------------+
+ * |                 CORRELATION ID (128 bits)                     | 48
+ * +---------------------------------------------------------------+
+ * |                 TIMESTAMP (microseconds since the epoch)      | 64
+ * +---------------------------------------------------------------+
+ * | SENDER | RECEIVER | TOPIC | FUNCTION (UTF-8) | PAYLOAD        | 72
+ * +---------------------------------------------------------------+
+ * | HMAC-SHA256 (32 bytes), present when FLAGS has {@link #FLAG_MAC} |
+ * +---------------------------------------------------------------+
+ * </pre>
+ *
+ * <p>The MAC covers every byte before it except the stream sequence, which each link rewrites
+ * when it sends the frame (so one authenticated frame can go to many subscribers). Replay
+ * detection therefore uses SOURCE and MESSAGE NUMBER, which the MAC covers.
+ *
+ * <p>Stateless and thread-safe.
+ */
+public final class FrameCodec {
+
+    /** The first two bytes of every frame, "RM". */
+    public static final int MAGIC = 0x524D;
+    /** The only version this codec reads and writes. */
+    public static final int VERSION = 1;
+    /** FLAGS bit: the frame ends with a 32-byte HMAC-SHA256. */
+    public static final int FLAG_MAC = 1;
+
+    public static final int MAGIC_OFFSET = 0;
+    public static final int VERSION_OFFSET = 2;
+    public static final int KIND_OFFSET = 3;
+    public static final int FRAME_LENGTH_OFFSET = 4;
+    public static final int STREAM_SEQUENCE_OFFSET = 8;
+    public static final int FLAGS_OFFSET = 16;
+    public static final int PAYLOAD_TYPE_OFFSET = 17;
+    public static final int SENDER_LENGTH_OFFSET = 18;
+    public static final int RECEIVER_LENGTH_OFFSET = 20;
+    public static final int TOPIC_LENGTH_OFFSET = 22;
+    public static final int FUNCTION_LENGTH_OFFSET = 24;
+    public static final int PAYLOAD_LENGTH_OFFSET = 28;
+    public static final int SOURCE_OFFSET = 32;
+    public static final int MESSAGE_NUMBER_OFFSET = 40;
+    public static final int CORRELATION_OFFSET = 48;
+    public static final int TIMESTAMP_OFFSET = 64;
+    /** Where the variable part (names, topic, function, payload) starts. */
+    public static final int HEADER_LENGTH = 72;
+    /** Bytes a stream reader needs to learn a frame's length: magic, version, kind, length. */
+    public static final int PREFIX_LENGTH = 8;
+    /** Length of the HMAC-SHA256 at the end of an authenticated frame. */
+    public static final int MAC_LENGTH = 32;
+    /** Longest sender, receiver, topic or function, in UTF-8 bytes. */
+    public static final int MAX_NAME_BYTES = 0xFFFF;
+
+    private static final VarHandle SHORT = MethodHandles.byteArrayViewVarHandle(short[].class, ByteOrder.BIG_ENDIAN);
+    private static final VarHandle INT = MethodHandles.byteArrayViewVarHandle(int[].class, ByteOrder.BIG_ENDIAN);
+    private static final VarHandle LONG = MethodHandles.byteArrayViewVarHandle(long[].class, ByteOrder.BIG_ENDIAN);
+
+    private FrameCodec() {
+    }
+
+    /**
+     * Encodes a frame, leaving room for its MAC when {@code withMac} (the caller fills it in with
+     * {@link io.robomw.agents.messaging.security.FrameMac#sign}).
+     *
+     * @param frame   the frame; {@link Frame#streamSequence()} is written as given (links overwrite it)
+     * @param withMac whether to reserve and flag a MAC
+     * @return the encoded frame
+     * @throws IllegalArgumentException if a name is longer than {@value #MAX_NAME_BYTES} bytes
+     */
+    public static byte[] encode(Frame frame, boolean withMac) {
+        byte[] sender = utf8("sender", frame.sender());
+        byte[] receiver = utf8("receiver", frame.receiver());
+        byte[] topic = utf8("topic", frame.topic());
+        byte[] function = utf8("function", frame.function());
+        byte[] payload = frame.payload();
+        long length = (long) HEADER_LENGTH + sender.length + receiver.length + topic.length + function.length + payload.length
+                + (withMac ? MAC_LENGTH : 0);
+        if (length > Integer.MAX_VALUE - 16) {
+            throw new IllegalArgumentException("frame of " + length + " bytes is too large to encode");
+        }
+        byte[] out = new byte[(int) length];
+        SHORT.set(out, MAGIC_OFFSET, (short) MAGIC);
+        out[VERSION_OFFSET] = (byte) VERSION;
+        out[KIND_OFFSET] = (byte) frame.kind().code();
+        INT.set(out, FRAME_LENGTH_OFFSET, (int) length);
+        LONG.set(out, STREAM_SEQUENCE_OFFSET, frame.streamSequence());
+        out[FLAGS_OFFSET] = (byte) (withMac ? FLAG_MAC : 0);
+        out[PAYLOAD_TYPE_OFFSET] = (byte) frame.payloadType();
+        SHORT.set(out, SENDER_LENGTH_OFFSET, (short) sender.length);
+        SHORT.set(out, RECEIVER_LENGTH_OFFSET, (short) receiver.length);
+        SHORT.set(out, TOPIC_LENGTH_OFFSET, (short) topic.length);
+        SHORT.set(out, FUNCTION_LENGTH_OFFSET, (short) function.length);
+        INT.set(out, PAYLOAD_LENGTH_OFFSET, payload.length);
+        LONG.set(out, SOURCE_OFFSET, frame.source());
+        LONG.set(out, MESSAGE_NUMBER_OFFSET, frame.messageNumber());
+        LONG.set(out, CORRELATION_OFFSET, frame.correlationId().getMostSignificantBits());
+        LONG.set(out, CORRELATION_OFFSET + 8, frame.correlationId().getLeastSignificantBits());
+        LONG.set(out, TIMESTAMP_OFFSET, frame.timestampMicros());
+        int at = HEADER_LENGTH;
+        for (byte[] part : new byte[][] {sender, receiver, topic, function, payload}) {
+            System.arraycopy(part, 0, out, at, part.length);
+            at += part.length;
+        }
+        return out;
+    }
+
+    /**
+     * Reads the length a frame declares, from its first {@value #PREFIX_LENGTH} bytes; stream
+     * transports use it to know how much more to read.
+     *
+     * @param buf          bytes
+     * @param offset       where the frame starts; at least {@value #PREFIX_LENGTH} bytes must follow
+     * @param maxFrameSize the largest frame accepted
+     * @return the declared frame length
+     * @throws FrameException if the magic or version is wrong ({@link DropReason#MALFORMED}), or the length is impossible or above the maximum
+     */
+    public static int declaredLength(byte[] buf, int offset, int maxFrameSize) throws FrameException {
+        int magic = (short) SHORT.get(buf, offset + MAGIC_OFFSET) & 0xFFFF;
+        if (magic != MAGIC) {
+            throw new FrameException(DropReason.MALFORMED, String.format("not a RoboMW frame: magic 0x%04x, expected 0x%04x", magic, MAGIC));
+        }
+        int version = buf[offset + VERSION_OFFSET] & 0xFF;
+        if (version != VERSION) {
+            throw new FrameException(DropReason.MALFORMED, "frame version " + version + ", this node reads version " + VERSION);
+        }
+        long length = (int) INT.get(buf, offset + FRAME_LENGTH_OFFSET) & 0xFFFFFFFFL;
+        if (length > maxFrameSize) {
+            throw new FrameException(DropReason.OVERSIZED, "frame declares " + length + " bytes, above the maximum frame size of " + maxFrameSize);
+        }
+        if (length < HEADER_LENGTH) {
+            throw new FrameException(DropReason.MALFORMED, "frame declares " + length + " bytes, less than its " + HEADER_LENGTH + "-byte header");
+        }
+        return (int) length;
+    }
+
+    /**
+     * Decodes one complete frame.
+     *
+     * @param buf          bytes
+     * @param offset       where the frame starts
+     * @param length       how many bytes there are (a datagram's length, or what a stream reader framed)
+     * @param maxFrameSize the largest frame accepted
+     * @return the frame, with its payload still encoded
+     * @throws FrameException naming what is wrong and the {@link DropReason}
+     */
+    public static Frame decode(byte[] buf, int offset, int length, int maxFrameSize) throws FrameException {
+        if (length < PREFIX_LENGTH) {
+            throw new FrameException(DropReason.TRUNCATED, "frame of " + length + " bytes is shorter than the " + PREFIX_LENGTH + "-byte prefix");
+        }
+        int declared = declaredLength(buf, offset, maxFrameSize);
+        if (length < declared) {
+            throw new FrameException(DropReason.TRUNCATED, "frame declares " + declared + " bytes but only " + length + " arrived");
+        }
+        if (length > declared) {
+            throw new FrameException(DropReason.MALFORMED, "frame declares " + declared + " bytes but " + length + " arrived");
+        }
+        FrameKind kind = FrameKind.of(buf[offset + KIND_OFFSET] & 0xFF);
+        if (kind == null) {
+            throw new FrameException(DropReason.MALFORMED, "unknown frame kind " + (buf[offset + KIND_OFFSET] & 0xFF));
+        }
+        int flags = buf[offset + FLAGS_OFFSET] & 0xFF;
+        boolean mac = (flags & FLAG_MAC) != 0;
+        int senderLength = u16(buf, offset + SENDER_LENGTH_OFFSET);
+        int receiverLength = u16(buf, offset + RECEIVER_LENGTH_OFFSET);
+        int topicLength = u16(buf, offset + TOPIC_LENGTH_OFFSET);
+        int functionLength = u16(buf, offset + FUNCTION_LENGTH_OFFSET);
+        long payloadLength = (int) INT.get(buf, offset + PAYLOAD_LENGTH_OFFSET) & 0xFFFFFFFFL;
+        long expected = (long) HEADER_LENGTH + senderLength + receiverLength + topicLength + functionLength + payloadLength + (mac ? MAC_LENGTH : 0);
+        if (expected != declared) {
+            throw new FrameException(DropReason.MALFORMED, "frame parts add up to " + expected + " bytes but the frame declares " + declared);
+        }
+        int at = offset + HEADER_LENGTH;
+        String sender = new String(buf, at, senderLength, StandardCharsets.UTF_8);
+        at += senderLength;
+        String receiver = new String(buf, at, receiverLength, StandardCharsets.UTF_8);
+        at += receiverLength;
+        String topic = new String(buf, at, topicLength, StandardCharsets.UTF_8);
+        at += topicLength;
+        String function = new String(buf, at, functionLength, StandardCharsets.UTF_8);
+        at += functionLength;
+        byte[] payload = new byte[(int) payloadLength];
+        System.arraycopy(buf, at, payload, 0, payload.length);
+        return new Frame(kind, (long) LONG.get(buf, offset + STREAM_SEQUENCE_OFFSET), (long) LONG.get(buf, offset + SOURCE_OFFSET),
+                (long) LONG.get(buf, offset + MESSAGE_NUMBER_OFFSET),
+                new UUID((long) LONG.get(buf, offset + CORRELATION_OFFSET), (long) LONG.get(buf, offset + CORRELATION_OFFSET + 8)),
+                (long) LONG.get(buf, offset + TIMESTAMP_OFFSET), sender, receiver, topic, function,
+                buf[offset + PAYLOAD_TYPE_OFFSET] & 0xFF, payload, mac);
+    }
+
+    /**
+     * Overwrites the stream sequence of an encoded frame (links do this as they send it).
+     *
+     * @param buf      the frame's bytes
+     * @param offset   where the frame starts
+     * @param sequence the link's sequence number for it
+     */
+    public static void writeStreamSequence(byte[] buf, int offset, long sequence) {
+        LONG.set(buf, offset + STREAM_SEQUENCE_OFFSET, sequence);
+    }
+
+    /**
+     * @param buf    the frame's bytes
+     * @param offset where the frame starts
+     * @return its stream sequence
+     */
+    public static long streamSequence(byte[] buf, int offset) {
+        return (long) LONG.get(buf, offset + STREAM_SEQUENCE_OFFSET);
+    }
+
+    private static int u16(byte[] buf, int at) {
+        return (short) SHORT.get(buf, at) & 0xFFFF;
+    }
+
+    private static byte[] utf8(String what, String value) {
+        byte[] bytes = value.getBytes(StandardCharsets.UTF_8);
+        if (bytes.length > MAX_NAME_BYTES) {
+            throw new IllegalArgumentException(what + " is " + bytes.length + " bytes in UTF-8; the limit is " + MAX_NAME_BYTES);
+        }
+        return bytes;
+    }
+}

@@ -1,0 +1,271 @@
+package io.robomw.agents.messaging.io;
+
+import io.robomw.agents.messaging.frame.FrameCodec;
+
+import java.io.IOException;
+import java.util.concurrent.ThreadFactory;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.locks.Condition;
+import java.util.concurrent.locks.ReentrantLock;
+
+/**
+ * The frames waiting to go to one peer, in order, with the link's stream sequence numbers.
+ *
+ * <p>Senders {@link #send} frames; a writer thread ({@link #startWriter}) takes everything that
+ * has gathered and writes it in one call, so a fast publisher's frames go out in large batches.
+ * A frame sent while the link has been idle for {@value #IDLE_MICROS} µs is written at once on
+ * the sender's thread instead, so a lone request does not wait for the writer thread to wake up.
+ * Transports without a writer thread (an RMI session, which the peer polls) {@link #take} the
+ * batches themselves.
+ *
+ * <p>At most {@code capacity} bytes wait; a sender waits for room up to the send timeout, then
+ * gets an {@link IOException} (the caller closes the link: a peer that does not read must not
+ * hold up the others).
+ *
+ * <p>Thread-safe. The writer thread is started once and ends when the buffer is closed.
+ */
+public final class OutboundBuffer {
+
+    /** A link idle for this long gets its next frame written directly by the sender. */
+    public static final long IDLE_MICROS = 20;
+
+    /** Where batches go. */
+    @FunctionalInterface
+    public interface Writer {
+        /**
+         * @param buf    bytes
+         * @param offset start
+         * @param length count
+         * @throws IOException if the peer is gone
+         */
+        void write(byte[] buf, int offset, int length) throws IOException;
+    }
+
+    private static final int INITIAL = 64 * 1024;
+
+    private final ReentrantLock lock = new ReentrantLock();
+    private final Condition hasData = lock.newCondition();
+    private final Condition hasRoom = lock.newCondition();
+    private final ReentrantLock writeLock = new ReentrantLock();
+    private final int capacity;
+    private final long sendTimeoutNanos;
+    private final String peer;
+    private byte[] fill = new byte[INITIAL];
+    private byte[] spare = new byte[INITIAL];
+    private int used;
+    private long sequence;
+    private long lastSendNanos = System.nanoTime() - TimeUnit.SECONDS.toNanos(1);
+    private boolean closed;
+    private boolean writerWaiting;
+    private boolean batchTaken;
+    private Writer writer;
+    private volatile long writingSinceNanos;
+    private volatile boolean writing;
+
+    /**
+     * @param peer             the peer, for error messages
+     * @param capacity         most bytes waiting
+     * @param sendTimeoutNanos how long a sender waits for room
+     */
+    public OutboundBuffer(String peer, int capacity, long sendTimeoutNanos) {
+        this.peer = peer;
+        this.capacity = capacity;
+        this.sendTimeoutNanos = sendTimeoutNanos;
+    }
+
+    /**
+     * Starts the writer thread.
+     *
+     * @param out     where batches are written
+     * @param threads makes the (one) writer thread
+     * @param onError called on the writer thread if a write fails (the buffer is closed by then)
+     */
+    public void startWriter(Writer out, ThreadFactory threads, java.util.function.Consumer<IOException> onError) {
+        lock.lock();
+        try {
+            if (writer != null) {
+                throw new IllegalStateException("writer of " + peer + " already started");
+            }
+            writer = out;
+        } finally {
+            lock.unlock();
+        }
+        threads.newThread(() -> {
+            try {
+                writeLoop(out);
+            } catch (IOException e) {
+                close();
+                onError.accept(e);
+            }
+        }).start();
+    }
+
+    /**
+     * Queues a frame (or writes it at once if the link is idle and has a writer).
+     *
+     * @param frame an encoded frame; copied, and the copy gets this link's next stream sequence
+     * @throws IOException if the buffer is closed, or stayed full for the send timeout
+     */
+    public void send(byte[] frame) throws IOException {
+        if (writer != null && writeLock.tryLock()) {
+            try {
+                byte[] direct = null;
+                lock.lock();
+                try {
+                    long now = System.nanoTime();
+                    if (!closed && used == 0 && !batchTaken && now - lastSendNanos > IDLE_MICROS * 1000) {
+                        direct = frame.clone();
+                        FrameCodec.writeStreamSequence(direct, 0, ++sequence);
+                    }
+                    lastSendNanos = now;
+                } finally {
+                    lock.unlock();
+                }
+                if (direct != null) {
+                    writeTimed(writer, direct, direct.length);
+                    return;
+                }
+            } finally {
+                writeLock.unlock();
+            }
+        }
+        append(frame);
+    }
+
+    private void append(byte[] frame) throws IOException {
+        int length = frame.length;
+        lock.lock();
+        try {
+            long waitNanos = sendTimeoutNanos;
+            while (!closed && used + length > capacity && used > 0) {
+                if (waitNanos <= 0) {
+                    throw new IOException(peer + " took no frames for " + TimeUnit.NANOSECONDS.toMillis(sendTimeoutNanos)
+                            + " ms with " + used + " bytes waiting (limit " + capacity + "); it is not reading");
+                }
+                waitNanos = hasRoom.awaitNanos(waitNanos);
+            }
+            if (closed) {
+                throw new IOException("link to " + peer + " is closed");
+            }
+            if (used + length > fill.length) {
+                byte[] bigger = new byte[Math.max(used + length, Math.min(capacity, fill.length * 2))];
+                System.arraycopy(fill, 0, bigger, 0, used);
+                fill = bigger;
+            }
+            System.arraycopy(frame, 0, fill, used, length);
+            FrameCodec.writeStreamSequence(fill, used, ++sequence);
+            used += length;
+            lastSendNanos = System.nanoTime();
+            if (writerWaiting) {
+                hasData.signal();
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            throw new IOException("interrupted while waiting to send to " + peer, e);
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    /**
+     * Takes everything waiting, for a transport whose peer fetches frames (no writer thread).
+     *
+     * @param waitNanos how long to wait for something to arrive
+     * @return the waiting frames, back to back; empty if none came in time or the buffer is closed
+     * @throws InterruptedException if interrupted while waiting
+     */
+    public byte[] take(long waitNanos) throws InterruptedException {
+        lock.lock();
+        try {
+            long left = waitNanos;
+            while (used == 0 && !closed && left > 0) {
+                writerWaiting = true;
+                left = hasData.awaitNanos(left);
+            }
+            writerWaiting = false;
+            byte[] out = java.util.Arrays.copyOf(fill, used);
+            used = 0;
+            hasRoom.signalAll();
+            return out;
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    /** Stops accepting frames; the writer thread ends after what is waiting. Idempotent. */
+    public void close() {
+        lock.lock();
+        try {
+            closed = true;
+            hasData.signalAll();
+            hasRoom.signalAll();
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    /** @return whether it is closed */
+    public boolean isClosed() {
+        lock.lock();
+        try {
+            return closed;
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    /**
+     * @param nowNanos   now, from {@link System#nanoTime()}
+     * @param limitNanos the send timeout
+     * @return whether a write has been blocked for longer than the limit (the peer stopped reading)
+     */
+    public boolean stuck(long nowNanos, long limitNanos) {
+        return writing && nowNanos - writingSinceNanos > limitNanos;
+    }
+
+    private void writeLoop(Writer out) throws IOException {
+        while (true) {
+            byte[] batch;
+            int length;
+            lock.lock();
+            try {
+                while (used == 0 && !closed) {
+                    writerWaiting = true;
+                    hasData.awaitUninterruptibly();
+                }
+                writerWaiting = false;
+                if (used == 0) {
+                    return;
+                }
+                batch = fill;
+                length = used;
+                fill = spare;
+                spare = batch;
+                used = 0;
+                batchTaken = true;
+                hasRoom.signalAll();
+            } finally {
+                lock.unlock();
+            }
+            writeLock.lock();
+            try {
+                writeTimed(out, batch, length);
+            } finally {
+                lock.lock();
+                batchTaken = false;
+                lock.unlock();
+                writeLock.unlock();
+            }
+        }
+    }
+
+    private void writeTimed(Writer out, byte[] buf, int length) throws IOException {
+        writingSinceNanos = System.nanoTime();
+        writing = true;
+        try {
+            out.write(buf, 0, length);
+        } finally {
+            writing = false;
+        }
+    }
+}

@@ -1,0 +1,50 @@
+package io.robomw.agents.messaging.spi;
+
+import java.io.IOException;
+
+/**
+ * A way to send frames to one peer: a connection, a session, or a datagram socket and an address.
+ * Replies and publications for a peer go through the channel its frames came on.
+ */
+public interface Channel {
+
+    /** @return the peer, for logs and for matching replies, for example {@code tcp://127.0.0.1:41234} */
+    String peer();
+
+    /**
+     * Sends one encoded frame. The channel copies it and writes its own stream sequence number
+     * into the copy, so the same array may be sent on many channels. Keeps the order of sends.
+     *
+     * @param frame an encoded frame
+     * @throws IOException if the channel is closed, or the peer did not take frames within the send timeout
+     */
+    void send(byte[] frame) throws IOException;
+
+    /** @return whether frames can still be sent */
+    boolean isOpen();
+
+    /**
+     * @return {@code true} for a connection that reports when it closes (TCP, RMI): subscriptions
+     *         made on it last until then; {@code false} for datagrams, whose subscriptions must be refreshed
+     */
+    boolean isConnection();
+
+    /**
+     * @param thread a thread
+     * @return whether frames from this channel are delivered on that thread (waiting on it for a
+     *         reply from this channel would block the reply)
+     */
+    boolean deliversOn(Thread thread);
+
+    /**
+     * @param nowNanos   now, from {@link System#nanoTime()}
+     * @param limitNanos the send timeout
+     * @return whether a write to the peer has been blocked longer than the limit (the node then closes the channel)
+     */
+    default boolean stuck(long nowNanos, long limitNanos) {
+        return false;
+    }
+
+    /** Closes the channel (for a datagram peer: forgets it). Idempotent. */
+    void close();
+}

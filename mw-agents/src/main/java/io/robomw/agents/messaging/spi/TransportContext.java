@@ -1,0 +1,57 @@
+package io.robomw.agents.messaging.spi;
+
+import io.robomw.agents.messaging.DropReason;
+import io.robomw.agents.messaging.MessagingSettings;
+
+import java.util.concurrent.ThreadFactory;
+
+/** What a transport gets from its node: settings, and where received frames and events go. */
+public interface TransportContext {
+
+    /** @return the node's name, for thread names and logs */
+    String nodeName();
+
+    /** @return the node's settings */
+    MessagingSettings settings();
+
+    /**
+     * Takes one received frame (exactly one, as framed by the transport). Called on the
+     * transport's receiving thread, which runs listeners; never throws.
+     *
+     * @param buf    bytes holding the frame
+     * @param offset where it starts
+     * @param length its length
+     * @param from   the channel it came on
+     */
+    void onFrame(byte[] buf, int offset, int length, Channel from);
+
+    /**
+     * Counts and logs input the transport could not even frame (garbage on a stream, a datagram
+     * too short, a declared length above the maximum).
+     *
+     * @param reason why
+     * @param where  the peer or socket
+     * @param detail what was wrong
+     */
+    void dropped(DropReason reason, String where, String detail);
+
+    /**
+     * A connection (accepted or opened) is ready: the node sends it its subscriptions.
+     *
+     * @param channel the connection
+     */
+    void opened(Channel channel);
+
+    /**
+     * A connection closed: the node forgets its subscriptions and fails replies expected on it.
+     *
+     * @param channel the connection
+     */
+    void closed(Channel channel);
+
+    /**
+     * @param role what the threads do, for example {@code tcp-read-127.0.0.1:7000}
+     * @return a factory of daemon threads named after the node and the role
+     */
+    ThreadFactory threads(String role);
+}

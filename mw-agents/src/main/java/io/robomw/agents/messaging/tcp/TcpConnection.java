@@ -1,0 +1,152 @@
+package io.robomw.agents.messaging.tcp;
+
+import io.robomw.agents.messaging.Address;
+import io.robomw.agents.messaging.frame.FrameException;
+import io.robomw.agents.messaging.io.FrameStreamReader;
+import io.robomw.agents.messaging.io.OutboundBuffer;
+import io.robomw.agents.messaging.spi.Link;
+import io.robomw.agents.messaging.spi.TransportContext;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import javax.net.ssl.SSLSocket;
+import java.io.IOException;
+import java.io.InputStream;
+import java.io.OutputStream;
+import java.net.Socket;
+import java.net.SocketException;
+import java.util.concurrent.atomic.AtomicBoolean;
+
+/**
+ * One TCP connection, accepted or opened: a reader thread that frames the stream and hands each
+ * frame to the node (listeners run on it), and an {@link OutboundBuffer} with its writer thread.
+ * Garbage, an oversized length or a cut-off frame end this connection only (counted and logged
+ * by the node); the endpoint keeps accepting others.
+ */
+final class TcpConnection implements Link {
+
+    private static final Logger LOG = LoggerFactory.getLogger(TcpConnection.class);
+
+    private final Socket socket;
+    private final Address address;
+    private final String peer;
+    private final TransportContext context;
+    private final OutboundBuffer outbound;
+    private final InputStream in;
+    private final OutputStream out;
+    private final AtomicBoolean closed = new AtomicBoolean();
+    private final java.util.List<AutoCloseable> registry;
+    private volatile Thread reader;
+
+    TcpConnection(Socket socket, Address address, String peer, TransportContext context, java.util.List<AutoCloseable> registry) throws IOException {
+        this.registry = registry;
+        this.socket = socket;
+        this.address = address;
+        this.peer = peer;
+        this.context = context;
+        socket.setTcpNoDelay(true);
+        socket.setKeepAlive(true);
+        this.in = socket.getInputStream();
+        this.out = socket.getOutputStream();
+        this.outbound = new OutboundBuffer(peer, context.settings().outboundBufferBytes(), context.settings().sendTimeout().toNanos());
+    }
+
+    void start() {
+        registry.add(this);
+        String role = "tcp-" + (socket.getLocalPort()) + "-" + socket.getPort();
+        outbound.startWriter((b, o, l) -> {
+            out.write(b, o, l);
+            out.flush();
+        }, context.threads(role + "-write"), e -> fail("write failed: " + e.getMessage()));
+        Thread t = context.threads(role + "-read").newThread(this::readLoop);
+        reader = t;
+        t.start();
+        context.opened(this);
+    }
+
+    @Override
+    public Address address() {
+        return address;
+    }
+
+    @Override
+    public String peer() {
+        return peer;
+    }
+
+    @Override
+    public void send(byte[] frame) throws IOException {
+        outbound.send(frame);
+    }
+
+    @Override
+    public boolean isOpen() {
+        return !closed.get();
+    }
+
+    @Override
+    public boolean isConnection() {
+        return true;
+    }
+
+    @Override
+    public boolean deliversOn(Thread thread) {
+        return thread == reader;
+    }
+
+    @Override
+    public boolean stuck(long nowNanos, long limitNanos) {
+        return outbound.stuck(nowNanos, limitNanos);
+    }
+
+    @Override
+    public void close() {
+        if (closed.compareAndSet(false, true)) {
+            outbound.close();
+            try {
+                socket.close();
+            } catch (IOException e) {
+                LOG.debug("closing {}: {}", peer, e.toString());
+            }
+            registry.remove(this);
+            context.closed(this);
+        }
+    }
+
+    @Override
+    public String toString() {
+        return "TcpConnection[" + peer + "]";
+    }
+
+    private void readLoop() {
+        FrameStreamReader frames = new FrameStreamReader(in, context.settings().maxFrameSize());
+        try {
+            if (socket instanceof SSLSocket ssl) {
+                ssl.startHandshake();
+            }
+            int length;
+            while ((length = frames.next()) >= 0) {
+                context.onFrame(frames.buffer(), frames.offset(), length, this);
+            }
+        } catch (FrameException e) {
+            context.dropped(e.reason(), peer, e.getMessage() + "; closing this connection");
+        } catch (SocketException e) {
+            if (!closed.get()) {
+                LOG.debug("node '{}': connection {} ended: {}", context.nodeName(), peer, e.toString());
+            }
+        } catch (IOException e) {
+            if (!closed.get()) {
+                LOG.warn("node '{}': connection {} failed: {}", context.nodeName(), peer, e.toString());
+            }
+        } finally {
+            close();
+        }
+    }
+
+    private void fail(String why) {
+        if (!closed.get()) {
+            LOG.warn("node '{}': connection {}: {}", context.nodeName(), peer, why);
+        }
+        close();
+    }
+}
