@@ -75,6 +75,9 @@ public final class PayloadAllowList {
         Class<?> c = type;
         while (c.isArray()) {
             c = c.getComponentType();
+            if (c == Object.class) {
+                return true; // Object[] inside collections: each element is checked on its own
+            }
         }
         return c.isPrimitive() || classNames.contains(c.getName());
     }
@@ -86,19 +89,26 @@ public final class PayloadAllowList {
 
     /**
      * @param maxBytes the largest payload, which also bounds array lengths
+     * @param why      told what was rejected: a class name, or the limit broken
      * @return a filter that allows these classes within the limits and rejects everything else
      */
-    public ObjectInputFilter filter(long maxBytes) {
+    public ObjectInputFilter filter(long maxBytes, java.util.function.Consumer<String> why) {
         return info -> {
             if (info.depth() > MAX_DEPTH || info.references() > MAX_REFERENCES || info.streamBytes() > maxBytes
                     || info.arrayLength() > maxBytes) {
+                why.accept("a limit was broken (depth " + info.depth() + " of " + MAX_DEPTH + ", references " + info.references()
+                        + " of " + MAX_REFERENCES + ", bytes " + info.streamBytes() + " of " + maxBytes + ", array length " + info.arrayLength() + ")");
                 return ObjectInputFilter.Status.REJECTED;
             }
             Class<?> c = info.serialClass();
             if (c == null) {
                 return ObjectInputFilter.Status.ALLOWED;
             }
-            return allows(c) ? ObjectInputFilter.Status.ALLOWED : ObjectInputFilter.Status.REJECTED;
+            if (allows(c)) {
+                return ObjectInputFilter.Status.ALLOWED;
+            }
+            why.accept("class " + c.getName() + " is not on the allow-list");
+            return ObjectInputFilter.Status.REJECTED;
         };
     }
 }

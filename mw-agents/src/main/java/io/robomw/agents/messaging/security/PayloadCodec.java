@@ -132,16 +132,17 @@ public final class PayloadCodec {
     }
 
     private Serializable deserialize(byte[] bytes) throws PayloadRejectedException {
+        String[] rejected = new String[1];
         try (ObjectInputStream in = new LoaderObjectInputStream(new ByteArrayInputStream(bytes), classLoader)) {
-            in.setObjectInputFilter(allowList.filter(bytes.length));
+            in.setObjectInputFilter(allowList.filter(bytes.length, why -> rejected[0] = why));
             Object o = in.readObject();
             if (!(o instanceof Serializable s)) {
                 throw new PayloadRejectedException("payload of class " + o.getClass().getName() + " is not Serializable", null);
             }
             return s;
         } catch (InvalidClassException e) {
-            throw new PayloadRejectedException("payload rejected: " + e.getMessage()
-                    + " (a class not on the allow-list, or beyond its limits; allow application types with allowPayloadTypes)", e);
+            throw new PayloadRejectedException("payload rejected: " + (rejected[0] != null ? rejected[0] : e.getMessage())
+                    + " (the receiver allows application types with MessagingSettings.allowPayloadTypes)", e);
         } catch (IOException | ClassNotFoundException | RuntimeException e) {
             throw new PayloadRejectedException("payload cannot be read: " + e, e);
         }

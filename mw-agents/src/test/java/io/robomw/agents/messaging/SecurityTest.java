@@ -1,0 +1,109 @@
+package io.robomw.agents.messaging;
+
+import io.robomw.api.MessagingException;
+import org.junit.jupiter.api.AfterEach;
+import org.junit.jupiter.api.Test;
+
+import java.io.Serializable;
+import java.time.Duration;
+import java.util.List;
+import java.util.UUID;
+import java.util.concurrent.CopyOnWriteArrayList;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+/** Passwords, the allow-list and their counters, over TCP on loopback. */
+class SecurityTest {
+
+    private static final Duration WAIT = Duration.ofSeconds(10);
+    private final List<MessagingNode> nodes = new CopyOnWriteArrayList<>();
+
+    /** A payload type that is not on anybody's allow-list unless added. */
+    record Secret(String text) implements Serializable {
+    }
+
+    @AfterEach
+    void closeNodes() {
+        nodes.forEach(MessagingNode::close);
+    }
+
+    private MessagingNode node(MessagingNode.Builder b) {
+        MessagingNode n = b.build();
+        nodes.add(n);
+        return n;
+    }
+
+    @Test
+    void publicationWithTheWrongPasswordIsDroppedAndCounted() {
+        MessagingNode pub = node(MessagingNode.builder("pub").bind("tcp://127.0.0.1:0"));
+        MessagingNode sub = node(MessagingNode.builder("sub").connect(pub.address("tcp")));
+        List<Object> got = new CopyOnWriteArrayList<>();
+        sub.addMessageListener("cmd", "right", m -> got.add(m.payload()));
+        sub.subscribeMessage("cmd", "right");
+        Await.until("publisher sees the subscriber", WAIT, () -> pub.subscriberCount("cmd") == 1);
+        pub.publishMessage("cmd", "forged", "go", "wrong");
+        pub.publishMessage("cmd", "unsigned", "go", null);
+        pub.publishMessage("cmd", "genuine", "go", "right");
+        Await.until("the genuine publication arrives", WAIT, () -> got.size() == 1);
+        assertEquals(List.of("genuine"), got);
+        assertEquals(1, sub.stats().dropped(DropReason.BAD_MAC));
+        assertEquals(1, sub.stats().dropped(DropReason.MISSING_MAC));
+    }
+
+    @Test
+    void listenerWithTheWrongPasswordIsRefused() {
+        MessagingNode n = node(MessagingNode.builder("n"));
+        n.addMessageListener("cmd", "right", m -> { });
+        MessagingException e = assertThrows(MessagingException.class, () -> n.addMessageListener("cmd", "wrong", m -> { }));
+        assertTrue(e.getMessage().contains("password is wrong"), e.getMessage());
+        assertThrows(MessagingException.class, () -> n.subscribeMessage("cmd", null));
+    }
+
+    @Test
+    void requestWithTheWrongPasswordGetsNoReply() {
+        MessagingNode server = node(MessagingNode.builder("server").bind("tcp://127.0.0.1:0"));
+        server.addMessageListener("cmd", "right", m -> server.replyMessage(m, "done", "ok"));
+        MessagingNode client = node(MessagingNode.builder("client"));
+        UUID bad = client.sendMessage("server", server.address("tcp"), "wrong", "cmd", "x", "go");
+        assertThrows(MessagingException.class, () -> client.waitForReply(bad, Duration.ofMillis(300)));
+        UUID good = client.sendMessage("server", server.address("tcp"), "right", "cmd", "x", "go");
+        assertEquals("done", client.waitForReply(good, WAIT).payload());
+        assertEquals(1, server.stats().dropped(DropReason.BAD_MAC));
+    }
+
+    @Test
+    void payloadOfAClassNotOnTheAllowListIsRejected() {
+        MessagingNode server = node(MessagingNode.builder("server").bind("tcp://127.0.0.1:0"));
+        List<Object> got = new CopyOnWriteArrayList<>();
+        server.addMessageListener("data", null, m -> got.add(m.payload()));
+        MessagingNode client = node(MessagingNode.builder("client"));
+        UUID id = client.sendMessage("server", server.address("tcp"), null, "data", new Secret("x"), "store");
+        MessagingException e = assertThrows(MessagingException.class, () -> client.waitForReply(id, WAIT));
+        assertTrue(e.getMessage().contains(Secret.class.getName()), e.getMessage());
+        assertEquals(1, server.stats().dropped(DropReason.REJECTED_CLASS));
+        assertEquals(List.of(), got);
+    }
+
+    @Test
+    void payloadOfAnAllowedClassIsDelivered() {
+        MessagingNode server = node(MessagingNode.builder("server").settings(MessagingSettings.defaults().allowPayloadTypes(Secret.class))
+                .bind("tcp://127.0.0.1:0"));
+        List<Object> got = new CopyOnWriteArrayList<>();
+        server.addMessageListener("data", null, m -> got.add(m.payload()));
+        MessagingNode client = node(MessagingNode.builder("client"));
+        client.sendMessage("server", server.address("tcp"), null, "data", new Secret("x"), "store");
+        Await.until("the allowed payload arrives", WAIT, () -> got.size() == 1);
+        assertEquals(new Secret("x"), got.get(0));
+    }
+
+    @Test
+    void payloadTooLargeForTheFrameLimitIsRefusedAtTheSender() {
+        MessagingNode server = node(MessagingNode.builder("server").bind("tcp://127.0.0.1:0"));
+        MessagingNode client = node(MessagingNode.builder("client").settings(MessagingSettings.defaults().withMaxFrameSize(4096)));
+        MessagingException e = assertThrows(MessagingException.class,
+                () -> client.sendMessage("server", server.address("tcp"), null, "data", new byte[5000], "store"));
+        assertTrue(e.getMessage().contains("maximum frame size of 4096"), e.getMessage());
+    }
+}
