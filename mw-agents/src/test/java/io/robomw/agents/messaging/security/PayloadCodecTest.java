@@ -47,6 +47,7 @@ class PayloadCodecTest {
         ArrayList<String> list = new ArrayList<>(List.of("a", "b"));
         assertEquals(list, roundTrip(jdkOnly, list));
         assertEquals(java.time.Instant.ofEpochSecond(5), roundTrip(jdkOnly, java.time.Instant.ofEpochSecond(5)));
+        assertEquals(List.of(1, 2, 3), roundTrip(jdkOnly, (Serializable) List.of(1, 2, 3)));
     }
 
     @Test
