@@ -1,0 +1,259 @@
+package io.robomw.agents.messaging.robot;
+
+import io.robomw.agents.messaging.MessagingNode;
+import io.robomw.api.AgentRef;
+import io.robomw.api.Agent;
+import io.robomw.api.Capability;
+import io.robomw.api.Futures;
+import io.robomw.api.Message;
+import io.robomw.api.MessageListener;
+import io.robomw.api.MessagingException;
+import io.robomw.api.Pose;
+import io.robomw.api.Position;
+import io.robomw.api.ReturnType;
+import io.robomw.api.Robot;
+import io.robomw.api.RobotException;
+import io.robomw.api.RobotLinkException;
+import io.robomw.api.SensorInfo;
+import io.robomw.api.SensorType;
+import io.robomw.api.UnsupportedActionException;
+
+import java.io.Serializable;
+import java.time.Duration;
+import java.util.EnumSet;
+import java.util.List;
+import java.util.Set;
+import java.util.UUID;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.CompletionException;
+
+/**
+ * A robot served by another process ({@link RobotServer}), reached through a messaging node.
+ * {@code move}, {@code turn}, {@code getValue} and the other verbs run on the remote robot and
+ * throw what a local call would: {@link UnsupportedActionException},
+ * {@link io.robomw.api.CommandPreemptedException} and so on arrive as themselves (with the remote
+ * stack trace, and the local call site as a suppressed exception). When the remote host does not
+ * answer in time (the reply timeout, plus the motion's own duration) or the link closes, the call
+ * fails with {@link RobotLinkException}, like a local robot whose link failed.
+ *
+ * <p>Messaging calls go through the local node. Agents are not sent through a remote robot
+ * handle. Closing releases the link (and the node, if this robot made it); the remote robot keeps
+ * running, and motions already started finish there. Thread-safe.
+ */
+public final class RemoteRobot implements Robot {
+
+    private final MessagingNode node;
+    private final boolean ownsNode;
+    private final String host;
+    private final String password;
+    private final String topic;
+    private final RobotInfo info;
+
+    /**
+     * Connects and fetches the robot's description.
+     *
+     * @param node      the local node (its settings must come from {@link RobotProtocol#forClient})
+     * @param ownsNode  whether closing this robot closes the node
+     * @param host      the serving node's address, for example {@code tcp://127.0.0.1:7000}
+     * @param robotName the robot's name there
+     * @param password  the robot topic's password, or {@code null}
+     * @throws RobotLinkException if the robot does not answer
+     */
+    public RemoteRobot(MessagingNode node, boolean ownsNode, String host, String robotName, String password) {
+        this.node = node;
+        this.ownsNode = ownsNode;
+        this.host = host;
+        this.password = password;
+        this.topic = RobotProtocol.topic(robotName);
+        this.info = (RobotInfo) Futures.await(call(robotName, new RobotCall.Describe()));
+    }
+
+    @Override
+    public String name() {
+        return info.name();
+    }
+
+    @Override
+    public Set<Capability> capabilities() {
+        return info.capabilities().isEmpty() ? Set.of() : Set.copyOf(EnumSet.copyOf(info.capabilities()));
+    }
+
+    @Override
+    public List<SensorInfo> sensors() {
+        return info.sensorInfos();
+    }
+
+    @Override
+    public List<String> actions() {
+        return List.copyOf(info.actions());
+    }
+
+    /** @return the address of the host serving it */
+    public String host() {
+        return host;
+    }
+
+    // ---- Motion ----
+
+    @Override
+    public CompletableFuture<Void> moveAsync(double distance, double speed) {
+        return call(new RobotCall.Move(distance, speed)).thenApply(v -> null);
+    }
+
+    @Override
+    public CompletableFuture<Void> turnAsync(double radians, double speed) {
+        return call(new RobotCall.Turn(radians, speed)).thenApply(v -> null);
+    }
+
+    @Override
+    public CompletableFuture<Void> arcAsync(double radius, double angle, double speed) {
+        return call(new RobotCall.Arc(radius, angle, speed)).thenApply(v -> null);
+    }
+
+    @Override
+    public void drive(double linearSpeed, double angularSpeed) {
+        Futures.await(call(new RobotCall.Drive(linearSpeed, angularSpeed)));
+    }
+
+    @Override
+    public void stop() {
+        Futures.await(call(new RobotCall.Stop()));
+    }
+
+    @Override
+    public CompletableFuture<Void> changeAltitudeAsync(double metres, double speed) {
+        return call(new RobotCall.ChangeAltitude(metres, speed)).thenApply(v -> null);
+    }
+
+    @Override
+    public CompletableFuture<Void> performAsync(String action, double... args) {
+        return call(new RobotCall.Perform(action, args.clone())).thenApply(v -> null);
+    }
+
+    // ---- Perception ----
+
+    @Override
+    public CompletableFuture<Double> getValueAsync(Position position, SensorType type, ReturnType returnType) {
+        return call(new RobotCall.GetValue(position, type, returnType)).thenApply(v -> (Double) v);
+    }
+
+    @Override
+    public CompletableFuture<Double> getValueAsync(String sensorName, ReturnType returnType) {
+        return call(new RobotCall.GetValueByName(sensorName, returnType)).thenApply(v -> (Double) v);
+    }
+
+    @Override
+    public Pose pose() {
+        double[] p = (double[]) Futures.await(call(new RobotCall.GetPose()));
+        return new Pose(p[0], p[1], p[2]);
+    }
+
+    @Override
+    public void resetPose(Pose pose) {
+        Futures.await(call(new RobotCall.ResetPose(pose.x(), pose.y(), pose.heading())));
+    }
+
+    // ---- Messaging: the local node's ----
+
+    @Override
+    public UUID sendMessage(String name, String host, String pass, String topic, Serializable object, String function) {
+        return node.sendMessage(name, host, pass, topic, object, function);
+    }
+
+    @Override
+    public Message waitForReply(String topic, String host) {
+        return node.waitForReply(topic, host);
+    }
+
+    @Override
+    public Message waitForReply(String topic, String host, Duration timeout) {
+        return node.waitForReply(topic, host, timeout);
+    }
+
+    @Override
+    public Message waitForReply(UUID correlationId, Duration timeout) {
+        return node.waitForReply(correlationId, timeout);
+    }
+
+    @Override
+    public void replyMessage(Message request, Serializable object, String function) {
+        node.replyMessage(request, object, function);
+    }
+
+    @Override
+    public void publishMessage(String topic, Serializable object, String function, String password) {
+        node.publishMessage(topic, object, function, password);
+    }
+
+    @Override
+    public void subscribeMessage(String topic, String password) {
+        node.subscribeMessage(topic, password);
+    }
+
+    @Override
+    public void addMessageListener(String topic, String password, MessageListener listener) {
+        node.addMessageListener(topic, password, listener);
+    }
+
+    @Override
+    public void removeMessageListener(String topic, MessageListener listener) {
+        node.removeMessageListener(topic, listener);
+    }
+
+    // ---- Agency ----
+
+    @Override
+    public AgentRef sendAgent(String host, Agent agent) {
+        throw new UnsupportedActionException(name(), "sendAgent", "a remote robot handle does not send agents; send them to an agent host (mw host)");
+    }
+
+    @Override
+    public List<AgentRef> dispatchClones(Agent agent, String... hosts) {
+        throw new UnsupportedActionException(name(), "dispatchClones", "a remote robot handle does not send agents; send them to an agent host (mw host)");
+    }
+
+    @Override
+    public void close() {
+        if (ownsNode) {
+            node.close();
+        }
+    }
+
+    @Override
+    public String toString() {
+        return "RemoteRobot[" + info.name() + " at " + host + "]";
+    }
+
+    private CompletableFuture<Serializable> call(RobotCall call) {
+        return call(info.name(), call);
+    }
+
+    private CompletableFuture<Serializable> call(String robotName, RobotCall call) {
+        RobotException callSite = new RobotException("remote call " + call + " to robot '" + robotName + "' at " + host);
+        Duration timeout = node.settings().replyTimeout().plus(call.expectedDuration());
+        CompletableFuture<Message> reply;
+        try {
+            reply = node.request(robotName, host, password, topic, call, RobotProtocol.CALL, timeout);
+        } catch (MessagingException e) {
+            return CompletableFuture.failedFuture(new RobotLinkException("robot '" + robotName + "' at " + host + " cannot be reached: " + e.getMessage(), e));
+        }
+        return reply.handle((m, e) -> {
+            if (e != null) {
+                Throwable cause = e instanceof CompletionException && e.getCause() != null ? e.getCause() : e;
+                throw new RobotLinkException("robot '" + robotName + "' at " + host + " did not answer " + call + ": " + cause.getMessage(), cause);
+            }
+            if (!(m.payload() instanceof RobotReply r)) {
+                throw new RobotLinkException("robot '" + robotName + "' at " + host + " answered " + call + " with "
+                        + (m.payload() == null ? "nothing" : m.payload().getClass().getName()), null);
+            }
+            if (r.failure() != null) {
+                r.failure().addSuppressed(callSite);
+                if (r.failure() instanceof RuntimeException re) {
+                    throw re;
+                }
+                throw new RobotException(r.failure().toString(), r.failure());
+            }
+            return r.value();
+        });
+    }
+}

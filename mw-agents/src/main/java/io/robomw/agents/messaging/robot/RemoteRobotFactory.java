@@ -1,0 +1,77 @@
+package io.robomw.agents.messaging.robot;
+
+import io.robomw.agents.messaging.Address;
+import io.robomw.agents.messaging.MessagingNode;
+import io.robomw.agents.messaging.MessagingSettings;
+import io.robomw.api.Robot;
+import io.robomw.api.RobotException;
+import io.robomw.api.spi.PlatformServices;
+import io.robomw.api.spi.RobotFactory;
+
+import java.net.URI;
+import java.security.SecureRandom;
+
+/**
+ * Opens robots served by other processes for {@code Robots.remote(address)}:
+ * {@code tcp://host:port/robot} or {@code rmi://host:port/name[/robot]} (the robot defaults to the
+ * RMI name). An optional {@code ?password=...} is the robot topic's password (it shows in process
+ * lists and logs: prefer TLS, given as {@link MessagingSettings} in the {@link PlatformServices}).
+ * Each remote robot gets its own messaging node, closed with it.
+ */
+public abstract class RemoteRobotFactory implements RobotFactory {
+
+    private final String scheme;
+
+    /** @param scheme the scheme this factory opens */
+    protected RemoteRobotFactory(String scheme) {
+        this.scheme = scheme;
+    }
+
+    @Override
+    public String scheme() {
+        return scheme;
+    }
+
+    @Override
+    public Robot open(URI location, PlatformServices services) {
+        Address a = Address.parse(location.toString());
+        String[] path = a.path().split("/");
+        if (a.path().isEmpty()) {
+            throw new RobotException("'" + location + "' names no robot: use " + scheme + "://host:port/robot-name");
+        }
+        String host;
+        String robot;
+        if (scheme.equals("rmi")) {
+            host = a.withPath(path[0]).toString();
+            robot = path.length > 1 ? path[1] : path[0];
+        } else {
+            host = a.endpoint();
+            robot = path[0];
+        }
+        MessagingSettings settings = RobotProtocol.forClient(services.find(MessagingSettings.class).orElse(MessagingSettings.defaults()));
+        MessagingNode node = MessagingNode.builder("remote-" + robot + "-" + Long.toHexString(new SecureRandom().nextLong()).substring(0, 6))
+                .settings(settings).build();
+        try {
+            return new RemoteRobot(node, true, host, robot, a.query().get("password"));
+        } catch (RuntimeException e) {
+            node.close();
+            throw e;
+        }
+    }
+
+    /** {@code tcp://host:port/robot}. */
+    public static final class Tcp extends RemoteRobotFactory {
+        /** For {@link java.util.ServiceLoader}. */
+        public Tcp() {
+            super("tcp");
+        }
+    }
+
+    /** {@code rmi://host:port/name[/robot]}. */
+    public static final class Rmi extends RemoteRobotFactory {
+        /** For {@link java.util.ServiceLoader}. */
+        public Rmi() {
+            super("rmi");
+        }
+    }
+}
