@@ -59,6 +59,7 @@ public final class OutboundBuffer {
     private boolean writerWaiting;
     private boolean batchTaken;
     private Writer writer;
+    private volatile Thread writerThread;
     private volatile long writingSinceNanos;
     private volatile boolean writing;
 
@@ -90,14 +91,16 @@ public final class OutboundBuffer {
         } finally {
             lock.unlock();
         }
-        threads.newThread(() -> {
+        Thread t = threads.newThread(() -> {
             try {
                 writeLoop(out);
             } catch (IOException e) {
                 close();
                 onError.accept(e);
             }
-        }).start();
+        });
+        writerThread = t;
+        t.start();
     }
 
     /**
@@ -204,6 +207,33 @@ public final class OutboundBuffer {
         }
     }
 
+    /**
+     * Waits until the writer thread has written everything that was waiting (after {@link #close},
+     * so a last reply is not lost when a link is closed on purpose). Returns at once on the writer
+     * thread itself or without a writer.
+     *
+     * @param waitNanos the longest wait
+     * @return whether everything was written
+     */
+    public boolean awaitDrained(long waitNanos) {
+        if (writerThread == null || Thread.currentThread() == writerThread || !writerThread.isAlive()) {
+            return false;
+        }
+        lock.lock();
+        try {
+            long left = waitNanos;
+            while ((used > 0 || batchTaken) && left > 0 && writerThread.isAlive()) {
+                left = hasRoom.awaitNanos(left);
+            }
+            return used == 0 && !batchTaken;
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            return false;
+        } finally {
+            lock.unlock();
+        }
+    }
+
     /** @return whether it is closed */
     public boolean isClosed() {
         lock.lock();
@@ -253,6 +283,7 @@ public final class OutboundBuffer {
             } finally {
                 lock.lock();
                 batchTaken = false;
+                hasRoom.signalAll();
                 lock.unlock();
                 writeLock.unlock();
             }

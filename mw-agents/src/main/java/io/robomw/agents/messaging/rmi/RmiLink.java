@@ -93,6 +93,9 @@ final class RmiLink implements Link {
     public void close() {
         if (closed.compareAndSet(false, true)) {
             outbound.close();
+            if (Thread.currentThread() != poller) {
+                outbound.awaitDrained(1_000_000_000L);
+            }
             Thread t = poller;
             if (t != null && t != Thread.currentThread()) {
                 t.interrupt();

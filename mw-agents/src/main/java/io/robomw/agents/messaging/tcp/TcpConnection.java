@@ -26,6 +26,7 @@ import java.util.concurrent.atomic.AtomicBoolean;
 final class TcpConnection implements Link {
 
     private static final Logger LOG = LoggerFactory.getLogger(TcpConnection.class);
+    private static final long DRAIN_NANOS = 1_000_000_000L;
 
     private final Socket socket;
     private final Address address;
@@ -99,10 +100,14 @@ final class TcpConnection implements Link {
         return outbound.stuck(nowNanos, limitNanos);
     }
 
+    /** Closes after writing what is waiting (for at most a second), unless called by the reader. */
     @Override
     public void close() {
         if (closed.compareAndSet(false, true)) {
             outbound.close();
+            if (Thread.currentThread() != reader) {
+                outbound.awaitDrained(DRAIN_NANOS);
+            }
             try {
                 socket.close();
             } catch (IOException e) {

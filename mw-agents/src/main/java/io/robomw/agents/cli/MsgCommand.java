@@ -1,0 +1,79 @@
+package io.robomw.agents.cli;
+
+import io.robomw.agents.messaging.Address;
+import io.robomw.agents.messaging.MessagingNode;
+import io.robomw.agents.messaging.MessagingSettings;
+import io.robomw.agents.messaging.security.TlsSettings;
+import io.robomw.api.Message;
+import picocli.CommandLine.Command;
+import picocli.CommandLine.Option;
+
+import java.nio.file.Path;
+import java.util.HexFormat;
+import java.util.Locale;
+
+/**
+ * {@code mw msg pub|sub|send}: messaging by hand, like {@code ros2 topic pub/echo}. Each
+ * subcommand is its own class; this one holds what they share.
+ */
+@Command(name = "msg", description = "Publish, subscribe and send messages by hand (tcp, udp, multicast, rmi).",
+        subcommands = {MsgPubCommand.class, MsgSubCommand.class, MsgSendCommand.class})
+final class MsgCommand {
+
+    /** Options every msg subcommand has. */
+    static final class Common {
+        @Option(names = "--password", description = "the topic's password (HMAC-SHA256); default: an open topic")
+        String password;
+
+        @Option(names = "--name", description = "this node's name (default: ${DEFAULT-VALUE})", defaultValue = "mw-msg")
+        String name;
+
+        @Option(names = "--tls-keystore", description = "PKCS#12 key store: turns on mutual TLS for tcp and rmi")
+        Path keyStore;
+
+        @Option(names = "--tls-truststore", description = "PKCS#12 store of the peers to trust (with --tls-keystore)")
+        Path trustStore;
+
+        @Option(names = "--tls-password", description = "password of both stores", defaultValue = "")
+        String storePassword;
+
+        MessagingSettings settings() {
+            MessagingSettings s = MessagingSettings.defaults();
+            if (keyStore != null) {
+                s = s.withTls(new TlsSettings(keyStore, storePassword, trustStore == null ? keyStore : trustStore, storePassword));
+            }
+            return s;
+        }
+    }
+
+    private MsgCommand() {
+    }
+
+    /**
+     * @param address an address
+     * @return whether a node joins it (multicast) rather than connecting or binding
+     */
+    static boolean isGroup(String address) {
+        return Address.parse(address).scheme().equals("multicast");
+    }
+
+    /**
+     * @param m a message
+     * @return one line for the terminal
+     */
+    static String describe(Message m) {
+        return String.format(Locale.ROOT, "[%s] %s %s: %s", m.topic(), m.sender(), m.function(), payloadText(m.payload()));
+    }
+
+    private static String payloadText(Object payload) {
+        if (payload instanceof byte[] bytes) {
+            return bytes.length + " bytes " + HexFormat.of().formatHex(bytes, 0, Math.min(bytes.length, 32)) + (bytes.length > 32 ? "..." : "");
+        }
+        return String.valueOf(payload);
+    }
+
+    /** Builds a node that binds or joins {@code address}. */
+    static MessagingNode bound(Common c, String address) {
+        return MessagingNode.builder(c.name).settings(c.settings()).bind(address).build();
+    }
+}

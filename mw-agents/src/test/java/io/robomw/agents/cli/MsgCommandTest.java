@@ -1,0 +1,72 @@
+package io.robomw.agents.cli;
+
+import org.junit.jupiter.api.Test;
+import picocli.CommandLine;
+
+import java.io.IOException;
+import java.io.PrintWriter;
+import java.io.StringWriter;
+import java.net.InetAddress;
+import java.net.ServerSocket;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.TimeUnit;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+/** {@code mw msg pub|sub|send} run in this JVM against each other on loopback. */
+class MsgCommandTest {
+
+    /** Output and exit code of one run. */
+    record Run(int status, String out, String err) {
+    }
+
+    private static Run mw(String... args) {
+        StringWriter out = new StringWriter();
+        StringWriter err = new StringWriter();
+        CommandLine cl = new CommandLine(new Mw());
+        cl.setOut(new PrintWriter(out, true));
+        cl.setErr(new PrintWriter(err, true));
+        int status = cl.execute(args);
+        return new Run(status, out.toString(), err.toString());
+    }
+
+    private static int freeTcpPort() throws IOException {
+        try (ServerSocket s = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            return s.getLocalPort();
+        }
+    }
+
+    @Test
+    void subPrintsWhatPubPublishes() throws Exception {
+        String address = "tcp://127.0.0.1:" + freeTcpPort();
+        CompletableFuture<Run> pub = CompletableFuture.supplyAsync(() -> mw("msg", "pub", address, "news", "hello",
+                "--count", "3", "--rate", "100", "--wait-subscribers", "1", "--wait-timeout", "20"));
+        Run sub = mw("msg", "sub", address, "news", "--count", "3", "--timeout", "20");
+        assertEquals(0, sub.status(), sub.err());
+        assertEquals(3, sub.out().split("\\[news] mw-msg data: hello", -1).length - 1, sub.out());
+        assertEquals(0, pub.get(20, TimeUnit.SECONDS).status());
+    }
+
+    @Test
+    void sendPrintsTheEchoOfABoundSubscriber() throws Exception {
+        String address = "tcp://127.0.0.1:" + freeTcpPort();
+        CompletableFuture<Run> sub = CompletableFuture.supplyAsync(() -> mw("msg", "sub", address, "cmd", "--bind", "--echo",
+                "--password", "pw", "--count", "1", "--timeout", "20"));
+        Run send;
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(20);
+        do {
+            send = mw("msg", "send", address, "*", "cmd", "ping", "--password", "pw", "--timeout", "5");
+        } while (send.status() != 0 && System.nanoTime() < deadline && send.err().contains("cannot reach"));
+        assertEquals(0, send.status(), send.err());
+        assertTrue(send.out().contains("reply [cmd] mw-msg echo: ping"), send.out());
+        assertEquals(0, sub.get(20, TimeUnit.SECONDS).status());
+    }
+
+    @Test
+    void sendToNobodyFails() throws Exception {
+        Run send = mw("msg", "send", "tcp://127.0.0.1:" + freeTcpPort(), "*", "cmd", "ping", "--timeout", "1");
+        assertEquals(1, send.status());
+        assertTrue(send.err().contains("cannot reach"), send.err());
+    }
+}
