@@ -78,7 +78,7 @@ final class Inbound {
         boolean request = f.kind() == FrameKind.MESSAGE;
         LocalTopics.Topic topic = node.topics().get(f.topic());
         if (topic == null || (!request && !topic.subscribed)) {
-            if (request) {
+            if (request && !from.isGroup()) {
                 counters.drop(DropReason.NO_LISTENER, from.peer(), "message for topic '" + f.topic() + "', which nobody here listens to");
                 refuse(f, from, "no listener for topic '" + f.topic() + "' at node '" + node.name() + "'");
             } else {
@@ -87,6 +87,10 @@ final class Inbound {
             return;
         }
         if (request && !node.answersTo(f.receiver())) {
+            if (from.isGroup()) {
+                counters.dropQuietly(DropReason.UNKNOWN_RECEIVER);
+                return;
+            }
             counters.drop(DropReason.UNKNOWN_RECEIVER, from.peer(), "message for '" + f.receiver() + "'; this node answers to " + node.names());
             refuse(f, from, "no receiver named '" + f.receiver() + "' here; this node answers to " + node.names());
             return;

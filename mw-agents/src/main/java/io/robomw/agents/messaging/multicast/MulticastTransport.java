@@ -69,7 +69,7 @@ final class MulticastTransport implements Transport {
                 known.clear();
             }
             return known.computeIfAbsent(from, f -> new UdpPeer(sender, f, Address.parse("udp://" + f.getAddress().getHostAddress() + ":" + f.getPort()),
-                    bound + "<-" + f.getAddress().getHostAddress() + ":" + f.getPort()));
+                    bound + "<-" + f.getAddress().getHostAddress() + ":" + f.getPort(), true));
         });
         open.add(receiver);
         return new Endpoint() {

@@ -45,6 +45,14 @@ public interface Channel {
         return false;
     }
 
+    /**
+     * @return whether frames from it were sent to a group (multicast): a message there reaches
+     *         every member, so one not meant for this node is ignored quietly rather than refused
+     */
+    default boolean isGroup() {
+        return false;
+    }
+
     /** Closes the channel (for a datagram peer: forgets it). Idempotent. */
     void close();
 }

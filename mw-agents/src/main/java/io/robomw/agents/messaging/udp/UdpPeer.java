@@ -19,6 +19,7 @@ public final class UdpPeer implements Link {
     private final InetSocketAddress remote;
     private final Address address;
     private final String label;
+    private final boolean group;
 
     /**
      * @param port    the local port frames go out of
@@ -27,6 +28,18 @@ public final class UdpPeer implements Link {
      * @param label   how logs and loss counters name this peer
      */
     public UdpPeer(DatagramPort port, InetSocketAddress remote, Address address, String label) {
+        this(port, remote, address, label, false);
+    }
+
+    /**
+     * @param port    the local port frames go out of
+     * @param remote  the peer's socket address
+     * @param address the peer's address as the node names it
+     * @param label   how logs and loss counters name this peer
+     * @param group   whether its frames came through a multicast group
+     */
+    public UdpPeer(DatagramPort port, InetSocketAddress remote, Address address, String label, boolean group) {
+        this.group = group;
         this.port = port;
         this.remote = remote;
         this.address = address;
@@ -61,6 +74,11 @@ public final class UdpPeer implements Link {
     @Override
     public boolean deliversOn(Thread thread) {
         return port.isReader(thread);
+    }
+
+    @Override
+    public boolean isGroup() {
+        return group;
     }
 
     @Override

@@ -1,0 +1,164 @@
+package io.robomw.it.messaging;
+
+import java.io.BufferedReader;
+import java.io.IOException;
+import java.io.InputStreamReader;
+import java.io.PrintStream;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.concurrent.BlockingQueue;
+import java.util.concurrent.LinkedBlockingQueue;
+import java.util.concurrent.TimeUnit;
+
+import static org.junit.jupiter.api.Assertions.fail;
+
+/**
+ * A {@link Peer} (or another main class) in its own JVM, started with this JVM's java and class
+ * path. Commands go to its stdin; its stdout lines are read with deadlines; its stderr (the log)
+ * goes to {@code target/it-logs/NAME.log}. {@link #close()} ends it, forcibly if need be, and
+ * waits for it.
+ */
+public final class PeerProcess implements AutoCloseable {
+
+    /** How long one command may take unless the caller says otherwise. */
+    public static final Duration COMMAND = Duration.ofSeconds(30);
+
+    private final String name;
+    private final Process process;
+    private final PrintStream in;
+    private final BlockingQueue<String> lines = new LinkedBlockingQueue<>();
+
+    private PeerProcess(String name, Process process) {
+        this.name = name;
+        this.process = process;
+        this.in = new PrintStream(process.getOutputStream(), true, StandardCharsets.UTF_8);
+        Thread reader = new Thread(() -> {
+            try (BufferedReader r = new BufferedReader(new InputStreamReader(process.getInputStream(), StandardCharsets.UTF_8))) {
+                String line;
+                while ((line = r.readLine()) != null) {
+                    lines.add(line);
+                }
+            } catch (IOException e) {
+                lines.add("EOF " + e);
+            }
+            lines.add("EOF");
+        }, "it-peer-stdout-" + name);
+        reader.setDaemon(true);
+        reader.start();
+    }
+
+    /**
+     * Starts a {@link Peer} and waits for it to be ready.
+     *
+     * @param name     its node name (and log file name)
+     * @param jvmArgs  extra JVM options (system properties)
+     * @param peerArgs extra arguments after the name
+     * @return the running peer
+     */
+    public static PeerProcess peer(String name, List<String> jvmArgs, String... peerArgs) throws IOException {
+        List<String> args = new ArrayList<>(List.of(name));
+        args.addAll(List.of(peerArgs));
+        PeerProcess p = start(name, Peer.class.getName(), jvmArgs, args);
+        p.expect("READY", COMMAND);
+        return p;
+    }
+
+    /**
+     * @param name      for the log file
+     * @param mainClass the class to run
+     * @param jvmArgs   JVM options
+     * @param args      program arguments
+     * @return the started process
+     */
+    public static PeerProcess start(String name, String mainClass, List<String> jvmArgs, List<String> args) throws IOException {
+        Path logs = Path.of("target", "it-logs");
+        Files.createDirectories(logs);
+        List<String> command = new ArrayList<>();
+        command.add(Path.of(System.getProperty("java.home"), "bin", "java").toString());
+        command.add("-XX:+UseSerialGC");
+        command.add("-XX:TieredStopAtLevel=1");
+        command.add("-Dorg.slf4j.simpleLogger.defaultLogLevel=info");
+        command.addAll(jvmArgs);
+        command.add("-cp");
+        command.add(System.getProperty("java.class.path"));
+        command.add(mainClass);
+        command.addAll(args);
+        Process process = new ProcessBuilder(command).redirectError(logs.resolve(name + ".log").toFile()).start();
+        return new PeerProcess(name, process);
+    }
+
+    /**
+     * Sends one command and returns the first answer line starting with {@code prefix}.
+     *
+     * @param command the command line
+     * @param prefix  the answer expected
+     * @param within  the deadline
+     * @return the answer line
+     */
+    public String ask(String command, String prefix, Duration within) {
+        in.println(command);
+        return expect(prefix, within);
+    }
+
+    /** {@link #ask(String, String, Duration)} with {@link #COMMAND} as the deadline. */
+    public String ask(String command, String prefix) {
+        return ask(command, prefix, COMMAND);
+    }
+
+    /**
+     * @param prefix the line expected
+     * @param within the deadline
+     * @return the line
+     */
+    public String expect(String prefix, Duration within) {
+        long deadline = System.nanoTime() + within.toNanos();
+        while (true) {
+            String line;
+            try {
+                line = lines.poll(Math.max(0, deadline - System.nanoTime()), TimeUnit.NANOSECONDS);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+                throw new AssertionError("interrupted waiting for " + prefix + " from " + name, e);
+            }
+            if (line == null) {
+                fail("peer " + name + " did not answer '" + prefix + "' within " + within + " (log: target/it-logs/" + name + ".log)");
+            }
+            if (line.startsWith(prefix)) {
+                return line;
+            }
+            if (line.startsWith("ERR") || line.startsWith("EOF")) {
+                fail("peer " + name + " answered '" + line + "' while '" + prefix + "' was expected (log: target/it-logs/" + name + ".log)");
+            }
+        }
+    }
+
+    /** @return the process */
+    public Process process() {
+        return process;
+    }
+
+    /** Asks the peer to exit; after 5 s ends it forcibly. Always waits for it to be gone. */
+    @Override
+    public void close() {
+        try {
+            in.println("exit");
+            if (!process.waitFor(5, TimeUnit.SECONDS)) {
+                process.destroyForcibly();
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            process.destroyForcibly();
+        } finally {
+            process.destroyForcibly();
+            try {
+                process.waitFor(10, TimeUnit.SECONDS);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        }
+    }
+}
