@@ -1,0 +1,254 @@
+package io.robomw.bench;
+
+import io.robomw.agents.messaging.MessagingNode;
+import io.robomw.it.messaging.PeerProcess;
+import org.zeromq.SocketType;
+import org.zeromq.ZContext;
+import org.zeromq.ZMQ;
+
+import java.io.DataInputStream;
+import java.io.IOException;
+import java.io.OutputStream;
+import java.net.DatagramSocket;
+import java.net.InetAddress;
+import java.net.InetSocketAddress;
+import java.net.NetworkInterface;
+import java.net.Socket;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.Arrays;
+import java.util.List;
+import java.util.Locale;
+import java.util.UUID;
+import java.util.function.LongSupplier;
+
+/**
+ * Messaging benchmark between two JVMs on loopback (this one drives, a {@link BenchPeer} answers
+ * or subscribes): 64-byte request/reply latency (p50, p99) and 64-byte publish/subscribe
+ * throughput, per RoboMW transport, with a raw {@link Socket} ping-pong and JeroMQ REQ/REP and
+ * PUB/SUB as baselines in the same run. Writes {@code target/benchmarks/messaging.md}.
+ *
+ * <p>Run: {@code mvn -B -Pbench verify -pl src-it -am -Dtest=none -Dsurefire.failIfNoSpecifiedTests=false}
+ * (see docs/benchmarks.md). Not part of the normal test run.
+ */
+public final class MessagingBenchmark {
+
+    static final int SIZE = 64;
+    static final int LATENCY_WARMUP = 20_000;
+    static final int LATENCY_MEASURED = 100_000;
+    static final long PUBSUB_WARMUP = 300_000;
+
+    private final List<String> rows = new ArrayList<>();
+    private final List<String> log = new ArrayList<>();
+
+    /** One latency result, microseconds. @param name case @param p50 median @param p99 99th percentile @param mean mean */
+    record Latency(String name, double p50, double p99, double mean) {
+    }
+
+    /** One throughput result. @param name case @param messages measured messages received @param sent measured messages sent @param perSecond received per second */
+    record Throughput(String name, long messages, long sent, double perSecond) {
+    }
+
+    /**
+     * @param args ignored
+     * @throws Exception on failure
+     */
+    public static void main(String[] args) throws Exception {
+        new MessagingBenchmark().run();
+    }
+
+    void run() throws Exception {
+        List<Latency> latencies = new ArrayList<>();
+        latencies.add(rawPingPong());
+        latencies.add(zmqReqRep());
+        latencies.add(mwReqRep("tcp", "tcp://127.0.0.1:0"));
+        latencies.add(mwReqRep("rmi", "rmi://127.0.0.1:0/bench"));
+        latencies.add(mwReqRep("udp", "udp://127.0.0.1:0"));
+        latencies.add(mwReqRep("multicast", group()));
+        List<Throughput> throughputs = new ArrayList<>();
+        throughputs.add(zmqPubSub(2_000_000));
+        throughputs.add(mwPubSub("tcp", "tcp://127.0.0.1:0", 2_000_000));
+        throughputs.add(mwPubSub("rmi", "rmi://127.0.0.1:0/bench", 1_000_000));
+        throughputs.add(mwPubSub("udp", "udp://127.0.0.1:0", 500_000));
+        throughputs.add(mwPubSub("multicast", group(), 500_000));
+        write(latencies, throughputs);
+    }
+
+    // ---- request/reply ----
+
+    private Latency rawPingPong() throws Exception {
+        try (PeerProcess peer = bench("bench-raw-echo", "raw-echo")) {
+            int port = Integer.parseInt(peer.expect("PORT", PeerProcess.COMMAND).substring(5));
+            try (Socket s = new Socket(InetAddress.getLoopbackAddress(), port)) {
+                s.setTcpNoDelay(true);
+                DataInputStream in = new DataInputStream(s.getInputStream());
+                OutputStream out = s.getOutputStream();
+                byte[] msg = new byte[SIZE];
+                return latency("raw java.net.Socket ping-pong", () -> {
+                    try {
+                        long t0 = System.nanoTime();
+                        out.write(msg);
+                        in.readFully(msg);
+                        return System.nanoTime() - t0;
+                    } catch (IOException e) {
+                        throw new java.io.UncheckedIOException(e);
+                    }
+                });
+            }
+        }
+    }
+
+    private Latency zmqReqRep() throws Exception {
+        try (PeerProcess peer = bench("bench-zmq-rep", "zmq-rep"); ZContext ctx = new ZContext()) {
+            int port = Integer.parseInt(peer.expect("PORT", PeerProcess.COMMAND).substring(5));
+            ZMQ.Socket req = ctx.createSocket(SocketType.REQ);
+            req.connect("tcp://127.0.0.1:" + port);
+            byte[] msg = new byte[SIZE];
+            return latency("JeroMQ REQ/REP", () -> {
+                long t0 = System.nanoTime();
+                req.send(msg);
+                req.recv();
+                return System.nanoTime() - t0;
+            });
+        }
+    }
+
+    private Latency mwReqRep(String scheme, String bind) throws Exception {
+        try (PeerProcess peer = bench("bench-mw-echo-" + scheme, "mw-echo", bind);
+             MessagingNode node = MessagingNode.builder("bench-client").build()) {
+            String host = peer.expect("BOUND", PeerProcess.COMMAND).substring(6);
+            if (scheme.equals("multicast")) {
+                host = bind;
+            }
+            String target = host;
+            byte[] msg = new byte[SIZE];
+            Duration timeout = Duration.ofSeconds(10);
+            return latency("RoboMW " + scheme + " sendMessage + waitForReply", () -> {
+                long t0 = System.nanoTime();
+                UUID id = node.sendMessage("bench-echo", target, null, "bench", msg, "ping");
+                node.waitForReply(id, timeout);
+                return System.nanoTime() - t0;
+            });
+        }
+    }
+
+    private Latency latency(String name, LongSupplier roundTrip) {
+        for (int i = 0; i < LATENCY_WARMUP; i++) {
+            roundTrip.getAsLong();
+        }
+        long[] t = new long[LATENCY_MEASURED];
+        for (int i = 0; i < t.length; i++) {
+            t[i] = roundTrip.getAsLong();
+        }
+        Arrays.sort(t);
+        double mean = Arrays.stream(t).average().orElse(0) / 1000;
+        Latency l = new Latency(name, t[t.length / 2] / 1000.0, t[(int) (t.length * 0.99)] / 1000.0, mean);
+        say(String.format(Locale.ROOT, "%-48s p50 %8.1f µs  p99 %8.1f µs  mean %8.1f µs", name, l.p50(), l.p99(), l.mean()));
+        return l;
+    }
+
+    // ---- publish/subscribe ----
+
+    private Throughput zmqPubSub(long measured) throws Exception {
+        try (ZContext ctx = new ZContext()) {
+            ZMQ.Socket pub = ctx.createSocket(SocketType.PUB);
+            pub.setSndHWM(0);
+            int port = pub.bindToRandomPort("tcp://127.0.0.1");
+            try (PeerProcess peer = bench("bench-zmq-sub", "zmq-sub", "tcp://127.0.0.1:" + port, String.valueOf(PUBSUB_WARMUP), String.valueOf(measured))) {
+                peer.expect("READY", PeerProcess.COMMAND);
+                byte[] hello = new byte[SIZE];
+                hello[0] = 'H';
+                syncWith(peer, () -> pub.send(hello));
+                byte[] data = new byte[SIZE];
+                data[0] = 'D';
+                for (long i = 0; i < PUBSUB_WARMUP + measured; i++) {
+                    pub.send(data);
+                }
+                return throughput("JeroMQ PUB/SUB", peer, measured);
+            }
+        }
+    }
+
+    private Throughput mwPubSub(String scheme, String bind, long measured) throws Exception {
+        try (MessagingNode node = MessagingNode.builder("bench-pub").bind(bind).build()) {
+            String address = scheme.equals("multicast") ? bind : node.boundAddresses().get(0).toString();
+            try (PeerProcess peer = bench("bench-mw-sub-" + scheme, "mw-sub", address, String.valueOf(PUBSUB_WARMUP), String.valueOf(measured))) {
+                peer.expect("READY", PeerProcess.COMMAND);
+                byte[] hello = new byte[SIZE];
+                hello[0] = 'H';
+                syncWith(peer, () -> node.publishMessage("bench", hello, "hello", null));
+                byte[] data = new byte[SIZE];
+                data[0] = 'D';
+                for (long i = 0; i < PUBSUB_WARMUP + measured; i++) {
+                    node.publishMessage("bench", data, "data", null);
+                }
+                return throughput("RoboMW " + scheme + " publishMessage", peer, measured);
+            }
+        }
+    }
+
+    /** Sends hello messages every millisecond until the subscriber says it got one (the slow-joiner handshake). */
+    private static void syncWith(PeerProcess peer, Runnable sendHello) {
+        long deadline = System.nanoTime() + Duration.ofSeconds(30).toNanos();
+        while (System.nanoTime() < deadline) {
+            sendHello.run();
+            try {
+                peer.expect("SYNC", Duration.ofMillis(1));
+                return;
+            } catch (AssertionError notYet) {
+                // keep saying hello
+            }
+        }
+        throw new AssertionError("subscriber did not sync within 30 s");
+    }
+
+    private Throughput throughput(String name, PeerProcess peer, long measured) {
+        String[] r = peer.expect("RESULT", Duration.ofMinutes(5)).split(" ");
+        long count = Long.parseLong(r[1]);
+        long nanos = Long.parseLong(r[2]);
+        Throughput t = new Throughput(name, count, measured, nanos == 0 ? 0 : count * 1e9 / nanos);
+        say(String.format(Locale.ROOT, "%-48s %,12.0f msg/s  (%,d of %,d measured messages received)", name, t.perSecond(), count, measured));
+        return t;
+    }
+
+    // ---- set-up and report ----
+
+    private static String group() throws IOException {
+        String loopback = NetworkInterface.getByInetAddress(InetAddress.getLoopbackAddress()).getName();
+        try (DatagramSocket s = new DatagramSocket(new InetSocketAddress(InetAddress.getLoopbackAddress(), 0))) {
+            return "multicast://239.255.99." + (1 + new java.util.Random().nextInt(254)) + ":" + s.getLocalPort() + "?interface=" + loopback + "&ttl=0";
+        }
+    }
+
+    private static PeerProcess bench(String name, String... args) throws IOException {
+        return PeerProcess.start(name, BenchPeer.class.getName(), List.of("-Xmx1g", "-Dorg.slf4j.simpleLogger.defaultLogLevel=warn"), List.of(args));
+    }
+
+    private void say(String line) {
+        System.out.println(line);
+        log.add(line);
+    }
+
+    private void write(List<Latency> latencies, List<Throughput> throughputs) throws IOException {
+        double raw = latencies.get(0).p50();
+        double zmqLatency = latencies.get(1).p50();
+        double zmq = throughputs.get(0).perSecond();
+        StringBuilder md = new StringBuilder();
+        md.append("| request/reply, 64 bytes | p50 µs | p99 µs | mean µs | p50 / raw socket | p50 / JeroMQ |\n|---|---:|---:|---:|---:|---:|\n");
+        for (Latency l : latencies) {
+            md.append(String.format(Locale.ROOT, "| %s | %.1f | %.1f | %.1f | %.2f× | %.2f× |%n", l.name(), l.p50(), l.p99(), l.mean(), l.p50() / raw, l.p50() / zmqLatency));
+        }
+        md.append("\n| publish/subscribe, 64 bytes | msg/s | received / sent (measured) | × JeroMQ |\n|---|---:|---:|---:|\n");
+        for (Throughput t : throughputs) {
+            md.append(String.format(Locale.ROOT, "| %s | %,.0f | %,d / %,d | %.2f× |%n", t.name(), t.perSecond(), t.messages(), t.sent(), t.perSecond() / zmq));
+        }
+        Path out = Path.of("target", "benchmarks", "messaging.md");
+        Files.createDirectories(out.getParent());
+        Files.writeString(out, md.toString());
+        System.out.println();
+        System.out.println(md);
+        System.out.println("written to " + out.toAbsolutePath());
+    }
+}
