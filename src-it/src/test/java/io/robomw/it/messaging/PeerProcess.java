@@ -52,7 +52,8 @@ public final class PeerProcess implements AutoCloseable {
     }
 
     /**
-     * Starts a {@link Peer} and waits for it to be ready.
+     * Starts a {@link Peer} (with options for a quick start: serial GC, C1 only) and waits for it
+     * to be ready.
      *
      * @param name     its node name (and log file name)
      * @param jvmArgs  extra JVM options (system properties)
@@ -62,7 +63,9 @@ public final class PeerProcess implements AutoCloseable {
     public static PeerProcess peer(String name, List<String> jvmArgs, String... peerArgs) throws IOException {
         List<String> args = new ArrayList<>(List.of(name));
         args.addAll(List.of(peerArgs));
-        PeerProcess p = start(name, Peer.class.getName(), jvmArgs, args);
+        List<String> options = new ArrayList<>(List.of("-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-Dorg.slf4j.simpleLogger.defaultLogLevel=info"));
+        options.addAll(jvmArgs);
+        PeerProcess p = start(name, Peer.class.getName(), options, args);
         p.expect("READY", COMMAND);
         return p;
     }
@@ -70,7 +73,7 @@ public final class PeerProcess implements AutoCloseable {
     /**
      * @param name      for the log file
      * @param mainClass the class to run
-     * @param jvmArgs   JVM options
+     * @param jvmArgs   JVM options (nothing else is added: benchmarks get the JVM's defaults)
      * @param args      program arguments
      * @return the started process
      */
@@ -79,9 +82,6 @@ public final class PeerProcess implements AutoCloseable {
         Files.createDirectories(logs);
         List<String> command = new ArrayList<>();
         command.add(Path.of(System.getProperty("java.home"), "bin", "java").toString());
-        command.add("-XX:+UseSerialGC");
-        command.add("-XX:TieredStopAtLevel=1");
-        command.add("-Dorg.slf4j.simpleLogger.defaultLogLevel=info");
         command.addAll(jvmArgs);
         command.add("-cp");
         command.add(System.getProperty("java.class.path"));
