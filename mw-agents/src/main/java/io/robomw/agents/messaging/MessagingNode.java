@@ -111,6 +111,8 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     private final List<Address> peers = new CopyOnWriteArrayList<>();
     private final ScheduledExecutorService housekeeping;
     private final Context context = new Context();
+    private final Map<String, Address> parsedHosts = new ConcurrentHashMap<>();
+    private final Map<Address, String> hostKeys = new ConcurrentHashMap<>();
     private volatile boolean closed;
 
     private MessagingNode(String name, MessagingSettings settings, ClassLoader classLoader) {
@@ -309,7 +311,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
                                               String function, Duration timeout) {
         Outgoing out = prepare(FrameKind.MESSAGE, name, host, pass, topic, object, function);
         UUID id = out.correlationId;
-        CompletableFuture<Message> reply = replies.await(out.link.address().toString(), r -> r.message().correlationId().equals(id));
+        CompletableFuture<Message> reply = replies.await(out.sent.host(), r -> r.message().correlationId().equals(id));
         try {
             transmit(out);
         } catch (RuntimeException e) {
@@ -326,7 +328,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
 
     @Override
     public Message waitForReply(String topic, String host, Duration timeout) {
-        String h = Address.parse(host).toString();
+        String h = parsed(host).toString();
         refuseWaitOnDeliveryThread(h);
         return await(replies.await(h, r -> r.host().equals(h) && r.message().topic().equals(topic)), timeout,
                 () -> "no reply on topic '" + topic + "' from " + h + " within " + timeout
@@ -487,11 +489,12 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         Objects.requireNonNull(host, "host");
         SecretKey key = keys.key(requireTopic(topic), pass);
         topics.checkIfRegistered(topic, key);
-        Link link = link(Address.parse(host));
+        Address address = parsed(host);
+        Link link = link(address);
         long n = messageNumbers.incrementAndGet();
         UUID correlationId = new UUID(id, n);
         byte[] frame = encode(kind, n, correlationId, receiver, topic, object, function, key);
-        return new Outgoing(link, correlationId, frame, new Sent(link.address().toString(), key));
+        return new Outgoing(link, correlationId, frame, new Sent(hostKey(address), key));
     }
 
     private void transmit(Outgoing out) {
@@ -565,11 +568,28 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         return targets;
     }
 
+    /** Parses host addresses once: senders name the same few hosts over and over. */
+    private Address parsed(String host) {
+        Address a = parsedHosts.get(host);
+        if (a == null) {
+            a = Address.parse(host);
+            if (parsedHosts.size() > 1024) {
+                parsedHosts.clear();
+            }
+            parsedHosts.put(host, a);
+        }
+        return a;
+    }
+
+    private String hostKey(Address address) {
+        return hostKeys.computeIfAbsent(address, Address::toString);
+    }
+
     private Link link(Address address) {
         if (closed) {
             throw new MessagingException("node '" + name + "' is closed");
         }
-        String key = address.toString();
+        String key = hostKey(address);
         Link existing = links.get(key);
         if (existing != null && existing.isOpen()) {
             return existing;

@@ -1,6 +1,7 @@
 package io.robomw.agents.messaging.io;
 
 import io.robomw.agents.messaging.frame.FrameCodec;
+import io.robomw.agents.messaging.frame.FrameKind;
 
 import java.io.IOException;
 import java.util.concurrent.ThreadFactory;
@@ -13,8 +14,10 @@ import java.util.concurrent.locks.ReentrantLock;
  *
  * <p>Senders {@link #send} frames; a writer thread ({@link #startWriter}) takes everything that
  * has gathered and writes it in one call, so a fast publisher's frames go out in large batches.
- * A frame sent while the link has been idle for {@value #IDLE_MICROS} µs is written at once on
- * the sender's thread instead, so a lone request does not wait for the writer thread to wake up.
+ * When nothing is waiting, a request or reply (any frame but a publication), or a publication
+ * after {@value #IDLE_MICROS} µs of silence, is written at once on the sender's thread instead:
+ * a request does not wait for the writer thread to wake up, and a stream of publications still
+ * goes out in batches.
  * Transports without a writer thread (an RMI session, which the peer polls) {@link #take} the
  * batches themselves.
  *
@@ -116,7 +119,8 @@ public final class OutboundBuffer {
                 lock.lock();
                 try {
                     long now = System.nanoTime();
-                    if (!closed && used == 0 && !batchTaken && now - lastSendNanos > IDLE_MICROS * 1000) {
+                    boolean urgent = frame[FrameCodec.KIND_OFFSET] != FrameKind.PUBLISH.code();
+                    if (!closed && used == 0 && !batchTaken && (urgent || now - lastSendNanos > IDLE_MICROS * 1000)) {
                         direct = frame.clone();
                         FrameCodec.writeStreamSequence(direct, 0, ++sequence);
                     }
