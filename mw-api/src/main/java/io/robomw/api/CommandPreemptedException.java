@@ -2,7 +2,8 @@ package io.robomw.api;
 
 /**
  * A command was interrupted before it finished, because a newer command took the same actuators
- * (most recent wins), or a safety stop did.
+ * (most recent wins), or a safety stop did. Raised by the execution action thread, so it carries
+ * no stack trace; the blocking verbs re-throw it on the caller's thread.
  */
 public class CommandPreemptedException extends RobotException {
 
@@ -13,11 +14,11 @@ public class CommandPreemptedException extends RobotException {
      * @param by      the command that took its actuators
      */
     public CommandPreemptedException(String command, String by) {
-        super("command '" + command + "' was interrupted by '" + by + "', which needs the same actuators");
+        super("command '" + command + "' was interrupted by '" + by + "', which needs the same actuators", null, false);
     }
 
     private CommandPreemptedException(String message) {
-        super(message);
+        super(message, null, false);
     }
 
     /**

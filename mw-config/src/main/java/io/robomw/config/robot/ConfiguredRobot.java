@@ -149,8 +149,8 @@ public final class ConfiguredRobot implements Robot {
         requireFinite(action, angularSpeed, "angular speed");
         WheelMotion m = k.velocity(linearSpeed, angularSpeed);
         double fastest = Math.max(Math.abs(m.leftDegreesPerSecond()), Math.abs(m.rightDegreesPerSecond())) / k.motorDegreesPerMetre();
-        requireSpeed(action, fastest, Math.abs(linearSpeed), k);
-        updateOdometry();
+        requireWithinMaxSpeed(action, fastest, k);
+        trackOdometry();
         DifferentialDrive d = k.drive();
         platform.run(new MotorCommand(action, List.of(
                 MotorTarget.run(d.left().port(), m.leftDegreesPerSecond()),
@@ -161,7 +161,7 @@ public final class ConfiguredRobot implements Robot {
     @Override
     public void stop() {
         platform.stopAll();
-        updateOdometry();
+        trackOdometry();
     }
 
     @Override
@@ -233,9 +233,7 @@ public final class ConfiguredRobot implements Robot {
     public void resetPose(Pose pose) {
         synchronized (odometryLock) {
             updateOdometry();
-            if (odometry != null) {
-                odometry.reset(pose);
-            }
+            odometry.reset(pose);
         }
     }
 
@@ -323,11 +321,11 @@ public final class ConfiguredRobot implements Robot {
 
     private CompletableFuture<Void> runWheels(String action, DifferentialKinematics k, WheelMotion m) {
         DifferentialDrive d = k.drive();
-        updateOdometry();
+        trackOdometry();
         CompletableFuture<Void> done = platform.run(MotorCommand.of(action, List.of(
                 MotorTarget.rotate(d.left().port(), m.leftDegrees(), m.leftDegreesPerSecond()),
                 MotorTarget.rotate(d.right().port(), m.rightDegrees(), m.rightDegreesPerSecond()))));
-        return done.whenComplete((v, e) -> updateOdometry());
+        return done.whenComplete((v, e) -> trackOdometry());
     }
 
     private Pose updateOdometry() {
@@ -342,18 +340,33 @@ public final class ConfiguredRobot implements Robot {
         synchronized (odometryLock) {
             double left = platform.motorDegrees(drive.left().port());
             double right = platform.motorDegrees(drive.right().port());
-            if (odometry == null || !drive.equals(odometryDrive)) {
-                Pose from = odometry == null ? Pose.ORIGIN : odometry.pose();
+            if (odometry == null) {
                 odometry = new Odometry(new DifferentialKinematics(drive));
-                odometry.reset(from);
-                odometryDrive = drive;
+            } else if (!drive.equals(odometryDrive)) {
+                odometry = odometry.rebased(new DifferentialKinematics(drive));
             }
+            odometryDrive = drive;
             return odometry.update(left, right);
+        }
+    }
+
+    /**
+     * Keeps odometry up to date around motions, when the robot has what it takes (a drive with
+     * encoders); robots without encoders still move, timed, and simply have no pose.
+     */
+    private void trackOdometry() {
+        RobotDescription d = description.get();
+        if (d.drive().isPresent() && platform.hasEncoder(d.drive().get().left().port()) && platform.hasEncoder(d.drive().get().right().port())) {
+            updateOdometry();
         }
     }
 
     private void requireSpeed(String action, double wheelSpeed, double asked, DifferentialKinematics k) {
         requirePositive(action, asked, "speed");
+        requireWithinMaxSpeed(action, wheelSpeed, k);
+    }
+
+    private void requireWithinMaxSpeed(String action, double wheelSpeed, DifferentialKinematics k) {
         if (wheelSpeed > k.drive().maxSpeed() * (1 + 1e-9)) {
             throw new UnsupportedActionException(name(), action, String.format(Locale.ROOT,
                     "a wheel would need %.3f m/s, above its maximum of %.3f m/s (drive.max_speed)", wheelSpeed, k.drive().maxSpeed()));
