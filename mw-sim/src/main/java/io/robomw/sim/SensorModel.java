@@ -164,6 +164,14 @@ public final class SensorModel {
     }
 
     /**
+     * @param physicsHz the world's step rate
+     * @return every how many steps it samples
+     */
+    long everySteps(double physicsHz) {
+        return Math.max(1, Math.round(physicsHz / rateHz));
+    }
+
+    /**
      * Samples a range sensor.
      *
      * @param index     the world's range index

@@ -39,8 +39,12 @@ public final class SimRobot {
     private final RobotDescription description;
     private final org.dyn4j.dynamics.Body body;
     private final DifferentialKinematics kinematics;
-    private final Map<String, Double> commanded = new HashMap<>();
-    private final Map<String, Double> motorDegrees = new LinkedHashMap<>();
+    private final Map<String, Integer> portIndex = new HashMap<>();
+    private final double[] commanded;
+    private final double[] motorDegrees;
+    private final int leftIndex;
+    private final int rightIndex;
+    private final int[] actuatorIndex;
     private final Map<String, SensorModel> sensors = new LinkedHashMap<>();
     private final List<SensorModel> rangeSensors = new ArrayList<>();
     private final Queue<PendingRead> reads = new ConcurrentLinkedQueue<>();
@@ -63,10 +67,15 @@ public final class SimRobot {
         this.description = description;
         this.body = body;
         this.kinematics = description.drive().map(DifferentialKinematics::new).orElse(null);
-        for (String port : description.motorPorts()) {
-            commanded.put(port, 0.0);
-            motorDegrees.put(port, 0.0);
+        List<String> ports = description.motorPorts();
+        for (int p = 0; p < ports.size(); p++) {
+            portIndex.put(ports.get(p), p);
         }
+        commanded = new double[ports.size()];
+        motorDegrees = new double[ports.size()];
+        leftIndex = description.drive().map(d -> portIndex.get(d.left().port())).orElse(-1);
+        rightIndex = description.drive().map(d -> portIndex.get(d.right().port())).orElse(-1);
+        actuatorIndex = description.actuators().stream().mapToInt(a -> portIndex.get(a.port())).toArray();
         int i = 0;
         boolean touch = false;
         for (SensorSpec s : description.sensors()) {
@@ -81,7 +90,7 @@ public final class SimRobot {
         readPose();
         lastX = body.getTransform().getTranslationX();
         lastY = body.getTransform().getTranslationY();
-        lastHeading = body.getTransform().getRotationAngle();
+        lastHeading = pose.heading();
         trajectory.add(lastX, lastY);
     }
 
@@ -131,7 +140,11 @@ public final class SimRobot {
      * @param degreesPerSecond the commanded motor speed
      */
     void command(String port, double degreesPerSecond) {
-        commanded.put(port, degreesPerSecond);
+        Integer i = portIndex.get(port);
+        if (i == null) {
+            throw new IllegalArgumentException("simulated robot '" + name + "' has no motor on port " + port);
+        }
+        commanded[i] = degreesPerSecond;
     }
 
     /**
@@ -139,7 +152,8 @@ public final class SimRobot {
      * @return its encoder, degrees
      */
     double motorDegrees(String port) {
-        return motorDegrees.getOrDefault(port, 0.0);
+        Integer i = portIndex.get(port);
+        return i == null ? 0.0 : motorDegrees[i];
     }
 
     /** Sets the body's velocities from the commanded wheel speeds. */
@@ -149,12 +163,15 @@ public final class SimRobot {
         }
         DifferentialDrive d = kinematics.drive();
         double max = d.maxSpeed();
-        double vl = clamp(kinematics.wheelMetres(commanded.get(d.left().port()), d.left().reversed()), max);
-        double vr = clamp(kinematics.wheelMetres(commanded.get(d.right().port()), d.right().reversed()), max);
+        double vl = clamp(kinematics.wheelMetres(commanded[leftIndex], d.left().reversed()), max);
+        double vr = clamp(kinematics.wheelMetres(commanded[rightIndex], d.right().reversed()), max);
         double v = (vl + vr) / 2;
         double w = (vr - vl) / d.trackWidth();
-        double heading = body.getTransform().getRotationAngle();
-        body.setLinearVelocity(v * Math.cos(heading), v * Math.sin(heading));
+        if (v == 0 && w == 0 && body.isAtRest()) {
+            return;
+        }
+        org.dyn4j.geometry.Transform t = body.getTransform();
+        body.setLinearVelocity(v * t.getCost(), v * t.getSint());
         body.setAngularVelocity(w);
         if (v != 0 || w != 0) {
             body.setAtRest(false);
@@ -173,10 +190,16 @@ public final class SimRobot {
      * @param recordTrajectory whether to add the pose to the trajectory this step
      */
     void afterStep(org.dyn4j.world.World<org.dyn4j.dynamics.Body> world, double dt, boolean recordTrajectory) {
+        if (body.isAtRest() && !hasTouch) {
+            if (recordTrajectory) {
+                trajectory.add(lastX, lastY);
+            }
+            return;
+        }
         readPose();
         double x = pose.x();
         double y = pose.y();
-        double heading = body.getTransform().getRotationAngle();
+        double heading = pose.heading();
         double dTheta = Pose.normalize(heading - lastHeading);
         turned += dTheta;
         if (kinematics != null) {
@@ -186,11 +209,11 @@ public final class SimRobot {
             double left = ds - dTheta * d.trackWidth() / 2;
             double right = ds + dTheta * d.trackWidth() / 2;
             double dpm = kinematics.motorDegreesPerMetre();
-            motorDegrees.merge(d.left().port(), (d.left().reversed() ? -left : left) * dpm, Double::sum);
-            motorDegrees.merge(d.right().port(), (d.right().reversed() ? -right : right) * dpm, Double::sum);
+            motorDegrees[leftIndex] += (d.left().reversed() ? -left : left) * dpm;
+            motorDegrees[rightIndex] += (d.right().reversed() ? -right : right) * dpm;
         }
-        for (var a : description.actuators()) {
-            motorDegrees.merge(a.port(), commanded.get(a.port()) * dt, Double::sum);
+        for (int a : actuatorIndex) {
+            motorDegrees[a] += commanded[a] * dt;
         }
         lastX = x;
         lastY = y;
@@ -204,7 +227,8 @@ public final class SimRobot {
     }
 
     private void readPose() {
-        pose = new Pose(body.getTransform().getTranslationX(), body.getTransform().getTranslationY(), body.getTransform().getRotationAngle());
+        org.dyn4j.geometry.Transform t = body.getTransform();
+        pose = new Pose(t.getTranslationX(), t.getTranslationY(), Math.atan2(t.getSint(), t.getCost()));
     }
 
     private static final int FRONT = 1;

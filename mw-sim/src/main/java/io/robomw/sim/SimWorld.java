@@ -19,12 +19,6 @@ import java.util.Collections;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
-import java.util.concurrent.Callable;
-import java.util.concurrent.ExecutionException;
-import java.util.concurrent.ExecutorService;
-import java.util.concurrent.Executors;
-import java.util.concurrent.Future;
-import java.util.concurrent.atomic.AtomicInteger;
 
 /**
  * A simulated world: dyn4j bodies for the arena's walls, its obstacles and its robots, a
@@ -33,15 +27,18 @@ import java.util.concurrent.atomic.AtomicInteger;
  *
  * <h2>One step, in order</h2>
  * <ol>
- *   <li>set each robot's body velocities from its commanded wheel speeds;</li>
  *   <li>advance the physics by one fixed step ({@code 1 / physics_hz});</li>
  *   <li>update each robot's encoders from how it actually moved, and its contacts;</li>
  *   <li>advance the clock;</li>
- *   <li>sample every range sensor that is due (in parallel on the sensing threads; each sensor has
- *   its own seeded noise, so the result does not depend on the threads);</li>
- *   <li>cycle every robot's execution action thread that is due, then complete its pending
- *   sensor reads.</li>
+ *   <li>sample every range sensor that is due (each sensor has its own seeded noise, so results
+ *   do not depend on threads);</li>
+ *   <li>cycle every robot's execution action thread that is due, then complete its pending sensor
+ *   reads;</li>
+ *   <li>set each robot's body velocities from its commanded wheel speeds, for the next step;</li>
+ *   <li>(end of step) hand the completions that wake programs over, in one go.</li>
  * </ol>
+ * Steps 2 and 4–6 work robot by robot on the world's worker threads ({@link Parallel}); each
+ * robot's work touches only that robot, so the outcome does not depend on the threads.
  * The same seed and the same commands give the same trajectory, bit for bit.
  *
  * <p>Not thread-safe: one thread steps it (a {@link Simulation} does). Poses and trajectories may
@@ -49,7 +46,6 @@ import java.util.concurrent.atomic.AtomicInteger;
  */
 public final class SimWorld implements AutoCloseable {
 
-    private static final int PARALLEL_SENSING_THRESHOLD = 64;
 
     private final WorldDescription description;
     private final ManualClock clock = new ManualClock();
@@ -57,19 +53,21 @@ public final class SimWorld implements AutoCloseable {
     private final World<org.dyn4j.dynamics.Body> physics = new World<>();
     private final List<SimRobot> robots = new ArrayList<>();
     private final Map<String, SimRobot> byName = new LinkedHashMap<>();
-    private final Map<SimRobot, Cycled> cycled = new LinkedHashMap<>();
     private final RangeIndex rangeIndex;
     private final long stepNanos;
     private final double stepSeconds;
     private final int trajectoryEvery;
-    private final ExecutorService sensing;
-    private final int sensingThreads;
+    private final Parallel parallel;
+    private final List<SimRobot> cycledRobots = new ArrayList<>();
+    private final List<Cycled> cycledThreads = new ArrayList<>();
     private long steps;
     private double[] px = new double[0];
     private double[] py = new double[0];
     private double[] ph = new double[0];
     private double[] pl = new double[0];
     private double[] pw = new double[0];
+    private boolean initialSampleDue;
+    private long[] sensingPeriods;
 
     /** A robot's execution action thread and when it is due. */
     private static final class Cycled {
@@ -88,7 +86,7 @@ public final class SimWorld implements AutoCloseable {
      * Builds the world. Robots are added with {@link #addRobot}.
      *
      * @param description the world
-     * @param sensingThreads threads for range sensing (1 = on the stepping thread)
+     * @param sensingThreads worker threads for the per-robot parts of a step (1 = all on the stepping thread)
      */
     public SimWorld(WorldDescription description, int sensingThreads) {
         this.description = description;
@@ -99,6 +97,9 @@ public final class SimWorld implements AutoCloseable {
         Settings settings = physics.getSettings();
         settings.setStepFrequency(stepSeconds);
         settings.setAtRestDetectionEnabled(true);
+        // Robots move at most a few centimetres per step and walls are thick: continuous collision
+        // detection (tunnelling prevention) buys nothing and costs a pass over every moving body.
+        settings.setContinuousDetectionMode(org.dyn4j.dynamics.ContinuousDetectionMode.NONE);
         List<double[]> segments = new ArrayList<>();
         List<double[]> discs = new ArrayList<>();
         if (description.walls()) {
@@ -135,13 +136,7 @@ public final class SimWorld implements AutoCloseable {
         double cell = Math.max(0.25, Math.min(2.0, Math.sqrt(description.width() * description.height() / 4096)));
         this.rangeIndex = new RangeIndex(-margin, -margin, description.width() + 2 * margin, description.height() + 2 * margin, cell,
                 segments.toArray(double[][]::new), discs.toArray(double[][]::new));
-        this.sensingThreads = Math.max(1, sensingThreads);
-        AtomicInteger n = new AtomicInteger();
-        this.sensing = this.sensingThreads == 1 ? null : Executors.newFixedThreadPool(this.sensingThreads, r -> {
-            Thread t = new Thread(r, "sim-sensing-" + n.incrementAndGet());
-            t.setDaemon(true);
-            return t;
-        });
+        this.parallel = new Parallel(sensingThreads);
     }
 
     private void addStaticBox(double x, double y, double w, double h, double angle, List<double[]> segments) {
@@ -184,7 +179,8 @@ public final class SimWorld implements AutoCloseable {
         SimRobot robot = new SimRobot(robots.size(), name, description, body, this.description.seed());
         robots.add(robot);
         byName.put(name, robot);
-        sampleRangeSensors();
+        initialSampleDue = true;
+        sensingPeriods = null;
         return robot;
     }
 
@@ -195,7 +191,8 @@ public final class SimWorld implements AutoCloseable {
      * @param thread its execution action thread
      */
     public void attach(SimRobot robot, ExecutionActionThread thread) {
-        cycled.put(robot, new Cycled(thread, clock.nanoTime()));
+        cycledRobots.add(robot);
+        cycledThreads.add(new Cycled(thread, clock.nanoTime()));
     }
 
     /** @return the world's description */
@@ -263,84 +260,63 @@ public final class SimWorld implements AutoCloseable {
         }
     }
 
+    /** @return the worker threads of this world, for controllers that work on every robot */
+    public Parallel parallel() {
+        return parallel;
+    }
+
     private void advance() {
-        for (SimRobot r : robots) {
-            r.applyDrive();
+        if (initialSampleDue) {
+            sampleRangeSensors();
+            initialSampleDue = false;
         }
         physics.step(1, stepSeconds);
         steps++;
         boolean record = steps % trajectoryEvery == 0;
-        for (SimRobot r : robots) {
-            r.afterStep(physics, stepSeconds, record);
-        }
+        parallel.forEach(robots.size(), i -> robots.get(i).afterStep(physics, stepSeconds, record));
         clock.advanceNanos(stepNanos);
         sampleRangeSensors();
         long now = clock.nanoTime();
-        for (Map.Entry<SimRobot, Cycled> e : cycled.entrySet()) {
-            Cycled c = e.getValue();
-            if (c.next <= now) {
-                while (c.next <= now) {
-                    c.thread.cycle();
-                    c.next += c.period;
-                }
+        parallel.forEach(cycledRobots.size(), i -> {
+            SimRobot robot = cycledRobots.get(i);
+            Cycled c = cycledThreads.get(i);
+            while (c.next <= now) {
+                c.thread.cycle();
+                c.next += c.period;
             }
-            e.getKey().completeReads(this);
-        }
+            robot.completeReads(this);
+        });
+        parallel.forEach(robots.size(), i -> robots.get(i).applyDrive());
     }
 
     /** Samples every range sensor that is due at this step. */
     private void sampleRangeSensors() {
-        List<SimRobot> due = new ArrayList<>();
-        for (SimRobot r : robots) {
-            for (SensorModel s : r.rangeSensors()) {
-                long every = Math.max(1, Math.round(description.physicsHz() / s.rateHz()));
-                if (steps % every == 0) {
-                    due.add(r);
-                    break;
+        if (sensingPeriods == null) {
+            java.util.TreeSet<Long> periods = new java.util.TreeSet<>();
+            for (SimRobot r : robots) {
+                for (SensorModel s : r.rangeSensors()) {
+                    periods.add(s.everySteps(description.physicsHz()));
                 }
             }
+            sensingPeriods = periods.stream().mapToLong(Long::longValue).toArray();
         }
-        if (due.isEmpty()) {
+        boolean any = false;
+        for (long p : sensingPeriods) {
+            any |= steps % p == 0;
+        }
+        if (!any) {
             return;
         }
         indexRobots();
-        if (sensing == null || due.size() < PARALLEL_SENSING_THRESHOLD) {
-            sampleRobots(due, 0, due.size());
-            return;
-        }
-        int chunks = sensingThreads * 4;
-        List<Callable<Void>> tasks = new ArrayList<>();
-        for (int c = 0; c < chunks; c++) {
-            int from = due.size() * c / chunks;
-            int to = due.size() * (c + 1) / chunks;
-            tasks.add(() -> {
-                sampleRobots(due, from, to);
-                return null;
-            });
-        }
-        try {
-            for (Future<Void> f : sensing.invokeAll(tasks)) {
-                f.get();
-            }
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
-            throw new IllegalStateException("interrupted while sensing", e);
-        } catch (ExecutionException e) {
-            throw new IllegalStateException("range sensing failed", e.getCause());
-        }
-    }
-
-    private void sampleRobots(List<SimRobot> due, int from, int to) {
-        for (int i = from; i < to; i++) {
-            SimRobot r = due.get(i);
+        parallel.forEach(robots.size(), i -> {
+            SimRobot r = robots.get(i);
             Pose p = r.pose();
             for (SensorModel s : r.rangeSensors()) {
-                long every = Math.max(1, Math.round(description.physicsHz() / s.rateHz()));
-                if (steps % every == 0) {
+                if (steps % s.everySteps(description.physicsHz()) == 0) {
                     s.sampleRange(rangeIndex, r.index(), p.x(), p.y(), p.heading());
                 }
             }
-        }
+        });
     }
 
     private void indexRobots() {
@@ -381,11 +357,9 @@ public final class SimWorld implements AutoCloseable {
         return color ? 0 : description.floorBrightness();
     }
 
-    /** Stops the sensing threads. */
+    /** Stops the worker threads. */
     @Override
     public void close() {
-        if (sensing != null) {
-            sensing.shutdownNow();
-        }
+        parallel.close();
     }
 }

@@ -61,6 +61,7 @@ public final class ConfiguredRobot implements Robot {
     private Odometry odometry;
     private DifferentialDrive odometryDrive;
     private volatile boolean closed;
+    private volatile DifferentialKinematics kinematics;
 
     /**
      * @param description the description in force (read on every call)
@@ -143,7 +144,7 @@ public final class ConfiguredRobot implements Robot {
 
     @Override
     public void drive(double linearSpeed, double angularSpeed) {
-        String action = String.format(Locale.ROOT, "drive(%.3f, %.3f)", linearSpeed, angularSpeed);
+        String action = "drive";
         DifferentialKinematics k = groundDrive(action);
         requireFinite(action, linearSpeed, "linear speed");
         requireFinite(action, angularSpeed, "angular speed");
@@ -315,8 +316,13 @@ public final class ConfiguredRobot implements Robot {
         if (!d.capabilities().contains(Capability.GROUND)) {
             throw new UnsupportedActionException(d.name(), action, "it is a " + d.capabilities() + " robot, not a GROUND one");
         }
-        return d.drive().map(DifferentialKinematics::new)
-                .orElseThrow(() -> new UnsupportedActionException(d.name(), action, "its description has no drive"));
+        DifferentialDrive drive = d.drive().orElseThrow(() -> new UnsupportedActionException(d.name(), action, "its description has no drive"));
+        DifferentialKinematics k = kinematics;
+        if (k == null || !k.drive().equals(drive)) {
+            k = new DifferentialKinematics(drive);
+            kinematics = k;
+        }
+        return k;
     }
 
     private CompletableFuture<Void> runWheels(String action, DifferentialKinematics k, WheelMotion m) {

@@ -2,6 +2,7 @@ package io.robomw.sim.lockstep;
 
 import io.robomw.api.RobotException;
 
+import java.util.List;
 import java.util.Map;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ConcurrentHashMap;
@@ -18,15 +19,14 @@ import java.util.concurrent.locks.LockSupport;
  * program never runs while a step is half done.
  *
  * <p>Thread-safe: program threads report blocking and waking; one driver thread (the one stepping
- * the world) waits for all of them, and alone calls {@link #beginStep}, {@link #endStep} and
- * (during steps) {@link #defer}.
+ * the world) waits for all of them, and alone calls {@link #beginStep} and {@link #endStep}.
  */
 public final class Lockstep {
 
     private final Map<Thread, ProgramState> programs = new ConcurrentHashMap<>();
     private final java.util.List<Runnable> deferred = new java.util.ArrayList<>();
     private volatile Thread driver;
-    private Thread stepping;
+    private volatile boolean stepping;
 
     /** What the driver knows of one program thread. */
     private static final class ProgramState {
@@ -69,27 +69,33 @@ public final class Lockstep {
      * do always happens between steps.
      */
     public void beginStep() {
-        stepping = Thread.currentThread();
+        stepping = true;
     }
 
     /** Ends a step: runs the deferred completions, in the order they were deferred. */
     public void endStep() {
-        stepping = null;
-        for (int i = 0; i < deferred.size(); i++) {
-            deferred.get(i).run();
+        stepping = false;
+        List<Runnable> now;
+        synchronized (deferred) {
+            now = List.copyOf(deferred);
+            deferred.clear();
         }
-        deferred.clear();
+        for (Runnable r : now) {
+            r.run();
+        }
     }
 
     /**
-     * Runs a completion that may wake a program: at the end of the current step when called by the
-     * stepping thread during a step, at once otherwise.
+     * Runs a completion that may wake a program: at the end of the current step when a step is under
+     * way (whichever thread of the step calls it), at once otherwise.
      *
      * @param completion the completion
      */
     public void defer(Runnable completion) {
-        if (stepping == Thread.currentThread()) {
-            deferred.add(completion);
+        if (stepping) {
+            synchronized (deferred) {
+                deferred.add(completion);
+            }
         } else {
             completion.run();
         }
