@@ -174,13 +174,13 @@ public final class SensorModel {
     /**
      * Samples a range sensor.
      *
-     * @param index     the world's range index
+     * @param caster    casts one ray
      * @param self      the robot's index (its own body is not seen)
      * @param x         robot centre x
      * @param y         robot centre y
      * @param heading   robot heading
      */
-    void sampleRange(io.robomw.sim.sensing.RangeIndex index, int self, double x, double y, double heading) {
+    void sampleRange(SimWorld.RayCaster caster, int self, double x, double y, double heading) {
         double c = Math.cos(heading);
         double s = Math.sin(heading);
         double ox = x + mountX * c - mountY * s;
@@ -189,7 +189,7 @@ public final class SensorModel {
         double best = Double.POSITIVE_INFINITY;
         for (int i = 0; i < rays; i++) {
             double a = rays == 1 ? centre : centre - beamWidth / 2 + beamWidth * i / (rays - 1);
-            best = Math.min(best, index.castRay(ox, oy, a, maxRange, self));
+            best = Math.min(best, caster.cast(ox, oy, a, maxRange, self));
         }
         double value = Double.isInfinite(best) ? maxRange : best;
         if (noise > 0) {

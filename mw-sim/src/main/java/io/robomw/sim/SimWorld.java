@@ -68,6 +68,33 @@ public final class SimWorld implements AutoCloseable {
     private double[] pw = new double[0];
     private boolean initialSampleDue;
     private long[] sensingPeriods;
+    private final RayCaster rayCaster;
+    private final RangeMethod rangeMethod;
+
+    /** Casts one ray for a range sensor. */
+    @FunctionalInterface
+    interface RayCaster {
+        /**
+         * @return the distance to the nearest hit within maxRange, or +∞
+         */
+        double cast(double ox, double oy, double angle, double maxRange, int self);
+    }
+
+    private double dyn4jRay(double ox, double oy, double angle, double maxRange, int self) {
+        org.dyn4j.dynamics.Body own = robots.get(self).body();
+        org.dyn4j.world.DetectFilter<org.dyn4j.dynamics.Body, org.dyn4j.dynamics.BodyFixture> filter =
+                new org.dyn4j.world.DetectFilter<>(true, true, null) {
+                    @Override
+                    public boolean isAllowed(org.dyn4j.dynamics.Body body, org.dyn4j.dynamics.BodyFixture fixture) {
+                        return body != own && super.isAllowed(body, fixture);
+                    }
+                };
+        double best = Double.POSITIVE_INFINITY;
+        for (var hit : physics.raycast(new org.dyn4j.geometry.Ray(new Vector2(ox, oy), angle), maxRange, filter)) {
+            best = Math.min(best, hit.getRaycast().getDistance());
+        }
+        return best;
+    }
 
     /** A robot's execution action thread and when it is due. */
     private static final class Cycled {
@@ -89,6 +116,28 @@ public final class SimWorld implements AutoCloseable {
      * @param sensingThreads worker threads for the per-robot parts of a step (1 = all on the stepping thread)
      */
     public SimWorld(WorldDescription description, int sensingThreads) {
+        this(description, sensingThreads, RangeMethod.GRID);
+    }
+
+    /** How range sensors find what they see. */
+    public enum RangeMethod {
+        /** The world's own grid of segments and discs ({@link RangeIndex}): what the simulator uses. */
+        GRID,
+        /**
+         * A dyn4j world ray cast through its broadphase for every ray: the straightforward way,
+         * kept as the baseline the benchmark compares against.
+         */
+        DYN4J_RAYCAST
+    }
+
+    /**
+     * Builds the world with a chosen range method (for benchmarks).
+     *
+     * @param description    the world
+     * @param sensingThreads worker threads for the per-robot parts of a step
+     * @param rangeMethod    how range sensors cast their rays
+     */
+    public SimWorld(WorldDescription description, int sensingThreads, RangeMethod rangeMethod) {
         this.description = description;
         this.stepSeconds = 1.0 / description.physicsHz();
         this.stepNanos = Math.round(1e9 / description.physicsHz());
@@ -137,6 +186,8 @@ public final class SimWorld implements AutoCloseable {
         this.rangeIndex = new RangeIndex(-margin, -margin, description.width() + 2 * margin, description.height() + 2 * margin, cell,
                 segments.toArray(double[][]::new), discs.toArray(double[][]::new));
         this.parallel = new Parallel(sensingThreads);
+        this.rangeMethod = rangeMethod;
+        this.rayCaster = rangeMethod == RangeMethod.GRID ? rangeIndex::castRay : this::dyn4jRay;
     }
 
     private void addStaticBox(double x, double y, double w, double h, double angle, List<double[]> segments) {
@@ -307,13 +358,15 @@ public final class SimWorld implements AutoCloseable {
         if (!any) {
             return;
         }
-        indexRobots();
+        if (rangeMethod == RangeMethod.GRID) {
+            indexRobots();
+        }
         parallel.forEach(robots.size(), i -> {
             SimRobot r = robots.get(i);
             Pose p = r.pose();
             for (SensorModel s : r.rangeSensors()) {
                 if (steps % s.everySteps(description.physicsHz()) == 0) {
-                    s.sampleRange(rangeIndex, r.index(), p.x(), p.y(), p.heading());
+                    s.sampleRange(rayCaster, r.index(), p.x(), p.y(), p.heading());
                 }
             }
         });

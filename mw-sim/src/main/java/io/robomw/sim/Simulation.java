@@ -53,8 +53,8 @@ public final class Simulation implements AutoCloseable {
     private volatile boolean realTime;
     private Thread realTimeThread;
 
-    private Simulation(WorldDescription description, int sensingThreads) {
-        this.world = new SimWorld(description, sensingThreads);
+    private Simulation(WorldDescription description, int sensingThreads, SimWorld.RangeMethod rangeMethod) {
+        this.world = new SimWorld(description, sensingThreads, rangeMethod);
         RobotDescriptionLoader loader = new RobotDescriptionLoader();
         Map<Path, RobotDescription> files = new HashMap<>();
         try {
@@ -102,7 +102,17 @@ public final class Simulation implements AutoCloseable {
      * @return the simulation
      */
     public static Simulation create(WorldDescription description, int sensingThreads) {
-        return new Simulation(description, sensingThreads);
+        return new Simulation(description, sensingThreads, SimWorld.RangeMethod.GRID);
+    }
+
+    /**
+     * @param description    a world
+     * @param sensingThreads worker threads
+     * @param rangeMethod    how range sensors cast rays (the benchmark compares both)
+     * @return the simulation
+     */
+    public static Simulation create(WorldDescription description, int sensingThreads, SimWorld.RangeMethod rangeMethod) {
+        return new Simulation(description, sensingThreads, rangeMethod);
     }
 
     private static RobotDescription renamed(RobotDescription d, String name) {

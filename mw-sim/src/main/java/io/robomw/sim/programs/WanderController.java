@@ -29,6 +29,8 @@ public final class WanderController implements Runnable {
     private final double[] speed;
     private final double[] turnBias;
     private final SplittableRandom[] random;
+    /** Per robot, per range sensor: bit 1 ahead, bit 2 left, bit 4 right, from its mounting angle. */
+    private final int[][] sectors;
 
     /**
      * @param simulation the simulation whose robots wander
@@ -43,11 +45,18 @@ public final class WanderController implements Runnable {
         this.speed = new double[bodies.size()];
         this.turnBias = new double[bodies.size()];
         this.random = new SplittableRandom[bodies.size()];
+        this.sectors = new int[bodies.size()][];
         SplittableRandom root = new SplittableRandom(seed);
         for (int i = 0; i < bodies.size(); i++) {
             random[i] = root.split();
             speed[i] = bodies.get(i).description().drive().map(d -> d.maxSpeed() * 0.6).orElse(0.0);
             turnBias[i] = random[i].nextDouble(-0.3, 0.3);
+            List<SensorModel> range = bodies.get(i).rangeSensors();
+            sectors[i] = new int[range.size()];
+            for (int k = 0; k < range.size(); k++) {
+                double a = Math.IEEEremainder(range.get(k).mountAngle(), 2 * Math.PI);
+                sectors[i][k] = (Math.abs(a) < 0.3 ? 1 : 0) | (a > 0 && a < 1.8 ? 2 : 0) | (a < 0 && a > -1.8 ? 4 : 0);
+            }
         }
     }
 
@@ -83,15 +92,17 @@ public final class WanderController implements Runnable {
             double left = Double.POSITIVE_INFINITY;
             double right = Double.POSITIVE_INFINITY;
             double ahead = Double.POSITIVE_INFINITY;
-            for (SensorModel s : body.rangeSensors()) {
-                double a = Math.IEEEremainder(s.mountAngle(), 2 * Math.PI);
+            List<SensorModel> range = body.rangeSensors();
+            for (int k = 0; k < range.size(); k++) {
+                SensorModel s = range.get(k);
                 double d = s.latest() / s.maxRange();
-                if (Math.abs(a) < 0.3) {
+                int sector = sectors[i][k];
+                if ((sector & 1) != 0) {
                     ahead = Math.min(ahead, d);
                 }
-                if (a > 0 && a < 1.8) {
+                if ((sector & 2) != 0) {
                     left = Math.min(left, d);
-                } else if (a < 0 && a > -1.8) {
+                } else if ((sector & 4) != 0) {
                     right = Math.min(right, d);
                 }
             }
