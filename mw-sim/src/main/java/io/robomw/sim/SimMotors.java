@@ -52,6 +52,22 @@ public final class SimMotors {
     }
 
     /**
+     * The true value of a sensor now, in its quantity's SI unit (metres, radians, 0..1, 1/0), for
+     * brick emulators, which encode it the way their firmware reports it. Simulation thread only.
+     *
+     * @param name a sensor's name
+     * @return its value
+     * @throws IllegalArgumentException if the robot has no such sensor
+     */
+    public double siValue(String name) {
+        SensorModel model = robot.sensors().get(name);
+        if (model == null) {
+            throw new IllegalArgumentException("simulated robot '" + robot.name() + "' has no sensor '" + name + "'");
+        }
+        return robot.siValue(model, world);
+    }
+
+    /**
      * @param name a sensor's name
      * @return a reader of its raw values
      * @throws IllegalArgumentException if the robot has no such sensor

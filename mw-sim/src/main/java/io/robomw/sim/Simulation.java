@@ -22,6 +22,7 @@ import java.util.HashMap;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
+import java.util.Set;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.locks.LockSupport;
 import java.util.function.BooleanSupplier;
@@ -50,11 +51,13 @@ public final class Simulation implements AutoCloseable {
     private final SimWorld world;
     private final Map<String, ConfiguredRobot> robots = new LinkedHashMap<>();
     private final List<Runnable> stepListeners = new CopyOnWriteArrayList<>();
+    private final Set<String> emulated;
     private volatile boolean realTime;
     private Thread realTimeThread;
 
-    private Simulation(WorldDescription description, int sensingThreads, SimWorld.RangeMethod rangeMethod) {
+    private Simulation(WorldDescription description, int sensingThreads, SimWorld.RangeMethod rangeMethod, Set<String> emulated) {
         this.world = new SimWorld(description, sensingThreads, rangeMethod);
+        this.emulated = Set.copyOf(emulated);
         RobotDescriptionLoader loader = new RobotDescriptionLoader();
         Map<Path, RobotDescription> files = new HashMap<>();
         try {
@@ -64,6 +67,9 @@ public final class Simulation implements AutoCloseable {
             }
             PlatformServices services = PlatformServices.none().with(SimWorld.class, world);
             for (SimRobot r : world.robots()) {
+                if (this.emulated.contains(r.name())) {
+                    continue;
+                }
                 RobotDescription d = r.description();
                 PlatformProvider provider = DescriptionRobotFactory.provider(d);
                 RobotPlatform platform = provider.open(DescriptionRobotFactory.platformConfig(d, services.with(RobotDescription.class, d), world.clock()));
@@ -89,6 +95,25 @@ public final class Simulation implements AutoCloseable {
     }
 
     /**
+     * Loads a world file whose named robots are driven from outside, by brick emulators: they get a
+     * body in the world but no in-process platform.
+     *
+     * @param worldFile the world YAML
+     * @param emulated  names of the robots that emulators drive
+     * @return the simulation
+     */
+    public static Simulation load(Path worldFile, Set<String> emulated) {
+        WorldDescription d = new WorldLoader().load(worldFile);
+        for (String name : emulated) {
+            if (d.robots().stream().noneMatch(r -> r.name().equals(name))) {
+                throw new IllegalArgumentException(d.source() + " has no robot '" + name + "'; its robots are "
+                        + d.robots().stream().map(WorldDescription.RobotPlacement::name).toList());
+            }
+        }
+        return new Simulation(d, Runtime.getRuntime().availableProcessors(), SimWorld.RangeMethod.GRID, emulated);
+    }
+
+    /**
      * @param description a world
      * @return the simulation, sensing on as many threads as there are processors
      */
@@ -102,7 +127,7 @@ public final class Simulation implements AutoCloseable {
      * @return the simulation
      */
     public static Simulation create(WorldDescription description, int sensingThreads) {
-        return new Simulation(description, sensingThreads, SimWorld.RangeMethod.GRID);
+        return new Simulation(description, sensingThreads, SimWorld.RangeMethod.GRID, Set.of());
     }
 
     /**
@@ -112,7 +137,7 @@ public final class Simulation implements AutoCloseable {
      * @return the simulation
      */
     public static Simulation create(WorldDescription description, int sensingThreads, SimWorld.RangeMethod rangeMethod) {
-        return new Simulation(description, sensingThreads, rangeMethod);
+        return new Simulation(description, sensingThreads, rangeMethod, Set.of());
     }
 
     private static RobotDescription renamed(RobotDescription d, String name) {
@@ -132,6 +157,9 @@ public final class Simulation implements AutoCloseable {
      */
     public Robot robot(String name) {
         Robot r = robots.get(name);
+        if (r == null && emulated.contains(name)) {
+            throw new IllegalArgumentException("robot '" + name + "' is driven by a brick emulator; open it through its driver (a robot file with its real platform)");
+        }
         if (r == null) {
             throw new IllegalArgumentException("world '" + world.description().name() + "' has no robot '" + name + "'; it has " + robots.keySet());
         }
