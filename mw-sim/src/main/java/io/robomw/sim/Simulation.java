@@ -178,6 +178,13 @@ public final class Simulation implements AutoCloseable {
         stepListeners.add(listener);
     }
 
+    /**
+     * @param listener a listener added before; it is not run after the current step
+     */
+    public void removeStepListener(Runnable listener) {
+        stepListeners.remove(listener);
+    }
+
     private void step() {
         world.step();
         for (Runnable l : stepListeners) {

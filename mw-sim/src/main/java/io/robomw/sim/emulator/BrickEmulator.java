@@ -39,6 +39,9 @@ public abstract class BrickEmulator implements AutoCloseable {
     private final int maxFrame;
     private final AtomicLong served = new AtomicLong();
     private final AtomicLong dropped = new AtomicLong();
+    private final Runnable stepListener = this::onStep;
+    private volatile boolean closed;
+    private final java.util.List<Runnable> closeActions = new java.util.concurrent.CopyOnWriteArrayList<>();
     private volatile boolean running;
     private volatile Link link;
     private Thread thread;
@@ -70,14 +73,34 @@ public abstract class BrickEmulator implements AutoCloseable {
      */
     protected abstract void step(SimMotors robot);
 
+    /**
+     * Stops every motor the emulator drives, as a brick that is switched off does. Called on the
+     * simulation thread at the first step after {@link #close()}.
+     *
+     * @param robot the simulated robot
+     */
+    protected abstract void halt(SimMotors robot);
+
+    private void onStep() {
+        if (!closed) {
+            step(robot);
+            return;
+        }
+        halt(robot);
+        for (Runnable action : closeActions) {
+            action.run();
+        }
+        closeActions.clear();
+    }
+
     /** @return the simulated robot */
     protected SimMotors robot() {
         return robot;
     }
 
-    /** @return the listener to add to the simulation ({@code Simulation.addStepListener}) */
+    /** @return the listener to add to the simulation ({@code Simulation.addStepListener}); always the same one */
     public Runnable stepListener() {
-        return () -> step(robot);
+        return stepListener;
     }
 
     /**
@@ -230,9 +253,21 @@ public abstract class BrickEmulator implements AutoCloseable {
         return sb.toString().trim();
     }
 
-    /** Stops serving and closes the device or port; a driver on it sees the link drop. */
+    /**
+     * @param action run on the simulation thread at the first step after the emulator closed, once
+     *               its motors are stopped (unbinding it from its simulation)
+     */
+    public void onClose(Runnable action) {
+        closeActions.add(action);
+    }
+
+    /**
+     * Stops serving and closes the device or port; a driver on it sees the link drop. At the next
+     * world step its motors stop and it unbinds from the simulation.
+     */
     @Override
     public synchronized void close() {
+        closed = true;
         running = false;
         Link l = link;
         if (l != null) {
