@@ -110,7 +110,7 @@ public final class SimViewer {
         panel = new ViewPanel(world, new WorldPainter(options));
         panel.setPreferredSize(new Dimension(FIRST_WIDTH_PX, FIRST_HEIGHT_PX));
         status = new JLabel();
-        pauseButton = button("Pause", "Pause or resume (space)", this::togglePause);
+        pauseButton = button("Pause", "Pause or resume (space)", control::togglePause);
         JToolBar bar = new JToolBar();
         bar.setFloatable(false);
         bar.add(pauseButton);
@@ -154,10 +154,10 @@ public final class SimViewer {
     private void bindKeys(JComponent root) {
         InputMap keys = root.getInputMap(JComponent.WHEN_IN_FOCUSED_WINDOW);
         ActionMap actions = root.getActionMap();
-        bind(keys, actions, "pause", this::togglePause, KeyStroke.getKeyStroke(KeyEvent.VK_SPACE, 0));
-        bind(keys, actions, "faster", control::faster, KeyStroke.getKeyStroke('+'), KeyStroke.getKeyStroke('='),
-                KeyStroke.getKeyStroke(KeyEvent.VK_ADD, 0));
-        bind(keys, actions, "slower", control::slower, KeyStroke.getKeyStroke('-'), KeyStroke.getKeyStroke(KeyEvent.VK_SUBTRACT, 0));
+        bind(keys, actions, "pause", control::togglePause, KeyStroke.getKeyStroke(KeyEvent.VK_SPACE, 0));
+        // Typed characters, so the main keyboard and the keypad both work, and each press counts once.
+        bind(keys, actions, "faster", control::faster, KeyStroke.getKeyStroke('+'), KeyStroke.getKeyStroke('='));
+        bind(keys, actions, "slower", control::slower, KeyStroke.getKeyStroke('-'));
         bind(keys, actions, "fit", panel::fit, KeyStroke.getKeyStroke(KeyEvent.VK_F, 0), KeyStroke.getKeyStroke(KeyEvent.VK_HOME, 0));
         bind(keys, actions, "rays", panel::toggleRays, KeyStroke.getKeyStroke(KeyEvent.VK_R, 0));
     }
@@ -173,10 +173,6 @@ public final class SimViewer {
                 refresh();
             }
         });
-    }
-
-    private void togglePause() {
-        control.togglePause();
     }
 
     /** Repaints the world and the status line; on the event thread. */
@@ -225,8 +221,8 @@ public final class SimViewer {
      */
     private static final class ViewPanel extends JPanel {
 
-        private final transient SimWorld world;
-        private transient WorldPainter painter;
+        private final SimWorld world;
+        private WorldPainter painter;
         private ViewTransform view;
         /** Whether the user panned or zoomed; until then the arena is fitted again when the window resizes. */
         private boolean userMoved;
@@ -286,10 +282,10 @@ public final class SimViewer {
             super.paintComponent(g);
             int w = getWidth();
             int h = getHeight();
-            int margin = Math.min(painter.options().marginPx(), Math.min(w, h) / 4);
             if (w < 2 || h < 2) {
                 return;
             }
+            int margin = Math.min(painter.options().marginPx(), Math.min(w, h) / 4);
             if (view == null || !userMoved) {
                 view = WorldPainter.fit(world.description(), w, h, margin);
             }

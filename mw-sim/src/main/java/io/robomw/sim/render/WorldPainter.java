@@ -39,8 +39,9 @@ public final class WorldPainter {
     private static final Color OBSTACLE_EDGE = new Color(0x4A433B);
     private static final Color ROBOT_EDGE = new Color(0x202020);
     private static final Color RAY_HIT = new Color(220, 30, 30, 170);
-    private static final Color RAY_FREE = new Color(40, 150, 60, 110);
+    private static final Color RAY_FREE = new Color(40, 150, 60, 150);
     private static final Color TEXT = new Color(0x202020);
+    private static final Color HALO = new Color(255, 255, 255, 150);
     /** Distinct colours for the first robots (the Tableau 10 palette without its grey); later robots get spread hues. */
     private static final int[] PALETTE = {0x4E79A7, 0xF28E2B, 0xE15759, 0x59A14F, 0xB07AA1, 0x76B7B2, 0xEDC948, 0xFF9DA7, 0x9C755F};
     private static final double GOLDEN_RATIO_CONJUGATE = 0.618_033_988_749_895;
@@ -116,9 +117,10 @@ public final class WorldPainter {
         List<SimRobot> robots = world.robots();
         if (options.showTrajectories()) {
             float width = robots.size() > CROWD ? 1f : 2f;
-            g.setStroke(new BasicStroke(width, BasicStroke.CAP_ROUND, BasicStroke.JOIN_ROUND));
+            BasicStroke line = new BasicStroke(width, BasicStroke.CAP_ROUND, BasicStroke.JOIN_ROUND);
+            BasicStroke halo = new BasicStroke(width + 2.5f, BasicStroke.CAP_ROUND, BasicStroke.JOIN_ROUND);
             for (SimRobot r : robots) {
-                paintTrajectory(g, r, view);
+                paintTrajectory(g, r, view, line, halo);
             }
         }
         if (options.showRays()) {
@@ -179,7 +181,7 @@ public final class WorldPainter {
         return path;
     }
 
-    private static void paintTrajectory(Graphics2D g, SimRobot r, ViewTransform view) {
+    private static void paintTrajectory(Graphics2D g, SimRobot r, ViewTransform view, BasicStroke line, BasicStroke halo) {
         double[] points = r.trajectory().snapshot();
         Pose now = r.pose();
         Path2D.Double path = new Path2D.Double();
@@ -197,7 +199,12 @@ public final class WorldPainter {
             }
         }
         path.lineTo(view.screenX(now.x()), view.screenY(now.y()));
+        // A pale edge keeps the path visible where it crosses a dark floor patch.
+        g.setColor(HALO);
+        g.setStroke(halo);
+        g.draw(path);
         g.setColor(robotColor(r.index()));
+        g.setStroke(line);
         g.draw(path);
     }
 
@@ -248,25 +255,39 @@ public final class WorldPainter {
         Pose p = r.pose();
         Body b = r.description().body();
         double radiusPx = Math.hypot(b.length(), b.width()) / 2 * view.scale();
+        float x = (float) (view.screenX(p.x()) + radiusPx + 3);
+        float y = (float) (view.screenY(p.y()) - radiusPx - 3);
+        g.setColor(HALO);
+        for (int[] d : new int[][]{{-1, 0}, {1, 0}, {0, -1}, {0, 1}}) {
+            g.drawString(r.name(), x + d[0], y + d[1]);
+        }
         g.setColor(TEXT);
-        g.drawString(r.name(), (float) (view.screenX(p.x()) + radiusPx + 3), (float) (view.screenY(p.y()) - radiusPx - 3));
+        g.drawString(r.name(), x, y);
     }
 
     /** The world's name and time in the top-left corner, a scale bar in the bottom-left one. */
     private static void paintCaption(Graphics2D g, SimWorld world, ViewTransform view, int heightPx) {
         g.setFont(new Font(Font.SANS_SERIF, Font.BOLD, 13));
-        g.setColor(TEXT);
         FontMetrics fm = g.getFontMetrics();
-        g.drawString(String.format(Locale.ROOT, "%s   t = %.1f s", world.description().name(), world.time()), 8, 4 + fm.getAscent());
+        String caption = String.format(Locale.ROOT, "%s   t = %.1f s", world.description().name(), world.time());
+        // A pale box under the text keeps it readable when the view is zoomed onto the arena.
+        g.setColor(HALO);
+        g.fill(new Rectangle2D.Double(4, 2, fm.stringWidth(caption) + 8, fm.getHeight() + 2));
+        g.setColor(TEXT);
+        g.drawString(caption, 8, 3 + fm.getAscent());
         double metres = scaleBarMetres(view.scale());
         double px = metres * view.scale();
         int y = heightPx - 8;
+        g.setFont(new Font(Font.SANS_SERIF, Font.PLAIN, 11));
+        String label = scaleLabel(metres);
+        g.setColor(HALO);
+        g.fill(new Rectangle2D.Double(4, y - 14, px + 16 + g.getFontMetrics().stringWidth(label), 20));
+        g.setColor(TEXT);
         g.setStroke(new BasicStroke(2f));
         g.draw(new Line2D.Double(8, y, 8 + px, y));
         g.draw(new Line2D.Double(8, y - 4, 8, y));
         g.draw(new Line2D.Double(8 + px, y - 4, 8 + px, y));
-        g.setFont(new Font(Font.SANS_SERIF, Font.PLAIN, 11));
-        g.drawString(scaleLabel(metres), (float) (14 + px), y + 1);
+        g.drawString(label, (float) (14 + px), y + 1);
     }
 
     /**
