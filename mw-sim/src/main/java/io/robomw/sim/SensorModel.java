@@ -153,6 +153,21 @@ public final class SensorModel {
         return latest;
     }
 
+    /** @return the full cone angle of a range sensor, radians */
+    public double beamWidth() {
+        return beamWidth;
+    }
+
+    /** @return rays cast across the cone */
+    public int rays() {
+        return rays;
+    }
+
+    /** @return the shortest distance it reports */
+    public double minRange() {
+        return minRange;
+    }
+
     /** @return the longest distance it reports */
     public double maxRange() {
         return maxRange;

@@ -53,6 +53,8 @@ public final class Simulation implements AutoCloseable {
     private final List<Runnable> stepListeners = new CopyOnWriteArrayList<>();
     private final Set<String> emulated;
     private volatile boolean realTime;
+    private volatile boolean paused;
+    private volatile double realTimeSpeed = 1;
     private Thread realTimeThread;
 
     private Simulation(WorldDescription description, int sensingThreads, SimWorld.RangeMethod rangeMethod, Set<String> emulated) {
@@ -63,7 +65,11 @@ public final class Simulation implements AutoCloseable {
         try {
             for (WorldDescription.RobotPlacement p : description.robots()) {
                 RobotDescription d = renamed(files.computeIfAbsent(p.description(), loader::load), p.name());
-                world.addRobot(p.name(), d, p.start());
+                try {
+                    world.addRobot(p.name(), d, p.start());
+                } catch (IllegalArgumentException e) {
+                    throw new RobotException(description.source() + ": robot '" + p.name() + "' (" + p.description() + "): " + e.getMessage(), e);
+                }
             }
             PlatformServices services = PlatformServices.none().with(SimWorld.class, world);
             for (SimRobot r : world.robots()) {
@@ -303,16 +309,23 @@ public final class Simulation implements AutoCloseable {
             throw new IllegalArgumentException("speed must be > 0, got " + speed);
         }
         realTime = true;
-        long period = Math.round(world.stepSeconds() * 1e9 / speed);
+        paused = false;
+        realTimeSpeed = speed;
         Thread t = new Thread(() -> {
             long next = System.nanoTime();
             while (realTime) {
+                if (paused) {
+                    LockSupport.parkNanos(this, 10_000_000);
+                    next = System.nanoTime();
+                    continue;
+                }
                 try {
                     step();
                 } catch (RuntimeException e) {
                     LOG.error("simulation step failed; stopping the real-time run", e);
                     realTime = false;
                 }
+                long period = Math.round(world.stepSeconds() * 1e9 / realTimeSpeed);
                 next += period;
                 long now;
                 while (realTime && (now = System.nanoTime()) < next) {
@@ -327,6 +340,45 @@ public final class Simulation implements AutoCloseable {
         world.lockstep().driver(t);
         realTimeThread = t;
         t.start();
+    }
+
+    /**
+     * Pauses a real-time run: simulated time stands still, and robot calls from any thread wait
+     * (they are not refused) until {@link #resumeRealTime()}.
+     */
+    public void pauseRealTime() {
+        paused = true;
+    }
+
+    /** Resumes a paused real-time run. */
+    public void resumeRealTime() {
+        paused = false;
+        Thread t = realTimeThread;
+        if (t != null) {
+            LockSupport.unpark(t);
+        }
+    }
+
+    /** @return whether a real-time run is paused */
+    public boolean isPaused() {
+        return paused;
+    }
+
+    /**
+     * Changes the speed of a real-time run without stopping it.
+     *
+     * @param speed simulated seconds per wall-clock second, &gt; 0
+     */
+    public void setRealTimeSpeed(double speed) {
+        if (!(speed > 0)) {
+            throw new IllegalArgumentException("speed must be > 0, got " + speed);
+        }
+        realTimeSpeed = speed;
+    }
+
+    /** @return simulated seconds per wall-clock second of the real-time run */
+    public double realTimeSpeed() {
+        return realTimeSpeed;
     }
 
     /** Stops the real-time thread, waiting for its current step. */

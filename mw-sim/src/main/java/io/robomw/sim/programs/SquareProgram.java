@@ -12,11 +12,14 @@ import io.robomw.api.Robot;
  */
 public record SquareProgram(Robot robot, double side, double speed) implements Runnable {
 
+    /** Radians per second of the quarter turns: slow enough for any small robot's wheels. */
+    public static final double TURN_SPEED = 1.0;
+
     @Override
     public void run() {
         for (int i = 0; i < 4; i++) {
             robot.move(side, speed);
-            robot.turn(Math.PI / 2, Math.min(1.0, speed / 0.056 / 2));
+            robot.turn(Math.PI / 2, TURN_SPEED);
         }
     }
 }

@@ -17,7 +17,8 @@ import java.util.SplittableRandom;
  * sensors drive in gentle random curves. Deterministic: each robot has its own seeded random
  * stream, and the robots are controlled in parallel on the world's worker threads.
  *
- * <p>It runs without program threads, so it scales to thousands of robots; use it with
+ * <p>Robots driven by brick emulators are left alone. It runs without program threads, so it
+ * scales to thousands of robots; use it with
  * {@link Simulation#runFor} or a real-time run.
  */
 public final class WanderController implements Runnable {
@@ -39,8 +40,8 @@ public final class WanderController implements Runnable {
      */
     public WanderController(Simulation simulation, double rateHz, long seed) {
         this.simulation = simulation;
-        this.bodies = simulation.world().robots();
-        this.robots = simulation.robots();
+        this.bodies = simulation.world().robots().stream().filter(b -> simulation.robots().stream().anyMatch(r -> r.name().equals(b.name()))).toList();
+        this.robots = bodies.stream().map(b -> simulation.robot(b.name())).toList();
         this.everySteps = Math.max(1, Math.round(1 / (rateHz * simulation.world().stepSeconds())));
         this.speed = new double[bodies.size()];
         this.turnBias = new double[bodies.size()];

@@ -6,13 +6,13 @@ import java.util.Locale;
 
 /**
  * Pause, resume and speed of a simulation's real-time run, as a viewer's buttons and keys drive
- * them. The simulation has one real-time thread at a fixed speed, so pausing stops it
- * ({@link Simulation#stopRealTime()}), and a new speed stops it and starts it again. Speeds are
- * powers of two from {@link #MIN_SPEED} to {@link #MAX_SPEED} simulated seconds per wall-clock
- * second.
+ * them: the first resume starts the simulation's real-time thread; pausing and a new speed keep
+ * it ({@link Simulation#pauseRealTime()}, {@link Simulation#setRealTimeSpeed}), so robot calls made
+ * from other threads while paused wait instead of being refused; {@link #stop()} ends the run.
+ * Speeds are powers of two from {@link #MIN_SPEED} to {@link #MAX_SPEED} simulated seconds per
+ * wall-clock second.
  *
- * <p>Thread-safe. Every method that stops the run blocks until the current step is done (at most
- * one step, a few milliseconds), then returns.
+ * <p>Thread-safe. Only {@link #stop()} blocks, for at most one step.
  */
 public final class RealTimeControl {
 
@@ -23,6 +23,7 @@ public final class RealTimeControl {
 
     private final Simulation simulation;
     private double speed;
+    private boolean started;
     private boolean running;
     private boolean stopped;
 
@@ -46,16 +47,22 @@ public final class RealTimeControl {
 
     /** Starts (or continues) the real-time run at the current speed; returns at once. Nothing happens after {@link #stop()}. */
     public synchronized void resume() {
-        if (!running && !stopped) {
-            simulation.startRealTime(speed);
-            running = true;
+        if (running || stopped) {
+            return;
         }
+        if (started) {
+            simulation.resumeRealTime();
+        } else {
+            simulation.startRealTime(speed);
+            started = true;
+        }
+        running = true;
     }
 
-    /** Stops the real-time run; blocks until the current step is done. */
+    /** Pauses the real-time run: simulated time stands still until {@link #resume()}. */
     public synchronized void pause() {
         if (running) {
-            simulation.stopRealTime();
+            simulation.pauseRealTime();
             running = false;
         }
     }
@@ -98,9 +105,8 @@ public final class RealTimeControl {
         checked(newSpeed);
         if (newSpeed != speed) {
             speed = newSpeed;
-            if (running) {
-                simulation.stopRealTime();
-                simulation.startRealTime(speed);
+            if (started) {
+                simulation.setRealTimeSpeed(speed);
             }
         }
         return speed;
@@ -108,8 +114,9 @@ public final class RealTimeControl {
 
     /** Stops the run for good (the viewer closed); blocks for one step. Later calls to {@link #resume()} do nothing. */
     public synchronized void stop() {
-        pause();
+        running = false;
         stopped = true;
+        simulation.stopRealTime();
     }
 
     /** @return simulated seconds per wall-clock second */

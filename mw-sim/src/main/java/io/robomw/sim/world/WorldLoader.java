@@ -88,7 +88,7 @@ public final class WorldLoader {
             double x = r.requireNumber("x", "a number of metres", Double::isFinite);
             double y = r.requireNumber("y", "a number of metres", Double::isFinite);
             double heading = r.number("heading", 0, "a number of radians", Double::isFinite);
-            if (x < 0 || y < 0 || x > width || y > height) {
+            if (Double.isFinite(width) && Double.isFinite(height) && (x < 0 || y < 0 || x > width || y > height)) {
                 r.problem("x", "the robot starts outside the " + width + " × " + height + " m arena, at (" + x + ", " + y + ")");
             }
             r.finish();

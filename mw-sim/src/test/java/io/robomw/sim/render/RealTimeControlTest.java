@@ -37,15 +37,23 @@ class RealTimeControlTest {
     }
 
     @Test
-    void shouldStopRealTimeThreadWhenPaused() throws Exception {
+    void shouldHoldSimulatedTimeWhilePausedAndGoOnWhenResumed() throws Exception {
         try (Simulation sim = TestWorld.open(dir, 1, 1.5, 0)) {
-            RealTimeControl control = new RealTimeControl(sim, 1);
+            RealTimeControl control = new RealTimeControl(sim, 8);
             control.resume();
             control.togglePause();
             assertFalse(control.isRunning());
+            assertTrue(sim.isPaused(), "paused, not stopped: robot calls from other threads wait instead of being refused");
+            assertThrows(IllegalStateException.class, () -> sim.runFor(STEP), "the real-time thread still owns the world");
             double time = sim.world().time();
+            control.togglePause();
+            long deadline = System.nanoTime() + java.time.Duration.ofSeconds(5).toNanos();
+            while (sim.world().time() < time + 0.1) {
+                assertTrue(System.nanoTime() < deadline, "simulated time should advance after resume");
+                java.util.concurrent.locks.LockSupport.parkNanos(1_000_000);
+            }
+            control.stop();
             sim.runFor(STEP);
-            assertEquals(time + 0.01, sim.world().time(), 1e-9, "only this thread steps the world now");
         }
     }
 
