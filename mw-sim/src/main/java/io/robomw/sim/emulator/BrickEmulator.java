@@ -18,8 +18,9 @@ import java.util.concurrent.atomic.AtomicLong;
  * firmware does, and its motors and sensors are the simulated robot's.
  *
  * <h2>Two threads, one firmware state</h2>
- * The I/O thread ({@code emulator-<kind>-<robot>}) reads telegrams, framed by a 2-byte
- * little-endian length as on Bluetooth serial links, and answers them from the firmware state
+ * The I/O thread ({@code emulator-<kind>-<robot>}) reads telegrams, delimited by the brick's
+ * {@link Framing} (by default a 2-byte little-endian length, as on Bluetooth serial links), and
+ * answers them from the firmware state
  * ({@link #handle}). The simulation thread calls {@link #step} after every world step: it applies
  * the firmware's motor outputs to the robot and samples its encoders and sensors into the firmware
  * state. Subclasses guard that state with one lock; physics is only touched on the simulation
@@ -36,7 +37,7 @@ public abstract class BrickEmulator implements AutoCloseable {
 
     private final String kind;
     private final SimMotors robot;
-    private final int maxFrame;
+    private final Framing framing;
     private final AtomicLong served = new AtomicLong();
     private final AtomicLong dropped = new AtomicLong();
     private final Runnable stepListener = this::onStep;
@@ -52,9 +53,18 @@ public abstract class BrickEmulator implements AutoCloseable {
      * @param maxFrame the longest telegram the firmware accepts, bytes after the length
      */
     protected BrickEmulator(String kind, SimMotors robot, int maxFrame) {
+        this(kind, robot, Framing.lengthPrefixed(maxFrame));
+    }
+
+    /**
+     * @param kind    the brick, for thread names and logs
+     * @param robot   the simulated robot it drives
+     * @param framing how its telegrams are delimited
+     */
+    protected BrickEmulator(String kind, SimMotors robot, Framing framing) {
         this.kind = kind;
         this.robot = robot;
-        this.maxFrame = maxFrame;
+        this.framing = framing;
     }
 
     /**
@@ -144,21 +154,28 @@ public abstract class BrickEmulator implements AutoCloseable {
     }
 
     private void serve() {
-        byte[] header = new byte[2];
+        boolean[] started = new boolean[1];
+        Framing.Reader reader = n -> {
+            byte[] buf = new byte[n];
+            boolean ok = readFully(buf, 0, n, started[0] ? FRAME_DEADLINE : null);
+            started[0] = true;
+            return ok ? buf : null;
+        };
         while (running) {
             try {
-                if (!readFully(header, 0, 2, null)) {
-                    continue;
-                }
-                int length = (header[0] & 0xFF) | (header[1] & 0xFF) << 8;
-                if (length == 0 || length > maxFrame) {
-                    drop("frame length " + length + " outside 1.." + maxFrame);
+                started[0] = false;
+                byte[] frame;
+                try {
+                    frame = framing.read(reader);
+                } catch (Framing.MalformedFrameException e) {
+                    drop(e.getMessage());
                     drain();
                     continue;
                 }
-                byte[] frame = new byte[length];
-                if (!readFully(frame, 0, length, FRAME_DEADLINE)) {
-                    drop("truncated frame: " + length + " bytes announced, fewer arrived within " + FRAME_DEADLINE.toMillis() + " ms");
+                if (frame == null) {
+                    if (started[0] && running) {
+                        drop("truncated telegram: its bytes did not all arrive within " + FRAME_DEADLINE.toMillis() + " ms");
+                    }
                     continue;
                 }
                 byte[] reply;
@@ -170,10 +187,7 @@ public abstract class BrickEmulator implements AutoCloseable {
                 }
                 served.incrementAndGet();
                 if (reply != null) {
-                    byte[] out = new byte[reply.length + 2];
-                    out[0] = (byte) reply.length;
-                    out[1] = (byte) (reply.length >> 8);
-                    System.arraycopy(reply, 0, out, 2, reply.length);
+                    byte[] out = framing.encode(reply);
                     link.write(out, 0, out.length);
                 }
             } catch (LinkLostException e) {
