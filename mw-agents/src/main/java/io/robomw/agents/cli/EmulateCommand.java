@@ -3,6 +3,7 @@ package io.robomw.agents.cli;
 import io.robomw.config.description.DescriptionException;
 import io.robomw.sim.Simulation;
 import io.robomw.sim.emulator.BrickEmulator;
+import io.robomw.sim.emulator.ft.intelligent.IntelligentInterfaceEmulator;
 import io.robomw.sim.emulator.nxt.NxtEmulator;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
@@ -24,8 +25,20 @@ import java.util.concurrent.CountDownLatch;
 @Command(name = "emulate", description = "Run a virtual brick bound to a robot in a simulated world; print its device path.")
 final class EmulateCommand implements Callable<Integer> {
 
-    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick: ${COMPLETION-CANDIDATES}")
+    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick: nxt, ft-intelligent", converter = BrickConverter.class)
     private Brick brick;
+
+    /** Accepts the bricks' platform names (with dashes). */
+    static final class BrickConverter implements picocli.CommandLine.ITypeConverter<Brick> {
+        @Override
+        public Brick convert(String value) {
+            try {
+                return Brick.valueOf(value.replace('-', '_'));
+            } catch (IllegalArgumentException e) {
+                throw new picocli.CommandLine.TypeConversionException("unknown brick '" + value + "'; emulated bricks: nxt, ft-intelligent");
+            }
+        }
+    }
 
     @Option(names = "--world", required = true, paramLabel = "WORLD.yaml", description = "the world file")
     private Path world;
@@ -44,7 +57,8 @@ final class EmulateCommand implements Callable<Integer> {
 
     /** The bricks that can be emulated. */
     enum Brick {
-        nxt
+        nxt,
+        ft_intelligent
     }
 
     @Override
@@ -78,6 +92,7 @@ final class EmulateCommand implements Callable<Integer> {
     private BrickEmulator bind(Simulation sim) {
         return switch (brick) {
             case nxt -> NxtEmulator.bind(sim, robot);
+            case ft_intelligent -> IntelligentInterfaceEmulator.bind(sim, robot);
         };
     }
 }
