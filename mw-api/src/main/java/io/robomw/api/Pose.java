@@ -33,6 +33,9 @@ public record Pose(double x, double y, double heading) {
      * @return the same angle in (-π, π]
      */
     public static double normalize(double radians) {
+        if (radians > -Math.PI && radians <= Math.PI) {
+            return radians;
+        }
         double a = Math.IEEEremainder(radians, 2 * Math.PI);
         return a <= -Math.PI ? a + 2 * Math.PI : a;
     }

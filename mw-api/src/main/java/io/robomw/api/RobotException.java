@@ -19,4 +19,16 @@ public class RobotException extends RuntimeException {
     public RobotException(String message, Throwable cause) {
         super(message, cause);
     }
+
+    /**
+     * For exceptions raised by the middleware's own threads, whose stack trace would only show
+     * that thread's loop: created without one, which keeps them cheap.
+     *
+     * @param message what failed
+     * @param cause   the cause, or {@code null}
+     * @param withStackTrace whether to record a stack trace
+     */
+    protected RobotException(String message, Throwable cause, boolean withStackTrace) {
+        super(message, cause, true, withStackTrace);
+    }
 }

@@ -45,6 +45,7 @@ public final class BrickPlatform implements RobotPlatform {
     private final AutoCloseable link;
     private volatile boolean running;
     private volatile boolean linkDown;
+    private final java.util.concurrent.atomic.AtomicLong driverErrors = new java.util.concurrent.atomic.AtomicLong();
     private Thread linkThread;
 
     /**
@@ -134,7 +135,18 @@ public final class BrickPlatform implements RobotPlatform {
                 LOG.warn("robot '{}': link failed: {}", config.robotName(), e.getMessage());
                 actionThread.linkFailed(config.platformName(), e);
             }
+        } catch (RuntimeException e) {
+            // The brick answered but refused (a bad status): the link is fine; say so and go on.
+            long n = driverErrors.incrementAndGet();
+            if (Long.bitCount(n) == 1) {
+                LOG.error("robot '{}': the driver failed ({} times so far): {}", config.robotName(), n, e.getMessage(), e);
+            }
         }
+    }
+
+    /** @return how many times the driver's runImpl or pollFeedback threw something other than an I/O failure */
+    public long driverErrors() {
+        return driverErrors.get();
     }
 
     @Override

@@ -25,8 +25,12 @@ public record MotorCommand(String name, List<MotorTarget> targets, CommandPriori
         if (targets.isEmpty()) {
             throw new IllegalArgumentException("command '" + name + "' has no motor targets");
         }
-        if (targets.stream().map(MotorTarget::port).distinct().count() != targets.size()) {
-            throw new IllegalArgumentException("command '" + name + "' names a motor twice: " + targets);
+        for (int i = 0; i < targets.size(); i++) {
+            for (int j = i + 1; j < targets.size(); j++) {
+                if (targets.get(i).port().equals(targets.get(j).port())) {
+                    throw new IllegalArgumentException("command '" + name + "' names motor " + targets.get(i).port() + " twice: " + targets);
+                }
+            }
         }
         if (watchdogTimeout.isNegative()) {
             throw new IllegalArgumentException("command '" + name + "': watchdogTimeout must be >= 0, got " + watchdogTimeout);

@@ -52,6 +52,33 @@ public record Conversion(double scale, double offset, List<Point> table, Optiona
     }
 
     /**
+     * The raw value a sensor described by this conversion reports for an SI value: what a
+     * simulator or an emulator must produce so that {@link #apply} gives the value back. For a
+     * table, the first segment whose values span {@code value} is inverted (tables of distance
+     * sensors fall as raw rises); values beyond the table give its end points.
+     *
+     * @param value a value in the quantity's SI unit
+     * @return the raw reading
+     */
+    public double invert(double value) {
+        if (table.isEmpty()) {
+            return (value - offset) / scale;
+        }
+        for (int i = 1; i < table.size(); i++) {
+            Point a = table.get(i - 1);
+            Point b = table.get(i);
+            double lo = Math.min(a.value(), b.value());
+            double hi = Math.max(a.value(), b.value());
+            if (value >= lo && value <= hi && a.value() != b.value()) {
+                return a.raw() + (value - a.value()) * (b.raw() - a.raw()) / (b.value() - a.value());
+            }
+        }
+        Point first = table.get(0);
+        Point last = table.get(table.size() - 1);
+        return Math.abs(value - first.value()) <= Math.abs(value - last.value()) ? first.raw() : last.raw();
+    }
+
+    /**
      * One point of a conversion table.
      *
      * @param raw   the raw value

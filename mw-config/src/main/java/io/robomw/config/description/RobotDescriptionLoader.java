@@ -65,13 +65,14 @@ public final class RobotDescriptionLoader {
         if (!root.has("capabilities")) {
             capabilities.add(Capability.GROUND);
         }
-        Optional<DifferentialDrive> drive = root.mapping("drive").flatMap(this::drive);
+        Optional<MappingReader> driveNode = root.mapping("drive");
+        Optional<DifferentialDrive> drive = driveNode.flatMap(this::drive);
         Body body = root.mapping("body").map(this::body).orElse(Body.DEFAULT);
         List<Read<SensorSpec>> sensors = root.mappingList("sensors").stream()
                 .flatMap(m -> sensor(m).map(s -> new Read<>(s, m)).stream()).toList();
         List<Read<ActuatorSpec>> actuators = root.mappingList("actuators").stream()
                 .flatMap(m -> actuator(m).map(a -> new Read<>(a, m)).stream()).toList();
-        checkPorts(drive, sensors, actuators);
+        checkPorts(drive, driveNode, sensors, actuators);
         root.finish();
         root.problems().throwIfAny();
         return new RobotDescription(name, platform, new ConnectionSettings(connection, source),
@@ -171,7 +172,7 @@ public final class RobotDescriptionLoader {
                 a.mapping(actionName).ifPresent(spec -> {
                     OptionalDouble degrees = OptionalDouble.empty();
                     if (!spec.text("degrees").map("argument"::equals).orElse(false)) {
-                        degrees = spec.optionalNumber("degrees", "a number of motor degrees, or 'argument'", Double::isFinite);
+                        degrees = spec.optionalNumber("degrees", "motor degrees, or 'argument'", Double::isFinite);
                         if (degrees.isEmpty() && !spec.has("degrees")) {
                             spec.problem("degrees", "missing: give motor degrees, or 'argument' to take the angle when performed");
                         }
@@ -193,7 +194,8 @@ public final class RobotDescriptionLoader {
         return Optional.of(new ActuatorSpec(name, port, actions));
     }
 
-    private void checkPorts(Optional<DifferentialDrive> drive, List<Read<SensorSpec>> sensors, List<Read<ActuatorSpec>> actuators) {
+    private void checkPorts(Optional<DifferentialDrive> drive, Optional<MappingReader> driveNode, List<Read<SensorSpec>> sensors,
+                            List<Read<ActuatorSpec>> actuators) {
         Map<String, String> motorUse = new LinkedHashMap<>();
         drive.ifPresent(d -> {
             motorUse.put(d.left().port(), "the left wheel");
@@ -208,8 +210,18 @@ public final class RobotDescriptionLoader {
         Map<String, String> inputUse = new HashMap<>();
         drive.ifPresent(d -> {
             d.left().counter().ifPresent(c -> inputUse.put(c, "the left wheel's counter"));
-            d.right().counter().ifPresent(c -> inputUse.put(c, "the right wheel's counter"));
+            d.right().counter().ifPresent(c -> {
+                if (inputUse.putIfAbsent(c, "the right wheel's counter") != null) {
+                    driveNode.ifPresent(n -> n.problem("right", "counter input " + c + " is already the left wheel's counter; each wheel needs its own"));
+                }
+            });
         });
+        Set<String> actuatorNames = new HashSet<>();
+        for (Read<ActuatorSpec> a : actuators) {
+            if (!actuatorNames.add(a.value().name())) {
+                a.node().problem("name", "two actuators are named '" + a.value().name() + "'; names must be unique");
+            }
+        }
         Set<String> names = new HashSet<>();
         for (Read<SensorSpec> read : sensors) {
             SensorSpec s = read.value();

@@ -41,6 +41,21 @@ public final class Odometry {
         return pose;
     }
 
+    /**
+     * The same estimate, continued with other wheel geometry (after a reload): the pose and the
+     * last readings carry over, so travel since the last update is not lost.
+     *
+     * @param next the new wheel layout
+     * @return the continued odometry
+     */
+    public Odometry rebased(DifferentialKinematics next) {
+        Odometry o = new Odometry(next);
+        o.pose = pose;
+        o.lastLeft = lastLeft;
+        o.lastRight = lastRight;
+        return o;
+    }
+
     /** @return the current estimate */
     public Pose pose() {
         return pose;

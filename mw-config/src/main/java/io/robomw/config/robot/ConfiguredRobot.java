@@ -61,6 +61,7 @@ public final class ConfiguredRobot implements Robot {
     private Odometry odometry;
     private DifferentialDrive odometryDrive;
     private volatile boolean closed;
+    private volatile DifferentialKinematics kinematics;
 
     /**
      * @param description the description in force (read on every call)
@@ -143,14 +144,14 @@ public final class ConfiguredRobot implements Robot {
 
     @Override
     public void drive(double linearSpeed, double angularSpeed) {
-        String action = String.format(Locale.ROOT, "drive(%.3f, %.3f)", linearSpeed, angularSpeed);
+        String action = "drive";
         DifferentialKinematics k = groundDrive(action);
         requireFinite(action, linearSpeed, "linear speed");
         requireFinite(action, angularSpeed, "angular speed");
         WheelMotion m = k.velocity(linearSpeed, angularSpeed);
         double fastest = Math.max(Math.abs(m.leftDegreesPerSecond()), Math.abs(m.rightDegreesPerSecond())) / k.motorDegreesPerMetre();
-        requireSpeed(action, fastest, Math.abs(linearSpeed), k);
-        updateOdometry();
+        requireWithinMaxSpeed(action, fastest, k);
+        trackOdometry();
         DifferentialDrive d = k.drive();
         platform.run(new MotorCommand(action, List.of(
                 MotorTarget.run(d.left().port(), m.leftDegreesPerSecond()),
@@ -161,7 +162,7 @@ public final class ConfiguredRobot implements Robot {
     @Override
     public void stop() {
         platform.stopAll();
-        updateOdometry();
+        trackOdometry();
     }
 
     @Override
@@ -233,9 +234,7 @@ public final class ConfiguredRobot implements Robot {
     public void resetPose(Pose pose) {
         synchronized (odometryLock) {
             updateOdometry();
-            if (odometry != null) {
-                odometry.reset(pose);
-            }
+            odometry.reset(pose);
         }
     }
 
@@ -327,17 +326,22 @@ public final class ConfiguredRobot implements Robot {
         if (!d.capabilities().contains(Capability.GROUND)) {
             throw new UnsupportedActionException(d.name(), action, "it is a " + d.capabilities() + " robot, not a GROUND one");
         }
-        return d.drive().map(DifferentialKinematics::new)
-                .orElseThrow(() -> new UnsupportedActionException(d.name(), action, "its description has no drive"));
+        DifferentialDrive drive = d.drive().orElseThrow(() -> new UnsupportedActionException(d.name(), action, "its description has no drive"));
+        DifferentialKinematics k = kinematics;
+        if (k == null || !k.drive().equals(drive)) {
+            k = new DifferentialKinematics(drive);
+            kinematics = k;
+        }
+        return k;
     }
 
     private CompletableFuture<Void> runWheels(String action, DifferentialKinematics k, WheelMotion m) {
         DifferentialDrive d = k.drive();
-        updateOdometry();
+        trackOdometry();
         CompletableFuture<Void> done = platform.run(MotorCommand.of(action, List.of(
                 MotorTarget.rotate(d.left().port(), m.leftDegrees(), m.leftDegreesPerSecond()),
                 MotorTarget.rotate(d.right().port(), m.rightDegrees(), m.rightDegreesPerSecond()))));
-        return done.whenComplete((v, e) -> updateOdometry());
+        return done.whenComplete((v, e) -> trackOdometry());
     }
 
     private Pose updateOdometry() {
@@ -352,18 +356,33 @@ public final class ConfiguredRobot implements Robot {
         synchronized (odometryLock) {
             double left = platform.motorDegrees(drive.left().port());
             double right = platform.motorDegrees(drive.right().port());
-            if (odometry == null || !drive.equals(odometryDrive)) {
-                Pose from = odometry == null ? Pose.ORIGIN : odometry.pose();
+            if (odometry == null) {
                 odometry = new Odometry(new DifferentialKinematics(drive));
-                odometry.reset(from);
-                odometryDrive = drive;
+            } else if (!drive.equals(odometryDrive)) {
+                odometry = odometry.rebased(new DifferentialKinematics(drive));
             }
+            odometryDrive = drive;
             return odometry.update(left, right);
+        }
+    }
+
+    /**
+     * Keeps odometry up to date around motions, when the robot has what it takes (a drive with
+     * encoders); robots without encoders still move, timed, and simply have no pose.
+     */
+    private void trackOdometry() {
+        RobotDescription d = description.get();
+        if (d.drive().isPresent() && platform.hasEncoder(d.drive().get().left().port()) && platform.hasEncoder(d.drive().get().right().port())) {
+            updateOdometry();
         }
     }
 
     private void requireSpeed(String action, double wheelSpeed, double asked, DifferentialKinematics k) {
         requirePositive(action, asked, "speed");
+        requireWithinMaxSpeed(action, wheelSpeed, k);
+    }
+
+    private void requireWithinMaxSpeed(String action, double wheelSpeed, DifferentialKinematics k) {
         if (wheelSpeed > k.drive().maxSpeed() * (1 + 1e-9)) {
             throw new UnsupportedActionException(name(), action, String.format(Locale.ROOT,
                     "a wheel would need %.3f m/s, above its maximum of %.3f m/s (drive.max_speed)", wheelSpeed, k.drive().maxSpeed()));

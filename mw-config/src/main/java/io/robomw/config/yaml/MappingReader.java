@@ -99,8 +99,15 @@ public final class MappingReader {
      * @return its text, or "" after recording that it is missing
      */
     public String requireText(String key) {
-        return text(key).orElseGet(() -> {
-            missing(key, "a text value");
+        Optional<String> text = text(key);
+        if (text.isPresent() && text.get().isBlank()) {
+            problem(key, "must not be empty");
+            return "";
+        }
+        return text.orElseGet(() -> {
+            if (!entries.containsKey(key)) {
+                missing(key, "a text value");
+            }
             return "";
         });
     }
@@ -203,7 +210,7 @@ public final class MappingReader {
             return fallback;
         }
         if (value instanceof ScalarNode s && s.getTag().equals(Tag.BOOL)) {
-            return Boolean.parseBoolean(s.getValue().toLowerCase(Locale.ROOT)) || s.getValue().equalsIgnoreCase("yes") || s.getValue().equalsIgnoreCase("on");
+            return yamlTrue(s.getValue());
         }
         wrongType(key, value, "true or false");
         return fallback;
@@ -365,7 +372,7 @@ public final class MappingReader {
             return Map.of();
         }
         @SuppressWarnings("unchecked")
-        Map<String, Object> map = (Map<String, Object>) plain(value);
+        Map<String, Object> map = (Map<String, Object>) plainChecked(value, key);
         return map;
     }
 
@@ -455,7 +462,35 @@ public final class MappingReader {
         return String.join(", ", Arrays.stream(type.getEnumConstants()).map(c -> c.name().toLowerCase(Locale.ROOT).replace('_', '-')).toList());
     }
 
-    private static Object plain(Node n) {
+    /** YAML 1.1 booleans as SnakeYAML resolves them: true, yes, on (any case). */
+    private static boolean yamlTrue(String text) {
+        String t = text.toLowerCase(Locale.ROOT);
+        return t.equals("true") || t.equals("yes") || t.equals("on");
+    }
+
+    private Object plainChecked(Node n, String key) {
+        try {
+            return plain(n);
+        } catch (BudgetSpent e) {
+            problems.add(n.getStartMark(), "'" + where(key) + "' expands to more than " + Problems.MAX_PLAIN_VALUES
+                    + " values (an alias bomb?); refused");
+            return Map.of();
+        }
+    }
+
+    /** Thrown when a block expands past the file's value budget. */
+    private static final class BudgetSpent extends RuntimeException {
+        private static final long serialVersionUID = 1L;
+
+        BudgetSpent() {
+            super(null, null, false, false);
+        }
+    }
+
+    private Object plain(Node n) {
+        if (!problems.spendValue()) {
+            throw new BudgetSpent();
+        }
         if (n instanceof MappingNode m) {
             Map<String, Object> map = new LinkedHashMap<>();
             for (NodeTuple t : m.getValue()) {
@@ -467,7 +502,7 @@ public final class MappingReader {
             return Map.copyOf(map);
         }
         if (n instanceof SequenceNode s) {
-            return s.getValue().stream().map(MappingReader::plain).filter(java.util.Objects::nonNull).toList();
+            return s.getValue().stream().map(this::plain).filter(java.util.Objects::nonNull).toList();
         }
         ScalarNode s = (ScalarNode) n;
         Tag tag = s.getTag();
@@ -485,7 +520,7 @@ public final class MappingReader {
             return toNumber(s);
         }
         if (tag.equals(Tag.BOOL)) {
-            return Boolean.valueOf(s.getValue());
+            return yamlTrue(s.getValue());
         }
         return s.getValue();
     }

@@ -13,6 +13,10 @@ public final class Problems {
 
     private final String file;
     private final List<Problem> found = new ArrayList<>();
+    private int valueBudget = MAX_PLAIN_VALUES;
+
+    /** Most plain values one file may expand to (aliases included), so an alias bomb is refused. */
+    public static final int MAX_PLAIN_VALUES = 100_000;
 
     /**
      * @param file the file being read, as it is named in messages
@@ -34,6 +38,15 @@ public final class Problems {
      */
     public void add(Mark mark, String message) {
         found.add(new Problem(file, mark == null ? 1 : mark.getLine() + 1, mark == null ? 1 : mark.getColumn() + 1, message));
+    }
+
+    /**
+     * Spends one plain value of the file's budget.
+     *
+     * @return false once the budget is spent
+     */
+    boolean spendValue() {
+        return --valueBudget >= 0;
     }
 
     /** @return whether nothing is wrong so far */

@@ -27,6 +27,7 @@ public final class Container {
     private final List<LogicObject> logic;
     private final EndAction endAction;
     private final long watchdogNanos;
+    private final String refreshKey;
     private final CompletableFuture<Void> completion = new CompletableFuture<>();
 
     private boolean[] satisfied;
@@ -41,6 +42,7 @@ public final class Container {
         this.logic = List.copyOf(b.logic);
         this.endAction = b.endAction;
         this.watchdogNanos = b.watchdog.toNanos();
+        this.refreshKey = b.refreshKey;
     }
 
     /**
@@ -74,6 +76,23 @@ public final class Container {
     /** @return completes when it finishes; fails when it is interrupted, refused or fails */
     public CompletableFuture<Void> completion() {
         return completion;
+    }
+
+    /**
+     * @param newer a container that may refresh this one
+     * @return whether {@code newer} is a refresh of this running container: the same refresh key,
+     *         actuators and priority
+     */
+    boolean refreshedBy(Container newer) {
+        return refreshKey != null && refreshKey.equals(newer.refreshKey) && requirements.equals(newer.requirements) && priority == newer.priority;
+    }
+
+    /** Takes over a newer container's actions and restarts the watchdog. */
+    void refresh(long now, Container newer) {
+        startedAt = now;
+        for (ActionObject a : newer.actions) {
+            a.start(now);
+        }
     }
 
     void start(long now) {
@@ -132,6 +151,7 @@ public final class Container {
         private final List<LogicObject> logic = new ArrayList<>();
         private EndAction endAction = interrupted -> { };
         private Duration watchdog = Duration.ZERO;
+        private String refreshKey;
 
         private Builder(String name) {
             this.name = Objects.requireNonNull(name, "name");
@@ -211,6 +231,18 @@ public final class Container {
                 throw new IllegalArgumentException("watchdog timeout must be >= 0, got " + timeout);
             }
             watchdog = timeout;
+            return this;
+        }
+
+        /**
+         * Marks a continuous container that a newer one with the same key, actuators and priority
+         * refreshes in place (its actions run, its watchdog restarts) instead of interrupting it.
+         *
+         * @param key the refresh key
+         * @return this
+         */
+        public Builder refreshes(String key) {
+            refreshKey = Objects.requireNonNull(key);
             return this;
         }
 

@@ -33,8 +33,12 @@ import java.util.concurrent.locks.LockSupport;
  *   recent wins) and the interrupted caller gets {@link CommandPreemptedException}; unless the
  *   holder has a higher {@link CommandPriority}, or the same priority and
  *   {@link InterruptionBehavior#CANCEL_INCOMING}, in which case the newcomer is refused.</li>
+ *   <li><b>Refresh:</b> a continuous container built with the same
+ *   {@link Container.Builder#refreshes refresh key}, actuators and priority as the one holding its
+ *   actuators does not interrupt it: it refreshes it in place (its actions set the new speeds, the
+ *   watchdog restarts) and its own future completes at once.</li>
  *   <li><b>Watchdog:</b> a container with a watchdog timeout ends when it has run that long
- *   without being replaced by a newer one (continuous commands are refreshed that way).</li>
+ *   without being refreshed or replaced.</li>
  *   <li><b>Link failure:</b> after {@link #linkFailed}, every container ends with
  *   {@link RobotLinkException} and runs its end action (stopping its motors).</li>
  * </ul>
@@ -68,6 +72,8 @@ public final class ExecutionActionThread implements AutoCloseable {
     // Touched only by the cycling thread:
     private final Map<String, Container> holders = new HashMap<>();
     private final List<Container> active = new ArrayList<>();
+    private final List<Container> scratch = new ArrayList<>();
+    private boolean holdersChanged;
 
     /**
      * @param robot  the robot's name, for the thread's name and messages
@@ -163,23 +169,23 @@ public final class ExecutionActionThread implements AutoCloseable {
      */
     public int cycle() {
         long start = clock.nanoTime();
-        RobotLinkException failure = linkFailure.getAndSet(null);
+        RobotLinkException failure = linkFailure.get() == null ? null : linkFailure.getAndSet(null);
         if (failure != null) {
-            for (Container c : List.copyOf(active)) {
+            for (Container c : snapshot()) {
                 finish(c, true, failure);
             }
         }
         for (Container c; (c = incoming.poll()) != null; ) {
             admit(c, start);
         }
-        for (Container c : List.copyOf(active)) {
+        for (Container c : snapshot()) {
             if (c.watchdogExpired(start)) {
                 LOG.warn("robot '{}': watchdog stopped '{}': not refreshed within {} ms", robot, c.name(), c.watchdog().toMillis());
                 finish(c, true, new RobotException("robot '" + robot + "': watchdog stopped '" + c.name() + "': it was not refreshed within "
                         + c.watchdog().toMillis() + " ms"));
             }
         }
-        for (Container c : List.copyOf(active)) {
+        for (Container c : snapshot()) {
             boolean done;
             try {
                 done = c.evaluate(start);
@@ -199,7 +205,10 @@ public final class ExecutionActionThread implements AutoCloseable {
                 LOG.error("robot '{}': a cycle listener failed", robot, e);
             }
         }
-        inUse = Set.copyOf(holders.keySet());
+        if (holdersChanged) {
+            inUse = Set.copyOf(holders.keySet());
+            holdersChanged = false;
+        }
         cycles.incrementAndGet();
         if (clock.nanoTime() - start > periodNanos && clock == Clock.system()) {
             long n = overruns.incrementAndGet();
@@ -210,12 +219,32 @@ public final class ExecutionActionThread implements AutoCloseable {
         return active.size();
     }
 
+    /** The running containers, copied into a reused list so the loops may end them as they go. */
+    private List<Container> snapshot() {
+        scratch.clear();
+        scratch.addAll(active);
+        return scratch;
+    }
+
     private void admit(Container c, long now) {
         Set<Container> clashing = new LinkedHashSet<>();
         for (String actuator : c.requirements()) {
             Container holder = holders.get(actuator);
             if (holder != null) {
                 clashing.add(holder);
+            }
+        }
+        if (clashing.size() == 1) {
+            Container holder = clashing.iterator().next();
+            if (holder.refreshedBy(c)) {
+                try {
+                    holder.refresh(now, c);
+                    c.completion().complete(null);
+                } catch (RuntimeException e) {
+                    c.completion().completeExceptionally(e);
+                    fail(holder, e);
+                }
+                return;
             }
         }
         for (Container holder : clashing) {
@@ -233,6 +262,7 @@ public final class ExecutionActionThread implements AutoCloseable {
         for (String actuator : c.requirements()) {
             holders.put(actuator, c);
         }
+        holdersChanged = true;
         active.add(c);
         try {
             c.start(now);
@@ -255,6 +285,7 @@ public final class ExecutionActionThread implements AutoCloseable {
         for (String actuator : c.requirements()) {
             holders.remove(actuator, c);
         }
+        holdersChanged = true;
         try {
             c.end(interrupted);
         } catch (RuntimeException e) {

@@ -171,6 +171,41 @@ class ExecutionActionThreadTest {
     }
 
     @Test
+    void shouldRefreshContinuousContainerInPlaceWithoutInterruptingIt() throws Exception {
+        List<Double> speeds = new ArrayList<>();
+        Container first = Container.builder("drive").requires("B", "C").refreshes("continuous").watchdog(Duration.ofMillis(500))
+                .action(now -> speeds.add(1.0)).logic(now -> false).onEnd(interrupted -> ended.add("drive:" + interrupted)).build();
+        CompletableFuture<Void> f1 = thread.submit(first);
+        thread.cycle();
+        clock.advance(Duration.ofMillis(400));
+        CompletableFuture<Void> f2 = thread.submit(Container.builder("drive").requires("B", "C").refreshes("continuous")
+                .watchdog(Duration.ofMillis(500)).action(now -> speeds.add(2.0)).logic(now -> false).build());
+        thread.cycle();
+
+        assertEquals(List.of(1.0, 2.0), speeds, "the refresh's actions set the new speeds");
+        f2.get(0, TimeUnit.SECONDS);
+        assertFalse(f1.isDone(), "the running command goes on");
+        assertEquals(List.of(), ended);
+
+        clock.advance(Duration.ofMillis(400));
+        thread.cycle();
+        assertFalse(f1.isDone(), "the refresh restarted the watchdog: 400 ms after it, still running");
+        clock.advance(Duration.ofMillis(200));
+        thread.cycle();
+        assertInstanceOf(RobotException.class, failure(f1));
+        assertEquals(List.of("drive:true"), ended);
+    }
+
+    @Test
+    void shouldInterruptContinuousContainerWhenRefreshNeedsOtherActuators() {
+        CompletableFuture<Void> both = thread.submit(Container.builder("drive").requires("B", "C").refreshes("continuous").logic(now -> false).build());
+        thread.cycle();
+        thread.submit(Container.builder("drive").requires("B").refreshes("continuous").logic(now -> false).build());
+        thread.cycle();
+        assertInstanceOf(CommandPreemptedException.class, failure(both));
+    }
+
+    @Test
     void shouldEndEveryContainerWithLinkExceptionWhenLinkFails() {
         CompletableFuture<Void> a = thread.submit(normal("a", new AtomicBoolean(), "A"));
         CompletableFuture<Void> b = thread.submit(normal("b", new AtomicBoolean(), "B"));

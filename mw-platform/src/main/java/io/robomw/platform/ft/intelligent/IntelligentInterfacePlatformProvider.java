@@ -1,0 +1,49 @@
+package io.robomw.platform.ft.intelligent;
+
+import io.robomw.api.spi.PlatformConfig;
+import io.robomw.api.spi.PlatformProvider;
+import io.robomw.api.spi.RobotPlatform;
+import io.robomw.config.description.RobotDescription;
+import io.robomw.platform.BrickPlatform;
+import io.robomw.platform.LinkThreading;
+import io.robomw.platform.brick.BrickChannel;
+import io.robomw.platform.link.SerialSettings;
+
+import java.io.IOException;
+import java.time.Duration;
+
+/**
+ * {@code platform: ft-intelligent}: a fischertechnik Intelligent Interface 30402 on a serial port
+ * (9600 8N1). Connection keys: {@code port}, {@code reply_timeout_ms} (default 100),
+ * {@code wire_log}. Keep {@code cycle_hz} at 20 or more: the interface stops its motors when it
+ * hears nothing for 300 ms, and the platform refreshes it once a cycle.
+ */
+public final class IntelligentInterfacePlatformProvider implements PlatformProvider {
+
+    @Override
+    public String platformName() {
+        return "ft-intelligent";
+    }
+
+    @Override
+    public RobotPlatform open(PlatformConfig config) throws IOException {
+        RobotDescription description = config.services().find(RobotDescription.class).orElseThrow(() -> new IOException(
+                "robot '" + config.robotName() + "': the ft-intelligent platform needs the robot's description (open it through Robots.open)"));
+        if (config.cyclePeriod().compareTo(Duration.ofMillis(50)) > 0) {
+            throw new IOException(description.source() + ": cycle_hz must be at least 20 for an Intelligent Interface, which stops its motors "
+                    + "after " + IntelligentInterfaceTelegram.WATCHDOG_MILLIS + " ms without a command");
+        }
+        Duration timeout = Duration.ofMillis(config.connection().integer("reply_timeout_ms", 100));
+        BrickChannel channel = BrickChannel.open(config.robotName(), config.connection(),
+                SerialSettings.of(9600, 8, SerialSettings.Parity.NONE, 1), 0, timeout);
+        try {
+            IntelligentInterfaceInputs inputs = new IntelligentInterfaceInputs();
+            IntelligentInterfaceMotorPlatform motors = new IntelligentInterfaceMotorPlatform(config, description, channel, inputs);
+            return new BrickPlatform(config, motors, new IntelligentInterfaceSensorPlatform(config.robotName(), motors, inputs),
+                    LinkThreading.OWN_THREAD, channel).start();
+        } catch (IOException | RuntimeException e) {
+            channel.close();
+            throw e;
+        }
+    }
+}

@@ -1,0 +1,42 @@
+package io.robomw.platform.nxt;
+
+import io.robomw.api.spi.PlatformConfig;
+import io.robomw.api.spi.PlatformProvider;
+import io.robomw.api.spi.RobotPlatform;
+import io.robomw.platform.BrickPlatform;
+import io.robomw.platform.LinkThreading;
+import io.robomw.platform.brick.BrickChannel;
+import io.robomw.platform.link.SerialSettings;
+
+import java.io.IOException;
+import java.time.Duration;
+
+/**
+ * {@code platform: nxt}: a LEGO Mindstorms NXT over a serial link (a Bluetooth-paired brick is
+ * {@code /dev/rfcomm0} or {@code COM5}) or a TCP bridge. Connection keys: {@code port} (device
+ * path) and {@code baud}, or {@code host} and {@code port}; {@code reply_timeout_ms} (default
+ * 300); {@code wire_log} (a file that records every byte).
+ */
+public final class NxtPlatformProvider implements PlatformProvider {
+
+    @Override
+    public String platformName() {
+        return "nxt";
+    }
+
+    @Override
+    public RobotPlatform open(PlatformConfig config) throws IOException {
+        Duration timeout = Duration.ofMillis(config.connection().integer("reply_timeout_ms", 300));
+        BrickChannel channel = BrickChannel.open(config.robotName(), config.connection(),
+                SerialSettings.of(115200, 8, SerialSettings.Parity.NONE, 1), 0, timeout);
+        try {
+            NxtBrick brick = new NxtBrick(config.robotName(), channel);
+            NxtMotorPlatform motors = new NxtMotorPlatform(config, brick);
+            motors.resetCounters();
+            return new BrickPlatform(config, motors, new NxtSensorPlatform(motors, brick), LinkThreading.OWN_THREAD, channel).start();
+        } catch (IOException | RuntimeException e) {
+            channel.close();
+            throw e;
+        }
+    }
+}

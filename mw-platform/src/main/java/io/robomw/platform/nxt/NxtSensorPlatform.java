@@ -1,0 +1,133 @@
+package io.robomw.platform.nxt;
+
+import io.robomw.api.RobotLinkException;
+import io.robomw.api.spi.SensorChannel;
+import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.sensor.Sensor;
+import io.robomw.platform.sensor.SensorPlatform;
+
+import java.io.IOException;
+import java.util.concurrent.CompletableFuture;
+
+/**
+ * The NXT's sensor platform: each sensor's port is set up with SETINPUTMODE, and read with
+ * GETINPUTVALUES (touch: the boolean scaled value, 1 pressed; light and sound: the normalized
+ * value 0..1023; colour: the colour number) or, for the ultrasonic sensor, with an I²C transaction
+ * (LSWRITE register 0x42, LSGETSTATUS until ready, LSREAD: centimetres). After SETINPUTMODE the
+ * firmware marks a port invalid until it has set the sensor up; reads wait for the valid flag.
+ * Reads run on the caller's thread, one exchange at a time on the brick's channel.
+ *
+ * <p>Sensor options: {@code floodlight: false} reads a light sensor with its lamp off.
+ */
+public final class NxtSensorPlatform extends SensorPlatform {
+
+    private static final int MAX_POLLS = 200;
+
+    private final NxtBrick brick;
+
+    /**
+     * @param motors the motor platform (for tachometers)
+     * @param brick  the brick
+     */
+    public NxtSensorPlatform(GenericMotorPlatform motors, NxtBrick brick) {
+        super(motors);
+        this.brick = brick;
+    }
+
+    /**
+     * @param port an input port name
+     * @return its NXT input number: S1 = 0 ... S4 = 3
+     */
+    static int inputPort(String port) {
+        String p = port.startsWith("S") ? port.substring(1) : port;
+        return switch (p) {
+            case "1" -> 0;
+            case "2" -> 1;
+            case "3" -> 2;
+            case "4" -> 3;
+            default -> throw new IllegalArgumentException("the NXT has input ports S1 to S4, not '" + port + "'");
+        };
+    }
+
+    @Override
+    public Sensor createSensor(SensorChannel sensor) throws IOException {
+        int port = inputPort(sensor.port());
+        return switch (sensor.type()) {
+            case TOUCH -> analog(sensor, port, NxtTelegram.TYPE_SWITCH, NxtTelegram.MODE_BOOLEAN, Field.SCALED);
+            case LIGHT -> analog(sensor, port, Boolean.FALSE.equals(sensor.options().get("floodlight"))
+                    ? NxtTelegram.TYPE_LIGHT_INACTIVE : NxtTelegram.TYPE_LIGHT_ACTIVE, NxtTelegram.MODE_RAW, Field.NORMALIZED);
+            case SOUND -> analog(sensor, port, NxtTelegram.TYPE_SOUND_DB, NxtTelegram.MODE_RAW, Field.NORMALIZED);
+            case COLOR -> analog(sensor, port, NxtTelegram.TYPE_COLORFULL, NxtTelegram.MODE_RAW, Field.SCALED);
+            case SONAR -> ultrasonic(port);
+            default -> throw new IOException("robot '" + brick.robot() + "': sensor '" + sensor.name() + "': the NXT has no standard "
+                    + sensor.type() + " sensor (it supports touch, light, sound, colour and ultrasonic)");
+        };
+    }
+
+    /** Which value of a GETINPUTVALUES reply a sensor reports. */
+    private enum Field {
+        NORMALIZED(10),
+        SCALED(12);
+
+        private final int offset;
+
+        Field(int offset) {
+            this.offset = offset;
+        }
+    }
+
+    private Sensor analog(SensorChannel sensor, int port, int type, int mode, Field field) throws IOException {
+        brick.request(NxtTelegram.setInputMode(true, port, type, mode), NxtTelegram.STATUS_REPLY, port);
+        return () -> read(() -> {
+            byte[] reply = validInputValues(port);
+            return (double) (field == Field.SCALED ? NxtTelegram.s16(reply, field.offset) : NxtTelegram.u16(reply, field.offset));
+        });
+    }
+
+    private byte[] validInputValues(int port) throws IOException {
+        for (int i = 0; i < MAX_POLLS; i++) {
+            byte[] reply = brick.request(NxtTelegram.getInputValues(port), NxtTelegram.GETINPUTVALUES_REPLY, port);
+            if (reply[4] != 0) {
+                return reply;
+            }
+        }
+        throw new IOException("robot '" + brick.robot() + "': NXT input port " + (port + 1) + " stayed invalid after " + MAX_POLLS + " reads");
+    }
+
+    private Sensor ultrasonic(int port) throws IOException {
+        brick.request(NxtTelegram.setInputMode(true, port, NxtTelegram.TYPE_LOWSPEED_9V, NxtTelegram.MODE_RAW), NxtTelegram.STATUS_REPLY, port);
+        return () -> read(() -> {
+            validInputValues(port);
+            brick.request(NxtTelegram.lsWrite(true, port, 1, (byte) NxtTelegram.ULTRASONIC_ADDRESS, (byte) NxtTelegram.ULTRASONIC_DISTANCE),
+                    NxtTelegram.STATUS_REPLY, port);
+            for (int i = 0; i < MAX_POLLS; i++) {
+                byte[] status = brick.requestAllowing(NxtTelegram.lsGetStatus(port), NxtTelegram.LSGETSTATUS_REPLY, port);
+                int s = status[2] & 0xFF;
+                if (s == NxtStatus.SUCCESS && (status[3] & 0xFF) >= 1) {
+                    byte[] data = brick.request(NxtTelegram.lsRead(port), NxtTelegram.LSREAD_REPLY, port);
+                    return (double) (data[4] & 0xFF);
+                }
+                if (s != NxtStatus.PENDING && s != NxtStatus.SUCCESS) {
+                    throw new NxtException(brick.robot(), NxtTelegram.LSGETSTATUS, port, s);
+                }
+            }
+            throw new IOException("robot '" + brick.robot() + "': the ultrasonic sensor on S" + (port + 1) + " did not answer after " + MAX_POLLS + " polls");
+        });
+    }
+
+    /** A read that may fail with I/O. */
+    @FunctionalInterface
+    private interface Read {
+        double run() throws IOException;
+    }
+
+    private CompletableFuture<Double> read(Read read) {
+        try {
+            return CompletableFuture.completedFuture(read.run());
+        } catch (IOException e) {
+            return CompletableFuture.failedFuture(new RobotLinkException("robot '" + brick.robot() + "': reading the NXT failed: " + e.getMessage(), e));
+        } catch (RuntimeException e) {
+            return CompletableFuture.failedFuture(e);
+        }
+    }
+}

@@ -1,0 +1,378 @@
+package io.robomw.platform.nxt;
+
+/**
+ * The NXT's LCP direct-command telegrams, byte for byte (LEGO Bluetooth Developer Kit; firmware
+ * {@code c_cmd.c}). Every multi-byte field is little-endian.
+ *
+ * <pre>
+ * serial/Bluetooth:  [len_lo][len_hi] [type][opcode][payload ...]     len = bytes after the prefix, at most 64
+ * request type:      0x00 direct, reply wanted    0x80 direct, no reply
+ *                    0x01 system, reply wanted    0x81 system, no reply
+ * reply:             [0x02][opcode][status][data ...]                  status 0x00 = success
+ *
+ * SETOUTPUTSTATE 0x04  port u8, power s8, mode u8, regulation u8, turn s8, run_state u8, tacho_limit u32
+ * GETOUTPUTSTATE 0x06  port u8  -> port, power, mode, regulation, turn, run_state, tacho_limit u32,
+ *                                  tacho_count s32, block_tacho_count s32, rotation_count s32   (25 bytes)
+ * SETINPUTMODE   0x05  port u8, sensor_type u8, sensor_mode u8
+ * GETINPUTVALUES 0x07  port u8  -> port, valid, calibrated, type, mode, raw u16, normalized u16,
+ *                                  scaled s16, calibrated s16                                   (16 bytes)
+ * LSWRITE        0x0F  port u8, tx_len u8, rx_len u8, tx_data[tx_len]
+ * LSGETSTATUS    0x0E  port u8  -> bytes_ready u8                                              (4 bytes)
+ * LSREAD         0x10  port u8  -> bytes_read u8, data[16]                                     (20 bytes)
+ * </pre>
+ *
+ * Stateless; the encoders return the telegram without its length prefix.
+ */
+public final class NxtTelegram {
+
+    /** Longest telegram, without the length prefix. */
+    public static final int MAX_LENGTH = 64;
+
+    /** Direct command, reply wanted. */
+    public static final int DIRECT = 0x00;
+    /** Direct command, no reply. */
+    public static final int DIRECT_NO_REPLY = 0x80;
+    /** System command, reply wanted. */
+    public static final int SYSTEM = 0x01;
+    /** System command, no reply. */
+    public static final int SYSTEM_NO_REPLY = 0x81;
+    /** A reply. */
+    public static final int REPLY = 0x02;
+
+    /** Direct-command opcodes. */
+    public static final int PLAYTONE = 0x03;
+    /** Sets a motor's output. */
+    public static final int SETOUTPUTSTATE = 0x04;
+    /** Sets an input port's sensor type and mode. */
+    public static final int SETINPUTMODE = 0x05;
+    /** Reads a motor's state and counters. */
+    public static final int GETOUTPUTSTATE = 0x06;
+    /** Reads an input port. */
+    public static final int GETINPUTVALUES = 0x07;
+    /** Resets an input's scaled value. */
+    public static final int RESETINPUTSCALEDVALUE = 0x08;
+    /** Writes to a mailbox. */
+    public static final int MESSAGEWRITE = 0x09;
+    /** Resets a motor's counters. */
+    public static final int RESETMOTORPOSITION = 0x0A;
+    /** Reads the battery voltage. */
+    public static final int GETBATTERYLEVEL = 0x0B;
+    /** Stops sound. */
+    public static final int STOPSOUNDPLAYBACK = 0x0C;
+    /** Keeps the brick awake. */
+    public static final int KEEPALIVE = 0x0D;
+    /** Polls an I²C transaction. */
+    public static final int LSGETSTATUS = 0x0E;
+    /** Starts an I²C transaction. */
+    public static final int LSWRITE = 0x0F;
+    /** Reads an I²C transaction's answer. */
+    public static final int LSREAD = 0x10;
+    /** Reads the running program's name. */
+    public static final int GETCURRENTPROGRAMNAME = 0x11;
+
+    /** Reply lengths (without the prefix), by opcode. */
+    public static final int GETOUTPUTSTATE_REPLY = 25;
+    /** Length of a GETINPUTVALUES reply. */
+    public static final int GETINPUTVALUES_REPLY = 16;
+    /** Length of an LSGETSTATUS reply. */
+    public static final int LSGETSTATUS_REPLY = 4;
+    /** Length of an LSREAD reply. */
+    public static final int LSREAD_REPLY = 20;
+    /** Length of a GETBATTERYLEVEL reply. */
+    public static final int GETBATTERYLEVEL_REPLY = 5;
+    /** Length of a KEEPALIVE reply. */
+    public static final int KEEPALIVE_REPLY = 7;
+    /** Length of a reply that carries only a status. */
+    public static final int STATUS_REPLY = 3;
+
+    /** Offset of the status byte in a reply. */
+    public static final int STATUS_OFFSET = 2;
+
+    /** Motor mode bits. */
+    public static final int MODE_MOTORON = 0x01;
+    /** Brake when power is 0. */
+    public static final int MODE_BRAKE = 0x02;
+    /** Use the regulation mode. */
+    public static final int MODE_REGULATED = 0x04;
+    /** Regulation: none. */
+    public static final int REGULATION_IDLE = 0;
+    /** Regulation: constant speed. */
+    public static final int REGULATION_SPEED = 1;
+    /** Regulation: two motors in step. */
+    public static final int REGULATION_SYNC = 2;
+    /** Run state: idle. */
+    public static final int RUN_IDLE = 0x00;
+    /** Run state: running. */
+    public static final int RUN_RUNNING = 0x20;
+
+    /** Sensor types. */
+    public static final int TYPE_NO_SENSOR = 0x00;
+    /** A switch (touch sensor). */
+    public static final int TYPE_SWITCH = 0x01;
+    /** Light sensor with its lamp on. */
+    public static final int TYPE_LIGHT_ACTIVE = 0x05;
+    /** Light sensor with its lamp off. */
+    public static final int TYPE_LIGHT_INACTIVE = 0x06;
+    /** Sound sensor, dB. */
+    public static final int TYPE_SOUND_DB = 0x07;
+    /** I²C, 9 V (ultrasonic sensor). */
+    public static final int TYPE_LOWSPEED_9V = 0x0B;
+    /** Colour sensor, full colour. */
+    public static final int TYPE_COLORFULL = 0x0D;
+    /** Sensor mode: raw. */
+    public static final int MODE_RAW = 0x00;
+    /** Sensor mode: boolean. */
+    public static final int MODE_BOOLEAN = 0x20;
+    /** Sensor mode: percent of full scale. */
+    public static final int MODE_PCTFULLSCALE = 0x80;
+
+    /** The ultrasonic sensor's I²C address. */
+    public static final int ULTRASONIC_ADDRESS = 0x02;
+    /** Its first measurement register (centimetres). */
+    public static final int ULTRASONIC_DISTANCE = 0x42;
+
+    /** Motor speed at power 100, regulated, degrees per second: shared by driver and emulator. */
+    public static final double DEGREES_PER_SECOND_AT_FULL_POWER = 900;
+
+    private NxtTelegram() {
+    }
+
+    /**
+     * @param reply   whether a reply is wanted
+     * @param port    0 = A, 1 = B, 2 = C, 0xFF = all
+     * @param power   -100..100
+     * @param mode    mode bits
+     * @param regulation regulation mode
+     * @param turnRatio -100..100
+     * @param runState run state
+     * @param tachoLimit degrees, 0 = forever
+     * @return the telegram
+     */
+    public static byte[] setOutputState(boolean reply, int port, int power, int mode, int regulation, int turnRatio, int runState, long tachoLimit) {
+        byte[] t = header(reply, SETOUTPUTSTATE, 10);
+        t[2] = (byte) port;
+        t[3] = (byte) power;
+        t[4] = (byte) mode;
+        t[5] = (byte) regulation;
+        t[6] = (byte) turnRatio;
+        t[7] = (byte) runState;
+        putU32(t, 8, tachoLimit);
+        return t;
+    }
+
+    /**
+     * @param port the motor port
+     * @return GETOUTPUTSTATE
+     */
+    public static byte[] getOutputState(int port) {
+        byte[] t = header(true, GETOUTPUTSTATE, 1);
+        t[2] = (byte) port;
+        return t;
+    }
+
+    /**
+     * @param reply    whether a reply is wanted
+     * @param port     the motor port
+     * @param relative true resets the block tacho count, false the rotation count
+     * @return RESETMOTORPOSITION
+     */
+    public static byte[] resetMotorPosition(boolean reply, int port, boolean relative) {
+        byte[] t = header(reply, RESETMOTORPOSITION, 2);
+        t[2] = (byte) port;
+        t[3] = (byte) (relative ? 1 : 0);
+        return t;
+    }
+
+    /**
+     * @param reply whether a reply is wanted
+     * @param port  the input port 0..3
+     * @param type  the sensor type
+     * @param mode  the sensor mode
+     * @return SETINPUTMODE
+     */
+    public static byte[] setInputMode(boolean reply, int port, int type, int mode) {
+        byte[] t = header(reply, SETINPUTMODE, 3);
+        t[2] = (byte) port;
+        t[3] = (byte) type;
+        t[4] = (byte) mode;
+        return t;
+    }
+
+    /**
+     * @param port the input port
+     * @return GETINPUTVALUES
+     */
+    public static byte[] getInputValues(int port) {
+        byte[] t = header(true, GETINPUTVALUES, 1);
+        t[2] = (byte) port;
+        return t;
+    }
+
+    /**
+     * @param reply  whether a reply is wanted
+     * @param port   the input port
+     * @param rxLength bytes to read back
+     * @param tx     bytes to write, at most 16
+     * @return LSWRITE
+     */
+    public static byte[] lsWrite(boolean reply, int port, int rxLength, byte... tx) {
+        if (tx.length > 16 || rxLength > 16) {
+            throw new IllegalArgumentException("an I²C transaction moves at most 16 bytes each way, got tx=" + tx.length + " rx=" + rxLength);
+        }
+        byte[] t = header(reply, LSWRITE, 3 + tx.length);
+        t[2] = (byte) port;
+        t[3] = (byte) tx.length;
+        t[4] = (byte) rxLength;
+        System.arraycopy(tx, 0, t, 5, tx.length);
+        return t;
+    }
+
+    /**
+     * @param port the input port
+     * @return LSGETSTATUS
+     */
+    public static byte[] lsGetStatus(int port) {
+        byte[] t = header(true, LSGETSTATUS, 1);
+        t[2] = (byte) port;
+        return t;
+    }
+
+    /**
+     * @param port the input port
+     * @return LSREAD
+     */
+    public static byte[] lsRead(int port) {
+        byte[] t = header(true, LSREAD, 1);
+        t[2] = (byte) port;
+        return t;
+    }
+
+    /** @return GETBATTERYLEVEL */
+    public static byte[] getBatteryLevel() {
+        return header(true, GETBATTERYLEVEL, 0);
+    }
+
+    /** @return KEEPALIVE */
+    public static byte[] keepAlive() {
+        return header(true, KEEPALIVE, 0);
+    }
+
+    /**
+     * @param reply      whether a reply is wanted
+     * @param hertz      frequency
+     * @param millis     duration
+     * @return PLAYTONE
+     */
+    public static byte[] playTone(boolean reply, int hertz, int millis) {
+        byte[] t = header(reply, PLAYTONE, 4);
+        putU16(t, 2, hertz);
+        putU16(t, 4, millis);
+        return t;
+    }
+
+    private static byte[] header(boolean reply, int opcode, int payload) {
+        byte[] t = new byte[2 + payload];
+        t[0] = (byte) (reply ? DIRECT : DIRECT_NO_REPLY);
+        t[1] = (byte) opcode;
+        return t;
+    }
+
+    /**
+     * @param telegram a telegram
+     * @return it with its 2-byte little-endian length prefix
+     */
+    public static byte[] withLengthPrefix(byte[] telegram) {
+        byte[] out = new byte[telegram.length + 2];
+        out[0] = (byte) telegram.length;
+        out[1] = (byte) (telegram.length >> 8);
+        System.arraycopy(telegram, 0, out, 2, telegram.length);
+        return out;
+    }
+
+    /**
+     * @param b   bytes
+     * @param off offset
+     * @return the unsigned 16-bit little-endian value there
+     */
+    public static int u16(byte[] b, int off) {
+        return (b[off] & 0xFF) | (b[off + 1] & 0xFF) << 8;
+    }
+
+    /**
+     * @param b   bytes
+     * @param off offset
+     * @return the signed 16-bit little-endian value there
+     */
+    public static int s16(byte[] b, int off) {
+        return (short) u16(b, off);
+    }
+
+    /**
+     * @param b   bytes
+     * @param off offset
+     * @return the signed 32-bit little-endian value there
+     */
+    public static int s32(byte[] b, int off) {
+        return (b[off] & 0xFF) | (b[off + 1] & 0xFF) << 8 | (b[off + 2] & 0xFF) << 16 | (b[off + 3] & 0xFF) << 24;
+    }
+
+    /**
+     * @param b   bytes
+     * @param off offset
+     * @return the unsigned 32-bit little-endian value there
+     */
+    public static long u32(byte[] b, int off) {
+        return s32(b, off) & 0xFFFF_FFFFL;
+    }
+
+    /**
+     * Writes an unsigned 16-bit little-endian value.
+     *
+     * @param b     bytes
+     * @param off   offset
+     * @param value the value
+     */
+    public static void putU16(byte[] b, int off, int value) {
+        b[off] = (byte) value;
+        b[off + 1] = (byte) (value >> 8);
+    }
+
+    /**
+     * Writes a 32-bit little-endian value.
+     *
+     * @param b     bytes
+     * @param off   offset
+     * @param value the value (its low 32 bits)
+     */
+    public static void putU32(byte[] b, int off, long value) {
+        b[off] = (byte) value;
+        b[off + 1] = (byte) (value >> 8);
+        b[off + 2] = (byte) (value >> 16);
+        b[off + 3] = (byte) (value >> 24);
+    }
+
+    /**
+     * @param opcode an opcode
+     * @return its name, for messages
+     */
+    public static String name(int opcode) {
+        return switch (opcode) {
+            case PLAYTONE -> "PLAYTONE";
+            case SETOUTPUTSTATE -> "SETOUTPUTSTATE";
+            case SETINPUTMODE -> "SETINPUTMODE";
+            case GETOUTPUTSTATE -> "GETOUTPUTSTATE";
+            case GETINPUTVALUES -> "GETINPUTVALUES";
+            case RESETINPUTSCALEDVALUE -> "RESETINPUTSCALEDVALUE";
+            case MESSAGEWRITE -> "MESSAGEWRITE";
+            case RESETMOTORPOSITION -> "RESETMOTORPOSITION";
+            case GETBATTERYLEVEL -> "GETBATTERYLEVEL";
+            case STOPSOUNDPLAYBACK -> "STOPSOUNDPLAYBACK";
+            case KEEPALIVE -> "KEEPALIVE";
+            case LSGETSTATUS -> "LSGETSTATUS";
+            case LSWRITE -> "LSWRITE";
+            case LSREAD -> "LSREAD";
+            case GETCURRENTPROGRAMNAME -> "GETCURRENTPROGRAMNAME";
+            default -> String.format("opcode 0x%02X", opcode);
+        };
+    }
+}

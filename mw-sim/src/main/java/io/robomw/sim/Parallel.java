@@ -1,0 +1,90 @@
+package io.robomw.sim;
+
+import java.util.ArrayList;
+import java.util.List;
+import java.util.concurrent.Callable;
+import java.util.concurrent.ExecutionException;
+import java.util.concurrent.ExecutorService;
+import java.util.concurrent.Executors;
+import java.util.concurrent.Future;
+import java.util.concurrent.atomic.AtomicInteger;
+import java.util.function.IntConsumer;
+
+/**
+ * Runs per-robot work of one simulation step on the simulation's worker threads (named
+ * {@code sim-worker-N}), split into contiguous index ranges, and waits for all of it. Work on
+ * different robots must be independent; results then do not depend on the threads. Small batches
+ * run on the calling thread, where handing them over would cost more than it saves.
+ */
+public final class Parallel implements AutoCloseable {
+
+    private static final int MIN_PARALLEL = 64;
+
+    private final ExecutorService pool;
+    private final int threads;
+
+    /**
+     * @param threads worker threads; 1 runs everything on the calling thread
+     */
+    public Parallel(int threads) {
+        this.threads = Math.max(1, threads);
+        AtomicInteger n = new AtomicInteger();
+        this.pool = this.threads == 1 ? null : Executors.newFixedThreadPool(this.threads, r -> {
+            Thread t = new Thread(r, "sim-worker-" + n.incrementAndGet());
+            t.setDaemon(true);
+            return t;
+        });
+    }
+
+    /**
+     * Calls {@code body} for every index in [0, n), in parallel when worth it.
+     *
+     * @param n    the number of items
+     * @param body the work for one item
+     */
+    public void forEach(int n, IntConsumer body) {
+        if (pool == null || n < MIN_PARALLEL) {
+            for (int i = 0; i < n; i++) {
+                body.accept(i);
+            }
+            return;
+        }
+        int chunks = threads * 4;
+        List<Callable<Void>> tasks = new ArrayList<>(chunks);
+        for (int c = 0; c < chunks; c++) {
+            int from = (int) ((long) n * c / chunks);
+            int to = (int) ((long) n * (c + 1) / chunks);
+            tasks.add(() -> {
+                for (int i = from; i < to; i++) {
+                    body.accept(i);
+                }
+                return null;
+            });
+        }
+        try {
+            for (Future<Void> f : pool.invokeAll(tasks)) {
+                f.get();
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            throw new IllegalStateException("interrupted during a simulation step", e);
+        } catch (ExecutionException e) {
+            Throwable cause = e.getCause();
+            if (cause instanceof RuntimeException r) {
+                throw r;
+            }
+            if (cause instanceof Error err) {
+                throw err;
+            }
+            throw new IllegalStateException(cause);
+        }
+    }
+
+    /** Stops the worker threads. */
+    @Override
+    public void close() {
+        if (pool != null) {
+            pool.shutdownNow();
+        }
+    }
+}

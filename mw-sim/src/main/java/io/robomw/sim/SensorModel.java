@@ -1,0 +1,222 @@
+package io.robomw.sim;
+
+import io.robomw.api.Position;
+import io.robomw.api.SensorType;
+import io.robomw.config.description.Body;
+import io.robomw.config.description.SensorSpec;
+
+import java.util.Map;
+import java.util.SplittableRandom;
+
+/**
+ * How the simulator models one sensor of a robot: where it is mounted on the body and, for range
+ * sensors, its beam. Defaults follow the sensor's type and position; the robot description's
+ * sensor {@code options} override them:
+ *
+ * <table>
+ *   <caption>options read by the simulator</caption>
+ *   <tr><th>option</th><th>meaning</th><th>default</th></tr>
+ *   <tr><td>{@code x}, {@code y}</td><td>mount point on the body, metres from its centre (x forwards, y left)</td><td>the edge the position names</td></tr>
+ *   <tr><td>{@code angle}</td><td>direction the sensor faces, radians from forwards</td><td>the position's direction</td></tr>
+ *   <tr><td>{@code beam_width}</td><td>full cone angle of a range sensor, radians</td><td>sonar 0.5, infra-red 0</td></tr>
+ *   <tr><td>{@code rays}</td><td>rays cast across the cone; the nearest hit counts</td><td>sonar 5, infra-red 1</td></tr>
+ *   <tr><td>{@code min_range}, {@code max_range}</td><td>metres; beyond max the sensor reports max</td><td>sonar 0.03–2.55, infra-red 0.06–0.80</td></tr>
+ *   <tr><td>{@code noise}</td><td>standard deviation of Gaussian noise, metres (seeded)</td><td>0</td></tr>
+ *   <tr><td>{@code rate_hz}</td><td>samples per simulated second</td><td>10</td></tr>
+ * </table>
+ *
+ * <p>Written and read on the simulation thread, except {@link #latest}, which viewers may read.
+ */
+public final class SensorModel {
+
+    /** What the simulator computes for a sensor. */
+    public enum Kind {
+        /** Ray casts against walls, obstacles and other robots. */
+        RANGE,
+        /** Contact on the side it faces. */
+        CONTACT,
+        /** Floor brightness or colour under it. */
+        FLOOR,
+        /** Absolute heading. */
+        HEADING,
+        /** Heading turned since the start. */
+        TURNED,
+        /** A quiet world: silence. */
+        SILENCE,
+        /** A motor's encoder (read through the motor platform). */
+        TACHO
+    }
+
+    private final SensorSpec spec;
+    private final Kind kind;
+    private final double mountX;
+    private final double mountY;
+    private final double mountAngle;
+    private final double beamWidth;
+    private final int rays;
+    private final double minRange;
+    private final double maxRange;
+    private final double noise;
+    private final double rateHz;
+    private final SplittableRandom random;
+    private volatile double latest;
+
+    SensorModel(SensorSpec spec, Body body, long seed) {
+        this.spec = spec;
+        this.kind = kindOf(spec.type());
+        Map<String, Object> o = spec.options();
+        double[] mount = defaultMount(spec.position(), body);
+        boolean sonar = spec.type() == SensorType.SONAR;
+        this.mountX = number(o, "x", mount[0]);
+        this.mountY = number(o, "y", mount[1]);
+        this.mountAngle = number(o, "angle", mount[2]);
+        this.beamWidth = number(o, "beam_width", sonar ? 0.5 : 0);
+        this.rays = Math.max(1, (int) number(o, "rays", sonar ? 5 : 1));
+        this.minRange = number(o, "min_range", sonar ? 0.03 : 0.06);
+        this.maxRange = number(o, "max_range", sonar ? 2.55 : 0.80);
+        this.noise = number(o, "noise", 0);
+        this.rateHz = number(o, "rate_hz", 10);
+        this.random = new SplittableRandom(seed);
+        if (!(maxRange > minRange) || minRange < 0 || rateHz <= 0 || noise < 0 || beamWidth < 0) {
+            throw new IllegalArgumentException(spec.name() + ": sensor options must give 0 <= min_range < max_range, rate_hz > 0, noise >= 0, beam_width >= 0; got "
+                    + o);
+        }
+    }
+
+    private static double number(Map<String, Object> options, String key, double fallback) {
+        Object v = options.get(key);
+        if (v == null) {
+            return fallback;
+        }
+        if (v instanceof Number n) {
+            return n.doubleValue();
+        }
+        throw new IllegalArgumentException("sensor option '" + key + "' must be a number, got '" + v + "'");
+    }
+
+    private static Kind kindOf(SensorType type) {
+        return switch (type) {
+            case SONAR, INFRARED -> Kind.RANGE;
+            case TOUCH -> Kind.CONTACT;
+            case LIGHT, COLOR -> Kind.FLOOR;
+            case COMPASS -> Kind.HEADING;
+            case GYRO -> Kind.TURNED;
+            case SOUND -> Kind.SILENCE;
+            case TACHO -> Kind.TACHO;
+        };
+    }
+
+    /** {x, y, angle} of the middle of the body edge the position names. */
+    private static double[] defaultMount(Position p, Body b) {
+        double hl = b.length() / 2;
+        double hw = b.width() / 2;
+        return switch (p) {
+            case FRONT -> new double[]{hl, 0, 0};
+            case BACK -> new double[]{-hl, 0, Math.PI};
+            case LEFT -> new double[]{0, hw, Math.PI / 2};
+            case RIGHT -> new double[]{0, -hw, -Math.PI / 2};
+            case FRONT_LEFT -> new double[]{hl, hw, Math.PI / 4};
+            case FRONT_RIGHT -> new double[]{hl, -hw, -Math.PI / 4};
+            case BACK_LEFT -> new double[]{-hl, hw, 3 * Math.PI / 4};
+            case BACK_RIGHT -> new double[]{-hl, -hw, -3 * Math.PI / 4};
+            case TOP, BOTTOM, CENTER -> new double[]{0, 0, 0};
+        };
+    }
+
+    /** @return the sensor's description */
+    public SensorSpec spec() {
+        return spec;
+    }
+
+    /** @return what the simulator computes for it */
+    public Kind kind() {
+        return kind;
+    }
+
+    /** @return mount point x on the body, metres forwards of its centre */
+    public double mountX() {
+        return mountX;
+    }
+
+    /** @return mount point y on the body, metres left of its centre */
+    public double mountY() {
+        return mountY;
+    }
+
+    /** @return the direction it faces, radians from the body's forwards */
+    public double mountAngle() {
+        return mountAngle;
+    }
+
+    /** @return the last range sample, metres (range sensors) */
+    public double latest() {
+        return latest;
+    }
+
+    /** @return the full cone angle of a range sensor, radians */
+    public double beamWidth() {
+        return beamWidth;
+    }
+
+    /** @return rays cast across the cone */
+    public int rays() {
+        return rays;
+    }
+
+    /** @return the shortest distance it reports */
+    public double minRange() {
+        return minRange;
+    }
+
+    /** @return the longest distance it reports */
+    public double maxRange() {
+        return maxRange;
+    }
+
+    /** @return samples per simulated second */
+    public double rateHz() {
+        return rateHz;
+    }
+
+    /**
+     * @param physicsHz the world's step rate
+     * @return every how many steps it samples
+     */
+    long everySteps(double physicsHz) {
+        return Math.max(1, Math.round(physicsHz / rateHz));
+    }
+
+    /**
+     * Samples a range sensor.
+     *
+     * @param caster    casts one ray
+     * @param self      the robot's index (its own body is not seen)
+     * @param x         robot centre x
+     * @param y         robot centre y
+     * @param heading   robot heading
+     */
+    void sampleRange(SimWorld.RayCaster caster, int self, double x, double y, double heading) {
+        double c = Math.cos(heading);
+        double s = Math.sin(heading);
+        double ox = x + mountX * c - mountY * s;
+        double oy = y + mountX * s + mountY * c;
+        double centre = heading + mountAngle;
+        double best = Double.POSITIVE_INFINITY;
+        for (int i = 0; i < rays; i++) {
+            double a = rays == 1 ? centre : centre - beamWidth / 2 + beamWidth * i / (rays - 1);
+            best = Math.min(best, caster.cast(ox, oy, a, maxRange, self));
+        }
+        double value = Double.isInfinite(best) ? maxRange : best;
+        if (noise > 0) {
+            value += gaussian() * noise;
+        }
+        latest = Math.min(maxRange, Math.max(minRange, value));
+    }
+
+    private double gaussian() {
+        // Box-Muller on the sensor's own seeded generator, so results do not depend on threads.
+        double u1 = 1.0 - random.nextDouble();
+        double u2 = random.nextDouble();
+        return Math.sqrt(-2 * Math.log(u1)) * Math.cos(2 * Math.PI * u2);
+    }
+}

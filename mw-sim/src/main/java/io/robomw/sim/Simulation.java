@@ -1,0 +1,420 @@
+package io.robomw.sim;
+
+import io.robomw.api.Robot;
+import io.robomw.api.RobotException;
+import io.robomw.api.spi.PlatformProvider;
+import io.robomw.api.spi.PlatformServices;
+import io.robomw.api.spi.RobotPlatform;
+import io.robomw.config.description.RobotDescription;
+import io.robomw.config.description.RobotDescriptionLoader;
+import io.robomw.config.robot.ConfiguredRobot;
+import io.robomw.config.robot.DescriptionRobotFactory;
+import io.robomw.sim.world.WorldDescription;
+import io.robomw.sim.world.WorldLoader;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import java.io.IOException;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.HashMap;
+import java.util.LinkedHashMap;
+import java.util.List;
+import java.util.Map;
+import java.util.Set;
+import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.locks.LockSupport;
+import java.util.function.BooleanSupplier;
+
+/**
+ * A simulated world with its robots opened through all three layers: each robot is a
+ * {@link Robot} (Configuration Layer) on the {@code sim} platform (Platform Layer, found by
+ * {@link java.util.ServiceLoader}) whose body is in the world. The robot files of the world are
+ * used as they are, whatever their {@code platform:}: in a simulation they run on {@code sim}.
+ *
+ * <h2>Two ways to run</h2>
+ * <ul>
+ *   <li><b>As fast as possible</b>, repeatably: {@link #run(Duration, Runnable...)} runs programs
+ *   on their own threads and advances the world only while all of them wait for their robots
+ *   (lockstep), so the same seed and programs give the same trajectories, bit for bit.
+ *   {@link #runFor(Duration)} advances the world without programs (for step listeners).</li>
+ *   <li><b>In real time</b>: {@link #startRealTime(double)} steps the world on a thread of its own,
+ *   paced by the wall clock (times a speed factor); programs call robots from any thread.</li>
+ * </ul>
+ */
+public final class Simulation implements AutoCloseable {
+
+    private static final Logger LOG = LoggerFactory.getLogger(Simulation.class);
+    private static final long STALL_NANOS = Duration.ofSeconds(60).toNanos();
+
+    private final SimWorld world;
+    private final Map<String, ConfiguredRobot> robots = new LinkedHashMap<>();
+    private final List<Runnable> stepListeners = new CopyOnWriteArrayList<>();
+    private final Set<String> emulated;
+    private volatile boolean realTime;
+    private volatile boolean paused;
+    private volatile double realTimeSpeed = 1;
+    private Thread realTimeThread;
+
+    private Simulation(WorldDescription description, int sensingThreads, SimWorld.RangeMethod rangeMethod, Set<String> emulated) {
+        this.world = new SimWorld(description, sensingThreads, rangeMethod);
+        this.emulated = Set.copyOf(emulated);
+        RobotDescriptionLoader loader = new RobotDescriptionLoader();
+        Map<Path, RobotDescription> files = new HashMap<>();
+        try {
+            for (WorldDescription.RobotPlacement p : description.robots()) {
+                RobotDescription d = renamed(files.computeIfAbsent(p.description(), loader::load), p.name());
+                try {
+                    world.addRobot(p.name(), d, p.start());
+                } catch (IllegalArgumentException e) {
+                    throw new RobotException(description.source() + ": robot '" + p.name() + "' (" + p.description() + "): " + e.getMessage(), e);
+                }
+            }
+            PlatformServices services = PlatformServices.none().with(SimWorld.class, world);
+            for (SimRobot r : world.robots()) {
+                if (this.emulated.contains(r.name())) {
+                    continue;
+                }
+                RobotDescription d = r.description();
+                PlatformProvider provider = DescriptionRobotFactory.provider(d);
+                RobotPlatform platform = provider.open(DescriptionRobotFactory.platformConfig(d, services.with(RobotDescription.class, d), world.clock()));
+                robots.put(r.name(), new ConfiguredRobot(() -> d, platform, null, null, null));
+            }
+        } catch (IOException e) {
+            close();
+            throw new RobotException(description.source() + ": cannot open the simulated robots: " + e.getMessage(), e);
+        } catch (RuntimeException e) {
+            close();
+            throw e;
+        }
+    }
+
+    /**
+     * Loads a world file and opens its robots.
+     *
+     * @param worldFile the world YAML
+     * @return the simulation, with the world at time 0
+     */
+    public static Simulation load(Path worldFile) {
+        return create(new WorldLoader().load(worldFile));
+    }
+
+    /**
+     * Loads a world file whose named robots are driven from outside, by brick emulators: they get a
+     * body in the world but no in-process platform.
+     *
+     * @param worldFile the world YAML
+     * @param emulated  names of the robots that emulators drive
+     * @return the simulation
+     */
+    public static Simulation load(Path worldFile, Set<String> emulated) {
+        WorldDescription d = new WorldLoader().load(worldFile);
+        for (String name : emulated) {
+            if (d.robots().stream().noneMatch(r -> r.name().equals(name))) {
+                throw new IllegalArgumentException(d.source() + " has no robot '" + name + "'; its robots are "
+                        + d.robots().stream().map(WorldDescription.RobotPlacement::name).toList());
+            }
+        }
+        return new Simulation(d, Runtime.getRuntime().availableProcessors(), SimWorld.RangeMethod.GRID, emulated);
+    }
+
+    /**
+     * @param description a world
+     * @return the simulation, sensing on as many threads as there are processors
+     */
+    public static Simulation create(WorldDescription description) {
+        return create(description, Runtime.getRuntime().availableProcessors());
+    }
+
+    /**
+     * @param description    a world
+     * @param sensingThreads threads for range sensing
+     * @return the simulation
+     */
+    public static Simulation create(WorldDescription description, int sensingThreads) {
+        return new Simulation(description, sensingThreads, SimWorld.RangeMethod.GRID, Set.of());
+    }
+
+    /**
+     * @param description    a world
+     * @param sensingThreads worker threads
+     * @param rangeMethod    how range sensors cast rays (the benchmark compares both)
+     * @return the simulation
+     */
+    public static Simulation create(WorldDescription description, int sensingThreads, SimWorld.RangeMethod rangeMethod) {
+        return new Simulation(description, sensingThreads, rangeMethod, Set.of());
+    }
+
+    private static RobotDescription renamed(RobotDescription d, String name) {
+        return new RobotDescription(name, "sim", d.connection(), d.cyclePeriod(), d.watchdogTimeout(), d.capabilities(), d.drive(),
+                d.body(), d.sensors(), d.actuators(), d.source());
+    }
+
+    /** @return the world */
+    public SimWorld world() {
+        return world;
+    }
+
+    /**
+     * @param name a robot's name in the world
+     * @return the robot
+     * @throws IllegalArgumentException if there is none of that name
+     */
+    public Robot robot(String name) {
+        Robot r = robots.get(name);
+        if (r == null && emulated.contains(name)) {
+            throw new IllegalArgumentException("robot '" + name + "' is driven by a brick emulator; open it through its driver (a robot file with its real platform)");
+        }
+        if (r == null) {
+            throw new IllegalArgumentException("world '" + world.description().name() + "' has no robot '" + name + "'; it has " + robots.keySet());
+        }
+        return r;
+    }
+
+    /** @return every robot, in the world's order */
+    public List<Robot> robots() {
+        return List.copyOf(robots.values());
+    }
+
+    /**
+     * @param listener run on the stepping thread after every step (a controller, a recorder)
+     */
+    public void addStepListener(Runnable listener) {
+        stepListeners.add(listener);
+    }
+
+    /**
+     * @param listener a listener added before; it is not run after the current step
+     */
+    public void removeStepListener(Runnable listener) {
+        stepListeners.remove(listener);
+    }
+
+    private void step() {
+        world.step();
+        for (Runnable l : stepListeners) {
+            l.run();
+        }
+    }
+
+    /**
+     * Runs programs in lockstep with the world, as fast as possible, until they all finish.
+     * Each program runs on its own thread named {@code program-N}; the world advances only while
+     * every program waits for a robot call.
+     *
+     * @param maxSimTime the longest the programs may take in simulated time
+     * @param programs   the programs
+     * @throws RobotException if a program fails (its exception is the cause), or runs over time
+     */
+    public void run(Duration maxSimTime, Runnable... programs) {
+        requireStopped("run programs");
+        List<Throwable> failures = new CopyOnWriteArrayList<>();
+        List<Thread> threads = new ArrayList<>();
+        world.lockstep().driver(Thread.currentThread());
+        double end = world.time() + maxSimTime.toNanos() / 1e9;
+        try {
+            for (int i = 0; i < programs.length; i++) {
+                Runnable program = programs[i];
+                Thread t = new Thread(() -> {
+                    try {
+                        program.run();
+                    } catch (Throwable e) {
+                        failures.add(e);
+                    } finally {
+                        world.lockstep().finished();
+                    }
+                }, "program-" + (i + 1));
+                t.setDaemon(true);
+                world.lockstep().register(t);
+                threads.add(t);
+                t.start();
+            }
+            while (true) {
+                world.lockstep().awaitAllWaiting(STALL_NANOS);
+                if (!world.lockstep().hasPrograms()) {
+                    break;
+                }
+                if (world.time() > end) {
+                    throw new RobotException("programs did not finish within " + maxSimTime.toMillis() / 1000.0 + " s of simulated time; still running: "
+                            + threads.stream().filter(Thread::isAlive).map(Thread::getName).toList());
+                }
+                step();
+            }
+        } finally {
+            world.lockstep().driver(null);
+            for (Thread t : threads) {
+                try {
+                    t.join(1000);
+                } catch (InterruptedException e) {
+                    Thread.currentThread().interrupt();
+                }
+            }
+        }
+        if (!failures.isEmpty()) {
+            Throwable first = failures.get(0);
+            RobotException e = new RobotException("a program failed: " + first, first);
+            failures.stream().skip(1).forEach(e::addSuppressed);
+            throw e;
+        }
+    }
+
+    /**
+     * Advances the world by a span of simulated time, as fast as possible, without programs.
+     *
+     * @param simTime how long
+     */
+    public void runFor(Duration simTime) {
+        requireStopped("step");
+        world.lockstep().driver(Thread.currentThread());
+        try {
+            double end = world.time() + simTime.toNanos() / 1e9 - world.stepSeconds() / 2;
+            while (world.time() < end) {
+                step();
+            }
+        } finally {
+            world.lockstep().driver(null);
+        }
+    }
+
+    /**
+     * Advances the world until a condition holds.
+     *
+     * @param condition checked after every step
+     * @param maxSimTime the longest to go
+     * @return whether the condition held in time
+     */
+    public boolean runUntil(BooleanSupplier condition, Duration maxSimTime) {
+        requireStopped("step");
+        double end = world.time() + maxSimTime.toNanos() / 1e9;
+        while (!condition.getAsBoolean()) {
+            if (world.time() >= end) {
+                return false;
+            }
+            step();
+        }
+        return true;
+    }
+
+    /**
+     * Starts stepping the world on a thread named {@code sim-<world>}, paced by the wall clock.
+     *
+     * @param speed simulated seconds per wall-clock second (1 = real time)
+     */
+    public synchronized void startRealTime(double speed) {
+        if (realTimeThread != null) {
+            throw new IllegalStateException("the simulation already runs in real time");
+        }
+        if (!(speed > 0)) {
+            throw new IllegalArgumentException("speed must be > 0, got " + speed);
+        }
+        realTime = true;
+        paused = false;
+        realTimeSpeed = speed;
+        Thread t = new Thread(() -> {
+            long next = System.nanoTime();
+            while (realTime) {
+                if (paused) {
+                    LockSupport.parkNanos(this, 10_000_000);
+                    next = System.nanoTime();
+                    continue;
+                }
+                try {
+                    step();
+                } catch (RuntimeException e) {
+                    LOG.error("simulation step failed; stopping the real-time run", e);
+                    realTime = false;
+                }
+                long period = Math.round(world.stepSeconds() * 1e9 / realTimeSpeed);
+                next += period;
+                long now;
+                while (realTime && (now = System.nanoTime()) < next) {
+                    LockSupport.parkNanos(this, next - now);
+                }
+                if (System.nanoTime() - next > 10 * period) {
+                    next = System.nanoTime();
+                }
+            }
+        }, "sim-" + world.description().name());
+        t.setDaemon(true);
+        world.lockstep().driver(t);
+        realTimeThread = t;
+        t.start();
+    }
+
+    /**
+     * Pauses a real-time run: simulated time stands still, and robot calls from any thread wait
+     * (they are not refused) until {@link #resumeRealTime()}.
+     */
+    public void pauseRealTime() {
+        paused = true;
+    }
+
+    /** Resumes a paused real-time run. */
+    public void resumeRealTime() {
+        paused = false;
+        Thread t = realTimeThread;
+        if (t != null) {
+            LockSupport.unpark(t);
+        }
+    }
+
+    /** @return whether a real-time run is paused */
+    public boolean isPaused() {
+        return paused;
+    }
+
+    /**
+     * Changes the speed of a real-time run without stopping it.
+     *
+     * @param speed simulated seconds per wall-clock second, &gt; 0
+     */
+    public void setRealTimeSpeed(double speed) {
+        if (!(speed > 0)) {
+            throw new IllegalArgumentException("speed must be > 0, got " + speed);
+        }
+        realTimeSpeed = speed;
+    }
+
+    /** @return simulated seconds per wall-clock second of the real-time run */
+    public double realTimeSpeed() {
+        return realTimeSpeed;
+    }
+
+    /** Stops the real-time thread, waiting for its current step. */
+    public synchronized void stopRealTime() {
+        Thread t = realTimeThread;
+        if (t == null) {
+            return;
+        }
+        realTime = false;
+        LockSupport.unpark(t);
+        try {
+            t.join(5000);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+        realTimeThread = null;
+        world.lockstep().driver(null);
+    }
+
+    private void requireStopped(String what) {
+        if (realTimeThread != null) {
+            throw new IllegalStateException("cannot " + what + " while the simulation runs in real time; call stopRealTime() first");
+        }
+    }
+
+    /** Stops the real-time thread, closes every robot and the world. */
+    @Override
+    public void close() {
+        stopRealTime();
+        for (ConfiguredRobot r : robots.values()) {
+            try {
+                r.close();
+            } catch (RuntimeException e) {
+                LOG.warn("closing simulated robot {}: {}", r.name(), e.toString());
+            }
+        }
+        world.close();
+    }
+}

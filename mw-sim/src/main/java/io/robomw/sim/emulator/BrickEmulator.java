@@ -1,0 +1,298 @@
+package io.robomw.sim.emulator;
+
+import io.robomw.platform.link.Link;
+import io.robomw.platform.link.LinkLostException;
+import io.robomw.platform.link.PseudoTerminal;
+import io.robomw.platform.link.TcpServerLink;
+import io.robomw.sim.SimMotors;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import java.io.IOException;
+import java.time.Duration;
+import java.util.concurrent.atomic.AtomicLong;
+
+/**
+ * A virtual brick bound to a robot in a simulated world: it answers on a serial device (a
+ * pseudo-terminal it creates, so nothing has to be installed) or a TCP port exactly as the brick's
+ * firmware does, and its motors and sensors are the simulated robot's.
+ *
+ * <h2>Two threads, one firmware state</h2>
+ * The I/O thread ({@code emulator-<kind>-<robot>}) reads telegrams, delimited by the brick's
+ * {@link Framing} (by default a 2-byte little-endian length, as on Bluetooth serial links), and
+ * answers them from the firmware state
+ * ({@link #handle}). The simulation thread calls {@link #step} after every world step: it applies
+ * the firmware's motor outputs to the robot and samples its encoders and sensors into the firmware
+ * state. Subclasses guard that state with one lock; physics is only touched on the simulation
+ * thread.
+ *
+ * <p>Bad input never stops it: a zero, oversized or truncated frame is dropped with a log line and
+ * counted, and the emulator goes on reading; a TCP client that leaves makes room for the next.
+ */
+public abstract class BrickEmulator implements AutoCloseable {
+
+    private static final Logger LOG = LoggerFactory.getLogger(BrickEmulator.class);
+    private static final Duration POLL = Duration.ofMillis(100);
+    private static final Duration FRAME_DEADLINE = Duration.ofSeconds(1);
+
+    private final String kind;
+    private final SimMotors robot;
+    private final Framing framing;
+    private final AtomicLong served = new AtomicLong();
+    private final AtomicLong dropped = new AtomicLong();
+    private final Runnable stepListener = this::onStep;
+    private volatile boolean closed;
+    private final java.util.List<Runnable> closeActions = new java.util.concurrent.CopyOnWriteArrayList<>();
+    private volatile boolean running;
+    private volatile Link link;
+    private Thread thread;
+
+    /**
+     * @param kind     the brick, for thread names and logs ({@code nxt}, {@code ev3})
+     * @param robot    the simulated robot it drives
+     * @param maxFrame the longest telegram the firmware accepts, bytes after the length
+     */
+    protected BrickEmulator(String kind, SimMotors robot, int maxFrame) {
+        this(kind, robot, Framing.lengthPrefixed(maxFrame));
+    }
+
+    /**
+     * @param kind    the brick, for thread names and logs
+     * @param robot   the simulated robot it drives
+     * @param framing how its telegrams are delimited
+     */
+    protected BrickEmulator(String kind, SimMotors robot, Framing framing) {
+        this.kind = kind;
+        this.robot = robot;
+        this.framing = framing;
+    }
+
+    /**
+     * Answers one telegram. Called on the I/O thread.
+     *
+     * @param frame the telegram without its length prefix
+     * @return the reply without its length prefix, or {@code null} when none is due
+     */
+    protected abstract byte[] handle(byte[] frame);
+
+    /**
+     * Applies the firmware's outputs to the robot and samples its inputs. Called on the simulation
+     * thread after every world step.
+     *
+     * @param robot the simulated robot
+     */
+    protected abstract void step(SimMotors robot);
+
+    /**
+     * Stops every motor the emulator drives, as a brick that is switched off does. Called on the
+     * simulation thread at the first step after {@link #close()}.
+     *
+     * @param robot the simulated robot
+     */
+    protected abstract void halt(SimMotors robot);
+
+    private void onStep() {
+        if (!closed) {
+            step(robot);
+            return;
+        }
+        halt(robot);
+        for (Runnable action : closeActions) {
+            action.run();
+        }
+        closeActions.clear();
+    }
+
+    /** @return the simulated robot */
+    protected SimMotors robot() {
+        return robot;
+    }
+
+    /** @return the listener to add to the simulation ({@code Simulation.addStepListener}); always the same one */
+    public Runnable stepListener() {
+        return stepListener;
+    }
+
+    /**
+     * Creates a pseudo-terminal and serves on it.
+     *
+     * @return the device path a driver opens, for example {@code /dev/pts/5}
+     * @throws IOException if no pseudo-terminal can be made
+     */
+    public String startOnPseudoTerminal() throws IOException {
+        PseudoTerminal pty = PseudoTerminal.open();
+        start(new PseudoTerminalLink(pty));
+        return pty.devicePath();
+    }
+
+    /**
+     * Serves on a TCP port, one client at a time.
+     *
+     * @param bindAddress the address to listen on (127.0.0.1 for tests)
+     * @param port        the port, 0 for any free one
+     * @return the port it listens on
+     * @throws IOException if it cannot listen
+     */
+    public int startOnTcp(String bindAddress, int port) throws IOException {
+        TcpServerLink server = new TcpServerLink(bindAddress, port);
+        server.open();
+        start(server);
+        return server.localPort();
+    }
+
+    private synchronized void start(Link endpoint) {
+        if (thread != null) {
+            endpoint.close();
+            throw new IllegalStateException("the " + kind + " emulator of '" + robot.robot().name() + "' is already serving on " + link.describe());
+        }
+        link = endpoint;
+        running = true;
+        thread = new Thread(this::serve, "emulator-" + kind + "-" + robot.robot().name());
+        thread.setDaemon(true);
+        thread.start();
+        LOG.info("{} emulator for '{}' serving on {}", kind, robot.robot().name(), endpoint.describe());
+    }
+
+    private void serve() {
+        boolean[] started = new boolean[1];
+        Framing.Reader reader = n -> {
+            byte[] buf = new byte[n];
+            boolean ok = readFully(buf, 0, n, started[0] ? FRAME_DEADLINE : null);
+            started[0] = true;
+            return ok ? buf : null;
+        };
+        while (running) {
+            try {
+                started[0] = false;
+                byte[] frame;
+                try {
+                    frame = framing.read(reader);
+                } catch (Framing.MalformedFrameException e) {
+                    drop(e.getMessage());
+                    drain();
+                    continue;
+                }
+                if (frame == null) {
+                    if (started[0] && running) {
+                        drop("truncated telegram: its bytes did not all arrive within " + FRAME_DEADLINE.toMillis() + " ms");
+                    }
+                    continue;
+                }
+                byte[] reply;
+                try {
+                    reply = handle(frame);
+                } catch (RuntimeException e) {
+                    drop("telegram " + hex(frame) + " could not be handled: " + e);
+                    continue;
+                }
+                served.incrementAndGet();
+                if (reply != null) {
+                    byte[] out = framing.encode(reply);
+                    link.write(out, 0, out.length);
+                }
+            } catch (LinkLostException e) {
+                if (!running) {
+                    return;
+                }
+                LOG.info("{} emulator for '{}': peer left ({}); waiting for the next", kind, robot.robot().name(), e.getMessage());
+            } catch (IOException e) {
+                if (!running) {
+                    return;
+                }
+                LOG.warn("{} emulator for '{}': {}", kind, robot.robot().name(), e.toString());
+            }
+        }
+    }
+
+    /**
+     * Reads exactly n bytes.
+     *
+     * @param deadline for the whole read, or {@code null} to wait as long as the emulator runs for
+     *                 the first byte (then the frame deadline applies)
+     * @return false if the deadline passed, or the emulator stopped, before n bytes came
+     */
+    private boolean readFully(byte[] buf, int off, int n, Duration deadline) throws IOException {
+        long end = deadline == null ? Long.MAX_VALUE : System.nanoTime() + deadline.toNanos();
+        int got = 0;
+        while (got < n && running) {
+            if (System.nanoTime() > end) {
+                return false;
+            }
+            int r = link.read(buf, off + got, n - got, POLL);
+            if (r > 0 && got == 0 && deadline == null) {
+                end = System.nanoTime() + FRAME_DEADLINE.toNanos();
+            }
+            got += Math.max(0, r);
+        }
+        return got == n;
+    }
+
+    private void drain() throws IOException {
+        byte[] junk = new byte[256];
+        while (running && link.read(junk, 0, junk.length, Duration.ofMillis(20)) > 0) {
+            // discard until the line is quiet, so the next frame starts clean
+        }
+    }
+
+    private void drop(String why) {
+        long n = dropped.incrementAndGet();
+        LOG.warn("{} emulator for '{}': dropped input ({} so far): {}", kind, robot.robot().name(), n, why);
+    }
+
+    /** @return telegrams answered */
+    public long framesServed() {
+        return served.get();
+    }
+
+    /** @return malformed or unhandled input dropped */
+    public long framesDropped() {
+        return dropped.get();
+    }
+
+    /** @return where it serves, for messages */
+    public String describe() {
+        Link l = link;
+        return l == null ? kind + " emulator (not serving)" : kind + " emulator on " + l.describe();
+    }
+
+    /**
+     * @param bytes bytes
+     * @return them in hex, for logs
+     */
+    protected static String hex(byte[] bytes) {
+        StringBuilder sb = new StringBuilder();
+        for (byte b : bytes) {
+            sb.append(String.format("%02X ", b & 0xFF));
+        }
+        return sb.toString().trim();
+    }
+
+    /**
+     * @param action run on the simulation thread at the first step after the emulator closed, once
+     *               its motors are stopped (unbinding it from its simulation)
+     */
+    public void onClose(Runnable action) {
+        closeActions.add(action);
+    }
+
+    /**
+     * Stops serving and closes the device or port; a driver on it sees the link drop. At the next
+     * world step its motors stop and it unbinds from the simulation.
+     */
+    @Override
+    public synchronized void close() {
+        closed = true;
+        running = false;
+        Link l = link;
+        if (l != null) {
+            l.close();
+        }
+        if (thread != null) {
+            try {
+                thread.join(2000);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        }
+    }
+}

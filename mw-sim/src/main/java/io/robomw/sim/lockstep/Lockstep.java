@@ -1,0 +1,181 @@
+package io.robomw.sim.lockstep;
+
+import io.robomw.api.RobotException;
+
+import java.util.List;
+import java.util.Map;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.locks.LockSupport;
+
+/**
+ * Keeps simulated time and programs in step, so a fast simulation is exactly repeatable: the
+ * world advances only while every registered program thread is blocked on a simulator future
+ * ({@link SimFuture}) that is not yet done, or has finished. A program that computes holds time
+ * still, however long it takes in wall-clock time; the same seed and the same program give the
+ * same trajectory, bit for bit.
+ *
+ * <p>Completions that wake programs are deferred to the end of each step ({@link #defer}), so a
+ * program never runs while a step is half done.
+ *
+ * <p>Thread-safe: program threads report blocking and waking; one driver thread (the one stepping
+ * the world) waits for all of them, and alone calls {@link #beginStep} and {@link #endStep}.
+ */
+public final class Lockstep {
+
+    private final Map<Thread, ProgramState> programs = new ConcurrentHashMap<>();
+    private final java.util.List<Runnable> deferred = new java.util.ArrayList<>();
+    private volatile Thread driver;
+    private volatile boolean stepping;
+
+    /** What the driver knows of one program thread. */
+    private static final class ProgramState {
+        private volatile CompletableFuture<?> blockedOn;
+        private volatile boolean finished;
+    }
+
+    /**
+     * @param <T> the value type
+     * @return a new incomplete future whose blocking waits are seen by this lockstep
+     */
+    public <T> SimFuture<T> newFuture() {
+        return new SimFuture<>(this);
+    }
+
+    /**
+     * Registers a program thread before it starts; until {@link #finished} it holds time still
+     * whenever it is not blocked on a simulator future.
+     *
+     * @param thread the program's thread
+     */
+    public void register(Thread thread) {
+        programs.put(thread, new ProgramState());
+    }
+
+    /**
+     * Marks the calling program thread finished (call in a {@code finally} at the end of its run).
+     */
+    public void finished() {
+        ProgramState s = programs.remove(Thread.currentThread());
+        if (s != null) {
+            s.finished = true;
+        }
+        wakeDriver();
+    }
+
+    /**
+     * Marks the start of a world step on the calling thread: until {@link #endStep()}, completions
+     * handed to {@link #defer} wait, so no program wakes in the middle of a step and what programs
+     * do always happens between steps.
+     */
+    public void beginStep() {
+        stepping = true;
+    }
+
+    /** Ends a step: runs the deferred completions, in the order they were deferred. */
+    public void endStep() {
+        stepping = false;
+        List<Runnable> now;
+        synchronized (deferred) {
+            now = List.copyOf(deferred);
+            deferred.clear();
+        }
+        for (Runnable r : now) {
+            r.run();
+        }
+    }
+
+    /**
+     * Runs a completion that may wake a program: at the end of the current step when a step is under
+     * way (whichever thread of the step calls it), at once otherwise.
+     *
+     * @param completion the completion
+     */
+    public void defer(Runnable completion) {
+        if (stepping) {
+            synchronized (deferred) {
+                deferred.add(completion);
+            }
+        } else {
+            completion.run();
+        }
+    }
+
+    /** @return whether any program is registered and not finished */
+    public boolean hasPrograms() {
+        return !programs.isEmpty();
+    }
+
+    /**
+     * @param thread the thread that steps the world (it is woken when a program blocks); {@code null} when none
+     */
+    public void driver(Thread thread) {
+        driver = thread;
+    }
+
+    void blocking(CompletableFuture<?> future) {
+        ProgramState s = programs.get(Thread.currentThread());
+        if (s == null) {
+            return;
+        }
+        s.blockedOn = future;
+        wakeDriver();
+    }
+
+    void woke() {
+        ProgramState s = programs.get(Thread.currentThread());
+        if (s != null) {
+            s.blockedOn = null;
+        }
+    }
+
+    /**
+     * @return whether the calling thread is a registered program, or the world is being stepped
+     *         by some driver, so that a blocking wait on a simulator future can end
+     */
+    boolean canWait() {
+        return programs.containsKey(Thread.currentThread()) || driver != null;
+    }
+
+    private void wakeDriver() {
+        Thread d = driver;
+        if (d != null) {
+            LockSupport.unpark(d);
+        }
+    }
+
+    /** @return whether every program is blocked on an incomplete simulator future, or finished */
+    public boolean allWaiting() {
+        for (ProgramState s : programs.values()) {
+            CompletableFuture<?> b = s.blockedOn;
+            if (!s.finished && (b == null || b.isDone())) {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    /**
+     * Waits (on the driver thread) until every program is waiting or finished.
+     *
+     * @param stallNanos wall-clock time after which a program that neither blocks nor finishes is
+     *                   reported as stuck
+     * @throws RobotException naming the stuck program threads
+     */
+    public void awaitAllWaiting(long stallNanos) {
+        long deadline = System.nanoTime() + stallNanos;
+        while (!allWaiting()) {
+            if (System.nanoTime() > deadline) {
+                StringBuilder stuck = new StringBuilder();
+                programs.forEach((t, s) -> {
+                    if (!s.finished && (s.blockedOn == null || s.blockedOn.isDone())) {
+                        stuck.append(' ').append(t.getName()).append(" (").append(t.getState()).append(')');
+                    }
+                });
+                throw new RobotException("simulation stalled: program threads" + stuck + " neither finished nor waited for the robot for "
+                        + stallNanos / 1_000_000_000 + " s; in a fast simulation programs must wait only on robot calls (no sleeps, no other locks)");
+            }
+            LockSupport.parkNanos(this, 50_000);
+        }
+    }
+}

@@ -1,0 +1,37 @@
+package io.robomw.sim.platform;
+
+import io.robomw.api.spi.PlatformConfig;
+import io.robomw.api.spi.PlatformProvider;
+import io.robomw.api.spi.RobotPlatform;
+import io.robomw.platform.BrickPlatform;
+import io.robomw.platform.LinkThreading;
+import io.robomw.sim.SimMotors;
+import io.robomw.sim.SimWorld;
+
+import java.io.IOException;
+
+/**
+ * {@code platform: sim}: a robot in a simulated world. The world comes from the platform
+ * services ({@link io.robomw.sim.Simulation} passes it); the robot is the world's robot of the
+ * same name.
+ */
+public final class SimPlatformProvider implements PlatformProvider {
+
+    @Override
+    public String platformName() {
+        return "sim";
+    }
+
+    @Override
+    public RobotPlatform open(PlatformConfig config) throws IOException {
+        SimWorld world = config.services().find(SimWorld.class).orElseThrow(() -> new IOException(
+                "robot '" + config.robotName() + "' is on platform 'sim' but no simulated world was given; open it through a simulation "
+                        + "(mw sim WORLD.yaml, or Simulation.load(world).robot(name))"));
+        SimMotors motors = SimMotors.of(world, config.robotName()).orElseThrow(() -> new IOException(
+                "robot '" + config.robotName() + "' is not in world '" + world.description().name() + "' (" + world.description().source() + ")"));
+        SimMotorPlatform motorPlatform = new SimMotorPlatform(config, motors);
+        BrickPlatform platform = new BrickPlatform(config, motorPlatform, new SimSensorPlatform(motorPlatform, motors), LinkThreading.INLINE, null);
+        world.attach(motors.robot(), platform.actionThread());
+        return new SimPlatform(platform, world.lockstep());
+    }
+}

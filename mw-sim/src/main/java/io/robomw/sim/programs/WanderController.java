@@ -1,0 +1,139 @@
+package io.robomw.sim.programs;
+
+import io.robomw.api.Robot;
+import io.robomw.api.UnsupportedActionException;
+import io.robomw.sim.SensorModel;
+import io.robomw.sim.SimRobot;
+import io.robomw.sim.Simulation;
+
+import java.util.List;
+import java.util.SplittableRandom;
+
+/**
+ * Wanders every robot of a simulation at once: a Braitenberg-style reactive controller, run on the
+ * stepping thread at a fixed rate (default 10 Hz), that reads each robot's range sensors and
+ * sets its velocities with the continuous {@link Robot#drive} command (through all three layers,
+ * refreshed at every tick, so the watchdog never fires while it runs). Robots without range
+ * sensors drive in gentle random curves. Deterministic: each robot has its own seeded random
+ * stream, and the robots are controlled in parallel on the world's worker threads.
+ *
+ * <p>Robots driven by brick emulators are left alone. It runs without program threads, so it
+ * scales to thousands of robots; use it with
+ * {@link Simulation#runFor} or a real-time run.
+ */
+public final class WanderController implements Runnable {
+
+    private final Simulation simulation;
+    private final List<SimRobot> bodies;
+    private final List<Robot> robots;
+    private final long everySteps;
+    private final double[] speed;
+    private final double[] turnBias;
+    private final SplittableRandom[] random;
+    /** Per robot, per range sensor: bit 1 ahead, bit 2 left, bit 4 right, from its mounting angle. */
+    private final int[][] sectors;
+
+    /**
+     * @param simulation the simulation whose robots wander
+     * @param rateHz     control rate, ticks per simulated second
+     * @param seed       seed of the random turns
+     */
+    public WanderController(Simulation simulation, double rateHz, long seed) {
+        this.simulation = simulation;
+        this.bodies = simulation.world().robots().stream().filter(b -> simulation.robots().stream().anyMatch(r -> r.name().equals(b.name()))).toList();
+        this.robots = bodies.stream().map(b -> simulation.robot(b.name())).toList();
+        this.everySteps = Math.max(1, Math.round(1 / (rateHz * simulation.world().stepSeconds())));
+        this.speed = new double[bodies.size()];
+        this.turnBias = new double[bodies.size()];
+        this.random = new SplittableRandom[bodies.size()];
+        this.sectors = new int[bodies.size()][];
+        SplittableRandom root = new SplittableRandom(seed);
+        for (int i = 0; i < bodies.size(); i++) {
+            random[i] = root.split();
+            speed[i] = bodies.get(i).description().drive().map(d -> d.maxSpeed() * 0.6).orElse(0.0);
+            turnBias[i] = random[i].nextDouble(-0.3, 0.3);
+            List<SensorModel> range = bodies.get(i).rangeSensors();
+            sectors[i] = new int[range.size()];
+            for (int k = 0; k < range.size(); k++) {
+                double a = Math.IEEEremainder(range.get(k).mountAngle(), 2 * Math.PI);
+                sectors[i][k] = (Math.abs(a) < 0.3 ? 1 : 0) | (a > 0 && a < 1.8 ? 2 : 0) | (a < 0 && a > -1.8 ? 4 : 0);
+            }
+        }
+    }
+
+    /**
+     * Installs it as a step listener.
+     *
+     * @param simulation the simulation
+     * @param rateHz     control rate
+     * @param seed       seed
+     * @return the controller
+     */
+    public static WanderController install(Simulation simulation, double rateHz, long seed) {
+        WanderController c = new WanderController(simulation, rateHz, seed);
+        simulation.addStepListener(c);
+        return c;
+    }
+
+    @Override
+    public void run() {
+        if (simulation.world().steps() % everySteps != 0) {
+            return;
+        }
+        simulation.world().parallel().forEach(bodies.size(), this::control);
+    }
+
+    /** One robot's tick; touches only that robot and its own random stream. */
+    private void control(int i) {
+        {
+            if (speed[i] == 0) {
+                return;
+            }
+            SimRobot body = bodies.get(i);
+            double left = Double.POSITIVE_INFINITY;
+            double right = Double.POSITIVE_INFINITY;
+            double ahead = Double.POSITIVE_INFINITY;
+            List<SensorModel> range = body.rangeSensors();
+            for (int k = 0; k < range.size(); k++) {
+                SensorModel s = range.get(k);
+                double d = s.latest() / s.maxRange();
+                int sector = sectors[i][k];
+                if ((sector & 1) != 0) {
+                    ahead = Math.min(ahead, d);
+                }
+                if ((sector & 2) != 0) {
+                    left = Math.min(left, d);
+                } else if ((sector & 4) != 0) {
+                    right = Math.min(right, d);
+                }
+            }
+            double v;
+            double w;
+            if (Double.isInfinite(ahead) && Double.isInfinite(left) && Double.isInfinite(right)) {
+                if (random[i].nextDouble() < 0.05) {
+                    turnBias[i] = random[i].nextDouble(-0.6, 0.6);
+                }
+                v = speed[i];
+                w = turnBias[i];
+            } else {
+                double near = Math.min(ahead, Math.min(left, right));
+                v = near < 0.25 ? 0 : speed[i] * Math.min(1, near);
+                double side = (Double.isInfinite(left) ? 1 : left) - (Double.isInfinite(right) ? 1 : right);
+                w = near < 0.25 ? (side >= 0 ? 1.5 : -1.5) : 2.0 * side + turnBias[i] * 0.3;
+            }
+            try {
+                robots.get(i).drive(v, clampTurn(body, v, w));
+            } catch (UnsupportedActionException e) {
+                speed[i] = 0;
+            }
+        }
+    }
+
+    /** Keeps both wheels within the robot's maximum speed. */
+    private static double clampTurn(SimRobot body, double v, double w) {
+        return body.description().drive().map(d -> {
+            double max = (d.maxSpeed() - Math.abs(v)) / (d.trackWidth() / 2);
+            return Math.max(-max, Math.min(max, w));
+        }).orElse(0.0);
+    }
+}

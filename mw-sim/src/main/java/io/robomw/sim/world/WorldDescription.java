@@ -1,0 +1,105 @@
+package io.robomw.sim.world;
+
+import io.robomw.api.Pose;
+
+import java.nio.file.Path;
+import java.util.List;
+
+/**
+ * A simulated world, as read from a world YAML file: a walled arena with obstacles and floor
+ * patches, and the robots in it. Coordinates in metres with the origin at the arena's lower-left
+ * corner; angles in radians, anti-clockwise from the x axis.
+ *
+ * @param name            the world's name
+ * @param width           arena width (x), metres
+ * @param height          arena height (y), metres
+ * @param walls           whether the arena is closed by walls
+ * @param wallThickness   thickness of those walls, metres
+ * @param floorBrightness brightness of the bare floor, 0 (black) to 1 (white)
+ * @param obstacles       static obstacles
+ * @param patches         floor patches seen by light and colour sensors
+ * @param robots          the robots and where they start
+ * @param seed            seed of every random number in the run (sensor noise)
+ * @param physicsHz       physics steps per simulated second
+ * @param source          the file, for messages
+ */
+public record WorldDescription(String name, double width, double height, boolean walls, double wallThickness,
+                               double floorBrightness, List<Obstacle> obstacles, List<FloorPatch> patches,
+                               List<RobotPlacement> robots, long seed, double physicsHz, String source) {
+
+    /** Copies the lists. */
+    public WorldDescription {
+        obstacles = List.copyOf(obstacles);
+        patches = List.copyOf(patches);
+        robots = List.copyOf(robots);
+    }
+
+    /** A static obstacle. */
+    public sealed interface Obstacle permits Box, Circle, Polygon {
+    }
+
+    /**
+     * A rectangle.
+     *
+     * @param x      centre x
+     * @param y      centre y
+     * @param width  along its own x axis
+     * @param height along its own y axis
+     * @param angle  rotation, radians
+     */
+    public record Box(double x, double y, double width, double height, double angle) implements Obstacle {
+    }
+
+    /**
+     * A disc.
+     *
+     * @param x      centre x
+     * @param y      centre y
+     * @param radius radius
+     */
+    public record Circle(double x, double y, double radius) implements Obstacle {
+    }
+
+    /**
+     * A convex polygon, vertices anti-clockwise.
+     *
+     * @param points vertices as {x, y} pairs, in world coordinates
+     */
+    public record Polygon(List<double[]> points) implements Obstacle {
+        /** Copies. */
+        public Polygon {
+            points = List.copyOf(points);
+        }
+    }
+
+    /**
+     * A rectangle of floor with its own brightness and colour.
+     *
+     * @param x          lower-left corner x
+     * @param y          lower-left corner y
+     * @param width      along x
+     * @param height     along y
+     * @param brightness 0 (black) to 1 (white)
+     * @param color      colour number reported by colour sensors
+     */
+    public record FloorPatch(double x, double y, double width, double height, double brightness, int color) {
+        /**
+         * @param px a point's x
+         * @param py a point's y
+         * @return whether the point is on this patch
+         */
+        public boolean contains(double px, double py) {
+            return px >= x && px <= x + width && py >= y && py <= y + height;
+        }
+    }
+
+    /**
+     * A robot in the world.
+     *
+     * @param description its robot YAML file
+     * @param name        its name in this world (defaults to the file's name; unique)
+     * @param start       where it starts
+     */
+    public record RobotPlacement(Path description, String name, Pose start) {
+    }
+}

@@ -1,0 +1,164 @@
+package io.robomw.sim.world;
+
+import io.robomw.api.Pose;
+import io.robomw.config.yaml.MappingReader;
+import io.robomw.config.yaml.YamlDocument;
+
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.HashSet;
+import java.util.List;
+import java.util.Optional;
+import java.util.Set;
+
+/**
+ * Reads and checks a world YAML file; every problem is reported at once with file, line and
+ * column, as for robot files. Keys (see {@code docs/simulation.md}):
+ *
+ * <pre>
+ * name: arena
+ * arena: { width: 4, height: 3, walls: true, wall_thickness: 0.1, floor: 0.8 }
+ * seed: 42
+ * physics_hz: 100
+ * obstacles:
+ *   - { box: { x: 2, y: 1.5, width: 0.4, height: 0.4, angle: 0 } }
+ *   - { circle: { x: 1, y: 2, radius: 0.2 } }
+ *   - { polygon: [[3, 0.5], [3.5, 0.5], [3.2, 1.0]] }
+ * floor:
+ *   - { x: 0.5, y: 0.5, width: 0.3, height: 0.3, brightness: 0.1, color: 1 }
+ * robots:
+ *   - { robot: ../robots/sim-two-wheeled.yaml, name: r1, x: 0.5, y: 1.5, heading: 0 }
+ * </pre>
+ *
+ * Robot paths are relative to the world file. Stateless.
+ */
+public final class WorldLoader {
+
+    /**
+     * @param file a world YAML file
+     * @return its description
+     * @throws io.robomw.config.description.DescriptionException listing every problem
+     */
+    public WorldDescription load(Path file) {
+        MappingReader root = YamlDocument.read(file);
+        String name = root.text("name").orElse(file.getFileName().toString().replaceFirst("\\.ya?ml$", ""));
+        double width = 0;
+        double height = 0;
+        boolean walls = true;
+        double thickness = 0.1;
+        double floor = 0.8;
+        Optional<MappingReader> arena = root.requireMapping("arena");
+        if (arena.isPresent()) {
+            MappingReader a = arena.get();
+            width = a.requireNumber("width", "> 0 metres", v -> v > 0 && v <= 100_000);
+            height = a.requireNumber("height", "> 0 metres", v -> v > 0 && v <= 100_000);
+            walls = a.bool("walls", true);
+            thickness = a.number("wall_thickness", 0.1, "> 0 metres", v -> v > 0);
+            floor = a.number("floor", 0.8, "between 0 and 1", v -> v >= 0 && v <= 1);
+            a.finish();
+        }
+        long seed = root.integer("seed", 1);
+        double physicsHz = root.number("physics_hz", 100, "between 1 and 10000", v -> v >= 1 && v <= 10_000);
+        List<WorldDescription.Obstacle> obstacles = new ArrayList<>();
+        for (MappingReader o : root.mappingList("obstacles")) {
+            obstacle(o).ifPresent(obstacles::add);
+        }
+        List<WorldDescription.FloorPatch> patches = new ArrayList<>();
+        for (MappingReader p : root.mappingList("floor")) {
+            patches.add(new WorldDescription.FloorPatch(
+                    p.requireNumber("x", "a number", Double::isFinite), p.requireNumber("y", "a number", Double::isFinite),
+                    p.requireNumber("width", "> 0", v -> v > 0), p.requireNumber("height", "> 0", v -> v > 0),
+                    p.number("brightness", 0.1, "between 0 and 1", v -> v >= 0 && v <= 1), p.integer("color", 0)));
+            p.finish();
+        }
+        List<WorldDescription.RobotPlacement> robots = new ArrayList<>();
+        Set<String> names = new HashSet<>();
+        Path dir = file.toAbsolutePath().getParent();
+        for (MappingReader r : root.mappingList("robots")) {
+            String robotFile = r.requireText("robot");
+            Path robotPath = dir.resolve(robotFile).normalize();
+            if (!robotFile.isEmpty() && !Files.isRegularFile(robotPath)) {
+                r.problem("robot", "no such robot file: " + robotPath);
+            }
+            String robotName = r.text("name").orElse(robotPath.getFileName().toString().replaceFirst("\\.ya?ml$", ""));
+            if (!names.add(robotName)) {
+                r.problem("name", "two robots are named '" + robotName + "'; give each a unique name");
+            }
+            double x = r.requireNumber("x", "a number of metres", Double::isFinite);
+            double y = r.requireNumber("y", "a number of metres", Double::isFinite);
+            double heading = r.number("heading", 0, "a number of radians", Double::isFinite);
+            if (Double.isFinite(width) && Double.isFinite(height) && (x < 0 || y < 0 || x > width || y > height)) {
+                r.problem("x", "the robot starts outside the " + width + " × " + height + " m arena, at (" + x + ", " + y + ")");
+            }
+            r.finish();
+            if (Double.isFinite(x) && Double.isFinite(y)) {
+                robots.add(new WorldDescription.RobotPlacement(robotPath, robotName, new Pose(x, y, heading)));
+            }
+        }
+        root.finish();
+        root.problems().throwIfAny();
+        return new WorldDescription(name, width, height, walls, thickness, floor, obstacles, patches, robots, seed, physicsHz, file.toString());
+    }
+
+    private Optional<WorldDescription.Obstacle> obstacle(MappingReader o) {
+        Optional<WorldDescription.Obstacle> result = Optional.empty();
+        int kinds = 0;
+        if (o.has("box")) {
+            kinds++;
+            result = o.mapping("box").map(b -> {
+                WorldDescription.Box box = new WorldDescription.Box(b.requireNumber("x", "a number", Double::isFinite),
+                        b.requireNumber("y", "a number", Double::isFinite), b.requireNumber("width", "> 0", v -> v > 0),
+                        b.requireNumber("height", "> 0", v -> v > 0), b.number("angle", 0, "a number of radians", Double::isFinite));
+                b.finish();
+                return box;
+            });
+        }
+        if (o.has("circle")) {
+            kinds++;
+            result = o.mapping("circle").map(c -> {
+                WorldDescription.Circle circle = new WorldDescription.Circle(c.requireNumber("x", "a number", Double::isFinite),
+                        c.requireNumber("y", "a number", Double::isFinite), c.requireNumber("radius", "> 0", v -> v > 0));
+                c.finish();
+                return circle;
+            });
+        }
+        if (o.has("polygon")) {
+            kinds++;
+            List<double[]> points = new ArrayList<>();
+            for (MappingReader.NumberRow row : o.numberRows("polygon")) {
+                if (row.values().length != 2) {
+                    o.problems().add(row.mark(), "'" + o.path() + ".polygon' points must be [x, y] pairs");
+                } else {
+                    points.add(row.values());
+                }
+            }
+            if (points.size() < 3) {
+                o.problem("polygon", "needs at least 3 points, got " + points.size());
+            } else if (!convexCounterClockwise(points)) {
+                o.problem("polygon", "must be convex with its points anti-clockwise");
+            } else {
+                result = Optional.of(new WorldDescription.Polygon(points));
+            }
+        }
+        if (kinds != 1) {
+            o.problems().add(o.mark(), "'" + o.path() + "' must be exactly one of box, circle, polygon");
+        }
+        o.finish();
+        return kinds == 1 ? result : Optional.empty();
+    }
+
+    private static boolean convexCounterClockwise(List<double[]> p) {
+        int n = p.size();
+        for (int i = 0; i < n; i++) {
+            double[] a = p.get(i);
+            double[] b = p.get((i + 1) % n);
+            double[] c = p.get((i + 2) % n);
+            double cross = (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]);
+            if (cross <= 0) {
+                return false;
+            }
+        }
+        return true;
+    }
+}

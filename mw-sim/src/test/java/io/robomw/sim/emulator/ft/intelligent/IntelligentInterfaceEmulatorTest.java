@@ -1,0 +1,181 @@
+package io.robomw.sim.emulator.ft.intelligent;
+
+import io.robomw.api.Pose;
+import io.robomw.api.Position;
+import io.robomw.api.ReturnType;
+import io.robomw.api.Robot;
+import io.robomw.api.Robots;
+import io.robomw.api.SensorType;
+import io.robomw.platform.ft.intelligent.IntelligentInterfaceTelegram;
+import io.robomw.platform.link.SerialLink;
+import io.robomw.platform.link.SerialSettings;
+import io.robomw.sim.Simulation;
+import org.junit.jupiter.api.AfterEach;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import java.io.IOException;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.Set;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.locks.LockSupport;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+import static org.junit.jupiter.api.Assertions.fail;
+
+/**
+ * The real Intelligent Interface driver over a real pseudo-terminal through jSerialComm, against
+ * the emulator bound to a simulated robot. The impulse wheel gives 16 transitions per motor turn:
+ * 22.5° of motor, 11.0 mm of travel on 56 mm wheels, per tick; that is the resolution of every
+ * distance below.
+ */
+class IntelligentInterfaceEmulatorTest {
+
+    static final String ROBOT = """
+            name: ft-1
+            platform: ft-intelligent
+            connection: { port: %s }
+            drive:
+              wheel_diameter: 0.056
+              track_width: 0.112
+              max_speed: 0.30
+              encoder_ticks_per_revolution: 16
+              left:  { port: M1, counter: E1 }
+              right: { port: M2, counter: E2 }
+            body: { length: 0.20, width: 0.15, mass: 0.6, friction: 0.8 }
+            sensors:
+              - { name: bumper, type: touch, position: front, port: E3 }
+              - name: range
+                type: infrared
+                position: front
+                port: EX
+                conversion: { table: [[80, 0.80], [150, 0.40], [300, 0.20], [600, 0.10], [900, 0.06]] }
+            """;
+
+    @TempDir
+    Path dir;
+
+    private Simulation sim;
+    private IntelligentInterfaceEmulator emulator;
+    private Robot robot;
+
+    @AfterEach
+    void close() {
+        if (robot != null) {
+            robot.close();
+        }
+        if (emulator != null) {
+            emulator.close();
+        }
+        if (sim != null) {
+            sim.close();
+        }
+    }
+
+    private String startWorld(double x, double speed) throws IOException {
+        Files.writeString(dir.resolve("body.yaml"), ROBOT.formatted("/dev/unused"));
+        Files.writeString(dir.resolve("world.yaml"), """
+                name: ft-test
+                arena: { width: 3, height: 3 }
+                robots:
+                  - { robot: body.yaml, name: ft-1, x: %s, y: 1.5, heading: 0 }
+                """.formatted(x));
+        sim = Simulation.load(dir.resolve("world.yaml"), Set.of("ft-1"));
+        emulator = IntelligentInterfaceEmulator.bind(sim, "ft-1");
+        String pty = emulator.startOnPseudoTerminal();
+        sim.startRealTime(speed);
+        return pty;
+    }
+
+    private void start(double x, double speed) throws IOException {
+        String pty = startWorld(x, speed);
+        Files.writeString(dir.resolve("driver.yaml"), ROBOT.formatted(pty));
+        robot = Robots.open(dir.resolve("driver.yaml"));
+    }
+
+    private Pose truePose() {
+        return sim.world().robot("ft-1").pose();
+    }
+
+    @Test
+    void shouldMoveHalfAMetreWithinTwoCentimetresByCountingImpulses() throws Exception {
+        start(0.5, 2);
+        robot.move(0.5, 0.15);
+        assertEquals(1.0, truePose().x(), 0.02);
+        assertEquals(0, emulator.watchdogTrips());
+    }
+
+    @Test
+    void shouldTurnQuarterWithinFiveDegrees() throws Exception {
+        start(1.5, 2);
+        robot.turn(Math.PI / 2, 1.0);
+        assertEquals(90, Math.toDegrees(truePose().heading()), 5.0);
+    }
+
+    @Test
+    void shouldReadBumperOnDigitalInputPressedAgainstWall() throws Exception {
+        start(2.5, 2);
+        assertEquals(0.0, robot.getValue(Position.FRONT, SensorType.TOUCH, ReturnType.BOOLEAN));
+        CompletableFuture<Void> move = robot.moveAsync(0.5, 0.1);
+        long deadline = System.nanoTime() + Duration.ofSeconds(20).toNanos();
+        while (robot.getValue(Position.FRONT, SensorType.TOUCH, ReturnType.BOOLEAN) == 0.0) {
+            if (System.nanoTime() > deadline) {
+                fail("the bumper never read pressed; robot at " + truePose());
+            }
+            LockSupport.parkNanos(5_000_000);
+        }
+        robot.stop();
+        assertTrue(move.isDone() || move.handle((v, e) -> e).get(5, TimeUnit.SECONDS) != null);
+        assertTrue(truePose().x() + 0.10 <= 3.005, "at the wall, not through it: " + truePose());
+    }
+
+    @Test
+    void shouldReadInfraRedDistanceThroughAnalogInputAndItsTable() throws Exception {
+        start(2.5, 2);
+        double expected = 3.0 - (2.5 + 0.10);
+        assertEquals(expected, robot.getValue(Position.FRONT, SensorType.INFRARED, ReturnType.METERS), 0.01);
+    }
+
+    @Test
+    void shouldKeepInterfaceAliveWhileApplicationThreadIsBlockedForTwoSeconds() throws Exception {
+        start(0.5, 1);
+        long t0 = System.nanoTime();
+        robot.move(0.30, 0.15);
+        long blockedNanos = System.nanoTime() - t0;
+        assertTrue(blockedNanos >= Duration.ofSeconds(2).toNanos(), "the application thread was blocked in move() for 2 s, was "
+                + blockedNanos / 1_000_000 + " ms");
+        assertEquals(0, emulator.watchdogTrips(), "the platform refreshed the interface all along");
+        assertEquals(0.8, truePose().x(), 0.02);
+    }
+
+    @Test
+    void shouldStopMotorsWhenDriverStopsRefreshing() throws Exception {
+        String pty = startWorld(0.5, 1);
+        try (SerialLink link = new SerialLink(pty, SerialSettings.of(9600, 8, SerialSettings.Parity.NONE, 1))) {
+            link.open();
+            int bothForward = IntelligentInterfaceTelegram.withMotor(IntelligentInterfaceTelegram.withMotor(0, 0, IntelligentInterfaceTelegram.CW),
+                    1, IntelligentInterfaceTelegram.CW);
+            byte[] request = IntelligentInterfaceTelegram.request(IntelligentInterfaceTelegram.DIGITAL, bothForward);
+            link.write(request, 0, request.length);
+            byte[] reply = new byte[1];
+            assertEquals(1, link.read(reply, 0, 1, Duration.ofSeconds(2)));
+            long sent = System.nanoTime();
+            long deadline = sent + Duration.ofSeconds(2).toNanos();
+            while (!emulator.motorsOn()) {
+                assertTrue(System.nanoTime() < deadline, "the motors should have started");
+                LockSupport.parkNanos(1_000_000);
+            }
+            while (emulator.motorsOn()) {
+                assertTrue(System.nanoTime() < deadline, "the interface should stop its motors about 300 ms after the last command");
+                LockSupport.parkNanos(1_000_000);
+            }
+            long off = System.nanoTime() - sent;
+            assertTrue(off >= Duration.ofMillis(290).toNanos(), "not before 300 ms: " + off / 1_000_000 + " ms");
+            assertEquals(1, emulator.watchdogTrips());
+        }
+    }
+}
