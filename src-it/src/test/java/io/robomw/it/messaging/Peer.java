@@ -138,6 +138,14 @@ public final class Peer {
                 closeables.add(robot);
                 out.println("SERVING " + robot.name());
             }
+            case "sim" -> {
+                io.robomw.sim.Simulation sim = io.robomw.sim.Simulation.load(Path.of(c[1]));
+                closeables.add(sim);
+                sim.startRealTime(Double.parseDouble(c[3]));
+                Robot robot = sim.robot(c[2]);
+                closeables.add(0, RobotServer.serve(node, robot, null));
+                out.println("SERVING " + robot.name());
+            }
             default -> out.println("ERR unknown command " + c[0]);
         }
     }
