@@ -10,7 +10,7 @@ import java.util.Map;
  * Detects lost and reordered frames on datagram transports from the stream sequence numbers each
  * link writes (1, 2, 3, ... per sending link). A jump counts the missing numbers as lost; a number
  * below the next expected counts as reordered (it is still delivered). Streams are remembered for
- * the {@value #MAX_STREAMS} most recently active peers.
+ * the {@value #MAX_STREAMS} most recently active peers. Losses are logged at most once a second.
  *
  * <p>Stream sequence numbers are not covered by the MAC: the counts are diagnostics, and a forger
  * can distort them. Thread-safe.
@@ -24,6 +24,7 @@ final class LossDetector {
     }
 
     private final NodeCounters counters;
+    private final java.util.concurrent.atomic.AtomicLong lastLog = new java.util.concurrent.atomic.AtomicLong(System.nanoTime() - 2_000_000_000L);
     private final Map<StreamKey, long[]> next = new LinkedHashMap<>(64, 0.75f, true) {
         private static final long serialVersionUID = 1L;
 
@@ -55,7 +56,12 @@ final class LossDetector {
         }
         if (missing > 0) {
             counters.lost(missing);
-            LOG.debug("{} frames lost from {} (source {}) before stream sequence {}", missing, peer, Long.toHexString(source), sequence);
+            long now = System.nanoTime();
+            long last = lastLog.get();
+            if (now - last > 1_000_000_000L && lastLog.compareAndSet(last, now)) {
+                LOG.info("{} frames lost from {} (source {}) before stream sequence {}; {} lost in all (UDP and multicast do not resend)",
+                        missing, peer, Long.toHexString(source), sequence, counters.snapshot().framesLost());
+            }
         }
     }
 }

@@ -31,7 +31,10 @@ final class RmiLink implements Link {
     private final AtomicBoolean closed = new AtomicBoolean();
     private volatile Thread poller;
 
-    RmiLink(Address address, FrameEndpoint remote, long session, TransportContext context) {
+    private final java.util.function.Consumer<RmiLink> onClosed;
+
+    RmiLink(Address address, FrameEndpoint remote, long session, TransportContext context, java.util.function.Consumer<RmiLink> onClosed) {
+        this.onClosed = onClosed;
         this.address = address;
         this.remote = remote;
         this.session = session;
@@ -105,6 +108,7 @@ final class RmiLink implements Link {
             } catch (RemoteException e) {
                 LOG.debug("closing session at {}: {}", address, e.toString());
             }
+            onClosed.accept(this);
             context.closed(this);
         }
     }

@@ -92,7 +92,7 @@ final class RmiTransport implements Transport {
         } catch (RemoteException | ClassCastException e) {
             throw new IOException("cannot reach " + address + ": " + e.getMessage(), e);
         }
-        RmiLink link = new RmiLink(address, remote, session, context);
+        RmiLink link = new RmiLink(address, remote, session, context, open::remove);
         open.add(link);
         link.start();
         return link;
@@ -100,7 +100,7 @@ final class RmiTransport implements Transport {
 
     @Override
     public void close() {
-        for (AutoCloseable c : open) {
+        for (AutoCloseable c : List.copyOf(open)) {
             try {
                 c.close();
             } catch (Exception e) {
