@@ -18,7 +18,7 @@ import java.util.concurrent.locks.LockSupport;
  * bound (subscribers connect to it: {@code mw msg sub ADDRESS TOPIC}); a multicast ADDRESS is
  * joined. Repeats at {@code --rate} until {@code --count} publications (0: until interrupted).
  */
-@Command(name = "pub", description = "Publish text on a topic (binds tcp/udp/rmi addresses, joins multicast groups).")
+@Command(name = "pub", mixinStandardHelpOptions = true, description = "Publish text on a topic (binds tcp/udp/rmi addresses, joins multicast groups).")
 final class MsgPubCommand implements Callable<Integer> {
 
     @Mixin

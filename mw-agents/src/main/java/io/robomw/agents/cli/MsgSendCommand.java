@@ -18,7 +18,7 @@ import java.util.concurrent.Callable;
  * {@code mw msg send ADDRESS NAME TOPIC TEXT}: sends one message to NAME at ADDRESS and prints the
  * reply (exit 1 when none comes within {@code --timeout}).
  */
-@Command(name = "send", description = "Send one message to a receiver and print its reply.")
+@Command(name = "send", mixinStandardHelpOptions = true, description = "Send one message to a receiver and print its reply.")
 final class MsgSendCommand implements Callable<Integer> {
 
     @Mixin

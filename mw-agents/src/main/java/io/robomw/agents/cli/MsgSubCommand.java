@@ -18,7 +18,7 @@ import java.util.concurrent.TimeUnit;
  * publisher (or, with {@code --bind}, listens there: then it also receives {@code mw msg send});
  * joins a multicast group. {@code --echo} answers each {@code send} with its own payload.
  */
-@Command(name = "sub", description = "Print the messages of a topic (connects to a publisher, or --bind; joins multicast groups).")
+@Command(name = "sub", mixinStandardHelpOptions = true, description = "Print the messages of a topic (connects to a publisher, or --bind; joins multicast groups).")
 final class MsgSubCommand implements Callable<Integer> {
 
     @Mixin
