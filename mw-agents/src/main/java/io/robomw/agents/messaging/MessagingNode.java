@@ -106,6 +106,8 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     private final Map<String, TransportProvider> providers = new ConcurrentHashMap<>();
     private final Map<String, Transport> transports = new ConcurrentHashMap<>();
     private final Map<String, Link> links = new ConcurrentHashMap<>();
+    /** One lock per address, so a slow connect to one host does not hold up links to others. */
+    private final Map<String, Object> linkLocks = new ConcurrentHashMap<>();
     private final List<Endpoint> endpoints = new CopyOnWriteArrayList<>();
     private final Set<Channel> connections = ConcurrentHashMap.newKeySet();
     private final List<Address> peers = new CopyOnWriteArrayList<>();
@@ -498,6 +500,10 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     }
 
     private void transmit(Outgoing out) {
+        if (out.frame.length > out.link.maxFrameBytes()) {
+            throw new MessagingException("node '" + name + "': a frame of " + out.frame.length + " bytes does not fit the link to "
+                    + out.link.address() + " (limit " + out.link.maxFrameBytes() + " bytes, one datagram); send less, or use tcp:// or rmi://");
+        }
         sentRequests.put(out.correlationId, out.sent);
         try {
             out.link.send(out.frame);
@@ -594,7 +600,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         if (existing != null && existing.isOpen()) {
             return existing;
         }
-        synchronized (links) {
+        synchronized (linkLocks.computeIfAbsent(key, k -> new Object())) {
             existing = links.get(key);
             if (existing != null && existing.isOpen()) {
                 return existing;

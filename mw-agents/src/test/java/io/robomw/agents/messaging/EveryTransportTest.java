@@ -87,6 +87,19 @@ class EveryTransportTest {
     }
 
     @org.junit.jupiter.api.Test
+    void frameLargerThanADatagramIsRefusedAndTheLinkStaysUsable() {
+        MessagingNode server = node(MessagingNode.builder("server").bind("udp://127.0.0.1:0"));
+        server.addMessageListener("echo", null, m -> server.replyMessage(m, m.payload(), "ok"));
+        MessagingNode client = node(MessagingNode.builder("client"));
+        String host = server.address("udp");
+        io.robomw.api.MessagingException e = org.junit.jupiter.api.Assertions.assertThrows(io.robomw.api.MessagingException.class,
+                () -> client.sendMessage("server", host, null, "echo", new byte[70_000], "big"));
+        org.junit.jupiter.api.Assertions.assertTrue(e.getMessage().contains("one datagram"), e.getMessage());
+        UUID id = client.sendMessage("server", host, null, "echo", "small", "ok");
+        assertEquals("small", client.waitForReply(id, WAIT).payload());
+    }
+
+    @org.junit.jupiter.api.Test
     void everyMulticastMemberReceivesThePublications() {
         String group = "multicast://239.255.77." + (1 + new java.util.Random().nextInt(250)) + ":" + FreePorts.udp();
         MessagingNode pub = node(MessagingNode.builder("pub").bind(group));

@@ -20,6 +20,11 @@ public interface Channel {
      */
     void send(byte[] frame) throws IOException;
 
+    /** @return the largest frame this channel can carry (one datagram for UDP and multicast) */
+    default int maxFrameBytes() {
+        return Integer.MAX_VALUE;
+    }
+
     /** @return whether frames can still be sent */
     boolean isOpen();
 

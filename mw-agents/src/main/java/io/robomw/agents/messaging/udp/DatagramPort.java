@@ -66,6 +66,11 @@ public final class DatagramPort implements AutoCloseable {
         return (InetSocketAddress) channel.getLocalAddress();
     }
 
+    /** @return the largest frame it sends or accepts */
+    public int maxFrameBytes() {
+        return maxFrame;
+    }
+
     /** @return how logs name it */
     public String label() {
         return label;

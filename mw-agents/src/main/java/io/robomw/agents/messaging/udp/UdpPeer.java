@@ -62,6 +62,11 @@ public final class UdpPeer implements Link {
     }
 
     @Override
+    public int maxFrameBytes() {
+        return port.maxFrameBytes();
+    }
+
+    @Override
     public boolean isOpen() {
         return true;
     }
