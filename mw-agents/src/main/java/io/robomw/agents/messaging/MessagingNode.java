@@ -367,7 +367,19 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         topics.checkIfRegistered(topic, key);
         long n = messageNumbers.incrementAndGet();
         byte[] frame = encode(FrameKind.PUBLISH, n, new UUID(id, n), "", topic, object, function, key);
-        for (Channel c : remoteSubscribers.of(topic)) {
+        List<Channel> subscribers = remoteSubscribers.of(topic);
+        int limit = settings.maxFrameSize();
+        for (Channel c : subscribers) {
+            limit = Math.min(limit, c.maxFrameBytes());
+        }
+        if (!endpoints.isEmpty() && endpoints.stream().anyMatch(e -> e.address().scheme().equals("multicast"))) {
+            limit = Math.min(limit, MessagingSettings.MAX_DATAGRAM);
+        }
+        if (frame.length > limit) {
+            throw new MessagingException("node '" + name + "': a publication of " + frame.length + " bytes on '" + topic
+                    + "' does not fit one datagram (limit " + limit + " bytes) for a UDP or multicast subscriber; nothing was sent");
+        }
+        for (Channel c : subscribers) {
             try {
                 c.send(frame);
                 counters.out();
