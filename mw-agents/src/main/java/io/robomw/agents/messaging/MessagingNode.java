@@ -1,7 +1,6 @@
 package io.robomw.agents.messaging;
 
 import io.robomw.agents.messaging.frame.Frame;
-import io.robomw.agents.messaging.frame.FrameCodec;
 import io.robomw.agents.messaging.frame.FrameKind;
 import io.robomw.agents.messaging.security.FrameMac;
 import io.robomw.agents.messaging.security.PayloadCodec;
@@ -24,7 +23,6 @@ import java.io.IOException;
 import java.io.Serializable;
 import java.security.SecureRandom;
 import java.time.Duration;
-import java.time.Instant;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Map;
@@ -42,8 +40,6 @@ import java.util.concurrent.ThreadFactory;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.TimeoutException;
 import java.util.concurrent.atomic.AtomicInteger;
-import java.util.concurrent.atomic.AtomicLong;
-import java.util.function.Predicate;
 
 /**
  * A messaging node: the paper's communication component for one robot, agent host or program.
@@ -91,12 +87,10 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     private final long id;
     private final MessagingSettings settings;
     private final Set<String> names = ConcurrentHashMap.newKeySet();
-    private final AtomicLong messageNumbers = new AtomicLong();
     private final AtomicInteger threadNumbers = new AtomicInteger();
     private final NodeCounters counters;
     private final TopicKeys keys = new TopicKeys();
-    private final FrameMac mac = new FrameMac();
-    private final PayloadCodec payloads;
+    private final FrameFactory frames;
     private final LocalTopics topics;
     private final RemoteSubscribers remoteSubscribers = new RemoteSubscribers();
     private final Replies replies = new Replies();
@@ -105,16 +99,12 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     private final Inbound inbound;
     private final Map<String, TransportProvider> providers = new ConcurrentHashMap<>();
     private final Map<String, Transport> transports = new ConcurrentHashMap<>();
-    private final Map<String, Link> links = new ConcurrentHashMap<>();
-    /** One lock per address, so a slow connect to one host does not hold up links to others. */
-    private final Map<String, Object> linkLocks = new ConcurrentHashMap<>();
+    private final Links links;
     private final List<Endpoint> endpoints = new CopyOnWriteArrayList<>();
     private final Set<Channel> connections = ConcurrentHashMap.newKeySet();
     private final List<Address> peers = new CopyOnWriteArrayList<>();
     private final ScheduledExecutorService housekeeping;
     private final Context context = new Context();
-    private final Map<String, Address> parsedHosts = new ConcurrentHashMap<>();
-    private final Map<Address, String> hostKeys = new ConcurrentHashMap<>();
     private volatile boolean closed;
 
     private MessagingNode(String name, MessagingSettings settings, ClassLoader classLoader) {
@@ -123,9 +113,12 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         this.id = new SecureRandom().nextLong();
         this.names.add(name);
         this.counters = new NodeCounters(name);
-        this.payloads = new PayloadCodec(settings.allowList(), classLoader);
+        PayloadCodec payloads = new PayloadCodec(settings.allowList(), classLoader);
+        FrameMac mac = new FrameMac();
+        this.frames = new FrameFactory(name, id, payloads, mac, settings.maxFrameSize());
         this.topics = new LocalTopics(name);
         this.inbound = new Inbound(this, counters, mac, payloads, settings);
+        this.links = new Links(name, this::transport, this::linkOpened);
         for (TransportProvider p : ServiceLoader.load(TransportProvider.class, MessagingNode.class.getClassLoader())) {
             providers.putIfAbsent(p.scheme(), p);
         }
@@ -234,7 +227,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         transport(a.scheme());
         peers.add(a);
         try {
-            link(a);
+            links.link(a);
         } catch (MessagingException e) {
             LOG.warn("node '{}': {}; retrying every {}", name, e.getMessage(), settings.subscriptionRefresh());
         }
@@ -330,7 +323,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
 
     @Override
     public Message waitForReply(String topic, String host, Duration timeout) {
-        String h = parsed(host).toString();
+        String h = links.key(links.parse(host));
         refuseWaitOnDeliveryThread(h);
         return await(replies.await(h, r -> r.host().equals(h) && r.message().topic().equals(topic)), timeout,
                 () -> "no reply on topic '" + topic + "' from " + h + " within " + timeout
@@ -357,7 +350,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
                     + "': no such request was received here by sendMessage (publications cannot be answered), or it is one of more than "
                     + REMEMBERED_REQUESTS + " since");
         }
-        byte[] frame = encode(FrameKind.REPLY, request.correlationId(), request.sender(), request.topic(), object, function, origin.key());
+        byte[] frame = frames.answer(FrameKind.REPLY, request.correlationId(), request.sender(), request.topic(), object, function, origin.key());
         send(origin.channel(), frame);
     }
 
@@ -365,8 +358,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     public void publishMessage(String topic, Serializable object, String function, String password) {
         SecretKey key = keys.key(requireTopic(topic), password);
         topics.checkIfRegistered(topic, key);
-        long n = messageNumbers.incrementAndGet();
-        byte[] frame = encode(FrameKind.PUBLISH, n, new UUID(id, n), "", topic, object, function, key);
+        byte[] frame = frames.message(FrameKind.PUBLISH, "", topic, object, function, key).bytes();
         List<Channel> subscribers = remoteSubscribers.of(topic);
         int limit = settings.maxFrameSize();
         for (Channel c : subscribers) {
@@ -404,7 +396,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     public void subscribeMessage(String topic, String password) {
         LocalTopics.Topic t = topics.register(requireTopic(topic), keys.key(topic, password));
         t.subscribed = true;
-        byte[] frame = control(FrameKind.SUBSCRIBE, topic);
+        byte[] frame = frames.control(FrameKind.SUBSCRIBE, topic);
         for (Channel c : subscriptionTargets()) {
             trySend(c, frame);
         }
@@ -439,7 +431,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
                 LOG.warn("node '{}': closing a transport: {}", name, e.toString());
             }
         });
-        links.clear();
+        links.close();
         endpoints.clear();
         connections.clear();
     }
@@ -484,13 +476,11 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     }
 
     void sendError(Frame request, Channel to, String why) {
-        byte[] frame = encode(FrameKind.ERROR, request.correlationId(), request.sender(), request.topic(), why, "error", null);
-        trySend(to, frame);
+        trySend(to, frames.answer(FrameKind.ERROR, request.correlationId(), request.sender(), request.topic(), why, "error", null));
     }
 
     static long nowMicros() {
-        Instant now = Instant.now();
-        return now.getEpochSecond() * 1_000_000L + now.getNano() / 1000;
+        return FrameFactory.nowMicros();
     }
 
     // ---- internals ----
@@ -503,12 +493,10 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         Objects.requireNonNull(host, "host");
         SecretKey key = keys.key(requireTopic(topic), pass);
         topics.checkIfRegistered(topic, key);
-        Address address = parsed(host);
-        Link link = link(address);
-        long n = messageNumbers.incrementAndGet();
-        UUID correlationId = new UUID(id, n);
-        byte[] frame = encode(kind, n, correlationId, receiver, topic, object, function, key);
-        return new Outgoing(link, correlationId, frame, new Sent(hostKey(address), key));
+        Address address = links.parse(host);
+        Link link = links.link(address);
+        FrameFactory.Made made = frames.message(kind, receiver, topic, object, function, key);
+        return new Outgoing(link, frames.correlationId(made.number()), made.bytes(), new Sent(links.key(address), key));
     }
 
     private void transmit(Outgoing out) {
@@ -521,7 +509,8 @@ public final class MessagingNode implements Messaging, AutoCloseable {
             out.link.send(out.frame);
             counters.out();
         } catch (IOException e) {
-            dropLink(out.link, e.getMessage());
+            links.drop(out.link);
+            replies.linkClosed(out.sent.host(), e.getMessage());
             throw new MessagingException("node '" + name + "' cannot send to " + out.link.address() + ": " + e.getMessage(), e);
         }
     }
@@ -546,94 +535,17 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         }
     }
 
-    private byte[] encode(FrameKind kind, UUID correlationId, String receiver, String topic, Serializable object, String function, SecretKey key) {
-        return encode(kind, messageNumbers.incrementAndGet(), correlationId, receiver, topic, object, function, key);
-    }
-
-    private byte[] encode(FrameKind kind, long number, UUID correlationId, String receiver, String topic, Serializable object,
-                          String function, SecretKey key) {
-        PayloadCodec.Encoded payload;
-        try {
-            payload = payloads.encode(object);
-        } catch (IllegalArgumentException e) {
-            throw new MessagingException("node '" + name + "' cannot send on topic '" + topic + "': " + e.getMessage(), e);
-        }
-        Frame f = new Frame(kind, 0, id, number, correlationId, nowMicros(), name, receiver, topic,
-                function == null ? "" : function, payload.type(), payload.bytes(), key != null);
-        byte[] bytes = FrameCodec.encode(f, key != null);
-        if (bytes.length > settings.maxFrameSize()) {
-            throw new MessagingException("node '" + name + "': a frame on topic '" + topic + "' would be " + bytes.length
-                    + " bytes, above the maximum frame size of " + settings.maxFrameSize() + "; send less, or raise maxFrameSize on both sides");
-        }
-        if (key != null) {
-            mac.sign(key, bytes);
-        }
-        return bytes;
-    }
-
-    private byte[] control(FrameKind kind, String topic) {
-        long n = messageNumbers.incrementAndGet();
-        return encode(kind, n, new UUID(id, n), "", topic, null, "", null);
-    }
-
     private List<Channel> subscriptionTargets() {
         List<Channel> targets = new ArrayList<>(connections);
-        for (Link l : links.values()) {
-            if (!l.isConnection() && !l.address().scheme().equals("multicast")) {
-                targets.add(l);
-            }
-        }
+        targets.addAll(links.datagramPeers());
         return targets;
     }
 
-    /** Parses host addresses once: senders name the same few hosts over and over. */
-    private Address parsed(String host) {
-        Address a = parsedHosts.get(host);
-        if (a == null) {
-            a = Address.parse(host);
-            if (parsedHosts.size() > 1024) {
-                parsedHosts.clear();
-            }
-            parsedHosts.put(host, a);
+    /** A new datagram link gets the subscriptions at once (connections get them when they open). */
+    private void linkOpened(Link link) {
+        if (!link.isConnection() && !link.address().scheme().equals("multicast")) {
+            topics.subscribed().forEach(topic -> trySend(link, frames.control(FrameKind.SUBSCRIBE, topic)));
         }
-        return a;
-    }
-
-    private String hostKey(Address address) {
-        return hostKeys.computeIfAbsent(address, Address::toString);
-    }
-
-    private Link link(Address address) {
-        if (closed) {
-            throw new MessagingException("node '" + name + "' is closed");
-        }
-        String key = hostKey(address);
-        Link existing = links.get(key);
-        if (existing != null && existing.isOpen()) {
-            return existing;
-        }
-        synchronized (linkLocks.computeIfAbsent(key, k -> new Object())) {
-            existing = links.get(key);
-            if (existing != null && existing.isOpen()) {
-                return existing;
-            }
-            try {
-                Link l = transport(address.scheme()).connect(address);
-                links.put(key, l);
-                if (!l.isConnection() && !address.scheme().equals("multicast")) {
-                    topics.subscribed().forEach(topic -> trySend(l, control(FrameKind.SUBSCRIBE, topic)));
-                }
-                return l;
-            } catch (IOException e) {
-                throw new MessagingException("node '" + name + "' cannot reach " + address + ": " + e.getMessage(), e);
-            }
-        }
-    }
-
-    private void dropLink(Link link, String why) {
-        links.remove(link.address().toString(), link);
-        link.close();
-        replies.linkClosed(link.address().toString(), why);
     }
 
     private Transport transport(String scheme) {
@@ -648,7 +560,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     }
 
     private void refuseWaitOnDeliveryThread(String host) {
-        Link l = links.get(host);
+        Link l = links.find(host);
         if (l != null && l.deliversOn(Thread.currentThread())) {
             throw new IllegalStateException("node '" + name + "': waitForReply from " + host + " was called on the thread that delivers "
                     + host + "'s messages (inside a MessageListener), so the reply could never arrive; wait on another thread");
@@ -713,10 +625,9 @@ public final class MessagingNode implements Messaging, AutoCloseable {
                 }
             }
             for (Address peer : peers) {
-                Link l = links.get(peer.toString());
-                if (l == null || !l.isOpen()) {
+                if (links.find(links.key(peer)) == null) {
                     try {
-                        link(peer);
+                        links.link(peer);
                         LOG.info("node '{}': connected to {}", name, peer);
                     } catch (MessagingException e) {
                         LOG.debug("node '{}': still cannot reach {}: {}", name, peer, e.getMessage());
@@ -724,10 +635,8 @@ public final class MessagingNode implements Messaging, AutoCloseable {
                 }
             }
             List<String> subscribed = topics.subscribed();
-            for (Link l : links.values()) {
-                if (!l.isConnection() && !l.address().scheme().equals("multicast")) {
-                    subscribed.forEach(topic -> trySend(l, control(FrameKind.SUBSCRIBE, topic)));
-                }
+            for (Link l : links.datagramPeers()) {
+                subscribed.forEach(topic -> trySend(l, frames.control(FrameKind.SUBSCRIBE, topic)));
             }
             remoteSubscribers.expire(now, 5 * settings.subscriptionRefresh().toNanos());
         } catch (RuntimeException e) {
@@ -762,7 +671,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         public void opened(Channel channel) {
             connections.add(channel);
             for (String topic : topics.subscribed()) {
-                trySend(channel, control(FrameKind.SUBSCRIBE, topic));
+                trySend(channel, frames.control(FrameKind.SUBSCRIBE, topic));
             }
         }
 
@@ -770,11 +679,8 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         public void closed(Channel channel) {
             connections.remove(channel);
             remoteSubscribers.forget(channel);
-            for (Map.Entry<String, Link> e : links.entrySet()) {
-                if (e.getValue() == channel) {
-                    links.remove(e.getKey(), e.getValue());
-                    replies.linkClosed(e.getKey(), "connection closed");
-                }
+            for (String host : links.forget(channel)) {
+                replies.linkClosed(host, "connection closed");
             }
         }
 
