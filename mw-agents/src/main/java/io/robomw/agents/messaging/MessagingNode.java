@@ -106,6 +106,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     private final ScheduledExecutorService housekeeping;
     private final Context context = new Context();
     private volatile boolean closed;
+    private volatile boolean joinedGroup;
 
     private MessagingNode(String name, MessagingSettings settings, ClassLoader classLoader) {
         this.name = name;
@@ -208,6 +209,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         try {
             Endpoint e = transport(a.scheme()).bind(a);
             endpoints.add(e);
+            joinedGroup |= a.scheme().equals("multicast");
             LOG.info("node '{}' receiving at {}", name, e.address());
             return e.address();
         } catch (IOException e) {
@@ -364,7 +366,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         for (Channel c : subscribers) {
             limit = Math.min(limit, c.maxFrameBytes());
         }
-        if (!endpoints.isEmpty() && endpoints.stream().anyMatch(e -> e.address().scheme().equals("multicast"))) {
+        if (joinedGroup) {
             limit = Math.min(limit, MessagingSettings.MAX_DATAGRAM);
         }
         if (frame.length > limit) {

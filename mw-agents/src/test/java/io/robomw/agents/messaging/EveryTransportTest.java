@@ -101,7 +101,8 @@ class EveryTransportTest {
 
     @org.junit.jupiter.api.Test
     void everyMulticastMemberReceivesThePublications() {
-        String group = "multicast://239.255.77." + (1 + new java.util.Random().nextInt(250)) + ":" + FreePorts.udp();
+        String group = "multicast://239.255.77." + (1 + new java.util.Random().nextInt(250)) + ":" + FreePorts.udp()
+                + "?interface=" + FreePorts.loopbackInterface() + "&ttl=0";
         MessagingNode pub = node(MessagingNode.builder("pub").bind(group));
         List<List<Object>> got = new ArrayList<>();
         for (int s = 0; s < 2; s++) {

@@ -12,6 +12,15 @@ public final class FreePorts {
     private FreePorts() {
     }
 
+    /** @return the name of the loopback interface ({@code lo} on Linux), for multicast in tests */
+    public static String loopbackInterface() {
+        try {
+            return java.net.NetworkInterface.getByInetAddress(InetAddress.getLoopbackAddress()).getName();
+        } catch (IOException e) {
+            throw new UncheckedIOException(e);
+        }
+    }
+
     /** @return a UDP port that was free on 127.0.0.1 a moment ago */
     public static int udp() {
         try (DatagramSocket s = new DatagramSocket(new InetSocketAddress(InetAddress.getLoopbackAddress(), 0))) {
