@@ -4,6 +4,7 @@ import io.robomw.agents.messaging.frame.Frame;
 import io.robomw.agents.messaging.frame.FrameCodec;
 import io.robomw.agents.messaging.frame.FrameException;
 import io.robomw.agents.messaging.frame.FrameKind;
+import io.robomw.agents.messaging.frame.NameCache;
 import io.robomw.agents.messaging.security.FrameMac;
 import io.robomw.agents.messaging.security.PayloadCodec;
 import io.robomw.agents.messaging.security.PayloadRejectedException;
@@ -36,6 +37,7 @@ final class Inbound {
     private final NodeCounters counters;
     private final LossDetector losses;
     private final ReplayGuard replays = new ReplayGuard();
+    private final ThreadLocal<NameCache> names = ThreadLocal.withInitial(NameCache::new);
     private final FrameMac mac;
     private final PayloadCodec payloads;
     private final int maxFrameSize;
@@ -53,7 +55,7 @@ final class Inbound {
 
     void onFrame(byte[] buf, int offset, int length, Channel from) {
         try {
-            Frame f = FrameCodec.decode(buf, offset, length, maxFrameSize);
+            Frame f = FrameCodec.decode(buf, offset, length, maxFrameSize, names.get());
             if (f.source() == node.id()) {
                 return;
             }

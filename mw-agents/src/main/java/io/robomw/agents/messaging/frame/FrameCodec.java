@@ -178,6 +178,21 @@ public final class FrameCodec {
      * @throws FrameException naming what is wrong and the {@link DropReason}
      */
     public static Frame decode(byte[] buf, int offset, int length, int maxFrameSize) throws FrameException {
+        return decode(buf, offset, length, maxFrameSize, null);
+    }
+
+    /**
+     * Decodes one complete frame, taking repeated names from a cache.
+     *
+     * @param buf          bytes
+     * @param offset       where the frame starts
+     * @param length       how many bytes there are
+     * @param maxFrameSize the largest frame accepted
+     * @param names        the reading thread's cache of names, or {@code null}
+     * @return the frame, with its payload still encoded
+     * @throws FrameException naming what is wrong and the {@link DropReason}
+     */
+    public static Frame decode(byte[] buf, int offset, int length, int maxFrameSize, NameCache names) throws FrameException {
         if (length < PREFIX_LENGTH) {
             throw new FrameException(DropReason.TRUNCATED, "frame of " + length + " bytes is shorter than the " + PREFIX_LENGTH + "-byte prefix");
         }
@@ -204,13 +219,13 @@ public final class FrameCodec {
             throw new FrameException(DropReason.MALFORMED, "frame parts add up to " + expected + " bytes but the frame declares " + declared);
         }
         int at = offset + HEADER_LENGTH;
-        String sender = new String(buf, at, senderLength, StandardCharsets.UTF_8);
+        String sender = name(names, buf, at, senderLength);
         at += senderLength;
-        String receiver = new String(buf, at, receiverLength, StandardCharsets.UTF_8);
+        String receiver = name(names, buf, at, receiverLength);
         at += receiverLength;
-        String topic = new String(buf, at, topicLength, StandardCharsets.UTF_8);
+        String topic = name(names, buf, at, topicLength);
         at += topicLength;
-        String function = new String(buf, at, functionLength, StandardCharsets.UTF_8);
+        String function = name(names, buf, at, functionLength);
         at += functionLength;
         byte[] payload = new byte[(int) payloadLength];
         System.arraycopy(buf, at, payload, 0, payload.length);
@@ -239,6 +254,10 @@ public final class FrameCodec {
      */
     public static long streamSequence(byte[] buf, int offset) {
         return (long) LONG.get(buf, offset + STREAM_SEQUENCE_OFFSET);
+    }
+
+    private static String name(NameCache names, byte[] buf, int at, int length) {
+        return names == null ? new String(buf, at, length, StandardCharsets.UTF_8) : names.decode(buf, at, length);
     }
 
     private static int u16(byte[] buf, int at) {

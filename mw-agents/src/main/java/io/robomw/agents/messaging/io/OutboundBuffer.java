@@ -59,7 +59,7 @@ public final class OutboundBuffer {
     private byte[] spare = new byte[INITIAL];
     private volatile int used;
     private long sequence;
-    private long lastSendNanos = System.nanoTime() - TimeUnit.SECONDS.toNanos(1);
+    private volatile long lastSendNanos = System.nanoTime() - TimeUnit.SECONDS.toNanos(1);
     private boolean closed;
     private boolean writerWaiting;
     private boolean batchTaken;
@@ -115,13 +115,13 @@ public final class OutboundBuffer {
      * @throws IOException if the buffer is closed, or stayed full for the send timeout
      */
     public void send(byte[] frame) throws IOException {
-        if (writer != null && writeLock.tryLock()) {
+        boolean urgent = frame[FrameCodec.KIND_OFFSET] != FrameKind.PUBLISH.code();
+        if (writer != null && (urgent || System.nanoTime() - lastSendNanos > IDLE_MICROS * 1000) && writeLock.tryLock()) {
             try {
                 byte[] direct = null;
                 lock.lock();
                 try {
                     long now = System.nanoTime();
-                    boolean urgent = frame[FrameCodec.KIND_OFFSET] != FrameKind.PUBLISH.code();
                     if (!closed && used == 0 && !batchTaken && (urgent || now - lastSendNanos > IDLE_MICROS * 1000)) {
                         direct = frame.clone();
                         FrameCodec.writeStreamSequence(direct, 0, ++sequence);
