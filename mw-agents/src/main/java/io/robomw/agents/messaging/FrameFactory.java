@@ -31,6 +31,8 @@ final class FrameFactory {
     private final PayloadCodec payloads;
     private final FrameMac mac;
     private final int maxFrameSize;
+    /** UTF-8 of the names this node sends (its own, topics, functions, receivers): the same few, over and over. */
+    private final java.util.Map<String, byte[]> names = new java.util.concurrent.ConcurrentHashMap<>();
 
     FrameFactory(String node, long source, PayloadCodec payloads, FrameMac mac, int maxFrameSize) {
         this.node = node;
@@ -81,7 +83,7 @@ final class FrameFactory {
         }
         Frame f = new Frame(kind, 0, source, number, correlationId, nowMicros(), node, receiver, topic,
                 function == null ? "" : function, payload.type(), payload.bytes(), key != null);
-        byte[] bytes = FrameCodec.encode(f, key != null);
+        byte[] bytes = FrameCodec.encode(f, key != null, names);
         if (bytes.length > maxFrameSize) {
             throw new MessagingException("node '" + node + "': a frame on topic '" + topic + "' would be " + bytes.length
                     + " bytes, above the maximum frame size of " + maxFrameSize + "; send less, or raise maxFrameSize on both sides");

@@ -85,6 +85,7 @@ public final class FrameCodec {
     /** Longest sender, receiver, topic or function, in UTF-8 bytes. */
     public static final int MAX_NAME_BYTES = 0xFFFF;
 
+    private static final int MAX_CACHED_NAMES = 1024;
     private static final VarHandle SHORT = MethodHandles.byteArrayViewVarHandle(short[].class, ByteOrder.BIG_ENDIAN);
     private static final VarHandle INT = MethodHandles.byteArrayViewVarHandle(int[].class, ByteOrder.BIG_ENDIAN);
     private static final VarHandle LONG = MethodHandles.byteArrayViewVarHandle(long[].class, ByteOrder.BIG_ENDIAN);
@@ -102,10 +103,22 @@ public final class FrameCodec {
      * @throws IllegalArgumentException if a name is longer than {@value #MAX_NAME_BYTES} bytes
      */
     public static byte[] encode(Frame frame, boolean withMac) {
-        byte[] sender = utf8("sender", frame.sender());
-        byte[] receiver = utf8("receiver", frame.receiver());
-        byte[] topic = utf8("topic", frame.topic());
-        byte[] function = utf8("function", frame.function());
+        return encode(frame, withMac, null);
+    }
+
+    /**
+     * {@link #encode(Frame, boolean)}, taking the UTF-8 bytes of repeated names from a cache.
+     *
+     * @param frame   the frame
+     * @param withMac whether to reserve and flag a MAC
+     * @param names   encoded names by their text, or {@code null}
+     * @return the encoded frame
+     */
+    public static byte[] encode(Frame frame, boolean withMac, java.util.Map<String, byte[]> names) {
+        byte[] sender = utf8("sender", frame.sender(), names);
+        byte[] receiver = utf8("receiver", frame.receiver(), names);
+        byte[] topic = utf8("topic", frame.topic(), names);
+        byte[] function = utf8("function", frame.function(), names);
         byte[] payload = frame.payload();
         long length = (long) HEADER_LENGTH + sender.length + receiver.length + topic.length + function.length + payload.length
                 + (withMac ? MAC_LENGTH : 0);
@@ -131,10 +144,15 @@ public final class FrameCodec {
         LONG.set(out, CORRELATION_OFFSET + 8, frame.correlationId().getLeastSignificantBits());
         LONG.set(out, TIMESTAMP_OFFSET, frame.timestampMicros());
         int at = HEADER_LENGTH;
-        for (byte[] part : new byte[][] {sender, receiver, topic, function, payload}) {
-            System.arraycopy(part, 0, out, at, part.length);
-            at += part.length;
-        }
+        System.arraycopy(sender, 0, out, at, sender.length);
+        at += sender.length;
+        System.arraycopy(receiver, 0, out, at, receiver.length);
+        at += receiver.length;
+        System.arraycopy(topic, 0, out, at, topic.length);
+        at += topic.length;
+        System.arraycopy(function, 0, out, at, function.length);
+        at += function.length;
+        System.arraycopy(payload, 0, out, at, payload.length);
         return out;
     }
 
@@ -264,10 +282,19 @@ public final class FrameCodec {
         return (short) SHORT.get(buf, at) & 0xFFFF;
     }
 
-    private static byte[] utf8(String what, String value) {
+    private static byte[] utf8(String what, String value, java.util.Map<String, byte[]> names) {
+        if (names != null) {
+            byte[] cached = names.get(value);
+            if (cached != null) {
+                return cached;
+            }
+        }
         byte[] bytes = value.getBytes(StandardCharsets.UTF_8);
         if (bytes.length > MAX_NAME_BYTES) {
             throw new IllegalArgumentException(what + " is " + bytes.length + " bytes in UTF-8; the limit is " + MAX_NAME_BYTES);
+        }
+        if (names != null && names.size() < MAX_CACHED_NAMES) {
+            names.put(value, bytes);
         }
         return bytes;
     }
