@@ -1,6 +1,7 @@
 package io.robomw.bench;
 
 import io.robomw.agents.messaging.MessagingNode;
+import io.robomw.agents.messaging.MessagingSettings;
 import io.robomw.it.messaging.PeerProcess;
 import org.zeromq.SocketType;
 import org.zeromq.ZContext;
@@ -65,6 +66,7 @@ public final class MessagingBenchmark {
         latencies.add(rawPingPong());
         latencies.add(zmqReqRep());
         latencies.add(mwReqRep("tcp", "tcp://127.0.0.1:0"));
+        latencies.add(mwReqRep("tcp", "tcp://127.0.0.1:0", Duration.ZERO));
         latencies.add(mwReqRep("rmi", "rmi://127.0.0.1:0/bench"));
         latencies.add(mwReqRep("udp", "udp://127.0.0.1:0"));
         latencies.add(mwReqRep("multicast", group()));
@@ -135,8 +137,12 @@ public final class MessagingBenchmark {
     }
 
     private Latency mwReqRep(String scheme, String bind) throws Exception {
+        return mwReqRep(scheme, bind, MessagingSettings.defaults().replySpin());
+    }
+
+    private Latency mwReqRep(String scheme, String bind, Duration spin) throws Exception {
         try (PeerProcess peer = bench("bench-mw-echo-" + scheme, "mw-echo", bind);
-             MessagingNode node = MessagingNode.builder("bench-client").build()) {
+             MessagingNode node = MessagingNode.builder("bench-client").settings(MessagingSettings.defaults().withReplySpin(spin)).build()) {
             String host = peer.expect("BOUND", PeerProcess.COMMAND).substring(6);
             if (scheme.equals("multicast")) {
                 host = bind;
@@ -144,7 +150,8 @@ public final class MessagingBenchmark {
             String target = host;
             byte[] msg = new byte[SIZE];
             Duration timeout = Duration.ofSeconds(10);
-            return latency("RoboMW " + scheme + " sendMessage + waitForReply", () -> {
+            String name = "RoboMW " + scheme + " sendMessage + waitForReply" + (spin.isZero() ? " (no spin)" : "");
+            return latency(name, () -> {
                 long t0 = System.nanoTime();
                 UUID id = node.sendMessage("bench-echo", target, null, "bench", msg, "ping");
                 node.waitForReply(id, timeout);

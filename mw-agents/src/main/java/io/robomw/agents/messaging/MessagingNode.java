@@ -69,11 +69,6 @@ public final class MessagingNode implements Messaging, AutoCloseable {
 
     private static final Logger LOG = LoggerFactory.getLogger(MessagingNode.class);
     private static final int REMEMBERED_REQUESTS = 65_536;
-    /**
-     * A waiting thread first spins this long before it parks: a reply on loopback or a LAN often
-     * comes sooner, and waking a parked thread costs tens of microseconds on a busy machine.
-     */
-    private static final long REPLY_SPIN_NANOS = Long.getLong("robomw.messaging.replySpinNanos", 50_000L);
 
     /** Where a received request came from, for its reply. */
     record Origin(Channel channel, SecretKey key) {
@@ -595,7 +590,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     }
 
     private Message await(CompletableFuture<Message> reply, Duration timeout, java.util.function.Supplier<String> why) {
-        long spinUntil = System.nanoTime() + Math.min(REPLY_SPIN_NANOS, timeout.toNanos());
+        long spinUntil = System.nanoTime() + Math.min(settings.replySpin().toNanos(), timeout.toNanos());
         while (!reply.isDone() && System.nanoTime() < spinUntil) {
             Thread.onSpinWait();
         }
