@@ -48,14 +48,8 @@ final class MsgSubCommand implements Callable<Integer> {
     @Override
     public Integer call() throws InterruptedException {
         PrintWriter out = spec.commandLine().getOut();
-        MessagingNode.Builder b = MessagingNode.builder(common.name).settings(common.settings());
-        if (bind || MsgCommand.isGroup(address)) {
-            b.bind(address);
-        } else {
-            b.connect(address);
-        }
         CountDownLatch done = new CountDownLatch(count == 0 ? 1 : (int) Math.min(count, Integer.MAX_VALUE));
-        try (MessagingNode node = b.build()) {
+        try (MessagingNode node = MessagingNode.builder(common.name).settings(common.settings()).build()) {
             node.addMessageListener(topic, common.password, m -> {
                 synchronized (out) {
                     out.println(MsgCommand.describe(m));
@@ -73,6 +67,11 @@ final class MsgSubCommand implements Callable<Integer> {
                 }
             });
             node.subscribeMessage(topic, common.password);
+            if (bind || MsgCommand.isGroup(address)) {
+                node.bind(address);
+            } else {
+                node.connect(address);
+            }
             synchronized (out) {
                 out.println("listening to topic '" + topic + "' " + (node.boundAddresses().isEmpty() ? "from " + address : "at " + node.boundAddresses().get(0)));
                 out.flush();

@@ -129,7 +129,11 @@ final class Inbound {
             counters.drop(DropReason.UNSOLICITED_REPLY, from.peer(), "reply " + f.correlationId() + " to no request sent from here");
             return;
         }
-        authenticate(sent.key(), f, buf, offset, length, from);
+        if (f.kind() != FrameKind.ERROR || f.authenticated()) {
+            // A refusal may come unsigned (the refusing node may not know the topic's password); it
+            // can only fail the request, never deliver data, so it is accepted as it is.
+            authenticate(sent.key(), f, buf, offset, length, from);
+        }
         Serializable payload;
         try {
             payload = payloads.decode(f.payloadType(), f.payload());
