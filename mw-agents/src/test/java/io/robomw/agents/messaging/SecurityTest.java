@@ -74,6 +74,15 @@ class SecurityTest {
     }
 
     @Test
+    void passwordProtectedRequestToATopicNobodyListensToIsRefusedAtOnce() {
+        MessagingNode server = node(MessagingNode.builder("server").bind("tcp://127.0.0.1:0"));
+        MessagingNode client = node(MessagingNode.builder("client"));
+        UUID id = client.sendMessage("server", server.address("tcp"), "pw", "nobody", "x", "go");
+        MessagingException e = assertThrows(MessagingException.class, () -> client.waitForReply(id, WAIT));
+        assertTrue(e.getMessage().contains("no listener for topic 'nobody'"), e.getMessage());
+    }
+
+    @Test
     void payloadOfAClassNotOnTheAllowListIsRejected() {
         MessagingNode server = node(MessagingNode.builder("server").bind("tcp://127.0.0.1:0"));
         List<Object> got = new CopyOnWriteArrayList<>();
