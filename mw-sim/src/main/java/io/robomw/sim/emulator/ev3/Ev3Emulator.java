@@ -180,12 +180,7 @@ public final class Ev3Emulator extends BrickEmulator {
      * @throws IllegalArgumentException if the world has no such robot
      */
     public static Ev3Emulator bind(Simulation simulation, String robotName) {
-        SimMotors motors = SimMotors.of(simulation.world(), robotName).orElseThrow(() -> new IllegalArgumentException(
-                "world '" + simulation.world().description().name() + "' has no robot '" + robotName + "'"));
-        Ev3Emulator emulator = new Ev3Emulator(motors, simulation.world().stepSeconds());
-        simulation.addStepListener(emulator.stepListener());
-        emulator.onClose(() -> simulation.removeStepListener(emulator.stepListener()));
-        return emulator;
+        return bind(simulation, robotName, motors -> new Ev3Emulator(motors, simulation.world().stepSeconds()));
     }
 
     /** @return direct commands answered with {@code DIRECT_REPLY_ERROR} because the virtual machine failed */

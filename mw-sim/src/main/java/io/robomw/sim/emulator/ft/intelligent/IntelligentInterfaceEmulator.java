@@ -117,12 +117,7 @@ public final class IntelligentInterfaceEmulator extends BrickEmulator {
      * @return the emulator, not yet serving; closing it unbinds it
      */
     public static IntelligentInterfaceEmulator bind(Simulation simulation, String robotName) {
-        SimMotors motors = SimMotors.of(simulation.world(), robotName).orElseThrow(() -> new IllegalArgumentException(
-                "world '" + simulation.world().description().name() + "' has no robot '" + robotName + "'"));
-        IntelligentInterfaceEmulator emulator = new IntelligentInterfaceEmulator(motors);
-        simulation.addStepListener(emulator.stepListener());
-        emulator.onClose(() -> simulation.removeStepListener(emulator.stepListener()));
-        return emulator;
+        return bind(simulation, robotName, IntelligentInterfaceEmulator::new);
     }
 
     /** @return how often the watchdog switched the motors off for want of commands */

@@ -138,12 +138,7 @@ public final class TxtEmulator extends BrickEmulator {
      *         closing it also unbinds it from the simulation
      */
     public static TxtEmulator bind(Simulation simulation, String robotName) {
-        SimMotors motors = SimMotors.of(simulation.world(), robotName).orElseThrow(() -> new IllegalArgumentException(
-                "world '" + simulation.world().description().name() + "' has no robot '" + robotName + "'"));
-        TxtEmulator emulator = new TxtEmulator(motors);
-        simulation.addStepListener(emulator.stepListener());
-        emulator.onClose(() -> simulation.removeStepListener(emulator.stepListener()));
-        return emulator;
+        return bind(simulation, robotName, TxtEmulator::new);
     }
 
     /**
