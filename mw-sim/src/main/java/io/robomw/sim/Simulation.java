@@ -281,7 +281,8 @@ public final class Simulation implements AutoCloseable {
     }
 
     /**
-     * Starts stepping the world on a thread named {@code sim-<world>}, paced by the wall clock.
+     * Starts stepping the world on a thread named {@code sim-<world>}, paced by the wall clock. The
+     * first step is taken before this returns.
      *
      * @param speed simulated seconds per wall-clock second (1 = real time)
      */
@@ -295,6 +296,9 @@ public final class Simulation implements AutoCloseable {
         realTime = true;
         paused = false;
         realTimeSpeed = speed;
+        // One step before returning: sensors are sampled and emulators' inputs are set up by the time
+        // anyone talks to a robot.
+        step();
         Thread t = new Thread(() -> {
             long next = System.nanoTime();
             while (realTime) {
