@@ -5,7 +5,9 @@ import io.robomw.api.Robot;
 import io.robomw.api.Robots;
 import io.robomw.sim.Simulation;
 import io.robomw.sim.emulator.BrickEmulator;
+import io.robomw.sim.emulator.ev3.Ev3Emulator;
 import io.robomw.sim.emulator.ft.intelligent.IntelligentInterfaceEmulator;
+import io.robomw.sim.emulator.ft.txt.TxtEmulator;
 import io.robomw.sim.emulator.nxt.NxtEmulator;
 import org.junit.jupiter.api.io.TempDir;
 import org.junit.jupiter.params.ParameterizedTest;
@@ -64,6 +66,27 @@ class SameProgramOnEveryPlatformTest {
                         port: EX
                         conversion: { table: [[80, 0.80], [150, 0.40], [300, 0.20], [600, 0.10], [900, 0.06]] }
                     """.formatted(connection, GEOMETRY);
+            case "ev3" -> """
+                    name: r
+                    platform: ev3
+                    connection: { %s }
+                    drive:
+                    %s  left: { port: B }
+                      right: { port: C }
+                    sensors:
+                      - { name: sonar, type: sonar, position: front, port: S4, conversion: { scale: 0.01 } }
+                    """.formatted(connection, GEOMETRY);
+            case "ft-txt" -> """
+                    name: r
+                    platform: ft-txt
+                    connection: { %s }
+                    drive:
+                    %s  encoder_ticks_per_revolution: 63
+                      left: { port: M1, counter: C1 }
+                      right: { port: M2, counter: C2 }
+                    sensors:
+                      - { name: sonar, type: sonar, position: front, port: I2, conversion: { scale: 0.01 } }
+                    """.formatted(connection, GEOMETRY);
             case "sim" -> """
                     name: r
                     platform: sim
@@ -78,7 +101,7 @@ class SameProgramOnEveryPlatformTest {
     }
 
     @ParameterizedTest
-    @ValueSource(strings = {"nxt", "ft-intelligent", "sim"})
+    @ValueSource(strings = {"nxt", "ev3", "ft-intelligent", "ft-txt", "sim"})
     void shouldDriveTheSquareAndSeeTheWallOnEveryPlatform(String platform) throws Exception {
         Files.writeString(dir.resolve("body.yaml"), robotFile(platform, "port: /dev/unused"));
         Files.writeString(dir.resolve("world.yaml"), """
@@ -92,11 +115,20 @@ class SameProgramOnEveryPlatformTest {
             Pose start = sim.world().robot("r").pose();
             SquareSurvey.Report report;
             if (emulated) {
-                BiFunction<Simulation, String, BrickEmulator> bind = platform.equals("nxt") ? NxtEmulator::bind : IntelligentInterfaceEmulator::bind;
+                BiFunction<Simulation, String, BrickEmulator> bind = switch (platform) {
+                    case "nxt" -> NxtEmulator::bind;
+                    case "ev3" -> Ev3Emulator::bind;
+                    case "ft-intelligent" -> IntelligentInterfaceEmulator::bind;
+                    default -> TxtEmulator::bind;
+                };
                 try (BrickEmulator emulator = bind.apply(sim, "r")) {
-                    String pty = emulator.startOnPseudoTerminal();
-                    sim.startRealTime(4);
-                    Files.writeString(dir.resolve("driver.yaml"), robotFile(platform, "port: " + pty));
+                    String connection = platform.equals("ft-txt")
+                            ? "host: 127.0.0.1, port: " + emulator.startOnTcp("127.0.0.1", 0)
+                            : "port: " + emulator.startOnPseudoTerminal();
+                    // The Intelligent Interface stops nothing by itself: its precision depends on its
+                    // link's latency in wall-clock time, so its world runs in real time.
+                    sim.startRealTime(platform.equals("ft-intelligent") ? 1 : 4);
+                    Files.writeString(dir.resolve("driver.yaml"), robotFile(platform, connection));
                     try (Robot robot = Robots.open(dir.resolve("driver.yaml"))) {
                         report = new SquareSurvey(0.3, 0.15).run(robot);
                     }
@@ -111,11 +143,11 @@ class SameProgramOnEveryPlatformTest {
             // travel per tick, and a quarter turn is right only to about a tick per wheel (11° of
             // heading), which four legs add up. Its own precision (move ±2 cm, turn ±5°) is asserted
             // in IntelligentInterfaceEmulatorTest; here it must show the same program runs.
-            double tolerance = platform.equals("ft-intelligent") ? 0.25 : 0.03;
+            double tolerance = platform.equals("ft-intelligent") ? 0.10 : 0.03;
             assertTrue(sim.world().robot("r").pose().distanceTo(start) < tolerance,
                     platform + ": back at the start within " + tolerance + " m, but " + sim.world().robot("r").pose().distanceTo(start));
             assertEquals(4, report.ranges().size());
-            double rangeTolerance = platform.equals("ft-intelligent") ? 0.25 : 0.05;
+            double rangeTolerance = platform.equals("ft-intelligent") ? 0.10 : 0.05;
             assertEquals(3.0 - (2.2 + 0.10), report.ranges().get(3), rangeTolerance, platform + ": the last corner faces the east wall again");
         }
     }

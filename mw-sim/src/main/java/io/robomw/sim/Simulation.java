@@ -209,27 +209,10 @@ public final class Simulation implements AutoCloseable {
      */
     public void run(Duration maxSimTime, Runnable... programs) {
         requireStopped("run programs");
-        List<Throwable> failures = new CopyOnWriteArrayList<>();
-        List<Thread> threads = new ArrayList<>();
         world.lockstep().driver(Thread.currentThread());
         double end = world.time() + maxSimTime.toNanos() / 1e9;
+        Programs running = new Programs(world.lockstep(), programs);
         try {
-            for (int i = 0; i < programs.length; i++) {
-                Runnable program = programs[i];
-                Thread t = new Thread(() -> {
-                    try {
-                        program.run();
-                    } catch (Throwable e) {
-                        failures.add(e);
-                    } finally {
-                        world.lockstep().finished();
-                    }
-                }, "program-" + (i + 1));
-                t.setDaemon(true);
-                world.lockstep().register(t);
-                threads.add(t);
-                t.start();
-            }
             while (true) {
                 world.lockstep().awaitAllWaiting(STALL_NANOS);
                 if (!world.lockstep().hasPrograms()) {
@@ -237,26 +220,27 @@ public final class Simulation implements AutoCloseable {
                 }
                 if (world.time() > end) {
                     throw new RobotException("programs did not finish within " + maxSimTime.toMillis() / 1000.0 + " s of simulated time; still running: "
-                            + threads.stream().filter(Thread::isAlive).map(Thread::getName).toList());
+                            + running.running());
                 }
                 step();
             }
         } finally {
             world.lockstep().driver(null);
-            for (Thread t : threads) {
-                try {
-                    t.join(1000);
-                } catch (InterruptedException e) {
-                    Thread.currentThread().interrupt();
-                }
-            }
+            running.join(1000);
         }
-        if (!failures.isEmpty()) {
-            Throwable first = failures.get(0);
-            RobotException e = new RobotException("a program failed: " + first, first);
-            failures.stream().skip(1).forEach(e::addSuppressed);
-            throw e;
-        }
+        running.rethrowFailures();
+    }
+
+    /**
+     * Starts programs on their own threads for a real-time run ({@link #startRealTime}); they may
+     * call their robots at once, and wait while the run is paused. (For a fast, repeatable run,
+     * use {@link #run(Duration, Runnable...)}.)
+     *
+     * @param programs the programs
+     * @return the running programs, to check on
+     */
+    public Programs startPrograms(Runnable... programs) {
+        return new Programs(world.lockstep(), programs);
     }
 
     /**
@@ -297,7 +281,8 @@ public final class Simulation implements AutoCloseable {
     }
 
     /**
-     * Starts stepping the world on a thread named {@code sim-<world>}, paced by the wall clock.
+     * Starts stepping the world on a thread named {@code sim-<world>}, paced by the wall clock. The
+     * first step is taken before this returns.
      *
      * @param speed simulated seconds per wall-clock second (1 = real time)
      */
@@ -311,6 +296,9 @@ public final class Simulation implements AutoCloseable {
         realTime = true;
         paused = false;
         realTimeSpeed = speed;
+        // One step before returning: sensors are sampled and emulators' inputs are set up by the time
+        // anyone talks to a robot.
+        step();
         Thread t = new Thread(() -> {
             long next = System.nanoTime();
             while (realTime) {

@@ -3,7 +3,9 @@ package io.robomw.agents.cli;
 import io.robomw.config.description.DescriptionException;
 import io.robomw.sim.Simulation;
 import io.robomw.sim.emulator.BrickEmulator;
+import io.robomw.sim.emulator.ev3.Ev3Emulator;
 import io.robomw.sim.emulator.ft.intelligent.IntelligentInterfaceEmulator;
+import io.robomw.sim.emulator.ft.txt.TxtEmulator;
 import io.robomw.sim.emulator.nxt.NxtEmulator;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
@@ -25,7 +27,7 @@ import java.util.concurrent.CountDownLatch;
 @Command(name = "emulate", description = "Run a virtual brick bound to a robot in a simulated world; print its device path.")
 final class EmulateCommand implements Callable<Integer> {
 
-    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick: nxt, ft-intelligent", converter = BrickConverter.class)
+    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick: nxt, ev3, ft-intelligent, ft-txt (TCP only)", converter = BrickConverter.class)
     private Brick brick;
 
     /** Accepts the bricks' platform names (with dashes). */
@@ -35,7 +37,7 @@ final class EmulateCommand implements Callable<Integer> {
             try {
                 return Brick.valueOf(value.replace('-', '_'));
             } catch (IllegalArgumentException e) {
-                throw new picocli.CommandLine.TypeConversionException("unknown brick '" + value + "'; emulated bricks: nxt, ft-intelligent");
+                throw new picocli.CommandLine.TypeConversionException("unknown brick '" + value + "'; emulated bricks: nxt, ev3, ft-intelligent, ft-txt");
             }
         }
     }
@@ -46,7 +48,8 @@ final class EmulateCommand implements Callable<Integer> {
     @Option(names = "--robot", required = true, paramLabel = "NAME", description = "the robot in the world that the brick drives")
     private String robot;
 
-    @Option(names = "--tcp", paramLabel = "PORT", description = "serve on TCP 127.0.0.1:PORT (0 = any) instead of a pseudo-terminal")
+    @Option(names = "--tcp", paramLabel = "PORT", description = "serve on TCP 127.0.0.1:PORT (0 = any) instead of a pseudo-terminal; "
+            + "the TXT is TCP only (default 65000)")
     private Integer tcpPort;
 
     @Option(names = "--speed", defaultValue = "1", description = "simulated seconds per second (default ${DEFAULT-VALUE})")
@@ -58,7 +61,9 @@ final class EmulateCommand implements Callable<Integer> {
     /** The bricks that can be emulated. */
     enum Brick {
         nxt,
-        ft_intelligent
+        ev3,
+        ft_intelligent,
+        ft_txt
     }
 
     @Override
@@ -77,6 +82,9 @@ final class EmulateCommand implements Callable<Integer> {
         }
         CountDownLatch stopped = new CountDownLatch(1);
         try (sim; BrickEmulator emulator = bind(sim)) {
+            if (brick == Brick.ft_txt && tcpPort == null) {
+                tcpPort = 65000;
+            }
             String where = tcpPort == null ? emulator.startOnPseudoTerminal() : "tcp://127.0.0.1:" + emulator.startOnTcp("127.0.0.1", tcpPort);
             out.println(where);
             out.flush();
@@ -92,7 +100,9 @@ final class EmulateCommand implements Callable<Integer> {
     private BrickEmulator bind(Simulation sim) {
         return switch (brick) {
             case nxt -> NxtEmulator.bind(sim, robot);
+            case ev3 -> Ev3Emulator.bind(sim, robot);
             case ft_intelligent -> IntelligentInterfaceEmulator.bind(sim, robot);
+            case ft_txt -> TxtEmulator.bind(sim, robot);
         };
     }
 }

@@ -6,6 +6,7 @@ import io.robomw.api.RobotException;
 import io.robomw.config.description.DescriptionException;
 import io.robomw.sim.SimRobot;
 import io.robomw.sim.SimWorld;
+import io.robomw.sim.Programs;
 import io.robomw.sim.Simulation;
 import io.robomw.sim.programs.SquareProgram;
 import io.robomw.sim.programs.WanderController;
@@ -30,7 +31,6 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
 import java.util.concurrent.Callable;
-import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.CountDownLatch;
 
 /**
@@ -234,7 +234,7 @@ final class SimCommand implements Callable<Integer> {
 
     /** In real time on the simulation's thread, until {@code --duration} of simulated time has passed. */
     private void runInRealTime(Simulation sim) throws InterruptedException {
-        ProgramThreads programs = startPrograms(sim);
+        Programs programs = startPrograms(sim);
         CountDownLatch reached = new CountDownLatch(1);
         double end = duration - sim.world().stepSeconds() / 2;
         Runnable endCheck = () -> {
@@ -250,15 +250,15 @@ final class SimCommand implements Callable<Integer> {
             sim.stopRealTime();
             sim.removeStepListener(endCheck);
         }
-        programs.check(duration);
+        programs.requireFinished(duration);
     }
 
     /** In the viewer window until it is closed; programs still running then are left as they are. */
     private void runInViewer(Simulation sim, RenderOptions options) throws InterruptedException {
-        ProgramThreads programs = startPrograms(sim);
+        Programs programs = startPrograms(sim);
         SimViewer viewer = SimViewer.open(sim, options, speed);
         viewer.awaitClosed();
-        programs.checkFailures();
+        programs.rethrowFailures();
     }
 
     private Duration simDuration() {
@@ -279,71 +279,11 @@ final class SimCommand implements Callable<Integer> {
      * Starts the program for a real-time run: wander as a step listener, square on one thread per
      * robot.
      */
-    private ProgramThreads startPrograms(Simulation sim) {
-        ProgramThreads threads = new ProgramThreads(sim.world());
-        switch (program) {
-            case SQUARE -> squarePrograms(sim).forEach(threads::start);
-            case WANDER -> WanderController.install(sim, WANDER_HZ, sim.world().description().seed());
-            case NONE -> {
-            }
+    private Programs startPrograms(Simulation sim) {
+        if (program == Program.WANDER) {
+            WanderController.install(sim, WANDER_HZ, sim.world().description().seed());
         }
-        return threads;
-    }
-
-    /**
-     * Program threads of a real-time run, and their failures.
-     *
-     * <p>Each thread is registered with the world's lockstep, as {@link Simulation#run} does for
-     * its programs. In real time that does not hold time still; it lets the thread wait for its
-     * robot while the real-time thread is stopped for a pause or a change of speed (otherwise a
-     * robot call made just then is refused: nothing would advance time).
-     */
-    private static final class ProgramThreads {
-        private final SimWorld world;
-        private final List<Thread> threads = new ArrayList<>();
-        private final List<Throwable> failures = new CopyOnWriteArrayList<>();
-
-        ProgramThreads(SimWorld world) {
-            this.world = world;
-        }
-
-        void start(Runnable program) {
-            Thread t = new Thread(() -> {
-                try {
-                    program.run();
-                } catch (Throwable e) {
-                    failures.add(e);
-                } finally {
-                    world.lockstep().finished();
-                }
-            }, "program-" + (threads.size() + 1));
-            t.setDaemon(true);
-            world.lockstep().register(t);
-            threads.add(t);
-            t.start();
-        }
-
-        /** @throws RobotException if a program failed */
-        void checkFailures() {
-            if (!failures.isEmpty()) {
-                Throwable first = failures.get(0);
-                RobotException e = new RobotException("a program failed: " + first, first);
-                failures.stream().skip(1).forEach(e::addSuppressed);
-                throw e;
-            }
-        }
-
-        /**
-         * @param seconds the run's length
-         * @throws RobotException if a program failed or is still running
-         */
-        void check(double seconds) {
-            checkFailures();
-            List<String> running = threads.stream().filter(Thread::isAlive).map(Thread::getName).toList();
-            if (!running.isEmpty()) {
-                throw new RobotException("programs did not finish within " + seconds + " s of simulated time; still running: " + running);
-            }
-        }
+        return sim.startPrograms(program == Program.SQUARE ? squarePrograms(sim).toArray(Runnable[]::new) : new Runnable[0]);
     }
 
     private void printSummary(PrintWriter out, SimWorld world, double wallSeconds) {

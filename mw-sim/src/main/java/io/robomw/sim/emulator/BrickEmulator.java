@@ -108,6 +108,28 @@ public abstract class BrickEmulator implements AutoCloseable {
         return robot;
     }
 
+    /**
+     * Makes an emulator for a robot of a simulation and steps it with the world; closing it
+     * unbinds it. Each emulator's {@code bind} is this with its constructor.
+     *
+     * @param simulation the simulation (the robot should be one it emulates, see
+     *                   {@code Simulation.load(world, names)})
+     * @param robotName  the robot
+     * @param emulator   makes the emulator for the robot's motors and sensors
+     * @param <E>        the emulator
+     * @return the emulator, not yet serving
+     * @throws IllegalArgumentException if the world has no such robot
+     */
+    protected static <E extends BrickEmulator> E bind(io.robomw.sim.Simulation simulation, String robotName,
+                                                      java.util.function.Function<SimMotors, E> emulator) {
+        SimMotors motors = SimMotors.of(simulation.world(), robotName).orElseThrow(() -> new IllegalArgumentException(
+                "world '" + simulation.world().description().name() + "' has no robot '" + robotName + "'"));
+        E e = emulator.apply(motors);
+        simulation.addStepListener(e.stepListener());
+        e.onClose(() -> simulation.removeStepListener(e.stepListener()));
+        return e;
+    }
+
     /** @return the listener to add to the simulation ({@code Simulation.addStepListener}); always the same one */
     public Runnable stepListener() {
         return stepListener;

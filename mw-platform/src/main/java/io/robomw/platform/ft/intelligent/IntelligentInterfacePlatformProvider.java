@@ -14,7 +14,7 @@ import java.time.Duration;
 
 /**
  * {@code platform: ft-intelligent}: a fischertechnik Intelligent Interface 30402 on a serial port
- * (9600 8N1). Connection keys: {@code port}, {@code reply_timeout_ms} (default 100),
+ * (9600 8N1). Connection keys: {@code port}, {@code reply_timeout_ms} (default 250),
  * {@code wire_log}. Keep {@code cycle_hz} at 20 or more: the interface stops its motors when it
  * hears nothing for 300 ms, and the platform refreshes it once a cycle.
  */
@@ -33,7 +33,7 @@ public final class IntelligentInterfacePlatformProvider implements PlatformProvi
             throw new IOException(description.source() + ": cycle_hz must be at least 20 for an Intelligent Interface, which stops its motors "
                     + "after " + IntelligentInterfaceTelegram.WATCHDOG_MILLIS + " ms without a command");
         }
-        Duration timeout = Duration.ofMillis(config.connection().integer("reply_timeout_ms", 100));
+        Duration timeout = Duration.ofMillis(config.connection().integer("reply_timeout_ms", 250));
         BrickChannel channel = BrickChannel.open(config.robotName(), config.connection(),
                 SerialSettings.of(9600, 8, SerialSettings.Parity.NONE, 1), 0, timeout);
         try {

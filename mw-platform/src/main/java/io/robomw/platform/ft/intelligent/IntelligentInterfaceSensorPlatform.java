@@ -19,7 +19,7 @@ import java.util.concurrent.CompletableFuture;
 public final class IntelligentInterfaceSensorPlatform extends SensorPlatform {
 
     /** Age after which polled inputs are no longer believed. */
-    public static final Duration STALE = Duration.ofMillis(500);
+    public static final Duration STALE = Duration.ofSeconds(1);
 
     private final String robot;
     private final IntelligentInterfaceInputs inputs;

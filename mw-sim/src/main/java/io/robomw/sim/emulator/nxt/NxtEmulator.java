@@ -100,12 +100,7 @@ public final class NxtEmulator extends BrickEmulator {
      *         closing it also unbinds it from the simulation
      */
     public static NxtEmulator bind(Simulation simulation, String robotName) {
-        SimMotors motors = SimMotors.of(simulation.world(), robotName).orElseThrow(() -> new IllegalArgumentException(
-                "world '" + simulation.world().description().name() + "' has no robot '" + robotName + "'"));
-        NxtEmulator emulator = new NxtEmulator(motors);
-        simulation.addStepListener(emulator.stepListener());
-        emulator.onClose(() -> simulation.removeStepListener(emulator.stepListener()));
-        return emulator;
+        return bind(simulation, robotName, NxtEmulator::new);
     }
 
     // ---- simulation thread ----

@@ -23,7 +23,7 @@ import java.util.Optional;
  * hardware's timer).
  *
  * <p>Inputs: a wheel's {@code counter:} input shows its impulse wheel, one transition per
- * {@code 360 / encoder_ticks_per_revolution} degrees of the simulated motor; a touch sensor on a
+ * {@code 360 / encoder_ticks_per_revolution} degrees of the simulated motor, starting mid-tooth; a touch sensor on a
  * digital input reads closed when touching; a sensor on EX or EY gives the 10-bit value that its
  * description's conversion turns back into the true distance or brightness. The extension-module
  * commands (C2, C6, CA) answer with an extension that has nothing connected.
@@ -117,12 +117,7 @@ public final class IntelligentInterfaceEmulator extends BrickEmulator {
      * @return the emulator, not yet serving; closing it unbinds it
      */
     public static IntelligentInterfaceEmulator bind(Simulation simulation, String robotName) {
-        SimMotors motors = SimMotors.of(simulation.world(), robotName).orElseThrow(() -> new IllegalArgumentException(
-                "world '" + simulation.world().description().name() + "' has no robot '" + robotName + "'"));
-        IntelligentInterfaceEmulator emulator = new IntelligentInterfaceEmulator(motors);
-        simulation.addStepListener(emulator.stepListener());
-        emulator.onClose(() -> simulation.removeStepListener(emulator.stepListener()));
-        return emulator;
+        return bind(simulation, robotName, IntelligentInterfaceEmulator::new);
     }
 
     /** @return how often the watchdog switched the motors off for want of commands */
@@ -195,7 +190,10 @@ public final class IntelligentInterfaceEmulator extends BrickEmulator {
             }
             if (ticksPerRevolution > 0) {
                 for (Counter c : counters) {
-                    long tick = (long) Math.floor(robot.degrees(c.motorPort()) * ticksPerRevolution / 360.0);
+                    // The switch starts in the middle of a tooth, so the first transition comes after
+                    // half a tick whichever way the wheel turns (a real one starts at an unknown phase,
+                    // and half a tick is its average).
+                    long tick = (long) Math.floor(robot.degrees(c.motorPort()) * ticksPerRevolution / 360.0 + 0.5);
                     if (Math.floorMod(tick, 2) == 1) {
                         bits |= 1 << c.bit();
                     }

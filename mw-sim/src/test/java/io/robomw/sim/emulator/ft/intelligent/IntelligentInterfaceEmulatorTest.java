@@ -31,7 +31,8 @@ import static org.junit.jupiter.api.Assertions.fail;
  * The real Intelligent Interface driver over a real pseudo-terminal through jSerialComm, against
  * the emulator bound to a simulated robot. The impulse wheel gives 16 transitions per motor turn:
  * 22.5° of motor, 11.0 mm of travel on 56 mm wheels, per tick; that is the resolution of every
- * distance below.
+ * distance below. The interface stops nothing by itself, so the driver's stop is as late as its
+ * link's latency in wall-clock time: the precision tests run the world in real time.
  */
 class IntelligentInterfaceEmulatorTest {
 
@@ -103,7 +104,7 @@ class IntelligentInterfaceEmulatorTest {
 
     @Test
     void shouldMoveHalfAMetreWithinTwoCentimetresByCountingImpulses() throws Exception {
-        start(0.5, 2);
+        start(0.5, 1);
         robot.move(0.5, 0.15);
         assertEquals(1.0, truePose().x(), 0.02);
         assertEquals(0, emulator.watchdogTrips());
@@ -111,7 +112,7 @@ class IntelligentInterfaceEmulatorTest {
 
     @Test
     void shouldTurnQuarterWithinFiveDegrees() throws Exception {
-        start(1.5, 2);
+        start(1.5, 1);
         robot.turn(Math.PI / 2, 1.0);
         assertEquals(90, Math.toDegrees(truePose().heading()), 5.0);
     }

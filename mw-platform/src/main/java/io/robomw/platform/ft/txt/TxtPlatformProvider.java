@@ -1,0 +1,61 @@
+package io.robomw.platform.ft.txt;
+
+import io.robomw.api.spi.PlatformConfig;
+import io.robomw.api.spi.PlatformProvider;
+import io.robomw.api.spi.RobotPlatform;
+import io.robomw.config.description.RobotDescription;
+import io.robomw.platform.BrickPlatform;
+import io.robomw.platform.LinkThreading;
+import io.robomw.platform.brick.BrickChannel;
+import io.robomw.platform.link.SerialSettings;
+
+import java.io.IOException;
+import java.time.Duration;
+
+/**
+ * {@code platform: ft-txt}: a fischertechnik TXT controller in online mode over TCP. Connection
+ * keys: {@code host} (192.168.7.2 over USB, 192.168.8.2 over WLAN, 192.168.9.2 over Bluetooth),
+ * {@code port} (default 65000), {@code reply_timeout_ms} (default 500), {@code wire_log} (a file
+ * that records every byte).
+ *
+ * <p>Opening runs the handshake (queryStatus, startOnline, updateConfig), configures each sensor's
+ * input, sends one exchange with every motor off, then starts the platform; the link thread then
+ * sends the exchange every cycle. Closing stops the motors and sends stopOnline.
+ */
+public final class TxtPlatformProvider implements PlatformProvider {
+
+    /** Default {@code reply_timeout_ms}. */
+    public static final int DEFAULT_REPLY_TIMEOUT_MS = 500;
+
+    @Override
+    public String platformName() {
+        return "ft-txt";
+    }
+
+    @Override
+    public RobotPlatform open(PlatformConfig config) throws IOException {
+        RobotDescription description = config.services().find(RobotDescription.class).orElseThrow(() -> new IOException(
+                "robot '" + config.robotName() + "': the ft-txt platform needs the robot's description (open it through Robots.open)"));
+        if (config.connection().text("host").isEmpty()) {
+            throw new IOException(description.source() + ": the ft-txt platform talks TCP: give connection.host (192.168.7.2 over USB, "
+                    + "192.168.8.2 over WLAN, 192.168.9.2 over Bluetooth) and, if not " + TxtProtocol.TCP_PORT + ", connection.port");
+        }
+        Duration timeout = Duration.ofMillis(config.connection().integer("reply_timeout_ms", DEFAULT_REPLY_TIMEOUT_MS));
+        BrickChannel channel = BrickChannel.open(config.robotName(), config.connection(),
+                SerialSettings.of(115200, 8, SerialSettings.Parity.NONE, 1), TxtProtocol.TCP_PORT, timeout);
+        try {
+            TxtController controller = new TxtController(config.robotName(), channel);
+            controller.open();
+            TxtMotorPlatform motors = new TxtMotorPlatform(config, description, controller);
+            motors.exchangeNow();
+            AutoCloseable link = () -> {
+                controller.stopOnline();
+                channel.close();
+            };
+            return new BrickPlatform(config, motors, new TxtSensorPlatform(motors, controller), LinkThreading.OWN_THREAD, link).start();
+        } catch (IOException | RuntimeException e) {
+            channel.close();
+            throw e;
+        }
+    }
+}

@@ -1,0 +1,225 @@
+package io.robomw.sim.emulator.ev3;
+
+import io.robomw.api.Pose;
+import io.robomw.api.Position;
+import io.robomw.api.ReturnType;
+import io.robomw.api.Robot;
+import io.robomw.api.RobotLinkException;
+import io.robomw.api.Robots;
+import io.robomw.api.SensorType;
+import io.robomw.sim.Simulation;
+import org.junit.jupiter.api.AfterEach;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import java.io.IOException;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Set;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.ExecutionException;
+import java.util.concurrent.TimeUnit;
+import java.util.function.BooleanSupplier;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertInstanceOf;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+import static org.junit.jupiter.api.Assertions.fail;
+
+/**
+ * The real EV3 driver ({@code platform: ev3}, found by {@link java.util.ServiceLoader} through
+ * {@link Robots#open}) byte for byte over a real pseudo-terminal through jSerialComm (or over TCP),
+ * against the EV3 emulator, whose motors and sensors are a robot in a simulated world running at
+ * four times real time. Checks are on the simulated robot's true pose. Waits are on conditions
+ * checked at every world step, each with a deadline; nothing sleeps.
+ */
+class Ev3FullStackTest {
+
+    static final String ROBOT = """
+            name: ev3-1
+            platform: ev3
+            connection: { %s }
+            drive:
+              wheel_diameter: 0.056
+              track_width: 0.112
+              max_speed: 0.30
+              left:  { port: B }
+              right: { port: C }
+            body: { length: 0.20, width: 0.15, mass: 0.6, friction: 0.8 }
+            sensors:
+              - { name: bumper, type: touch, position: front, port: S1 }
+              - { name: gyro, type: gyro, position: center, port: S2, conversion: { scale: -0.0174533 } }
+              - { name: sonar, type: sonar, position: front, port: S4, conversion: { scale: 0.01 } }
+            """;
+
+    private static final double SPEED = 4.0;
+
+    @TempDir
+    Path dir;
+
+    private Simulation sim;
+    private final List<Ev3Emulator> emulators = new ArrayList<>();
+    private Robot robot;
+
+    @AfterEach
+    void close() {
+        if (robot != null) {
+            robot.close();
+        }
+        emulators.forEach(Ev3Emulator::close);
+        if (sim != null) {
+            sim.close();
+        }
+    }
+
+    private void world(double width, double x) throws IOException {
+        Files.writeString(dir.resolve("body.yaml"), ROBOT.formatted("port: /dev/unused"));
+        Files.writeString(dir.resolve("world.yaml"), """
+                name: ev3-stack
+                arena: { width: %s, height: 3 }
+                robots:
+                  - { robot: body.yaml, name: ev3-1, x: %s, y: 1.5, heading: 0 }
+                """.formatted(width, x));
+        sim = Simulation.load(dir.resolve("world.yaml"), Set.of("ev3-1"));
+    }
+
+    private Ev3Emulator emulator() {
+        Ev3Emulator e = Ev3Emulator.bind(sim, "ev3-1");
+        emulators.add(e);
+        return e;
+    }
+
+    /** A world with the robot at (x, 1.5) facing the wall at x = 3, the emulator on a pty, the driver on it. */
+    private void startOnPty(double x) throws IOException {
+        world(3, x);
+        String pty = emulator().startOnPseudoTerminal();
+        sim.startRealTime(SPEED);
+        Files.writeString(dir.resolve("driver.yaml"), ROBOT.formatted("port: " + pty));
+        robot = Robots.open(dir.resolve("driver.yaml"));
+    }
+
+    private Pose truePose() {
+        return sim.world().robot("ev3-1").pose();
+    }
+
+    /** Waits, checking after every world step, until the condition holds; fails after the deadline. */
+    private void awaitStep(BooleanSupplier condition, Duration deadline, String what) throws InterruptedException {
+        CountDownLatch held = new CountDownLatch(1);
+        Runnable probe = () -> {
+            if (condition.getAsBoolean()) {
+                held.countDown();
+            }
+        };
+        sim.addStepListener(probe);
+        try {
+            assertTrue(held.await(deadline.toMillis(), TimeUnit.MILLISECONDS), what + " within " + deadline.toMillis() + " ms; robot at " + truePose());
+        } finally {
+            sim.removeStepListener(probe);
+        }
+    }
+
+    @Test
+    void shouldMoveSimulatedRobotHalfAMetreWithinOneCentimetre() throws Exception {
+        startOnPty(0.5);
+        robot.move(0.5, 0.15);
+        assertEquals(1.0, truePose().x(), 0.01);
+        assertEquals(1.5, truePose().y(), 0.01);
+    }
+
+    @Test
+    void shouldTurnQuarterWithinTwoDegreesAndReadItOnTheGyro() throws Exception {
+        startOnPty(1.5);
+        robot.turn(Math.PI / 2, 1.0);
+        assertEquals(90, Math.toDegrees(truePose().heading()), 2.0);
+        assertEquals(90, robot.getValue("gyro", ReturnType.DEGREES), 2.0);
+    }
+
+    @Test
+    void shouldReadDistanceToWallWithUltrasonic() throws Exception {
+        startOnPty(2.0);
+        double expected = 3.0 - (2.0 + 0.10);
+        assertEquals(expected * 100, robot.getValue(Position.FRONT, SensorType.SONAR, ReturnType.CENTIMETERS), 2.0);
+    }
+
+    @Test
+    void shouldReadTouchPressedAgainstWall() throws Exception {
+        startOnPty(2.6);
+        assertEquals(0.0, robot.getValue(Position.FRONT, SensorType.TOUCH, ReturnType.BOOLEAN));
+        CompletableFuture<Void> drive = robot.moveAsync(0.5, 0.1);
+        long deadline = System.nanoTime() + Duration.ofSeconds(10).toNanos();
+        while (robot.getValue(Position.FRONT, SensorType.TOUCH, ReturnType.BOOLEAN) == 0.0) {
+            if (System.nanoTime() > deadline) {
+                fail("the bumper never read pressed; robot at " + truePose());
+            }
+        }
+        robot.stop();
+        assertTrue(truePose().x() + 0.10 <= 3.005, "at the wall, not through it: " + truePose());
+        assertThrows(Exception.class, () -> drive.get(5, TimeUnit.SECONDS), "the blocked move ended by the stop");
+    }
+
+    @Test
+    void shouldFailMoveWithLinkExceptionWithinOneSecondWhenEmulatorDiesAndLeaveRobotStopped() throws Exception {
+        startOnPty(0.5);
+        CompletableFuture<Void> move = robot.moveAsync(1.0, 0.1);
+        double before = truePose().x();
+        awaitStep(() -> truePose().x() > before + 0.05, Duration.ofSeconds(10), "the robot started moving");
+        long killed = System.nanoTime();
+        emulators.get(0).close();
+        ExecutionException e = assertThrows(ExecutionException.class, () -> move.get(1, TimeUnit.SECONDS));
+        long tookNanos = System.nanoTime() - killed;
+        assertInstanceOf(RobotLinkException.class, e.getCause());
+        assertTrue(tookNanos < Duration.ofSeconds(1).toNanos(), "reported after " + tookNanos / 1_000_000 + " ms");
+        double stoppedAt = truePose().x();
+        double t0 = sim.world().time();
+        awaitStep(() -> sim.world().time() >= t0 + 0.5, Duration.ofSeconds(5), "half a simulated second passed");
+        assertEquals(stoppedAt, truePose().x(), 0.005, "the robot stopped with its brick");
+    }
+
+    @Test
+    void shouldReconnectOverTcpWhenEmulatorComesBackWithoutReopeningTheRobot() throws Exception {
+        world(4, 0.5);
+        Ev3Emulator first = emulator();
+        int port = first.startOnTcp("127.0.0.1", 0);
+        sim.startRealTime(SPEED);
+        Files.writeString(dir.resolve("driver.yaml"), ROBOT.formatted("host: 127.0.0.1, port: " + port));
+        robot = Robots.open(dir.resolve("driver.yaml"));
+        robot.move(0.2, 0.15);
+        assertEquals(0.7, truePose().x(), 0.01);
+
+        first.close();
+        Ev3Emulator second = emulator();
+        second.startOnTcp("127.0.0.1", port);
+        awaitStep(() -> second.framesServed() >= 3, Duration.ofSeconds(10), "the driver reconnected and polled the new emulator");
+        double before = truePose().x();
+        robot.move(0.2, 0.15);
+        assertEquals(before + 0.2, truePose().x(), 0.01);
+    }
+
+    @Test
+    void shouldDriveTheExampleRobotFileThroughTheEmulator() throws Exception {
+        Path example = Path.of("..", "examples", "robots", "ev3-two-wheeled.yaml").toAbsolutePath().normalize();
+        Files.writeString(dir.resolve("world.yaml"), """
+                name: ev3-example
+                arena: { width: 3, height: 3 }
+                robots:
+                  - { robot: "%s", name: ev3-1, x: 1.0, y: 1.5, heading: 0 }
+                """.formatted(example));
+        sim = Simulation.load(dir.resolve("world.yaml"), Set.of("ev3-1"));
+        String pty = emulator().startOnPseudoTerminal();
+        sim.startRealTime(SPEED);
+        String text = Files.readString(example);
+        assertTrue(text.contains("port: /dev/rfcomm0"), "the example names the Bluetooth serial port");
+        Files.writeString(dir.resolve("driver.yaml"), text.replace("port: /dev/rfcomm0", "port: " + pty));
+        robot = Robots.open(dir.resolve("driver.yaml"));
+        robot.move(0.3, 0.2);
+        assertEquals(1.3, truePose().x(), 0.01);
+        assertEquals(0.0, robot.getValue("bumper", ReturnType.BOOLEAN));
+        assertEquals(3.0 - (1.3 + 0.10), robot.getValue("sonar", ReturnType.METERS), 0.02);
+        assertEquals(0.0, robot.getValue("gyro", ReturnType.DEGREES), 1.0);
+    }
+}

@@ -1,0 +1,279 @@
+package io.robomw.sim.emulator.ft.txt;
+
+import io.robomw.platform.ft.txt.TxtProtocol;
+import io.robomw.sim.Simulation;
+import org.junit.jupiter.api.AfterEach;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import java.io.DataInputStream;
+import java.io.IOException;
+import java.net.BindException;
+import java.net.InetAddress;
+import java.net.ServerSocket;
+import java.net.Socket;
+import java.net.SocketTimeoutException;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.Set;
+import java.util.concurrent.locks.LockSupport;
+import java.util.function.Predicate;
+
+import static org.junit.jupiter.api.Assertions.assertArrayEquals;
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+import static org.junit.jupiter.api.Assertions.fail;
+
+/**
+ * The TXT emulator message by message over a raw socket on 127.0.0.1: every reply of the table
+ * by id and size, framing by id, the counters, distance commands, input modes and link loss,
+ * with the robot in a world running at four times real time.
+ */
+class TxtEmulatorProtocolTest {
+
+    @TempDir
+    Path dir;
+
+    private Simulation sim;
+    private TxtEmulator emulator;
+    private Socket client;
+    private DataInputStream in;
+
+    @AfterEach
+    void close() throws IOException {
+        if (client != null) {
+            client.close();
+        }
+        if (emulator != null) {
+            emulator.close();
+        }
+        if (sim != null) {
+            sim.close();
+        }
+    }
+
+    /** The robot at (x, 1.5) facing the wall at x = 3, the emulator bound to it, not yet serving. */
+    private void world(double x) throws IOException {
+        Files.writeString(dir.resolve("body.yaml"), TxtEmulatorTest.ROBOT.formatted("host: 127.0.0.1, port: 1"));
+        Files.writeString(dir.resolve("world.yaml"), """
+                name: txt-protocol
+                arena: { width: 3, height: 3 }
+                robots:
+                  - { robot: body.yaml, name: txt-1, x: %s, y: 1.5, heading: 0 }
+                """.formatted(x));
+        sim = Simulation.load(dir.resolve("world.yaml"), Set.of("txt-1"));
+        emulator = TxtEmulator.bind(sim, "txt-1");
+    }
+
+    private void start(double x) throws IOException {
+        world(x);
+        int port = emulator.startOnTcp("127.0.0.1", 0);
+        sim.startRealTime(4);
+        connect(port);
+    }
+
+    private void connect(int port) throws IOException {
+        client = new Socket(InetAddress.getLoopbackAddress(), port);
+        client.setSoTimeout(2000);
+        client.setTcpNoDelay(true);
+        in = new DataInputStream(client.getInputStream());
+    }
+
+    private byte[] request(byte[] message, int replyLength) throws IOException {
+        client.getOutputStream().write(message);
+        byte[] reply = new byte[replyLength];
+        in.readFully(reply);
+        return reply;
+    }
+
+    private TxtProtocol.ExchangeReply exchange(int[] pwm, int[] dist, int[] motorCmdId, int[] counterCmdId) throws IOException {
+        byte[] reply = request(new TxtProtocol.Exchange(pwm, new int[4], dist, motorCmdId, counterCmdId, 0, 0, 0).encode(),
+                TxtProtocol.EXCHANGE_REPLY_LENGTH);
+        return TxtProtocol.ExchangeReply.decode(reply);
+    }
+
+    private TxtProtocol.ExchangeReply idle() throws IOException {
+        return exchange(new int[8], new int[4], new int[4], new int[4]);
+    }
+
+    private void configure(int[] mode, int[] digital) throws IOException {
+        byte[] config = new TxtProtocol.Config(1, 0, new int[]{1, 1, 1, 1}, mode, digital, new int[]{1, 1, 1, 1}, new int[16]).encode();
+        assertArrayEquals(TxtProtocol.ack(TxtProtocol.UPDATE_CONFIG_REPLY), request(config, TxtProtocol.ACK_LENGTH));
+    }
+
+    /** Repeats an exchange (which also keeps the link alive) until its reply satisfies the condition. */
+    private TxtProtocol.ExchangeReply exchangeUntil(int[] pwm, int[] dist, int[] motorCmdId, int[] counterCmdId,
+                                                    Predicate<TxtProtocol.ExchangeReply> done, String what) throws IOException {
+        long deadline = System.nanoTime() + Duration.ofSeconds(10).toNanos();
+        while (true) {
+            TxtProtocol.ExchangeReply r = exchange(pwm, dist, motorCmdId, counterCmdId);
+            if (done.test(r)) {
+                return r;
+            }
+            if (System.nanoTime() > deadline) {
+                fail(what + " did not happen; last reply " + r);
+            }
+            LockSupport.parkNanos(5_000_000);
+        }
+    }
+
+    @Test
+    void shouldAnswerEveryRequestOfTheTableWithItsReplyByIdAndSize() throws Exception {
+        start(1.0);
+        TxtProtocol.Status status = TxtProtocol.Status.decode(request(TxtProtocol.queryStatus(), TxtProtocol.QUERY_STATUS_REPLY_LENGTH));
+        assertEquals(TxtEmulator.DEVICE_NAME, status.deviceName());
+        assertEquals(TxtEmulator.FIRMWARE_VERSION, status.version());
+        assertArrayEquals(TxtProtocol.ack(TxtProtocol.START_ONLINE_REPLY), request(TxtProtocol.startOnline(), TxtProtocol.ACK_LENGTH));
+        assertTrue(emulator.isOnline());
+        configure(new int[]{1, 1, 1, 1, 1, 1, 1, 1}, new int[]{1, 1, 1, 1, 1, 1, 1, 1});
+        TxtProtocol.ExchangeReply r = idle();
+        assertArrayEquals(new int[4], r.motorCmdId());
+        assertArrayEquals(TxtProtocol.ack(TxtProtocol.STOP_ONLINE_REPLY), request(TxtProtocol.stopOnline(), TxtProtocol.ACK_LENGTH));
+        assertFalse(emulator.isOnline());
+        client.setSoTimeout(100);
+        assertThrows(SocketTimeoutException.class, () -> in.read(), "nothing beyond the replies");
+    }
+
+    @Test
+    void shouldDropAnUnknownIdAndAnswerTheNextMessage() throws Exception {
+        start(1.0);
+        client.getOutputStream().write(new byte[]{(byte) 0xA6, 0x40, 0x2A, (byte) 0x88, 0, 0, 0, 0});
+        client.setSoTimeout(200);
+        long deadline = System.nanoTime() + Duration.ofSeconds(5).toNanos();
+        byte[] reply = null;
+        while (reply == null) {
+            assertTrue(System.nanoTime() < deadline, "no answer after the unknown message");
+            try {
+                reply = request(TxtProtocol.queryStatus(), TxtProtocol.QUERY_STATUS_REPLY_LENGTH);
+            } catch (SocketTimeoutException e) {
+                // the emulator was still draining the bad input: our request went with it; ask again
+            }
+        }
+        assertEquals(TxtProtocol.QUERY_STATUS_REPLY, TxtProtocol.messageId(reply));
+        assertTrue(emulator.framesDropped() >= 1);
+    }
+
+    @Test
+    void shouldStopADistanceCommandAfterItsPulsesAndThenEchoItsId() throws Exception {
+        start(0.5);
+        int[] pwm = {256, 0, 256, 0, 0, 0, 0, 0};
+        int[] dist = {30, 30, 0, 0};
+        int[] ids = {1, 1, 0, 0};
+        TxtProtocol.ExchangeReply first = exchange(pwm, dist, ids, new int[4]);
+        assertArrayEquals(new int[4], first.motorCmdId(), "not finished at once");
+        TxtProtocol.ExchangeReply done = exchangeUntil(pwm, dist, ids, new int[4],
+                r -> r.motorCmdId()[0] == 1 && r.motorCmdId()[1] == 1, "the distance command");
+        int c1 = done.counterValue()[0];
+        assertTrue(c1 >= 30 && c1 <= 31, "stopped at 30 pulses, counted " + c1);
+        double stoppedAt = sim.world().time();
+        exchangeUntil(pwm, dist, ids, new int[4], r -> sim.world().time() > stoppedAt + 0.05, "the stop to reach the physics");
+        double x = sim.world().robot("txt-1").pose().x();
+        double t0 = sim.world().time();
+        exchangeUntil(pwm, dist, ids, new int[4], r -> sim.world().time() > t0 + 0.3, "0.3 s of simulated time");
+        assertEquals(x, sim.world().robot("txt-1").pose().x(), 1e-9, "the motor stays stopped while the command is unchanged");
+        assertEquals(0.5 + 30 * Math.PI * 0.056 / 63, x, 0.004, "30 pulses of 2.79 mm");
+    }
+
+    @Test
+    void shouldRunWithoutLimitAndEchoAtOnceWhenTheDistanceIsZero() throws Exception {
+        start(0.5);
+        TxtProtocol.ExchangeReply r = exchange(new int[]{0, 512, 0, 512, 0, 0, 0, 0}, new int[4], new int[]{3, 3, 0, 0}, new int[4]);
+        assertArrayEquals(new int[]{3, 3, 0, 0}, r.motorCmdId());
+        exchangeUntil(new int[]{0, 512, 0, 512, 0, 0, 0, 0}, new int[4], new int[]{3, 3, 0, 0}, new int[4],
+                reply -> sim.world().robot("txt-1").pose().x() < 0.45, "driving backwards");
+        idle();
+    }
+
+    @Test
+    void shouldResetACounterWhenItsCommandIdChanges() throws Exception {
+        start(0.5);
+        int[] pwm = {512, 0, 512, 0, 0, 0, 0, 0};
+        exchangeUntil(pwm, new int[4], new int[4], new int[4], r -> r.counterValue()[0] >= 20 && r.counterValue()[1] >= 20, "counting");
+        double t0 = sim.world().time();
+        TxtProtocol.ExchangeReply stopped = exchangeUntil(new int[8], new int[4], new int[4], new int[4],
+                r -> sim.world().time() > t0 + 0.2, "standing still");
+        TxtProtocol.ExchangeReply reset = exchange(new int[8], new int[4], new int[4], new int[]{1, 0, 0, 0});
+        assertArrayEquals(new int[]{1, 0, 0, 0}, reset.counterCmdId(), "the reset is echoed");
+        assertEquals(0, reset.counterValue()[0], "C1 restarted from 0");
+        assertEquals(stopped.counterValue()[1], reset.counterValue()[1], "C2 was not reset");
+        assertEquals(0, exchange(new int[8], new int[4], new int[4], new int[]{1, 0, 0, 0}).counterValue()[0],
+                "an unchanged id resets nothing more");
+    }
+
+    @Test
+    void shouldReportEachInputInTheModeConfiguredLast() throws Exception {
+        start(2.0);
+        idle();
+        exchangeUntil(new int[8], new int[4], new int[4], new int[4], r -> sim.world().time() > 0.2, "the first sensor samples");
+        configure(new int[]{1, 3, 1, 1, 1, 1, 1, 1}, new int[]{1, 0, 1, 1, 0, 1, 1, 1});
+        TxtProtocol.ExchangeReply r = idle();
+        assertEquals(0, r.input(0), "the bumper on I1 is released");
+        assertEquals(90, r.input(1), 2, "the sonar on I2 reads the wall 0.90 m ahead in cm");
+        assertEquals(15000, r.input(4), "nothing on I5: an open resistance");
+        configure(new int[]{1, 1, 1, 1, 1, 1, 1, 1}, new int[]{1, 1, 1, 1, 1, 1, 1, 1});
+        assertEquals(1, idle().input(1), "the very next reply is in the new mode: 0.90 m reads as a 1");
+    }
+
+    @Test
+    void shouldStopTheMotorsWhenTheClientFallsSilent() throws Exception {
+        start(0.5);
+        exchange(new int[]{512, 0, 512, 0, 0, 0, 0, 0}, new int[4], new int[4], new int[4]);
+        long deadline = System.nanoTime() + Duration.ofSeconds(10).toNanos();
+        double last = Double.NaN;
+        double lastTime = 0;
+        while (true) {
+            double x = sim.world().robot("txt-1").pose().x();
+            double t = sim.world().time();
+            if (x == last && t > lastTime + 0.2) {
+                break;
+            }
+            if (x != last) {
+                last = x;
+                lastTime = t;
+            }
+            assertTrue(System.nanoTime() < deadline, "the motors kept running without messages");
+            LockSupport.parkNanos(5_000_000);
+        }
+        assertTrue(last > 0.5, "it had been driving");
+        assertTrue(last < 2.5, "it stopped by itself, not at the wall (x = 2.9): " + last);
+    }
+
+    @Test
+    void shouldAcceptTheI2cConnectionOnTheCommandPortPlusTwo() throws Exception {
+        world(1.0);
+        int port = -1;
+        for (int attempt = 0; attempt < 20 && port < 0; attempt++) {
+            int candidate;
+            try (ServerSocket probe = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+                candidate = probe.getLocalPort();
+            }
+            if (candidate > 65533) {
+                continue;
+            }
+            try {
+                port = emulator.startOnTcpPair("127.0.0.1", candidate);
+            } catch (BindException e) {
+                // P or P + 2 is taken: try another pair
+            }
+        }
+        assertTrue(port > 0, "no free port pair found");
+        assertEquals(port + 2, emulator.i2cPort());
+        sim.startRealTime(4);
+        try (Socket i2c = new Socket(InetAddress.getLoopbackAddress(), port + 2)) {
+            connect(port);
+            assertEquals(TxtProtocol.QUERY_STATUS_REPLY,
+                    TxtProtocol.messageId(request(TxtProtocol.queryStatus(), TxtProtocol.QUERY_STATUS_REPLY_LENGTH)));
+            assertTrue(i2c.isConnected());
+        }
+    }
+
+    @Test
+    void shouldRefuseAPortPairWithoutAFixedPort() throws Exception {
+        world(1.0);
+        IllegalArgumentException e = assertThrows(IllegalArgumentException.class, () -> emulator.startOnTcpPair("127.0.0.1", 0));
+        assertTrue(e.getMessage().contains("startOnTcp"), e.getMessage());
+    }
+}

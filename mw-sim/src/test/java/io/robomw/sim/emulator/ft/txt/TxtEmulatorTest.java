@@ -1,0 +1,185 @@
+package io.robomw.sim.emulator.ft.txt;
+
+import io.robomw.api.Pose;
+import io.robomw.api.Position;
+import io.robomw.api.ReturnType;
+import io.robomw.api.Robot;
+import io.robomw.api.RobotLinkException;
+import io.robomw.api.Robots;
+import io.robomw.api.SensorType;
+import io.robomw.sim.Simulation;
+import org.junit.jupiter.api.AfterEach;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import java.io.IOException;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.Set;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.ExecutionException;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.locks.LockSupport;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertInstanceOf;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+import static org.junit.jupiter.api.Assertions.fail;
+
+/**
+ * The real TXT driver, byte for byte over TCP on 127.0.0.1, against the TXT emulator, whose motors
+ * and inputs are a robot in a simulated world running at four times real time. Checks are on the
+ * simulated robot's true pose.
+ *
+ * <p>Encoder resolution: the fischertechnik encoder motor gives 63 pulses per motor turn
+ * (63⅓ really; the description takes 63), so on 56 mm wheels one pulse is π × 56 mm ÷ 63 =
+ * 2.79 mm of wheel travel (5.7° of motor rotation), and a turn on the spot with a 112 mm track
+ * is resolved to 2.86° of heading per pulse of one wheel.
+ */
+class TxtEmulatorTest {
+
+    static final String ROBOT = """
+            name: txt-1
+            platform: ft-txt
+            connection: { %s }
+            drive:
+              wheel_diameter: 0.056
+              track_width: 0.112
+              max_speed: 0.30
+              encoder_ticks_per_revolution: 63
+              left:  { port: M1, counter: C1 }
+              right: { port: M2, counter: C2 }
+            body: { length: 0.20, width: 0.15, mass: 0.6, friction: 0.8 }
+            sensors:
+              - { name: bumper, type: touch, position: front, port: I1 }
+              - { name: sonar, type: sonar, position: front, port: I2, conversion: { scale: 0.01 } }
+            """;
+
+    @TempDir
+    Path dir;
+
+    private Simulation sim;
+    private TxtEmulator emulator;
+    private Robot robot;
+
+    @AfterEach
+    void close() {
+        if (robot != null) {
+            robot.close();
+        }
+        if (emulator != null) {
+            emulator.close();
+        }
+        if (sim != null) {
+            sim.close();
+        }
+    }
+
+    /** A world with the robot at (x, 1.5) facing the wall at x = 3, the emulator on a free port, the driver on it. */
+    private int start(double x) throws IOException {
+        Files.writeString(dir.resolve("body.yaml"), ROBOT.formatted("host: 127.0.0.1, port: 1"));
+        Files.writeString(dir.resolve("world.yaml"), """
+                name: txt-test
+                arena: { width: 3, height: 3 }
+                robots:
+                  - { robot: body.yaml, name: txt-1, x: %s, y: 1.5, heading: 0 }
+                """.formatted(x));
+        sim = Simulation.load(dir.resolve("world.yaml"), Set.of("txt-1"));
+        emulator = TxtEmulator.bind(sim, "txt-1");
+        int port = emulator.startOnTcp("127.0.0.1", 0);
+        sim.startRealTime(4);
+        Files.writeString(dir.resolve("driver.yaml"), ROBOT.formatted("host: 127.0.0.1, port: " + port));
+        robot = Robots.open(dir.resolve("driver.yaml"));
+        return port;
+    }
+
+    private Pose truePose() {
+        return sim.world().robot("txt-1").pose();
+    }
+
+    @Test
+    void shouldMoveSimulatedRobotHalfAMetreWithinTwoCentimetres() throws Exception {
+        start(0.5);
+        robot.move(0.5, 0.15);
+        assertEquals(1.0, truePose().x(), 0.02);
+        assertEquals(1.5, truePose().y(), 0.02);
+    }
+
+    @Test
+    void shouldTurnQuarterWithinFiveDegrees() throws Exception {
+        start(1.5);
+        robot.turn(Math.PI / 2, 1.0);
+        assertEquals(90, Math.toDegrees(truePose().heading()), 5.0);
+    }
+
+    @Test
+    void shouldReadBumperPressedAgainstWall() throws Exception {
+        start(2.6);
+        assertEquals(0.0, robot.getValue(Position.FRONT, SensorType.TOUCH, ReturnType.BOOLEAN));
+        CompletableFuture<Void> drive = robot.moveAsync(0.5, 0.1);
+        long deadline = System.nanoTime() + Duration.ofSeconds(20).toNanos();
+        while (robot.getValue(Position.FRONT, SensorType.TOUCH, ReturnType.BOOLEAN) == 0.0) {
+            if (System.nanoTime() > deadline) {
+                fail("the bumper never read pressed; robot at " + truePose());
+            }
+        }
+        robot.stop();
+        assertTrue(truePose().x() + 0.10 <= 3.005, "at the wall, not through it: " + truePose());
+        assertThrows(Exception.class, () -> drive.get(5, TimeUnit.SECONDS), "the blocked move ended by the stop");
+    }
+
+    @Test
+    void shouldReadDistanceToWallWithUltrasonic() throws Exception {
+        start(2.0);
+        double expected = 3.0 - (2.0 + 0.10);
+        assertEquals(expected * 100, robot.getValue(Position.FRONT, SensorType.SONAR, ReturnType.CENTIMETERS), 2.0);
+    }
+
+    @Test
+    void shouldFailTheMoveWithRobotLinkExceptionWithinOneSecondWhenTheEmulatorCloses() throws Exception {
+        start(0.5);
+        CompletableFuture<Void> move = robot.moveAsync(1.0, 0.1);
+        double before = truePose().x();
+        long deadline = System.nanoTime() + Duration.ofSeconds(10).toNanos();
+        while (truePose().x() < before + 0.05) {
+            assertTrue(System.nanoTime() < deadline, "the robot should have started moving");
+            LockSupport.parkNanos(1_000_000);
+        }
+        long killed = System.nanoTime();
+        emulator.close();
+        ExecutionException e = assertThrows(ExecutionException.class, () -> move.get(1, TimeUnit.SECONDS));
+        assertInstanceOf(RobotLinkException.class, e.getCause());
+        assertTrue(System.nanoTime() - killed < Duration.ofSeconds(1).toNanos());
+        double stoppedAt = truePose().x();
+        double t0 = sim.world().time();
+        long until = System.nanoTime() + Duration.ofSeconds(5).toNanos();
+        while (sim.world().time() < t0 + 0.5 && System.nanoTime() < until) {
+            LockSupport.parkNanos(1_000_000);
+        }
+        assertEquals(stoppedAt, truePose().x(), 0.03, "the robot stopped with its controller");
+    }
+
+    @Test
+    void shouldReconnectToANewEmulatorOnTheSamePort() throws Exception {
+        int port = start(0.5);
+        robot.move(0.2, 0.15);
+
+        emulator.close();
+        emulator = TxtEmulator.bind(sim, "txt-1");
+        emulator.startOnTcp("127.0.0.1", port);
+        double before = truePose().x();
+        long deadline = System.nanoTime() + Duration.ofSeconds(10).toNanos();
+        while (true) {
+            try {
+                robot.move(0.2, 0.15);
+                break;
+            } catch (RobotLinkException e) {
+                assertTrue(System.nanoTime() < deadline, "the driver did not reconnect: " + e.getMessage());
+                LockSupport.parkNanos(20_000_000);
+            }
+        }
+        assertEquals(before + 0.2, truePose().x(), 0.02);
+    }
+}
