@@ -1,5 +1,6 @@
 package io.robomw.platform.ev3;
 
+import io.robomw.platform.brick.LittleEndian;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.Communicator;
 import io.robomw.platform.link.LinkLostException;
@@ -86,7 +87,7 @@ public final class Ev3Brick {
         long deadline = System.nanoTime() + timeout.toNanos();
         while (true) {
             byte[] lengthField = c.receiveExactly(Ev3Frame.LENGTH_FIELD_SIZE, remaining(deadline));
-            int length = Ev3Frame.getU16LE(lengthField, 0);
+            int length = LittleEndian.u16(lengthField, 0);
             if (length < Ev3Frame.MIN_REPLY_LENGTH || length > Ev3Frame.MAX_REPLY_LENGTH) {
                 throw new LinkLostException(channel.describe(), "the EV3 reply to direct command #" + counter + " announced " + length
                         + " bytes after its length field, but a reply has " + Ev3Frame.MIN_REPLY_LENGTH + ".." + Ev3Frame.MAX_REPLY_LENGTH

@@ -1,5 +1,6 @@
 package io.robomw.platform.ev3;
 
+import io.robomw.platform.brick.LittleEndian;
 import java.nio.charset.StandardCharsets;
 
 /**
@@ -106,8 +107,8 @@ public final class Ev3CodeReader {
         require(n, "the value of the parameter at byte " + at);
         int v = switch (n) {
             case 1 -> bytes[position];
-            case 2 -> Ev3Frame.getS16LE(bytes, position);
-            default -> Ev3Frame.getS32LE(bytes, position);
+            case 2 -> LittleEndian.s16(bytes, position);
+            default -> LittleEndian.s32(bytes, position);
         };
         position += n;
         return v;

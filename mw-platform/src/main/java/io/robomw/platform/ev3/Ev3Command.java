@@ -1,5 +1,6 @@
 package io.robomw.platform.ev3;
 
+import io.robomw.platform.brick.LittleEndian;
 import io.robomw.platform.motor.MotorState;
 
 import java.io.ByteArrayOutputStream;
@@ -93,10 +94,10 @@ public final class Ev3Command {
             throw new IllegalArgumentException("the message counter is an unsigned 16-bit field, counter=" + counter);
         }
         byte[] frame = new byte[Ev3Frame.COMMAND_HEADER_LENGTH + code.length];
-        Ev3Frame.putU16LE(frame, Ev3Frame.LENGTH_FIELD_OFFSET, frame.length - Ev3Frame.LENGTH_FIELD_SIZE);
-        Ev3Frame.putU16LE(frame, Ev3Frame.COUNTER_FIELD_OFFSET, counter);
+        LittleEndian.putU16(frame, Ev3Frame.LENGTH_FIELD_OFFSET, frame.length - Ev3Frame.LENGTH_FIELD_SIZE);
+        LittleEndian.putU16(frame, Ev3Frame.COUNTER_FIELD_OFFSET, counter);
         frame[Ev3Frame.TYPE_FIELD_OFFSET] = (byte) type;
-        Ev3Frame.putU16LE(frame, Ev3Frame.VARS_FIELD_OFFSET, Ev3Frame.vars(locals, globals));
+        LittleEndian.putU16(frame, Ev3Frame.VARS_FIELD_OFFSET, Ev3Frame.vars(locals, globals));
         System.arraycopy(code, 0, frame, Ev3Frame.CODE_OFFSET, code.length);
         return frame;
     }

@@ -1,5 +1,6 @@
 package io.robomw.platform.ev3;
 
+import io.robomw.platform.brick.LittleEndian;
 /**
  * The frame of an EV3 direct command and of its reply, byte for byte (firmware
  * {@code lms2012/c_com/source/c_com.h} and {@code c_com.c}), with a name for every offset. The same
@@ -125,7 +126,7 @@ public final class Ev3Frame {
      * @return the length field: bytes after it
      */
     public static int length(byte[] frame) {
-        return getU16LE(frame, LENGTH_FIELD_OFFSET);
+        return LittleEndian.u16(frame, LENGTH_FIELD_OFFSET);
     }
 
     /**
@@ -133,7 +134,7 @@ public final class Ev3Frame {
      * @return its message counter
      */
     public static int counter(byte[] frame) {
-        return getU16LE(frame, COUNTER_FIELD_OFFSET);
+        return LittleEndian.u16(frame, COUNTER_FIELD_OFFSET);
     }
 
     /**
@@ -150,7 +151,7 @@ public final class Ev3Frame {
      */
     public static byte[] withLength(byte[] body) {
         byte[] frame = new byte[LENGTH_FIELD_SIZE + body.length];
-        putU16LE(frame, LENGTH_FIELD_OFFSET, body.length);
+        LittleEndian.putU16(frame, LENGTH_FIELD_OFFSET, body.length);
         System.arraycopy(body, 0, frame, LENGTH_FIELD_SIZE, body.length);
         return frame;
     }
@@ -175,76 +176,10 @@ public final class Ev3Frame {
 
     // ---- little-endian fields ----
 
-    /**
-     * @param b   bytes
-     * @param off offset
-     * @return the unsigned 16-bit little-endian value there
-     */
-    public static int getU16LE(byte[] b, int off) {
-        return (b[off] & 0xFF) | (b[off + 1] & 0xFF) << 8;
-    }
 
-    /**
-     * @param b   bytes
-     * @param off offset
-     * @return the signed 16-bit little-endian value there
-     */
-    public static int getS16LE(byte[] b, int off) {
-        return (short) getU16LE(b, off);
-    }
 
-    /**
-     * @param b   bytes
-     * @param off offset
-     * @return the signed 32-bit little-endian value there
-     */
-    public static int getS32LE(byte[] b, int off) {
-        return (b[off] & 0xFF) | (b[off + 1] & 0xFF) << 8 | (b[off + 2] & 0xFF) << 16 | (b[off + 3] & 0xFF) << 24;
-    }
 
-    /**
-     * @param b   bytes
-     * @param off offset
-     * @return the IEEE-754 single-precision little-endian value there
-     */
-    public static float getFloatLE(byte[] b, int off) {
-        return Float.intBitsToFloat(getS32LE(b, off));
-    }
 
-    /**
-     * Writes the low 16 bits of a value, little-endian.
-     *
-     * @param b     bytes
-     * @param off   offset
-     * @param value the value
-     */
-    public static void putU16LE(byte[] b, int off, int value) {
-        b[off] = (byte) value;
-        b[off + 1] = (byte) (value >> 8);
-    }
 
-    /**
-     * Writes a 32-bit value, little-endian.
-     *
-     * @param b     bytes
-     * @param off   offset
-     * @param value the value
-     */
-    public static void putS32LE(byte[] b, int off, int value) {
-        b[off] = (byte) value;
-        b[off + 1] = (byte) (value >> 8);
-        b[off + 2] = (byte) (value >> 16);
-        b[off + 3] = (byte) (value >> 24);
-    }
 
-    /**
-     * Writes an IEEE-754 single-precision value, little-endian.
-     *
-     * @param b     bytes
-     * @param off   offset
-     * @param value the value
-     */
-    public static void putFloatLE(byte[] b, int off, float value) {
-        putS32LE(b, off, Float.floatToRawIntBits(value));
-    }
 }

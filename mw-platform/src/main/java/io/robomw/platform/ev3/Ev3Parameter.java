@@ -1,5 +1,6 @@
 package io.robomw.platform.ev3;
 
+import io.robomw.platform.brick.LittleEndian;
 import java.nio.charset.StandardCharsets;
 import java.util.Objects;
 
@@ -188,7 +189,7 @@ public record Ev3Parameter(Kind kind, int value, String text) {
     public static byte[] lc4(int v) {
         byte[] b = new byte[5];
         b[0] = (byte) (PRIMPAR_LONG | PRIMPAR_4_BYTES);
-        Ev3Frame.putS32LE(b, 1, v);
+        LittleEndian.putU32(b, 1, v);
         return b;
     }
 
@@ -300,7 +301,7 @@ public record Ev3Parameter(Kind kind, int value, String text) {
         requireRange(name, offset, 0, Integer.MAX_VALUE);
         byte[] b = new byte[5];
         b[0] = (byte) (PRIMPAR_LONG | PRIMPAR_VARIABLE | scope | PRIMPAR_4_BYTES);
-        Ev3Frame.putS32LE(b, 1, offset);
+        LittleEndian.putU32(b, 1, offset);
         return b;
     }
 

@@ -1,5 +1,6 @@
 package io.robomw.platform.ev3;
 
+import io.robomw.platform.brick.LittleEndian;
 import java.util.Arrays;
 import java.util.Objects;
 
@@ -85,8 +86,8 @@ public record Ev3Reply(int counter, int type, byte[] globals) {
     /** @return the whole frame, from its length field */
     public byte[] encode() {
         byte[] frame = new byte[Ev3Frame.REPLY_HEADER_LENGTH + globals.length];
-        Ev3Frame.putU16LE(frame, Ev3Frame.LENGTH_FIELD_OFFSET, frame.length - Ev3Frame.LENGTH_FIELD_SIZE);
-        Ev3Frame.putU16LE(frame, Ev3Frame.COUNTER_FIELD_OFFSET, counter);
+        LittleEndian.putU16(frame, Ev3Frame.LENGTH_FIELD_OFFSET, frame.length - Ev3Frame.LENGTH_FIELD_SIZE);
+        LittleEndian.putU16(frame, Ev3Frame.COUNTER_FIELD_OFFSET, counter);
         frame[Ev3Frame.TYPE_FIELD_OFFSET] = (byte) type;
         System.arraycopy(globals, 0, frame, Ev3Frame.GLOBALS_OFFSET, globals.length);
         return frame;
@@ -118,7 +119,7 @@ public record Ev3Reply(int counter, int type, byte[] globals) {
      */
     public int data16(int offset) {
         require(offset, 2);
-        return Ev3Frame.getS16LE(globals, offset);
+        return LittleEndian.s16(globals, offset);
     }
 
     /**
@@ -127,7 +128,7 @@ public record Ev3Reply(int counter, int type, byte[] globals) {
      */
     public int data32(int offset) {
         require(offset, 4);
-        return Ev3Frame.getS32LE(globals, offset);
+        return LittleEndian.s32(globals, offset);
     }
 
     /**
@@ -136,7 +137,7 @@ public record Ev3Reply(int counter, int type, byte[] globals) {
      */
     public float dataF(int offset) {
         require(offset, 4);
-        return Ev3Frame.getFloatLE(globals, offset);
+        return LittleEndian.f32(globals, offset);
     }
 
     private void require(int offset, int width) {

@@ -1,5 +1,6 @@
 package io.robomw.platform.nxt;
 
+import io.robomw.platform.brick.LittleEndian;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.LinkLostException;
 
@@ -84,7 +85,7 @@ public final class NxtBrick {
             for (int i = 0; i < telegrams.size(); i++) {
                 int opcode = telegrams.get(i)[1] & 0xFF;
                 byte[] prefix = c.receiveExactly(2, timeout);
-                int length = NxtTelegram.u16(prefix, 0);
+                int length = LittleEndian.u16(prefix, 0);
                 if (length != NxtTelegram.STATUS_REPLY) {
                     throw new LinkLostException(channel.describe(), "NXT reply to " + NxtTelegram.name(opcode) + " announced " + length
                             + " bytes, expected " + NxtTelegram.STATUS_REPLY + "; the link lost its framing");
@@ -119,7 +120,7 @@ public final class NxtBrick {
         return channel.exchange((c, timeout) -> {
             c.send(NxtTelegram.withLengthPrefix(telegram));
             byte[] prefix = c.receiveExactly(2, timeout);
-            int length = NxtTelegram.u16(prefix, 0);
+            int length = LittleEndian.u16(prefix, 0);
             if (length < NxtTelegram.STATUS_REPLY || length > NxtTelegram.MAX_LENGTH) {
                 throw new LinkLostException(channel.describe(), "NXT reply to " + NxtTelegram.name(opcode) + " announced " + length
                         + " bytes; the link lost its framing");
@@ -142,7 +143,7 @@ public final class NxtBrick {
      * @throws IOException if the link failed
      */
     public int batteryMillivolts() throws IOException {
-        return NxtTelegram.u16(request(NxtTelegram.getBatteryLevel(), NxtTelegram.GETBATTERYLEVEL_REPLY, -1), 3);
+        return LittleEndian.u16(request(NxtTelegram.getBatteryLevel(), NxtTelegram.GETBATTERYLEVEL_REPLY, -1), 3);
     }
 
     /**
@@ -152,7 +153,7 @@ public final class NxtBrick {
      * @throws IOException if the link failed
      */
     public long keepAlive() throws IOException {
-        return NxtTelegram.u32(request(NxtTelegram.keepAlive(), NxtTelegram.KEEPALIVE_REPLY, -1), 3);
+        return LittleEndian.u32(request(NxtTelegram.keepAlive(), NxtTelegram.KEEPALIVE_REPLY, -1), 3);
     }
 
     /**

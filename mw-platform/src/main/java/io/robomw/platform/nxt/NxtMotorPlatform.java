@@ -1,5 +1,6 @@
 package io.robomw.platform.nxt;
 
+import io.robomw.platform.brick.LittleEndian;
 import io.robomw.api.spi.PlatformConfig;
 import io.robomw.platform.motor.GenericMotorPlatform;
 import io.robomw.platform.motor.MotorState;
@@ -87,7 +88,7 @@ public final class NxtMotorPlatform extends GenericMotorPlatform {
         for (String port : ports()) {
             int p = outputPort(port);
             byte[] reply = brick.request(NxtTelegram.getOutputState(p), NxtTelegram.GETOUTPUTSTATE_REPLY, p);
-            reportDegrees(port, NxtTelegram.s32(reply, 21));
+            reportDegrees(port, LittleEndian.s32(reply, 21));
         }
         long now = System.nanoTime();
         if (now - lastKeepAlive > KEEP_ALIVE_NANOS) {

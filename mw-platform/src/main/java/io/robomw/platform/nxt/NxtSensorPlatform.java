@@ -1,5 +1,6 @@
 package io.robomw.platform.nxt;
 
+import io.robomw.platform.brick.LittleEndian;
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.spi.SensorChannel;
 import io.robomw.platform.motor.GenericMotorPlatform;
@@ -80,7 +81,7 @@ public final class NxtSensorPlatform extends SensorPlatform {
         brick.request(NxtTelegram.setInputMode(true, port, type, mode), NxtTelegram.STATUS_REPLY, port);
         return () -> read(() -> {
             byte[] reply = validInputValues(port);
-            return (double) (field == Field.SCALED ? NxtTelegram.s16(reply, field.offset) : NxtTelegram.u16(reply, field.offset));
+            return (double) (field == Field.SCALED ? LittleEndian.s16(reply, field.offset) : LittleEndian.u16(reply, field.offset));
         });
     }
 

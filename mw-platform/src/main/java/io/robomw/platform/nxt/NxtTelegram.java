@@ -1,5 +1,6 @@
 package io.robomw.platform.nxt;
 
+import io.robomw.platform.brick.LittleEndian;
 /**
  * The NXT's LCP direct-command telegrams, byte for byte (LEGO Bluetooth Developer Kit; firmware
  * {@code c_cmd.c}). Every multi-byte field is little-endian.
@@ -156,7 +157,7 @@ public final class NxtTelegram {
         t[5] = (byte) regulation;
         t[6] = (byte) turnRatio;
         t[7] = (byte) runState;
-        putU32(t, 8, tachoLimit);
+        LittleEndian.putU32(t, 8, tachoLimit);
         return t;
     }
 
@@ -265,8 +266,8 @@ public final class NxtTelegram {
      */
     public static byte[] playTone(boolean reply, int hertz, int millis) {
         byte[] t = header(reply, PLAYTONE, 4);
-        putU16(t, 2, hertz);
-        putU16(t, 4, millis);
+        LittleEndian.putU16(t, 2, hertz);
+        LittleEndian.putU16(t, 4, millis);
         return t;
     }
 
@@ -289,67 +290,11 @@ public final class NxtTelegram {
         return out;
     }
 
-    /**
-     * @param b   bytes
-     * @param off offset
-     * @return the unsigned 16-bit little-endian value there
-     */
-    public static int u16(byte[] b, int off) {
-        return (b[off] & 0xFF) | (b[off + 1] & 0xFF) << 8;
-    }
 
-    /**
-     * @param b   bytes
-     * @param off offset
-     * @return the signed 16-bit little-endian value there
-     */
-    public static int s16(byte[] b, int off) {
-        return (short) u16(b, off);
-    }
 
-    /**
-     * @param b   bytes
-     * @param off offset
-     * @return the signed 32-bit little-endian value there
-     */
-    public static int s32(byte[] b, int off) {
-        return (b[off] & 0xFF) | (b[off + 1] & 0xFF) << 8 | (b[off + 2] & 0xFF) << 16 | (b[off + 3] & 0xFF) << 24;
-    }
 
-    /**
-     * @param b   bytes
-     * @param off offset
-     * @return the unsigned 32-bit little-endian value there
-     */
-    public static long u32(byte[] b, int off) {
-        return s32(b, off) & 0xFFFF_FFFFL;
-    }
 
-    /**
-     * Writes an unsigned 16-bit little-endian value.
-     *
-     * @param b     bytes
-     * @param off   offset
-     * @param value the value
-     */
-    public static void putU16(byte[] b, int off, int value) {
-        b[off] = (byte) value;
-        b[off + 1] = (byte) (value >> 8);
-    }
 
-    /**
-     * Writes a 32-bit little-endian value.
-     *
-     * @param b     bytes
-     * @param off   offset
-     * @param value the value (its low 32 bits)
-     */
-    public static void putU32(byte[] b, int off, long value) {
-        b[off] = (byte) value;
-        b[off + 1] = (byte) (value >> 8);
-        b[off + 2] = (byte) (value >> 16);
-        b[off + 3] = (byte) (value >> 24);
-    }
 
     /**
      * @param opcode an opcode

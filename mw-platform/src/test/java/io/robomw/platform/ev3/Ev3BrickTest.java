@@ -1,5 +1,6 @@
 package io.robomw.platform.ev3;
 
+import io.robomw.platform.brick.LittleEndian;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.Communicator;
 import io.robomw.platform.link.LinkLostException;
@@ -35,7 +36,7 @@ class Ev3BrickTest {
 
     private static byte[] count(int degrees) {
         byte[] g = new byte[4];
-        Ev3Frame.putS32LE(g, 0, degrees);
+        LittleEndian.putU32(g, 0, degrees);
         return g;
     }
 
@@ -149,7 +150,7 @@ class Ev3BrickTest {
     @Test
     void shouldReadBatteryVoltsAsFloat() throws IOException {
         byte[] volts = new byte[4];
-        Ev3Frame.putFloatLE(volts, 0, 7.8f);
+        LittleEndian.putF32(volts, 0, 7.8f);
         Ev3Brick brick = brick(f -> List.of(FakeEv3Link.okReply(f, volts)));
         assertEquals(7.8, brick.batteryVolts(), 1e-6);
         assertEquals("08 00 2A 00 00 04 00 81 01 60", hex(link.written().get(0)));

@@ -1,5 +1,6 @@
 package io.robomw.platform.ev3;
 
+import io.robomw.platform.brick.LittleEndian;
 import io.robomw.platform.motor.MotorState;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.params.ParameterizedTest;
@@ -207,7 +208,7 @@ class Ev3CodecTest {
         assertEquals(16, Ev3Frame.length(frame));
         assertEquals(42, Ev3Frame.counter(frame));
         assertEquals(Ev3Frame.DIRECT_COMMAND_NO_REPLY, Ev3Frame.type(frame));
-        int vars = Ev3Frame.getU16LE(frame, Ev3Frame.VARS_FIELD_OFFSET);
+        int vars = LittleEndian.u16(frame, Ev3Frame.VARS_FIELD_OFFSET);
         assertEquals(0, Ev3Frame.globalsOf(vars));
         assertEquals(0, Ev3Frame.localsOf(vars));
         Ev3CodeReader reader = Ev3CodeReader.ofCommand(frame);
@@ -226,7 +227,7 @@ class Ev3CodecTest {
         byte[] frame = hex("09 00 2B 00 00 04 00 B3 00 00 60");
         assertEquals(0x2B, Ev3Frame.counter(frame));
         assertEquals(Ev3Frame.DIRECT_COMMAND_REPLY, Ev3Frame.type(frame));
-        assertEquals(4, Ev3Frame.globalsOf(Ev3Frame.getU16LE(frame, Ev3Frame.VARS_FIELD_OFFSET)));
+        assertEquals(4, Ev3Frame.globalsOf(LittleEndian.u16(frame, Ev3Frame.VARS_FIELD_OFFSET)));
         Ev3CodeReader reader = Ev3CodeReader.ofCommand(frame);
         assertEquals(Ev3Opcode.OUTPUT_GET_COUNT.code(), reader.nextByte());
         assertEquals(List.of(Ev3Parameter.constant(0), Ev3Parameter.constant(0), Ev3Parameter.global(0)), parameters(reader));
@@ -240,7 +241,7 @@ class Ev3CodecTest {
         assertTrue(reply.isOk());
         assertEquals(360, reply.data32(0));
         byte[] globals = new byte[4];
-        Ev3Frame.putS32LE(globals, 0, 360);
+        LittleEndian.putU32(globals, 0, 360);
         assertArrayEquals(documented, Ev3Reply.ok(0x2B, globals).encode());
     }
 
@@ -266,7 +267,7 @@ class Ev3CodecTest {
         assertEquals(0x2A, reply.counter());
         assertEquals(1.0f, reply.dataF(0));
         byte[] globals = new byte[4];
-        Ev3Frame.putFloatLE(globals, 0, 1.0f);
+        LittleEndian.putF32(globals, 0, 1.0f);
         assertArrayEquals(documented, Ev3Reply.ok(0x2A, globals).encode());
     }
 
@@ -310,7 +311,7 @@ class Ev3CodecTest {
         Ev3Command c = Ev3Command.withReply(1).inputRead(0, 0, 0, 0).build();
         assertEquals("0B 00 34 12 00 01 00 9A 00 00 00 00 60", hex(c.encode(0x1234)));
         byte[] request = hex("0B 00 34 12 00 01 00 9A 00 00 00 00 60");
-        assertEquals(1, Ev3Frame.globalsOf(Ev3Frame.getU16LE(request, Ev3Frame.VARS_FIELD_OFFSET)));
+        assertEquals(1, Ev3Frame.globalsOf(LittleEndian.u16(request, Ev3Frame.VARS_FIELD_OFFSET)));
         Ev3CodeReader reader = Ev3CodeReader.ofCommand(request);
         assertEquals(Ev3Opcode.INPUT_READ.code(), reader.nextByte());
         assertEquals(List.of(Ev3Parameter.constant(0), Ev3Parameter.constant(0), Ev3Parameter.constant(0), Ev3Parameter.constant(0),
@@ -385,7 +386,7 @@ class Ev3CodecTest {
         Ev3Command c = Ev3Command.withReply(Ev3Frame.MAX_GLOBALS).outputGetCount(0, Ev3Frame.MAX_GLOBALS - 4).build();
         byte[] frame = c.encode(7);
         assertEquals("FD 03", hex(new byte[]{frame[5], frame[6]}));
-        assertEquals(1021, Ev3Frame.globalsOf(Ev3Frame.getU16LE(frame, Ev3Frame.VARS_FIELD_OFFSET)));
+        assertEquals(1021, Ev3Frame.globalsOf(LittleEndian.u16(frame, Ev3Frame.VARS_FIELD_OFFSET)));
         assertTrue(hex(c.code()).endsWith("E2 F9 03"), hex(c.code()));
     }
 
@@ -398,7 +399,7 @@ class Ev3CodecTest {
     @Test
     void shouldDecodeReplyCarryingMaximumGlobals() {
         byte[] globals = new byte[Ev3Frame.MAX_GLOBALS];
-        Ev3Frame.putS32LE(globals, Ev3Frame.MAX_GLOBALS - 4, -5);
+        LittleEndian.putU32(globals, Ev3Frame.MAX_GLOBALS - 4, -5);
         byte[] frame = Ev3Reply.ok(9, globals).encode();
         assertEquals(1026, frame.length);
         assertEquals("00 04", hex(new byte[]{frame[0], frame[1]}));

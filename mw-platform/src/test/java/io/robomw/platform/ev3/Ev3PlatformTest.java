@@ -1,5 +1,6 @@
 package io.robomw.platform.ev3;
 
+import io.robomw.platform.brick.LittleEndian;
 import io.robomw.api.Clock;
 import io.robomw.api.RobotException;
 import io.robomw.api.SensorType;
@@ -55,7 +56,7 @@ class Ev3PlatformTest {
     }
 
     private static List<byte[]> emptyReply(byte[] frame) {
-        return replyWithGlobals(frame, new byte[Ev3Frame.globalsOf(Ev3Frame.getU16LE(frame, Ev3Frame.VARS_FIELD_OFFSET))]);
+        return replyWithGlobals(frame, new byte[Ev3Frame.globalsOf(LittleEndian.u16(frame, Ev3Frame.VARS_FIELD_OFFSET))]);
     }
 
     @Test
@@ -103,8 +104,8 @@ class Ev3PlatformTest {
     @Test
     void shouldPollEveryEncoderInOneCommandAndReportDegrees() throws IOException {
         byte[] counts = new byte[8];
-        Ev3Frame.putS32LE(counts, 0, 360);
-        Ev3Frame.putS32LE(counts, 4, -90);
+        LittleEndian.putU32(counts, 0, 360);
+        LittleEndian.putU32(counts, 4, -90);
         Ev3Brick brick = brick(f -> replyWithGlobals(f, counts));
         Ev3MotorPlatform motors = new Ev3MotorPlatform(config(List.of("B", "C")), brick);
         motors.pollFeedback();
@@ -160,7 +161,7 @@ class Ev3PlatformTest {
     @Test
     void shouldReadSensorWithReadySiAndSetItUpWhenCreated() throws Exception {
         byte[] cm = new byte[4];
-        Ev3Frame.putFloatLE(cm, 0, 43.3f);
+        LittleEndian.putF32(cm, 0, 43.3f);
         Ev3Brick brick = brick(f -> replyWithGlobals(f, cm));
         Ev3SensorPlatform sensors = new Ev3SensorPlatform(new Ev3MotorPlatform(config(List.of()), brick), brick);
         Sensor sonar = sensors.createSensor(channel(SensorType.SONAR, "S4", Map.of()));
@@ -172,7 +173,7 @@ class Ev3PlatformTest {
     @Test
     void shouldReadRawWithReadyRaw() throws Exception {
         byte[] mm = new byte[4];
-        Ev3Frame.putS32LE(mm, 0, 433);
+        LittleEndian.putU32(mm, 0, 433);
         Ev3Brick brick = brick(f -> replyWithGlobals(f, mm));
         Ev3SensorPlatform sensors = new Ev3SensorPlatform(new Ev3MotorPlatform(config(List.of()), brick), brick);
         Sensor sonar = sensors.createSensor(channel(SensorType.SONAR, "4", Map.of("ev3_value", "raw")));
@@ -183,7 +184,7 @@ class Ev3PlatformTest {
     @Test
     void shouldFailReadOfMissingValueNamingThePort() throws Exception {
         byte[] nan = new byte[4];
-        Ev3Frame.putFloatLE(nan, 0, Float.NaN);
+        LittleEndian.putF32(nan, 0, Float.NaN);
         Ev3Brick brick = brick(f -> replyWithGlobals(f, nan));
         Ev3SensorPlatform sensors = new Ev3SensorPlatform(new Ev3MotorPlatform(config(List.of()), brick), brick);
         Sensor touch = sensors.createSensor(channel(SensorType.TOUCH, "S2", Map.of()));

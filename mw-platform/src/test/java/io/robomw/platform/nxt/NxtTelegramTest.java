@@ -1,5 +1,6 @@
 package io.robomw.platform.nxt;
 
+import io.robomw.platform.brick.LittleEndian;
 import org.junit.jupiter.api.Test;
 
 import java.util.HexFormat;
@@ -54,10 +55,10 @@ class NxtTelegramTest {
         byte[] reply = hex("020600004b0701002068010000d2040000d2040000d2040000");
         assertEquals(NxtTelegram.GETOUTPUTSTATE_REPLY, reply.length);
         assertEquals(75, reply[4]);
-        assertEquals(360, NxtTelegram.u32(reply, 9), "tacho limit");
-        assertEquals(1234, NxtTelegram.s32(reply, 13), "tacho count");
-        assertEquals(1234, NxtTelegram.s32(reply, 17), "block tacho count");
-        assertEquals(1234, NxtTelegram.s32(reply, 21), "rotation count");
+        assertEquals(360, LittleEndian.u32(reply, 9), "tacho limit");
+        assertEquals(1234, LittleEndian.s32(reply, 13), "tacho count");
+        assertEquals(1234, LittleEndian.s32(reply, 17), "block tacho count");
+        assertEquals(1234, LittleEndian.s32(reply, 21), "rotation count");
     }
 
     @Test
@@ -65,17 +66,17 @@ class NxtTelegramTest {
         byte[] reply = hex("0207000001000120b700b7000100b700");
         assertEquals(NxtTelegram.GETINPUTVALUES_REPLY, reply.length);
         assertEquals(1, reply[4], "valid");
-        assertEquals(183, NxtTelegram.u16(reply, 8), "raw");
-        assertEquals(183, NxtTelegram.u16(reply, 10), "normalized");
-        assertEquals(1, NxtTelegram.s16(reply, 12), "scaled");
+        assertEquals(183, LittleEndian.u16(reply, 8), "raw");
+        assertEquals(183, LittleEndian.u16(reply, 10), "normalized");
+        assertEquals(1, LittleEndian.s16(reply, 12), "scaled");
     }
 
     @Test
     void shouldDecodeBatteryKeepAliveAndUltrasonicReplies() {
-        assertEquals(8123, NxtTelegram.u16(hex("020b00bb1f"), 3));
-        assertEquals(600_000, NxtTelegram.u32(hex("020d00c0270900"), 3));
+        assertEquals(8123, LittleEndian.u16(hex("020b00bb1f"), 3));
+        assertEquals(600_000, LittleEndian.u32(hex("020d00c0270900"), 3));
         byte[] lsRead = hex("1400 02 10 00 01 2A 000000000000000000000000000000");
-        assertEquals(NxtTelegram.LSREAD_REPLY, NxtTelegram.u16(lsRead, 0));
+        assertEquals(NxtTelegram.LSREAD_REPLY, LittleEndian.u16(lsRead, 0));
         assertEquals(42, lsRead[6] & 0xFF, "42 cm");
         assertEquals(0x20, hex("04 00 02 0E 20 00")[4], "pending");
     }

@@ -1,5 +1,6 @@
 package io.robomw.platform.ft.txt;
 
+import io.robomw.platform.brick.LittleEndian;
 import java.nio.charset.StandardCharsets;
 import java.util.Arrays;
 import java.util.Objects;
@@ -273,7 +274,7 @@ public final class TxtProtocol {
         if (message.length < ID_LENGTH) {
             throw new IllegalArgumentException("a TXT message starts with a 4-byte id, got " + message.length + " byte(s)");
         }
-        return u32Le(message, 0);
+        return LittleEndian.u32(message, 0);
     }
 
     // ---- messages without fields ----
@@ -306,7 +307,7 @@ public final class TxtProtocol {
 
     private static byte[] message(long id, int length) {
         byte[] m = new byte[length];
-        putU32Le(m, 0, id);
+        LittleEndian.putU32(m, 0, id);
         return m;
     }
 
@@ -315,7 +316,7 @@ public final class TxtProtocol {
         if (message.length != length) {
             throw new IllegalArgumentException(name(id) + " is " + length + " bytes, got " + message.length);
         }
-        long got = u32Le(message, 0);
+        long got = LittleEndian.u32(message, 0);
         if (got != id) {
             throw new IllegalArgumentException(String.format("expected %s (id 0x%08X), got id 0x%08X", name(id), id, got));
         }
@@ -352,7 +353,7 @@ public final class TxtProtocol {
             byte[] m = message(QUERY_STATUS_REPLY, QUERY_STATUS_REPLY_LENGTH);
             byte[] name = deviceName.getBytes(StandardCharsets.UTF_8);
             System.arraycopy(name, 0, m, STATUS_NAME_OFFSET, name.length);
-            putU32Le(m, STATUS_VERSION_OFFSET, version);
+            LittleEndian.putU32(m, STATUS_VERSION_OFFSET, version);
             return m;
         }
 
@@ -367,7 +368,7 @@ public final class TxtProtocol {
                 end++;
             }
             return new Status(new String(reply, STATUS_NAME_OFFSET, end - STATUS_NAME_OFFSET, StandardCharsets.UTF_8),
-                    u32Le(reply, STATUS_VERSION_OFFSET));
+                    LittleEndian.u32(reply, STATUS_VERSION_OFFSET));
         }
     }
 
@@ -398,8 +399,8 @@ public final class TxtProtocol {
         /** @return the 96-byte request */
         public byte[] encode() {
             byte[] m = message(UPDATE_CONFIG, UPDATE_CONFIG_LENGTH);
-            putU16Le(m, CONFIG_ID_OFFSET, configId);
-            putU16Le(m, CONFIG_EXTENSION_OFFSET, extensionId);
+            LittleEndian.putU16(m, CONFIG_ID_OFFSET, configId);
+            LittleEndian.putU16(m, CONFIG_EXTENSION_OFFSET, extensionId);
             for (int i = 0; i < MOTORS; i++) {
                 m[CONFIG_MOTOR_OFFSET + i] = (byte) motor[i];
             }
@@ -434,7 +435,7 @@ public final class TxtProtocol {
             for (int i = 0; i < COUNTERS; i++) {
                 counter[i] = request[CONFIG_CNT_OFFSET + i * CONFIG_CNT_STRIDE] & 0xFF;
             }
-            return new Config(s16Le(request, CONFIG_ID_OFFSET), s16Le(request, CONFIG_EXTENSION_OFFSET), motor, mode, digital, counter,
+            return new Config(LittleEndian.s16(request, CONFIG_ID_OFFSET), LittleEndian.s16(request, CONFIG_EXTENSION_OFFSET), motor, mode, digital, counter,
                     s16ArrayLe(request, CONFIG_MOTOR_CONFIG_OFFSET, CONFIG_MOTOR_CONFIG_COUNT));
         }
 
@@ -516,9 +517,9 @@ public final class TxtProtocol {
             putS16ArrayLe(m, MOTOR_DIST_OFFSET, motorDist);
             putS16ArrayLe(m, MOTOR_CMD_ID_OFFSET, motorCmdId);
             putS16ArrayLe(m, COUNTER_CMD_ID_OFFSET, counterCmdId);
-            putU16Le(m, SOUND_OFFSET, sound);
-            putU16Le(m, SOUND_INDEX_OFFSET, soundIndex);
-            putU16Le(m, SOUND_REPEAT_OFFSET, soundRepeat);
+            LittleEndian.putU16(m, SOUND_OFFSET, sound);
+            LittleEndian.putU16(m, SOUND_INDEX_OFFSET, soundIndex);
+            LittleEndian.putU16(m, SOUND_REPEAT_OFFSET, soundRepeat);
             return m;
         }
 
@@ -530,8 +531,8 @@ public final class TxtProtocol {
             check(request, EXCHANGE, EXCHANGE_LENGTH);
             return new Exchange(s16ArrayLe(request, PWM_OFFSET, OUTPUTS), s16ArrayLe(request, MOTOR_SYNC_OFFSET, MOTORS),
                     s16ArrayLe(request, MOTOR_DIST_OFFSET, MOTORS), s16ArrayLe(request, MOTOR_CMD_ID_OFFSET, MOTORS),
-                    s16ArrayLe(request, COUNTER_CMD_ID_OFFSET, COUNTERS), u16Le(request, SOUND_OFFSET), u16Le(request, SOUND_INDEX_OFFSET),
-                    u16Le(request, SOUND_REPEAT_OFFSET));
+                    s16ArrayLe(request, COUNTER_CMD_ID_OFFSET, COUNTERS), LittleEndian.u16(request, SOUND_OFFSET), LittleEndian.u16(request, SOUND_INDEX_OFFSET),
+                    LittleEndian.u16(request, SOUND_REPEAT_OFFSET));
         }
 
         @Override
@@ -617,7 +618,7 @@ public final class TxtProtocol {
             putS16ArrayLe(m, REPLY_COUNTER_VALUE_OFFSET, counterValue);
             putS16ArrayLe(m, REPLY_COUNTER_CMD_ID_OFFSET, counterCmdId);
             putS16ArrayLe(m, REPLY_MOTOR_CMD_ID_OFFSET, motorCmdId);
-            putU16Le(m, REPLY_SOUND_CMD_ID_OFFSET, soundCmdId);
+            LittleEndian.putU16(m, REPLY_SOUND_CMD_ID_OFFSET, soundCmdId);
             System.arraycopy(ir, 0, m, REPLY_IR_OFFSET, IR_LENGTH);
             return m;
         }
@@ -630,7 +631,7 @@ public final class TxtProtocol {
             check(reply, EXCHANGE_REPLY, EXCHANGE_REPLY_LENGTH);
             return new ExchangeReply(s16ArrayLe(reply, REPLY_INPUT_OFFSET, INPUTS), s16ArrayLe(reply, REPLY_COUNTER_LEVEL_OFFSET, COUNTERS),
                     s16ArrayLe(reply, REPLY_COUNTER_VALUE_OFFSET, COUNTERS), s16ArrayLe(reply, REPLY_COUNTER_CMD_ID_OFFSET, COUNTERS),
-                    s16ArrayLe(reply, REPLY_MOTOR_CMD_ID_OFFSET, MOTORS), u16Le(reply, REPLY_SOUND_CMD_ID_OFFSET),
+                    s16ArrayLe(reply, REPLY_MOTOR_CMD_ID_OFFSET, MOTORS), LittleEndian.u16(reply, REPLY_SOUND_CMD_ID_OFFSET),
                     Arrays.copyOfRange(reply, REPLY_IR_OFFSET, REPLY_IR_OFFSET + IR_LENGTH));
         }
 
@@ -703,69 +704,21 @@ public final class TxtProtocol {
 
     // ---- little-endian fields ----
 
-    /**
-     * @param b   bytes
-     * @param off offset
-     * @return the unsigned 16-bit little-endian value there
-     */
-    public static int u16Le(byte[] b, int off) {
-        return (b[off] & 0xFF) | (b[off + 1] & 0xFF) << 8;
-    }
 
-    /**
-     * @param b   bytes
-     * @param off offset
-     * @return the signed 16-bit little-endian value there
-     */
-    public static int s16Le(byte[] b, int off) {
-        return (short) u16Le(b, off);
-    }
 
-    /**
-     * @param b   bytes
-     * @param off offset
-     * @return the unsigned 32-bit little-endian value there
-     */
-    public static long u32Le(byte[] b, int off) {
-        return ((b[off] & 0xFF) | (b[off + 1] & 0xFF) << 8 | (b[off + 2] & 0xFF) << 16 | (b[off + 3] & 0xFF) << 24) & 0xFFFF_FFFFL;
-    }
 
-    /**
-     * Writes the low 16 bits of a value, little-endian (a signed or an unsigned 16-bit field).
-     *
-     * @param b     bytes
-     * @param off   offset
-     * @param value the value
-     */
-    public static void putU16Le(byte[] b, int off, int value) {
-        b[off] = (byte) value;
-        b[off + 1] = (byte) (value >> 8);
-    }
 
-    /**
-     * Writes the low 32 bits of a value, little-endian.
-     *
-     * @param b     bytes
-     * @param off   offset
-     * @param value the value
-     */
-    public static void putU32Le(byte[] b, int off, long value) {
-        b[off] = (byte) value;
-        b[off + 1] = (byte) (value >> 8);
-        b[off + 2] = (byte) (value >> 16);
-        b[off + 3] = (byte) (value >> 24);
-    }
 
     private static void putS16ArrayLe(byte[] b, int off, int[] values) {
         for (int i = 0; i < values.length; i++) {
-            putU16Le(b, off + 2 * i, values[i]);
+            LittleEndian.putU16(b, off + 2 * i, values[i]);
         }
     }
 
     private static int[] s16ArrayLe(byte[] b, int off, int count) {
         int[] values = new int[count];
         for (int i = 0; i < count; i++) {
-            values[i] = s16Le(b, off + 2 * i);
+            values[i] = LittleEndian.s16(b, off + 2 * i);
         }
         return values;
     }

@@ -1,5 +1,6 @@
 package io.robomw.sim.emulator.ev3;
 
+import io.robomw.platform.brick.LittleEndian;
 import io.robomw.api.SensorType;
 import io.robomw.api.spi.SensorChannel;
 import io.robomw.config.description.SensorSpec;
@@ -314,7 +315,7 @@ public final class Ev3Emulator extends BrickEmulator {
 
     private static byte[] systemError(byte[] frame, int counter) {
         byte[] reply = new byte[5];
-        Ev3Frame.putU16LE(reply, 0, counter);
+        LittleEndian.putU16(reply, 0, counter);
         reply[2] = (byte) Ev3Frame.SYSTEM_REPLY_ERROR;
         reply[3] = frame.length > Ev3Frame.TYPE_FIELD_OFFSET + 1 ? frame[Ev3Frame.TYPE_FIELD_OFFSET + 1] : 0;
         reply[4] = (byte) SYSTEM_UNKNOWN_ERROR;
@@ -326,7 +327,7 @@ public final class Ev3Emulator extends BrickEmulator {
         if (frame.length <= Ev3Frame.CODE_OFFSET) {
             return Ev3Reply.error(counter, new byte[0]);
         }
-        int vars = Ev3Frame.getU16LE(frame, Ev3Frame.VARS_FIELD_OFFSET);
+        int vars = LittleEndian.u16(frame, Ev3Frame.VARS_FIELD_OFFSET);
         int globals = Ev3Frame.globalsOf(vars);
         if (globals > Ev3Frame.MAX_GLOBALS) {
             return Ev3Reply.error(counter, new byte[0]);

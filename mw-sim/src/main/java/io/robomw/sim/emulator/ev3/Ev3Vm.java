@@ -1,5 +1,6 @@
 package io.robomw.sim.emulator.ev3;
 
+import io.robomw.platform.brick.LittleEndian;
 import io.robomw.platform.ev3.Ev3CodeReader;
 import io.robomw.platform.ev3.Ev3Frame;
 import io.robomw.platform.ev3.Ev3Parameter;
@@ -81,13 +82,13 @@ final class Ev3Vm {
     /** @return the next parameter as DATA16 */
     int data16() {
         Ev3Parameter p = parameter();
-        return p.isVariable() ? Ev3Frame.getS16LE(space(p, 2), p.value()) : (short) constant(p);
+        return p.isVariable() ? LittleEndian.s16(space(p, 2), p.value()) : (short) constant(p);
     }
 
     /** @return the next parameter as DATA32 */
     int data32() {
         Ev3Parameter p = parameter();
-        return p.isVariable() ? Ev3Frame.getS32LE(space(p, 4), p.value()) : constant(p);
+        return p.isVariable() ? LittleEndian.s32(space(p, 4), p.value()) : constant(p);
     }
 
     /**
@@ -103,7 +104,7 @@ final class Ev3Vm {
      */
     void store32(int value) {
         Ev3Parameter p = result();
-        Ev3Frame.putS32LE(space(p, 4), p.value(), value);
+        LittleEndian.putU32(space(p, 4), p.value(), value);
     }
 
     /**
@@ -111,7 +112,7 @@ final class Ev3Vm {
      */
     void storeF(float value) {
         Ev3Parameter p = result();
-        Ev3Frame.putFloatLE(space(p, 4), p.value(), value);
+        LittleEndian.putF32(space(p, 4), p.value(), value);
     }
 
     private Ev3Parameter result() {

@@ -1,5 +1,6 @@
 package io.robomw.sim.emulator.nxt;
 
+import io.robomw.platform.brick.LittleEndian;
 import io.robomw.config.description.SensorSpec;
 import io.robomw.platform.nxt.NxtStatus;
 import io.robomw.platform.nxt.NxtTelegram;
@@ -244,13 +245,13 @@ public final class NxtEmulator extends BrickEmulator {
             case NxtTelegram.RESETMOTORPOSITION -> resetMotorPosition(t);
             case NxtTelegram.GETBATTERYLEVEL -> {
                 byte[] r = sized(op, NxtTelegram.GETBATTERYLEVEL_REPLY, NxtStatus.SUCCESS);
-                NxtTelegram.putU16(r, 3, BATTERY_MILLIVOLTS);
+                LittleEndian.putU16(r, 3, BATTERY_MILLIVOLTS);
                 yield r;
             }
             case NxtTelegram.STOPSOUNDPLAYBACK, NxtTelegram.MESSAGEWRITE -> status(op, NxtStatus.SUCCESS);
             case NxtTelegram.KEEPALIVE -> {
                 byte[] r = sized(op, NxtTelegram.KEEPALIVE_REPLY, NxtStatus.SUCCESS);
-                NxtTelegram.putU32(r, 3, SLEEP_LIMIT_MILLIS);
+                LittleEndian.putU32(r, 3, SLEEP_LIMIT_MILLIS);
                 yield r;
             }
             case NxtTelegram.LSWRITE -> lsWrite(t);
@@ -278,7 +279,7 @@ public final class NxtEmulator extends BrickEmulator {
                 o.regulation = t[5] & 0xFF;
                 o.turnRatio = Math.max(-100, Math.min(100, t[6]));
                 o.runState = t[7] & 0xFF;
-                o.tachoLimit = NxtTelegram.u32(t, 8);
+                o.tachoLimit = LittleEndian.u32(t, 8);
                 o.tachoOffset = o.degrees;
             }
         }
@@ -298,10 +299,10 @@ public final class NxtEmulator extends BrickEmulator {
         r[6] = (byte) o.regulation;
         r[7] = (byte) o.turnRatio;
         r[8] = (byte) o.runState;
-        NxtTelegram.putU32(r, 9, o.tachoLimit);
-        NxtTelegram.putU32(r, 13, Math.round(o.degrees - o.tachoOffset));
-        NxtTelegram.putU32(r, 17, Math.round(o.degrees - o.blockOffset));
-        NxtTelegram.putU32(r, 21, Math.round(o.degrees - o.rotationOffset));
+        LittleEndian.putU32(r, 9, o.tachoLimit);
+        LittleEndian.putU32(r, 13, Math.round(o.degrees - o.tachoOffset));
+        LittleEndian.putU32(r, 17, Math.round(o.degrees - o.blockOffset));
+        LittleEndian.putU32(r, 21, Math.round(o.degrees - o.rotationOffset));
         return r;
     }
 
@@ -382,10 +383,10 @@ public final class NxtEmulator extends BrickEmulator {
         r[5] = 0;
         r[6] = (byte) in.type;
         r[7] = (byte) in.mode;
-        NxtTelegram.putU16(r, 8, raw);
-        NxtTelegram.putU16(r, 10, normalized);
-        NxtTelegram.putU16(r, 12, scaled);
-        NxtTelegram.putU16(r, 14, normalized);
+        LittleEndian.putU16(r, 8, raw);
+        LittleEndian.putU16(r, 10, normalized);
+        LittleEndian.putU16(r, 12, scaled);
+        LittleEndian.putU16(r, 14, normalized);
         return r;
     }
 

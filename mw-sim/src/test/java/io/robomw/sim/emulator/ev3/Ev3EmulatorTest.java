@@ -1,5 +1,6 @@
 package io.robomw.sim.emulator.ev3;
 
+import io.robomw.platform.brick.LittleEndian;
 import io.robomw.platform.ev3.Ev3Command;
 import io.robomw.platform.ev3.Ev3Device;
 import io.robomw.platform.ev3.Ev3Frame;
@@ -203,8 +204,8 @@ class Ev3EmulatorTest {
         world(1.5, 0, SONAR);
         byte[] code = hex("AE:00:02:05:0F:81:3C:0F:01:AA:00:02");
         byte[] frame = new byte[7 + code.length];
-        Ev3Frame.putU16LE(frame, 0, frame.length - 2);
-        Ev3Frame.putU16LE(frame, 2, 0x2A);
+        LittleEndian.putU16(frame, 0, frame.length - 2);
+        LittleEndian.putU16(frame, 2, 0x2A);
         System.arraycopy(code, 0, frame, 7, code.length);
         ExecutorService io = Executors.newSingleThreadExecutor(r -> new Thread(r, "test-ev3-io"));
         try {
