@@ -25,6 +25,8 @@ import static io.robomw.platform.ft.intelligent.IntelligentInterfaceTelegram.ANA
  *   the motor byte (keeping the interface alive) with each motor on or off for this cycle by a
  *   sigma-delta over its duty (so 40 % duty is on in 2 cycles of 5), alternating the EX and EY
  *   reads, and reads the inputs back;</li>
+ *   <li>a limited move creeps (at most 25 % duty) over its last three ticks, so a stop that
+ *   reaches the interface a poll late costs little;</li>
  *   <li>a wheel's distance is counted on the digital input its description names
  *   ({@code counter: E1}): every transition of the impulse wheel's switch is one tick,
  *   {@code encoder_ticks_per_revolution} ticks per motor turn, signed by the direction the motor
@@ -41,6 +43,13 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
     private final int[] lastDirection = new int[IntelligentInterfaceTelegram.MOTORS];
     private final Map<String, Integer> counterOf = new HashMap<>();
     private final long[] ticks = new long[IntelligentInterfaceTelegram.MOTORS];
+    private final double[] limit = new double[IntelligentInterfaceTelegram.MOTORS];
+    private final long[] ticksAtStart = new long[IntelligentInterfaceTelegram.MOTORS];
+
+    /** Duty of the last {@link #CREEP_TICKS} ticks of a limited move. */
+    static final double CREEP_DUTY = 0.25;
+    /** Ticks before a target at which a limited move creeps. */
+    static final int CREEP_TICKS = 3;
     private final IntelligentInterfaceInputs inputs;
     private int previousDigital = -1;
     private boolean readEy;
@@ -82,8 +91,37 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
     @Override
     protected void runImpl(List<MotorState> motors) {
         for (MotorState m : motors) {
-            duty[FtMotors.index(m.port(), IntelligentInterfaceTelegram.MOTORS)] = FtMotors.duty(m.degreesPerSecond());
+            int i = FtMotors.index(m.port(), IntelligentInterfaceTelegram.MOTORS);
+            duty[i] = FtMotors.duty(m.degreesPerSecond());
+            limit[i] = m.running() ? m.limitDegrees() : Double.POSITIVE_INFINITY;
+            ticksAtStart[i] = ticks[i];
         }
+    }
+
+    /**
+     * The duty for this cycle: the wanted one, but at most {@link #CREEP_DUTY} within
+     * {@link #CREEP_TICKS} ticks of a limited move's end. The interface keeps a motor on until the
+     * next command, so the stop is as late as the link; creeping makes a late stop cost a quarter
+     * as much.
+     */
+    private double cycleDuty(int i) {
+        double d = Math.abs(duty[i]);
+        if (ticksPerRevolution > 0 && Double.isFinite(limit[i]) && counted(i)) {
+            double done = Math.abs(ticks[i] - ticksAtStart[i]) * 360.0 / ticksPerRevolution;
+            if (limit[i] - done <= CREEP_TICKS * 360.0 / ticksPerRevolution) {
+                d = Math.min(d, CREEP_DUTY);
+            }
+        }
+        return d;
+    }
+
+    private boolean counted(int motor) {
+        for (String port : counterOf.keySet()) {
+            if (FtMotors.index(port, IntelligentInterfaceTelegram.MOTORS) == motor) {
+                return true;
+            }
+        }
+        return false;
     }
 
     @Override
@@ -92,7 +130,7 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
         for (int i = 0; i < duty.length; i++) {
             int direction = 0;
             if (duty[i] != 0) {
-                accumulator[i] += Math.abs(duty[i]);
+                accumulator[i] += cycleDuty(i);
                 if (accumulator[i] >= 1) {
                     accumulator[i] -= 1;
                     direction = duty[i] > 0 ? IntelligentInterfaceTelegram.CW : IntelligentInterfaceTelegram.CCW;
