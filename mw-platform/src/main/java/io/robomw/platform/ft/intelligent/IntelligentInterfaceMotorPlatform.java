@@ -25,8 +25,9 @@ import static io.robomw.platform.ft.intelligent.IntelligentInterfaceTelegram.ANA
  *   the motor byte (keeping the interface alive) with each motor on or off for this cycle by a
  *   sigma-delta over its duty (so 40 % duty is on in 2 cycles of 5), alternating the EX and EY
  *   reads, and reads the inputs back;</li>
- *   <li>a limited move creeps (at most 25 % duty) over its last three ticks, so a stop that
- *   reaches the interface a poll late costs little;</li>
+ *   <li>a limited move creeps (at most 25 % duty) over its last three ticks, and the link thread
+ *   stops it itself when its count reaches the limit (as a brick with a tacho limit would), so
+ *   neither a busy action thread nor a late poll lets it run on;</li>
  *   <li>a wheel's distance is counted on the digital input its description names
  *   ({@code counter: E1}): every transition of the impulse wheel's switch is one tick,
  *   {@code encoder_ticks_per_revolution} ticks per motor turn, signed by the direction the motor
@@ -152,6 +153,26 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
         inputs.publish(digital, command == ANALOG_EX ? IntelligentInterfaceTelegram.analog(reply) : -1,
                 command == ANALOG_EY ? IntelligentInterfaceTelegram.analog(reply) : -1);
         count(digital);
+        enforceLimits();
+    }
+
+    /**
+     * Stops a limited move on the link thread as soon as its count reaches the limit, as a brick
+     * with a tacho limit does by itself: the execution action thread stops it too, a cycle later,
+     * but a motor the interface keeps on until the next command must not wait for that thread.
+     */
+    private void enforceLimits() {
+        if (ticksPerRevolution <= 0) {
+            return;
+        }
+        for (int i = 0; i < duty.length; i++) {
+            if (duty[i] != 0 && Double.isFinite(limit[i]) && counted(i)
+                    && Math.abs(ticks[i] - ticksAtStart[i]) * 360.0 / ticksPerRevolution >= limit[i]) {
+                duty[i] = 0;
+                accumulator[i] = 0;
+                limit[i] = Double.POSITIVE_INFINITY;
+            }
+        }
     }
 
     /** Counts impulse-wheel transitions and reports the wheels' rotation. */
