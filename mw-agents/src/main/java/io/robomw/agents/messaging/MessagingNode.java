@@ -430,6 +430,14 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         });
         links.close();
         endpoints.clear();
+        // Accepted connections too: their reader threads must not go on serving a closed node.
+        for (Channel c : List.copyOf(connections)) {
+            try {
+                c.close();
+            } catch (RuntimeException e) {
+                LOG.warn("node '{}': closing a connection: {}", name, e.toString());
+            }
+        }
         connections.clear();
     }
 
