@@ -1,5 +1,7 @@
 package io.robomw.it.messaging;
 
+import io.robomw.agents.messaging.TestKeys;
+
 import org.junit.jupiter.api.AfterAll;
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.TestInstance;
