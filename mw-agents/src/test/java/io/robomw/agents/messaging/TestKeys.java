@@ -65,4 +65,9 @@ public final class TestKeys {
             p.destroyForcibly();
         }
     }
+
+    /** @return the directory holding the stores */
+    public Path dir() {
+        return dir;
+    }
 }
