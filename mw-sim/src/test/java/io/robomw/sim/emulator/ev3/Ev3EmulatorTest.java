@@ -211,7 +211,13 @@ class Ev3EmulatorTest {
         try {
             double start = sim.world().time();
             CompletableFuture<String> reply = CompletableFuture.supplyAsync(() -> send(frame), io);
-            assertTrue(sim.runUntil(reply::isDone, Duration.ofSeconds(30)), "the command was released when the motor arrived");
+            // Step until the reply comes, bounded in wall-clock time: stepping a fixed span of
+            // simulated time could end before the I/O thread has even delivered the command.
+            long deadline = System.nanoTime() + Duration.ofSeconds(20).toNanos();
+            while (!reply.isDone() && System.nanoTime() < deadline) {
+                sim.runFor(Duration.ofMillis(20));
+            }
+            assertTrue(reply.isDone(), "the command was released when the motor arrived");
             assertEquals("03 00 2A 00 02", reply.get());
             assertEquals(90, count(1), 1);
             assertTrue(sim.world().time() - start > 90 / 52.5, "a 90 degree step at speed 5 takes more than 1.7 s; took " + (sim.world().time() - start));
