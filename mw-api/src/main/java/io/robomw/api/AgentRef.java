@@ -1,11 +1,16 @@
 package io.robomw.api;
 
 import java.io.Serializable;
+import java.time.Duration;
 import java.util.UUID;
 import java.util.concurrent.CompletableFuture;
+import java.util.function.Consumer;
 
 /**
- * A handle on a travelling agent, kept by whoever sent it (after Aglets' {@code AgletProxy}).
+ * A handle on a travelling agent, kept at its home (after Aglets' {@code AgletProxy}). Hosts tell
+ * the home where the agent is and how it is doing; the handle follows the agent from host to host,
+ * so it stays valid while the agent travels. Once the agent's trip has ended (its result is home,
+ * or it was disposed of or retracted) messages to it fail with {@link AgentException}.
  */
 public interface AgentRef {
 
@@ -18,12 +23,55 @@ public interface AgentRef {
     /** @return the agent's last known status */
     AgentStatus status();
 
-    /** @return completes with the result the agent sends home when its trip ends */
+    /**
+     * @return completes with the result the agent sets ({@link AgentContext#setResult}) when its
+     *         trip ends, or exceptionally with an {@link AgentException} if it failed or was disposed of
+     */
     CompletableFuture<Serializable> result();
 
-    /** Brings the agent back to its home host from wherever it is. */
-    void retract();
+    /**
+     * Listens to the values the agent sends home while it travels ({@link AgentContext#report}),
+     * in the order it sent them. Called on the home's delivery thread.
+     *
+     * @param listener the listener
+     */
+    void addReportListener(Consumer<Serializable> listener);
 
-    /** Disposes of the agent wherever it is. */
+    /**
+     * Brings the agent home (after Aglets' {@code retractAglet}): it finishes the callback it is
+     * in, stops travelling, and its state comes home. Returns at once.
+     *
+     * @return completes with the agent as it was when it stopped
+     */
+    CompletableFuture<Agent> retract();
+
+    /** Disposes of the agent wherever it is: its trip ends after the callback it is in. Returns at once. */
     void dispose();
+
+    /**
+     * Sends a message and blocks until the agent has handled it (Aglets' synchronous {@code sendMessage}).
+     *
+     * @param content the message
+     * @param timeout how long to wait for the answer
+     * @return the agent's reply, or {@code null} if it handled the message without replying
+     * @throws NotHandledException if the agent did not handle it
+     * @throws AgentException      if the agent cannot be reached, has ended its trip, or did not answer in time
+     */
+    Serializable sendMessage(Serializable content, Duration timeout);
+
+    /**
+     * Sends a message without waiting (Aglets' {@code sendFutureMessage}).
+     *
+     * @param content the message
+     * @return completes with the reply, or exceptionally as {@link #sendMessage} would throw
+     */
+    CompletableFuture<Serializable> sendFutureMessage(Serializable content);
+
+    /**
+     * Sends a message and expects no answer (Aglets' {@code sendOnewayMessage}): no acknowledgement
+     * is sent back, and a message the agent does not handle is dropped with a log line at its host.
+     *
+     * @param content the message
+     */
+    void sendOnewayMessage(Serializable content);
 }

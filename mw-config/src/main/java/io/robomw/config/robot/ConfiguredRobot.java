@@ -291,6 +291,11 @@ public final class ConfiguredRobot implements Robot {
     }
 
     @Override
+    public AgentRef startTrip(Agent agent) {
+        return agency("startTrip").startTrip(agent);
+    }
+
+    @Override
     public List<AgentRef> dispatchClones(Agent agent, String... hosts) {
         return agency("dispatchClones").dispatchClones(agent, hosts);
     }

@@ -208,6 +208,11 @@ public final class RemoteRobot implements Robot {
     }
 
     @Override
+    public AgentRef startTrip(Agent agent) {
+        throw new UnsupportedActionException(name(), "startTrip", "a remote robot handle does not send agents; send them to an agent host (mw host)");
+    }
+
+    @Override
     public List<AgentRef> dispatchClones(Agent agent, String... hosts) {
         throw new UnsupportedActionException(name(), "dispatchClones", "a remote robot handle does not send agents; send them to an agent host (mw host)");
     }

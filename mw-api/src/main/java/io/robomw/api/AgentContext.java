@@ -1,0 +1,82 @@
+package io.robomw.api;
+
+import java.io.Serializable;
+import java.util.UUID;
+
+/**
+ * What an agent sees at the host it is on (after Aglets' {@code AgletContext}): the host's robot,
+ * its messaging, the agent's itinerary, and the ways to move on, clone itself, finish and send
+ * results home. Valid only while the agent is at this host, and only on the agent's own thread
+ * (except {@link #report}, which any thread may call).
+ *
+ * <p>It is also an {@link Agency}: an agent may send other agents from here; their home is
+ * this host.
+ */
+public interface AgentContext extends Agency {
+
+    /** @return this agent's id, the same at every host and for the whole trip */
+    UUID agentId();
+
+    /** @return the name of the host the agent is at */
+    String hostName();
+
+    /** @return the address of the host the agent is at, for example {@code rmi://127.0.0.1:1099/nxt} */
+    String hostAddress();
+
+    /** @return the address of the agent's home, where its results go */
+    String homeAddress();
+
+    /**
+     * @return the host's robot
+     * @throws UnsupportedActionException if this host has no robot
+     */
+    Robot robot();
+
+    /**
+     * @return the host's messaging (the paper's sendMessage, publishMessage, ...)
+     * @throws UnsupportedActionException if this host has no messaging node
+     */
+    Messaging messaging();
+
+    /** @return the agent's itinerary (the same object as {@link Agent#itinerary()}) */
+    Itinerary itinerary();
+
+    /**
+     * Goes to {@code host} next: inserts a stop there (its work is {@link Agent#run()}) before the
+     * rest of the itinerary. The agent leaves when the current callback returns; this method does
+     * not block.
+     *
+     * @param host the host's address
+     */
+    void dispatch(String host);
+
+    /**
+     * Makes a copy of this agent, with a new id and the same home, that travels {@code itinerary}
+     * on its own. Its result goes home like this agent's.
+     *
+     * @param itinerary the clone's stops
+     * @return a handle on the clone
+     */
+    AgentRef cloneAgent(Itinerary itinerary);
+
+    /**
+     * Ends the trip here when the current callback returns: {@link Agent#onDisposing()} runs and
+     * the result goes home, whatever stops remain.
+     */
+    void dispose();
+
+    /**
+     * Sets the result the agent brings home at the end of its trip; the last value set wins.
+     *
+     * @param result the result (serializable, of the agent's own classes or allow-listed JDK types)
+     */
+    void setResult(Serializable result);
+
+    /**
+     * Sends a value home now, while the trip goes on: its {@link AgentRef}'s report listeners get
+     * it. Returns at once; reports from one agent arrive in order.
+     *
+     * @param value the value
+     */
+    void report(Serializable value);
+}
