@@ -10,7 +10,7 @@ import java.io.Serializable;
  * <p>Lifecycle, in the order a host calls it; every callback runs on the agent's own named thread
  * at its current host, one at a time:
  * <ul>
- *   <li>{@link #onCreation(Object)}: once in the agent's life, at the first host that accepts it.</li>
+ *   <li>{@link #onCreation(Object)}: once, at home, when the agent is sent (for clones: once, before cloning).</li>
  *   <li>{@link #onArrival()}: after it has arrived at a host, before the stop's work.</li>
  *   <li>{@link #run()}: the work of a stop that names no {@link Itinerary.Task} of its own.</li>
  *   <li>{@link #onDispatching()}: before it leaves a host for the next stop.</li>
@@ -32,7 +32,7 @@ public abstract class Agent implements Serializable {
     private transient AgentContext context;
 
     /**
-     * Called once, when the agent is created at its first host.
+     * Called once, at home, when the agent is sent; {@link #context()} is not valid yet.
      *
      * @param init the initialisation argument given when it was sent, or {@code null}
      */

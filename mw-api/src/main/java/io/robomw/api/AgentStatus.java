@@ -12,6 +12,8 @@ public enum AgentStatus {
     COMPLETED,
     /** Disposed of before finishing. */
     DISPOSED,
+    /** Brought home by {@link AgentRef#retract()}. */
+    RETRACTED,
     /** Failed; its result future holds the cause. */
     FAILED
 }

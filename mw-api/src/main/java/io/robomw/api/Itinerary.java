@@ -184,6 +184,29 @@ public final class Itinerary implements Serializable {
         return this;
     }
 
+    /**
+     * Replaces this itinerary's plan (stops, rounds, unreachable policy, retries) with a copy of
+     * another's; the history and position start afresh. Used for clones, which travel a plan of
+     * their own.
+     *
+     * @param other the plan to copy
+     * @return this itinerary
+     */
+    public Itinerary copyPlan(Itinerary other) {
+        clear();
+        stops.addAll(other.stops);
+        rounds = other.rounds;
+        policy = other.policy;
+        retries = other.retries;
+        retryBackoffMillis = other.retryBackoffMillis;
+        return this;
+    }
+
+    /** @return how many rounds of {@link #repeat} the itinerary makes */
+    public int rounds() {
+        return rounds;
+    }
+
     /** @return the stops, in order (a copy) */
     public List<Stop> stops() {
         return List.copyOf(stops);

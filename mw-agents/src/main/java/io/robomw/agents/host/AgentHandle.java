@@ -1,0 +1,176 @@
+package io.robomw.agents.host;
+
+import io.robomw.api.Agent;
+import io.robomw.api.AgentException;
+import io.robomw.api.AgentRef;
+import io.robomw.api.AgentStatus;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import java.io.Serializable;
+import java.time.Duration;
+import java.util.List;
+import java.util.UUID;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.ExecutionException;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.TimeoutException;
+import java.util.function.Consumer;
+
+/** The home's handle on one of its agents; hosts' events keep it up to date. */
+final class AgentHandle implements AgentRef {
+
+    private static final Logger LOG = LoggerFactory.getLogger(AgentHandle.class);
+
+    private final AgentHost home;
+    private final UUID id;
+    private final String className;
+    final ClassLoader loader;
+    private final CompletableFuture<Serializable> result = new CompletableFuture<>();
+    private final CompletableFuture<Agent> retracted = new CompletableFuture<>();
+    private final List<Consumer<Serializable>> reportListeners = new CopyOnWriteArrayList<>();
+    private final java.util.Set<Long> reportsSeen = java.util.concurrent.ConcurrentHashMap.newKeySet();
+    private volatile String location;
+    private volatile AgentStatus status = AgentStatus.CREATED;
+
+    AgentHandle(AgentHost home, UUID id, String className, ClassLoader loader, String firstLocation) {
+        this.home = home;
+        this.id = id;
+        this.className = className;
+        this.loader = loader;
+        this.location = firstLocation;
+    }
+
+    @Override
+    public UUID id() {
+        return id;
+    }
+
+    @Override
+    public String location() {
+        return location;
+    }
+
+    @Override
+    public AgentStatus status() {
+        return status;
+    }
+
+    @Override
+    public CompletableFuture<Serializable> result() {
+        return result;
+    }
+
+    @Override
+    public void addReportListener(Consumer<Serializable> listener) {
+        reportListeners.add(listener);
+    }
+
+    @Override
+    public CompletableFuture<Agent> retract() {
+        home.requestOfAgent(this, Op.RETRACT).whenComplete((ok, e) -> {
+            if (e != null) {
+                retracted.completeExceptionally(e);
+            }
+        });
+        return retracted;
+    }
+
+    @Override
+    public void dispose() {
+        home.requestOfAgent(this, Op.DISPOSE).whenComplete((ok, e) -> {
+            if (e != null) {
+                LOG.warn("dispose of agent {} failed: {}", id, e.getMessage());
+            }
+        });
+    }
+
+    @Override
+    public Serializable sendMessage(Serializable content, Duration timeout) {
+        try {
+            return sendFutureMessage(content).get(timeout.toNanos(), TimeUnit.NANOSECONDS);
+        } catch (ExecutionException e) {
+            if (e.getCause() instanceof AgentException a) {
+                throw a;
+            }
+            throw new AgentException("message to agent " + id + " failed: " + e.getCause(), e.getCause());
+        } catch (TimeoutException e) {
+            throw new AgentException("agent " + id + " (" + className + ") did not answer a message within " + timeout.toMillis() + " ms");
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            throw new AgentException("interrupted waiting for agent " + id + " to answer", e);
+        }
+    }
+
+    @Override
+    public CompletableFuture<Serializable> sendFutureMessage(Serializable content) {
+        return home.messageAgent(this, content, false);
+    }
+
+    @Override
+    public void sendOnewayMessage(Serializable content) {
+        home.messageAgent(this, content, true);
+    }
+
+    // ---- updates from the home ----
+
+    void location(String where) {
+        location = where;
+    }
+
+    void arrived(String where) {
+        if (!status.equals(AgentStatus.COMPLETED) && !ended()) {
+            location = where;
+            status = AgentStatus.ACTIVE;
+        }
+    }
+
+    void inTransit() {
+        status = AgentStatus.IN_TRANSIT;
+    }
+
+    void report(long seq, Serializable value) {
+        if (!reportsSeen.add(seq)) {
+            return;
+        }
+        for (Consumer<Serializable> l : reportListeners) {
+            try {
+                l.accept(value);
+            } catch (RuntimeException e) {
+                LOG.warn("report listener of agent {} threw {}", id, e.toString());
+            }
+        }
+    }
+
+    void completed(String where, Serializable value) {
+        location = where;
+        status = AgentStatus.COMPLETED;
+        result.complete(value);
+        retracted.completeExceptionally(new AgentException("agent " + id + " ended its trip at " + where + " before it could be retracted"));
+    }
+
+    void failed(String where, AgentStatus endStatus, String why) {
+        location = where;
+        status = endStatus;
+        AgentException e = new AgentException("agent " + id + " (" + className + ") " + why);
+        result.completeExceptionally(e);
+        retracted.completeExceptionally(e);
+    }
+
+    void retracted(String where, Agent agent) {
+        location = where;
+        status = AgentStatus.RETRACTED;
+        retracted.complete(agent);
+        result.completeExceptionally(new AgentException("agent " + id + " (" + className + ") was retracted; its state is the retract() result"));
+    }
+
+    boolean ended() {
+        return result.isDone();
+    }
+
+    @Override
+    public String toString() {
+        return "AgentRef[" + className + " " + id + " " + status + " at " + location + "]";
+    }
+}

@@ -1,0 +1,109 @@
+package io.robomw.agents.host;
+
+import io.robomw.api.Agent;
+import io.robomw.api.AgentContext;
+import io.robomw.api.AgentRef;
+import io.robomw.api.Itinerary;
+import io.robomw.api.Messaging;
+import io.robomw.api.Robot;
+import io.robomw.api.UnsupportedActionException;
+
+import java.io.Serializable;
+import java.util.List;
+import java.util.UUID;
+
+/** An agent's view of the host it is at. */
+final class HostContext implements AgentContext {
+
+    private final AgentHost host;
+    private final HostedAgent hosted;
+
+    HostContext(AgentHost host, HostedAgent hosted) {
+        this.host = host;
+        this.hosted = hosted;
+    }
+
+    @Override
+    public UUID agentId() {
+        return hosted.id;
+    }
+
+    @Override
+    public String hostName() {
+        return host.name();
+    }
+
+    @Override
+    public String hostAddress() {
+        return host.address();
+    }
+
+    @Override
+    public String homeAddress() {
+        return hosted.home;
+    }
+
+    @Override
+    public Robot robot() {
+        Robot r = host.robot();
+        if (r == null) {
+            throw new UnsupportedActionException(host.name(), "robot", "agent host " + host.address() + " has no robot (start it with mw host --robot FILE)");
+        }
+        return r;
+    }
+
+    @Override
+    public Messaging messaging() {
+        Messaging m = host.messaging();
+        if (m == null) {
+            throw new UnsupportedActionException(host.name(), "messaging", "agent host " + host.address() + " has no messaging node");
+        }
+        return m;
+    }
+
+    @Override
+    public Itinerary itinerary() {
+        return hosted.agent.itinerary();
+    }
+
+    @Override
+    public void dispatch(String address) {
+        HostAddress.parse(address);
+        hosted.agent.itinerary().insertNext(address, null);
+    }
+
+    @Override
+    public AgentRef cloneAgent(Itinerary itinerary) {
+        return host.cloneOf(hosted, itinerary);
+    }
+
+    @Override
+    public void dispose() {
+        hosted.disposeRequested = true;
+    }
+
+    @Override
+    public void setResult(Serializable result) {
+        hosted.result = result;
+    }
+
+    @Override
+    public void report(Serializable value) {
+        host.report(hosted, value);
+    }
+
+    @Override
+    public AgentRef sendAgent(String address, Agent agent) {
+        return host.sendAgent(address, agent);
+    }
+
+    @Override
+    public AgentRef startTrip(Agent agent) {
+        return host.startTrip(agent);
+    }
+
+    @Override
+    public List<AgentRef> dispatchClones(Agent agent, String... hosts) {
+        return host.dispatchClones(agent, hosts);
+    }
+}

@@ -1,0 +1,172 @@
+package io.robomw.agents.host;
+
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import io.robomw.agents.messaging.security.ReplayGuard;
+
+import java.io.ByteArrayInputStream;
+import java.io.DataInputStream;
+import java.io.IOException;
+import java.nio.ByteBuffer;
+import java.nio.charset.StandardCharsets;
+import java.rmi.server.RemoteServer;
+import java.rmi.server.ServerNotActiveException;
+import java.security.MessageDigest;
+import java.security.SecureRandom;
+import java.util.Arrays;
+import java.util.HexFormat;
+import java.util.LinkedHashMap;
+import java.util.Map;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.atomic.LongAdder;
+
+/**
+ * The server side of {@link AgentHostRemote}: hands out challenges, checks peers' proofs, keeps
+ * their sessions, checks every call's MAC and sequence number, and passes verified calls to the
+ * host. Anything that fails a check is refused with a log line naming the peer and a count in
+ * {@link #refused()}; the endpoint goes on serving everyone else.
+ */
+final class HostEndpoint implements AgentHostRemote {
+
+    private static final Logger LOG = LoggerFactory.getLogger(HostEndpoint.class);
+    private static final long NONCE_LIFETIME_NANOS = 30_000_000_000L;
+    private static final int MAX_PENDING_NONCES = 4096;
+    private static final int MAX_SESSIONS = 4096;
+
+    /** What the host does with a verified call. */
+    interface Handler {
+        Reply handle(String peer, Op op, byte[] body);
+    }
+
+    private record Peer(String name, Session session) {
+    }
+
+    private final String hostName;
+    private final ClusterKey key;
+    private final Handler handler;
+    private final SecureRandom random = new SecureRandom();
+    private final Map<String, Long> nonces = new LinkedHashMap<>();
+    private final Map<Long, Peer> sessions = new ConcurrentHashMap<>();
+    private final ReplayGuard replays = new ReplayGuard();
+    private final LongAdder refused = new LongAdder();
+
+    HostEndpoint(String hostName, ClusterKey key, Handler handler) {
+        this.hostName = hostName;
+        this.key = key;
+        this.handler = handler;
+    }
+
+    /** @return how many authentications and calls were refused */
+    long refused() {
+        return refused.sum();
+    }
+
+    @Override
+    public byte[] challenge() {
+        byte[] nonce = new byte[32];
+        random.nextBytes(nonce);
+        synchronized (nonces) {
+            long now = System.nanoTime();
+            nonces.values().removeIf(expiry -> expiry - now < 0);
+            if (nonces.size() >= MAX_PENDING_NONCES) {
+                nonces.remove(nonces.keySet().iterator().next());
+            }
+            nonces.put(HexFormat.of().formatHex(nonce), now + NONCE_LIFETIME_NANOS);
+        }
+        return nonce;
+    }
+
+    @Override
+    public byte[] authenticate(byte[] request) {
+        String peer = "?";
+        try {
+            DataInputStream in = new DataInputStream(new ByteArrayInputStream(request));
+            peer = in.readUTF();
+            byte[] hostNonce = in.readNBytes(32);
+            byte[] clientNonce = in.readNBytes(32);
+            byte[] proof = in.readNBytes(32);
+            if (proof.length != 32 || in.available() != 0) {
+                return refuse(peer, "malformed authentication request (" + request.length + " bytes)");
+            }
+            Long expiry;
+            synchronized (nonces) {
+                expiry = nonces.remove(HexFormat.of().formatHex(hostNonce));
+            }
+            if (expiry == null || expiry - System.nanoTime() < 0) {
+                return refuse(peer, "its challenge is unknown, used or expired");
+            }
+            byte[] hostNameBytes = hostName.getBytes(StandardCharsets.UTF_8);
+            byte[] peerName = peer.getBytes(StandardCharsets.UTF_8);
+            if (!MessageDigest.isEqual(proof, Session.clientProof(key, hostNameBytes, peerName, hostNonce, clientNonce))) {
+                return refuse(peer, "wrong cluster key");
+            }
+            long id = random.nextLong();
+            if (sessions.size() >= MAX_SESSIONS) {
+                sessions.remove(sessions.keySet().iterator().next());
+            }
+            sessions.put(id, new Peer(peer, new Session(id, Session.sessionKey(key, hostNonce, clientNonce))));
+            LOG.debug("host {}: peer {} ({}) authenticated", hostName, peer, clientHost());
+            return ByteBuffer.allocate(1 + 8 + 32).put((byte) 0).putLong(id)
+                    .put(Session.hostProof(key, hostNameBytes, peerName, hostNonce, clientNonce)).array();
+        } catch (IOException | RuntimeException e) {
+            return refuse(peer, "malformed authentication request: " + e.getMessage());
+        }
+    }
+
+    private byte[] refuse(String peer, String why) {
+        refused.increment();
+        LOG.warn("host {}: refused peer '{}' from {}: {}", hostName, peer, clientHost(), why);
+        byte[] text = ("refused: " + why).getBytes(StandardCharsets.UTF_8);
+        byte[] out = new byte[1 + text.length];
+        out[0] = 1;
+        System.arraycopy(text, 0, out, 1, text.length);
+        return out;
+    }
+
+    @Override
+    public byte[] call(byte[] request) {
+        if (request == null || request.length < Session.HEADER + Session.MAC) {
+            refused.increment();
+            LOG.warn("host {}: dropped a call of {} bytes from {}: too short", hostName, request == null ? 0 : request.length, clientHost());
+            return new byte[0];
+        }
+        ByteBuffer b = ByteBuffer.wrap(request);
+        long id = b.getLong();
+        long seq = b.getLong();
+        int opCode = b.get();
+        Peer peer = sessions.get(id);
+        if (peer == null) {
+            // Not secret: a host that restarted forgot its sessions; the peer authenticates again.
+            return new byte[] {(byte) Reply.Status.UNKNOWN_SESSION.ordinal()};
+        }
+        if (!peer.session().verifyRequest(request)) {
+            refused.increment();
+            LOG.warn("host {}: dropped a call from {} claiming peer '{}' session: wrong MAC", hostName, clientHost(), peer.name());
+            return new byte[0];
+        }
+        if (!replays.accept(id, seq)) {
+            refused.increment();
+            LOG.warn("host {}: dropped a replayed call (sequence {}) from peer '{}' at {}", hostName, seq, peer.name(), clientHost());
+            return new byte[0];
+        }
+        Reply reply;
+        try {
+            Op op = Op.of(opCode);
+            reply = handler.handle(peer.name(), op, Arrays.copyOfRange(request, Session.HEADER, request.length - Session.MAC));
+        } catch (RuntimeException e) {
+            refused.increment();
+            LOG.warn("host {}: call {} from peer '{}' failed: {}", hostName, opCode, peer.name(), e.toString());
+            reply = Reply.of(Reply.Status.REFUSED, "the host could not handle the call: " + e.getMessage());
+        }
+        return peer.session().reply(seq, reply);
+    }
+
+    private static String clientHost() {
+        try {
+            return RemoteServer.getClientHost();
+        } catch (ServerNotActiveException e) {
+            return "this process";
+        }
+    }
+}

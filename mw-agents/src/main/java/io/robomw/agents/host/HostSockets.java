@@ -1,0 +1,177 @@
+package io.robomw.agents.host;
+
+import javax.net.ssl.SSLContext;
+import javax.net.ssl.SSLServerSocket;
+import javax.net.ssl.SSLSocket;
+import java.io.FilterInputStream;
+import java.io.FilterOutputStream;
+import java.io.IOException;
+import java.io.InputStream;
+import java.io.OutputStream;
+import java.io.Serializable;
+import java.net.InetAddress;
+import java.net.InetSocketAddress;
+import java.net.ServerSocket;
+import java.net.Socket;
+import java.rmi.server.RMIClientSocketFactory;
+import java.rmi.server.RMIServerSocketFactory;
+import java.security.NoSuchAlgorithmException;
+import java.util.Objects;
+import java.util.concurrent.atomic.LongAdder;
+
+/**
+ * Socket factories of an agent host's RMI endpoint. The server listens on the one address it was
+ * given, counts the bytes its accepted connections carry (for the wire-bytes benchmark and
+ * {@code mw agents}), and with TLS requires a client certificate. The client side travels in the
+ * host's stub: it connects to the host's own address, sets TCP_NODELAY and a read timeout (so a
+ * hung host fails a call instead of blocking it forever), and with TLS uses the JVM's default
+ * context ({@code javax.net.ssl.*} properties).
+ */
+final class HostSockets {
+
+    private HostSockets() {
+    }
+
+    /** Bytes read and written by a host's accepted connections. */
+    static final class Counters {
+        final LongAdder in = new LongAdder();
+        final LongAdder out = new LongAdder();
+    }
+
+    /** The listening side; identity equality, so the registry and the endpoint share its one socket. */
+    static final class Server implements RMIServerSocketFactory {
+        private final InetAddress bindAddress;
+        private final SSLContext tls;
+        private final Counters counters;
+
+        Server(InetAddress bindAddress, SSLContext tls, Counters counters) {
+            this.bindAddress = bindAddress;
+            this.tls = tls;
+            this.counters = counters;
+        }
+
+        @Override
+        public ServerSocket createServerSocket(int port) throws IOException {
+            ServerSocket s;
+            if (tls != null) {
+                SSLServerSocket ssl = (SSLServerSocket) tls.getServerSocketFactory().createServerSocket();
+                ssl.setNeedClientAuth(true);
+                s = ssl;
+            } else {
+                s = new CountingServerSocket(counters);
+            }
+            s.setReuseAddress(true);
+            s.bind(new InetSocketAddress(bindAddress, port), 128);
+            return s;
+        }
+    }
+
+    /** A server socket whose connections count their bytes. */
+    private static final class CountingServerSocket extends ServerSocket {
+        private final Counters counters;
+
+        CountingServerSocket(Counters counters) throws IOException {
+            this.counters = counters;
+        }
+
+        @Override
+        public Socket accept() throws IOException {
+            Socket s = new CountingSocket(counters);
+            implAccept(s);
+            s.setTcpNoDelay(true);
+            return s;
+        }
+    }
+
+    private static final class CountingSocket extends Socket {
+        private final Counters counters;
+
+        CountingSocket(Counters counters) {
+            this.counters = counters;
+        }
+
+        @Override
+        public InputStream getInputStream() throws IOException {
+            return new FilterInputStream(super.getInputStream()) {
+                @Override
+                public int read() throws IOException {
+                    int b = super.read();
+                    if (b >= 0) {
+                        counters.in.increment();
+                    }
+                    return b;
+                }
+
+                @Override
+                public int read(byte[] buf, int off, int len) throws IOException {
+                    int n = super.read(buf, off, len);
+                    if (n > 0) {
+                        counters.in.add(n);
+                    }
+                    return n;
+                }
+            };
+        }
+
+        @Override
+        public OutputStream getOutputStream() throws IOException {
+            return new FilterOutputStream(super.getOutputStream()) {
+                @Override
+                public void write(int b) throws IOException {
+                    out.write(b);
+                    counters.out.increment();
+                }
+
+                @Override
+                public void write(byte[] buf, int off, int len) throws IOException {
+                    out.write(buf, off, len);
+                    counters.out.add(len);
+                }
+            };
+        }
+    }
+
+    /** The connecting side, serializable because it travels in the host's stub. */
+    static final class Client implements RMIClientSocketFactory, Serializable {
+        private static final long serialVersionUID = 1L;
+        private final String host;
+        private final boolean tls;
+        private final int timeoutMillis;
+
+        Client(String host, boolean tls, int timeoutMillis) {
+            this.host = host;
+            this.tls = tls;
+            this.timeoutMillis = timeoutMillis;
+        }
+
+        @Override
+        public Socket createSocket(String ignoredHost, int port) throws IOException {
+            Socket s = new Socket();
+            s.setTcpNoDelay(true);
+            s.connect(new InetSocketAddress(host, port), timeoutMillis);
+            s.setSoTimeout(timeoutMillis);
+            if (!tls) {
+                return s;
+            }
+            try {
+                SSLSocket ssl = (SSLSocket) SSLContext.getDefault().getSocketFactory().createSocket(s, host, port, true);
+                ssl.setUseClientMode(true);
+                ssl.startHandshake();
+                return ssl;
+            } catch (NoSuchAlgorithmException e) {
+                s.close();
+                throw new IOException("no default TLS context: " + e.getMessage(), e);
+            }
+        }
+
+        @Override
+        public boolean equals(Object o) {
+            return o instanceof Client c && c.host.equals(host) && c.tls == tls && c.timeoutMillis == timeoutMillis;
+        }
+
+        @Override
+        public int hashCode() {
+            return Objects.hash(host, tls, timeoutMillis);
+        }
+    }
+}

@@ -1,0 +1,50 @@
+package io.robomw.agents.host;
+
+import io.robomw.agents.host.code.CodeArchive;
+import io.robomw.api.Agent;
+import io.robomw.api.AgentStatus;
+
+import java.io.Serializable;
+import java.util.UUID;
+import java.util.concurrent.CompletableFuture;
+
+/**
+ * An agent while it is at this host: the object, where it came from, and the requests made of it
+ * (retract, dispose) that take effect when its current callback returns.
+ */
+final class HostedAgent {
+
+    final UUID id;
+    final Agent agent;
+    final String className;
+    final ClassLoader loader;
+    final CodeArchive.Digest digest;
+    final String home;
+    /** Completes with the next host's address once the agent has left (for messages that arrive meanwhile). */
+    final CompletableFuture<String> departure = new CompletableFuture<>();
+    volatile long hop;
+    volatile long eventSeq;
+    volatile AgentStatus status = AgentStatus.ACTIVE;
+    volatile boolean retractRequested;
+    volatile boolean disposeRequested;
+    volatile Serializable result;
+
+    HostedAgent(AgentImage image, Agent agent, ClassLoader loader) {
+        this.id = image.id();
+        this.agent = agent;
+        this.className = image.className();
+        this.loader = loader;
+        this.digest = image.digest();
+        this.home = image.home();
+        this.hop = image.hop();
+        this.eventSeq = image.eventSeq();
+    }
+
+    String shortId() {
+        return id.toString().substring(0, 8);
+    }
+
+    AgentInfo info() {
+        return new AgentInfo(id, className, status, hop, home);
+    }
+}

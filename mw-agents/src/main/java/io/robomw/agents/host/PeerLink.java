@@ -1,0 +1,162 @@
+package io.robomw.agents.host;
+
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import java.io.ByteArrayOutputStream;
+import java.io.DataOutputStream;
+import java.io.IOException;
+import java.nio.ByteBuffer;
+import java.nio.charset.StandardCharsets;
+import java.rmi.ConnectException;
+import java.rmi.ConnectIOException;
+import java.rmi.NoSuchObjectException;
+import java.rmi.NotBoundException;
+import java.rmi.RemoteException;
+import java.rmi.UnknownHostException;
+import java.rmi.registry.LocateRegistry;
+import java.rmi.registry.Registry;
+import java.security.MessageDigest;
+import java.security.SecureRandom;
+import java.util.concurrent.atomic.AtomicLong;
+
+/**
+ * This host's authenticated link to one other host: looks its stub up, proves the cluster key,
+ * checks the host's proof in turn, and makes MAC'd calls on the session. A lost session (the host
+ * restarted) is made again once per call; a failed call drops the stub so the next call looks it
+ * up afresh. Thread-safe: calls from several threads share the session.
+ */
+final class PeerLink {
+
+    private static final Logger LOG = LoggerFactory.getLogger(PeerLink.class);
+
+    private final HostAddress address;
+    private final String selfName;
+    private final ClusterKey key;
+    private final HostSockets.Client sockets;
+    private final SecureRandom random;
+    private final AtomicLong seq = new AtomicLong();
+    private AgentHostRemote stub;
+    private Session session;
+
+    PeerLink(HostAddress address, String selfName, ClusterKey key, HostSockets.Client sockets, SecureRandom random) {
+        this.address = address;
+        this.selfName = selfName;
+        this.key = key;
+        this.sockets = sockets;
+        this.random = random;
+    }
+
+    HostAddress address() {
+        return address;
+    }
+
+    /**
+     * @param op   the operation
+     * @param body its body
+     * @return the host's verified reply
+     * @throws PeerException if the host cannot be reached, refuses this peer, or the call fails
+     */
+    Reply call(Op op, byte[] body) throws PeerException {
+        for (int attempt = 0; ; attempt++) {
+            Session s;
+            AgentHostRemote remote;
+            synchronized (this) {
+                s = session(attempt);
+                remote = stub;
+            }
+            long n = seq.incrementAndGet();
+            byte[] raw;
+            try {
+                raw = remote.call(s.request(n, op, body));
+            } catch (RemoteException e) {
+                drop();
+                throw failure(op, e);
+            }
+            Reply r;
+            try {
+                r = s.verifyReply(n, raw);
+            } catch (RuntimeException e) {
+                drop();
+                throw new PeerException("host " + address + " sent a bad reply to " + op + ": " + e.getMessage(), true, e);
+            }
+            if (r.status() == Reply.Status.UNKNOWN_SESSION && attempt == 0) {
+                synchronized (this) {
+                    if (session == s) {
+                        session = null;
+                    }
+                }
+                continue;
+            }
+            return r;
+        }
+    }
+
+    /** Forgets the stub and session; the next call connects again. */
+    synchronized void drop() {
+        stub = null;
+        session = null;
+    }
+
+    private Session session(int attempt) throws PeerException {
+        if (session != null) {
+            return session;
+        }
+        try {
+            if (stub == null) {
+                Registry registry = LocateRegistry.getRegistry(address.host(), address.port(), sockets);
+                stub = (AgentHostRemote) registry.lookup(address.name());
+            }
+            byte[] hostNonce = stub.challenge();
+            byte[] clientNonce = new byte[32];
+            random.nextBytes(clientNonce);
+            byte[] hostName = address.name().getBytes(StandardCharsets.UTF_8);
+            byte[] peerName = selfName.getBytes(StandardCharsets.UTF_8);
+            ByteArrayOutputStream req = new ByteArrayOutputStream();
+            DataOutputStream out = new DataOutputStream(req);
+            out.writeUTF(selfName);
+            out.write(hostNonce);
+            out.write(clientNonce);
+            out.write(Session.clientProof(key, hostName, peerName, hostNonce, clientNonce));
+            byte[] answer = stub.authenticate(req.toByteArray());
+            if (answer.length == 0 || answer[0] != 0) {
+                String why = answer.length > 1 ? new String(answer, 1, answer.length - 1, StandardCharsets.UTF_8) : "no reason given";
+                stub = null;
+                throw new PeerException("host " + address + " refused this peer (" + selfName + "): " + why, false, null);
+            }
+            ByteBuffer b = ByteBuffer.wrap(answer, 1, answer.length - 1);
+            long id = b.getLong();
+            byte[] proof = new byte[32];
+            b.get(proof);
+            if (!MessageDigest.isEqual(proof, Session.hostProof(key, hostName, peerName, hostNonce, clientNonce))) {
+                stub = null;
+                throw new PeerException("host " + address + " could not prove it knows the cluster key: not sending it anything", false, null);
+            }
+            session = new Session(id, Session.sessionKey(key, hostNonce, clientNonce));
+            LOG.debug("authenticated to {} (session {}, attempt {})", address, Long.toHexString(id), attempt);
+            return session;
+        } catch (RemoteException | NotBoundException e) {
+            stub = null;
+            PeerException f = failure(Op.TRANSFER, e);
+            throw new PeerException(f.getMessage().replace(" (the TRANSFER may have reached it)", ""), false, e);
+        } catch (IOException e) {
+            stub = null;
+            throw new PeerException("cannot authenticate to " + address + ": " + e.getMessage(), false, e);
+        } catch (ClassCastException e) {
+            stub = null;
+            throw new PeerException(address + " is not an agent host", false, e);
+        }
+    }
+
+    private PeerException failure(Op op, Exception e) {
+        boolean delivered = !(e instanceof ConnectException || e instanceof ConnectIOException || e instanceof NoSuchObjectException
+                || e instanceof NotBoundException || e instanceof UnknownHostException);
+        String what = e instanceof NotBoundException ? "nothing is bound as '" + address.name() + "' there" : String.valueOf(e.getMessage());
+        return new PeerException("cannot reach agent host " + address + (delivered ? " (the " + op + " may have reached it)" : "") + ": " + what, delivered, e);
+    }
+
+    @Override
+    public String toString() {
+        return "PeerLink[" + selfName + " -> " + address + "]";
+    }
+}

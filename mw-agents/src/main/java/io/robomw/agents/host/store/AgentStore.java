@@ -1,0 +1,124 @@
+package io.robomw.agents.host.store;
+
+import io.robomw.agents.host.code.CodeArchive;
+
+import java.io.IOException;
+import java.util.List;
+import java.util.Optional;
+import java.util.UUID;
+
+/**
+ * Where a host keeps the agents it has accepted, until the next host has them, and the results
+ * it owes their homes, until the home has them. {@link JournalStore} survives the host being
+ * killed; {@link MemoryStore} does not, and is for speed.
+ *
+ * <p>The order of one hop at the receiving host: {@link #accepted} (durable before the sender is
+ * acknowledged), {@link #started} (durable before the stop's work begins, so the work never runs
+ * twice), {@link #departing} with the state after the work, {@link #departed} once the next host
+ * has acknowledged. Thread-safe.
+ */
+public interface AgentStore extends AutoCloseable {
+
+    /** Where an agent stood when the host last wrote it down. */
+    enum Phase {
+        /** Accepted, its stop not started. */
+        ACCEPTED,
+        /** Its stop's work had begun. */
+        STARTED,
+        /** Its stop done, being sent on. */
+        DEPARTING
+    }
+
+    /**
+     * An agent the host holds.
+     *
+     * @param id    the agent
+     * @param hop   the hop that brought it (or, when departing, the hop that takes it on)
+     * @param phase where it stood
+     * @param image its travelling form
+     */
+    record StoredAgent(UUID id, long hop, Phase phase, byte[] image) {
+    }
+
+    /**
+     * A result or report a home has not acknowledged yet.
+     *
+     * @param id    the agent
+     * @param seq   its order among that agent's events
+     * @param event the encoded event
+     */
+    record PendingEvent(UUID id, long seq, byte[] event) {
+    }
+
+    /** @return whether this store survives the host being killed */
+    boolean durable();
+
+    /**
+     * @param id    the agent
+     * @param hop   the hop that brought it
+     * @param image its travelling form
+     * @throws IOException if it cannot be stored (the hop must then be refused)
+     */
+    void accepted(UUID id, long hop, byte[] image) throws IOException;
+
+    /**
+     * @param id  the agent
+     * @param hop its current hop
+     * @throws IOException if it cannot be written (the work must then not start)
+     */
+    void started(UUID id, long hop) throws IOException;
+
+    /**
+     * @param id    the agent
+     * @param hop   the hop that takes it on
+     * @param image its travelling form after the stop
+     * @throws IOException if it cannot be written
+     */
+    void departing(UUID id, long hop, byte[] image) throws IOException;
+
+    /**
+     * @param id the agent, now stored by the next host or ended here
+     * @throws IOException if it cannot be written
+     */
+    void departed(UUID id) throws IOException;
+
+    /**
+     * @param id the agent
+     * @return the highest hop of it this host ever accepted, or -1
+     */
+    long highestHop(UUID id);
+
+    /**
+     * @param event an event owed to a home (durable before return)
+     * @throws IOException if it cannot be written
+     */
+    void eventPending(PendingEvent event) throws IOException;
+
+    /**
+     * @param id  the agent
+     * @param seq the event the home acknowledged
+     * @throws IOException if it cannot be written
+     */
+    void eventDelivered(UUID id, long seq) throws IOException;
+
+    /**
+     * @param archive an archive of agent code (durable before return)
+     * @throws IOException if it cannot be written
+     */
+    void putArchive(CodeArchive archive) throws IOException;
+
+    /**
+     * @param digest an archive's digest
+     * @return the archive, if this store has it
+     */
+    Optional<CodeArchive> archive(CodeArchive.Digest digest);
+
+    /** @return the agents held when the store was opened (after a restart: the ones to resume) */
+    List<StoredAgent> recoveredAgents();
+
+    /** @return the events owed to homes when the store was opened */
+    List<PendingEvent> recoveredEvents();
+
+    @Override
+    void close() throws IOException;
+}

@@ -1,0 +1,188 @@
+package io.robomw.agents.host;
+
+import io.robomw.agents.host.trip.VisitorAgent;
+import io.robomw.api.Agent;
+import io.robomw.api.AgentException;
+import io.robomw.api.AgentRef;
+import io.robomw.api.AgentStatus;
+import io.robomw.api.NotHandledException;
+import org.junit.jupiter.api.AfterEach;
+import org.junit.jupiter.api.Test;
+
+import java.io.Serializable;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.TimeUnit;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertInstanceOf;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+class AgentHostTest {
+
+    private static final ClusterKey KEY = ClusterKey.fromPassphrase("test cluster");
+    private final List<AgentHost> hosts = new ArrayList<>();
+
+    private AgentHost host(String name) throws Exception {
+        AgentHost h = AgentHost.builder(name).clusterKey(KEY).start();
+        hosts.add(h);
+        return h;
+    }
+
+    @AfterEach
+    void closeHosts() {
+        hosts.forEach(AgentHost::close);
+    }
+
+    @Test
+    void agentVisitsItsStopsInOrderAndBringsItsResultHome() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        AgentHost b = host("b");
+        VisitorAgent agent = new VisitorAgent();
+        agent.itinerary().addStop(a.address()).addStop(b.address()).addStop(a.address());
+        List<Serializable> reports = new CopyOnWriteArrayList<>();
+        AgentRef ref = home.startTrip(agent);
+        ref.addReportListener(reports::add);
+        Serializable result = ref.result().get(10, TimeUnit.SECONDS);
+        assertEquals(List.of("a", "b", "a"), result);
+        assertEquals(AgentStatus.COMPLETED, ref.status());
+        assertEquals(a.address(), ref.location());
+    }
+
+    @Test
+    void reportsArriveInTheOrderTheAgentSentThem() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        AgentHost b = host("b");
+        VisitorAgent agent = new VisitorAgent().holdUntilReleased();
+        agent.itinerary().addStop(a.address()).addStop(b.address());
+        AgentRef ref = home.startTrip(agent);
+        List<Serializable> reports = new CopyOnWriteArrayList<>();
+        ref.addReportListener(reports::add);
+        assertEquals("a", ref.sendMessage("where", Duration.ofSeconds(5)));
+        ref.sendMessage("release", Duration.ofSeconds(5));
+        await(() -> "b".equals(safeWhere(ref)));
+        ref.sendMessage("release", Duration.ofSeconds(5));
+        ref.result().get(10, TimeUnit.SECONDS);
+        assertEquals(List.of("at b"), reports.subList(Math.max(0, reports.size() - 1), reports.size()));
+    }
+
+    @Test
+    void dispatchClonesRunsOneCloneOnEachHostAndReturnsBothResults() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        AgentHost b = host("b");
+        List<AgentRef> refs = home.dispatchClones(new VisitorAgent(), a.address(), b.address());
+        assertEquals(2, refs.size());
+        assertTrue(refs.get(0).id() != refs.get(1).id());
+        assertEquals(List.of("a"), refs.get(0).result().get(10, TimeUnit.SECONDS));
+        assertEquals(List.of("b"), refs.get(1).result().get(10, TimeUnit.SECONDS));
+    }
+
+    @Test
+    void messageTheAgentDoesNotHandleFailsWithNotHandled() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        AgentRef ref = home.sendAgent(a.address(), new VisitorAgent().holdUntilReleased());
+        AgentException e = assertThrows(AgentException.class, () -> ref.sendMessage("dance", Duration.ofSeconds(5)));
+        assertInstanceOf(NotHandledException.class, e);
+        ref.sendMessage("release", Duration.ofSeconds(5));
+        ref.result().get(10, TimeUnit.SECONDS);
+    }
+
+    @Test
+    void retractBringsTheAgentHomeWithItsState() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        AgentHost b = host("b");
+        VisitorAgent agent = new VisitorAgent().holdUntilReleased();
+        agent.itinerary().addStop(a.address()).addStop(b.address());
+        AgentRef ref = home.startTrip(agent);
+        var retracted = ref.retract();
+        // The retract takes effect when the stop's work returns; release the agent until it is home.
+        await(() -> {
+            safeSend(ref, "release");
+            return retracted.isDone();
+        });
+        Agent back = retracted.get(10, TimeUnit.SECONDS);
+        assertEquals(List.of("a"), ((VisitorAgent) back).visited());
+        assertEquals(AgentStatus.RETRACTED, ref.status());
+    }
+
+    @Test
+    void disposeEndsTheTripAndFailsTheResult() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        AgentHost b = host("b");
+        VisitorAgent agent = new VisitorAgent().holdUntilReleased();
+        agent.itinerary().addStop(a.address()).addStop(b.address());
+        AgentRef ref = home.startTrip(agent);
+        ref.dispose();
+        await(() -> !a.agents().isEmpty()); // still there, holding
+        ref.sendMessage("release", Duration.ofSeconds(5));
+        Exception e = assertThrows(Exception.class, () -> ref.result().get(10, TimeUnit.SECONDS));
+        assertTrue(e.getCause().getMessage().contains("disposed"), e.getCause().getMessage());
+        assertEquals(AgentStatus.DISPOSED, ref.status());
+    }
+
+    @Test
+    void unreachableStopIsSkippedAndRecorded() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        VisitorAgent agent = new VisitorAgent();
+        agent.itinerary().addStop(a.address()).addStop("rmi://127.0.0.1:1/nobody").addStop(a.address());
+        AgentRef ref = home.startTrip(agent);
+        assertEquals(List.of("a", "a"), ref.result().get(10, TimeUnit.SECONDS));
+    }
+
+    @Test
+    void peerWithTheWrongKeyIsRefusedAndTheHostKeepsServing() throws Exception {
+        AgentHost a = host("a");
+        AgentHost intruder = AgentHost.builder("intruder").clusterKey(ClusterKey.fromPassphrase("guess")).start();
+        hosts.add(intruder);
+        AgentException e = assertThrows(AgentException.class, () -> intruder.sendAgent(a.address(), new VisitorAgent()));
+        assertTrue(e.getMessage().contains("refused"), e.getMessage());
+        assertTrue(a.refused() >= 1);
+        AgentHost home = host("home");
+        assertEquals(List.of("a"), home.sendAgent(a.address(), new VisitorAgent()).result().get(10, TimeUnit.SECONDS));
+    }
+
+    @Test
+    void lambdaTasksTravelAndRun() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        VisitorAgent agent = new VisitorAgent();
+        agent.itinerary().addStop(a.address(), ctx -> ctx.setResult("task ran at " + ctx.hostName()));
+        assertEquals("task ran at a", home.startTrip(agent).result().get(10, TimeUnit.SECONDS));
+    }
+
+    private static String safeWhere(AgentRef ref) {
+        try {
+            return (String) ref.sendMessage("where", Duration.ofSeconds(2));
+        } catch (AgentException e) {
+            return null;
+        }
+    }
+
+    private static void safeSend(AgentRef ref, String message) {
+        try {
+            ref.sendMessage(message, Duration.ofSeconds(2));
+        } catch (AgentException e) {
+            // it may be between hosts or home already
+        }
+    }
+
+    static void await(java.util.function.BooleanSupplier condition) {
+        long deadline = System.nanoTime() + 10_000_000_000L;
+        while (!condition.getAsBoolean()) {
+            if (System.nanoTime() > deadline) {
+                throw new AssertionError("condition not met within 10 s");
+            }
+            Thread.onSpinWait();
+        }
+    }
+}
