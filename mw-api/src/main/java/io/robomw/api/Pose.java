@@ -7,7 +7,10 @@ package io.robomw.api;
  * @param y       metres
  * @param heading radians, anti-clockwise from the x axis, normalised to (-π, π]
  */
-public record Pose(double x, double y, double heading) {
+public record Pose(double x, double y, double heading) implements java.io.Serializable {
+
+    private static final long serialVersionUID = 1L;
+
 
     /** The origin, facing along x. */
     public static final Pose ORIGIN = new Pose(0, 0, 0);

@@ -7,5 +7,8 @@ package io.robomw.api;
  * @param type     what it measures
  * @param position where it sits
  */
-public record SensorInfo(String name, SensorType type, Position position) {
+public record SensorInfo(String name, SensorType type, Position position) implements java.io.Serializable {
+
+    private static final long serialVersionUID = 1L;
+
 }

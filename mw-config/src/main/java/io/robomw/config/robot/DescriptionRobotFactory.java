@@ -46,7 +46,9 @@ public final class DescriptionRobotFactory implements RobotFactory {
         RobotDescription d = description.current();
         RobotPlatform platform;
         try {
-            platform = provider(d).open(platformConfig(d, services.with(RobotDescription.class, d), clock));
+            PlatformConfig config = platformConfig(d, services.with(RobotDescription.class, d), clock);
+            PlatformConfig opened = services.find(ConnectionOverride.class).map(o -> o.applyTo(config)).orElse(config);
+            platform = provider(d).open(opened);
         } catch (IOException e) {
             description.close();
             throw new RobotException(d.source() + ": cannot open robot '" + d.name() + "' on platform '" + d.platform() + "': " + e.getMessage(), e);

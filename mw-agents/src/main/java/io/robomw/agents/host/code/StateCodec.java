@@ -32,6 +32,8 @@ public final class StateCodec {
     private static final List<String> API_TYPES = List.of(
             Agent.class.getName(), Itinerary.class.getName(), Itinerary.Stop.class.getName(), Itinerary.Visit.class.getName(),
             Itinerary.Outcome.class.getName(), Itinerary.UnreachablePolicy.class.getName(), Pose.class.getName(),
+            io.robomw.api.SensorInfo.class.getName(), io.robomw.api.SensorType.class.getName(), io.robomw.api.Position.class.getName(),
+            io.robomw.api.ReturnType.class.getName(), io.robomw.api.Quantity.class.getName(),
             "java.lang.invoke.SerializedLambda", "java.lang.Object", "java.util.Arrays$ArrayList");
 
     /** Deepest object graph accepted in agent state. */

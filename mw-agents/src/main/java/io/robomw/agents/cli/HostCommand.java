@@ -1,0 +1,124 @@
+package io.robomw.agents.cli;
+
+import io.robomw.agents.host.AgentHost;
+import io.robomw.api.Robot;
+import io.robomw.api.RobotException;
+import io.robomw.api.Robots;
+import io.robomw.api.spi.PlatformServices;
+import io.robomw.config.robot.ConnectionOverride;
+import io.robomw.sim.Simulation;
+import picocli.CommandLine.Command;
+import picocli.CommandLine.Mixin;
+import picocli.CommandLine.Model.CommandSpec;
+import picocli.CommandLine.Option;
+import picocli.CommandLine.Spec;
+
+import java.io.PrintWriter;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.LinkedHashMap;
+import java.util.List;
+import java.util.Map;
+import java.util.concurrent.Callable;
+import java.util.concurrent.CountDownLatch;
+
+/**
+ * {@code mw host}: an agent host bound to a robot, until Ctrl-C (or SIGTERM). Prints
+ * {@code agent host NAME ready at rmi://...} on standard output once it serves.
+ */
+@Command(name = "host", mixinStandardHelpOptions = true,
+        description = {"Runs an agent host: receives mobile agents over RMI and runs them with a robot.",
+                "Example: mw host --robot examples/robots/nxt-two-wheeled.yaml --connection port=/dev/pts/5 --port 1099 --name nxt --key-file cluster.key"})
+final class HostCommand implements Callable<Integer> {
+
+    @Option(names = "--name", required = true, description = "the host's name; agents address it as rmi://BIND:PORT/NAME")
+    String name;
+
+    @Option(names = "--port", defaultValue = "1099", description = "RMI registry port (default ${DEFAULT-VALUE}; 0 picks a free one)")
+    int port;
+
+    @Option(names = "--bind", defaultValue = "127.0.0.1", description = "address to listen on and be known by (default ${DEFAULT-VALUE})")
+    String bind;
+
+    @Option(names = "--robot", paramLabel = "ROBOT.yaml", description = "the robot agents here drive, opened with its driver")
+    Path robotFile;
+
+    @Option(names = "--connection", paramLabel = "KEY=VALUE", description = "replace a connection value of the robot file, e.g. port=/dev/pts/5 as mw emulate prints it")
+    Map<String, String> connection = new LinkedHashMap<>();
+
+    @Option(names = "--world", paramLabel = "WORLD.yaml", description = "simulate this world here, in real time, and drive its robot --world-robot")
+    Path world;
+
+    @Option(names = "--world-robot", paramLabel = "NAME", description = "the robot of --world agents here drive")
+    String worldRobot;
+
+    @Option(names = "--speed", defaultValue = "1", description = "simulated seconds per second with --world (default ${DEFAULT-VALUE})")
+    double speed;
+
+    @Option(names = "--store", paramLabel = "DIR", description = "keep accepted agents durably here (they survive a kill); default: memory only")
+    Path store;
+
+    @Option(names = "--allow", split = ",", paramLabel = "CLASS", description = "classes agent state may hold besides the agent's own code and JDK value types")
+    List<String> allow = new ArrayList<>();
+
+    @Mixin
+    ClusterOptions cluster;
+
+    @Spec
+    CommandSpec spec;
+
+    @Override
+    public Integer call() throws Exception {
+        PrintWriter out = spec.commandLine().getOut();
+        PrintWriter err = spec.commandLine().getErr();
+        List<AutoCloseable> open = new ArrayList<>();
+        Robot robot = null;
+        try {
+            if (world != null) {
+                if (worldRobot == null) {
+                    err.println("--world needs --world-robot NAME: which of its robots agents drive");
+                    return 2;
+                }
+                Simulation sim = Simulation.load(world);
+                open.add(0, sim);
+                sim.startRealTime(speed);
+                robot = sim.robot(worldRobot);
+            } else if (robotFile != null) {
+                PlatformServices services = connection.isEmpty() ? PlatformServices.none()
+                        : PlatformServices.none().with(ConnectionOverride.class, new ConnectionOverride(connection));
+                robot = Robots.open(robotFile, services);
+                open.add(0, robot);
+            }
+            AgentHost host = AgentHost.builder(name).bind(bind).port(port).robot(robot).clusterKey(cluster.key()).tls(cluster.tls())
+                    .store(store).allow(allow).start();
+            open.add(0, host);
+            out.printf("agent host %s ready at %s (robot: %s, store: %s)%n", name, host.address(), robot == null ? "none" : robot.name(),
+                    store == null ? "memory" : store);
+            out.flush();
+            CountDownLatch stopped = new CountDownLatch(1);
+            Thread closer = new Thread(() -> {
+                closeAll(open);
+                stopped.countDown();
+            }, "mw-host-shutdown");
+            Runtime.getRuntime().addShutdownHook(closer);
+            stopped.await();
+            return 0;
+        } catch (RobotException | IllegalArgumentException | IllegalStateException | java.io.IOException e) {
+            err.println("mw host: " + e.getMessage());
+            err.flush();
+            closeAll(open);
+            return 2;
+        }
+    }
+
+    private static void closeAll(List<AutoCloseable> open) {
+        for (AutoCloseable c : open) {
+            try {
+                c.close();
+            } catch (Exception e) {
+                System.err.println("mw host: closing " + c + " failed: " + e);
+            }
+        }
+        open.clear();
+    }
+}
