@@ -27,6 +27,10 @@ public interface AgentContext extends Agency {
     String homeAddress();
 
     /**
+     * The host's robot, to this agent alone until the current stop's work returns: the first call
+     * in a stop waits while another agent's stop at this host has the robot, so two agents' moves
+     * never pre-empt each other. Call it on the agent's own thread.
+     *
      * @return the host's robot
      * @throws UnsupportedActionException if this host has no robot
      */

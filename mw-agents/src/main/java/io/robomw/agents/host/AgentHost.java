@@ -116,6 +116,8 @@ public final class AgentHost implements Agency, AutoCloseable {
         }
     };
     private final Object acceptLock = new Object();
+    /** Who drives the robot: one agent's stop at a time, so two agents' moves never pre-empt each other. */
+    private final java.util.concurrent.locks.ReentrantLock robotLock = new java.util.concurrent.locks.ReentrantLock(true);
     private final SecureRandom random = new SecureRandom();
     private final HostSockets.Counters counters = new HostSockets.Counters();
     private final ExecutorService runners;
@@ -371,6 +373,17 @@ public final class AgentHost implements Agency, AutoCloseable {
         return robot;
     }
 
+    /** Takes the robot for the calling agent's stop (waiting for the agent that has it), unless it already has it. */
+    Robot claimRobot(HostedAgent h) {
+        if (robot != null && !robotLock.isHeldByCurrentThread()) {
+            if (!robotLock.tryLock()) {
+                LOG.info("host {}: agent {} waits for the robot, which another agent's stop is using", name, h.id);
+                robotLock.lock();
+            }
+        }
+        return robot;
+    }
+
     Messaging messaging() {
         return messaging;
     }
@@ -541,11 +554,19 @@ public final class AgentHost implements Agency, AutoCloseable {
                     }
                 }
             }
+            releaseRobot();
             moveOn(h);
         } catch (RuntimeException e) {
             LOG.error("host {}: agent {} ({}) could not go on: {}", name, h.id, h.className, e.toString(), e);
         } finally {
+            releaseRobot();
             t.setName(poolName);
+        }
+    }
+
+    private void releaseRobot() {
+        while (robotLock.isHeldByCurrentThread()) {
+            robotLock.unlock();
         }
     }
 

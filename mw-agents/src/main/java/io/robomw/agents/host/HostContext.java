@@ -45,7 +45,7 @@ final class HostContext implements AgentContext {
 
     @Override
     public Robot robot() {
-        Robot r = host.robot();
+        Robot r = host.claimRobot(hosted);
         if (r == null) {
             throw new UnsupportedActionException(host.name(), "robot", "agent host " + host.address() + " has no robot (start it with mw host --robot FILE)");
         }

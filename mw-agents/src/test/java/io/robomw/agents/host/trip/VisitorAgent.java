@@ -3,6 +3,7 @@ package io.robomw.agents.host.trip;
 import io.robomw.api.Agent;
 import io.robomw.api.AgentMessage;
 
+import java.io.Serializable;
 import java.util.ArrayList;
 
 /** Test agent: records the hosts it visits and brings the list home; answers "where" messages. */
@@ -12,12 +13,19 @@ public class VisitorAgent extends Agent {
 
     private final ArrayList<String> visited = new ArrayList<>();
     private byte[] payload = new byte[0];
+    private Serializable extra;
     /** How long each stop blocks, waiting on a message that releases it (0: not at all). */
     private boolean holdUntilReleased;
     private transient volatile boolean released;
 
     public VisitorAgent payload(int bytes) {
         payload = new byte[bytes];
+        return this;
+    }
+
+    /** Carries any value, for tests of what hosts refuse. */
+    public VisitorAgent extra(Serializable value) {
+        extra = value;
         return this;
     }
 

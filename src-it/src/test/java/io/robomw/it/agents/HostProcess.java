@@ -1,0 +1,156 @@
+package io.robomw.it.agents;
+
+import java.io.BufferedReader;
+import java.io.File;
+import java.io.IOException;
+import java.io.InputStreamReader;
+import java.net.InetAddress;
+import java.net.InetSocketAddress;
+import java.net.ServerSocket;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.Arrays;
+import java.util.List;
+import java.util.concurrent.BlockingQueue;
+import java.util.concurrent.LinkedBlockingQueue;
+import java.util.concurrent.TimeUnit;
+import java.util.stream.Collectors;
+
+import static org.junit.jupiter.api.Assertions.fail;
+
+/**
+ * {@code mw host} in its own JVM, on a class path with the middleware only: no example agents, no
+ * test classes, so every agent's code has to travel to it. Waits for its "ready at" line;
+ * {@link #kill()} is kill -9; {@link #close()} stops it as Ctrl-C would and always waits for it.
+ * Its log (stderr) is appended to {@code target/it-logs/NAME.log} and can be read back.
+ */
+final class HostProcess implements AutoCloseable {
+
+    static final Duration START = Duration.ofSeconds(60);
+
+    private final String name;
+    private final int port;
+    private final List<String> hostArgs;
+    private final Path log;
+    private Process process;
+    private BlockingQueue<String> lines;
+
+    private HostProcess(String name, int port, List<String> hostArgs) throws IOException {
+        this.name = name;
+        this.port = port;
+        this.hostArgs = hostArgs;
+        Path logs = Path.of("target", "it-logs");
+        Files.createDirectories(logs);
+        this.log = logs.resolve(name + ".log");
+        Files.deleteIfExists(log);
+    }
+
+    /**
+     * Starts a host.
+     *
+     * @param name  its name
+     * @param extra {@code mw host} options besides --name and --port
+     * @return the running host
+     */
+    static HostProcess start(String name, String... extra) throws IOException {
+        HostProcess h = new HostProcess(name, freePort(), List.of(extra));
+        h.launch();
+        return h;
+    }
+
+    String address() {
+        return "rmi://127.0.0.1:" + port + "/" + name;
+    }
+
+    /** Starts it again, same name, port and options (after {@link #kill()}). */
+    void restart() throws IOException {
+        launch();
+    }
+
+    private void launch() throws IOException {
+        List<String> command = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-cp", middlewareOnlyClassPath(), "io.robomw.agents.cli.Mw", "host",
+                "--name", name, "--port", String.valueOf(port)));
+        command.addAll(hostArgs);
+        process = new ProcessBuilder(command).redirectError(ProcessBuilder.Redirect.appendTo(log.toFile())).start();
+        BlockingQueue<String> q = new LinkedBlockingQueue<>();
+        lines = q;
+        Process p = process;
+        Thread reader = new Thread(() -> {
+            try (BufferedReader r = new BufferedReader(new InputStreamReader(p.getInputStream(), StandardCharsets.UTF_8))) {
+                String line;
+                while ((line = r.readLine()) != null) {
+                    q.add(line);
+                }
+            } catch (IOException e) {
+                q.add("EOF " + e);
+            }
+            q.add("EOF");
+        }, "it-host-stdout-" + name);
+        reader.setDaemon(true);
+        reader.start();
+        long deadline = System.nanoTime() + START.toNanos();
+        while (true) {
+            String line;
+            try {
+                line = q.poll(Math.max(0, deadline - System.nanoTime()), TimeUnit.NANOSECONDS);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+                throw new IOException("interrupted", e);
+            }
+            if (line == null || line.startsWith("EOF")) {
+                close();
+                fail("agent host " + name + " did not start within " + START + " (log: " + log + ")");
+            }
+            if (line.contains(" ready at ")) {
+                return;
+            }
+        }
+    }
+
+    /** kill -9: no shutdown hook, no flush. Waits until it is gone. */
+    void kill() throws InterruptedException {
+        process.destroyForcibly();
+        process.waitFor(30, TimeUnit.SECONDS);
+    }
+
+    /** @return the host's log so far */
+    String log() throws IOException {
+        return Files.readString(log, StandardCharsets.UTF_8);
+    }
+
+    @Override
+    public void close() {
+        if (process == null) {
+            return;
+        }
+        try {
+            process.destroy();
+            if (!process.waitFor(15, TimeUnit.SECONDS)) {
+                process.destroyForcibly();
+                process.waitFor(10, TimeUnit.SECONDS);
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            process.destroyForcibly();
+        }
+    }
+
+    /** This JVM's class path without test classes, test jars, example agents and test libraries. */
+    static String middlewareOnlyClassPath() {
+        List<String> drop = List.of("examples", "test-classes", "-tests.jar", "junit", "opentest4j", "apiguardian", "jade", "jeromq", "jnacl");
+        return Arrays.stream(System.getProperty("java.class.path").split(File.pathSeparator))
+                .filter(e -> drop.stream().noneMatch(e::contains))
+                .collect(Collectors.joining(File.pathSeparator));
+    }
+
+    static int freePort() throws IOException {
+        try (ServerSocket s = new ServerSocket()) {
+            s.bind(new InetSocketAddress(InetAddress.getLoopbackAddress(), 0));
+            return s.getLocalPort();
+        }
+    }
+}
