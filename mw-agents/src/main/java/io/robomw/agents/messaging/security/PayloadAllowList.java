@@ -30,7 +30,9 @@ public final class PayloadAllowList {
             "java.util.Collections$EmptyList", "java.util.Collections$EmptyMap", "java.util.Collections$EmptySet",
             "java.util.Collections$UnmodifiableList", "java.util.Collections$UnmodifiableRandomAccessList",
             "java.util.Collections$UnmodifiableCollection", "java.util.Collections$UnmodifiableMap",
-            "java.util.Collections$UnmodifiableSet", "java.util.Arrays$ArrayList");
+            "java.util.Collections$UnmodifiableSet", "java.util.Arrays$ArrayList",
+            // HashMap and HashSet check the Map.Entry[] they are about to make against the filter.
+            "java.util.Map$Entry");
 
     /** Deepest object graph accepted. */
     public static final int MAX_DEPTH = 32;
