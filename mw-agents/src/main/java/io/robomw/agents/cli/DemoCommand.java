@@ -1,0 +1,268 @@
+package io.robomw.agents.cli;
+
+import io.robomw.agents.host.AgentHost;
+import io.robomw.agents.host.ClusterKey;
+import io.robomw.api.Agent;
+import io.robomw.api.AgentRef;
+import io.robomw.api.Pose;
+import io.robomw.sim.SimRobot;
+import io.robomw.sim.Simulation;
+import io.robomw.sim.emulator.BrickEmulator;
+import io.robomw.sim.emulator.ft.intelligent.IntelligentInterfaceEmulator;
+import io.robomw.sim.emulator.nxt.NxtEmulator;
+import io.robomw.sim.render.PngRenderer;
+import io.robomw.sim.render.RenderOptions;
+import io.robomw.sim.world.WorldDescription;
+import io.robomw.sim.world.WorldLoader;
+import picocli.CommandLine.Command;
+import picocli.CommandLine.Model.CommandSpec;
+import picocli.CommandLine.Option;
+import picocli.CommandLine.Spec;
+
+import java.io.BufferedReader;
+import java.io.IOException;
+import java.io.InputStreamReader;
+import java.io.PrintWriter;
+import java.io.Serializable;
+import java.lang.reflect.RecordComponent;
+import java.net.InetAddress;
+import java.net.InetSocketAddress;
+import java.net.ServerSocket;
+import java.net.URL;
+import java.net.URLClassLoader;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.security.SecureRandom;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.HexFormat;
+import java.util.LinkedHashMap;
+import java.util.List;
+import java.util.Locale;
+import java.util.Map;
+import java.util.Set;
+import java.util.concurrent.BlockingQueue;
+import java.util.concurrent.Callable;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.LinkedBlockingQueue;
+import java.util.concurrent.TimeUnit;
+
+/**
+ * {@code mw demo}: the paper's scenario (section IV, Fig. 7-8) in one command. One simulated world
+ * with a LEGO NXT robot and a fischertechnik robot; a virtual NXT brick and a virtual
+ * fischertechnik Intelligent Interface bound to them, each on its own pseudo-terminal; two agent
+ * host processes, each driving its robot through the real driver over that pseudo-terminal; and
+ * clones of one agent, shipped from the examples jar, dispatched to both hosts. Each clone drives a
+ * square, samples its range sensor and brings the samples home; the demo prints a table per robot,
+ * writes a picture of both trajectories, stops every process and exits 0.
+ */
+@Command(name = "demo", mixinStandardHelpOptions = true,
+        description = {"The paper's scenario: clones of one agent sent to a LEGO NXT and a fischertechnik robot (simulated, behind virtual bricks).",
+                "Writes demo.png (both trajectories) and prints each robot's results."})
+final class DemoCommand implements Callable<Integer> {
+
+    private static final String AGENT = "io.robomw.examples.agents.SquareSurveyAgent";
+    private static final List<String> ROBOTS = List.of("nxt", "ft");
+
+    @Option(names = "--home", description = "the RoboMW checkout (default: the mw.home property the mw launcher sets, else .)")
+    Path home;
+
+    @Option(names = "--world", paramLabel = "WORLD.yaml", description = "the world (default: examples/worlds/arena.yaml); its robots 'nxt' and 'ft' are used")
+    Path world;
+
+    @Option(names = "--agent-jar", paramLabel = "JAR", description = "the jar with the agent (default: examples/target/examples-0.1.0-SNAPSHOT.jar)")
+    Path agentJar;
+
+    @Option(names = "--side", defaultValue = "0.4", description = "side of each square, metres (default ${DEFAULT-VALUE})")
+    double side;
+
+    @Option(names = "--png", defaultValue = "demo.png", description = "where to write the picture of both trajectories (default ${DEFAULT-VALUE})")
+    Path png;
+
+    @Option(names = "--logs", paramLabel = "DIR", description = "where the host processes' logs go (default: a temporary directory)")
+    Path logs;
+
+    @Option(names = "--timeout", defaultValue = "PT2M", description = "longest the agents may take (default ${DEFAULT-VALUE})")
+    Duration timeout;
+
+    @Spec
+    CommandSpec spec;
+
+    private PrintWriter out;
+
+    @Override
+    public Integer call() throws Exception {
+        out = spec.commandLine().getOut();
+        Path root = home != null ? home : Path.of(System.getProperty("mw.home", "."));
+        Path worldFile = world != null ? world : root.resolve("examples/worlds/arena.yaml");
+        Path jar = agentJar != null ? agentJar : root.resolve("examples/target/examples-0.1.0-SNAPSHOT.jar");
+        if (!Files.isRegularFile(jar)) {
+            spec.commandLine().getErr().println("mw demo: no agent jar at " + jar + " (build it: mvn -q -DskipTests -pl examples -am package)");
+            return 2;
+        }
+        Path logDir = logs != null ? Files.createDirectories(logs) : Files.createTempDirectory("mw-demo-");
+        Path keyFile = logDir.resolve("cluster.key");
+        byte[] secret = new byte[24];
+        new SecureRandom().nextBytes(secret);
+        Files.writeString(keyFile, HexFormat.of().formatHex(secret));
+        WorldDescription description = new WorldLoader().load(worldFile);
+        Map<String, Path> robotFiles = new LinkedHashMap<>();
+        for (String r : ROBOTS) {
+            robotFiles.put(r, description.robots().stream().filter(p -> p.name().equals(r)).findFirst()
+                    .orElseThrow(() -> new IllegalArgumentException(worldFile + " has no robot '" + r + "'")).description());
+        }
+        long started = System.nanoTime();
+        List<Process> hosts = new ArrayList<>();
+        Thread reaper = new Thread(() -> hosts.forEach(Process::destroyForcibly), "mw-demo-reaper");
+        Runtime.getRuntime().addShutdownHook(reaper);
+        try (Simulation sim = Simulation.load(worldFile, Set.copyOf(ROBOTS));
+             BrickEmulator nxtBrick = NxtEmulator.bind(sim, "nxt");
+             BrickEmulator ftBrick = IntelligentInterfaceEmulator.bind(sim, "ft")) {
+            step("world %s: robots %s", description.name(), ROBOTS);
+            Map<String, String> devices = Map.of("nxt", nxtBrick.startOnPseudoTerminal(), "ft", ftBrick.startOnPseudoTerminal());
+            step("virtual NXT brick on %s, virtual fischertechnik Intelligent Interface on %s", devices.get("nxt"), devices.get("ft"));
+            sim.startRealTime(1.0);
+            Map<String, String> addresses = new LinkedHashMap<>();
+            for (String r : ROBOTS) {
+                int port = freePort();
+                hosts.add(startHost(r, port, robotFiles.get(r), devices.get(r), keyFile, logDir));
+                addresses.put(r, "rmi://127.0.0.1:" + port + "/" + r);
+            }
+            for (int i = 0; i < ROBOTS.size(); i++) {
+                awaitReady(ROBOTS.get(i), hosts.get(i), logDir);
+                step("agent host %s ready at %s (driver: %s over %s)", ROBOTS.get(i), addresses.get(ROBOTS.get(i)),
+                        ROBOTS.get(i).equals("nxt") ? "LEGO NXT" : "fischertechnik Intelligent Interface", devices.get(ROBOTS.get(i)));
+            }
+            Map<String, Pose> startPoses = new LinkedHashMap<>();
+            for (String r : ROBOTS) {
+                startPoses.put(r, sim.world().robot(r).pose());
+            }
+            Map<String, Serializable> results;
+            try (URLClassLoader code = new URLClassLoader(new URL[] {jar.toUri().toURL()}, Agent.class.getClassLoader());
+                 AgentHost home = AgentHost.builder("demo").clusterKey(ClusterKey.read(keyFile)).start()) {
+                Agent agent = (Agent) code.loadClass(AGENT).getConstructor(double.class).newInstance(side);
+                List<AgentRef> refs = home.dispatchClones(agent, addresses.values().toArray(String[]::new));
+                step("dispatched clones of %s (its code from %s) to both hosts", AGENT, jar.getFileName());
+                results = new LinkedHashMap<>();
+                List<CompletableFuture<Serializable>> pending = new ArrayList<>();
+                for (int i = 0; i < refs.size(); i++) {
+                    String r = ROBOTS.get(i);
+                    refs.get(i).addReportListener(v -> step("[%s] %s", r, v));
+                    pending.add(refs.get(i).result());
+                }
+                CompletableFuture.allOf(pending.toArray(CompletableFuture[]::new)).get(timeout.toMillis(), TimeUnit.MILLISECONDS);
+                for (int i = 0; i < refs.size(); i++) {
+                    results.put(ROBOTS.get(i), pending.get(i).get());
+                }
+            }
+            step("both clones are home after %.1f s", (System.nanoTime() - started) / 1e9);
+            for (String r : ROBOTS) {
+                printTable(r, robotFiles.get(r), results.get(r), startPoses.get(r), sim.world().robot(r));
+            }
+            sim.pauseRealTime();
+            Path picture = png.toAbsolutePath();
+            if (picture.getParent() != null) {
+                Files.createDirectories(picture.getParent());
+            }
+            PngRenderer.write(sim.world(), picture, RenderOptions.DEFAULT);
+            step("wrote %s (both trajectories)", picture);
+        } finally {
+            for (Process p : hosts) {
+                p.destroy();
+            }
+            for (Process p : hosts) {
+                if (!p.waitFor(15, TimeUnit.SECONDS)) {
+                    p.destroyForcibly();
+                }
+            }
+            Runtime.getRuntime().removeShutdownHook(reaper);
+        }
+        step("stopped both hosts, both bricks and the world; done in %.1f s (host logs in %s)", (System.nanoTime() - started) / 1e9, logDir);
+        return 0;
+    }
+
+    private void step(String format, Object... args) {
+        synchronized (this) {
+            out.printf(Locale.ROOT, "demo: " + format + "%n", args);
+            out.flush();
+        }
+    }
+
+    private void printTable(String robot, Path robotFile, Serializable result, Pose start, SimRobot simRobot) {
+        Pose end = simRobot.pose();
+        double closure = end.distanceTo(start);
+        double headingError = Math.toDegrees(Math.abs(Math.IEEEremainder(end.heading() - start.heading(), 2 * Math.PI)));
+        List<?> samples = (List<?>) component(result, "samples");
+        synchronized (this) {
+            out.println();
+            out.printf(Locale.ROOT, "== %s (%s, host %s) ==%n", robot, robotFile.getFileName(), component(result, "host"));
+            out.printf(Locale.ROOT, "  distance driven    %8.3f m%n", (Double) component(result, "distanceDriven"));
+            out.printf(Locale.ROOT, "  final pose error   %8.3f m, %5.1f deg   (true pose in the world vs. where it started)%n", closure, headingError);
+            out.printf(Locale.ROOT, "  odometry closure   %8.3f m            (what the robot's own encoders say)%n", (Double) component(result, "odometryClosure"));
+            out.printf(Locale.ROOT, "  samples            %8d%n", samples.size());
+            out.printf(Locale.ROOT, "  %8s %8s %9s%n", "x (m)", "y (m)", "range (m)");
+            for (Object s : samples) {
+                out.printf(Locale.ROOT, "  %8.3f %8.3f %9.3f%n", (Double) component(s, "x"), (Double) component(s, "y"), (Double) component(s, "range"));
+            }
+            out.println();
+            out.flush();
+        }
+    }
+
+    private static Object component(Object record, String name) {
+        for (RecordComponent c : record.getClass().getRecordComponents()) {
+            if (c.getName().equals(name)) {
+                try {
+                    c.getAccessor().setAccessible(true);
+                    return c.getAccessor().invoke(record);
+                } catch (ReflectiveOperationException e) {
+                    throw new IllegalStateException("cannot read " + name + " of " + record.getClass().getName(), e);
+                }
+            }
+        }
+        throw new IllegalStateException(record.getClass().getName() + " has no component " + name);
+    }
+
+    private static Process startHost(String name, int port, Path robotFile, String device, Path keyFile, Path logDir) throws IOException {
+        String java = ProcessHandle.current().info().command().orElse(Path.of(System.getProperty("java.home"), "bin", "java").toString());
+        List<String> command = List.of(java, "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-cp", System.getProperty("java.class.path"),
+                Mw.class.getName(), "host", "--name", name, "--port", String.valueOf(port), "--robot", robotFile.toString(),
+                "--connection", "port=" + device, "--key-file", keyFile.toString());
+        return new ProcessBuilder(command).redirectError(logDir.resolve(name + "-host.log").toFile()).start();
+    }
+
+    private static void awaitReady(String name, Process p, Path logDir) throws IOException, InterruptedException {
+        BlockingQueue<String> lines = new LinkedBlockingQueue<>();
+        Thread reader = new Thread(() -> {
+            try (BufferedReader r = new BufferedReader(new InputStreamReader(p.getInputStream(), StandardCharsets.UTF_8))) {
+                String line;
+                while ((line = r.readLine()) != null) {
+                    lines.add(line);
+                }
+            } catch (IOException ignored) {
+                // the host ended
+            }
+            lines.add("EOF");
+        }, "mw-demo-host-" + name);
+        reader.setDaemon(true);
+        reader.start();
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(60);
+        while (true) {
+            String line = lines.poll(Math.max(0, deadline - System.nanoTime()), TimeUnit.NANOSECONDS);
+            if (line == null || line.equals("EOF")) {
+                throw new IOException("agent host " + name + " did not start (see " + logDir.resolve(name + "-host.log") + ")");
+            }
+            if (line.contains(" ready at ")) {
+                return;
+            }
+        }
+    }
+
+    private static int freePort() throws IOException {
+        try (ServerSocket s = new ServerSocket()) {
+            s.bind(new InetSocketAddress(InetAddress.getLoopbackAddress(), 0));
+            return s.getLocalPort();
+        }
+    }
+}
