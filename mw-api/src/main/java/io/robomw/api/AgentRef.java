@@ -25,7 +25,8 @@ public interface AgentRef {
 
     /**
      * @return completes with the result the agent sets ({@link AgentContext#setResult}) when its
-     *         trip ends, or exceptionally with an {@link AgentException} if it failed or was disposed of
+     *         trip ends, or exceptionally with an {@link AgentException} if it was disposed of, or set
+     *         no result and one of its stops failed (the message names the stop and the cause)
      */
     CompletableFuture<Serializable> result();
 

@@ -151,14 +151,30 @@ final class DemoCommand implements Callable<Integer> {
                     refs.get(i).addReportListener(v -> step("[%s] %s", r, v));
                     pending.add(refs.get(i).result());
                 }
-                CompletableFuture.allOf(pending.toArray(CompletableFuture[]::new)).get(timeout.toMillis(), TimeUnit.MILLISECONDS);
+                List<CompletableFuture<Serializable>> settled = pending.stream().map(f -> f.exceptionally(failure -> null)).toList();
+                CompletableFuture.allOf(settled.toArray(CompletableFuture[]::new)).get(timeout.toMillis(), TimeUnit.MILLISECONDS);
                 for (int i = 0; i < refs.size(); i++) {
-                    results.put(ROBOTS.get(i), pending.get(i).get());
+                    int index = i;
+                    pending.get(i).exceptionally(failure -> {
+                        step("[%s] FAILED: %s", ROBOTS.get(index), failure.getCause() != null ? failure.getCause().getMessage() : failure.getMessage());
+                        return null;
+                    });
+                    results.put(ROBOTS.get(i), settled.get(i).get());
                 }
             }
             step("both clones are home after %.1f s", (System.nanoTime() - started) / 1e9);
+            stopHosts(hosts);
+            boolean complete = true;
             for (String r : ROBOTS) {
-                printTable(r, robotFiles.get(r), results.get(r), startPoses.get(r), sim.world().robot(r));
+                if (results.get(r) == null) {
+                    step("[%s] no result came home (see %s)", r, logDir.resolve(r + "-host.log"));
+                    complete = false;
+                } else {
+                    printTable(r, robotFiles.get(r), results.get(r), startPoses.get(r), sim.world().robot(r));
+                }
+            }
+            if (!complete) {
+                return 1;
             }
             sim.pauseRealTime();
             Path picture = png.toAbsolutePath();
@@ -168,18 +184,24 @@ final class DemoCommand implements Callable<Integer> {
             PngRenderer.write(sim.world(), picture, RenderOptions.DEFAULT);
             step("wrote %s (both trajectories)", picture);
         } finally {
-            for (Process p : hosts) {
-                p.destroy();
-            }
-            for (Process p : hosts) {
-                if (!p.waitFor(15, TimeUnit.SECONDS)) {
-                    p.destroyForcibly();
-                }
-            }
+            stopHosts(hosts);
             Runtime.getRuntime().removeShutdownHook(reaper);
         }
         step("stopped both hosts, both bricks and the world; done in %.1f s (host logs in %s)", (System.nanoTime() - started) / 1e9, logDir);
         return 0;
+    }
+
+    /** Stops the host processes (before the bricks, so their drivers do not see the links vanish). */
+    private static void stopHosts(List<Process> hosts) throws InterruptedException {
+        for (Process p : hosts) {
+            p.destroy();
+        }
+        for (Process p : hosts) {
+            if (!p.waitFor(15, TimeUnit.SECONDS)) {
+                p.destroyForcibly();
+                p.waitFor(10, TimeUnit.SECONDS);
+            }
+        }
     }
 
     private void step(String format, Object... args) {

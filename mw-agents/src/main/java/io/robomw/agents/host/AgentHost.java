@@ -774,7 +774,13 @@ public final class AgentHost implements Agency, AutoCloseable {
         h.agent.attach(null);
         byte[] payload;
         AgentEvent.Kind k = kind;
-        if (kind == AgentEvent.Kind.RESULT) {
+        Optional<Itinerary.Visit> failed = h.agent.itinerary().history().stream()
+                .filter(v -> v.outcome() == Itinerary.Outcome.FAILED).reduce((first, second) -> second);
+        if (kind == AgentEvent.Kind.RESULT && h.result == null && failed.isPresent()) {
+            // Nothing to bring home, and a stop failed: that failure is the outcome of the trip.
+            k = AgentEvent.Kind.FAILED;
+            payload = ("brought no result home: its stop at " + failed.get().host() + " failed: " + failed.get().detail()).getBytes(StandardCharsets.UTF_8);
+        } else if (kind == AgentEvent.Kind.RESULT) {
             try {
                 payload = StateCodec.write(h.result);
             } catch (IOException e) {

@@ -22,7 +22,12 @@ import java.util.concurrent.CompletableFuture;
  */
 public final class NxtSensorPlatform extends SensorPlatform {
 
-    private static final int MAX_POLLS = 200;
+    /**
+     * How long a reading may stay invalid or an I²C transaction pending. A real brick answers within
+     * tens of milliseconds; polls are round trips, so counting them would make the limit depend on
+     * the link's speed (a fast pseudo-terminal spends 200 polls in a few milliseconds).
+     */
+    private static final long MAX_WAIT_NANOS = 1_000_000_000L;
 
     private final NxtBrick brick;
 
@@ -86,13 +91,16 @@ public final class NxtSensorPlatform extends SensorPlatform {
     }
 
     private byte[] validInputValues(int port) throws IOException {
-        for (int i = 0; i < MAX_POLLS; i++) {
+        long deadline = System.nanoTime() + MAX_WAIT_NANOS;
+        int reads = 0;
+        do {
             byte[] reply = brick.request(NxtTelegram.getInputValues(port), NxtTelegram.GETINPUTVALUES_REPLY, port);
+            reads++;
             if (reply[4] != 0) {
                 return reply;
             }
-        }
-        throw new IOException("robot '" + brick.robot() + "': NXT input port " + (port + 1) + " stayed invalid after " + MAX_POLLS + " reads");
+        } while (System.nanoTime() - deadline < 0);
+        throw new IOException("robot '" + brick.robot() + "': NXT input port " + (port + 1) + " stayed invalid for " + MAX_WAIT_NANOS / 1_000_000 + " ms (" + reads + " reads)");
     }
 
     private Sensor ultrasonic(int port) throws IOException {
@@ -101,7 +109,10 @@ public final class NxtSensorPlatform extends SensorPlatform {
             validInputValues(port);
             brick.request(NxtTelegram.lsWrite(true, port, 1, (byte) NxtTelegram.ULTRASONIC_ADDRESS, (byte) NxtTelegram.ULTRASONIC_DISTANCE),
                     NxtTelegram.STATUS_REPLY, port);
-            for (int i = 0; i < MAX_POLLS; i++) {
+            long deadline = System.nanoTime() + MAX_WAIT_NANOS;
+            int polls = 0;
+            do {
+                polls++;
                 byte[] status = brick.requestAllowing(NxtTelegram.lsGetStatus(port), NxtTelegram.LSGETSTATUS_REPLY, port);
                 int s = status[2] & 0xFF;
                 if (s == NxtStatus.SUCCESS && (status[3] & 0xFF) >= 1) {
@@ -111,8 +122,9 @@ public final class NxtSensorPlatform extends SensorPlatform {
                 if (s != NxtStatus.PENDING && s != NxtStatus.SUCCESS) {
                     throw new NxtException(brick.robot(), NxtTelegram.LSGETSTATUS, port, s);
                 }
-            }
-            throw new IOException("robot '" + brick.robot() + "': the ultrasonic sensor on S" + (port + 1) + " did not answer after " + MAX_POLLS + " polls");
+            } while (System.nanoTime() - deadline < 0);
+            throw new IOException("robot '" + brick.robot() + "': the ultrasonic sensor on S" + (port + 1) + " did not answer within "
+                    + MAX_WAIT_NANOS / 1_000_000 + " ms (" + polls + " polls)");
         });
     }
 

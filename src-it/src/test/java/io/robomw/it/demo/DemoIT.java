@@ -1,0 +1,114 @@
+package io.robomw.it.demo;
+
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import javax.imageio.ImageIO;
+import java.awt.image.BufferedImage;
+import java.net.InetAddress;
+import java.net.InetSocketAddress;
+import java.net.ServerSocket;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.HashSet;
+import java.util.List;
+import java.util.Set;
+import java.util.regex.Matcher;
+import java.util.regex.Pattern;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+/**
+ * The product's front door: exactly what {@code ./mw demo} runs (same main class, same class path,
+ * its own processes for the hosts), and the same by hand as the quickstart tells it:
+ * {@code mw emulate}, {@code mw host}, {@code mw dispatch}.
+ */
+class DemoIT {
+
+    private static final Path EXAMPLES_JAR = MwProcess.CHECKOUT.resolve("examples/target/examples-0.1.0-SNAPSHOT.jar");
+
+    @TempDir
+    Path dir;
+
+    @Test
+    void demoSendsClonesToTheNxtAndTheFischertechnikRobotAndBringsBothResultsHome() throws Exception {
+        Path png = dir.resolve("demo.png");
+        try (MwProcess demo = MwProcess.start("demo", "demo", "--png", png.toString(), "--logs", dir.resolve("logs").toString())) {
+            assertEquals(0, demo.waitFor(Duration.ofMinutes(2)), demo.output());
+            String out = demo.output();
+            for (String robot : List.of("nxt", "ft")) {
+                String table = out.substring(out.indexOf("== " + robot + " ("));
+                assertTrue(table.contains("distance driven       1.600 m"), table);
+                Matcher error = Pattern.compile("final pose error\\s+([0-9.]+) m,\\s+([0-9.]+) deg").matcher(table);
+                assertTrue(error.find(), table);
+                // The fischertechnik interface counts 11 mm impulse-wheel ticks (docs/bricks.md): one missed tick in a turn is ~11 degrees.
+                assertTrue(Double.parseDouble(error.group(1)) < 0.10, robot + " ends within 10 cm of its start: " + error.group(0));
+                assertTrue(Double.parseDouble(error.group(2)) < 20, robot + " ends within 20 degrees of its start heading: " + error.group(0));
+                Matcher samples = Pattern.compile("samples\\s+(\\d+)").matcher(table);
+                assertTrue(samples.find());
+                assertEquals(16, Integer.parseInt(samples.group(1)), robot + " brought 16 range samples home");
+            }
+            assertTrue(out.contains("stopped both hosts"), out);
+        }
+        BufferedImage image = ImageIO.read(png.toFile());
+        Set<Integer> colours = new HashSet<>();
+        for (int y = 0; y < image.getHeight(); y += 2) {
+            for (int x = 0; x < image.getWidth(); x += 2) {
+                colours.add(image.getRGB(x, y));
+            }
+        }
+        assertTrue(colours.size() > 20, "the picture is not blank: " + colours.size() + " colours");
+    }
+
+    @Test
+    void theSameAgentJarDispatchedByHandToHostsStartedByHandGivesTheSameResults() throws Exception {
+        Path key = Files.writeString(dir.resolve("cluster.key"), "quickstart passphrase\n");
+        List<MwProcess> running = new ArrayList<>();
+        try {
+            MwProcess nxtBrick = MwProcess.start("quickstart-emulate-nxt", "emulate", "nxt", "--world", "examples/worlds/arena.yaml", "--robot", "nxt");
+            running.add(nxtBrick);
+            MwProcess ftBrick = MwProcess.start("quickstart-emulate-ft", "emulate", "ft_intelligent", "--world", "examples/worlds/arena.yaml", "--robot", "ft");
+            running.add(ftBrick);
+            String nxtDevice = nxtBrick.await("/dev/", Duration.ofSeconds(60)).strip();
+            String ftDevice = ftBrick.await("/dev/", Duration.ofSeconds(60)).strip();
+            int nxtPort = freePort();
+            int ftPort = freePort();
+            MwProcess nxtHost = MwProcess.start("quickstart-host-nxt", "host", "--robot", "examples/robots/nxt-two-wheeled.yaml", "--connection", "port=" + nxtDevice,
+                    "--port", String.valueOf(nxtPort), "--name", "nxt", "--key-file", key.toString());
+            running.add(nxtHost);
+            MwProcess ftHost = MwProcess.start("quickstart-host-ft", "host", "--robot", "examples/robots/ft-intelligent.yaml", "--connection", "port=" + ftDevice,
+                    "--port", String.valueOf(ftPort), "--name", "ft", "--key-file", key.toString());
+            running.add(ftHost);
+            nxtHost.await("ready at", Duration.ofSeconds(60));
+            ftHost.await("ready at", Duration.ofSeconds(60));
+            MwProcess dispatch = MwProcess.start("quickstart-dispatch", "dispatch", "--key-file", key.toString(), "--jar", EXAMPLES_JAR.toString(),
+                    "--agent", "io.robomw.examples.agents.SquareSurveyAgent", "--clone",
+                    "rmi://127.0.0.1:" + nxtPort + "/nxt", "rmi://127.0.0.1:" + ftPort + "/ft");
+            running.add(dispatch);
+            assertEquals(0, dispatch.waitFor(Duration.ofMinutes(2)), dispatch.output());
+            String out = dispatch.output();
+            for (String robot : List.of("nxt", "ft")) {
+                String block = out.substring(out.indexOf("] result from rmi://127.0.0.1:" + (robot.equals("nxt") ? nxtPort : ftPort)));
+                assertTrue(block.contains("distanceDriven: 1.6000"), block);
+                Matcher closure = Pattern.compile("odometryClosure: ([0-9.]+)").matcher(block);
+                assertTrue(closure.find(), block);
+                assertTrue(Double.parseDouble(closure.group(1)) < 0.05, robot + ": " + closure.group(0));
+                assertTrue(block.contains("(16 in all)"), robot + " brought 16 samples: " + block);
+            }
+        } finally {
+            for (MwProcess p : running) {
+                p.close();
+            }
+        }
+    }
+
+    private static int freePort() throws Exception {
+        try (ServerSocket s = new ServerSocket()) {
+            s.bind(new InetSocketAddress(InetAddress.getLoopbackAddress(), 0));
+            return s.getLocalPort();
+        }
+    }
+}

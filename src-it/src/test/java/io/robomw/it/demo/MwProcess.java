@@ -1,0 +1,109 @@
+package io.robomw.it.demo;
+
+import java.io.BufferedReader;
+import java.io.File;
+import java.io.IOException;
+import java.io.InputStreamReader;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.Arrays;
+import java.util.List;
+import java.util.concurrent.BlockingQueue;
+import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.LinkedBlockingQueue;
+import java.util.concurrent.TimeUnit;
+import java.util.stream.Collectors;
+
+import static org.junit.jupiter.api.Assertions.fail;
+
+/**
+ * One {@code mw} command in its own JVM, as the {@code ./mw} launcher runs it: the middleware's
+ * class path only (no examples, no tests) and {@code mw.home} at the checkout. Its stdout lines
+ * are kept and can be awaited; its stderr goes to {@code target/it-logs/NAME.log}. Closing it
+ * stops it (SIGTERM, then SIGKILL) and waits.
+ */
+final class MwProcess implements AutoCloseable {
+
+    static final Path CHECKOUT = Path.of("..").toAbsolutePath().normalize();
+
+    private final String name;
+    private final Process process;
+    private final BlockingQueue<String> lines = new LinkedBlockingQueue<>();
+    private final List<String> all = new CopyOnWriteArrayList<>();
+
+    private MwProcess(String name, Process process) {
+        this.name = name;
+        this.process = process;
+        Thread reader = new Thread(() -> {
+            try (BufferedReader r = new BufferedReader(new InputStreamReader(process.getInputStream(), StandardCharsets.UTF_8))) {
+                String line;
+                while ((line = r.readLine()) != null) {
+                    all.add(line);
+                    lines.add(line);
+                }
+            } catch (IOException ignored) {
+                // ended
+            }
+            lines.add("\u0000EOF");
+        }, "it-mw-" + name);
+        reader.setDaemon(true);
+        reader.start();
+    }
+
+    static MwProcess start(String name, String... args) throws IOException {
+        Path logs = Path.of("target", "it-logs");
+        Files.createDirectories(logs);
+        List<String> command = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-Dmw.home=" + CHECKOUT, "-cp", middlewareOnlyClassPath(), "io.robomw.agents.cli.Mw"));
+        command.addAll(List.of(args));
+        Process p = new ProcessBuilder(command).directory(CHECKOUT.toFile()).redirectError(logs.resolve(name + ".log").toFile()).start();
+        return new MwProcess(name, p);
+    }
+
+    static String middlewareOnlyClassPath() {
+        List<String> drop = List.of("examples", "test-classes", "-tests.jar", "junit", "opentest4j", "apiguardian", "jade", "jeromq");
+        return Arrays.stream(System.getProperty("java.class.path").split(File.pathSeparator))
+                .filter(e -> drop.stream().noneMatch(e::contains))
+                .map(e -> Path.of(e).toAbsolutePath().toString())
+                .collect(Collectors.joining(File.pathSeparator));
+    }
+
+    /** @return the first stdout line containing {@code text}, waiting up to {@code within} */
+    String await(String text, Duration within) throws InterruptedException {
+        long deadline = System.nanoTime() + within.toNanos();
+        while (true) {
+            String line = lines.poll(Math.max(0, deadline - System.nanoTime()), TimeUnit.NANOSECONDS);
+            if (line == null || line.equals("\u0000EOF")) {
+                fail("mw " + name + " printed no line with '" + text + "' within " + within + " (log: target/it-logs/" + name + ".log); it printed:\n"
+                        + String.join("\n", all));
+            }
+            if (line.contains(text)) {
+                return line;
+            }
+        }
+    }
+
+    /** Waits for it to exit by itself. */
+    int waitFor(Duration within) throws InterruptedException {
+        if (!process.waitFor(within.toMillis(), TimeUnit.MILLISECONDS)) {
+            fail("mw " + name + " did not finish within " + within + "; it printed:\n" + String.join("\n", all));
+        }
+        return process.exitValue();
+    }
+
+    String output() {
+        return String.join("\n", all);
+    }
+
+    @Override
+    public void close() throws InterruptedException {
+        process.destroy();
+        if (!process.waitFor(15, TimeUnit.SECONDS)) {
+            process.destroyForcibly();
+            process.waitFor(10, TimeUnit.SECONDS);
+        }
+    }
+}
