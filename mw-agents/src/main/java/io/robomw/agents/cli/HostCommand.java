@@ -61,6 +61,12 @@ final class HostCommand implements Callable<Integer> {
     @Option(names = "--allow", split = ",", paramLabel = "CLASS", description = "classes agent state may hold besides the agent's own code and JDK value types")
     List<String> allow = new ArrayList<>();
 
+    @Option(names = "--serve", paramLabel = "ADDRESS", description = "also serve the robot to Robots.remote at this messaging address, e.g. tcp://127.0.0.1:7000 (then Robots.remote(\"tcp://127.0.0.1:7000/ROBOT\"))")
+    String serve;
+
+    @Option(names = "--serve-password", description = "password callers of --serve must give")
+    String servePassword;
+
     @Mixin
     ClusterOptions cluster;
 
@@ -89,11 +95,26 @@ final class HostCommand implements Callable<Integer> {
                 robot = Robots.open(robotFile, services);
                 open.add(0, robot);
             }
+            String served = null;
+            if (serve != null) {
+                if (robot == null) {
+                    err.println("--serve needs a robot (--robot or --world)");
+                    return 2;
+                }
+                io.robomw.agents.messaging.MessagingNode node = io.robomw.agents.messaging.MessagingNode.builder(name + "-robot")
+                        .settings(io.robomw.agents.messaging.robot.RobotProtocol.forServer(io.robomw.agents.messaging.MessagingSettings.defaults())).build();
+                open.add(0, node);
+                served = node.bind(serve) + "/" + robot.name();
+                open.add(0, io.robomw.agents.messaging.robot.RobotServer.serve(node, robot, servePassword));
+            }
             AgentHost host = AgentHost.builder(name).bind(bind).port(port).robot(robot).clusterKey(cluster.key()).tls(cluster.tls())
                     .store(store).allow(allow).start();
             open.add(0, host);
             out.printf("agent host %s ready at %s (robot: %s, store: %s)%n", name, host.address(), robot == null ? "none" : robot.name(),
                     store == null ? "memory" : store);
+            if (served != null) {
+                out.printf("robot %s served at %s%n", robot.name(), served);
+            }
             out.flush();
             CountDownLatch stopped = new CountDownLatch(1);
             Thread closer = new Thread(() -> {
