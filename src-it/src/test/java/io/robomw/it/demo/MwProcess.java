@@ -25,9 +25,9 @@ import static org.junit.jupiter.api.Assertions.fail;
  * are kept and can be awaited; its stderr goes to {@code target/it-logs/NAME.log}. Closing it
  * stops it (SIGTERM, then SIGKILL) and waits.
  */
-final class MwProcess implements AutoCloseable {
+public final class MwProcess implements AutoCloseable {
 
-    static final Path CHECKOUT = Path.of("..").toAbsolutePath().normalize();
+    public static final Path CHECKOUT = Path.of("..").toAbsolutePath().normalize();
 
     private final String name;
     private final Process process;
@@ -53,7 +53,7 @@ final class MwProcess implements AutoCloseable {
         reader.start();
     }
 
-    static MwProcess start(String name, String... args) throws IOException {
+    public static MwProcess start(String name, String... args) throws IOException {
         Path logs = Path.of("target", "it-logs");
         Files.createDirectories(logs);
         List<String> command = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
@@ -72,7 +72,7 @@ final class MwProcess implements AutoCloseable {
     }
 
     /** @return the first stdout line containing {@code text}, waiting up to {@code within} */
-    String await(String text, Duration within) throws InterruptedException {
+    public String await(String text, Duration within) throws InterruptedException {
         long deadline = System.nanoTime() + within.toNanos();
         while (true) {
             String line = lines.poll(Math.max(0, deadline - System.nanoTime()), TimeUnit.NANOSECONDS);
@@ -87,14 +87,14 @@ final class MwProcess implements AutoCloseable {
     }
 
     /** Waits for it to exit by itself. */
-    int waitFor(Duration within) throws InterruptedException {
+    public int waitFor(Duration within) throws InterruptedException {
         if (!process.waitFor(within.toMillis(), TimeUnit.MILLISECONDS)) {
             fail("mw " + name + " did not finish within " + within + "; it printed:\n" + String.join("\n", all));
         }
         return process.exitValue();
     }
 
-    String output() {
+    public String output() {
         return String.join("\n", all);
     }
 
