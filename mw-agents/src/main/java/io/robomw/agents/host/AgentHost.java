@@ -486,7 +486,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         } catch (IOException e) {
             throw new UncheckedIOException("cannot keep the archive of " + type.getName() + ": " + e.getMessage(), e);
         }
-        AgentImage origin = new AgentImage(id, 0, AgentImage.Kind.TRIP, address, archive.digest(), 1, type.getName(), new byte[0]);
+        AgentImage origin = new AgentImage(id, 0, AgentImage.Kind.TRIP, true, address, archive.digest(), 1, new byte[0]);
         HostedAgent h = new HostedAgent(origin, agent, type.getClassLoader());
         AgentHandle handle = new AgentHandle(this, id, type.getName(), type.getClassLoader(), address);
         handles.put(id, handle);
@@ -592,7 +592,7 @@ public final class AgentHost implements Agency, AutoCloseable {
             h.agent.attach(null);
             AgentImage image;
             try {
-                image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.TRIP, h.home, h.digest, h.eventSeq, h.className, StateCodec.write(h.agent));
+                image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.TRIP, h.home.equals(address), h.home, h.digest, h.eventSeq, StateCodec.write(h.agent));
             } catch (IOException e) {
                 h.agent.attach(new HostContext(this, h));
                 return new Departure(false, null, "its state is not serializable: " + e.getMessage());
@@ -667,7 +667,8 @@ public final class AgentHost implements Agency, AutoCloseable {
         h.departure.complete(target);
         AgentHandle handle = handles.get(h.id);
         if (handle != null) {
-            handle.inTransit();
+            // This host is the agent's home and the target has acknowledged: it is there now.
+            handle.arrived(target);
         }
     }
 
@@ -784,7 +785,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         h.agent.attach(null);
         AgentImage image;
         try {
-            image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.HOMECOMING, h.home, h.digest, h.eventSeq, h.className, StateCodec.write(h.agent));
+            image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.HOMECOMING, h.home.equals(address), h.home, h.digest, h.eventSeq, StateCodec.write(h.agent));
         } catch (IOException e) {
             finish(h, AgentEvent.Kind.RESULT);
             return;
