@@ -953,7 +953,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         try {
             agent = codec.read(image.state(), loader, Agent.class);
         } catch (StateRejectedException e) {
-            return refuse("refused agent " + image.id() + " (" + image.className() + ") from peer '" + peer + "': " + e.getMessage());
+            return refuse("refused agent " + image.id() + " from peer '" + peer + "': " + e.getMessage());
         }
         if (agent == null) {
             return refuse("refused agent " + image.id() + " from peer '" + peer + "': its state is null");
@@ -971,7 +971,17 @@ public final class AgentHost implements Agency, AutoCloseable {
             }
             hosted.put(h.id, h);
         }
-        events.send(h.home, new AgentEvent(h.id, 0, AgentEvent.Kind.ARRIVED, address, new byte[0]), false);
+        if (h.home.equals(address)) {
+            // Back at its home: the handle is here, no news to send.
+            AgentHandle handle = handles.get(h.id);
+            if (handle != null) {
+                handle.arrived(address);
+            }
+        } else if (!image.fromHome()) {
+            // The home learns from the transfer's acknowledgement when it sent the agent itself;
+            // otherwise it is told, once, as news (a later arrival makes an unsent one moot).
+            events.send(h.home, new AgentEvent(h.id, 0, AgentEvent.Kind.ARRIVED, address, new byte[0]), false);
+        }
         runners.execute(() -> runStop(h, false));
         return Reply.ok();
     }
