@@ -148,7 +148,7 @@ public final class AgentBenchmark {
     private final byte[] agentJarBase;
     private final List<String> notes = new ArrayList<>();
 
-    private AgentBenchmark(Path work, byte[] agentJarBase) {
+    AgentBenchmark(Path work, byte[] agentJarBase) {
         this.work = work;
         this.agentJarBase = agentJarBase;
     }
@@ -224,7 +224,7 @@ public final class AgentBenchmark {
     }
 
     /** One agent, {@code warmup + iterations} timed round trips, the last {@code iterations} kept. */
-    private RoundTrips warm(AgentHost a, String far, Class<?> agentClass, int payload, int warmup, int iterations) throws Exception {
+    RoundTrips warm(AgentHost a, String far, Class<?> agentClass, int payload, int warmup, int iterations) throws Exception {
         int rounds = warmup + iterations + 1;
         Ticks ticks = new Ticks(rounds);
         System.getProperties().put(TICKS, ticks);
@@ -325,7 +325,7 @@ public final class AgentBenchmark {
 
     // ---- the agent's code ----
 
-    private static byte[] compileAgent(Path work) throws IOException {
+    static byte[] compileAgent(Path work) throws IOException {
         Path src = work.resolve("src/io/robomw/benchagent/BenchAgent.java");
         Path classes = work.resolve("classes");
         Files.createDirectories(src.getParent());
@@ -344,7 +344,7 @@ public final class AgentBenchmark {
     }
 
     /** A jar with the agent class and a resource entry of its own, so each tag gives an archive of its own. */
-    private Path jar(String tag) throws IOException {
+    Path jar(String tag) throws IOException {
         Path jar = work.resolve("agent-" + tag + ".jar");
         try (OutputStream f = Files.newOutputStream(jar); JarOutputStream j = new JarOutputStream(f)) {
             j.putNextEntry(new JarEntry("io/robomw/benchagent/BenchAgent.class"));
@@ -357,7 +357,7 @@ public final class AgentBenchmark {
         return jar;
     }
 
-    private static URLClassLoader loader(Path jar) throws IOException {
+    static URLClassLoader loader(Path jar) throws IOException {
         return new URLClassLoader("bench-agent", new URL[] {jar.toUri().toURL()}, AgentBenchmark.class.getClassLoader());
     }
 
