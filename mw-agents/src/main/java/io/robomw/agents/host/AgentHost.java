@@ -959,6 +959,8 @@ public final class AgentHost implements Agency, AutoCloseable {
             return refuse("refused agent " + image.id() + " from peer '" + peer + "': its state is null");
         }
         HostedAgent h = new HostedAgent(image, agent, loader);
+        // Messages may come as soon as the sender has the acknowledgement, before the stop starts.
+        agent.attach(new HostContext(this, h));
         synchronized (acceptLock) {
             if (image.hop() <= store.highestHop(image.id())) {
                 return new Reply(Reply.Status.DUPLICATE, new byte[0]);
