@@ -1,5 +1,10 @@
 package io.robomw.api;
 
+import java.io.IOException;
+import java.io.InvalidObjectException;
+import java.io.ObjectInputStream;
+import java.io.ObjectOutputStream;
+import java.io.ObjectStreamField;
 import java.io.Serializable;
 import java.time.Duration;
 import java.util.ArrayList;
@@ -19,7 +24,9 @@ import java.util.Optional;
  */
 public final class Itinerary implements Serializable {
 
-    private static final long serialVersionUID = 1L;
+    private static final long serialVersionUID = 2L;
+    /** Nothing by default: {@link #writeObject} writes the itinerary compactly. */
+    private static final ObjectStreamField[] serialPersistentFields = {};
 
     /** Work to do at one stop. Serializable, so lambdas given as tasks travel with the agent. */
     @FunctionalInterface
@@ -77,8 +84,8 @@ public final class Itinerary implements Serializable {
     public record Visit(int round, String host, Outcome outcome, String detail) implements Serializable {
     }
 
-    private final ArrayList<Stop> stops = new ArrayList<>();
-    private final ArrayList<Visit> history = new ArrayList<>();
+    private ArrayList<Stop> stops = new ArrayList<>();
+    private ArrayList<Visit> history = new ArrayList<>();
     private int current = -1;
     private int round;
     private int rounds = 1;
@@ -292,6 +299,100 @@ public final class Itinerary implements Serializable {
      */
     public void record(String host, Outcome outcome, String detail) {
         history.add(new Visit(round, host, outcome, detail == null ? "" : detail));
+    }
+
+    /**
+     * Writes the itinerary by hand instead of as lists of records and enums: it travels with its
+     * agent on every hop, and those classes' descriptors were most of a small agent's state and
+     * of the time to read it.
+     *
+     * @serialData the position ({@code current}, {@code round}, {@code rounds}: ints), the
+     * unreachable policy's ordinal (byte), the retries (int) and back-off (long, milliseconds);
+     * the number of stops (int), then each stop's host (a {@code String} object) and task (an
+     * object, or null); the number of visits (int), then each visit's round (int), host
+     * ({@code String} object), outcome ordinal (byte) and detail ({@code String} object)
+     */
+    private void writeObject(ObjectOutputStream out) throws IOException {
+        out.defaultWriteObject();
+        out.writeInt(current);
+        out.writeInt(round);
+        out.writeInt(rounds);
+        out.writeByte(policy.ordinal());
+        out.writeInt(retries);
+        out.writeLong(retryBackoffMillis);
+        out.writeInt(stops.size());
+        for (Stop s : stops) {
+            out.writeObject(s.host());
+            out.writeObject(s.task());
+        }
+        out.writeInt(history.size());
+        for (Visit v : history) {
+            out.writeInt(v.round());
+            out.writeObject(v.host());
+            out.writeByte(v.outcome().ordinal());
+            out.writeObject(v.detail());
+        }
+    }
+
+    /** Reads what {@link #writeObject} wrote, and checks it as the public methods would. */
+    private void readObject(ObjectInputStream in) throws IOException, ClassNotFoundException {
+        in.defaultReadObject();
+        int cur = in.readInt();
+        int rnd = in.readInt();
+        int rnds = in.readInt();
+        int pol = in.readUnsignedByte();
+        int tries = in.readInt();
+        long backoff = in.readLong();
+        if (rnds < 1 || rnd < 0 || rnd >= rnds || pol >= UnreachablePolicy.values().length || tries < 0 || backoff < 0) {
+            throw new InvalidObjectException("itinerary settings out of range: round " + rnd + " of " + rnds + ", policy " + pol + ", retries " + tries
+                    + ", back-off " + backoff);
+        }
+        ArrayList<Stop> readStops = new ArrayList<>();
+        for (int i = count(in); i > 0; i--) {
+            String host = string(in.readObject());
+            Object task = in.readObject();
+            if (host == null || (task != null && !(task instanceof Task))) {
+                throw new InvalidObjectException("itinerary stop with host " + host + " and task of " + (task == null ? null : task.getClass()));
+            }
+            readStops.add(new Stop(host, (Task) task));
+        }
+        if (cur < -1 || cur > readStops.size()) {
+            throw new InvalidObjectException("itinerary position " + cur + " outside its " + readStops.size() + " stops");
+        }
+        ArrayList<Visit> readHistory = new ArrayList<>();
+        for (int i = count(in); i > 0; i--) {
+            int visitRound = in.readInt();
+            String host = string(in.readObject());
+            int outcome = in.readUnsignedByte();
+            String detail = string(in.readObject());
+            if (host == null || detail == null || outcome >= Outcome.values().length) {
+                throw new InvalidObjectException("malformed itinerary visit (" + host + ", outcome " + outcome + ")");
+            }
+            readHistory.add(new Visit(visitRound, host, Outcome.values()[outcome], detail));
+        }
+        stops = readStops;
+        history = readHistory;
+        current = cur;
+        round = rnd;
+        rounds = rnds;
+        policy = UnreachablePolicy.values()[pol];
+        retries = tries;
+        retryBackoffMillis = backoff;
+    }
+
+    private static int count(ObjectInputStream in) throws IOException {
+        int n = in.readInt();
+        if (n < 0) {
+            throw new InvalidObjectException("negative count " + n + " in an itinerary");
+        }
+        return n;
+    }
+
+    private static String string(Object o) throws InvalidObjectException {
+        if (o != null && !(o instanceof String)) {
+            throw new InvalidObjectException("expected a string in an itinerary, found a " + o.getClass().getName());
+        }
+        return (String) o;
     }
 
     @Override

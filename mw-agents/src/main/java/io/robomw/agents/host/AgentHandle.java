@@ -126,10 +126,6 @@ final class AgentHandle implements AgentRef {
         }
     }
 
-    void inTransit() {
-        status = AgentStatus.IN_TRANSIT;
-    }
-
     void report(long seq, Serializable value) {
         if (!reportsSeen.add(seq)) {
             return;

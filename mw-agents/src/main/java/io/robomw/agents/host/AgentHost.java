@@ -499,7 +499,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         } catch (IOException e) {
             throw new UncheckedIOException("cannot keep the archive of " + type.getName() + ": " + e.getMessage(), e);
         }
-        AgentImage origin = new AgentImage(id, 0, AgentImage.Kind.TRIP, address, archive.digest(), 1, type.getName(), new byte[0]);
+        AgentImage origin = new AgentImage(id, 0, AgentImage.Kind.TRIP, true, address, archive.digest(), 1, new byte[0]);
         HostedAgent h = new HostedAgent(origin, agent, type.getClassLoader());
         AgentHandle handle = new AgentHandle(this, id, type.getName(), type.getClassLoader(), address);
         handles.put(id, handle);
@@ -613,7 +613,7 @@ public final class AgentHost implements Agency, AutoCloseable {
             h.agent.attach(null);
             AgentImage image;
             try {
-                image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.TRIP, h.home, h.digest, h.eventSeq, h.className, StateCodec.write(h.agent));
+                image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.TRIP, h.home.equals(address), h.home, h.digest, h.eventSeq, StateCodec.write(h.agent));
             } catch (IOException e) {
                 h.agent.attach(new HostContext(this, h));
                 return new Departure(false, null, "its state is not serializable: " + e.getMessage());
@@ -688,7 +688,8 @@ public final class AgentHost implements Agency, AutoCloseable {
         h.departure.complete(target);
         AgentHandle handle = handles.get(h.id);
         if (handle != null) {
-            handle.inTransit();
+            // This host is the agent's home and the target has acknowledged: it is there now.
+            handle.arrived(target);
         }
     }
 
@@ -811,7 +812,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         h.agent.attach(null);
         AgentImage image;
         try {
-            image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.HOMECOMING, h.home, h.digest, h.eventSeq, h.className, StateCodec.write(h.agent));
+            image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.HOMECOMING, h.home.equals(address), h.home, h.digest, h.eventSeq, StateCodec.write(h.agent));
         } catch (IOException e) {
             finish(h, AgentEvent.Kind.RESULT);
             return;
@@ -979,12 +980,14 @@ public final class AgentHost implements Agency, AutoCloseable {
         try {
             agent = codec.read(image.state(), loader, Agent.class);
         } catch (StateRejectedException e) {
-            return refuse("refused agent " + image.id() + " (" + image.className() + ") from peer '" + peer + "': " + e.getMessage());
+            return refuse("refused agent " + image.id() + " from peer '" + peer + "': " + e.getMessage());
         }
         if (agent == null) {
             return refuse("refused agent " + image.id() + " from peer '" + peer + "': its state is null");
         }
         HostedAgent h = new HostedAgent(image, agent, loader);
+        // Messages may come as soon as the sender has the acknowledgement, before the stop starts.
+        agent.attach(new HostContext(this, h));
         synchronized (acceptLock) {
             if (image.hop() <= store.highestHop(image.id())) {
                 return new Reply(Reply.Status.DUPLICATE, new byte[0]);
@@ -997,7 +1000,17 @@ public final class AgentHost implements Agency, AutoCloseable {
             }
             hosted.put(h.id, h);
         }
-        events.send(h.home, new AgentEvent(h.id, 0, AgentEvent.Kind.ARRIVED, address, new byte[0]), false);
+        if (h.home.equals(address)) {
+            // Back at its home: the handle is here, no news to send.
+            AgentHandle handle = handles.get(h.id);
+            if (handle != null) {
+                handle.arrived(address);
+            }
+        } else if (!image.fromHome()) {
+            // The home learns from the transfer's acknowledgement when it sent the agent itself;
+            // otherwise it is told, once, as news (a later arrival makes an unsent one moot).
+            events.send(h.home, new AgentEvent(h.id, 0, AgentEvent.Kind.ARRIVED, address, new byte[0]), false);
+        }
         runners.execute(() -> runStop(h, false));
         return Reply.ok();
     }

@@ -8,19 +8,24 @@ import java.util.UUID;
 
 /**
  * An agent as it travels and as a host stores it: who it is, which hop this is, where its home
- * is, which archive holds its code, and its serialized state. The header is a few dozen bytes, so
- * a warm hop costs little more than the state itself.
+ * is, which archive holds its code, and its serialized state. The header is compact (numbers as
+ * varints, no class name: the state names its class), so a warm hop costs little more than the
+ * state itself: {@code [kind|flags 1][id 16][hop varint][eventSeq varint][home length varint][home]
+ * [digest 32][state]}.
  *
- * @param id        the agent's id
- * @param hop       counts the agent's hops, from 1; a host never accepts a hop it has seen, so a retried transfer is not run twice
- * @param kind      why it travels
- * @param home      its home's address
- * @param digest    the archive of its code
- * @param eventSeq  the sequence number of its next event to its home
- * @param className its class, for listings and logs
- * @param state     its serialized state
+ * @param id       the agent's id
+ * @param hop      counts the agent's hops, from 1; a host never accepts a hop it has seen, so a retried transfer is not run twice
+ * @param kind     why it travels
+ * @param fromHome whether the host sending it is its home, which then knows where it went without being told
+ * @param home     its home's address
+ * @param digest   the archive of its code
+ * @param eventSeq the sequence number of its next event to its home
+ * @param state    its serialized state
  */
-record AgentImage(UUID id, long hop, Kind kind, String home, CodeArchive.Digest digest, long eventSeq, String className, byte[] state) {
+record AgentImage(UUID id, long hop, Kind kind, boolean fromHome, String home, CodeArchive.Digest digest, long eventSeq, byte[] state) {
+
+    private static final int FROM_HOME = 0x40;
+    private static final int KIND_MASK = 0x0f;
 
     /** Why an agent travels. */
     enum Kind {
@@ -32,41 +37,73 @@ record AgentImage(UUID id, long hop, Kind kind, String home, CodeArchive.Digest 
 
     byte[] encode() {
         byte[] homeBytes = home.getBytes(StandardCharsets.UTF_8);
-        byte[] classBytes = className.getBytes(StandardCharsets.UTF_8);
-        ByteBuffer b = ByteBuffer.allocate(16 + 8 + 1 + 2 + homeBytes.length + 32 + 8 + 2 + classBytes.length + state.length);
-        b.putLong(id.getMostSignificantBits()).putLong(id.getLeastSignificantBits()).putLong(hop).put((byte) kind.ordinal());
-        b.putShort((short) homeBytes.length).put(homeBytes).put(digest.bytes()).putLong(eventSeq);
-        b.putShort((short) classBytes.length).put(classBytes).put(state);
-        return b.array();
+        ByteBuffer b = ByteBuffer.allocate(1 + 16 + 10 + 10 + 5 + homeBytes.length + CodeArchive.Digest.LENGTH + state.length);
+        b.put((byte) (kind.ordinal() | (fromHome ? FROM_HOME : 0)));
+        b.putLong(id.getMostSignificantBits()).putLong(id.getLeastSignificantBits());
+        putVarint(b, hop);
+        putVarint(b, eventSeq);
+        putVarint(b, homeBytes.length);
+        b.put(homeBytes).put(digest.bytes()).put(state);
+        return java.util.Arrays.copyOf(b.array(), b.position());
     }
 
     static AgentImage decode(byte[] bytes) {
-        ByteBuffer b = ByteBuffer.wrap(bytes);
+        return decode(bytes, 0, bytes.length);
+    }
+
+    /** Decodes an image from part of an array (the state is copied out). */
+    static AgentImage decode(byte[] bytes, int offset, int length) {
+        ByteBuffer b = ByteBuffer.wrap(bytes, offset, length);
         try {
-            UUID id = new UUID(b.getLong(), b.getLong());
-            long hop = b.getLong();
-            int kind = b.get();
-            if (kind < 0 || kind >= Kind.values().length) {
-                throw new IllegalArgumentException("unknown image kind " + kind);
+            int first = b.get();
+            int kind = first & KIND_MASK;
+            if ((first & ~(KIND_MASK | FROM_HOME)) != 0 || kind >= Kind.values().length) {
+                throw new IllegalArgumentException("unknown image kind " + first);
             }
-            String home = string(b);
+            UUID id = new UUID(b.getLong(), b.getLong());
+            long hop = varint(b);
+            long eventSeq = varint(b);
+            long homeLength = varint(b);
+            if (homeLength > b.remaining()) {
+                throw new IllegalArgumentException("agent image cut short (" + length + " bytes)");
+            }
+            byte[] home = new byte[(int) homeLength];
+            b.get(home);
             byte[] digest = new byte[CodeArchive.Digest.LENGTH];
             b.get(digest);
-            long eventSeq = b.getLong();
-            String className = string(b);
             byte[] state = new byte[b.remaining()];
             b.get(state);
-            return new AgentImage(id, hop, Kind.values()[kind], home, new CodeArchive.Digest(digest), eventSeq, className, state);
+            return new AgentImage(id, hop, Kind.values()[kind], (first & FROM_HOME) != 0, new String(home, StandardCharsets.UTF_8),
+                    new CodeArchive.Digest(digest), eventSeq, state);
         } catch (java.nio.BufferUnderflowException e) {
-            throw new IllegalArgumentException("agent image cut short (" + bytes.length + " bytes)", e);
+            throw new IllegalArgumentException("agent image cut short (" + length + " bytes)", e);
         }
     }
 
-    private static String string(ByteBuffer b) {
-        int n = Short.toUnsignedInt(b.getShort());
-        byte[] s = new byte[n];
-        b.get(s);
-        return new String(s, StandardCharsets.UTF_8);
+    private static void putVarint(ByteBuffer b, long v) {
+        if (v < 0) {
+            throw new IllegalArgumentException("negative number " + v + " in an agent image");
+        }
+        while ((v & ~0x7fL) != 0) {
+            b.put((byte) ((v & 0x7f) | 0x80));
+            v >>>= 7;
+        }
+        b.put((byte) v);
+    }
+
+    private static long varint(ByteBuffer b) {
+        long v = 0;
+        for (int shift = 0; shift < 64; shift += 7) {
+            int x = b.get();
+            v |= (long) (x & 0x7f) << shift;
+            if ((x & 0x80) == 0) {
+                if (v < 0) {
+                    throw new IllegalArgumentException("number out of range in an agent image");
+                }
+                return v;
+            }
+        }
+        throw new IllegalArgumentException("malformed number in an agent image");
     }
 
     String shortId() {

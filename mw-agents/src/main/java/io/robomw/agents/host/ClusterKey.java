@@ -24,6 +24,15 @@ public final class ClusterKey {
     /** Length of a truncated MAC on calls between hosts (HMAC-SHA256-128, as RFC 4868 allows). */
     public static final int CALL_MAC_LENGTH = 16;
 
+    /** {@link Mac#getInstance} looks the provider up each time: one instance per thread, initialised per use. */
+    private static final ThreadLocal<Mac> MACS = ThreadLocal.withInitial(() -> {
+        try {
+            return Mac.getInstance("HmacSHA256");
+        } catch (GeneralSecurityException e) {
+            throw new IllegalStateException("this JDK has no HmacSHA256", e);
+        }
+    });
+
     private final byte[] key;
 
     private ClusterKey(byte[] key) {
@@ -87,7 +96,7 @@ public final class ClusterKey {
      */
     static byte[] hmac(byte[] key, byte[]... parts) {
         try {
-            Mac mac = Mac.getInstance("HmacSHA256");
+            Mac mac = MACS.get();
             mac.init(new SecretKeySpec(key, "HmacSHA256"));
             for (byte[] p : parts) {
                 mac.update(new byte[] {(byte) (p.length >>> 24), (byte) (p.length >>> 16), (byte) (p.length >>> 8), (byte) p.length});

@@ -40,6 +40,8 @@ final class HomeEvents implements AutoCloseable {
     private final Delivered delivered;
     private final Map<String, Worker> workers = new ConcurrentHashMap<>();
     private final Map<UUID, Integer> outstanding = new ConcurrentHashMap<>();
+    /** The newest queued arrival of each agent: an older one still queued is moot and not sent. */
+    private final Map<UUID, Outgoing> latestArrival = new ConcurrentHashMap<>();
     private volatile boolean closed;
 
     HomeEvents(String hostName, Sender sender, Delivered delivered) {
@@ -54,10 +56,13 @@ final class HomeEvents implements AutoCloseable {
      * @param reliable retry until acknowledged (reports, results) or send once (arrivals)
      */
     void send(String home, AgentEvent event, boolean reliable) {
+        Outgoing o = new Outgoing(event, reliable);
         if (reliable) {
             outstanding.merge(event.id(), 1, Integer::sum);
+        } else {
+            latestArrival.put(event.id(), o);
         }
-        workers.computeIfAbsent(home, Worker::new).queue.add(new Outgoing(event, reliable));
+        workers.computeIfAbsent(home, Worker::new).queue.add(o);
     }
 
     /**
@@ -68,6 +73,9 @@ final class HomeEvents implements AutoCloseable {
      * @return whether they all were
      */
     boolean awaitDelivered(UUID id, long maxMillis) {
+        if (!outstanding.containsKey(id)) {
+            return true; // the usual case, without the lock
+        }
         long deadline = System.nanoTime() + maxMillis * 1_000_000;
         synchronized (outstanding) {
             while (outstanding.containsKey(id)) {
@@ -132,6 +140,9 @@ final class HomeEvents implements AutoCloseable {
                 }
                 if (o == null) {
                     continue;
+                }
+                if (!o.reliable() && !latestArrival.remove(o.event().id(), o)) {
+                    continue; // a newer arrival of the same agent is queued: this one is moot
                 }
                 long backoff = 50;
                 while (!closed) {

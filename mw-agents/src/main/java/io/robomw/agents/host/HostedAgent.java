@@ -32,7 +32,7 @@ final class HostedAgent {
     HostedAgent(AgentImage image, Agent agent, ClassLoader loader) {
         this.id = image.id();
         this.agent = agent;
-        this.className = image.className();
+        this.className = agent.getClass().getName();
         this.loader = loader;
         this.digest = image.digest();
         this.home = image.home();

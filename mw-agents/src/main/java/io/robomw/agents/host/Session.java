@@ -1,7 +1,9 @@
 package io.robomw.agents.host;
 
+import javax.crypto.Mac;
+import javax.crypto.spec.SecretKeySpec;
 import java.nio.ByteBuffer;
-import java.security.MessageDigest;
+import java.security.GeneralSecurityException;
 import java.util.Arrays;
 
 /**
@@ -20,11 +22,28 @@ final class Session {
     static final int MAC = ClusterKey.CALL_MAC_LENGTH;
 
     final long id;
-    private final byte[] key;
+    private final SecretKeySpec key;
+    /**
+     * One initialised HMAC per thread that uses this session: {@link Mac#getInstance} and
+     * {@link Mac#init} cost more than the MAC of a small call, and {@link Mac#doFinal} leaves a
+     * {@code Mac} ready for the next message under the same key.
+     */
+    private final ThreadLocal<Mac> macs;
 
     Session(long id, byte[] key) {
         this.id = id;
-        this.key = key;
+        this.key = new SecretKeySpec(key, "HmacSHA256");
+        this.macs = ThreadLocal.withInitial(this::newMac);
+    }
+
+    private Mac newMac() {
+        try {
+            Mac m = Mac.getInstance("HmacSHA256");
+            m.init(key);
+            return m;
+        } catch (GeneralSecurityException e) {
+            throw new IllegalStateException("this JDK has no HmacSHA256", e);
+        }
     }
 
     static byte[] clientProof(ClusterKey k, byte[] hostName, byte[] peerName, byte[] hostNonce, byte[] clientNonce) {
@@ -49,7 +68,7 @@ final class Session {
     /** @return whether a request's MAC is right (constant time) */
     boolean verifyRequest(byte[] request) {
         int n = request.length - MAC;
-        return n >= HEADER && MessageDigest.isEqual(mac(request, 0, n), Arrays.copyOfRange(request, n, request.length));
+        return n >= HEADER && equalMac(mac(request, 0, n), request, n);
     }
 
     byte[] reply(long seq, Reply r) {
@@ -61,17 +80,48 @@ final class Session {
 
     Reply verifyReply(long seq, byte[] reply) {
         int n = reply.length - MAC;
-        if (n < 1 || !MessageDigest.isEqual(replyMac(seq, reply, n), Arrays.copyOfRange(reply, n, reply.length))) {
+        if (n < 1 || !equalMac(replyMac(seq, reply, n), reply, n)) {
             throw new SecurityException("reply has a wrong MAC: not from the host the session was made with");
         }
         return new Reply(Reply.Status.of(reply[0]), Arrays.copyOfRange(reply, 1, n));
     }
 
+    // The MACs are those of ClusterKey.hmac (every part prefixed with its length), computed over
+    // ranges of the message in place instead of over copies of it.
+
     private byte[] mac(byte[] data, int off, int len) {
-        return Arrays.copyOf(ClusterKey.hmac(key, Arrays.copyOfRange(data, off, off + len)), MAC);
+        Mac m = macs.get();
+        updateLength(m, len);
+        m.update(data, off, len);
+        return Arrays.copyOf(m.doFinal(), MAC);
     }
 
     private byte[] replyMac(long seq, byte[] data, int len) {
-        return Arrays.copyOf(ClusterKey.hmac(key, REPLY, ByteBuffer.allocate(8).putLong(seq).array(), Arrays.copyOf(data, len)), MAC);
+        Mac m = macs.get();
+        updateLength(m, REPLY.length);
+        m.update(REPLY);
+        updateLength(m, 8);
+        for (int shift = 56; shift >= 0; shift -= 8) {
+            m.update((byte) (seq >>> shift));
+        }
+        updateLength(m, len);
+        m.update(data, 0, len);
+        return Arrays.copyOf(m.doFinal(), MAC);
+    }
+
+    private static void updateLength(Mac m, int n) {
+        m.update((byte) (n >>> 24));
+        m.update((byte) (n >>> 16));
+        m.update((byte) (n >>> 8));
+        m.update((byte) n);
+    }
+
+    /** Compares a computed MAC with the one at {@code off} in a message, in constant time. */
+    private static boolean equalMac(byte[] mac, byte[] message, int off) {
+        int diff = 0;
+        for (int i = 0; i < MAC; i++) {
+            diff |= mac[i] ^ message[off + i];
+        }
+        return diff == 0;
     }
 }

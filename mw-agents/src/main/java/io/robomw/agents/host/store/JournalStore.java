@@ -36,12 +36,23 @@ import java.util.zip.CRC32C;
  * killed, which the page cache does. The journal is rewritten with only what is live when it
  * grows past {@value #COMPACT_BYTES} bytes and four times what is live. One host per directory
  * (a file lock says so). Thread-safe.
+ *
+ * <p>The journal file is grown ahead of its records in zero-filled steps of
+ * {@value #PREALLOCATE_BYTES} bytes, made durable once: a forced record then overwrites blocks the
+ * file already has, so {@code fdatasync} writes its data without a file-system journal commit for
+ * the file's new size (about 2x faster for records of some kilobytes on the project's machine).
+ * Replay ends at the first zero length, where the zeros begin. Records larger than
+ * {@value #PREALLOCATE_MAX_RECORD} bytes are appended past the zeros instead: their data costs
+ * more than the commit they would save, and zero-filling ahead of them would double the writes.
  */
 public final class JournalStore implements AgentStore {
 
     private static final Logger LOG = LoggerFactory.getLogger(JournalStore.class);
     private static final long COMPACT_BYTES = 32L << 20;
     private static final int MAX_RECORD = Integer.MAX_VALUE - 64;
+    private static final int PREALLOCATE_BYTES = 4 << 20;
+    private static final int PREALLOCATE_MAX_RECORD = 256 << 10;
+    private static final ByteBuffer ZEROS = ByteBuffer.allocateDirect(1 << 20).asReadOnlyBuffer();
 
     private static final byte ACCEPTED = 1;
     private static final byte STARTED = 2;
@@ -64,6 +75,10 @@ public final class JournalStore implements AgentStore {
     private final List<StoredAgent> recoveredAgents;
     private final List<PendingEvent> recoveredEvents;
     private FileChannel channel;
+    /** Where the next record goes: the end of the records, before the zero-filled rest of the file. */
+    private long end;
+    /** The file's size, zero-filled from {@link #end} on. */
+    private long allocated;
     private long liveBytes;
 
     private JournalStore(Path dir) throws IOException {
@@ -218,6 +233,7 @@ public final class JournalStore implements AgentStore {
     public void close() throws IOException {
         synchronized (writeLock) {
             if (channel != null) {
+                channel.truncate(end); // no zeros left behind
                 channel.close();
             }
             lock.release();
@@ -248,12 +264,33 @@ public final class JournalStore implements AgentStore {
 
     private void append(byte type, UUID id, long number, byte[] data, boolean force) throws IOException {
         ByteBuffer b = encode(type, id, number, data);
-        while (b.hasRemaining()) {
-            channel.write(b);
+        int length = b.remaining();
+        if (length <= PREALLOCATE_MAX_RECORD && end + length > allocated) {
+            preallocate(end + length + PREALLOCATE_BYTES);
         }
+        long at = end;
+        while (b.hasRemaining()) {
+            at += channel.write(b, at);
+        }
+        end = at;
+        allocated = Math.max(allocated, end);
         if (force) {
             channel.force(false);
         }
+    }
+
+    /** Zero-fills the file up to {@code size} and makes that durable (size and blocks), once per step. */
+    private void preallocate(long size) throws IOException {
+        long at = allocated;
+        while (at < size) {
+            ByteBuffer z = ZEROS.duplicate();
+            z.limit((int) Math.min(z.capacity(), size - at));
+            while (z.hasRemaining()) {
+                at += channel.write(z, at);
+            }
+        }
+        channel.force(true);
+        allocated = at;
     }
 
     private static ByteBuffer encode(byte type, UUID id, long number, byte[] data) {
@@ -279,6 +316,9 @@ public final class JournalStore implements AgentStore {
                         payload = in.readInt();
                     } catch (EOFException end) {
                         break;
+                    }
+                    if (payload == 0) {
+                        break; // the zero-filled space ahead of the records
                     }
                     if (payload < 25 || payload > MAX_RECORD) {
                         LOG.warn("agent store {}: bad record length {} at byte {}; the journal is cut off there", dir, payload, good);
@@ -306,7 +346,8 @@ public final class JournalStore implements AgentStore {
         }
         channel = FileChannel.open(journal, StandardOpenOption.CREATE, StandardOpenOption.WRITE);
         channel.truncate(good);
-        channel.position(good);
+        end = good;
+        allocated = good;
     }
 
     private void apply(ByteBuffer b) {
@@ -347,7 +388,7 @@ public final class JournalStore implements AgentStore {
     }
 
     private void maybeCompact() throws IOException {
-        long size = channel.position();
+        long size = end;
         if (size > COMPACT_BYTES && size > 4 * Math.max(liveBytes, 1)) {
             compact();
         }
@@ -385,7 +426,8 @@ public final class JournalStore implements AgentStore {
             }
             Files.move(fresh, journal, StandardCopyOption.ATOMIC_MOVE, StandardCopyOption.REPLACE_EXISTING);
             channel = FileChannel.open(journal, StandardOpenOption.WRITE);
-            channel.position(channel.size());
+            end = channel.size();
+            allocated = end;
         }
     }
 }
