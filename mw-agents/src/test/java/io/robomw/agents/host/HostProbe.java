@@ -67,7 +67,7 @@ public final class HostProbe {
      * @throws IOException if the host cannot be reached
      */
     public String transfer(CodeArchive.Digest digest, String className, byte[] state) throws IOException {
-        AgentImage image = new AgentImage(UUID.randomUUID(), 1, AgentImage.Kind.TRIP, "rmi://127.0.0.1:1/probe-home", digest, 1, className, state);
+        AgentImage image = new AgentImage(UUID.randomUUID(), 1, AgentImage.Kind.TRIP, false, "rmi://127.0.0.1:1/probe-home", digest, 1, state);
         Reply r = link.call(Op.TRANSFER, image.encode());
         return r.status() + " " + r.text();
     }
