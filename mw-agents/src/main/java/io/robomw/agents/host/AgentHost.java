@@ -1234,7 +1234,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         }
         byte[] body = ByteBuffer.allocate(17 + bytes.length).putLong(handle.id().getMostSignificantBits())
                 .putLong(handle.id().getLeastSignificantBits()).put((byte) (oneway ? 1 : 0)).put(bytes).array();
-        return CompletableFuture.supplyAsync(() -> {
+        return handle.inOrder(() -> {
             Reply r = agentCall(handle, Op.MESSAGE, body);
             return switch (r.status()) {
                 case OK -> {
@@ -1255,12 +1255,13 @@ public final class AgentHost implements Agency, AutoCloseable {
 
     CompletableFuture<Void> requestOfAgent(AgentHandle handle, Op op) {
         byte[] body = ByteBuffer.allocate(16).putLong(handle.id().getMostSignificantBits()).putLong(handle.id().getLeastSignificantBits()).array();
-        return CompletableFuture.runAsync(() -> {
+        return handle.inOrder(() -> {
             Reply r = agentCall(handle, op, body);
             if (r.status() != Reply.Status.OK) {
                 throw failure(handle, r);
             }
-        }, requests);
+            return null;
+        }, requests).thenApply(x -> null);
     }
 
     private Reply agentCall(AgentHandle handle, Op op, byte[] body) {
