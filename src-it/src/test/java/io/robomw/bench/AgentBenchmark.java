@@ -64,12 +64,36 @@ public final class AgentBenchmark {
     static final int WARMUP = 200;
     static final int ITERATIONS = 1000;
     /**
-     * The discarded pass at 0 B that warms fresh JVMs (JIT) before anything is measured, for
-     * RoboMW's JVMs and JADE's alike. JADE's author found a first pass of 2000 round trips enough
-     * for JADE; RoboMW's hop path was still getting faster after 5 passes of 2200 round trips
-     * (in-process probe: p50 361, 285, 254, 206, 144 µs), so the pass is 10,000 for both.
+     * Fresh JVMs are warmed (JIT) before anything is measured, RoboMW's and JADE's alike: passes
+     * of {@value #WARMUP_PASS} round trips at 0 B, discarded, until a pass's p50 is within
+     * {@value #STEADY_PERCENT} % of the one before (at least {@value #MIN_PASSES}, at most
+     * {@value #MAX_PASSES} passes). JADE's author found one pass of 2000 enough for JADE; RoboMW's
+     * hop path was still getting faster after five (probe: p50 479, 282, 264, 206, 169, 147 µs).
      */
-    static final int JVM_WARMUP = 10_000;
+    static final int WARMUP_PASS = 2000;
+    static final int MIN_PASSES = 5;
+    static final int MAX_PASSES = 15;
+    static final int STEADY_PERCENT = 5;
+
+    /** One warm-up pass: its p50 in µs. */
+    @FunctionalInterface
+    interface Pass {
+        double p50() throws Exception;
+    }
+
+    /** Runs warm-up passes until the p50 is steady; returns the p50 of each pass. */
+    static List<Double> warmUp(Pass pass) throws Exception {
+        List<Double> p50s = new ArrayList<>();
+        while (p50s.size() < MAX_PASSES) {
+            p50s.add(pass.p50());
+            int n = p50s.size();
+            if (n >= MIN_PASSES && Math.abs(p50s.get(n - 1) - p50s.get(n - 2)) <= p50s.get(n - 2) * STEADY_PERCENT / 100.0) {
+                break;
+            }
+        }
+        return p50s;
+    }
+
     static final int COLD = 20;
     static final int WIRE_ROUNDS = 200;
     static final String TICKS = "robomw.bench.ticks";
@@ -152,6 +176,8 @@ public final class AgentBenchmark {
     private final Path work;
     private final byte[] agentJarBase;
     private final List<String> notes = new ArrayList<>();
+    private final java.util.Map<String, List<Double>> warmups = new java.util.LinkedHashMap<>();
+    private List<Double> jadeWarmup = List.of();
 
     AgentBenchmark(Path work, byte[] agentJarBase) {
         this.work = work;
@@ -183,8 +209,9 @@ public final class AgentBenchmark {
             return;
         }
         try (JadeMoveBaseline j = JadeMoveBaseline.start()) {
-            JadeMoveBaseline.RoundTrips w = j.measure(0, 0, JVM_WARMUP);
-            say(String.format(Locale.ROOT, "JADE doMove A->B->A %8d B  p50 %8.1f µs  p99 %8.1f µs  (JVM warm-up pass, discarded)", 0, w.p50Micros(), w.p99Micros()));
+            List<Double> w = warmUp(() -> j.measure(0, 0, WARMUP_PASS).p50Micros());
+            jadeWarmup = w;
+            say("JADE JVM warm-up passes (p50 µs, discarded): " + format(w));
             for (int p : PAYLOADS) {
                 JadeMoveBaseline.RoundTrips r = j.measure(p, WARMUP, ITERATIONS);
                 jade.add(r);
@@ -210,8 +237,9 @@ public final class AgentBenchmark {
             }
             try (AgentHost a = builder.start(); URLClassLoader code = loader(jar("warm"))) {
                 Class<?> agentClass = code.loadClass(AGENT_CLASS);
-                RoundTrips w = warm(a, far, agentClass, 0, 0, JVM_WARMUP);
-                say(String.format(Locale.ROOT, "RoboMW %-7s A->B->A %8d B  p50 %8.1f µs  p99 %8.1f µs  (JVM warm-up pass, discarded)", name, 0, w.p50(), w.p99()));
+                List<Double> w = warmUp(() -> warm(a, far, agentClass, 0, 0, WARMUP_PASS).p50());
+                warmups.put(name, w);
+                say("RoboMW " + name + " JVM warm-up passes (p50 µs, discarded): " + format(w));
                 List<RoundTrips> warm = new ArrayList<>();
                 for (int p : PAYLOADS) {
                     RoundTrips r = warm(a, far, agentClass, p, WARMUP, ITERATIONS);
@@ -395,6 +423,9 @@ public final class AgentBenchmark {
                 md.append(String.format(Locale.ROOT, "| %s mode, %s | %,d | %,.1f | %.1f |%n", m.name(), label(w.payload()), w.state(), w.perHop(), w.perHop() - w.state()));
             }
         }
+        md.append("\nJVM warm-up passes (" + WARMUP_PASS + " round trips at 0 B each, discarded; p50 µs): ");
+        warmups.forEach((mode, p) -> md.append("RoboMW ").append(mode).append(": ").append(format(p)).append("; "));
+        md.append("JADE: ").append(jadeWarmup.isEmpty() ? "not run" : format(jadeWarmup)).append('\n');
         if (!notes.isEmpty()) {
             md.append('\n');
             notes.forEach(n -> md.append(n).append('\n'));
@@ -405,6 +436,10 @@ public final class AgentBenchmark {
         System.out.println();
         System.out.println(md);
         System.out.println("written to " + out.toAbsolutePath());
+    }
+
+    private static String format(List<Double> values) {
+        return values.stream().map(v -> String.format(Locale.ROOT, "%.0f", v)).collect(java.util.stream.Collectors.joining(", "));
     }
 
     private static String label(int bytes) {

@@ -33,6 +33,8 @@ final class AgentHandle implements AgentRef {
     private final java.util.Set<Long> reportsSeen = java.util.concurrent.ConcurrentHashMap.newKeySet();
     private volatile String location;
     private volatile AgentStatus status = AgentStatus.CREATED;
+    /** The last request made through this ref: the next one is sent after it has been answered. */
+    private CompletableFuture<?> lastRequest = CompletableFuture.completedFuture(null);
 
     AgentHandle(AgentHost home, UUID id, String className, ClassLoader loader, String firstLocation) {
         this.home = home;
@@ -111,6 +113,21 @@ final class AgentHandle implements AgentRef {
     @Override
     public void sendOnewayMessage(Serializable content) {
         home.messageAgent(this, content, true);
+    }
+
+    /**
+     * Runs the calls made through this ref one after the other, in the order they were made, so
+     * that for example a message sent after {@link #dispose()} cannot overtake the dispose request.
+     *
+     * @param call     the call
+     * @param executor where to run it
+     * @param <T>      what it answers
+     * @return its answer
+     */
+    synchronized <T> CompletableFuture<T> inOrder(java.util.function.Supplier<T> call, java.util.concurrent.Executor executor) {
+        CompletableFuture<T> next = lastRequest.handle((r, e) -> null).thenApplyAsync(x -> call.get(), executor);
+        lastRequest = next;
+        return next;
     }
 
     // ---- updates from the home ----

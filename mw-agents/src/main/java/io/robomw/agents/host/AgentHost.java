@@ -613,7 +613,7 @@ public final class AgentHost implements Agency, AutoCloseable {
             h.agent.attach(null);
             AgentImage image;
             try {
-                image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.TRIP, h.home.equals(address), h.home, h.digest, h.eventSeq, StateCodec.write(h.agent));
+                image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.TRIP, h.home.equals(address), h.home, h.digest, h.eventSeq, StateCodec.write(h.agent, h.stateSize));
             } catch (IOException e) {
                 h.agent.attach(new HostContext(this, h));
                 return new Departure(false, null, "its state is not serializable: " + e.getMessage());
@@ -812,7 +812,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         h.agent.attach(null);
         AgentImage image;
         try {
-            image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.HOMECOMING, h.home.equals(address), h.home, h.digest, h.eventSeq, StateCodec.write(h.agent));
+            image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.HOMECOMING, h.home.equals(address), h.home, h.digest, h.eventSeq, StateCodec.write(h.agent, h.stateSize));
         } catch (IOException e) {
             finish(h, AgentEvent.Kind.RESULT);
             return;
@@ -940,11 +940,20 @@ public final class AgentHost implements Agency, AutoCloseable {
     // ---- serving calls ----
 
     private Reply handle(String peer, Op op, byte[] body) {
+        return handle(peer, op, body, 0, body.length);
+    }
+
+    /** Serves a verified call; a transfer is decoded in place (it may be megabytes), other bodies are copied out. */
+    private Reply handle(String peer, Op op, byte[] message, int offset, int length) {
+        if (op == Op.TRANSFER && !closed) {
+            return onTransfer(peer, message, offset, length);
+        }
+        byte[] body = java.util.Arrays.copyOfRange(message, offset, offset + length);
         if (closed) {
             return Reply.of(Reply.Status.REFUSED, "host " + name + " is closing");
         }
         return switch (op) {
-            case TRANSFER -> onTransfer(peer, body);
+            case TRANSFER -> onTransfer(peer, body, 0, body.length);
             case PUT_ARCHIVE -> onArchive(peer, body);
             case LIST -> onList();
             case EVENT -> onEvent(peer, body);
@@ -953,10 +962,10 @@ public final class AgentHost implements Agency, AutoCloseable {
         };
     }
 
-    private Reply onTransfer(String peer, byte[] raw) {
+    private Reply onTransfer(String peer, byte[] raw, int offset, int length) {
         AgentImage image;
         try {
-            image = AgentImage.decode(raw);
+            image = AgentImage.decode(raw, offset, length);
         } catch (IllegalArgumentException e) {
             return refuse("refused a transfer from peer '" + peer + "': " + e.getMessage());
         }
@@ -993,7 +1002,7 @@ public final class AgentHost implements Agency, AutoCloseable {
                 return new Reply(Reply.Status.DUPLICATE, new byte[0]);
             }
             try {
-                store.accepted(image.id(), image.hop(), raw);
+                store.accepted(image.id(), image.hop(), raw, offset, length);
             } catch (IOException e) {
                 LOG.error("host {}: cannot store agent {}: {}; refusing it (the sender keeps it)", name, image.id(), e.toString());
                 return Reply.of(Reply.Status.REFUSED, "host " + name + " cannot store the agent: " + e.getMessage());
@@ -1022,7 +1031,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         }
         try {
             Agent agent = codec.read(image.state(), handle.loader, Agent.class);
-            store.accepted(image.id(), image.hop(), new byte[0]);
+            store.accepted(image.id(), image.hop(), new byte[0], 0, 0);
             handle.retracted(peer, agent);
             return Reply.ok();
         } catch (StateRejectedException | IOException e) {
@@ -1252,7 +1261,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         }
         byte[] body = ByteBuffer.allocate(17 + bytes.length).putLong(handle.id().getMostSignificantBits())
                 .putLong(handle.id().getLeastSignificantBits()).put((byte) (oneway ? 1 : 0)).put(bytes).array();
-        return CompletableFuture.supplyAsync(() -> {
+        return handle.inOrder(() -> {
             Reply r = agentCall(handle, Op.MESSAGE, body);
             return switch (r.status()) {
                 case OK -> {
@@ -1273,12 +1282,13 @@ public final class AgentHost implements Agency, AutoCloseable {
 
     CompletableFuture<Void> requestOfAgent(AgentHandle handle, Op op) {
         byte[] body = ByteBuffer.allocate(16).putLong(handle.id().getMostSignificantBits()).putLong(handle.id().getLeastSignificantBits()).array();
-        return CompletableFuture.runAsync(() -> {
+        return handle.inOrder(() -> {
             Reply r = agentCall(handle, op, body);
             if (r.status() != Reply.Status.OK) {
                 throw failure(handle, r);
             }
-        }, requests);
+            return null;
+        }, requests).thenApply(x -> null);
     }
 
     private Reply agentCall(AgentHandle handle, Op op, byte[] body) {

@@ -14,7 +14,6 @@ import java.rmi.server.RemoteServer;
 import java.rmi.server.ServerNotActiveException;
 import java.security.MessageDigest;
 import java.security.SecureRandom;
-import java.util.Arrays;
 import java.util.HexFormat;
 import java.util.LinkedHashMap;
 import java.util.Map;
@@ -36,7 +35,15 @@ final class HostEndpoint implements AgentHostRemote {
 
     /** What the host does with a verified call. */
     interface Handler {
-        Reply handle(String peer, Op op, byte[] body);
+        /**
+         * @param peer    the authenticated peer's name
+         * @param op      the operation
+         * @param message holds the call's body (not to be kept: it is the request as received)
+         * @param offset  where the body starts
+         * @param length  its length
+         * @return the reply
+         */
+        Reply handle(String peer, Op op, byte[] message, int offset, int length);
     }
 
     private record Peer(String name, Session session) {
@@ -153,7 +160,7 @@ final class HostEndpoint implements AgentHostRemote {
         Reply reply;
         try {
             Op op = Op.of(opCode);
-            reply = handler.handle(peer.name(), op, Arrays.copyOfRange(request, Session.HEADER, request.length - Session.MAC));
+            reply = handler.handle(peer.name(), op, request, Session.HEADER, request.length - Session.MAC - Session.HEADER);
         } catch (RuntimeException e) {
             refused.increment();
             LOG.warn("host {}: call {} from peer '{}' failed: {}", hostName, opCode, peer.name(), e.toString());

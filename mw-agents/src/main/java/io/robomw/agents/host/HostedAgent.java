@@ -28,6 +28,8 @@ final class HostedAgent {
     volatile boolean retractRequested;
     volatile boolean disposeRequested;
     volatile Serializable result;
+    /** The size of its state when it last travelled, to size the buffer it is written into next. */
+    volatile int stateSize;
 
     HostedAgent(AgentImage image, Agent agent, ClassLoader loader) {
         this.id = image.id();
@@ -38,6 +40,7 @@ final class HostedAgent {
         this.home = image.home();
         this.hop = image.hop();
         this.eventSeq = image.eventSeq();
+        this.stateSize = image.state().length;
     }
 
     String shortId() {

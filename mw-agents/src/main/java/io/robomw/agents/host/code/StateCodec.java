@@ -64,7 +64,18 @@ public final class StateCodec {
      * @throws IOException if something in it is not serializable (the message names the class)
      */
     public static byte[] write(Serializable value) throws IOException {
-        ByteArrayOutputStream bytes = new ByteArrayOutputStream(512);
+        return write(value, 512);
+    }
+
+    /**
+     * @param value    an agent or a value it carries
+     * @param expected about how many bytes it takes (its size last time): a buffer of that size
+     *                 is not grown and copied over and over on the way to megabytes
+     * @return its serialized form
+     * @throws IOException if something in it is not serializable (the message names the class)
+     */
+    public static byte[] write(Serializable value, int expected) throws IOException {
+        ByteArrayOutputStream bytes = new ByteArrayOutputStream(Math.max(512, expected + 256));
         try (ObjectOutputStream out = new ObjectOutputStream(bytes)) {
             out.writeObject(value);
         }

@@ -54,12 +54,14 @@ public interface AgentStore extends AutoCloseable {
     boolean durable();
 
     /**
-     * @param id    the agent
-     * @param hop   the hop that brought it
-     * @param image its travelling form
+     * @param id     the agent
+     * @param hop    the hop that brought it
+     * @param image  holds its travelling form (a store that keeps it copies it)
+     * @param offset where the travelling form starts in {@code image}
+     * @param length its length
      * @throws IOException if it cannot be stored (the hop must then be refused)
      */
-    void accepted(UUID id, long hop, byte[] image) throws IOException;
+    void accepted(UUID id, long hop, byte[] image, int offset, int length) throws IOException;
 
     /**
      * @param id  the agent

@@ -116,7 +116,8 @@ public final class JournalStore implements AgentStore {
     }
 
     @Override
-    public void accepted(UUID id, long hop, byte[] image) throws IOException {
+    public void accepted(UUID id, long hop, byte[] from, int offset, int length) throws IOException {
+        byte[] image = java.util.Arrays.copyOfRange(from, offset, offset + length);
         synchronized (writeLock) {
             append(ACCEPTED, id, hop, image, true);
             put(new StoredAgent(id, hop, Phase.ACCEPTED, image));

@@ -30,7 +30,7 @@ public final class MemoryStore implements AgentStore {
     }
 
     @Override
-    public void accepted(UUID id, long hop, byte[] image) {
+    public void accepted(UUID id, long hop, byte[] image, int offset, int length) {
         synchronized (seen) {
             seen.merge(id, hop, Math::max);
         }

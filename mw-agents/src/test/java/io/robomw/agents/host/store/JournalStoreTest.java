@@ -24,11 +24,11 @@ class JournalStoreTest {
         UUID gone = UUID.randomUUID();
         Path live = dir.resolve("live");
         JournalStore store = JournalStore.open(live);
-        store.accepted(started, 3, new byte[] {1, 2, 3});
+        accept(store, started, 3, new byte[] {1, 2, 3});
         store.started(started, 3);
-        store.accepted(departing, 1, new byte[] {4});
+        accept(store, departing, 1, new byte[] {4});
         store.departing(departing, 2, new byte[] {5, 6});
-        store.accepted(gone, 7, new byte[300_000]); // larger than a preallocation step holds ahead
+        accept(store, gone, 7, new byte[300_000]); // larger than a preallocation step holds ahead
         store.departed(gone);
         store.eventPending(new AgentStore.PendingEvent(started, 1, new byte[] {9}));
         long withZeros = Files.size(live.resolve("journal"));
@@ -46,8 +46,14 @@ class JournalStoreTest {
         assertTrue(Files.size(live.resolve("journal")) < withZeros, "close cuts the zeros off");
         JournalStore reopened = JournalStore.open(live);
         assertRecovered(reopened, started, departing, gone);
-        reopened.accepted(UUID.randomUUID(), 1, new byte[] {7}); // appends after the recovered records
+        accept(reopened, UUID.randomUUID(), 1, new byte[] {7}); // appends after the recovered records
         reopened.close();
+    }
+
+    private static void accept(AgentStore s, UUID id, long hop, byte[] image) throws Exception {
+        byte[] framed = new byte[image.length + 3];
+        System.arraycopy(image, 0, framed, 2, image.length);
+        s.accepted(id, hop, framed, 2, image.length);
     }
 
     private static void assertRecovered(JournalStore s, UUID started, UUID departing, UUID gone) {

@@ -1,0 +1,62 @@
+package io.robomw.agents.host;
+
+import org.junit.jupiter.api.Test;
+
+import java.io.BufferedInputStream;
+import java.io.BufferedOutputStream;
+import java.io.InputStream;
+import java.io.OutputStream;
+import java.net.InetAddress;
+import java.net.ServerSocket;
+import java.net.Socket;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+
+class HostSocketsTest {
+
+    /** What RMI's client transport does: buffered streams over the factory's socket. */
+    @Test
+    void aPingRightAfterAnAnswerIsAnsweredWithoutGoingToTheServerAndOtherBytesPass() throws Exception {
+        try (ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            HostSockets.Client factory = new HostSockets.Client("127.0.0.1", false, 5_000);
+            try (Socket client = factory.createSocket("ignored", server.getLocalPort()); Socket peer = server.accept()) {
+                OutputStream out = new BufferedOutputStream(client.getOutputStream());
+                InputStream in = new BufferedInputStream(client.getInputStream());
+                InputStream peerIn = peer.getInputStream();
+                OutputStream peerOut = peer.getOutputStream();
+
+                // No answer yet: a ping goes to the server, which answers it.
+                out.write(HostSockets.RMI_PING);
+                out.flush();
+                assertEquals(HostSockets.RMI_PING, peerIn.read());
+                peerOut.write(HostSockets.RMI_PING_ACK);
+                assertEquals(HostSockets.RMI_PING_ACK, in.read());
+
+                // A call and its answer.
+                out.write(new byte[] {0x50, 1, 2, 3});
+                out.flush();
+                assertEquals(0x50, peerIn.read());
+                assertEquals(3, peerIn.readNBytes(3).length);
+                peerOut.write(new byte[] {0x51, 9});
+                assertEquals(0x51, in.read());
+                assertEquals(9, in.read());
+
+                // A ping right after that answer is answered here; the next call reaches the server first.
+                long skipped = HostSockets.PINGS_SKIPPED.sum();
+                out.write(HostSockets.RMI_PING);
+                out.flush();
+                assertEquals(HostSockets.RMI_PING_ACK, in.read());
+                assertEquals(skipped + 1, HostSockets.PINGS_SKIPPED.sum());
+                out.write(new byte[] {0x50, 7});
+                out.flush();
+                assertEquals(0x50, peerIn.read());
+                assertEquals(7, peerIn.read());
+
+                // A 0x52 that is not the first write after an answer (inside a call) passes untouched.
+                out.write(HostSockets.RMI_PING);
+                out.flush();
+                assertEquals(HostSockets.RMI_PING, peerIn.read());
+            }
+        }
+    }
+}
