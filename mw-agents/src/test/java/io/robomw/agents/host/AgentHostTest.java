@@ -18,6 +18,7 @@ import java.util.concurrent.TimeUnit;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertInstanceOf;
+import static org.junit.jupiter.api.Assertions.assertNotEquals;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
@@ -44,9 +45,7 @@ class AgentHostTest {
         AgentHost b = host("b");
         VisitorAgent agent = new VisitorAgent();
         agent.itinerary().addStop(a.address()).addStop(b.address()).addStop(a.address());
-        List<Serializable> reports = new CopyOnWriteArrayList<>();
         AgentRef ref = home.startTrip(agent);
-        ref.addReportListener(reports::add);
         Serializable result = ref.result().get(10, TimeUnit.SECONDS);
         assertEquals(List.of("a", "b", "a"), result);
         assertEquals(AgentStatus.COMPLETED, ref.status());
@@ -68,7 +67,8 @@ class AgentHostTest {
         await(() -> "b".equals(safeWhere(ref)));
         ref.sendMessage("release", Duration.ofSeconds(5));
         ref.result().get(10, TimeUnit.SECONDS);
-        assertEquals(List.of("at b"), reports.subList(Math.max(0, reports.size() - 1), reports.size()));
+        // The listener was added after the trip began, so "at a" may have come before it; nothing may come out of order.
+        assertTrue(reports.equals(List.of("at a", "at b")) || reports.equals(List.of("at b")), "reports in order: " + reports);
     }
 
     @Test
@@ -78,7 +78,7 @@ class AgentHostTest {
         AgentHost b = host("b");
         List<AgentRef> refs = home.dispatchClones(new VisitorAgent(), a.address(), b.address());
         assertEquals(2, refs.size());
-        assertTrue(refs.get(0).id() != refs.get(1).id());
+        assertNotEquals(refs.get(0).id(), refs.get(1).id());
         assertEquals(List.of("a"), refs.get(0).result().get(10, TimeUnit.SECONDS));
         assertEquals(List.of("b"), refs.get(1).result().get(10, TimeUnit.SECONDS));
     }

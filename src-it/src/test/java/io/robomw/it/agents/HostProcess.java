@@ -1,7 +1,6 @@
 package io.robomw.it.agents;
 
 import java.io.BufferedReader;
-import java.io.File;
 import java.io.IOException;
 import java.io.InputStreamReader;
 import java.net.InetAddress;
@@ -12,12 +11,12 @@ import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.util.ArrayList;
-import java.util.Arrays;
 import java.util.List;
 import java.util.concurrent.BlockingQueue;
 import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
-import java.util.stream.Collectors;
+
+import io.robomw.it.demo.MwProcess;
 
 import static org.junit.jupiter.api.Assertions.fail;
 
@@ -139,12 +138,8 @@ final class HostProcess implements AutoCloseable {
         }
     }
 
-    /** This JVM's class path without test classes, test jars, example agents and test libraries. */
     static String middlewareOnlyClassPath() {
-        List<String> drop = List.of("examples", "test-classes", "-tests.jar", "junit", "opentest4j", "apiguardian", "jade", "jeromq", "jnacl");
-        return Arrays.stream(System.getProperty("java.class.path").split(File.pathSeparator))
-                .filter(e -> drop.stream().noneMatch(e::contains))
-                .collect(Collectors.joining(File.pathSeparator));
+        return MwProcess.middlewareOnlyClassPath();
     }
 
     static int freePort() throws IOException {

@@ -63,7 +63,8 @@ public final class MwProcess implements AutoCloseable {
         return new MwProcess(name, p);
     }
 
-    static String middlewareOnlyClassPath() {
+    /** @return this JVM's class path without test classes, test jars, example agents and test libraries */
+    public static String middlewareOnlyClassPath() {
         List<String> drop = List.of("examples", "test-classes", "-tests.jar", "junit", "opentest4j", "apiguardian", "jade", "jeromq");
         return Arrays.stream(System.getProperty("java.class.path").split(File.pathSeparator))
                 .filter(e -> drop.stream().noneMatch(e::contains))
