@@ -91,6 +91,7 @@ public final class AgentHost implements Agency, AutoCloseable {
     private static final int MAX_FORWARDS = 100_000;
     private static final int MAX_ROUTE_HOPS = 16;
     private static final long REPORT_FLUSH_MILLIS = 5_000;
+    private static final byte[] NO_STATE = new byte[0];
 
     private final String name;
     private final String bind;
@@ -611,14 +612,16 @@ public final class AgentHost implements Agency, AutoCloseable {
             }
             events.awaitDelivered(h.id, REPORT_FLUSH_MILLIS);
             h.agent.attach(null);
-            AgentImage image;
+            AgentImage image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.TRIP, h.home.equals(address), h.home, h.digest, h.eventSeq, NO_STATE);
+            Frame frame;
             try {
-                image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.TRIP, h.home.equals(address), h.home, h.digest, h.eventSeq, StateCodec.write(h.agent, h.stateSize));
+                frame = image.frame(h.agent, h.imageSize);
             } catch (IOException e) {
                 h.agent.attach(new HostContext(this, h));
                 return new Departure(false, null, "its state is not serializable: " + e.getMessage());
             }
-            String why = send(h, image, target, it);
+            h.imageSize = frame.bodyLength();
+            String why = send(h, image, frame, target, it);
             if (why == null) {
                 return new Departure(true, target, null);
             }
@@ -638,10 +641,9 @@ public final class AgentHost implements Agency, AutoCloseable {
      *
      * @return {@code null} once delivered; why not, if the stop is unreachable
      */
-    private String send(HostedAgent h, AgentImage image, String target, Itinerary it) {
-        byte[] raw = image.encode();
+    private String send(HostedAgent h, AgentImage image, Frame raw, String target, Itinerary it) {
         try {
-            store.departing(h.id, image.hop(), raw);
+            store.departing(h.id, image.hop(), raw.bytes, raw.bodyOffset(), raw.bodyLength());
         } catch (IOException e) {
             LOG.warn("host {}: cannot record agent {} departing: {}", name, h.id, e.toString());
         }
@@ -693,7 +695,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         }
     }
 
-    private boolean resendUntilAnswered(AgentImage image, byte[] raw, String target) {
+    private boolean resendUntilAnswered(AgentImage image, Frame raw, String target) {
         long backoff = 200;
         while (!closed) {
             if (!pause(backoff)) {
@@ -732,7 +734,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         }
     }
 
-    private void transfer(AgentImage image, byte[] raw, String target) throws PeerException, RefusedException {
+    private void transfer(AgentImage image, Frame raw, String target) throws PeerException, RefusedException {
         Reply r = call(target, Op.TRANSFER, raw);
         if (r.status() == Reply.Status.NEED_ARCHIVE) {
             CodeArchive archive = store.archive(image.digest())
@@ -757,11 +759,22 @@ public final class AgentHost implements Agency, AutoCloseable {
         if (target.equals(address)) {
             return handle(name, op, body);
         }
-        PeerLink link = peers.computeIfAbsent(target, t -> {
+        return link(target).call(op, body);
+    }
+
+    /** A call whose body is already in its frame (a transfer): sent without copying it into a request. */
+    private Reply call(String target, Op op, Frame frame) throws PeerException {
+        if (target.equals(address)) {
+            return handle(name, op, frame.bytes, frame.bodyOffset(), frame.bodyLength());
+        }
+        return link(target).call(op, frame);
+    }
+
+    private PeerLink link(String target) {
+        return peers.computeIfAbsent(target, t -> {
             HostAddress a = HostAddress.parse(t);
             return new PeerLink(a, name, key, new HostSockets.Client(a.host(), tls != null, timeoutMillis), random);
         });
-        return link.call(op, body);
     }
 
     private void finish(HostedAgent h, AgentEvent.Kind kind) {
@@ -810,15 +823,16 @@ public final class AgentHost implements Agency, AutoCloseable {
             LOG.warn("host {}: agent {} onDispatching threw {}", name, h.id, e.toString());
         }
         h.agent.attach(null);
-        AgentImage image;
+        AgentImage image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.HOMECOMING, h.home.equals(address), h.home, h.digest, h.eventSeq, NO_STATE);
+        Frame frame;
         try {
-            image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.HOMECOMING, h.home.equals(address), h.home, h.digest, h.eventSeq, StateCodec.write(h.agent, h.stateSize));
+            frame = image.frame(h.agent, h.imageSize);
         } catch (IOException e) {
             finish(h, AgentEvent.Kind.RESULT);
             return;
         }
         Itinerary homeward = new Itinerary().onUnreachable(Itinerary.UnreachablePolicy.RETRY).retry(1_000_000, Duration.ofSeconds(1));
-        if (send(h, image, h.home, homeward) == null) {
+        if (send(h, image, frame, h.home, homeward) == null) {
             hosted.remove(h.id);
         }
     }
@@ -875,7 +889,7 @@ public final class AgentHost implements Agency, AutoCloseable {
             HostedAgent h;
             try {
                 ClassLoader loader = loaderFor(image.digest()).orElseThrow(() -> new StateRejectedException("its archive " + image.digest() + " is missing from the store"));
-                h = new HostedAgent(image, codec.read(image.state(), loader, Agent.class), loader);
+                h = new HostedAgent(image, codec.read(image.state(), image.stateOffset(), image.stateLength(), loader, Agent.class), loader);
             } catch (StateRejectedException | IOException e) {
                 LOG.error("host {}: cannot resume agent {} from the store: {}", name, image.id(), e.getMessage());
                 continue;
@@ -924,7 +938,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         Itinerary plan = image.kind() == AgentImage.Kind.HOMECOMING
                 ? new Itinerary().onUnreachable(Itinerary.UnreachablePolicy.RETRY).retry(1_000_000, Duration.ofSeconds(1))
                 : h.agent.itinerary();
-        String why = send(h, image, target, plan);
+        String why = send(h, image, Frame.of(image.encode()), target, plan);
         if (why == null) {
             hosted.remove(h.id);
             return;
@@ -987,7 +1001,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         }
         Agent agent;
         try {
-            agent = codec.read(image.state(), loader, Agent.class);
+            agent = codec.read(image.state(), image.stateOffset(), image.stateLength(), loader, Agent.class);
         } catch (StateRejectedException e) {
             return refuse("refused agent " + image.id() + " from peer '" + peer + "': " + e.getMessage());
         }
@@ -995,6 +1009,7 @@ public final class AgentHost implements Agency, AutoCloseable {
             return refuse("refused agent " + image.id() + " from peer '" + peer + "': its state is null");
         }
         HostedAgent h = new HostedAgent(image, agent, loader);
+        h.imageSize = length;
         // Messages may come as soon as the sender has the acknowledgement, before the stop starts.
         agent.attach(new HostContext(this, h));
         synchronized (acceptLock) {
@@ -1030,7 +1045,7 @@ public final class AgentHost implements Agency, AutoCloseable {
             return refuse("refused homecoming agent " + image.id() + " from peer '" + peer + "': it was not sent from here");
         }
         try {
-            Agent agent = codec.read(image.state(), handle.loader, Agent.class);
+            Agent agent = codec.read(image.state(), image.stateOffset(), image.stateLength(), handle.loader, Agent.class);
             store.accepted(image.id(), image.hop(), new byte[0], 0, 0);
             handle.retracted(peer, agent);
             return Reply.ok();

@@ -1,6 +1,9 @@
 package io.robomw.agents.host;
 
 import io.robomw.agents.host.code.CodeArchive;
+import io.robomw.agents.host.code.StateCodec;
+
+import java.io.IOException;
 
 import java.nio.ByteBuffer;
 import java.nio.charset.StandardCharsets;
@@ -20,9 +23,17 @@ import java.util.UUID;
  * @param home     its home's address
  * @param digest   the archive of its code
  * @param eventSeq the sequence number of its next event to its home
- * @param state    its serialized state
+ * @param state       holds its serialized state (for a received image: the whole request it came in)
+ * @param stateOffset where the state starts in {@code state}
+ * @param stateLength the state's length
  */
-record AgentImage(UUID id, long hop, Kind kind, boolean fromHome, String home, CodeArchive.Digest digest, long eventSeq, byte[] state) {
+record AgentImage(UUID id, long hop, Kind kind, boolean fromHome, String home, CodeArchive.Digest digest, long eventSeq,
+                  byte[] state, int stateOffset, int stateLength) {
+
+    /** An image whose state is a whole array (an empty one for an image that is only a header). */
+    AgentImage(UUID id, long hop, Kind kind, boolean fromHome, String home, CodeArchive.Digest digest, long eventSeq, byte[] state) {
+        this(id, hop, kind, fromHome, home, digest, eventSeq, state, 0, state.length);
+    }
 
     private static final int FROM_HOME = 0x40;
     private static final int KIND_MASK = 0x0f;
@@ -36,22 +47,45 @@ record AgentImage(UUID id, long hop, Kind kind, boolean fromHome, String home, C
     }
 
     byte[] encode() {
+        ByteBuffer b = header(stateLength);
+        b.put(state, stateOffset, stateLength);
+        return java.util.Arrays.copyOf(b.array(), b.position());
+    }
+
+    /** The header, in a buffer with room for {@code room} more bytes. */
+    private ByteBuffer header(int room) {
         byte[] homeBytes = home.getBytes(StandardCharsets.UTF_8);
-        ByteBuffer b = ByteBuffer.allocate(1 + 16 + 10 + 10 + 5 + homeBytes.length + CodeArchive.Digest.LENGTH + state.length);
+        ByteBuffer b = ByteBuffer.allocate(1 + 16 + 10 + 10 + 5 + homeBytes.length + CodeArchive.Digest.LENGTH + room);
         b.put((byte) (kind.ordinal() | (fromHome ? FROM_HOME : 0)));
         b.putLong(id.getMostSignificantBits()).putLong(id.getLeastSignificantBits());
         putVarint(b, hop);
         putVarint(b, eventSeq);
         putVarint(b, homeBytes.length);
-        b.put(homeBytes).put(digest.bytes()).put(state);
-        return java.util.Arrays.copyOf(b.array(), b.position());
+        b.put(homeBytes).put(digest.bytes());
+        return b;
+    }
+
+    /**
+     * This image's header followed by an agent's state, written straight into a call's frame.
+     *
+     * @param agent    the agent whose state travels (this image's own state is not used)
+     * @param expected about how long the image will be (its length when it last travelled)
+     * @return the frame
+     * @throws IOException if the agent is not serializable
+     */
+    Frame frame(java.io.Serializable agent, int expected) throws IOException {
+        Frame.Buffer out = new Frame.Buffer(expected);
+        ByteBuffer h = header(0);
+        out.write(h.array(), 0, h.position());
+        StateCodec.write(agent, out);
+        return out.finish();
     }
 
     static AgentImage decode(byte[] bytes) {
         return decode(bytes, 0, bytes.length);
     }
 
-    /** Decodes an image from part of an array (the state is copied out). */
+    /** Decodes an image from part of an array; its state stays in that array (not copied). */
     static AgentImage decode(byte[] bytes, int offset, int length) {
         ByteBuffer b = ByteBuffer.wrap(bytes, offset, length);
         try {
@@ -71,10 +105,8 @@ record AgentImage(UUID id, long hop, Kind kind, boolean fromHome, String home, C
             b.get(home);
             byte[] digest = new byte[CodeArchive.Digest.LENGTH];
             b.get(digest);
-            byte[] state = new byte[b.remaining()];
-            b.get(state);
             return new AgentImage(id, hop, Kind.values()[kind], (first & FROM_HOME) != 0, new String(home, StandardCharsets.UTF_8),
-                    new CodeArchive.Digest(digest), eventSeq, state);
+                    new CodeArchive.Digest(digest), eventSeq, bytes, b.position(), b.remaining());
         } catch (java.nio.BufferUnderflowException e) {
             throw new IllegalArgumentException("agent image cut short (" + length + " bytes)", e);
         }

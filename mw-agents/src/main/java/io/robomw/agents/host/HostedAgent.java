@@ -28,8 +28,8 @@ final class HostedAgent {
     volatile boolean retractRequested;
     volatile boolean disposeRequested;
     volatile Serializable result;
-    /** The size of its state when it last travelled, to size the buffer it is written into next. */
-    volatile int stateSize;
+    /** The length of its image when it last travelled, to size the frame it is written into next. */
+    volatile int imageSize;
 
     HostedAgent(AgentImage image, Agent agent, ClassLoader loader) {
         this.id = image.id();
@@ -40,7 +40,7 @@ final class HostedAgent {
         this.home = image.home();
         this.hop = image.hop();
         this.eventSeq = image.eventSeq();
-        this.stateSize = image.state().length;
+        this.imageSize = image.stateLength() + 64;
     }
 
     String shortId() {

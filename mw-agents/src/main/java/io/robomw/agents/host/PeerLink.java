@@ -58,6 +58,16 @@ final class PeerLink {
      * @throws PeerException if the host cannot be reached, refuses this peer, or the call fails
      */
     Reply call(Op op, byte[] body) throws PeerException {
+        return call(op, Frame.of(body));
+    }
+
+    /**
+     * @param op    the operation
+     * @param frame its body, in a frame this call seals (header and MAC) in place; not to be used by another call meanwhile
+     * @return the host's verified reply
+     * @throws PeerException if the host cannot be reached, refuses this peer, or the call fails
+     */
+    Reply call(Op op, Frame frame) throws PeerException {
         for (int attempt = 0; ; attempt++) {
             Session s;
             AgentHostRemote remote;
@@ -68,7 +78,8 @@ final class PeerLink {
             long n = seq.incrementAndGet();
             byte[] raw;
             try {
-                raw = remote.call(s.request(n, op, body));
+                s.seal(n, op, frame);
+                raw = remote.call(frame.bytes);
             } catch (RemoteException e) {
                 drop();
                 throw failure(op, e);

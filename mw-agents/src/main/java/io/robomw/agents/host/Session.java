@@ -59,10 +59,17 @@ final class Session {
     }
 
     byte[] request(long seq, Op op, byte[] body) {
-        ByteBuffer b = ByteBuffer.allocate(HEADER + body.length + MAC);
-        b.putLong(id).putLong(seq).put((byte) op.ordinal()).put(body);
-        b.put(mac(b.array(), 0, HEADER + body.length));
-        return b.array();
+        Frame f = Frame.of(body);
+        seal(seq, op, f);
+        return f.bytes;
+    }
+
+    /** Writes the header and the MAC of a request into its frame, in place. */
+    void seal(long seq, Op op, Frame frame) {
+        byte[] b = frame.bytes;
+        ByteBuffer.wrap(b, 0, HEADER).putLong(id).putLong(seq).put((byte) op.ordinal());
+        int n = b.length - MAC;
+        System.arraycopy(mac(b, 0, n), 0, b, n, MAC);
     }
 
     /** @return whether a request's MAC is right (constant time) */

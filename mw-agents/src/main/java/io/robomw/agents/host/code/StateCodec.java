@@ -68,6 +68,19 @@ public final class StateCodec {
     }
 
     /**
+     * Writes a value's serialized form to a stream (flushed, not closed).
+     *
+     * @param value an agent or a value it carries
+     * @param to    where to write it
+     * @throws IOException if something in it is not serializable (the message names the class), or the stream fails
+     */
+    public static void write(Serializable value, java.io.OutputStream to) throws IOException {
+        ObjectOutputStream out = new ObjectOutputStream(to);
+        out.writeObject(value);
+        out.flush();
+    }
+
+    /**
      * @param value    an agent or a value it carries
      * @param expected about how many bytes it takes (its size last time): a buffer of that size
      *                 is not grown and copied over and over on the way to megabytes
@@ -91,8 +104,24 @@ public final class StateCodec {
      * @throws StateRejectedException if the stream breaks the filter's rules, is malformed, or is not a {@code type}
      */
     public <T> T read(byte[] bytes, ClassLoader codeOwner, Class<T> type) throws StateRejectedException {
-        if (bytes.length > maxBytes) {
-            throw new StateRejectedException("state of " + bytes.length + " bytes is larger than the " + maxBytes + " allowed");
+        return read(bytes, 0, bytes.length, codeOwner, type);
+    }
+
+    /**
+     * {@link #read(byte[], ClassLoader, Class)} from part of an array.
+     *
+     * @param bytes     holds a serialized value
+     * @param offset    where it starts
+     * @param length    its length
+     * @param codeOwner the class loader of the agent's own code
+     * @param type      what the value must be
+     * @param <T>       that type
+     * @return the value (may be {@code null})
+     * @throws StateRejectedException if the stream breaks the filter's rules, is malformed, or is not a {@code type}
+     */
+    public <T> T read(byte[] bytes, int offset, int length, ClassLoader codeOwner, Class<T> type) throws StateRejectedException {
+        if (length > maxBytes) {
+            throw new StateRejectedException("state of " + length + " bytes is larger than the " + maxBytes + " allowed");
         }
         AtomicReference<String> why = new AtomicReference<>();
         ObjectInputFilter filter = info -> {
@@ -109,7 +138,7 @@ public final class StateCodec {
             why.compareAndSet(null, "class " + c.getName() + " is neither the agent's own code nor on the host's allow-list");
             return ObjectInputFilter.Status.REJECTED;
         };
-        try (ObjectInputStream in = new ObjectInputStream(new ByteArrayInputStream(bytes)) {
+        try (ObjectInputStream in = new ObjectInputStream(new ByteArrayInputStream(bytes, offset, length)) {
             @Override
             protected Class<?> resolveClass(ObjectStreamClass desc) throws IOException, ClassNotFoundException {
                 return Class.forName(desc.getName(), false, codeOwner);

@@ -71,12 +71,14 @@ public interface AgentStore extends AutoCloseable {
     void started(UUID id, long hop) throws IOException;
 
     /**
-     * @param id    the agent
-     * @param hop   the hop that takes it on
-     * @param image its travelling form after the stop
+     * @param id     the agent
+     * @param hop    the hop that takes it on
+     * @param image  holds its travelling form after the stop (a store that keeps it copies it)
+     * @param offset where the travelling form starts in {@code image}
+     * @param length its length
      * @throws IOException if it cannot be written
      */
-    void departing(UUID id, long hop, byte[] image) throws IOException;
+    void departing(UUID id, long hop, byte[] image, int offset, int length) throws IOException;
 
     /**
      * @param id the agent, now stored by the next host or ended here

@@ -137,7 +137,8 @@ public final class JournalStore implements AgentStore {
     }
 
     @Override
-    public void departing(UUID id, long hop, byte[] image) throws IOException {
+    public void departing(UUID id, long hop, byte[] from, int offset, int length) throws IOException {
+        byte[] image = java.util.Arrays.copyOfRange(from, offset, offset + length);
         synchronized (writeLock) {
             append(DEPARTING, id, hop, image, false);
             put(new StoredAgent(id, hop, Phase.DEPARTING, image));

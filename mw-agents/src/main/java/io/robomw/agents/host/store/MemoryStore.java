@@ -41,7 +41,7 @@ public final class MemoryStore implements AgentStore {
     }
 
     @Override
-    public void departing(UUID id, long hop, byte[] image) {
+    public void departing(UUID id, long hop, byte[] image, int offset, int length) {
     }
 
     @Override

@@ -27,7 +27,7 @@ class JournalStoreTest {
         accept(store, started, 3, new byte[] {1, 2, 3});
         store.started(started, 3);
         accept(store, departing, 1, new byte[] {4});
-        store.departing(departing, 2, new byte[] {5, 6});
+        store.departing(departing, 2, new byte[] {0, 5, 6, 0}, 1, 2);
         accept(store, gone, 7, new byte[300_000]); // larger than a preallocation step holds ahead
         store.departed(gone);
         store.eventPending(new AgentStore.PendingEvent(started, 1, new byte[] {9}));
