@@ -152,6 +152,22 @@ class AgentHostTest {
     }
 
     @Test
+    void durableHostsCarryALargeAgentThereAndBackAndKeepNothingOnceItIsHome(@org.junit.jupiter.api.io.TempDir java.nio.file.Path dir) throws Exception {
+        AgentHost home = AgentHost.builder("home").clusterKey(KEY).store(dir.resolve("home")).start();
+        hosts.add(home);
+        AgentHost a = AgentHost.builder("a").clusterKey(KEY).store(dir.resolve("a")).start();
+        hosts.add(a);
+        VisitorAgent agent = new VisitorAgent().payload(300_000);
+        agent.itinerary().addStop(a.address()).addStop(home.address()).addStop(a.address()).addStop(home.address());
+        assertEquals(List.of("a", "home", "a", "home"), home.startTrip(agent).result().get(10, TimeUnit.SECONDS));
+        assertTrue(a.agents().isEmpty());
+        a.close();
+        AgentHost again = AgentHost.builder("a").clusterKey(KEY).store(dir.resolve("a")).start();
+        hosts.add(again);
+        assertTrue(again.agents().isEmpty(), "nothing to resume: " + again.agents());
+    }
+
+    @Test
     void lambdaTasksTravelAndRun() throws Exception {
         AgentHost home = host("home");
         AgentHost a = host("a");
