@@ -71,8 +71,8 @@ public final class AgentBenchmark {
      * hop path was still getting faster after five (probe: p50 479, 282, 264, 206, 169, 147 µs).
      */
     static final int WARMUP_PASS = 2000;
-    static final int MIN_PASSES = 5;
-    static final int MAX_PASSES = 15;
+    static final int MIN_PASSES = 8;
+    static final int MAX_PASSES = 20;
     static final int STEADY_PERCENT = 5;
 
     /** One warm-up pass: its p50 in µs. */
