@@ -13,7 +13,9 @@ import java.util.concurrent.TimeUnit;
 /**
  * Carries events to agents' homes, one worker thread per home, in the order they were made.
  * Reports and results are retried until the home acknowledges them (with growing pauses, while
- * the host runs; the store keeps them across restarts); arrivals are sent once, as news. An agent
+ * the host runs; the store keeps them across restarts); arrivals are sent once, as news, and an
+ * arrival still queued when a newer one of the same agent is queued is dropped (the host does not
+ * send one at all when the agent came from its home or arrived there: the home knows). An agent
  * leaves a host only after its reports from there are home ({@link #awaitDelivered}), so reports
  * arrive in order even when the agent moves faster than they do.
  */
