@@ -1066,8 +1066,11 @@ public final class AgentHost implements Agency, AutoCloseable {
                     + " (tampered with or corrupted)");
         }
         try {
-            new ArchiveClassLoader(archive, AgentHost.class.getClassLoader());
+            ArchiveClassLoader checked = new ArchiveClassLoader(archive, AgentHost.class.getClassLoader());
             store.putArchive(archive);
+            synchronized (loaders) {
+                loaders.putIfAbsent(archive.digest(), checked); // the transfer that asked for it follows: no second read of the jar
+            }
         } catch (IOException e) {
             return refuse("refused archive " + claimed + " from peer '" + peer + "': " + e.getMessage());
         }
