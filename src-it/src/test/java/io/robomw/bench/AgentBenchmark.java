@@ -68,11 +68,11 @@ public final class AgentBenchmark {
      * of {@value #WARMUP_PASS} round trips at 0 B, discarded, until a pass's p50 is within
      * {@value #STEADY_PERCENT} % of the one before (at least {@value #MIN_PASSES}, at most
      * {@value #MAX_PASSES} passes). JADE's author found one pass of 2000 enough for JADE; RoboMW's
-     * hop path was still getting faster after five (probe: p50 479, 282, 264, 206, 169, 147 µs).
+     * hop path was still getting faster after ten (bench runs: p50 535, 285, 247, 187, 154, 146, 133, 111, 100, 103 µs).
      */
     static final int WARMUP_PASS = 2000;
-    static final int MIN_PASSES = 8;
-    static final int MAX_PASSES = 20;
+    static final int MIN_PASSES = 12;
+    static final int MAX_PASSES = 24;
     static final int STEADY_PERCENT = 5;
 
     /** One warm-up pass: its p50 in µs. */
