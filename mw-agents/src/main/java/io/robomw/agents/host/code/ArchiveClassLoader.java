@@ -27,6 +27,8 @@ public final class ArchiveClassLoader extends ClassLoader {
 
     private final CodeArchive archive;
     private final Map<String, byte[]> entries;
+    /** Classes already resolved by name through this loader, for {@link #resolve}. */
+    private final Map<String, Class<?>> resolved = new java.util.concurrent.ConcurrentHashMap<>();
 
     /**
      * @param archive the archive
@@ -50,6 +52,25 @@ public final class ArchiveClassLoader extends ClassLoader {
      */
     public boolean holds(String className) {
         return entries.containsKey(className.replace('.', '/') + ".class");
+    }
+
+    /**
+     * {@code Class.forName(name, false, this)}, remembered: reading an agent's state resolves the
+     * same few classes on every hop, and each lookup through the loaders (locks, native lookups,
+     * the parent's) cost about a microsecond. A loader always answers the same class for a name
+     * once it has answered, so the remembered answer is the answer.
+     *
+     * @param name a binary class name
+     * @return the class
+     * @throws ClassNotFoundException if neither the archive nor the parent has it
+     */
+    public Class<?> resolve(String name) throws ClassNotFoundException {
+        Class<?> c = resolved.get(name);
+        if (c == null) {
+            c = Class.forName(name, false, this);
+            resolved.put(name, c);
+        }
+        return c;
     }
 
     @Override

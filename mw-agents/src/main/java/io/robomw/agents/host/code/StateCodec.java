@@ -141,7 +141,7 @@ public final class StateCodec {
         try (ObjectInputStream in = new ObjectInputStream(new ByteArrayInputStream(bytes, offset, length)) {
             @Override
             protected Class<?> resolveClass(ObjectStreamClass desc) throws IOException, ClassNotFoundException {
-                return Class.forName(desc.getName(), false, codeOwner);
+                return codeOwner instanceof ArchiveClassLoader archived ? archived.resolve(desc.getName()) : Class.forName(desc.getName(), false, codeOwner);
             }
         }) {
             in.setObjectInputFilter(filter);
