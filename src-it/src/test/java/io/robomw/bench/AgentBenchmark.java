@@ -62,7 +62,7 @@ public final class AgentBenchmark {
 
     static final int[] PAYLOADS = {0, 10 * 1024, 1024 * 1024};
     static final int WARMUP = 200;
-    static final int ITERATIONS = 1000;
+    static final int ITERATIONS = 3000;
     /**
      * Fresh JVMs are warmed (JIT) before anything is measured, RoboMW's and JADE's alike: passes
      * of {@value #WARMUP_PASS} round trips at 0 B, discarded, until a pass's p50 is within
