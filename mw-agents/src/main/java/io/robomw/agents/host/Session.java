@@ -58,12 +58,6 @@ final class Session {
         return k.mac(SESSION, hostNonce, clientNonce);
     }
 
-    byte[] request(long seq, Op op, byte[] body) {
-        Frame f = Frame.of(body);
-        seal(seq, op, f);
-        return f.bytes;
-    }
-
     /** Writes the header and the MAC of a request into its frame, in place. */
     void seal(long seq, Op op, Frame frame) {
         byte[] b = frame.bytes;
