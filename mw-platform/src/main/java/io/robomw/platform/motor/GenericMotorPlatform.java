@@ -1,6 +1,7 @@
 package io.robomw.platform.motor;
 
 import io.robomw.api.Clock;
+import io.robomw.api.RobotException;
 import io.robomw.api.spi.CommandPriority;
 import io.robomw.api.spi.MotorCommand;
 import io.robomw.api.spi.MotorTarget;
@@ -42,6 +43,18 @@ import java.util.concurrent.ConcurrentHashMap;
  * extrapolated by the commanded speed over its age, so a link's feedback delay does not become
  * overshoot. A motor without encoder is
  * stopped by time: {@code degrees / speed} after the start.
+ *
+ * <p>A brick that ends a limited rotation itself (the NXT's tacho limit; {@link #stopsAtLimit()})
+ * is not stopped by the middleware: the rotation is done when the driver reports, with
+ * {@link #reportStoppedAtLimit}, that the brick stopped the motor after the state that started it
+ * was sent. The brick counts from where the motor was when the command arrived, which a reading
+ * taken by the action thread may not know yet (its last reading can be several cycles old on a
+ * busy link): comparing the rotation with such a reading can stop the motor early, or never see
+ * the target at all.
+ *
+ * <p>A rotation that has not reached its target {@code 3 × degrees / speed + 2 s} after it
+ * started fails with a {@link RobotException} (the motor is blocked, or the brick stopped
+ * answering with progress), instead of leaving its caller waiting.
  */
 public abstract class GenericMotorPlatform {
 
@@ -54,6 +67,8 @@ public abstract class GenericMotorPlatform {
     private final Map<String, MotorState> changed = new LinkedHashMap<>();
     private final Map<String, Reading> degrees = new ConcurrentHashMap<>();
     private final Map<String, Double> startDegrees = new LinkedHashMap<>();
+    private final Map<String, MotorState> sentStates = new ConcurrentHashMap<>();
+    private final Map<String, MotorState> stoppedAtLimit = new ConcurrentHashMap<>();
     private volatile long cyclePeriodNanos = 10_000_000L;
 
     /**
@@ -87,6 +102,29 @@ public abstract class GenericMotorPlatform {
      * @throws IOException if the link failed
      */
     protected void pollFeedback() throws IOException {
+    }
+
+    /**
+     * @return whether the brick stops a limited rotation ({@link MotorState#limitDegrees()}) by
+     *         itself and the driver reports it with {@link #reportStoppedAtLimit} (default: no,
+     *         the middleware stops it by the encoder)
+     */
+    protected boolean stopsAtLimit() {
+        return false;
+    }
+
+    /**
+     * Says that the brick has stopped this motor by itself, after the last state {@link #runImpl}
+     * sent for it. Called by drivers from {@link #pollFeedback()} when the brick reports the motor
+     * idle; ends the limited rotation that state started (if it did).
+     *
+     * @param port the motor port
+     */
+    protected final void reportStoppedAtLimit(String port) {
+        MotorState last = sentStates.get(port);
+        if (last != null && last.running() && !Double.isInfinite(last.limitDegrees())) {
+            stoppedAtLimit.put(port, last);
+        }
     }
 
     /**
@@ -160,21 +198,32 @@ public abstract class GenericMotorPlatform {
                 .priority(command.priority())
                 .watchdog(command.watchdogTimeout());
         long[] startedAt = new long[1];
+        MotorState[] started = new MotorState[targets.size()];
         b.action(now -> {
             startedAt[0] = now;
-            for (MotorTarget t : targets) {
+            for (int i = 0; i < targets.size(); i++) {
+                MotorTarget t = targets.get(i);
                 startDegrees.put(t.port(), motorDegrees(t.port()));
-                setWanted(new MotorState(t.port(), t.degrees() == 0 ? 0 : t.degreesPerSecond(), t.degrees(), MotorState.StopMode.BRAKE));
+                started[i] = new MotorState(t.port(), t.degrees() == 0 ? 0 : t.degreesPerSecond(), t.degrees(), MotorState.StopMode.BRAKE);
+                setWanted(started[i], !t.continuous());
             }
         });
-        for (MotorTarget t : targets) {
+        for (int i = 0; i < targets.size(); i++) {
+            MotorTarget t = targets.get(i);
             if (t.continuous()) {
                 continue;
             }
+            int index = i;
             b.logic(now -> {
-                if (reached(t, now - startedAt[0])) {
-                    setWanted(MotorState.stopped(t.port(), MotorState.StopMode.BRAKE));
+                if (reached(t, started[index], now - startedAt[0])) {
+                    setWanted(MotorState.stopped(t.port(), MotorState.StopMode.BRAKE), false);
                     return true;
+                }
+                long deadline = deadlineNanos(t);
+                if (now - startedAt[0] > deadline) {
+                    throw new RobotException(String.format(java.util.Locale.ROOT,
+                            "robot '%s': motor %s did not finish turning %.0f° at %.0f°/s within %.1f s (turned about %.0f° by its encoder); is it blocked?",
+                            robot, t.port(), t.degrees(), Math.abs(t.degreesPerSecond()), deadline / 1e9, turned(t)));
                 }
                 return false;
             });
@@ -185,7 +234,7 @@ public abstract class GenericMotorPlatform {
         }
         b.onEnd(interrupted -> {
             for (MotorTarget t : targets) {
-                setWanted(MotorState.stopped(t.port(), MotorState.StopMode.BRAKE));
+                setWanted(MotorState.stopped(t.port(), MotorState.StopMode.BRAKE), false);
             }
         });
         return b.build();
@@ -199,22 +248,33 @@ public abstract class GenericMotorPlatform {
         return Container.builder("stop")
                 .requires(ports)
                 .priority(CommandPriority.SAFETY)
-                .action(now -> ports.forEach(p -> setWanted(MotorState.stopped(p, MotorState.StopMode.BRAKE))))
+                .action(now -> ports.forEach(p -> setWanted(MotorState.stopped(p, MotorState.StopMode.BRAKE), false)))
                 .logic(now -> true)
                 .build();
     }
 
-    private boolean reached(MotorTarget t, long elapsedNanos) {
+    private boolean reached(MotorTarget t, MotorState started, long elapsedNanos) {
         double speed = Math.abs(t.degreesPerSecond());
         if (t.degrees() == 0 || speed == 0) {
             return true;
         }
+        if (stopsAtLimit()) {
+            return stoppedAtLimit.get(t.port()) == started;
+        }
         if (!hasEncoder(t.port())) {
             return elapsedNanos >= t.degrees() / speed * 1e9;
         }
-        double turned = Math.abs(estimatedDegrees(t) - startDegrees.getOrDefault(t.port(), 0.0));
         double lead = speed * cyclePeriodNanos / 2e9;
-        return turned >= t.degrees() - lead;
+        return turned(t) >= t.degrees() - lead;
+    }
+
+    private double turned(MotorTarget t) {
+        return Math.abs(estimatedDegrees(t) - startDegrees.getOrDefault(t.port(), 0.0));
+    }
+
+    /** How long a rotation may take before it counts as blocked: three times its time at speed, plus 2 s. */
+    private static long deadlineNanos(MotorTarget t) {
+        return Math.round(3 * t.degrees() / Math.abs(t.degreesPerSecond()) * 1e9) + 2_000_000_000L;
     }
 
     /**
@@ -231,9 +291,10 @@ public abstract class GenericMotorPlatform {
         return r.degrees() + t.degreesPerSecond() * age / 1e9;
     }
 
-    private void setWanted(MotorState state) {
+    /** @param always publish it even if it equals the wanted state (a new rotation, which the brick must start again) */
+    private void setWanted(MotorState state, boolean always) {
         MotorState before = wanted.put(state.port(), state);
-        if (!state.equals(before)) {
+        if (always || !state.equals(before)) {
             changed.put(state.port(), state);
         }
     }
@@ -272,6 +333,9 @@ public abstract class GenericMotorPlatform {
             }
             try {
                 runImpl(batch);
+                for (MotorState s : batch) {
+                    sentStates.put(s.port(), s);
+                }
             } catch (IOException | RuntimeException e) {
                 for (MotorState s : batch) {
                     published.putIfAbsent(s.port(), s);

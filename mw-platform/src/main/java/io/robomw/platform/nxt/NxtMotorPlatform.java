@@ -12,7 +12,9 @@ import java.util.List;
  * The NXT's motor platform: motor states become SETOUTPUTSTATE telegrams (regulated speed, the
  * remaining rotation as the brick's tacho limit, brake when stopping; two motors started together
  * at the same speed for the same rotation run synchronised, so the robot drives straight), and the
- * encoders are read with GETOUTPUTSTATE's rotation count. A keep-alive goes out every minute.
+ * encoders are read with GETOUTPUTSTATE's rotation count. A limited rotation is over when the
+ * brick reports the output's run state idle (it stopped at the tacho limit, counted from where the
+ * motor was when the telegram arrived). A keep-alive goes out every minute.
  */
 public final class NxtMotorPlatform extends GenericMotorPlatform {
 
@@ -56,6 +58,12 @@ public final class NxtMotorPlatform extends GenericMotorPlatform {
         return (int) Math.max(-100, Math.min(100, p));
     }
 
+    /** The NXT ends a rotation at its tacho limit itself and then reports the output idle. */
+    @Override
+    protected boolean stopsAtLimit() {
+        return true;
+    }
+
     @Override
     protected void runImpl(List<MotorState> motors) throws IOException {
         boolean sync = motors.size() == 2 && motors.get(0).running() && motors.get(1).running()
@@ -89,6 +97,9 @@ public final class NxtMotorPlatform extends GenericMotorPlatform {
             int p = outputPort(port);
             byte[] reply = brick.request(NxtTelegram.getOutputState(p), NxtTelegram.GETOUTPUTSTATE_REPLY, p);
             reportDegrees(port, LittleEndian.s32(reply, 21));
+            if (reply[8] == NxtTelegram.RUN_IDLE) {
+                reportStoppedAtLimit(port);
+            }
         }
         long now = System.nanoTime();
         if (now - lastKeepAlive > KEEP_ALIVE_NANOS) {

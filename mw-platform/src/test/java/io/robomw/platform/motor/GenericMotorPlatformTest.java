@@ -2,6 +2,7 @@ package io.robomw.platform.motor;
 
 import io.robomw.api.CommandPreemptedException;
 import io.robomw.api.ManualClock;
+import io.robomw.api.RobotException;
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.spi.ConnectionSettings;
 import io.robomw.api.spi.MotorCommand;
@@ -44,15 +45,33 @@ class GenericMotorPlatformTest {
     private final FakeMotors motors = new FakeMotors(clock);
     private BrickPlatform platform;
 
-    /** Motors that integrate their speed over simulated time; records what runImpl got. */
+    /**
+     * Motors that integrate their speed over simulated time; records what runImpl got. Optionally
+     * like an NXT: the brick ends a limited rotation itself at its limit, counted from where the
+     * motor is when the command arrives, and says so; optionally on a busy link, whose commands
+     * reach the motors {@code commandLag} cycles after runImpl took them (replies still report
+     * what the brick did after every command sent before them); or with a blocked motor.
+     */
     static final class FakeMotors extends GenericMotorPlatform {
         final List<List<MotorState>> sent = new ArrayList<>();
         final Map<String, Double> speed = new HashMap<>(Map.of("B", 0.0, "C", 0.0));
         final Map<String, Double> position = new HashMap<>(Map.of("B", 0.0, "C", 0.0));
+        private final Map<String, Double> stopAt = new HashMap<>();
+        private final java.util.ArrayDeque<List<MotorState>> inFlight = new java.util.ArrayDeque<>();
+        private final java.util.ArrayDeque<Integer> dueAt = new java.util.ArrayDeque<>();
+        private int advances;
         IOException failNext;
+        boolean brickStopsAtLimit;
+        boolean blocked;
+        int commandLag;
 
         FakeMotors(ManualClock clock) {
             super("fake", clock, List.of("B", "C"));
+        }
+
+        @Override
+        protected boolean stopsAtLimit() {
+            return brickStopsAtLimit;
         }
 
         @Override
@@ -61,16 +80,53 @@ class GenericMotorPlatformTest {
                 throw failNext;
             }
             sent.add(motors);
-            motors.forEach(m -> speed.put(m.port(), m.degreesPerSecond()));
+            inFlight.addLast(motors);
+            dueAt.addLast(advances + commandLag);
+            applyDue();
         }
 
         @Override
         protected void pollFeedback() {
             position.forEach(this::reportDegrees);
+            if (brickStopsAtLimit && inFlight.isEmpty()) {
+                speed.forEach((port, dps) -> {
+                    if (dps == 0) {
+                        reportStoppedAtLimit(port);
+                    }
+                });
+            }
+        }
+
+        private void applyDue() {
+            while (!inFlight.isEmpty() && dueAt.peekFirst() <= advances) {
+                dueAt.removeFirst();
+                for (MotorState m : inFlight.removeFirst()) {
+                    speed.put(m.port(), m.degreesPerSecond());
+                    if (m.running() && !Double.isInfinite(m.limitDegrees())) {
+                        stopAt.put(m.port(), position.get(m.port()) + Math.signum(m.degreesPerSecond()) * m.limitDegrees());
+                    } else {
+                        stopAt.remove(m.port());
+                    }
+                }
+            }
         }
 
         void advance(Duration dt) {
-            speed.forEach((port, dps) -> position.merge(port, dps * dt.toNanos() / 1e9, Double::sum));
+            advances++;
+            applyDue();
+            if (blocked) {
+                return;
+            }
+            speed.forEach((port, dps) -> {
+                double next = position.get(port) + dps * dt.toNanos() / 1e9;
+                Double limit = stopAt.get(port);
+                if (brickStopsAtLimit && limit != null && (dps > 0 ? next >= limit : next <= limit)) {
+                    next = limit;
+                    speed.put(port, 0.0);
+                    stopAt.remove(port);
+                }
+                position.put(port, next);
+            });
         }
     }
 
@@ -199,5 +255,29 @@ class GenericMotorPlatformTest {
             step();
         }
         assertEquals(0.0, motors.speed.get("B"), "the watchdog stopped the motor");
+    }
+
+    @Test
+    void aBrickThatStopsAtItsLimitEndsTheRotationWhenItSaysSoEvenOnABusyLink() throws Exception {
+        motors.brickStopsAtLimit = true;
+        motors.commandLag = 5;
+        open();
+        for (int[] leg : new int[][] {{-90, 90}, {360, 90}, {-45, 180}, {200, 90}}) {
+            CompletableFuture<Void> rotate = platform.run(MotorCommand.of("rotate", List.of(MotorTarget.rotate("B", leg[0], leg[1]))));
+            stepUntilDone(rotate, 1000);
+            rotate.get(0, TimeUnit.SECONDS);
+        }
+        assertEquals(-90 + 360 - 45 + 200, motors.position.get("B"), 1e-9, "every rotation ran to the brick's limit, none was cut short");
+    }
+
+    @Test
+    void aBlockedMotorFailsItsRotationWithAClearErrorInsteadOfWaitingForever() throws Exception {
+        motors.blocked = true;
+        open();
+        CompletableFuture<Void> rotate = platform.run(MotorCommand.of("rotate", List.of(MotorTarget.rotate("B", 360, 360))));
+        stepUntilDone(rotate, 600);
+        RobotException e = assertInstanceOf(RobotException.class, assertThrows(ExecutionException.class, () -> rotate.get(0, TimeUnit.SECONDS)).getCause());
+        assertTrue(e.getMessage().contains("motor B did not finish turning 360°") && e.getMessage().contains("5.0 s"), e.getMessage());
+        assertEquals(0.0, motors.speed.get("B"), "stopped");
     }
 }
