@@ -12,18 +12,22 @@ import java.net.InetAddress;
 import java.net.ServerSocket;
 import java.net.Socket;
 import java.nio.charset.StandardCharsets;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicLong;
 import java.util.concurrent.locks.LockSupport;
 
 /**
- * The far side of each benchmark, in its own JVM: an echo server (raw socket, JeroMQ REP, RoboMW)
- * or a subscriber that times the data messages (JeroMQ SUB, RoboMW). Prints {@code PORT},
- * {@code BOUND}, {@code SYNC} and {@code RESULT} lines on stdout; ends when stdin closes.
+ * One side of a benchmark, in a JVM of its own: an echo server (raw socket, JeroMQ REP, RoboMW),
+ * a publisher (JeroMQ PUB, RoboMW) or a subscriber that times the data messages (JeroMQ SUB,
+ * RoboMW). Prints {@code PORT}, {@code BOUND}, {@code SYNC}, {@code GOING}, {@code CPU} and
+ * {@code RESULT} lines on stdout; takes {@code GO} on stdin; ends when stdin closes.
  *
- * <p>Pub/sub protocol: the publisher sends hello messages (first byte 'H') until the subscriber
- * prints {@code SYNC}, then {@code warmup + measured} data messages (first byte 'D'). The
- * subscriber reports how many data messages it got and the nanoseconds from the last warm-up
- * message to the last one.
+ * <p>Pub/sub protocol: the publisher sends hello messages (first byte 'H') every millisecond until
+ * the driver says {@code GO} (once the subscriber has printed {@code SYNC}), then
+ * {@code warmup + measured} data messages (first byte 'D') back to back. The subscriber reports
+ * how many data messages it got and the nanoseconds from the last warm-up message to the last
+ * one. Both print the CPU time of their busy threads.
  */
 public final class BenchPeer {
 
@@ -36,10 +40,14 @@ public final class BenchPeer {
      */
     public static void main(String[] args) throws Exception {
         PrintStream out = new PrintStream(System.out, true, StandardCharsets.UTF_8);
+        CountDownLatch go = new CountDownLatch(1);
         Thread watcher = new Thread(() -> {
             try {
-                while (System.in.read() >= 0) {
-                    // wait for the driver to close stdin
+                java.io.BufferedReader commands = new java.io.BufferedReader(new java.io.InputStreamReader(System.in, StandardCharsets.UTF_8));
+                for (String line; (line = commands.readLine()) != null; ) {
+                    if (line.equals("GO")) {
+                        go.countDown();
+                    }
                 }
             } catch (java.io.IOException ignored) {
                 // driver gone
@@ -51,6 +59,8 @@ public final class BenchPeer {
         switch (args[0]) {
             case "raw-echo" -> rawEcho(out);
             case "zmq-rep" -> zmqRep(out);
+            case "zmq-pub" -> zmqPub(out, go, Long.parseLong(args[1]));
+            case "mw-pub" -> mwPub(out, go, args[1], Long.parseLong(args[2]));
             case "zmq-sub" -> zmqSub(out, args[1], Long.parseLong(args[2]), Long.parseLong(args[3]));
             case "mw-echo" -> mwEcho(out, args[1]);
             case "mw-sub" -> mwSub(out, args[1], Long.parseLong(args[2]), Long.parseLong(args[3]));
@@ -92,6 +102,40 @@ public final class BenchPeer {
         }
     }
 
+    private static void zmqPub(PrintStream out, CountDownLatch go, long messages) throws InterruptedException {
+        try (ZContext ctx = new ZContext()) {
+            ZMQ.Socket pub = ctx.createSocket(SocketType.PUB);
+            pub.setSndHWM(0);
+            out.println("PORT " + pub.bindToRandomPort("tcp://127.0.0.1"));
+            publish(out, go, messages, pub::send);
+        }
+    }
+
+    private static void mwPub(PrintStream out, CountDownLatch go, String bind, long messages) throws InterruptedException {
+        try (MessagingNode node = MessagingNode.builder("bench-pub").bind(bind).build()) {
+            out.println("BOUND " + (bind.startsWith("multicast:") ? bind : node.boundAddresses().get(0)));
+            publish(out, go, messages, data -> node.publishMessage("bench", data, data[0] == 'H' ? "hello" : "data", null));
+        }
+    }
+
+    /** Hello every millisecond until GO, then {@code messages} data messages back to back; CPU, then waits for the end. */
+    private static void publish(PrintStream out, CountDownLatch go, long messages, java.util.function.Consumer<byte[]> send) throws InterruptedException {
+        byte[] hello = new byte[MessagingBenchmark.SIZE];
+        hello[0] = 'H';
+        do {
+            send.accept(hello);
+        } while (!go.await(1, TimeUnit.MILLISECONDS));
+        out.println("GOING");
+        ThreadCpu cpu = ThreadCpu.now();
+        byte[] data = new byte[MessagingBenchmark.SIZE];
+        data[0] = 'D';
+        for (long i = 0; i < messages; i++) {
+            send.accept(data);
+        }
+        out.println("CPU " + cpu.since());
+        new CountDownLatch(1).await();
+    }
+
     private static void zmqSub(PrintStream out, String endpoint, long warmup, long measured) {
         try (ZContext ctx = new ZContext()) {
             ZMQ.Socket sub = ctx.createSocket(SocketType.SUB);
@@ -100,6 +144,7 @@ public final class BenchPeer {
             sub.subscribe(new byte[0]);
             out.println("READY");
             Timer timer = new Timer(warmup, measured);
+            ThreadCpu cpu = ThreadCpu.now();
             boolean synced = false;
             while (!timer.done()) {
                 byte[] m = sub.recv();
@@ -112,6 +157,7 @@ public final class BenchPeer {
                     timer.tick();
                 }
             }
+            out.println("CPU " + cpu.since());
             out.println(timer.result());
         }
     }
@@ -144,6 +190,7 @@ public final class BenchPeer {
             }
         });
         node.subscribeMessage("bench", null);
+        ThreadCpu cpu = ThreadCpu.now();
         out.println("READY");
         long idleSince = System.nanoTime();
         long lastCount = -1;
@@ -157,6 +204,7 @@ public final class BenchPeer {
                 break;
             }
         }
+        out.println("CPU " + cpu.since());
         out.println(timer.result());
     }
 

@@ -63,20 +63,54 @@ public final class MessagingBenchmark {
 
     void run() throws Exception {
         List<Latency> latencies = new ArrayList<>();
-        latencies.add(rawPingPong());
-        latencies.add(zmqReqRep());
-        latencies.add(mwReqRep("tcp", "tcp://127.0.0.1:0"));
-        latencies.add(mwReqRep("tcp", "tcp://127.0.0.1:0", Duration.ZERO));
-        latencies.add(mwReqRep("rmi", "rmi://127.0.0.1:0/bench"));
-        latencies.add(mwReqRep("udp", "udp://127.0.0.1:0"));
-        latencies.add(mwReqRep("multicast", group()));
+        latency(latencies, "rr-raw", this::rawPingPong);
+        latency(latencies, "rr-zmq", this::zmqReqRep);
+        latency(latencies, "rr-tcp", () -> mwReqRep("tcp", "tcp://127.0.0.1:0"));
+        latency(latencies, "rr-tcp-nospin", () -> mwReqRep("tcp", "tcp://127.0.0.1:0", Duration.ZERO));
+        latency(latencies, "rr-rmi", () -> mwReqRep("rmi", "rmi://127.0.0.1:0/bench"));
+        latency(latencies, "rr-udp", () -> mwReqRep("udp", "udp://127.0.0.1:0"));
+        latency(latencies, "rr-multicast", () -> mwReqRep("multicast", group()));
         List<Throughput> throughputs = new ArrayList<>();
-        throughputs.add(median(() -> zmqPubSub(2_000_000)));
-        throughputs.add(median(() -> mwPubSub("tcp", "tcp://127.0.0.1:0", 2_000_000)));
-        throughputs.add(median(() -> mwPubSub("rmi", "rmi://127.0.0.1:0/bench", 1_000_000)));
-        throughputs.add(median(() -> mwPubSub("udp", "udp://127.0.0.1:0", 500_000)));
-        throughputs.add(median(() -> mwPubSub("multicast", group(), 500_000)));
+        throughput(throughputs, "ps-zmq", () -> zmqPubSub(2_000_000));
+        throughput(throughputs, "ps-tcp", () -> mwPubSub("tcp", "tcp://127.0.0.1:0", 2_000_000));
+        throughput(throughputs, "ps-rmi", () -> mwPubSub("rmi", "rmi://127.0.0.1:0/bench", 1_000_000));
+        throughput(throughputs, "ps-udp", () -> mwPubSub("udp", "udp://127.0.0.1:0", 500_000));
+        throughput(throughputs, "ps-multicast", () -> mwPubSub("multicast", group(), 500_000));
         write(latencies, throughputs);
+    }
+
+    /** A latency case. */
+    @FunctionalInterface
+    interface LatencyCase {
+        Latency run() throws Exception;
+    }
+
+    /** Runs a latency case unless {@code -Dbench.cases} leaves it out. */
+    private static void latency(List<Latency> into, String key, LatencyCase c) throws Exception {
+        if (selected(key)) {
+            into.add(c.run());
+        }
+    }
+
+    private void throughput(List<Throughput> into, String key, Case c) throws Exception {
+        if (selected(key)) {
+            into.add(median(c));
+        }
+    }
+
+    /**
+     * @param key a case: rr-raw, rr-zmq, rr-tcp, rr-tcp-nospin, rr-rmi, rr-udp, rr-multicast,
+     *            ps-zmq, ps-tcp, ps-rmi, ps-udp, ps-multicast
+     * @return whether {@code -Dbench.cases} (a comma-separated list; default all) names it
+     */
+    private static boolean selected(String key) {
+        String cases = System.getProperty("bench.cases", "").trim();
+        return cases.isEmpty() || Arrays.asList(cases.split("\\s*,\\s*")).contains(key);
+    }
+
+    /** @return the runs per throughput case: {@code -Dbench.rounds}, default {@value #ROUNDS} */
+    private static int rounds() {
+        return Integer.getInteger("bench.rounds", ROUNDS);
     }
 
     /** A throughput case, run in fresh processes. */
@@ -88,12 +122,14 @@ public final class MessagingBenchmark {
     /** Runs a throughput case {@value #ROUNDS} times (throughput on a shared 2-core machine varies) and keeps the median. */
     private Throughput median(Case c) throws Exception {
         List<Throughput> runs = new ArrayList<>();
-        for (int i = 0; i < ROUNDS; i++) {
+        int rounds = rounds();
+        for (int i = 0; i < rounds; i++) {
             runs.add(c.run());
         }
+        say(runs.get(0).name() + " runs (msg/s): " + runs.stream().map(t -> String.format(Locale.ROOT, "%,.0f", t.perSecond())).toList());
         runs.sort(java.util.Comparator.comparingDouble(Throughput::perSecond));
-        Throughput m = runs.get(ROUNDS / 2);
-        say(String.format(Locale.ROOT, "%-48s median of %d: %,12.0f msg/s", m.name(), ROUNDS, m.perSecond()));
+        Throughput m = runs.get(rounds / 2);
+        say(String.format(Locale.ROOT, "%-48s median of %d: %,12.0f msg/s", m.name(), rounds, m.perSecond()));
         return m;
     }
 
@@ -178,66 +214,42 @@ public final class MessagingBenchmark {
     // ---- publish/subscribe ----
 
     private Throughput zmqPubSub(long measured) throws Exception {
-        try (ZContext ctx = new ZContext()) {
-            ZMQ.Socket pub = ctx.createSocket(SocketType.PUB);
-            pub.setSndHWM(0);
-            int port = pub.bindToRandomPort("tcp://127.0.0.1");
-            try (PeerProcess peer = bench("bench-zmq-sub", "zmq-sub", "tcp://127.0.0.1:" + port, String.valueOf(PUBSUB_WARMUP), String.valueOf(measured))) {
-                peer.expect("READY", PeerProcess.COMMAND);
-                byte[] hello = new byte[SIZE];
-                hello[0] = 'H';
-                syncWith(peer, () -> pub.send(hello));
-                byte[] data = new byte[SIZE];
-                data[0] = 'D';
-                for (long i = 0; i < PUBSUB_WARMUP + measured; i++) {
-                    pub.send(data);
-                }
-                return throughput("JeroMQ PUB/SUB", peer, measured);
+        try (PeerProcess pub = bench("bench-zmq-pub", "zmq-pub", String.valueOf(PUBSUB_WARMUP + measured))) {
+            String endpoint = "tcp://127.0.0.1:" + pub.expect("PORT", PeerProcess.COMMAND).substring(5);
+            try (PeerProcess sub = bench("bench-zmq-sub", "zmq-sub", endpoint, String.valueOf(PUBSUB_WARMUP), String.valueOf(measured))) {
+                return pubSub("JeroMQ PUB/SUB", pub, sub, measured);
             }
         }
     }
 
     private Throughput mwPubSub(String scheme, String bind, long measured) throws Exception {
-        try (MessagingNode node = MessagingNode.builder("bench-pub").bind(bind).build()) {
-            String address = scheme.equals("multicast") ? bind : node.boundAddresses().get(0).toString();
-            try (PeerProcess peer = bench("bench-mw-sub-" + scheme, "mw-sub", address, String.valueOf(PUBSUB_WARMUP), String.valueOf(measured))) {
-                peer.expect("READY", PeerProcess.COMMAND);
-                byte[] hello = new byte[SIZE];
-                hello[0] = 'H';
-                syncWith(peer, () -> node.publishMessage("bench", hello, "hello", null));
-                byte[] data = new byte[SIZE];
-                data[0] = 'D';
-                for (long i = 0; i < PUBSUB_WARMUP + measured; i++) {
-                    node.publishMessage("bench", data, "data", null);
-                }
-                return throughput("RoboMW " + scheme + " publishMessage", peer, measured);
+        try (PeerProcess pub = bench("bench-mw-pub-" + scheme, "mw-pub", bind, String.valueOf(PUBSUB_WARMUP + measured))) {
+            String address = pub.expect("BOUND", PeerProcess.COMMAND).substring(6);
+            try (PeerProcess sub = bench("bench-mw-sub-" + scheme, "mw-sub", address, String.valueOf(PUBSUB_WARMUP), String.valueOf(measured))) {
+                return pubSub("RoboMW " + scheme + " publishMessage", pub, sub, measured);
             }
         }
     }
 
-    /** Sends hello messages every millisecond until the subscriber says it got one (the slow-joiner handshake). */
-    private static void syncWith(PeerProcess peer, Runnable sendHello) {
-        long deadline = System.nanoTime() + Duration.ofSeconds(30).toNanos();
-        while (System.nanoTime() < deadline) {
-            sendHello.run();
-            try {
-                peer.expect("SYNC", Duration.ofMillis(1));
-                return;
-            } catch (AssertionError notYet) {
-                // keep saying hello
-            }
-        }
-        throw new AssertionError("subscriber did not sync within 30 s");
-    }
-
-    private Throughput throughput(String name, PeerProcess peer, long measured) {
-        String[] r = peer.expect("RESULT", Duration.ofMinutes(5)).split(" ");
+    /**
+     * The slow-joiner handshake (the publisher says hello every millisecond until the subscriber
+     * got one), then the run; both sides in fresh JVMs, so no case inherits another's heap, JIT
+     * or threads.
+     */
+    private Throughput pubSub(String name, PeerProcess pub, PeerProcess sub, long measured) {
+        sub.expect("SYNC", PeerProcess.COMMAND);
+        pub.ask("GO", "GOING");
+        String subscriberCpu = sub.expect("CPU", Duration.ofMinutes(5));
+        String[] r = sub.expect("RESULT", Duration.ofMinutes(5)).split(" ");
+        String publisherCpu = pub.expect("CPU", Duration.ofMinutes(5));
+        say("    publisher " + publisherCpu + "; subscriber " + subscriberCpu);
         long count = Long.parseLong(r[1]);
         long nanos = Long.parseLong(r[2]);
         Throughput t = new Throughput(name, count, measured, nanos == 0 ? 0 : count * 1e9 / nanos);
         say(String.format(Locale.ROOT, "%-48s %,12.0f msg/s  (%,d of %,d measured messages received)", name, t.perSecond(), count, measured));
         return t;
     }
+
 
     // ---- set-up and report ----
 
@@ -257,16 +269,21 @@ public final class MessagingBenchmark {
         log.add(line);
     }
 
+    private static <T> double baseline(List<T> results, String name, java.util.function.ToDoubleFunction<T> value) {
+        return results.stream().filter(r -> r.toString().contains("name=" + name + ",")).mapToDouble(value).findFirst().orElse(Double.NaN);
+    }
+
     private void write(List<Latency> latencies, List<Throughput> throughputs) throws IOException {
-        double raw = latencies.get(0).p50();
-        double zmqLatency = latencies.get(1).p50();
-        double zmq = throughputs.get(0).perSecond();
+        // ratios to the baselines when they ran (-Dbench.cases may leave them out: NaN then)
+        double raw = baseline(latencies, "raw java.net.Socket ping-pong", Latency::p50);
+        double zmqLatency = baseline(latencies, "JeroMQ REQ/REP", Latency::p50);
+        double zmq = baseline(throughputs, "JeroMQ PUB/SUB", Throughput::perSecond);
         StringBuilder md = new StringBuilder();
         md.append("| request/reply, 64 bytes | p50 µs | p99 µs | mean µs | p50 / raw socket | p50 / JeroMQ |\n|---|---:|---:|---:|---:|---:|\n");
         for (Latency l : latencies) {
             md.append(String.format(Locale.ROOT, "| %s | %.1f | %.1f | %.1f | %.2f× | %.2f× |%n", l.name(), l.p50(), l.p99(), l.mean(), l.p50() / raw, l.p50() / zmqLatency));
         }
-        md.append("\n| publish/subscribe, 64 bytes (median of " + ROUNDS + " runs) | msg/s | received / sent (measured) | × JeroMQ |\n|---|---:|---:|---:|\n");
+        md.append("\n| publish/subscribe, 64 bytes (median of " + rounds() + " runs) | msg/s | received / sent (measured) | × JeroMQ |\n|---|---:|---:|---:|\n");
         for (Throughput t : throughputs) {
             md.append(String.format(Locale.ROOT, "| %s | %,.0f | %,d / %,d | %.2f× |%n", t.name(), t.perSecond(), t.messages(), t.sent(), t.perSecond() / zmq));
         }
