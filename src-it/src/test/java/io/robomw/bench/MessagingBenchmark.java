@@ -261,7 +261,12 @@ public final class MessagingBenchmark {
     }
 
     private static PeerProcess bench(String name, String... args) throws IOException {
-        return PeerProcess.start(name, BenchPeer.class.getName(), List.of("-Xmx1g", "-Dorg.slf4j.simpleLogger.defaultLogLevel=warn"), List.of(args));
+        List<String> jvm = new ArrayList<>(List.of("-Xmx1g", "-Dorg.slf4j.simpleLogger.defaultLogLevel=warn"));
+        String extra = System.getProperty("bench.peerJvmArgs." + args[0], "");
+        if (!extra.isBlank()) {
+            jvm.addAll(Arrays.asList(extra.trim().split("\\s+")));
+        }
+        return PeerProcess.start(name, BenchPeer.class.getName(), jvm, List.of(args));
     }
 
     private void say(String line) {

@@ -3,6 +3,7 @@ package io.robomw.agents.messaging;
 import io.robomw.agents.messaging.frame.Frame;
 import io.robomw.agents.messaging.frame.FrameCodec;
 import io.robomw.agents.messaging.frame.FrameKind;
+import io.robomw.agents.messaging.frame.NameBytes;
 import io.robomw.agents.messaging.security.FrameMac;
 import io.robomw.agents.messaging.security.PayloadCodec;
 import io.robomw.api.MessagingException;
@@ -32,7 +33,7 @@ final class FrameFactory {
     private final FrameMac mac;
     private final int maxFrameSize;
     /** UTF-8 of the names this node sends (its own, topics, functions, receivers): the same few, over and over. */
-    private final java.util.Map<String, byte[]> names = new java.util.concurrent.ConcurrentHashMap<>();
+    private final NameBytes names = new NameBytes();
 
     FrameFactory(String node, long source, PayloadCodec payloads, FrameMac mac, int maxFrameSize) {
         this.node = node;

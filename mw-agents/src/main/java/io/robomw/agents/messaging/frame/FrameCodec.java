@@ -85,7 +85,6 @@ public final class FrameCodec {
     /** Longest sender, receiver, topic or function, in UTF-8 bytes. */
     public static final int MAX_NAME_BYTES = 0xFFFF;
 
-    private static final int MAX_CACHED_NAMES = 1024;
     private static final VarHandle SHORT = MethodHandles.byteArrayViewVarHandle(short[].class, ByteOrder.BIG_ENDIAN);
     private static final VarHandle INT = MethodHandles.byteArrayViewVarHandle(int[].class, ByteOrder.BIG_ENDIAN);
     private static final VarHandle LONG = MethodHandles.byteArrayViewVarHandle(long[].class, ByteOrder.BIG_ENDIAN);
@@ -111,10 +110,10 @@ public final class FrameCodec {
      *
      * @param frame   the frame
      * @param withMac whether to reserve and flag a MAC
-     * @param names   encoded names by their text, or {@code null}
+     * @param names   the sender's encoded names, or {@code null}
      * @return the encoded frame
      */
-    public static byte[] encode(Frame frame, boolean withMac, java.util.Map<String, byte[]> names) {
+    public static byte[] encode(Frame frame, boolean withMac, NameBytes names) {
         byte[] sender = utf8("sender", frame.sender(), names);
         byte[] receiver = utf8("receiver", frame.receiver(), names);
         byte[] topic = utf8("topic", frame.topic(), names);
@@ -282,19 +281,13 @@ public final class FrameCodec {
         return (short) SHORT.get(buf, at) & 0xFFFF;
     }
 
-    private static byte[] utf8(String what, String value, java.util.Map<String, byte[]> names) {
+    private static byte[] utf8(String what, String value, NameBytes names) {
         if (names != null) {
-            byte[] cached = names.get(value);
-            if (cached != null) {
-                return cached;
-            }
+            return names.of(what, value);
         }
         byte[] bytes = value.getBytes(StandardCharsets.UTF_8);
         if (bytes.length > MAX_NAME_BYTES) {
             throw new IllegalArgumentException(what + " is " + bytes.length + " bytes in UTF-8; the limit is " + MAX_NAME_BYTES);
-        }
-        if (names != null && names.size() < MAX_CACHED_NAMES) {
-            names.put(value, bytes);
         }
         return bytes;
     }

@@ -50,6 +50,8 @@ public final class OutboundBuffer {
     private static final int INITIAL = 64 * 1024;
     private static final int LINGER_BYTES = 32 * 1024;
     private static final long LINGER_NANOS = 50_000;
+    /** Naps of {@link #LINGER_NANOS} the writer takes on an empty buffer before it waits to be signalled (about 1 ms). */
+    private static final int IDLE_POLLS = 16;
 
     private final ReentrantLock lock = new ReentrantLock();
     private final Condition hasData = lock.newCondition();
@@ -277,15 +279,29 @@ public final class OutboundBuffer {
     }
 
     private void writeLoop(Writer out) throws IOException {
+        int idlePolls = 0;
         while (true) {
             byte[] batch;
             int length;
-            lock.lock();
+            lockAsWriter();
             try {
                 while (used == 0 && !closed) {
+                    if (idlePolls > 0) {
+                        // a stream of publications may only have paused: look again shortly rather
+                        // than have the next sender pay for waking this thread up
+                        idlePolls--;
+                        lock.unlock();
+                        try {
+                            nap();
+                        } finally {
+                            lockAsWriter();
+                        }
+                        continue;
+                    }
                     writerWaiting = true;
                     hasData.awaitUninterruptibly();
                 }
+                idlePolls = IDLE_POLLS;
                 writerWaiting = false;
                 if (used == 0) {
                     return;
@@ -295,7 +311,7 @@ public final class OutboundBuffer {
                     try {
                         linger();
                     } finally {
-                        lock.lock();
+                        lockAsWriter();
                     }
                 }
                 batch = fill;
@@ -313,13 +329,28 @@ public final class OutboundBuffer {
             try {
                 writeTimed(out, batch, length);
             } finally {
-                lock.lock();
+                lockAsWriter();
                 batchTaken = false;
                 hasRoom.signalAll();
                 lock.unlock();
                 writeLock.unlock();
             }
         }
+    }
+
+    /**
+     * Takes the lock for the writer thread, spinning briefly while a sender holds it (a sender
+     * holds it for one copy) instead of queueing at once: a writer queued on the lock makes every
+     * sender's unlock hand it a wake-up, which cost the publisher a sixth of its time.
+     */
+    private void lockAsWriter() {
+        for (int i = 0; i < 200; i++) {
+            if (lock.tryLock()) {
+                return;
+            }
+            Thread.onSpinWait();
+        }
+        lock.lock();
     }
 
     /**
@@ -332,6 +363,18 @@ public final class OutboundBuffer {
      * was a little slower than the writer, and every batch cost the publisher a wake-up signal:
      * publish/subscribe throughput then fell to a third.)
      */
+    /** Sleeps {@value #LINGER_NANOS} ns, or until closed or a request or reply comes. */
+    private void nap() {
+        lingering = true;
+        try {
+            if (!urgentWaiting && !closed) {
+                LockSupport.parkNanos(LINGER_NANOS);
+            }
+        } finally {
+            lingering = false;
+        }
+    }
+
     private void linger() {
         long until = System.nanoTime() + LINGER_NANOS;
         long left;
