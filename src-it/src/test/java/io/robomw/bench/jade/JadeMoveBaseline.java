@@ -1,9 +1,9 @@
 package io.robomw.bench.jade;
 
-import java.io.BufferedReader;
+import io.robomw.it.StdoutLines;
+
 import java.io.File;
 import java.io.IOException;
-import java.io.InputStreamReader;
 import java.io.PrintStream;
 import java.net.InetAddress;
 import java.net.ServerSocket;
@@ -15,8 +15,6 @@ import java.util.ArrayList;
 import java.util.Arrays;
 import java.util.Collections;
 import java.util.List;
-import java.util.concurrent.BlockingQueue;
-import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.TimeoutException;
 
@@ -175,25 +173,13 @@ public final class JadeMoveBaseline implements AutoCloseable {
         private final String name;
         private final Process process;
         private final PrintStream in;
-        private final BlockingQueue<String> lines = new LinkedBlockingQueue<>();
+        private final StdoutLines lines;
 
         Container(String name, Process process) {
             this.name = name;
             this.process = process;
             this.in = new PrintStream(process.getOutputStream(), true, StandardCharsets.UTF_8);
-            Thread reader = new Thread(() -> {
-                try (BufferedReader r = new BufferedReader(new InputStreamReader(process.getInputStream(), StandardCharsets.UTF_8))) {
-                    String line;
-                    while ((line = r.readLine()) != null) {
-                        lines.add(line);
-                    }
-                } catch (IOException e) {
-                    lines.add("EOF " + e);
-                }
-                lines.add("EOF");
-            }, "jade-bench-stdout-" + name);
-            reader.setDaemon(true);
-            reader.start();
+            this.lines = new StdoutLines(process, "jade-bench-stdout-" + name);
         }
 
         void send(String command) {
@@ -203,14 +189,14 @@ public final class JadeMoveBaseline implements AutoCloseable {
         String expect(String prefix, Duration within) throws TimeoutException, InterruptedException {
             long deadline = System.nanoTime() + within.toNanos();
             while (true) {
-                String line = lines.poll(Math.max(0, deadline - System.nanoTime()), TimeUnit.NANOSECONDS);
+                String line = lines.next(deadline);
                 if (line == null) {
                     throw new TimeoutException(name + " did not answer '" + prefix + "' within " + within + " (log: target/it-logs/" + name + ".log)");
                 }
                 if (line.startsWith(prefix)) {
                     return line;
                 }
-                if (line.startsWith("ERR") || line.startsWith("EOF")) {
+                if (line.startsWith("ERR") || StdoutLines.ended(line)) {
                     throw new IllegalStateException(name + " answered '" + line + "' while '" + prefix + "' was expected (log: target/it-logs/" + name + ".log)");
                 }
             }

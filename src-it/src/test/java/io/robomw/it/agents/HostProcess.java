@@ -1,8 +1,8 @@
 package io.robomw.it.agents;
 
-import java.io.BufferedReader;
+import io.robomw.it.StdoutLines;
+
 import java.io.IOException;
-import java.io.InputStreamReader;
 import java.net.InetAddress;
 import java.net.InetSocketAddress;
 import java.net.ServerSocket;
@@ -12,8 +12,6 @@ import java.nio.file.Path;
 import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
-import java.util.concurrent.BlockingQueue;
-import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
 
 import io.robomw.it.demo.MwProcess;
@@ -35,7 +33,6 @@ final class HostProcess implements AutoCloseable {
     private final List<String> hostArgs;
     private final Path log;
     private Process process;
-    private BlockingQueue<String> lines;
 
     private HostProcess(String name, int port, List<String> hostArgs) throws IOException {
         this.name = name;
@@ -75,32 +72,17 @@ final class HostProcess implements AutoCloseable {
                 "--name", name, "--port", String.valueOf(port)));
         command.addAll(hostArgs);
         process = new ProcessBuilder(command).redirectError(ProcessBuilder.Redirect.appendTo(log.toFile())).start();
-        BlockingQueue<String> q = new LinkedBlockingQueue<>();
-        lines = q;
-        Process p = process;
-        Thread reader = new Thread(() -> {
-            try (BufferedReader r = new BufferedReader(new InputStreamReader(p.getInputStream(), StandardCharsets.UTF_8))) {
-                String line;
-                while ((line = r.readLine()) != null) {
-                    q.add(line);
-                }
-            } catch (IOException e) {
-                q.add("EOF " + e);
-            }
-            q.add("EOF");
-        }, "it-host-stdout-" + name);
-        reader.setDaemon(true);
-        reader.start();
+        StdoutLines q = new StdoutLines(process, "it-host-stdout-" + name);
         long deadline = System.nanoTime() + START.toNanos();
         while (true) {
             String line;
             try {
-                line = q.poll(Math.max(0, deadline - System.nanoTime()), TimeUnit.NANOSECONDS);
+                line = q.next(deadline);
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
                 throw new IOException("interrupted", e);
             }
-            if (line == null || line.startsWith("EOF")) {
+            if (line == null || StdoutLines.ended(line)) {
                 close();
                 fail("agent host " + name + " did not start within " + START + " (log: " + log + ")");
             }

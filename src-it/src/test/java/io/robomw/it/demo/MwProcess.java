@@ -1,9 +1,9 @@
 package io.robomw.it.demo;
 
-import java.io.BufferedReader;
+import io.robomw.it.StdoutLines;
+
 import java.io.File;
 import java.io.IOException;
-import java.io.InputStreamReader;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -11,9 +11,6 @@ import java.time.Duration;
 import java.util.ArrayList;
 import java.util.Arrays;
 import java.util.List;
-import java.util.concurrent.BlockingQueue;
-import java.util.concurrent.CopyOnWriteArrayList;
-import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
 import java.util.stream.Collectors;
 
@@ -31,26 +28,12 @@ public final class MwProcess implements AutoCloseable {
 
     private final String name;
     private final Process process;
-    private final BlockingQueue<String> lines = new LinkedBlockingQueue<>();
-    private final List<String> all = new CopyOnWriteArrayList<>();
+    private final StdoutLines lines;
 
     private MwProcess(String name, Process process) {
         this.name = name;
         this.process = process;
-        Thread reader = new Thread(() -> {
-            try (BufferedReader r = new BufferedReader(new InputStreamReader(process.getInputStream(), StandardCharsets.UTF_8))) {
-                String line;
-                while ((line = r.readLine()) != null) {
-                    all.add(line);
-                    lines.add(line);
-                }
-            } catch (IOException ignored) {
-                // ended
-            }
-            lines.add("\u0000EOF");
-        }, "it-mw-" + name);
-        reader.setDaemon(true);
-        reader.start();
+        this.lines = new StdoutLines(process, "it-mw-" + name);
     }
 
     public static MwProcess start(String name, String... args) throws IOException {
@@ -76,10 +59,10 @@ public final class MwProcess implements AutoCloseable {
     public String await(String text, Duration within) throws InterruptedException {
         long deadline = System.nanoTime() + within.toNanos();
         while (true) {
-            String line = lines.poll(Math.max(0, deadline - System.nanoTime()), TimeUnit.NANOSECONDS);
-            if (line == null || line.equals("\u0000EOF")) {
+            String line = lines.next(deadline);
+            if (line == null || StdoutLines.ended(line)) {
                 fail("mw " + name + " printed no line with '" + text + "' within " + within + " (log: target/it-logs/" + name + ".log); it printed:\n"
-                        + String.join("\n", all));
+                        + lines.transcript());
             }
             if (line.contains(text)) {
                 return line;
@@ -90,13 +73,13 @@ public final class MwProcess implements AutoCloseable {
     /** Waits for it to exit by itself. */
     public int waitFor(Duration within) throws InterruptedException {
         if (!process.waitFor(within.toMillis(), TimeUnit.MILLISECONDS)) {
-            fail("mw " + name + " did not finish within " + within + "; it printed:\n" + String.join("\n", all));
+            fail("mw " + name + " did not finish within " + within + "; it printed:\n" + lines.transcript());
         }
         return process.exitValue();
     }
 
     public String output() {
-        return String.join("\n", all);
+        return lines.transcript();
     }
 
     @Override

@@ -1,8 +1,8 @@
 package io.robomw.it.messaging;
 
-import java.io.BufferedReader;
+import io.robomw.it.StdoutLines;
+
 import java.io.IOException;
-import java.io.InputStreamReader;
 import java.io.PrintStream;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
@@ -10,8 +10,6 @@ import java.nio.file.Path;
 import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
-import java.util.concurrent.BlockingQueue;
-import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
 
 import static org.junit.jupiter.api.Assertions.fail;
@@ -30,25 +28,13 @@ public final class PeerProcess implements AutoCloseable {
     private final String name;
     private final Process process;
     private final PrintStream in;
-    private final BlockingQueue<String> lines = new LinkedBlockingQueue<>();
+    private final StdoutLines lines;
 
     private PeerProcess(String name, Process process) {
         this.name = name;
         this.process = process;
         this.in = new PrintStream(process.getOutputStream(), true, StandardCharsets.UTF_8);
-        Thread reader = new Thread(() -> {
-            try (BufferedReader r = new BufferedReader(new InputStreamReader(process.getInputStream(), StandardCharsets.UTF_8))) {
-                String line;
-                while ((line = r.readLine()) != null) {
-                    lines.add(line);
-                }
-            } catch (IOException e) {
-                lines.add("EOF " + e);
-            }
-            lines.add("EOF");
-        }, "it-peer-stdout-" + name);
-        reader.setDaemon(true);
-        reader.start();
+        this.lines = new StdoutLines(process, "it-peer-stdout-" + name);
     }
 
     /**
@@ -119,7 +105,7 @@ public final class PeerProcess implements AutoCloseable {
         while (true) {
             String line;
             try {
-                line = lines.poll(Math.max(0, deadline - System.nanoTime()), TimeUnit.NANOSECONDS);
+                line = lines.next(deadline);
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
                 throw new AssertionError("interrupted waiting for " + prefix + " from " + name, e);
@@ -130,7 +116,7 @@ public final class PeerProcess implements AutoCloseable {
             if (line.startsWith(prefix)) {
                 return line;
             }
-            if (line.startsWith("ERR") || line.startsWith("EOF")) {
+            if (line.startsWith("ERR") || StdoutLines.ended(line)) {
                 fail("peer " + name + " answered '" + line + "' while '" + prefix + "' was expected (log: target/it-logs/" + name + ".log)");
             }
         }
