@@ -960,14 +960,14 @@ public final class AgentHost implements Agency, AutoCloseable {
     /** Serves a verified call; a transfer is decoded in place (it may be megabytes), other bodies are copied out. */
     private Reply handle(String peer, Op op, byte[] message, int offset, int length) {
         if (op == Op.TRANSFER && !closed) {
-            return onTransfer(peer, message, offset, length);
+            return onTransferWithRunner(peer, message, offset, length);
         }
         byte[] body = java.util.Arrays.copyOfRange(message, offset, offset + length);
         if (closed) {
             return Reply.of(Reply.Status.REFUSED, "host " + name + " is closing");
         }
         return switch (op) {
-            case TRANSFER -> onTransfer(peer, body, 0, body.length);
+            case TRANSFER -> onTransfer(peer, body, 0, body.length, null);
             case PUT_ARCHIVE -> onArchive(peer, body);
             case LIST -> onList();
             case EVENT -> onEvent(peer, body);
@@ -976,7 +976,31 @@ public final class AgentHost implements Agency, AutoCloseable {
         };
     }
 
-    private Reply onTransfer(String peer, byte[] raw, int offset, int length) {
+    /**
+     * A transfer, with a runner thread woken as it comes in rather than once it is accepted: waking
+     * a parked thread takes tens of microseconds here, about as long as checking, reading and
+     * storing the agent, so the two overlap. The runner waits until the agent is stored (its stop
+     * never starts before that) and goes back to the pool if the transfer is not accepted. A warm
+     * A→B→A round trip with a 0 B payload: p50 104–163 → 90–129 µs in alternating probe runs.
+     */
+    private Reply onTransferWithRunner(String peer, byte[] raw, int offset, int length) {
+        java.util.concurrent.CompletableFuture<HostedAgent> accepted = new java.util.concurrent.CompletableFuture<>();
+        runners.execute(() -> {
+            HostedAgent h = accepted.join();
+            if (h != null) {
+                runStop(h, false);
+            }
+        });
+        HostedAgent[] started = new HostedAgent[1];
+        try {
+            return onTransfer(peer, raw, offset, length, started);
+        } finally {
+            accepted.complete(started[0]);
+        }
+    }
+
+    /** @param started where to put the accepted agent for a runner already woken, or {@code null} to start one */
+    private Reply onTransfer(String peer, byte[] raw, int offset, int length, HostedAgent[] started) {
         AgentImage image;
         try {
             image = AgentImage.decode(raw, offset, length);
@@ -1035,7 +1059,11 @@ public final class AgentHost implements Agency, AutoCloseable {
             // otherwise it is told, once, as news (a later arrival makes an unsent one moot).
             events.send(h.home, new AgentEvent(h.id, 0, AgentEvent.Kind.ARRIVED, address, new byte[0]), false);
         }
-        runners.execute(() -> runStop(h, false));
+        if (started != null) {
+            started[0] = h;
+        } else {
+            runners.execute(() -> runStop(h, false));
+        }
         return Reply.ok();
     }
 
