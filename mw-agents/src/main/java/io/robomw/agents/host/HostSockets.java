@@ -136,8 +136,6 @@ final class HostSockets {
     static final int RMI_PING_ACK = 0x53;
     /** A connection that carried an answer this recently is taken to be alive without asking. */
     static final long WARM_NANOS = 100_000_000L;
-    /** Pings answered on this side, for tests and the benchmark. */
-    static final LongAdder PINGS_SKIPPED = new LongAdder();
 
     /**
      * A client socket that answers RMI's liveness ping itself when the connection carried an
@@ -152,7 +150,8 @@ final class HostSockets {
      * byte, {@code 0x52}, in one write and flush, before anything else (calls start with
      * {@code 0x50}, DGC acknowledgements with {@code 0x54}).
      */
-    private static final class WarmSocket extends Socket {
+    static final class WarmSocket extends Socket {
+        private final LongAdder pingsAnswered = new LongAdder();
         private volatile long lastAnswer;
         private volatile boolean answeredSinceWrite;
         private volatile boolean ackPending;
@@ -190,6 +189,11 @@ final class HostSockets {
             return in;
         }
 
+        /** @return how many of RMI's pings this socket answered itself */
+        long pingsAnswered() {
+            return pingsAnswered.sum();
+        }
+
         private void answered(int n) {
             if (n > 0) {
                 lastAnswer = System.nanoTime();
@@ -211,7 +215,7 @@ final class HostSockets {
                         if (len == 1 && buf[off] == RMI_PING && answeredSinceWrite && System.nanoTime() - lastAnswer < WARM_NANOS) {
                             answeredSinceWrite = false;
                             ackPending = true;
-                            PINGS_SKIPPED.increment();
+                            pingsAnswered.increment();
                             return;
                         }
                         answeredSinceWrite = false;
