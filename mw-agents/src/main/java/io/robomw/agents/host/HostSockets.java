@@ -1,8 +1,8 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.net.RmiSocketSetup;
+
 import javax.net.ssl.SSLContext;
-import javax.net.ssl.SSLServerSocket;
-import javax.net.ssl.SSLSocket;
 import java.io.FilterInputStream;
 import java.io.FilterOutputStream;
 import java.io.IOException;
@@ -10,12 +10,10 @@ import java.io.InputStream;
 import java.io.OutputStream;
 import java.io.Serializable;
 import java.net.InetAddress;
-import java.net.InetSocketAddress;
 import java.net.ServerSocket;
 import java.net.Socket;
 import java.rmi.server.RMIClientSocketFactory;
 import java.rmi.server.RMIServerSocketFactory;
-import java.security.NoSuchAlgorithmException;
 import java.util.Objects;
 import java.util.concurrent.atomic.LongAdder;
 
@@ -52,17 +50,7 @@ final class HostSockets {
 
         @Override
         public ServerSocket createServerSocket(int port) throws IOException {
-            ServerSocket s;
-            if (tls != null) {
-                SSLServerSocket ssl = (SSLServerSocket) tls.getServerSocketFactory().createServerSocket();
-                ssl.setNeedClientAuth(true);
-                s = ssl;
-            } else {
-                s = new CountingServerSocket(counters);
-            }
-            s.setReuseAddress(true);
-            s.bind(new InetSocketAddress(bindAddress, port), 128);
-            return s;
+            return RmiSocketSetup.listen(() -> new CountingServerSocket(counters), tls, bindAddress, port);
         }
     }
 
@@ -243,21 +231,8 @@ final class HostSockets {
         @Override
         public Socket createSocket(String ignoredHost, int port) throws IOException {
             Socket s = tls ? new Socket() : new WarmSocket();
-            s.setTcpNoDelay(true);
-            s.connect(new InetSocketAddress(host, port), timeoutMillis);
             s.setSoTimeout(timeoutMillis);
-            if (!tls) {
-                return s;
-            }
-            try {
-                SSLSocket ssl = (SSLSocket) SSLContext.getDefault().getSocketFactory().createSocket(s, host, port, true);
-                ssl.setUseClientMode(true);
-                ssl.startHandshake();
-                return ssl;
-            } catch (NoSuchAlgorithmException e) {
-                s.close();
-                throw new IOException("no default TLS context: " + e.getMessage(), e);
-            }
+            return RmiSocketSetup.connect(s, host, port, timeoutMillis, tls);
         }
 
         @Override

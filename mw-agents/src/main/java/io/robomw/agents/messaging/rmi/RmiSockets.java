@@ -1,18 +1,15 @@
 package io.robomw.agents.messaging.rmi;
 
+import io.robomw.agents.net.RmiSocketSetup;
+
 import javax.net.ssl.SSLContext;
-import javax.net.ssl.SSLServerSocket;
-import javax.net.ssl.SSLSocket;
-import javax.net.ssl.SSLSocketFactory;
 import java.io.IOException;
 import java.io.Serializable;
 import java.net.InetAddress;
-import java.net.InetSocketAddress;
 import java.net.ServerSocket;
 import java.net.Socket;
 import java.rmi.server.RMIClientSocketFactory;
 import java.rmi.server.RMIServerSocketFactory;
-import java.security.NoSuchAlgorithmException;
 import java.util.Objects;
 
 /**
@@ -44,12 +41,7 @@ final class RmiSockets {
 
         @Override
         public ServerSocket createServerSocket(int port) throws IOException {
-            ServerSocket s = tls == null ? new ServerSocket() : tls.getServerSocketFactory().createServerSocket();
-            if (s instanceof SSLServerSocket ssl) {
-                ssl.setNeedClientAuth(true);
-            }
-            s.setReuseAddress(true);
-            s.bind(new InetSocketAddress(bindAddress, port), 128);
+            ServerSocket s = RmiSocketSetup.listen(ServerSocket::new, tls, bindAddress, port);
             boundPort = s.getLocalPort();
             return s;
         }
@@ -77,22 +69,7 @@ final class RmiSockets {
 
         @Override
         public Socket createSocket(String ignoredHost, int port) throws IOException {
-            Socket s = new Socket();
-            s.setTcpNoDelay(true);
-            s.connect(new InetSocketAddress(host, port), connectTimeoutMillis);
-            if (!tls) {
-                return s;
-            }
-            try {
-                SSLSocketFactory f = SSLContext.getDefault().getSocketFactory();
-                SSLSocket ssl = (SSLSocket) f.createSocket(s, host, port, true);
-                ssl.setUseClientMode(true);
-                ssl.startHandshake();
-                return ssl;
-            } catch (NoSuchAlgorithmException e) {
-                s.close();
-                throw new IOException("no default TLS context: " + e.getMessage(), e);
-            }
+            return RmiSocketSetup.connect(new Socket(), host, port, connectTimeoutMillis, tls);
         }
 
         @Override
