@@ -8,7 +8,9 @@ import io.robomw.api.RobotLinkException;
 import io.robomw.api.Robots;
 import io.robomw.api.SensorType;
 import io.robomw.sim.Simulation;
+import io.robomw.sim.emulator.EmulatorStack;
 import org.junit.jupiter.api.AfterEach;
+import org.junit.jupiter.api.BeforeEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
@@ -16,14 +18,10 @@ import java.io.IOException;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
-import java.util.ArrayList;
-import java.util.List;
 import java.util.Set;
 import java.util.concurrent.CompletableFuture;
-import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
-import java.util.function.BooleanSupplier;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertInstanceOf;
@@ -62,65 +60,26 @@ class Ev3FullStackTest {
     @TempDir
     Path dir;
 
-    private Simulation sim;
-    private final List<Ev3Emulator> emulators = new ArrayList<>();
+    private EmulatorStack<Ev3Emulator> stack;
     private Robot robot;
+
+    @BeforeEach
+    void stack() {
+        stack = new EmulatorStack<>(dir, ROBOT, "ev3-1", Ev3Emulator::bind);
+    }
 
     @AfterEach
     void close() {
-        if (robot != null) {
-            robot.close();
-        }
-        emulators.forEach(Ev3Emulator::close);
-        if (sim != null) {
-            sim.close();
-        }
-    }
-
-    private void world(double width, double x) throws IOException {
-        Files.writeString(dir.resolve("body.yaml"), ROBOT.formatted("port: /dev/unused"));
-        Files.writeString(dir.resolve("world.yaml"), """
-                name: ev3-stack
-                arena: { width: %s, height: 3 }
-                robots:
-                  - { robot: body.yaml, name: ev3-1, x: %s, y: 1.5, heading: 0 }
-                """.formatted(width, x));
-        sim = Simulation.load(dir.resolve("world.yaml"), Set.of("ev3-1"));
-    }
-
-    private Ev3Emulator emulator() {
-        Ev3Emulator e = Ev3Emulator.bind(sim, "ev3-1");
-        emulators.add(e);
-        return e;
+        stack.close();
     }
 
     /** A world with the robot at (x, 1.5) facing the wall at x = 3, the emulator on a pty, the driver on it. */
     private void startOnPty(double x) throws IOException {
-        world(3, x);
-        String pty = emulator().startOnPseudoTerminal();
-        sim.startRealTime(SPEED);
-        Files.writeString(dir.resolve("driver.yaml"), ROBOT.formatted("port: " + pty));
-        robot = Robots.open(dir.resolve("driver.yaml"));
+        robot = stack.openOnPseudoTerminal(x, SPEED);
     }
 
     private Pose truePose() {
-        return sim.world().robot("ev3-1").pose();
-    }
-
-    /** Waits, checking after every world step, until the condition holds; fails after the deadline. */
-    private void awaitStep(BooleanSupplier condition, Duration deadline, String what) throws InterruptedException {
-        CountDownLatch held = new CountDownLatch(1);
-        Runnable probe = () -> {
-            if (condition.getAsBoolean()) {
-                held.countDown();
-            }
-        };
-        sim.addStepListener(probe);
-        try {
-            assertTrue(held.await(deadline.toMillis(), TimeUnit.MILLISECONDS), what + " within " + deadline.toMillis() + " ms; robot at " + truePose());
-        } finally {
-            sim.removeStepListener(probe);
-        }
+        return stack.truePose();
     }
 
     @Test
@@ -167,34 +126,30 @@ class Ev3FullStackTest {
         startOnPty(0.5);
         CompletableFuture<Void> move = robot.moveAsync(1.0, 0.1);
         double before = truePose().x();
-        awaitStep(() -> truePose().x() > before + 0.05, Duration.ofSeconds(10), "the robot started moving");
+        stack.awaitStep(() -> truePose().x() > before + 0.05, Duration.ofSeconds(10), "the robot started moving");
         long killed = System.nanoTime();
-        emulators.get(0).close();
+        stack.emulator().close();
         ExecutionException e = assertThrows(ExecutionException.class, () -> move.get(1, TimeUnit.SECONDS));
         long tookNanos = System.nanoTime() - killed;
         assertInstanceOf(RobotLinkException.class, e.getCause());
         assertTrue(tookNanos < Duration.ofSeconds(1).toNanos(), "reported after " + tookNanos / 1_000_000 + " ms");
         double stoppedAt = truePose().x();
-        double t0 = sim.world().time();
-        awaitStep(() -> sim.world().time() >= t0 + 0.5, Duration.ofSeconds(5), "half a simulated second passed");
+        stack.awaitHalfASimulatedSecond();
         assertEquals(stoppedAt, truePose().x(), 0.005, "the robot stopped with its brick");
     }
 
     @Test
     void shouldReconnectOverTcpWhenEmulatorComesBackWithoutReopeningTheRobot() throws Exception {
-        world(4, 0.5);
-        Ev3Emulator first = emulator();
-        int port = first.startOnTcp("127.0.0.1", 0);
-        sim.startRealTime(SPEED);
-        Files.writeString(dir.resolve("driver.yaml"), ROBOT.formatted("host: 127.0.0.1, port: " + port));
-        robot = Robots.open(dir.resolve("driver.yaml"));
+        int port = stack.openOnTcp(4, 0.5, SPEED);
+        robot = stack.robot();
+        Ev3Emulator first = stack.emulator();
         robot.move(0.2, 0.15);
         assertEquals(0.7, truePose().x(), 0.01);
 
         first.close();
-        Ev3Emulator second = emulator();
+        Ev3Emulator second = stack.newEmulator();
         second.startOnTcp("127.0.0.1", port);
-        awaitStep(() -> second.framesServed() >= 3, Duration.ofSeconds(10), "the driver reconnected and polled the new emulator");
+        stack.awaitStep(() -> second.framesServed() >= 3, Duration.ofSeconds(10), "the driver reconnected and polled the new emulator");
         double before = truePose().x();
         robot.move(0.2, 0.15);
         assertEquals(before + 0.2, truePose().x(), 0.01);
@@ -209,17 +164,19 @@ class Ev3FullStackTest {
                 robots:
                   - { robot: "%s", name: ev3-1, x: 1.0, y: 1.5, heading: 0 }
                 """.formatted(example));
-        sim = Simulation.load(dir.resolve("world.yaml"), Set.of("ev3-1"));
-        String pty = emulator().startOnPseudoTerminal();
-        sim.startRealTime(SPEED);
         String text = Files.readString(example);
         assertTrue(text.contains("port: /dev/rfcomm0"), "the example names the Bluetooth serial port");
-        Files.writeString(dir.resolve("driver.yaml"), text.replace("port: /dev/rfcomm0", "port: " + pty));
-        robot = Robots.open(dir.resolve("driver.yaml"));
-        robot.move(0.3, 0.2);
-        assertEquals(1.3, truePose().x(), 0.01);
-        assertEquals(0.0, robot.getValue("bumper", ReturnType.BOOLEAN));
-        assertEquals(3.0 - (1.3 + 0.10), robot.getValue("sonar", ReturnType.METERS), 0.02);
-        assertEquals(0.0, robot.getValue("gyro", ReturnType.DEGREES), 1.0);
+        try (Simulation sim = Simulation.load(dir.resolve("world.yaml"), Set.of("ev3-1")); Ev3Emulator emulator = Ev3Emulator.bind(sim, "ev3-1")) {
+            String pty = emulator.startOnPseudoTerminal();
+            sim.startRealTime(SPEED);
+            Files.writeString(dir.resolve("driver.yaml"), text.replace("port: /dev/rfcomm0", "port: " + pty));
+            try (Robot ev3 = Robots.open(dir.resolve("driver.yaml"))) {
+                ev3.move(0.3, 0.2);
+                assertEquals(1.3, sim.world().robot("ev3-1").pose().x(), 0.01);
+                assertEquals(0.0, ev3.getValue("bumper", ReturnType.BOOLEAN));
+                assertEquals(3.0 - (1.3 + 0.10), ev3.getValue("sonar", ReturnType.METERS), 0.02);
+                assertEquals(0.0, ev3.getValue("gyro", ReturnType.DEGREES), 1.0);
+            }
+        }
     }
 }

@@ -4,21 +4,19 @@ import io.robomw.api.Pose;
 import io.robomw.api.Position;
 import io.robomw.api.ReturnType;
 import io.robomw.api.Robot;
-import io.robomw.api.Robots;
 import io.robomw.api.SensorType;
 import io.robomw.platform.ft.intelligent.IntelligentInterfaceTelegram;
 import io.robomw.platform.link.SerialLink;
 import io.robomw.platform.link.SerialSettings;
-import io.robomw.sim.Simulation;
+import io.robomw.sim.emulator.EmulatorStack;
 import org.junit.jupiter.api.AfterEach;
+import org.junit.jupiter.api.BeforeEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
 import java.io.IOException;
-import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
-import java.util.Set;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.locks.LockSupport;
@@ -39,7 +37,7 @@ class IntelligentInterfaceEmulatorTest {
     static final String ROBOT = """
             name: ft-1
             platform: ft-intelligent
-            connection: { port: %s }
+            connection: { %s }
             drive:
               wheel_diameter: 0.056
               track_width: 0.112
@@ -60,46 +58,25 @@ class IntelligentInterfaceEmulatorTest {
     @TempDir
     Path dir;
 
-    private Simulation sim;
-    private IntelligentInterfaceEmulator emulator;
+    private EmulatorStack<IntelligentInterfaceEmulator> stack;
     private Robot robot;
+
+    @BeforeEach
+    void stack() {
+        stack = new EmulatorStack<>(dir, ROBOT, "ft-1", IntelligentInterfaceEmulator::bind);
+    }
 
     @AfterEach
     void close() {
-        if (robot != null) {
-            robot.close();
-        }
-        if (emulator != null) {
-            emulator.close();
-        }
-        if (sim != null) {
-            sim.close();
-        }
-    }
-
-    private String startWorld(double x, double speed) throws IOException {
-        Files.writeString(dir.resolve("body.yaml"), ROBOT.formatted("/dev/unused"));
-        Files.writeString(dir.resolve("world.yaml"), """
-                name: ft-test
-                arena: { width: 3, height: 3 }
-                robots:
-                  - { robot: body.yaml, name: ft-1, x: %s, y: 1.5, heading: 0 }
-                """.formatted(x));
-        sim = Simulation.load(dir.resolve("world.yaml"), Set.of("ft-1"));
-        emulator = IntelligentInterfaceEmulator.bind(sim, "ft-1");
-        String pty = emulator.startOnPseudoTerminal();
-        sim.startRealTime(speed);
-        return pty;
+        stack.close();
     }
 
     private void start(double x, double speed) throws IOException {
-        String pty = startWorld(x, speed);
-        Files.writeString(dir.resolve("driver.yaml"), ROBOT.formatted(pty));
-        robot = Robots.open(dir.resolve("driver.yaml"));
+        robot = stack.openOnPseudoTerminal(x, speed);
     }
 
     private Pose truePose() {
-        return sim.world().robot("ft-1").pose();
+        return stack.truePose();
     }
 
     @Test
@@ -107,7 +84,7 @@ class IntelligentInterfaceEmulatorTest {
         start(0.5, 1);
         robot.move(0.5, 0.15);
         assertEquals(1.0, truePose().x(), 0.02);
-        assertEquals(0, emulator.watchdogTrips());
+        assertEquals(0, stack.emulator().watchdogTrips());
     }
 
     @Test
@@ -149,13 +126,13 @@ class IntelligentInterfaceEmulatorTest {
         long blockedNanos = System.nanoTime() - t0;
         assertTrue(blockedNanos >= Duration.ofSeconds(2).toNanos(), "the application thread was blocked in move() for 2 s, was "
                 + blockedNanos / 1_000_000 + " ms");
-        assertEquals(0, emulator.watchdogTrips(), "the platform refreshed the interface all along");
+        assertEquals(0, stack.emulator().watchdogTrips(), "the platform refreshed the interface all along");
         assertEquals(0.8, truePose().x(), 0.02);
     }
 
     @Test
     void shouldStopMotorsWhenDriverStopsRefreshing() throws Exception {
-        String pty = startWorld(0.5, 1);
+        String pty = stack.startOnPseudoTerminal(0.5, 1);
         try (SerialLink link = new SerialLink(pty, SerialSettings.of(9600, 8, SerialSettings.Parity.NONE, 1))) {
             link.open();
             int bothForward = IntelligentInterfaceTelegram.withMotor(IntelligentInterfaceTelegram.withMotor(0, 0, IntelligentInterfaceTelegram.CW),
@@ -166,17 +143,17 @@ class IntelligentInterfaceEmulatorTest {
             assertEquals(1, link.read(reply, 0, 1, Duration.ofSeconds(2)));
             long sent = System.nanoTime();
             long deadline = sent + Duration.ofSeconds(2).toNanos();
-            while (!emulator.motorsOn()) {
+            while (!stack.emulator().motorsOn()) {
                 assertTrue(System.nanoTime() < deadline, "the motors should have started");
                 LockSupport.parkNanos(1_000_000);
             }
-            while (emulator.motorsOn()) {
+            while (stack.emulator().motorsOn()) {
                 assertTrue(System.nanoTime() < deadline, "the interface should stop its motors about 300 ms after the last command");
                 LockSupport.parkNanos(1_000_000);
             }
             long off = System.nanoTime() - sent;
             assertTrue(off >= Duration.ofMillis(290).toNanos(), "not before 300 ms: " + off / 1_000_000 + " ms");
-            assertEquals(1, emulator.watchdogTrips());
+            assertEquals(1, stack.emulator().watchdogTrips());
         }
     }
 }

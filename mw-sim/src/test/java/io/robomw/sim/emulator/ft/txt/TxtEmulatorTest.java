@@ -5,18 +5,16 @@ import io.robomw.api.Position;
 import io.robomw.api.ReturnType;
 import io.robomw.api.Robot;
 import io.robomw.api.RobotLinkException;
-import io.robomw.api.Robots;
 import io.robomw.api.SensorType;
-import io.robomw.sim.Simulation;
+import io.robomw.sim.emulator.EmulatorStack;
 import org.junit.jupiter.api.AfterEach;
+import org.junit.jupiter.api.BeforeEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
 import java.io.IOException;
-import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
-import java.util.Set;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
@@ -60,43 +58,28 @@ class TxtEmulatorTest {
     @TempDir
     Path dir;
 
-    private Simulation sim;
-    private TxtEmulator emulator;
+    private EmulatorStack<TxtEmulator> stack;
     private Robot robot;
+
+    @BeforeEach
+    void stack() {
+        stack = new EmulatorStack<>(dir, ROBOT, "txt-1", TxtEmulator::bind);
+    }
 
     @AfterEach
     void close() {
-        if (robot != null) {
-            robot.close();
-        }
-        if (emulator != null) {
-            emulator.close();
-        }
-        if (sim != null) {
-            sim.close();
-        }
+        stack.close();
     }
 
     /** A world with the robot at (x, 1.5) facing the wall at x = 3, the emulator on a free port, the driver on it. */
     private int start(double x) throws IOException {
-        Files.writeString(dir.resolve("body.yaml"), ROBOT.formatted("host: 127.0.0.1, port: 1"));
-        Files.writeString(dir.resolve("world.yaml"), """
-                name: txt-test
-                arena: { width: 3, height: 3 }
-                robots:
-                  - { robot: body.yaml, name: txt-1, x: %s, y: 1.5, heading: 0 }
-                """.formatted(x));
-        sim = Simulation.load(dir.resolve("world.yaml"), Set.of("txt-1"));
-        emulator = TxtEmulator.bind(sim, "txt-1");
-        int port = emulator.startOnTcp("127.0.0.1", 0);
-        sim.startRealTime(4);
-        Files.writeString(dir.resolve("driver.yaml"), ROBOT.formatted("host: 127.0.0.1, port: " + port));
-        robot = Robots.open(dir.resolve("driver.yaml"));
+        int port = stack.openOnTcp(3, x, 4);
+        robot = stack.robot();
         return port;
     }
 
     private Pose truePose() {
-        return sim.world().robot("txt-1").pose();
+        return stack.truePose();
     }
 
     @Test
@@ -142,22 +125,14 @@ class TxtEmulatorTest {
         start(0.5);
         CompletableFuture<Void> move = robot.moveAsync(1.0, 0.1);
         double before = truePose().x();
-        long deadline = System.nanoTime() + Duration.ofSeconds(10).toNanos();
-        while (truePose().x() < before + 0.05) {
-            assertTrue(System.nanoTime() < deadline, "the robot should have started moving");
-            LockSupport.parkNanos(1_000_000);
-        }
+        stack.awaitStep(() -> truePose().x() > before + 0.05, Duration.ofSeconds(10), "the robot started moving");
         long killed = System.nanoTime();
-        emulator.close();
+        stack.emulator().close();
         ExecutionException e = assertThrows(ExecutionException.class, () -> move.get(1, TimeUnit.SECONDS));
         assertInstanceOf(RobotLinkException.class, e.getCause());
         assertTrue(System.nanoTime() - killed < Duration.ofSeconds(1).toNanos());
         double stoppedAt = truePose().x();
-        double t0 = sim.world().time();
-        long until = System.nanoTime() + Duration.ofSeconds(5).toNanos();
-        while (sim.world().time() < t0 + 0.5 && System.nanoTime() < until) {
-            LockSupport.parkNanos(1_000_000);
-        }
+        stack.awaitHalfASimulatedSecond();
         assertEquals(stoppedAt, truePose().x(), 0.03, "the robot stopped with its controller");
     }
 
@@ -166,9 +141,8 @@ class TxtEmulatorTest {
         int port = start(0.5);
         robot.move(0.2, 0.15);
 
-        emulator.close();
-        emulator = TxtEmulator.bind(sim, "txt-1");
-        emulator.startOnTcp("127.0.0.1", port);
+        stack.emulator().close();
+        stack.newEmulator().startOnTcp("127.0.0.1", port);
         double before = truePose().x();
         long deadline = System.nanoTime() + Duration.ofSeconds(10).toNanos();
         while (true) {
