@@ -78,7 +78,7 @@ public final class Simulation implements AutoCloseable {
                 }
                 RobotDescription d = r.description();
                 PlatformProvider provider = DescriptionRobotFactory.provider(d);
-                RobotPlatform platform = provider.open(DescriptionRobotFactory.platformConfig(d, services.with(RobotDescription.class, d), world.clock()));
+                RobotPlatform platform = provider.open(DescriptionRobotFactory.platformConfig(d, services, world.clock()));
                 robots.put(r.name(), new ConfiguredRobot(() -> d, platform, null, null, null));
             }
         } catch (IOException e) {

@@ -12,7 +12,7 @@ import java.util.Objects;
  * @param robotName       the robot's name, for thread names and error messages
  * @param platformName    the {@code platform:} value
  * @param connection      the {@code connection:} block
- * @param motorPorts      the ports of every motor the description uses (wheels and actuators)
+ * @param motors          every motor the description uses: wheels first, then actuators
  * @param sensors         the sensors
  * @param cyclePeriod     period of the execution action thread
  * @param watchdogTimeout default timeout of continuous commands; {@link Duration#ZERO} is off
@@ -20,7 +20,7 @@ import java.util.Objects;
  * @param services        services the program handed over (a simulated world...)
  */
 public record PlatformConfig(String robotName, String platformName, ConnectionSettings connection,
-                             List<String> motorPorts, List<SensorChannel> sensors,
+                             List<MotorChannel> motors, List<SensorChannel> sensors,
                              Duration cyclePeriod, Duration watchdogTimeout, Clock clock,
                              PlatformServices services) {
 
@@ -29,7 +29,7 @@ public record PlatformConfig(String robotName, String platformName, ConnectionSe
         Objects.requireNonNull(robotName, "robotName");
         Objects.requireNonNull(platformName, "platformName");
         Objects.requireNonNull(connection, "connection");
-        motorPorts = List.copyOf(motorPorts);
+        motors = List.copyOf(motors);
         sensors = List.copyOf(sensors);
         Objects.requireNonNull(cyclePeriod, "cyclePeriod");
         Objects.requireNonNull(watchdogTimeout, "watchdogTimeout");
@@ -38,6 +38,29 @@ public record PlatformConfig(String robotName, String platformName, ConnectionSe
         if (cyclePeriod.isZero() || cyclePeriod.isNegative()) {
             throw new IllegalArgumentException(robotName + ": cyclePeriod must be > 0, got " + cyclePeriod);
         }
+        for (int i = 0; i < motors.size(); i++) {
+            for (int j = i + 1; j < motors.size(); j++) {
+                if (motors.get(i).port().equals(motors.get(j).port())) {
+                    throw new IllegalArgumentException(connection.source() + ": motor port " + motors.get(i).port()
+                            + " is used twice (as " + motors.get(i).role() + " and " + motors.get(j).role() + "); give each motor its own port");
+                }
+            }
+        }
+    }
+
+    /** @return the ports of every motor, in the order of {@link #motors()} */
+    public List<String> motorPorts() {
+        return motors.stream().map(MotorChannel::port).toList();
+    }
+
+    /** @return the drive's wheel motors, left then right; empty when the robot has no drive */
+    public List<MotorChannel> wheels() {
+        return motors.stream().filter(m -> m.role().wheel()).toList();
+    }
+
+    /** @return where the configuration came from (the description file), for error messages */
+    public String source() {
+        return connection.source();
     }
 
     /**

@@ -2,6 +2,7 @@ package io.robomw.config.description;
 
 import io.robomw.api.Capability;
 import io.robomw.api.spi.ConnectionSettings;
+import io.robomw.api.spi.MotorChannel;
 
 import java.time.Duration;
 import java.util.List;
@@ -45,6 +46,14 @@ public record RobotDescription(String name, String platform, ConnectionSettings 
     public List<String> motorPorts() {
         Stream<String> wheels = drive.stream().flatMap(d -> Stream.of(d.left().port(), d.right().port()));
         return Stream.concat(wheels, actuators.stream().map(ActuatorSpec::port)).toList();
+    }
+
+    /** @return every motor as its platform is told of it: wheels first (with their encoders and counters), then actuators */
+    public List<MotorChannel> motors() {
+        Stream<MotorChannel> wheels = drive.stream().flatMap(d -> Stream.of(
+                new MotorChannel(d.left().port(), MotorChannel.Role.LEFT_WHEEL, d.encoderTicksPerRevolution(), d.left().counter()),
+                new MotorChannel(d.right().port(), MotorChannel.Role.RIGHT_WHEEL, d.encoderTicksPerRevolution(), d.right().counter())));
+        return Stream.concat(wheels, actuators.stream().map(a -> MotorChannel.actuator(a.port()))).toList();
     }
 
     /**

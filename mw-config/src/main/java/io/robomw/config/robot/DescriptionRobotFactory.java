@@ -46,7 +46,7 @@ public final class DescriptionRobotFactory implements RobotFactory {
         RobotDescription d = description.current();
         RobotPlatform platform;
         try {
-            PlatformConfig config = platformConfig(d, services.with(RobotDescription.class, d), clock);
+            PlatformConfig config = platformConfig(d, services, clock);
             PlatformConfig opened = services.find(ConnectionOverride.class).map(o -> o.applyTo(config)).orElse(config);
             platform = provider(d).open(opened);
         } catch (IOException e) {
@@ -72,7 +72,7 @@ public final class DescriptionRobotFactory implements RobotFactory {
      * @return what its platform is told
      */
     public static PlatformConfig platformConfig(RobotDescription d, PlatformServices services, Clock clock) {
-        return new PlatformConfig(d.name(), d.platform(), d.connection(), d.motorPorts(),
+        return new PlatformConfig(d.name(), d.platform(), d.connection(), d.motors(),
                 d.sensors().stream().map(s -> new SensorChannel(s.name(), s.type(), s.port(), s.options())).toList(),
                 d.cyclePeriod(), d.watchdogTimeout(), clock, services);
     }

@@ -47,7 +47,8 @@ class Ev3PlatformTest {
     }
 
     private static PlatformConfig config(List<String> motors) {
-        return new PlatformConfig("ev3-test", "ev3", new ConnectionSettings(Map.of(), "test.yaml"), motors, List.of(),
+        return new PlatformConfig("ev3-test", "ev3", new ConnectionSettings(Map.of(), "test.yaml"),
+                motors.stream().map(io.robomw.api.spi.MotorChannel::actuator).toList(), List.of(),
                 Duration.ofMillis(10), Duration.ZERO, Clock.system(), PlatformServices.none());
     }
 

@@ -131,7 +131,8 @@ class GenericMotorPlatformTest {
     }
 
     private BrickPlatform open() throws IOException {
-        PlatformConfig config = new PlatformConfig("fake", "fake", new ConnectionSettings(Map.of(), "test"), List.of("B", "C"),
+        PlatformConfig config = new PlatformConfig("fake", "fake", new ConnectionSettings(Map.of(), "test"),
+                List.of(io.robomw.api.spi.MotorChannel.actuator("B"), io.robomw.api.spi.MotorChannel.actuator("C")),
                 List.of(new SensorChannel("left-tacho", io.robomw.api.SensorType.TACHO, "B", Map.of()),
                         new SensorChannel("sonar", io.robomw.api.SensorType.SONAR, "S4", Map.of())),
                 PERIOD, Duration.ofMillis(500), clock, PlatformServices.none());

@@ -68,7 +68,7 @@ final class HostProcess implements AutoCloseable {
 
     private void launch() throws IOException {
         List<String> command = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-cp", middlewareOnlyClassPath(), "io.robomw.agents.cli.Mw", "host",
+                "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-cp", middlewareOnlyClassPath(), "io.robomw.cli.Mw", "host",
                 "--name", name, "--port", String.valueOf(port)));
         command.addAll(hostArgs);
         process = new ProcessBuilder(command).redirectError(ProcessBuilder.Redirect.appendTo(log.toFile())).start();

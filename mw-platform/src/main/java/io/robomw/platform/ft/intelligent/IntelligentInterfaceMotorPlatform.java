@@ -1,8 +1,7 @@
 package io.robomw.platform.ft.intelligent;
 
+import io.robomw.api.spi.MotorChannel;
 import io.robomw.api.spi.PlatformConfig;
-import io.robomw.config.description.DifferentialDrive;
-import io.robomw.config.description.RobotDescription;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.ft.FtMotors;
 import io.robomw.platform.motor.GenericMotorPlatform;
@@ -56,12 +55,11 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
     private boolean readEy;
 
     /**
-     * @param config      the platform configuration (motor ports M1..M4)
-     * @param description the robot's description (which input counts which wheel)
+     * @param config      the platform configuration (motor ports M1..M4; which input counts which wheel)
      * @param channel     the channel to the interface
      * @param inputs      where the latest inputs are published for the sensor platform
      */
-    public IntelligentInterfaceMotorPlatform(PlatformConfig config, RobotDescription description, BrickChannel channel,
+    public IntelligentInterfaceMotorPlatform(PlatformConfig config, BrickChannel channel,
                                              IntelligentInterfaceInputs inputs) {
         super(config.robotName(), config.clock(), config.motorPorts());
         this.channel = channel;
@@ -69,19 +67,17 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
         for (String port : config.motorPorts()) {
             FtMotors.index(port, IntelligentInterfaceTelegram.MOTORS);
         }
-        this.ticksPerRevolution = description.drive().map(DifferentialDrive::encoderTicksPerRevolution).orElse(0);
-        description.drive().ifPresent(d -> {
-            for (DifferentialDrive.Wheel w : List.of(d.left(), d.right())) {
-                w.counter().ifPresent(c -> {
-                    int bit = IntelligentInterfaceTelegram.digitalInput(c);
-                    if (bit < 0) {
-                        throw new IllegalArgumentException(description.source() + ": wheel counter '" + c
-                                + "' must be a digital input of the Intelligent Interface, E1 to E8");
-                    }
-                    counterOf.put(w.port(), bit);
-                });
-            }
-        });
+        this.ticksPerRevolution = config.wheels().stream().mapToInt(MotorChannel::encoderTicksPerRevolution).max().orElse(0);
+        for (MotorChannel w : config.wheels()) {
+            w.counter().ifPresent(c -> {
+                int bit = IntelligentInterfaceTelegram.digitalInput(c);
+                if (bit < 0) {
+                    throw new IllegalArgumentException(config.source() + ": wheel counter '" + c
+                            + "' must be a digital input of the Intelligent Interface, E1 to E8");
+                }
+                counterOf.put(w.port(), bit);
+            });
+        }
     }
 
     @Override

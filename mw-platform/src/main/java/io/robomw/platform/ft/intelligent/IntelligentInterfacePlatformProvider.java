@@ -3,7 +3,6 @@ package io.robomw.platform.ft.intelligent;
 import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
-import io.robomw.config.description.RobotDescription;
 import io.robomw.platform.BrickPlatform;
 import io.robomw.platform.LinkThreading;
 import io.robomw.platform.brick.BrickChannel;
@@ -27,10 +26,8 @@ public final class IntelligentInterfacePlatformProvider implements PlatformProvi
 
     @Override
     public RobotPlatform open(PlatformConfig config) throws IOException {
-        RobotDescription description = config.services().find(RobotDescription.class).orElseThrow(() -> new IOException(
-                "robot '" + config.robotName() + "': the ft-intelligent platform needs the robot's description (open it through Robots.open)"));
         if (config.cyclePeriod().compareTo(Duration.ofMillis(50)) > 0) {
-            throw new IOException(description.source() + ": cycle_hz must be at least 20 for an Intelligent Interface, which stops its motors "
+            throw new IOException(config.source() + ": cycle_hz must be at least 20 for an Intelligent Interface, which stops its motors "
                     + "after " + IntelligentInterfaceTelegram.WATCHDOG_MILLIS + " ms without a command");
         }
         Duration timeout = Duration.ofMillis(config.connection().integer("reply_timeout_ms", 250));
@@ -38,7 +35,7 @@ public final class IntelligentInterfacePlatformProvider implements PlatformProvi
                 SerialSettings.of(9600, 8, SerialSettings.Parity.NONE, 1), 0, timeout);
         try {
             IntelligentInterfaceInputs inputs = new IntelligentInterfaceInputs();
-            IntelligentInterfaceMotorPlatform motors = new IntelligentInterfaceMotorPlatform(config, description, channel, inputs);
+            IntelligentInterfaceMotorPlatform motors = new IntelligentInterfaceMotorPlatform(config, channel, inputs);
             return new BrickPlatform(config, motors, new IntelligentInterfaceSensorPlatform(config.robotName(), motors, inputs),
                     LinkThreading.OWN_THREAD, channel).start();
         } catch (IOException | RuntimeException e) {

@@ -1,8 +1,7 @@
 package io.robomw.platform.ft.txt;
 
+import io.robomw.api.spi.MotorChannel;
 import io.robomw.api.spi.PlatformConfig;
-import io.robomw.config.description.DifferentialDrive;
-import io.robomw.config.description.RobotDescription;
 import io.robomw.platform.ft.FtMotors;
 import io.robomw.platform.motor.GenericMotorPlatform;
 import io.robomw.platform.motor.MotorState;
@@ -69,19 +68,18 @@ public final class TxtMotorPlatform extends GenericMotorPlatform {
     }
 
     /**
-     * @param config      the platform configuration (motor ports M1..M4)
-     * @param description the robot's description: which counter counts each wheel, and its pulses per motor turn
+     * @param config      the platform configuration: motor ports M1..M4, which counter counts each wheel, and its pulses per motor turn
      * @param controller  the TXT
      * @throws IllegalArgumentException if a motor port is not M1..M4 or a counter is not C1..C4
      */
-    public TxtMotorPlatform(PlatformConfig config, RobotDescription description, TxtController controller) {
+    public TxtMotorPlatform(PlatformConfig config, TxtController controller) {
         super(config.robotName(), config.clock(), config.motorPorts());
         this.controller = controller;
         for (String port : config.motorPorts()) {
             TxtPorts.motor(port);
         }
-        this.counterOf = TxtPorts.wheelCounters(description);
-        this.ticksPerRevolution = description.drive().map(DifferentialDrive::encoderTicksPerRevolution).orElse(0);
+        this.counterOf = TxtPorts.wheelCounters(config.motors(), config.source());
+        this.ticksPerRevolution = config.wheels().stream().mapToInt(MotorChannel::encoderTicksPerRevolution).max().orElse(0);
     }
 
     @Override

@@ -3,7 +3,6 @@ package io.robomw.platform.ft.txt;
 import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
-import io.robomw.config.description.RobotDescription;
 import io.robomw.platform.BrickPlatform;
 import io.robomw.platform.LinkThreading;
 import io.robomw.platform.brick.BrickChannel;
@@ -34,10 +33,8 @@ public final class TxtPlatformProvider implements PlatformProvider {
 
     @Override
     public RobotPlatform open(PlatformConfig config) throws IOException {
-        RobotDescription description = config.services().find(RobotDescription.class).orElseThrow(() -> new IOException(
-                "robot '" + config.robotName() + "': the ft-txt platform needs the robot's description (open it through Robots.open)"));
         if (config.connection().text("host").isEmpty()) {
-            throw new IOException(description.source() + ": the ft-txt platform talks TCP: give connection.host (192.168.7.2 over USB, "
+            throw new IOException(config.source() + ": the ft-txt platform talks TCP: give connection.host (192.168.7.2 over USB, "
                     + "192.168.8.2 over WLAN, 192.168.9.2 over Bluetooth) and, if not " + TxtProtocol.TCP_PORT + ", connection.port");
         }
         Duration timeout = Duration.ofMillis(config.connection().integer("reply_timeout_ms", DEFAULT_REPLY_TIMEOUT_MS));
@@ -46,7 +43,7 @@ public final class TxtPlatformProvider implements PlatformProvider {
         try {
             TxtController controller = new TxtController(config.robotName(), channel);
             controller.open();
-            TxtMotorPlatform motors = new TxtMotorPlatform(config, description, controller);
+            TxtMotorPlatform motors = new TxtMotorPlatform(config, controller);
             motors.exchangeNow();
             AutoCloseable link = () -> {
                 controller.stopOnline();

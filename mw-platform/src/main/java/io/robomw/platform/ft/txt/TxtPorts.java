@@ -1,7 +1,7 @@
 package io.robomw.platform.ft.txt;
 
-import io.robomw.config.description.DifferentialDrive;
-import io.robomw.config.description.RobotDescription;
+import io.robomw.api.spi.MotorChannel;
+import io.robomw.api.spi.PlatformConfig;
 import io.robomw.platform.ft.FtMotors;
 
 import java.util.Collections;
@@ -61,26 +61,23 @@ public final class TxtPorts {
     /**
      * Which counter counts each wheel's encoder.
      *
-     * @param description a robot description
+     * @param motors a robot's motors ({@link PlatformConfig#motors()})
+     * @param source where they were described, for error messages
      * @return wheel motor port to counter index, in wheel order (empty without a drive)
      * @throws IllegalArgumentException naming the description's file if a counter name is not C1..C4,
      *                                  or two wheels end up on one counter
      */
-    public static Map<String, Integer> wheelCounters(RobotDescription description) {
-        if (description.drive().isEmpty()) {
-            return Map.of();
-        }
-        DifferentialDrive d = description.drive().get();
+    public static Map<String, Integer> wheelCounters(List<MotorChannel> motors, String source) {
         Map<String, Integer> counters = new LinkedHashMap<>();
-        for (DifferentialDrive.Wheel w : List.of(d.left(), d.right())) {
+        for (MotorChannel w : motors.stream().filter(m -> m.role().wheel()).toList()) {
             int counter;
             try {
                 counter = w.counter().map(TxtPorts::counter).orElseGet(() -> motor(w.port()));
             } catch (IllegalArgumentException e) {
-                throw new IllegalArgumentException(description.source() + ": wheel on " + w.port() + ": " + e.getMessage(), e);
+                throw new IllegalArgumentException(source + ": wheel on " + w.port() + ": " + e.getMessage(), e);
             }
             if (counters.containsValue(counter)) {
-                throw new IllegalArgumentException(description.source() + ": both wheels are counted on C" + (counter + 1)
+                throw new IllegalArgumentException(source + ": both wheels are counted on C" + (counter + 1)
                         + "; give each wheel its own counter (counter: C1 .. C4; by default Mi is counted on Ci)");
             }
             counters.put(w.port(), counter);

@@ -1,20 +1,12 @@
 package io.robomw.platform.ft.txt;
 
-import io.robomw.api.Capability;
 import io.robomw.api.Clock;
-import io.robomw.api.Position;
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.SensorType;
 import io.robomw.api.spi.ConnectionSettings;
+import io.robomw.api.spi.MotorChannel;
 import io.robomw.api.spi.PlatformConfig;
-import io.robomw.api.spi.PlatformServices;
 import io.robomw.api.spi.SensorChannel;
-import io.robomw.config.description.Body;
-import io.robomw.config.description.Conversion;
-import io.robomw.config.description.DifferentialDrive;
-import io.robomw.config.description.RobotDescription;
-import io.robomw.config.description.SensorSpec;
-import io.robomw.config.robot.DescriptionRobotFactory;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.SerialSettings;
 import io.robomw.platform.motor.MotorState;
@@ -27,7 +19,6 @@ import java.time.Duration;
 import java.util.List;
 import java.util.Map;
 import java.util.Optional;
-import java.util.Set;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.locks.LockSupport;
 
@@ -63,19 +54,18 @@ class TxtDriverTest {
         }
     }
 
-    private void open(Optional<String> leftCounter, Optional<String> rightCounter, List<SensorSpec> sensors) throws IOException {
+    private void open(Optional<String> leftCounter, Optional<String> rightCounter, List<SensorChannel> sensors) throws IOException {
         txt = new FakeTxt();
         ConnectionSettings connection = new ConnectionSettings(Map.of("host", "127.0.0.1", "port", txt.port()), "txt-test.yaml");
-        DifferentialDrive drive = new DifferentialDrive(0.056, 0.112, 1, 0.30, TICKS,
-                new DifferentialDrive.Wheel("M1", false, leftCounter), new DifferentialDrive.Wheel("M2", false, rightCounter));
-        RobotDescription d = new RobotDescription("txt-test", "ft-txt", connection, Duration.ofMillis(10), Duration.ZERO,
-                Set.of(Capability.GROUND), Optional.of(drive), Body.DEFAULT, sensors, List.of(), "txt-test.yaml");
-        PlatformConfig config = DescriptionRobotFactory.platformConfig(d, PlatformServices.none().with(RobotDescription.class, d), Clock.system());
+        List<MotorChannel> wheels = List.of(new MotorChannel("M1", MotorChannel.Role.LEFT_WHEEL, TICKS, leftCounter),
+                new MotorChannel("M2", MotorChannel.Role.RIGHT_WHEEL, TICKS, rightCounter));
+        PlatformConfig config = new PlatformConfig("txt-test", "ft-txt", connection, wheels, sensors, Duration.ofMillis(10), Duration.ZERO,
+                Clock.system(), io.robomw.api.spi.PlatformServices.none());
         channel = BrickChannel.open("txt-test", connection, SerialSettings.of(115200, 8, SerialSettings.Parity.NONE, 1),
                 TxtProtocol.TCP_PORT, Duration.ofMillis(500));
         controller = new TxtController("txt-test", channel);
         controller.open();
-        motors = new TxtMotorPlatform(config, d, controller);
+        motors = new TxtMotorPlatform(config, controller);
     }
 
     private void open() throws IOException {
@@ -212,24 +202,20 @@ class TxtDriverTest {
         assertTrue(e.getMessage().contains("txt-test.yaml") && e.getMessage().contains("C1 to C4"), e.getMessage());
     }
 
-    private static SensorSpec sensor(String name, SensorType type, String port, Map<String, Object> options) {
-        return new SensorSpec(name, type, Position.FRONT, port, Conversion.IDENTITY, options);
-    }
-
-    private static SensorChannel channelOf(SensorSpec s) {
-        return new SensorChannel(s.name(), s.type(), s.port(), s.options());
+    private static SensorChannel sensor(String name, SensorType type, String port, Map<String, Object> options) {
+        return new SensorChannel(name, type, port, options);
     }
 
     @Test
     void shouldConfigureEachSensorsInputAndReadIt() throws Exception {
-        SensorSpec bumper = sensor("bumper", SensorType.TOUCH, "I1", Map.of());
-        SensorSpec sonar = sensor("sonar", SensorType.SONAR, "I2", Map.of());
-        SensorSpec photo = sensor("photo", SensorType.LIGHT, "I8", Map.of("input", "resistance"));
+        SensorChannel bumper = sensor("bumper", SensorType.TOUCH, "I1", Map.of());
+        SensorChannel sonar = sensor("sonar", SensorType.SONAR, "I2", Map.of());
+        SensorChannel photo = sensor("photo", SensorType.LIGHT, "I8", Map.of("input", "resistance"));
         open(Optional.of("C1"), Optional.empty(), List.of(bumper, sonar, photo));
         TxtSensorPlatform sensors = new TxtSensorPlatform(motors, controller);
-        Sensor b = sensors.createSensor(channelOf(bumper));
-        Sensor s = sensors.createSensor(channelOf(sonar));
-        Sensor p = sensors.createSensor(channelOf(photo));
+        Sensor b = sensors.createSensor(bumper);
+        Sensor s = sensors.createSensor(sonar);
+        Sensor p = sensors.createSensor(photo);
         TxtProtocol.Config config = txt.lastConfig();
         assertArrayEquals(new int[]{1, 3, 1, 1, 1, 1, 1, 1}, config.inputMode());
         assertArrayEquals(new int[]{1, 0, 1, 1, 1, 1, 1, 0}, config.inputDigital());
@@ -245,20 +231,20 @@ class TxtDriverTest {
     void shouldRefuseSensorsTheInputsCannotRead() throws Exception {
         open();
         TxtSensorPlatform sensors = new TxtSensorPlatform(motors, controller);
-        IOException gyro = assertThrows(IOException.class, () -> sensors.createSensor(channelOf(sensor("g", SensorType.GYRO, "I1", Map.of()))));
+        IOException gyro = assertThrows(IOException.class, () -> sensors.createSensor(sensor("g", SensorType.GYRO, "I1", Map.of())));
         assertTrue(gyro.getMessage().contains("GYRO"), gyro.getMessage());
-        IOException port = assertThrows(IOException.class, () -> sensors.createSensor(channelOf(sensor("t", SensorType.TOUCH, "S1", Map.of()))));
+        IOException port = assertThrows(IOException.class, () -> sensors.createSensor(sensor("t", SensorType.TOUCH, "S1", Map.of())));
         assertTrue(port.getMessage().contains("I1 to I8"), port.getMessage());
-        IOException mode = assertThrows(IOException.class, () -> sensors.createSensor(channelOf(sensor("t", SensorType.TOUCH, "I1",
-                Map.of("input", "capacitive")))));
+        IOException mode = assertThrows(IOException.class, () -> sensors.createSensor(sensor("t", SensorType.TOUCH, "I1",
+                Map.of("input", "capacitive"))));
         assertTrue(mode.getMessage().contains("capacitive"), mode.getMessage());
     }
 
     @Test
     void shouldFailAReadWithRobotLinkExceptionWhenTheTxtIsGone() throws Exception {
-        SensorSpec bumper = sensor("bumper", SensorType.TOUCH, "I1", Map.of());
+        SensorChannel bumper = sensor("bumper", SensorType.TOUCH, "I1", Map.of());
         open(Optional.of("C1"), Optional.empty(), List.of(bumper));
-        Sensor b = new TxtSensorPlatform(motors, controller).createSensor(channelOf(bumper));
+        Sensor b = new TxtSensorPlatform(motors, controller).createSensor(bumper);
         txt.close();
         long deadline = System.nanoTime() + Duration.ofSeconds(5).toNanos();
         ExecutionException e = null;

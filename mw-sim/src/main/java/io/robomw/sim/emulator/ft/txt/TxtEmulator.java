@@ -114,7 +114,7 @@ public final class TxtEmulator extends BrickEmulator {
         for (String port : d.motorPorts()) {
             motorPort[TxtPorts.motor(port)] = port;
         }
-        for (Map.Entry<String, Integer> e : TxtPorts.wheelCounters(d).entrySet()) {
+        for (Map.Entry<String, Integer> e : TxtPorts.wheelCounters(d.motors(), d.source()).entrySet()) {
             countedMotor[e.getValue()] = e.getKey();
         }
         this.ticksPerRevolution = d.drive().map(DifferentialDrive::encoderTicksPerRevolution).orElse(0);

@@ -1,9 +1,10 @@
-package io.robomw.platform.ft.txt;
+package io.robomw.sim.emulator.ft.txt;
 
 import io.robomw.config.description.DifferentialDrive;
 import io.robomw.config.description.RobotDescription;
 import io.robomw.config.description.RobotDescriptionLoader;
 import io.robomw.config.description.SensorSpec;
+import io.robomw.platform.ft.txt.TxtPorts;
 import org.junit.jupiter.api.Test;
 
 import java.nio.file.Path;
@@ -30,7 +31,7 @@ class TxtExampleRobotTest {
         assertEquals(n.maxSpeed(), t.maxSpeed());
         assertEquals(nxt.body(), txt.body());
         assertEquals(63, t.encoderTicksPerRevolution());
-        assertEquals(Map.of("M1", 0, "M2", 1), TxtPorts.wheelCounters(txt));
+        assertEquals(Map.of("M1", 0, "M2", 1), TxtPorts.wheelCounters(txt.motors(), txt.source()));
         SensorSpec bumper = txt.sensor("bumper").orElseThrow();
         SensorSpec sonar = txt.sensor("sonar").orElseThrow();
         assertEquals(0, TxtPorts.input(bumper.port()));

@@ -1,7 +1,9 @@
-package io.robomw.agents.messaging.robot;
+package io.robomw.cli.robot;
 
 import io.robomw.agents.messaging.MessagingNode;
 import io.robomw.agents.messaging.MessagingSettings;
+import io.robomw.agents.messaging.robot.RobotProtocol;
+import io.robomw.agents.messaging.robot.RobotServer;
 import io.robomw.api.Capability;
 import io.robomw.api.Pose;
 import io.robomw.api.Position;

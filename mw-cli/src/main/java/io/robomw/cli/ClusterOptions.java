@@ -1,4 +1,4 @@
-package io.robomw.agents.cli;
+package io.robomw.cli;
 
 import io.robomw.agents.host.ClusterKey;
 import io.robomw.agents.messaging.security.TlsSettings;

@@ -1,4 +1,4 @@
-package io.robomw.agents.cli;
+package io.robomw.cli;
 
 import io.robomw.config.description.DescriptionException;
 import io.robomw.sim.Simulation;

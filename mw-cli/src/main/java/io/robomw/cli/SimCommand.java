@@ -1,4 +1,4 @@
-package io.robomw.agents.cli;
+package io.robomw.cli;
 
 import io.robomw.api.Pose;
 import io.robomw.api.Robot;

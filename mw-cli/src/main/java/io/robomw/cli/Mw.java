@@ -1,4 +1,4 @@
-package io.robomw.agents.cli;
+package io.robomw.cli;
 
 import picocli.CommandLine;
 import picocli.CommandLine.Command;

@@ -1,4 +1,4 @@
-package io.robomw.agents.cli;
+package io.robomw.cli;
 
 import io.robomw.agents.host.AgentHost;
 import io.robomw.api.Robot;

@@ -1,4 +1,4 @@
-package io.robomw.agents.cli;
+package io.robomw.cli;
 
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;

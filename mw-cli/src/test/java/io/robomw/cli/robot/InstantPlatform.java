@@ -1,4 +1,4 @@
-package io.robomw.agents.messaging.robot;
+package io.robomw.cli.robot;
 
 import io.robomw.api.spi.MotorCommand;
 import io.robomw.api.spi.MotorTarget;

@@ -1,4 +1,4 @@
-package io.robomw.agents.cli;
+package io.robomw.cli;
 
 import java.lang.reflect.RecordComponent;
 import java.util.Collection;
