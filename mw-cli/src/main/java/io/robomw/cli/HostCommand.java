@@ -61,8 +61,13 @@ final class HostCommand implements Callable<Integer> {
     @Option(names = "--allow", split = ",", paramLabel = "CLASS", description = "classes agent state may hold besides the agent's own code and JDK value types")
     List<String> allow = new ArrayList<>();
 
-    @Option(names = "--serve", paramLabel = "ADDRESS", description = "also serve the robot to Robots.remote at this messaging address, e.g. tcp://127.0.0.1:7000 (then Robots.remote(\"tcp://127.0.0.1:7000/ROBOT\"))")
+    @Option(names = "--serve", paramLabel = "ADDRESS", description = "also serve the robot to Robots.remote at this messaging address, e.g. tcp://127.0.0.1:7000 (then Robots.remote(\"tcp://127.0.0.1:7000/ROBOT\"))"
+            + " or through a broker, mqtt://127.0.0.1:1883 (then Robots.remote(\"mqtt://127.0.0.1:1883/ROBOT\"))")
     String serve;
+
+    @Option(names = "--announce", paramLabel = "BROKER", description = "announce this host, its robot and its agents at an MQTT broker (mqtt://host:port[/prefix]),"
+            + " for mw agents --cluster BROKER; --serve mqtt://... announces there already")
+    String announce;
 
     @Option(names = "--serve-password", description = "password callers of --serve must give")
     String servePassword;
@@ -96,6 +101,7 @@ final class HostCommand implements Callable<Integer> {
                 open.add(0, robot);
             }
             String served = null;
+            io.robomw.agents.messaging.MessagingNode servingNode = null;
             if (serve != null) {
                 if (robot == null) {
                     err.println("--serve needs a robot (--robot or --world)");
@@ -104,12 +110,16 @@ final class HostCommand implements Callable<Integer> {
                 io.robomw.agents.messaging.MessagingNode node = io.robomw.agents.messaging.MessagingNode.builder(name + "-robot")
                         .settings(io.robomw.agents.messaging.robot.RobotProtocol.forServer(io.robomw.agents.messaging.MessagingSettings.defaults())).build();
                 open.add(0, node);
+                servingNode = node;
                 served = node.bind(serve) + "/" + robot.name();
                 open.add(0, io.robomw.agents.messaging.robot.RobotServer.serve(node, robot, servePassword));
             }
             AgentHost host = AgentHost.builder(name).bind(bind).port(port).robot(robot).clusterKey(cluster.key()).tls(cluster.tls())
                     .store(store).allow(allow).start();
             open.add(0, host);
+            if (announce != null || (serve != null && serve.startsWith("mqtt"))) {
+                open.add(0, HostPresence.start(host, announce, servingNode));
+            }
             out.printf("agent host %s ready at %s (robot: %s, store: %s)%n", name, host.address(), robot == null ? "none" : robot.name(),
                     store == null ? "memory" : store);
             if (served != null) {
