@@ -78,7 +78,6 @@ final class BrokerSession implements Link, Endpoint {
     private static final long MAX_RECONNECT_DELAY_MS = 5_000;
     /** Bytes an MQTT PUBLISH adds to a frame (fixed header, topic, properties), kept free below the broker's packet limit. */
     private static final int PUBLISH_OVERHEAD = 1024;
-    private static final int RECEIVE_MAXIMUM = 1024;
 
     private final MqttOptions options;
     private final Address address;
@@ -153,8 +152,9 @@ final class BrokerSession implements Link, Endpoint {
                     .cleanStart(options.sessionExpirySeconds() == 0)
                     .sessionExpiryInterval(options.sessionExpirySeconds())
                     .keepAlive(options.keepAliveSeconds())
-                    .restrictions().receiveMaximum(RECEIVE_MAXIMUM)
-                    .maximumPacketSize(context.settings().maxFrameSize() + PUBLISH_OVERHEAD).applyRestrictions()
+                    // Receive maximum stays at MQTT's 65,535: Mosquitto 2.0.11 sends more unacknowledged messages than a
+                    // lower one allows, which the client must treat as a protocol error (it disconnects).
+                    .restrictions().maximumPacketSize(context.settings().maxFrameSize() + PUBLISH_OVERHEAD).applyRestrictions()
                     .send().get(timeout, TimeUnit.MILLISECONDS);
         } catch (ExecutionException e) {
             shutDownDelivery();
