@@ -14,7 +14,7 @@ import java.util.concurrent.CompletableFuture;
  * megabytes), refuses a hop already seen, finds the class loader of the agent's archive (or asks
  * for the archive), reads the state through the filter, stores the agent before acknowledging,
  * and starts its stop on a runner thread. A homecoming (a retracted agent) goes to its
- * home.
+ * {@link Home}.
  */
 final class Transfers {
 
@@ -23,12 +23,12 @@ final class Transfers {
     private final HostState host;
     private final CodeLoaders code;
     private final Trips trips;
-    private final AgentHost home;
+    private final Home home;
     private final OwedEvents owed;
     /** Makes the second duplicate check and the store one step, so two copies of a hop cannot both be accepted. */
     private final Object acceptLock = new Object();
 
-    Transfers(HostState host, CodeLoaders code, Trips trips, AgentHost home, OwedEvents owed) {
+    Transfers(HostState host, CodeLoaders code, Trips trips, Home home, OwedEvents owed) {
         this.host = host;
         this.code = code;
         this.trips = trips;
