@@ -261,7 +261,7 @@ public final class AgentHost implements Agency, AutoCloseable {
             }
         }
         state.address = new HostAddress(bind, port, name).toString();
-        new Recovery(state, code, trips, owed).resume(storeDir);
+        new Recovery(state, code, trips, owed).resume();
         LOG.info("agent host {} listening at {} ({} store{}, robot: {})", name, state.address, state.store.durable() ? "durable " + storeDir : "memory-only",
                 tls != null ? ", mutual TLS" : "", state.robot == null ? "none" : state.robot.name());
     }
@@ -408,7 +408,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         if (r.status() != Reply.Status.OK) {
             throw new IOException(address + " answered " + r.status() + ": " + r.text());
         }
-        return Bodies.readListReply(r.body());
+        return Bodies.readListReply(r.body(), address);
     }
 
     @Override

@@ -7,8 +7,10 @@ import java.io.ByteArrayInputStream;
 import java.io.ByteArrayOutputStream;
 import java.io.DataInputStream;
 import java.io.DataOutputStream;
+import java.io.EOFException;
 import java.io.IOException;
 import java.io.UncheckedIOException;
+import java.nio.BufferUnderflowException;
 import java.nio.ByteBuffer;
 import java.nio.charset.StandardCharsets;
 import java.util.ArrayList;
@@ -28,10 +30,73 @@ import java.util.UUID;
  * PUT_ARCHIVE body [claimed SHA-256 32][the jar]
  * owed event       [home length 2][home UTF-8][the encoded AgentEvent]
  * </pre>
+ *
+ * <table>
+ * <caption>Agent status codes in a LIST reply ({@link AgentStatus}, an API type, so its codes are kept here)</caption>
+ * <tr><th>code</th><th>status</th></tr>
+ * <tr><td>0</td><td>CREATED</td></tr>
+ * <tr><td>1</td><td>ACTIVE</td></tr>
+ * <tr><td>2</td><td>IN_TRANSIT</td></tr>
+ * <tr><td>3</td><td>COMPLETED</td></tr>
+ * <tr><td>4</td><td>DISPOSED</td></tr>
+ * <tr><td>5</td><td>RETRACTED</td></tr>
+ * <tr><td>6</td><td>FAILED</td></tr>
+ * </table>
+ *
+ * <table>
+ * <caption>One-way flag of a MESSAGE body</caption>
+ * <tr><th>code</th><th>meaning</th></tr>
+ * <tr><td>0</td><td>the sender waits for the agent's answer</td></tr>
+ * <tr><td>1</td><td>one-way: nobody waits</td></tr>
+ * </table>
+ *
+ * <p>Readers check what they read: a body cut short, a code not in these tables or bytes left
+ * over fail with an error that says which, for the caller to refuse naming the peer.
  */
 final class Bodies {
 
+    /** The MESSAGE one-way flag of a message whose sender waits for the answer. */
+    static final int TWO_WAY = 0;
+    /** The MESSAGE one-way flag of a message nobody waits for. */
+    static final int ONE_WAY = 1;
+    private static final int ID_BYTES = 16;
+    /** The shortest agent in a LIST reply: id, empty class name, status, hop, empty home. */
+    private static final int MIN_LISTED_BYTES = ID_BYTES + 2 + 1 + 8 + 2;
+
     private Bodies() {
+    }
+
+    // ---- agent status codes ----
+
+    /** @return the code of a status in a LIST reply */
+    static int statusCode(AgentStatus status) {
+        return switch (status) {
+            case CREATED -> 0;
+            case ACTIVE -> 1;
+            case IN_TRANSIT -> 2;
+            case COMPLETED -> 3;
+            case DISPOSED -> 4;
+            case RETRACTED -> 5;
+            case FAILED -> 6;
+        };
+    }
+
+    /**
+     * @param code a status code as read (unsigned)
+     * @return its status
+     * @throws IllegalArgumentException naming the code if no status has it
+     */
+    static AgentStatus status(int code) {
+        return switch (code) {
+            case 0 -> AgentStatus.CREATED;
+            case 1 -> AgentStatus.ACTIVE;
+            case 2 -> AgentStatus.IN_TRANSIT;
+            case 3 -> AgentStatus.COMPLETED;
+            case 4 -> AgentStatus.DISPOSED;
+            case 5 -> AgentStatus.RETRACTED;
+            case 6 -> AgentStatus.FAILED;
+            default -> throw new IllegalArgumentException("unknown agent status code " + code + " (known: 0-6)");
+        };
     }
 
     // ---- LIST ----
@@ -46,7 +111,7 @@ final class Bodies {
                 out.writeLong(a.id().getMostSignificantBits());
                 out.writeLong(a.id().getLeastSignificantBits());
                 out.writeUTF(a.className());
-                out.writeByte(a.status().ordinal());
+                out.writeByte(statusCode(a.status()));
                 out.writeLong(a.hop());
                 out.writeUTF(a.home());
             }
@@ -58,22 +123,39 @@ final class Bodies {
 
     /**
      * @param body a LIST reply's body
+     * @param from the host that sent it, for errors
      * @return the agents it lists
-     * @throws IOException if it is cut short
+     * @throws IOException naming the host and what is wrong, if it is cut short, has bytes left over or holds an unknown status code
      */
-    static List<AgentInfo> readListReply(byte[] body) throws IOException {
+    static List<AgentInfo> readListReply(byte[] body, String from) throws IOException {
         DataInputStream in = new DataInputStream(new ByteArrayInputStream(body));
-        int n = in.readInt();
-        List<AgentInfo> out = new ArrayList<>();
-        for (int i = 0; i < n; i++) {
-            UUID id = new UUID(in.readLong(), in.readLong());
-            String cls = in.readUTF();
-            AgentStatus status = AgentStatus.values()[in.readByte()];
-            long hop = in.readLong();
-            String home = in.readUTF();
-            out.add(new AgentInfo(id, cls, status, hop, home));
+        try {
+            int n = in.readInt();
+            if (n < 0 || n > (body.length - 4) / MIN_LISTED_BYTES) {
+                throw new IOException("host " + from + " sent a LIST reply of " + body.length + " bytes claiming " + n + " agents");
+            }
+            List<AgentInfo> out = new ArrayList<>(n);
+            for (int i = 0; i < n; i++) {
+                UUID id = new UUID(in.readLong(), in.readLong());
+                String cls = in.readUTF();
+                int code = in.readUnsignedByte();
+                AgentStatus status;
+                try {
+                    status = status(code);
+                } catch (IllegalArgumentException e) {
+                    throw new IOException("host " + from + " listed agent " + id + " with an " + e.getMessage(), e);
+                }
+                long hop = in.readLong();
+                String home = in.readUTF();
+                out.add(new AgentInfo(id, cls, status, hop, home));
+            }
+            if (in.available() > 0) {
+                throw new IOException("host " + from + " sent a LIST reply with " + in.available() + " bytes after its " + n + " agents");
+            }
+            return out;
+        } catch (EOFException e) {
+            throw new IOException("host " + from + " sent a LIST reply cut short (" + body.length + " bytes)", e);
         }
-        return out;
     }
 
     // ---- MESSAGE ----
@@ -90,18 +172,28 @@ final class Bodies {
 
     /** @return a MESSAGE body */
     static byte[] message(UUID id, boolean oneway, byte[] content) {
-        return ByteBuffer.allocate(17 + content.length).putLong(id.getMostSignificantBits()).putLong(id.getLeastSignificantBits())
-                .put((byte) (oneway ? 1 : 0)).put(content).array();
+        return ByteBuffer.allocate(ID_BYTES + 1 + content.length).putLong(id.getMostSignificantBits()).putLong(id.getLeastSignificantBits())
+                .put((byte) (oneway ? ONE_WAY : TWO_WAY)).put(content).array();
     }
 
-    /** @param body a MESSAGE body @return the message */
+    /**
+     * @param body a MESSAGE body
+     * @return the message
+     * @throws IllegalArgumentException if it is shorter than its header or its one-way flag is unknown
+     */
     static Message readMessage(byte[] body) {
+        if (body.length < ID_BYTES + 1) {
+            throw new IllegalArgumentException("a MESSAGE body of " + body.length + " bytes is shorter than its " + (ID_BYTES + 1) + "-byte header");
+        }
         ByteBuffer b = ByteBuffer.wrap(body);
         UUID id = new UUID(b.getLong(), b.getLong());
-        boolean oneway = b.get() != 0;
+        int flag = b.get() & 0xFF;
+        if (flag != ONE_WAY && flag != TWO_WAY) {
+            throw new IllegalArgumentException("unknown one-way flag " + flag + " in a MESSAGE for agent " + id + " (known: 0 two-way, 1 one-way)");
+        }
         byte[] content = new byte[b.remaining()];
         b.get(content);
-        return new Message(id, oneway, content);
+        return new Message(id, flag == ONE_WAY, content);
     }
 
     // ---- RETRACT, DISPOSE ----
@@ -111,8 +203,15 @@ final class Bodies {
         return ByteBuffer.allocate(16).putLong(id.getMostSignificantBits()).putLong(id.getLeastSignificantBits()).array();
     }
 
-    /** @param body a RETRACT or DISPOSE body @return the agent it names */
+    /**
+     * @param body a RETRACT or DISPOSE body
+     * @return the agent it names
+     * @throws IllegalArgumentException if it is not an id's 16 bytes
+     */
     static UUID readAgentRequest(byte[] body) {
+        if (body.length != ID_BYTES) {
+            throw new IllegalArgumentException("a RETRACT or DISPOSE body of " + body.length + " bytes; it is an agent id's " + ID_BYTES);
+        }
         ByteBuffer b = ByteBuffer.wrap(body);
         return new UUID(b.getLong(), b.getLong());
     }
@@ -165,13 +264,21 @@ final class Bodies {
         return ByteBuffer.allocate(2 + homeBytes.length + e.length).putShort((short) homeBytes.length).put(homeBytes).put(e).array();
     }
 
-    /** @param record the stored form of an owed event @return the event and its home */
+    /**
+     * @param record the stored form of an owed event
+     * @return the event and its home
+     * @throws IllegalArgumentException if it is cut short or its event is not one (the message says which)
+     */
     static OwedEvent readOwedEvent(byte[] record) {
         ByteBuffer b = ByteBuffer.wrap(record);
-        byte[] home = new byte[Short.toUnsignedInt(b.getShort())];
-        b.get(home);
-        byte[] e = new byte[b.remaining()];
-        b.get(e);
-        return new OwedEvent(new String(home, StandardCharsets.UTF_8), AgentEvent.decode(e));
+        try {
+            byte[] home = new byte[Short.toUnsignedInt(b.getShort())];
+            b.get(home);
+            byte[] e = new byte[b.remaining()];
+            b.get(e);
+            return new OwedEvent(new String(home, StandardCharsets.UTF_8), AgentEvent.decode(e));
+        } catch (BufferUnderflowException e) {
+            throw new IllegalArgumentException("owed-event record cut short (" + record.length + " bytes)", e);
+        }
     }
 }

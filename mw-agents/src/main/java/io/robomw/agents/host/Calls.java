@@ -51,8 +51,8 @@ final class Calls implements HostEndpoint.Handler {
             case PUT_ARCHIVE -> code.onArchive(peer, body);
             case LIST -> Reply.ok(Bodies.listReply(agents()));
             case EVENT -> home.onEvent(peer, body);
-            case MESSAGE -> onMessage(body);
-            case RETRACT, DISPOSE -> onRequest(op, body);
+            case MESSAGE -> onMessage(peer, body);
+            case RETRACT, DISPOSE -> onRequest(peer, op, body);
         };
     }
 
@@ -81,8 +81,13 @@ final class Calls implements HostEndpoint.Handler {
         return h;
     }
 
-    private Reply onMessage(byte[] body) {
-        Bodies.Message sent = Bodies.readMessage(body);
+    private Reply onMessage(String peer, byte[] body) {
+        Bodies.Message sent;
+        try {
+            sent = Bodies.readMessage(body);
+        } catch (IllegalArgumentException e) {
+            return host.refuse("refused a message from peer '" + peer + "': " + e.getMessage());
+        }
         UUID id = sent.id();
         HostedAgent h = present(id);
         if (h == null) {
@@ -136,8 +141,13 @@ final class Calls implements HostEndpoint.Handler {
         }
     }
 
-    private Reply onRequest(Op op, byte[] body) {
-        UUID id = Bodies.readAgentRequest(body);
+    private Reply onRequest(String peer, Op op, byte[] body) {
+        UUID id;
+        try {
+            id = Bodies.readAgentRequest(body);
+        } catch (IllegalArgumentException e) {
+            return host.refuse("refused a " + op + " from peer '" + peer + "': " + e.getMessage());
+        }
         HostedAgent h = present(id);
         if (h == null) {
             return whereIs(id);

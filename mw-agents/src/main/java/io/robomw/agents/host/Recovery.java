@@ -7,6 +7,7 @@ import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 import java.io.IOException;
+import java.util.ArrayList;
 import java.util.List;
 
 /**
@@ -31,16 +32,39 @@ final class Recovery {
     }
 
     /**
-     * Resumes the store's agents on runner threads and sends its owed events again.
+     * Resumes the store's agents on runner threads and sends its owed events again. Everything is
+     * read before anything resumes, so a store this host cannot read resumes nothing.
      *
-     * @param storeName the store, for the log
+     * @throws IOException naming the store if a stored agent's image or an owed event cannot be read
+     *                     (an unknown code, or cut short): the store was written by another RoboMW, or damaged
      */
-    void resume(Object storeName) {
+    void resume() throws IOException {
+        List<AgentStore.StoredAgent> stored = host.store.recoveredAgents();
+        List<AgentImage> images = new ArrayList<>(stored.size());
+        for (AgentStore.StoredAgent s : stored) {
+            try {
+                images.add(AgentImage.decode(s.image()));
+            } catch (IllegalArgumentException e) {
+                throw new IOException("agent store " + host.store.location() + ": the stored agent " + s.id() + " (" + s.phase()
+                        + ") has an image this host cannot read: " + e.getMessage(), e);
+            }
+        }
+        List<AgentStore.PendingEvent> pending = host.store.recoveredEvents();
+        List<Bodies.OwedEvent> events = new ArrayList<>(pending.size());
+        for (AgentStore.PendingEvent p : pending) {
+            try {
+                events.add(Bodies.readOwedEvent(p.event()));
+            } catch (IllegalArgumentException e) {
+                throw new IOException("agent store " + host.store.location() + ": event " + p.seq() + " owed to the home of agent " + p.id()
+                        + " cannot be read: " + e.getMessage(), e);
+            }
+        }
         int accepted = 0;
         int interrupted = 0;
         int departing = 0;
-        for (AgentStore.StoredAgent s : host.store.recoveredAgents()) {
-            AgentImage image = AgentImage.decode(s.image());
+        for (int i = 0; i < stored.size(); i++) {
+            AgentStore.StoredAgent s = stored.get(i);
+            AgentImage image = images.get(i);
             HostedAgent h;
             try {
                 ClassLoader loader = code.loaderFor(image.digest())
@@ -69,13 +93,10 @@ final class Recovery {
                 }
             }
         }
-        List<AgentStore.PendingEvent> pending = host.store.recoveredEvents();
-        for (AgentStore.PendingEvent p : pending) {
-            owed.resend(Bodies.readOwedEvent(p.event()));
-        }
-        if (accepted + interrupted + departing + pending.size() > 0) {
+        events.forEach(owed::resend);
+        if (accepted + interrupted + departing + events.size() > 0) {
             LOG.info("host {}: resumed {} agents from {} ({} not yet started, {} interrupted mid-stop, {} departing) and {} events owed to homes",
-                    host.name, accepted + interrupted + departing, storeName, accepted, interrupted, departing, pending.size());
+                    host.name, accepted + interrupted + departing, host.store.location(), accepted, interrupted, departing, events.size());
         }
     }
 }
