@@ -18,7 +18,9 @@ enum Op {
     /** Send an agent here home. Code 5. */
     RETRACT(5),
     /** End an agent's trip here. Code 6. */
-    DISPOSE(6);
+    DISPOSE(6),
+    /** Say who this host is: name, robot, messaging addresses, the hosts it knows ({@link HostDescription}). Code 7. */
+    DESCRIBE(7);
 
     private final int code;
 
@@ -45,7 +47,8 @@ enum Op {
             case 4 -> MESSAGE;
             case 5 -> RETRACT;
             case 6 -> DISPOSE;
-            default -> throw new IllegalArgumentException("unknown operation code " + code + " (this host knows 0-6: TRANSFER, PUT_ARCHIVE, LIST, EVENT, MESSAGE, RETRACT, DISPOSE)");
+            case 7 -> DESCRIBE;
+            default -> throw new IllegalArgumentException("unknown operation code " + code + " (this host knows 0-7: TRANSFER, PUT_ARCHIVE, LIST, EVENT, MESSAGE, RETRACT, DISPOSE, DESCRIBE)");
         };
     }
 }

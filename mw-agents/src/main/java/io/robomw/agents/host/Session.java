@@ -28,6 +28,7 @@ import java.util.Arrays;
  * <tr><td>4</td><td>MESSAGE</td><td>{@link Bodies#message}</td></tr>
  * <tr><td>5</td><td>RETRACT</td><td>{@link Bodies#agentRequest}</td></tr>
  * <tr><td>6</td><td>DISPOSE</td><td>{@link Bodies#agentRequest}</td></tr>
+ * <tr><td>7</td><td>DESCRIBE</td><td>empty; the reply is a {@link HostDescription}</td></tr>
  * </table>
  *
  * <table>
