@@ -1,6 +1,10 @@
 package io.robomw.cli;
 
 import io.robomw.agents.host.AgentHost;
+import io.robomw.agents.messaging.MessagingNode;
+import io.robomw.agents.messaging.MessagingSettings;
+import io.robomw.agents.messaging.robot.RobotProtocol;
+import io.robomw.agents.messaging.robot.RobotServer;
 import io.robomw.api.Robot;
 import io.robomw.api.RobotException;
 import io.robomw.api.Robots;
@@ -62,11 +66,17 @@ final class HostCommand implements Callable<Integer> {
     List<String> allow = new ArrayList<>();
 
     @Option(names = "--serve", paramLabel = "ADDRESS", description = "also serve the robot to Robots.remote at this messaging address, e.g. tcp://127.0.0.1:7000 (then Robots.remote(\"tcp://127.0.0.1:7000/ROBOT\"))"
-            + " or through a broker, mqtt://127.0.0.1:1883 (then Robots.remote(\"mqtt://127.0.0.1:1883/ROBOT\"))")
+            + " or a broker, mqtt://127.0.0.1:1883 (then Robots.remote(\"mqtt://127.0.0.1:1883/ROBOT\")); the host's messaging node receives there too")
     String serve;
 
-    @Option(names = "--announce", paramLabel = "BROKER", description = "announce this host, its robot and its agents at an MQTT broker (mqtt://host:port[/prefix]),"
-            + " for mw agents --cluster BROKER; --serve mqtt://... announces there already")
+    @Option(names = "--messaging", paramLabel = "ADDRESS", description = "where the host's messaging node, which its agents use, receives (default: tcp://BIND:0, a free port; mqtt://BROKER joins a broker)")
+    String messaging;
+
+    @Option(names = "--no-messaging", description = "start the host without a messaging node (its agents then have no messaging)")
+    boolean noMessaging;
+
+    @Option(names = "--announce", paramLabel = "BROKER", description = "announce this host, its robot and its agents at an MQTT broker (mqtt://host:port[/prefix]) for mw agents --cluster BROKER;"
+            + " a host whose node is at a broker (--messaging or --serve mqtt://...) announces there already")
     String announce;
 
     @Option(names = "--serve-password", description = "password callers of --serve must give")
@@ -100,28 +110,44 @@ final class HostCommand implements Callable<Integer> {
                 robot = Robots.open(robotFile, services);
                 open.add(0, robot);
             }
+            if (serve != null && robot == null) {
+                err.println("--serve needs a robot (--robot or --world)");
+                return 2;
+            }
+            if (noMessaging && messaging != null) {
+                err.println("--messaging and --no-messaging contradict each other; give one");
+                return 2;
+            }
+            MessagingSettings settings = serve == null ? MessagingSettings.defaults() : RobotProtocol.forServer(MessagingSettings.defaults());
+            AgentHost.Builder builder = AgentHost.builder(name).bind(bind).port(port).robot(robot).clusterKey(cluster.key()).tls(cluster.tls())
+                    .store(store).allow(allow).messagingSettings(settings);
+            if (noMessaging) {
+                builder.noMessaging();
+            } else if (messaging != null) {
+                builder.messaging(messaging);
+            }
+            AgentHost host = builder.start();
+            open.add(0, host);
             String served = null;
-            io.robomw.agents.messaging.MessagingNode servingNode = null;
+            MessagingNode servingNode = null;
             if (serve != null) {
-                if (robot == null) {
-                    err.println("--serve needs a robot (--robot or --world)");
-                    return 2;
+                MessagingNode node = host.messagingNode().orElse(null);
+                if (node == null) {
+                    node = MessagingNode.builder(name + "-robot").settings(settings).build();
+                    open.add(0, node);
                 }
-                io.robomw.agents.messaging.MessagingNode node = io.robomw.agents.messaging.MessagingNode.builder(name + "-robot")
-                        .settings(io.robomw.agents.messaging.robot.RobotProtocol.forServer(io.robomw.agents.messaging.MessagingSettings.defaults())).build();
-                open.add(0, node);
                 servingNode = node;
                 served = node.bind(serve) + "/" + robot.name();
-                open.add(0, io.robomw.agents.messaging.robot.RobotServer.serve(node, robot, servePassword));
+                open.add(0, RobotServer.serve(node, robot, servePassword));
             }
-            AgentHost host = AgentHost.builder(name).bind(bind).port(port).robot(robot).clusterKey(cluster.key()).tls(cluster.tls())
-                    .store(store).allow(allow).start();
-            open.add(0, host);
-            if (announce != null || (serve != null && serve.startsWith("mqtt"))) {
-                open.add(0, HostPresence.start(host, announce, servingNode));
+            MessagingNode presenceNode = host.messagingNode().orElse(servingNode);
+            boolean atBroker = host.messagingAddresses().stream().anyMatch(m -> m.startsWith("mqtt"));
+            if (announce != null || atBroker) {
+                open.add(0, HostPresence.start(host, announce, presenceNode));
             }
             out.printf("agent host %s ready at %s (robot: %s, store: %s)%n", name, host.address(), robot == null ? "none" : robot.name(),
                     store == null ? "memory" : store);
+            out.printf("messaging at %s%n", host.messagingAddresses().isEmpty() ? "none (--no-messaging)" : String.join(" ", host.messagingAddresses()));
             if (served != null) {
                 out.printf("robot %s served at %s%n", robot.name(), served);
             }

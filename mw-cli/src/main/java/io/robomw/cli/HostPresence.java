@@ -31,15 +31,20 @@ final class HostPresence implements AutoCloseable {
     }
 
     /**
-     * @param host        the agent host
-     * @param broker      the broker to announce at, or {@code null} to use {@code servingNode}'s
-     * @param servingNode the node serving the host's robot through a broker, or {@code null}
+     * @param host   the agent host
+     * @param broker a broker to announce at besides those the node is at already, or {@code null}
+     * @param node   the host's messaging node (or the node serving its robot), or {@code null} when it has none
      * @return the running announcement
      */
-    static HostPresence start(AgentHost host, String broker, MessagingNode servingNode) {
-        boolean own = broker != null;
-        MessagingNode node = own ? MessagingNode.builder(host.name()).settings(MessagingSettings.defaults()).bind(broker).build() : servingNode;
-        node.presence().host(host.name(), host.address());
+    static HostPresence start(AgentHost host, String broker, MessagingNode node) {
+        boolean own = node == null;
+        if (own) {
+            node = MessagingNode.builder(host.name()).settings(MessagingSettings.defaults()).bind(broker).build();
+        } else if (broker != null) {
+            node.bind(broker);
+        }
+        MessagingNode announcing = node;
+        announcing.presence().host(host.name(), host.address());
         ScheduledExecutorService refresh = Executors.newSingleThreadScheduledExecutor(r -> {
             Thread t = new Thread(r, "mw-host-presence-" + host.name());
             t.setDaemon(true);
@@ -47,12 +52,12 @@ final class HostPresence implements AutoCloseable {
         });
         refresh.scheduleWithFixedDelay(() -> {
             try {
-                node.presence().agents(describe(host.agents()));
+                announcing.presence().agents(describe(host.agents()));
             } catch (RuntimeException e) {
                 org.slf4j.LoggerFactory.getLogger(HostPresence.class).warn("host {}: cannot announce its agents: {}", host.name(), e.toString());
             }
         }, 0, REFRESH_MILLIS, TimeUnit.MILLISECONDS);
-        return new HostPresence(node, own, refresh);
+        return new HostPresence(announcing, own, refresh);
     }
 
     static List<String> describe(List<AgentInfo> agents) {

@@ -46,6 +46,7 @@ public final class BrokerDirectory implements AutoCloseable {
     private final Mqtt5AsyncClient client;
     private final Map<String, PresenceRecord> byClient = new ConcurrentHashMap<>();
     private final Object changes = new Object();
+    private final List<java.util.function.Consumer<PresenceRecord>> listeners = new java.util.concurrent.CopyOnWriteArrayList<>();
     private volatile long lastChange = System.nanoTime();
 
     private BrokerDirectory(Address address, MqttOptions options, BrokerCredentials credentials) {
@@ -130,6 +131,15 @@ public final class BrokerDirectory implements AutoCloseable {
     }
 
     /**
+     * @param listener told of every presence read from now on (new, changed, or gone offline), on the client's thread;
+     *                 it must return quickly
+     */
+    public void onPresence(java.util.function.Consumer<PresenceRecord> listener) {
+        listeners.add(listener);
+        byClient.values().forEach(listener);
+    }
+
+    /**
      * Waits until no presence came for a moment (the broker sends the retained ones at once).
      *
      * @param max the longest wait
@@ -173,7 +183,15 @@ public final class BrokerDirectory implements AutoCloseable {
             byClient.remove(client);
         } else {
             try {
-                byClient.put(client, PresenceRecord.decode(bytes, "presence " + t + " at " + address.endpoint()));
+                PresenceRecord record = PresenceRecord.decode(bytes, "presence " + t + " at " + address.endpoint());
+                byClient.put(client, record);
+                for (var l : listeners) {
+                    try {
+                        l.accept(record);
+                    } catch (RuntimeException e) {
+                        LOG.warn("a presence listener failed on {}: {}", record.node(), e.toString());
+                    }
+                }
             } catch (IllegalArgumentException e) {
                 LOG.warn("left out an unreadable presence: {}", e.getMessage());
             }

@@ -22,8 +22,13 @@ final class FramePeek {
                 && (b[FrameCodec.VERSION_OFFSET] & 0xFF) == FrameCodec.VERSION;
     }
 
+    /** @return the frame's kind, or {@code null} for a code no kind has (this node's own frames always have one) */
     static FrameKind kind(byte[] frame) {
-        return FrameKind.of(frame[FrameCodec.KIND_OFFSET] & 0xFF);
+        try {
+            return FrameKind.fromCode(frame[FrameCodec.KIND_OFFSET] & 0xFF);
+        } catch (io.robomw.agents.messaging.frame.FrameException e) {
+            return null;
+        }
     }
 
     static String receiver(byte[] frame) {
