@@ -63,11 +63,12 @@ public final class Presence {
     }
 
     /**
-     * @param client   the MQTT client identifier it is announced with
-     * @param via      the address it is announced through (listed first)
+     * @param client               the MQTT client identifier it is announced with
+     * @param sessionExpirySeconds how long the broker keeps its session while it is away
+     * @param via                  the address it is announced through (listed first)
      * @return the node as it is now, online
      */
-    public PresenceRecord now(String client, String via) {
+    public PresenceRecord now(String client, long sessionExpirySeconds, String via) {
         List<String> messaging = new ArrayList<>();
         messaging.add(via);
         for (Address a : addresses.get()) {
@@ -78,7 +79,7 @@ public final class Presence {
         }
         String h = host;
         String ha = hostAddress;
-        return new PresenceRecord(node, true, Instant.now(), client, messaging, ha == null ? null : h, ha, List.copyOf(robots), agents);
+        return new PresenceRecord(node, true, Instant.now(), client, sessionExpirySeconds, messaging, ha == null ? null : h, ha, List.copyOf(robots), agents);
     }
 
     /** @param listener told (on the changing thread) whenever what is announced changes */

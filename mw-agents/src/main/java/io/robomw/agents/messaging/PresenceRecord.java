@@ -19,6 +19,7 @@ import java.util.List;
  * status online|offline
  * time 2026-11-24T10:15:30.123Z        (when this version was made)
  * client MQTT-CLIENT-ID                 (empty when not announced through a broker)
+ * session-expiry SECONDS                (how long the broker keeps the node's session when it is away; 0 = clean)
  * messaging ADDRESS                     (zero or more: where the node receives)
  * host NAME AGENT-HOST-ADDRESS          (zero or one: the agent host the node belongs to)
  * robot NAME                            (zero or more: robots it serves, Robots.remote)
@@ -31,13 +32,15 @@ import java.util.List;
  * @param online    whether it is up
  * @param time      when this version was made
  * @param client    the MQTT client identifier it announced through, or empty
+ * @param sessionExpirySeconds how long the broker keeps its session while it is away (0: a clean session,
+ *                  nothing is kept for it)
  * @param messaging where it receives
  * @param host      the agent host's name, or {@code null}
  * @param hostAddress the agent host's address, or {@code null}
  * @param robots    robots it serves
  * @param agents    agents on its host
  */
-public record PresenceRecord(String node, boolean online, Instant time, String client, List<String> messaging, String host,
+public record PresenceRecord(String node, boolean online, Instant time, String client, long sessionExpirySeconds, List<String> messaging, String host,
                              String hostAddress, List<String> robots, List<String> agents) {
 
     /** The version this class reads and writes. */
@@ -51,6 +54,9 @@ public record PresenceRecord(String node, boolean online, Instant time, String c
     public PresenceRecord {
         oneLine("node", node);
         oneLine("client", client);
+        if (sessionExpirySeconds < 0) {
+            throw new IllegalArgumentException("session expiry must be >= 0 seconds, got " + sessionExpirySeconds);
+        }
         messaging = List.copyOf(messaging);
         robots = List.copyOf(robots);
         agents = List.copyOf(agents);
@@ -71,7 +77,7 @@ public record PresenceRecord(String node, boolean online, Instant time, String c
 
     /** @return this record with {@code online} false and the time now */
     public PresenceRecord offline(Instant now) {
-        return new PresenceRecord(node, false, now, client, messaging, host, hostAddress, robots, agents);
+        return new PresenceRecord(node, false, now, client, sessionExpirySeconds, messaging, host, hostAddress, robots, agents);
     }
 
     /** @return the stored format */
@@ -82,6 +88,7 @@ public record PresenceRecord(String node, boolean online, Instant time, String c
         b.append("status ").append(online ? "online" : "offline").append('\n');
         b.append("time ").append(time).append('\n');
         b.append("client ").append(client).append('\n');
+        b.append("session-expiry ").append(sessionExpirySeconds).append('\n');
         messaging.forEach(m -> b.append("messaging ").append(m).append('\n'));
         if (host != null) {
             b.append("host ").append(host).append(' ').append(hostAddress).append('\n');
@@ -116,6 +123,7 @@ public record PresenceRecord(String node, boolean online, Instant time, String c
         Boolean online = null;
         Instant time = null;
         String client = null;
+        Long expiry = null;
         String host = null;
         String hostAddress = null;
         List<String> messaging = new ArrayList<>();
@@ -144,6 +152,13 @@ public record PresenceRecord(String node, boolean online, Instant time, String c
                     }
                 }
                 case "client" -> client = value;
+                case "session-expiry" -> {
+                    try {
+                        expiry = Long.parseLong(value);
+                    } catch (NumberFormatException e) {
+                        throw new IllegalArgumentException(where + ": line " + (i + 1) + ": session-expiry '" + value + "' is not a number of seconds");
+                    }
+                }
                 case "messaging" -> messaging.add(value);
                 case "host" -> {
                     int last = value.lastIndexOf(' ');
@@ -158,10 +173,10 @@ public record PresenceRecord(String node, boolean online, Instant time, String c
                 default -> throw new IllegalArgumentException(where + ": line " + (i + 1) + ": unknown key '" + key + "' in a presence of version " + VERSION);
             }
         }
-        if (node == null || node.isEmpty() || online == null || time == null || client == null) {
-            throw new IllegalArgumentException(where + ": a presence needs node, status, time and client lines");
+        if (node == null || node.isEmpty() || online == null || time == null || client == null || expiry == null) {
+            throw new IllegalArgumentException(where + ": a presence needs node, status, time, client and session-expiry lines");
         }
-        return new PresenceRecord(node, online, time, client, messaging, host, hostAddress, robots, agents);
+        return new PresenceRecord(node, online, time, client, expiry, messaging, host, hostAddress, robots, agents);
     }
 
     private static void oneLine(String what, String value) {

@@ -132,7 +132,7 @@ final class BrokerSession implements Link, Endpoint {
             var auth = b.simpleAuth().username(credentials.username());
             b = credentials.password() == null ? auth.applySimpleAuth() : auth.password(credentials.password()).applySimpleAuth();
         }
-        PresenceRecord offline = context.presence().now(options.clientId(), address.toString()).offline(Instant.now());
+        PresenceRecord offline = context.presence().now(options.clientId(), options.sessionExpirySeconds(), address.toString()).offline(Instant.now());
         b = b.willPublish().topic(topics.presence(options.clientId())).qos(MqttQos.AT_LEAST_ONCE).retain(true)
                 .payload(offline.encode()).applyWillPublish();
         this.client = b.buildAsync();
@@ -287,7 +287,7 @@ final class BrokerSession implements Link, Endpoint {
         context.presence().removeListener(presenceListener);
         try {
             if (connected) {
-                PresenceRecord offline = context.presence().now(options.clientId(), address.toString()).offline(Instant.now());
+                PresenceRecord offline = context.presence().now(options.clientId(), options.sessionExpirySeconds(), address.toString()).offline(Instant.now());
                 client.publishWith().topic(topics.presence(options.clientId())).qos(MqttQos.AT_LEAST_ONCE).retain(true)
                         .payload(offline.encode()).send().get(1, TimeUnit.SECONDS);
             }
@@ -444,7 +444,7 @@ final class BrokerSession implements Link, Endpoint {
             return;
         }
         try {
-            PresenceRecord now = context.presence().now(options.clientId(), address.toString());
+            PresenceRecord now = context.presence().now(options.clientId(), options.sessionExpirySeconds(), address.toString());
             client.publishWith().topic(topics.presence(options.clientId())).qos(MqttQos.AT_LEAST_ONCE).retain(true)
                     .payload(now.encode()).send();
         } catch (RuntimeException e) {
