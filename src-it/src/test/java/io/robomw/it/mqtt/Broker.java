@@ -40,6 +40,7 @@ public final class Broker implements AutoCloseable {
     private final Kind kind;
     private final String name;
     private final Path dir;
+    private String passwordFile;
     private int port;
     private Process process;
 
@@ -65,6 +66,34 @@ public final class Broker implements AutoCloseable {
         deleteTree(dir);
         Files.createDirectories(dir);
         Broker b = new Broker(kind, name, dir.toAbsolutePath());
+        b.port = freePort();
+        b.launch();
+        return b;
+    }
+
+    /**
+     * Starts Mosquitto that lets in only one user (anonymous clients refused).
+     *
+     * @param name     for its log
+     * @param user     the user's name
+     * @param password the user's password
+     * @return the running broker
+     */
+    public static Broker mosquittoWithUser(String name, String user, String password) throws IOException, InterruptedException {
+        Assumptions.assumeTrue(Files.isExecutable(mosquitto()),
+                "Mosquitto is not installed (" + MOSQUITTO + "): apt-get install mosquitto (.ci/run installs it)");
+        Path dir = Files.createDirectories(Path.of("target", "it-brokers")).resolve(name);
+        deleteTree(dir);
+        Files.createDirectories(dir);
+        Path passwords = dir.toAbsolutePath().resolve("passwords");
+        Path tool = Files.isExecutable(Path.of("/usr/bin/mosquitto_passwd")) ? Path.of("/usr/bin/mosquitto_passwd")
+                : mosquitto().resolveSibling("mosquitto_passwd");
+        Process p = new ProcessBuilder(tool.toString(), "-b", "-c", passwords.toString(), user, password).redirectErrorStream(true).start();
+        if (!p.waitFor(30, TimeUnit.SECONDS) || p.exitValue() != 0) {
+            fail("mosquitto_passwd failed: " + new String(p.getInputStream().readAllBytes(), java.nio.charset.StandardCharsets.UTF_8));
+        }
+        Broker b = new Broker(Kind.MOSQUITTO, name, dir.toAbsolutePath());
+        b.passwordFile = passwords.toString();
         b.port = freePort();
         b.launch();
         return b;
@@ -119,7 +148,11 @@ public final class Broker implements AutoCloseable {
                     "broker", "--port", Integer.toString(port), "--data", dir.resolve("embedded").toString()));
         } else {
             Path conf = dir.resolve("mosquitto.conf");
-            Files.writeString(conf, mosquittoConfig(port, dir));
+            String config = mosquittoConfig(port, dir);
+            if (passwordFile != null) {
+                config = config.replace("allow_anonymous true", "allow_anonymous false\npassword_file " + passwordFile);
+            }
+            Files.writeString(conf, config);
             command.addAll(List.of(mosquitto().toString(), "-c", conf.toString()));
         }
         ProcessBuilder pb = new ProcessBuilder(command);

@@ -85,7 +85,7 @@ abstract class BrokerMessagingIT {
         for (int i = 0; i < 2000; i++) {
             local.publishMessage("numbers", i, "count", null);
         }
-        assertEquals("COUNT numbers 2000 ordered=true", subscriber.ask("await numbers 2000 60", "COUNT"));
+        assertEquals("COUNT numbers 2000 ordered=true", subscriber.ask("await numbers 2000 60", "COUNT", WAIT.plusSeconds(10)));
     }
 
     @Test
@@ -121,7 +121,7 @@ abstract class BrokerMessagingIT {
         long before = dropped(server, "BAD_MAC");
         local.sendMessage(name("server"), broker.address(), "wrong", "guarded", 0, "go");
         local.sendMessage(name("server"), broker.address(), "right", "guarded", 1, "go");
-        assertTrue(server.ask("await guarded 1 60", "COUNT").startsWith("COUNT guarded 1 "));
+        assertTrue(server.ask("await guarded 1 60", "COUNT", WAIT.plusSeconds(10)).startsWith("COUNT guarded 1 "));
         assertEquals(before + 1, dropped(server, "BAD_MAC"), "the frame signed with the wrong password was dropped, the right one delivered");
         assertTrue(server.ask("count guarded", "COUNT").startsWith("COUNT guarded 1 "));
     }
@@ -139,28 +139,49 @@ abstract class BrokerMessagingIT {
         try (PeerProcess back = PeerProcess.peer(name("away"), List.of())) {
             back.ask("subscribe news -", "OK");
             back.ask("bind " + address, "BOUND");
-            assertEquals("COUNT news 100 ordered=true", back.ask("await news 100 60", "COUNT"));
+            assertEquals("COUNT news 100 ordered=true", back.ask("await news 100 60", "COUNT", WAIT.plusSeconds(10)));
         }
     }
 
     @Test
     void aBrokerRestartInTheMiddleOfAQos1StreamLosesNothing() throws Exception {
-        String subAddress = broker.address() + "?session-expiry=600&client-id=" + name("stream-sub");
-        try (PeerProcess sub = PeerProcess.peer(name("stream-sub"), List.of());
-             MessagingNode publisher = MessagingNode.builder(name("stream-pub")).bind(broker.address() + "?session-expiry=600").build()) {
+        // A broker of its own: the others' clean sessions would lose what is sent to them while they reconnect.
+        try (Broker own = Broker.start(kind(), name("restart-broker"));
+             PeerProcess sub = PeerProcess.peer(name("stream-sub"), List.of());
+             MessagingNode publisher = MessagingNode.builder(name("stream-pub")).bind(own.address() + "?session-expiry=600").build()) {
             sub.ask("subscribe stream pw", "OK");
-            sub.ask("bind " + subAddress, "BOUND");
+            sub.ask("bind " + own.address() + "?session-expiry=600&client-id=" + name("stream-sub"), "BOUND");
             int n = 3000;
             for (int i = 0; i < n / 2; i++) {
                 publisher.publishMessage("stream", i, "count", "pw");
             }
-            broker.restart();
+            own.restart();
             for (int i = n / 2; i < n; i++) {
                 publisher.publishMessage("stream", i, "count", "pw");
             }
-            sub.ask("await stream " + n + " 90", "COUNT");
+            sub.ask("await stream " + n + " 90", "COUNT", WAIT.plusSeconds(60));
             assertEquals("DISTINCT stream " + n + " of " + n, sub.ask("distinct stream", "DISTINCT"),
                     "every publication arrived once (QoS 1 resends; the HMAC'd frames' replay guard drops duplicates)");
+        }
+    }
+
+    @Test
+    void whileTheBrokerIsAwayAtMostMaxQueuedMessagesWaitAndTheNextIsRefusedNamingTheBroker() throws Exception {
+        try (Broker own = Broker.start(kind(), name("bounded-broker"));
+             MessagingNode bounded = MessagingNode.builder(name("bounded")).bind(own.address() + "?max-queued=20").build()) {
+            own.stop();
+            int accepted = 0;
+            io.robomw.api.MessagingException refused = null;
+            for (int i = 0; i < 100 && refused == null; i++) {
+                try {
+                    bounded.publishMessage("bounded", i, "count", null);
+                    accepted++;
+                } catch (io.robomw.api.MessagingException e) {
+                    refused = e;
+                }
+            }
+            assertTrue(refused != null && accepted <= 20, accepted + " publications were accepted with the broker away");
+            assertTrue(refused.getMessage().contains(own.address()), refused.getMessage());
         }
     }
 
