@@ -46,9 +46,10 @@ import java.util.concurrent.atomic.AtomicInteger;
  *
  * <p>A node <em>binds</em> addresses where it receives ({@code tcp://127.0.0.1:7000},
  * {@code rmi://127.0.0.1:1099/robot}, {@code udp://...}), <em>connects</em> to peers whose
- * publications it wants, and <em>joins</em> multicast groups; the transports are found by scheme
- * through the SPI in {@link io.robomw.agents.messaging.spi}. Messages to a host it has no link to
- * open one on demand.
+ * publications it wants, <em>joins</em> multicast groups, and joins MQTT brokers
+ * ({@code mqtt://broker:1883}, by binding or connecting: there it receives, publishes and
+ * subscribes through the broker); the transports are found by scheme through the SPI in
+ * {@link io.robomw.agents.messaging.spi}. Messages to a host it has no link to open one on demand.
  *
  * <pre>{@code
  * try (MessagingNode node = MessagingNode.builder("nxt-1").bind("tcp://127.0.0.1:0").build()) {
