@@ -41,6 +41,7 @@ public final class Broker implements AutoCloseable {
     private final String name;
     private final Path dir;
     private String passwordFile;
+    private String tlsPem;
     private int port;
     private Process process;
 
@@ -99,9 +100,29 @@ public final class Broker implements AutoCloseable {
         return b;
     }
 
-    /** @return {@code mqtt://127.0.0.1:PORT} */
+    /**
+     * Starts Mosquitto with a TLS listener.
+     *
+     * @param name its log's name
+     * @param pem  a PEM file with the broker's certificate and private key
+     * @return the running broker; its {@link #address()} is then {@code mqtts://127.0.0.1:PORT}
+     */
+    public static Broker mosquittoWithTls(String name, Path pem) throws IOException {
+        Assumptions.assumeTrue(Files.isExecutable(mosquitto()),
+                "Mosquitto is not installed (" + MOSQUITTO + "): apt-get install mosquitto (.ci/run installs it)");
+        Path dir = Files.createDirectories(Path.of("target", "it-brokers")).resolve(name);
+        deleteTree(dir);
+        Files.createDirectories(dir);
+        Broker b = new Broker(Kind.MOSQUITTO, name, dir.toAbsolutePath());
+        b.tlsPem = pem.toAbsolutePath().toString();
+        b.port = freePort();
+        b.launch();
+        return b;
+    }
+
+    /** @return {@code mqtt://127.0.0.1:PORT}, or {@code mqtts://...} for a TLS listener */
     public String address() {
-        return "mqtt://127.0.0.1:" + port;
+        return (tlsPem == null ? "mqtt" : "mqtts") + "://127.0.0.1:" + port;
     }
 
     /** @return which broker */
@@ -149,6 +170,9 @@ public final class Broker implements AutoCloseable {
         } else {
             Path conf = dir.resolve("mosquitto.conf");
             String config = mosquittoConfig(port, dir);
+            if (tlsPem != null) {
+                config = config.replace("listener " + port + " 127.0.0.1", "listener " + port + " 127.0.0.1\ncertfile " + tlsPem + "\nkeyfile " + tlsPem);
+            }
             if (passwordFile != null) {
                 config = config.replace("allow_anonymous true", "allow_anonymous false\npassword_file " + passwordFile);
             }

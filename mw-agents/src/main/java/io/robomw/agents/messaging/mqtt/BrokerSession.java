@@ -117,17 +117,15 @@ final class BrokerSession implements Link, Endpoint {
             return t;
         }, new ThreadPoolExecutor.DiscardPolicy());
         int connectMillis = (int) Math.min(Integer.MAX_VALUE, context.settings().connectTimeout().toMillis());
+        // Server, TLS and timeouts in one transport configuration: set one by one, a later setter of the
+        // client builder replaces the transport configuration made by an earlier one.
         Mqtt5ClientBuilder b = MqttClient.builder().useMqttVersion5()
                 .identifier(options.clientId())
-                .serverHost(options.host())
-                .serverPort(options.port())
-                .transportConfig().socketConnectTimeout(connectMillis, TimeUnit.MILLISECONDS)
+                .transportConfig().serverHost(options.host()).serverPort(options.port()).sslConfig(ssl)
+                .socketConnectTimeout(connectMillis, TimeUnit.MILLISECONDS)
                 .mqttConnectTimeout(connectMillis, TimeUnit.MILLISECONDS).applyTransportConfig()
                 .addDisconnectedListener(this::onDisconnected)
                 .addConnectedListener(c -> onConnected());
-        if (ssl != null) {
-            b = b.sslConfig(ssl);
-        }
         if (credentials.username() != null) {
             var auth = b.simpleAuth().username(credentials.username());
             b = credentials.password() == null ? auth.applySimpleAuth() : auth.password(credentials.password()).applySimpleAuth();
