@@ -98,7 +98,7 @@ final class HostMessaging implements AutoCloseable {
     private void watchBroker(String broker) {
         try {
             io.robomw.agents.messaging.mqtt.BrokerDirectory d = io.robomw.agents.messaging.mqtt.BrokerDirectory.open(broker,
-                    node.settings().connectTimeout());
+                    node.settings().connectTimeout(), node.settings().tls());
             brokerDirectories.add(d);
             d.onPresence(p -> {
                 if (p.host() != null && !p.hostAddress().equals(host.address)) {

@@ -72,6 +72,13 @@ class MosquittoTlsIT {
             a.addMessageListener("cmd", "pw", m -> a.replyMessage(m, "done " + m.payload(), "ok"));
             UUID id = b.sendMessage("tls-a", broker.address(), "pw", "cmd", "go", "run");
             assertEquals("done go", b.waitForReply(id, Duration.ofSeconds(30)).payload());
+            try (io.robomw.agents.messaging.mqtt.BrokerDirectory d = io.robomw.agents.messaging.mqtt.BrokerDirectory.open(broker.address(),
+                    Duration.ofSeconds(10), trusting().tls())) {
+                d.awaitQuiet(Duration.ofSeconds(5));
+                assertTrue(d.find("tls-a").isPresent(), "presence read over TLS: " + d.records());
+            }
+        } catch (java.io.IOException e) {
+            throw new java.io.UncheckedIOException(e);
         }
     }
 

@@ -49,15 +49,12 @@ public final class BrokerDirectory implements AutoCloseable {
     private final List<java.util.function.Consumer<PresenceRecord>> listeners = new java.util.concurrent.CopyOnWriteArrayList<>();
     private volatile long lastChange = System.nanoTime();
 
-    private BrokerDirectory(Address address, MqttOptions options, BrokerCredentials credentials) {
+    private BrokerDirectory(Address address, MqttOptions options, BrokerCredentials credentials, com.hivemq.client.mqtt.MqttClientSslConfig ssl) {
         this.address = address;
         this.topics = options.topics();
         Mqtt5ClientBuilder b = MqttClient.builder().useMqttVersion5()
                 .identifier("mw-directory-" + HexFormat.of().formatHex(new SecureRandom().generateSeed(4)))
-                .serverHost(options.host()).serverPort(options.port());
-        if (options.tls()) {
-            b = b.sslWithDefaultConfig();
-        }
+                .transportConfig().serverHost(options.host()).serverPort(options.port()).sslConfig(ssl).applyTransportConfig();
         if (credentials.username() != null) {
             var auth = b.simpleAuth().username(credentials.username());
             b = credentials.password() == null ? auth.applySimpleAuth() : auth.password(credentials.password()).applySimpleAuth();
@@ -75,12 +72,28 @@ public final class BrokerDirectory implements AutoCloseable {
      * @throws IOException if the broker cannot be reached
      */
     public static BrokerDirectory open(String brokerAddress, Duration timeout) throws IOException {
+        return open(brokerAddress, timeout, null);
+    }
+
+    /**
+     * {@link #open(String, Duration)} with a node's TLS settings, for an {@code mqtts} broker.
+     *
+     * @param brokerAddress an mqtt or mqtts address (its path is the prefix)
+     * @param timeout       how long connecting may take
+     * @param tls           the key and trust store to use with {@code mqtts}, or {@code null} (then the
+     *                      address's {@code truststore}, else the JVM's)
+     * @return the open directory
+     * @throws IOException if the broker cannot be reached
+     */
+    public static BrokerDirectory open(String brokerAddress, Duration timeout, io.robomw.agents.messaging.security.TlsSettings tls)
+            throws IOException {
         Address a = Address.parse(brokerAddress);
         if (!a.scheme().equals("mqtt") && !a.scheme().equals("mqtts")) {
             throw new IllegalArgumentException("'" + brokerAddress + "' is not a broker address (mqtt://host:port or mqtts://host:port)");
         }
         MqttOptions options = MqttOptions.of(a, "directory");
-        BrokerDirectory d = new BrokerDirectory(a, options, BrokerCredentials.load(options.credentials(), System.getenv()));
+        BrokerDirectory d = new BrokerDirectory(a, options, BrokerCredentials.load(options.credentials(), System.getenv()),
+                MqttTransport.ssl(options, tls, System.getenv(), timeout.toMillis()));
         try {
             d.client.connectWith().cleanStart(true).send().get(timeout.toMillis(), TimeUnit.MILLISECONDS);
             d.client.subscribeWith().topicFilter(d.topics.everyPresence()).qos(MqttQos.AT_LEAST_ONCE).send()

@@ -85,17 +85,29 @@ final class MqttTransport implements Transport {
     }
 
     private MqttClientSslConfig ssl(MqttOptions options) throws IOException {
+        return ssl(options, context.settings().tls(), env, context.settings().connectTimeout().toMillis());
+    }
+
+    /**
+     * @param options   the address's options
+     * @param tls       the node's TLS settings, or {@code null}
+     * @param env       the environment (the trust store's password)
+     * @param handshake the longest TLS handshake, in milliseconds
+     * @return the client's TLS configuration for an {@code mqtts} address, or {@code null} for {@code mqtt}:
+     *         the node's key and trust store if it has them, else the address's trust store, else the JVM's
+     * @throws IOException naming a store that cannot be read
+     */
+    static MqttClientSslConfig ssl(MqttOptions options, TlsSettings tls, Map<String, String> env, long handshake) throws IOException {
         if (!options.tls()) {
             return null;
         }
         MqttClientSslConfigBuilder b = MqttClientSslConfig.builder();
-        TlsSettings tls = context.settings().tls();
         if (tls != null) {
             b = b.keyManagerFactory(tls.keyManagerFactory()).trustManagerFactory(tls.trustManagerFactory());
         } else if (options.trustStore() != null) {
             String password = env.getOrDefault(TRUSTSTORE_PASSWORD_ENV, "");
             b = b.trustManagerFactory(TlsSettings.trustManagerFactory(options.trustStore(), password));
         }
-        return b.handshakeTimeout(context.settings().connectTimeout().toMillis(), java.util.concurrent.TimeUnit.MILLISECONDS).build();
+        return b.handshakeTimeout(handshake, java.util.concurrent.TimeUnit.MILLISECONDS).build();
     }
 }
