@@ -124,6 +124,8 @@ public final class AgentHost implements Agency, AutoCloseable {
     private final ExecutorService runners;
     private final ExecutorService requests;
     private final HomeEvents events;
+    /** What happened here lately, for watchers (a console): {@link Op#WATCH}. */
+    private final HostActivity activity = new HostActivity();
     private AgentStore store;
     private HostEndpoint endpoint;
     private Registry registry;
@@ -555,9 +557,11 @@ public final class AgentHost implements Agency, AutoCloseable {
                             h.agent.run();
                         }
                         it.record(stopHost, Itinerary.Outcome.DONE, "");
+                        activity.record(h.id, h.className, HostActivity.STOP_DONE, address, "");
                     } catch (Exception | LinkageError | AssertionError | StackOverflowError e) {
                         LOG.warn("host {}: agent {} ({}) failed at its stop: {}", name, h.id, h.className, e.toString());
                         it.record(stopHost, Itinerary.Outcome.FAILED, e.toString());
+                        activity.record(h.id, h.className, HostActivity.STOP_FAILED, address, e.toString());
                     }
                 }
             }
@@ -629,6 +633,7 @@ public final class AgentHost implements Agency, AutoCloseable {
             h.imageSize = frame.bodyLength();
             String why = send(h, image, frame, target, it);
             if (why == null) {
+                activity.record(h.id, h.className, HostActivity.DEPARTED, address, target);
                 return new Departure(true, target, null);
             }
             h.agent.attach(new HostContext(this, h));
@@ -812,6 +817,8 @@ public final class AgentHost implements Agency, AutoCloseable {
         }
         h.status = k == AgentEvent.Kind.RESULT ? AgentStatus.COMPLETED : k == AgentEvent.Kind.DISPOSED ? AgentStatus.DISPOSED : AgentStatus.FAILED;
         AgentEvent event = new AgentEvent(h.id, h.eventSeq++, k, address, payload);
+        activity.record(h.id, h.className, k == AgentEvent.Kind.RESULT ? HostActivity.RESULT : k == AgentEvent.Kind.DISPOSED ? HostActivity.DISPOSED
+                : HostActivity.FAILED, address, k == AgentEvent.Kind.RESULT ? HostActivity.describe(h.result) : new String(payload, StandardCharsets.UTF_8));
         owe(h.home, event);
         try {
             store.departed(h.id);
@@ -823,6 +830,7 @@ public final class AgentHost implements Agency, AutoCloseable {
     }
 
     private void goHome(HostedAgent h) {
+        activity.record(h.id, h.className, HostActivity.RETRACTED, address, "going home to " + h.home);
         try {
             h.agent.onDispatching();
         } catch (RuntimeException e) {
@@ -862,6 +870,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         } catch (IOException e) {
             throw new IllegalArgumentException("report value of agent " + h.id + " is not serializable: " + e.getMessage(), e);
         }
+        activity.record(h.id, h.className, HostActivity.REPORT, address, HostActivity.describe(value));
         long seq;
         synchronized (h) {
             seq = h.eventSeq++;
@@ -979,6 +988,7 @@ public final class AgentHost implements Agency, AutoCloseable {
             case EVENT -> onEvent(peer, body);
             case MESSAGE -> onMessage(body);
             case RETRACT, DISPOSE -> onRequest(op, body);
+            case WATCH -> onWatch(body);
         };
     }
 
@@ -1065,6 +1075,7 @@ public final class AgentHost implements Agency, AutoCloseable {
             // otherwise it is told, once, as news (a later arrival makes an unsent one moot).
             events.send(h.home, new AgentEvent(h.id, 0, AgentEvent.Kind.ARRIVED, address, new byte[0]), false);
         }
+        activity.record(h.id, h.className, HostActivity.ARRIVED, address, "hop " + h.hop + " from " + peer);
         if (started != null) {
             started[0] = h;
         } else {
@@ -1135,6 +1146,11 @@ public final class AgentHost implements Agency, AutoCloseable {
             }
         }
         return Optional.of(l);
+    }
+
+    private Reply onWatch(byte[] body) {
+        long since = body.length >= 8 ? ByteBuffer.wrap(body).getLong() : 0;
+        return Reply.ok(activity.watchReply(name, robot == null ? "" : robot.name(), hosted.values(), since));
     }
 
     private Reply onList() {

@@ -15,7 +15,9 @@ enum Op {
     /** Send an agent here home. */
     RETRACT,
     /** End an agent's trip here. */
-    DISPOSE;
+    DISPOSE,
+    /** What a watcher (a console) sees: the host, its agents and itineraries, recent events ({@link HostWatch}). */
+    WATCH;
 
     private static final Op[] ALL = values();
 
