@@ -67,6 +67,9 @@ final class HostCommand implements Callable<Integer> {
     @Option(names = "--serve-password", description = "password callers of --serve must give")
     String servePassword;
 
+    @Option(names = "--record", paramLabel = "FILE.mcap", description = "record this host's agents (arrivals, stops, reports, results) and its robot (commands, pose, sensors) into an MCAP file")
+    Path record;
+
     @Mixin
     ClusterOptions cluster;
 
@@ -79,13 +82,15 @@ final class HostCommand implements Callable<Integer> {
         PrintWriter err = spec.commandLine().getErr();
         List<AutoCloseable> open = new ArrayList<>();
         Robot robot = null;
+        io.robomw.console.Console console = null;
+        Simulation sim = null;
         try {
             if (world != null) {
                 if (worldRobot == null) {
                     err.println("--world needs --world-robot NAME: which of its robots agents drive");
                     return 2;
                 }
-                Simulation sim = Simulation.load(world);
+                sim = Simulation.load(world);
                 open.add(0, sim);
                 sim.startRealTime(speed);
                 robot = sim.robot(worldRobot);
@@ -94,6 +99,14 @@ final class HostCommand implements Callable<Integer> {
                         : PlatformServices.none().with(ConnectionOverride.class, new ConnectionOverride(connection));
                 robot = Robots.open(robotFile, services);
                 open.add(0, robot);
+            }
+            if (record != null) {
+                console = io.robomw.console.Console.builder("mw " + String.join(" ", spec.commandLine().getParseResult().originalArgs()))
+                        .noPage().record(record).clusterKey(cluster.key(), cluster.tls() != null).simulation(sim).start();
+                if (robot != null) {
+                    console.watchRobot(robot, robotFile != null ? robotFile.toString() : world + " (" + worldRobot + ")");
+                    robot = console.recordCommands(robot);
+                }
             }
             String served = null;
             if (serve != null) {
@@ -110,6 +123,11 @@ final class HostCommand implements Callable<Integer> {
             AgentHost host = AgentHost.builder(name).bind(bind).port(port).robot(robot).clusterKey(cluster.key()).tls(cluster.tls())
                     .store(store).allow(allow).start();
             open.add(0, host);
+            if (console != null) {
+                console.watchHost(host.address());
+                open.add(0, console);
+                out.printf("recording to %s%n", record);
+            }
             out.printf("agent host %s ready at %s (robot: %s, store: %s)%n", name, host.address(), robot == null ? "none" : robot.name(),
                     store == null ? "memory" : store);
             if (served != null) {
@@ -127,6 +145,9 @@ final class HostCommand implements Callable<Integer> {
         } catch (RobotException | IllegalArgumentException | IllegalStateException | java.io.IOException e) {
             err.println("mw host: " + e.getMessage());
             err.flush();
+            if (console != null && !open.contains(console)) {
+                console.close();
+            }
             closeAll(open);
             return 2;
         }

@@ -30,9 +30,9 @@ public sealed interface Observation {
 
     /** A command given to a robot. @param verb move, turn, arc, drive, stop, perform... @param args its arguments by name, SI units */
     record RobotCommand(long timeNanos, String robot, String verb, Map<String, Double> args) implements Observation {
-        /** Copies. */
+        /** Copies, keeping the arguments' order. */
         public RobotCommand {
-            args = Map.copyOf(args);
+            args = java.util.Collections.unmodifiableMap(new java.util.LinkedHashMap<>(args));
         }
     }
 

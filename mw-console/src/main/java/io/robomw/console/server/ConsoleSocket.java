@@ -16,7 +16,7 @@ import java.util.concurrent.atomic.AtomicBoolean;
  * gets fewer, larger updates instead of an ever longer queue) and serves its requests. A bad
  * request gets a reply saying what was wrong; the connection stays open.
  */
-final class ConsoleSocket extends Session.Listener.AbstractAutoDemanding {
+public final class ConsoleSocket extends Session.Listener.AbstractAutoDemanding {
 
     private static final Logger LOG = LoggerFactory.getLogger(ConsoleSocket.class);
     /** Requests run off the WebSocket's thread: a retract may wait seconds for a host. */

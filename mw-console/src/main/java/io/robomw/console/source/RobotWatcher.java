@@ -33,15 +33,22 @@ public final class RobotWatcher implements AutoCloseable {
     private final Duration period;
     private final Thread thread;
     private final CountDownLatch closed = new CountDownLatch(1);
+    private final boolean owned;
     private volatile Robot robot;
     private volatile String name;
 
-    private RobotWatcher(String address, Observer observer, Duration period) {
+    private RobotWatcher(String address, Robot given, Observer observer, Duration period) {
         this.address = address;
         this.observer = observer;
         this.period = period;
-        String path = URI.create(address).getPath();
-        this.name = path == null || path.length() <= 1 ? address : path.substring(path.lastIndexOf('/') + 1);
+        this.owned = given == null;
+        this.robot = given;
+        if (given != null) {
+            this.name = given.name();
+        } else {
+            String path = URI.create(address).getPath();
+            this.name = path == null || path.length() <= 1 ? address : path.substring(path.lastIndexOf('/') + 1);
+        }
         this.thread = new Thread(this::run, "console-robot-" + name);
         thread.setDaemon(true);
     }
@@ -53,7 +60,22 @@ public final class RobotWatcher implements AutoCloseable {
      * @return the running watcher
      */
     public static RobotWatcher watch(String address, Observer observer, Duration period) {
-        RobotWatcher w = new RobotWatcher(address, observer, period);
+        RobotWatcher w = new RobotWatcher(address, null, observer, period);
+        w.thread.start();
+        return w;
+    }
+
+    /**
+     * Watches a robot of this process; it stays the caller's (never closed here).
+     *
+     * @param robot    the robot
+     * @param source   where it is, for the page
+     * @param observer who is told
+     * @param period   time between two looks
+     * @return the running watcher
+     */
+    public static RobotWatcher watch(Robot robot, String source, Observer observer, Duration period) {
+        RobotWatcher w = new RobotWatcher(source, robot, observer, period);
         w.thread.start();
         return w;
     }
@@ -68,6 +90,9 @@ public final class RobotWatcher implements AutoCloseable {
             while (closed.getCount() > 0) {
                 try {
                     Robot r = robot;
+                    if (r == null && !owned) {
+                        return;
+                    }
                     if (r == null) {
                         r = Robots.remote(address);
                         name = r.name();
@@ -80,7 +105,9 @@ public final class RobotWatcher implements AutoCloseable {
                     }
                 } catch (RuntimeException e) {
                     observer.observe(new Observation.RobotStatus(now(), name, address, false, String.valueOf(e.getMessage())));
-                    drop();
+                    if (owned) {
+                        drop();
+                    }
                     if (closed.await(RECONNECT_MILLIS, TimeUnit.MILLISECONDS)) {
                         return;
                     }
@@ -91,7 +118,9 @@ public final class RobotWatcher implements AutoCloseable {
         } catch (Throwable t) {
             LOG.error("console: watching robot {} failed; no more updates of it: {}", name, t.toString(), t);
         } finally {
-            drop();
+            if (owned) {
+                drop();
+            }
         }
     }
 

@@ -282,6 +282,7 @@ function mark(outcome) { return outcome === "DONE" ? "✓" : outcome === "FAILED
 
 function addEvent(e) {
   const list = document.getElementById("events");
+  document.getElementById("no-events")?.remove();
   const time = new Date(e.t * 1000).toLocaleTimeString();
   const li = e.kind === "agent"
     ? el("li", { class: e.what, "data-agent": e.agent, "data-what": e.what }, el("span", { class: "t" }, time), el("span", { class: "what" }, e.what),
