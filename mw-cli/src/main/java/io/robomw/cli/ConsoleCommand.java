@@ -68,8 +68,11 @@ final class ConsoleCommand implements Callable<Integer> {
         Console.Builder apply(Console.Builder b) throws java.io.IOException {
             if (world != null) {
                 WorldDescription d = new WorldLoader().load(world);
-                b.world(WorldMap.of(d, d.robots().stream().map(r -> new WorldMap.RobotMark(r.name(), 0.2, 0.15, r.start().x(), r.start().y(),
-                        r.start().heading())).toList()));
+                io.robomw.config.description.RobotDescriptionLoader loader = new io.robomw.config.description.RobotDescriptionLoader();
+                b.world(WorldMap.of(d, d.robots().stream().map(r -> {
+                    io.robomw.config.description.Body body = loader.load(r.description()).body();
+                    return new WorldMap.RobotMark(r.name(), body.length(), body.width(), r.start().x(), r.start().y(), r.start().heading());
+                }).toList()));
                 b.about("world", world.toString());
             }
             if (periodMillis < 50 || periodMillis > 60_000) {

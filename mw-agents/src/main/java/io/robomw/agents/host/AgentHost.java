@@ -593,7 +593,8 @@ public final class AgentHost implements Agency, AutoCloseable {
         }
         Departure d = depart(h);
         if (d.delivered()) {
-            hosted.remove(h.id);
+            // Only this copy: an agent whose next stop is this host was accepted again under the same id.
+            hosted.remove(h.id, h);
             return;
         }
         if (!closed) {
@@ -955,7 +956,7 @@ public final class AgentHost implements Agency, AutoCloseable {
                 : h.agent.itinerary();
         String why = send(h, image, Frame.of(image.encode()), target, plan);
         if (why == null) {
-            hosted.remove(h.id);
+            hosted.remove(h.id, h);
             return;
         }
         h.agent.itinerary().record(target, Itinerary.Outcome.UNREACHABLE, why);

@@ -25,6 +25,8 @@ import java.util.UUID;
 final class HostActivity {
 
     static final int CAPACITY = 1_000;
+    /** Visits of an itinerary sent to watchers: the latest ones (a repeated itinerary's history grows without end). */
+    static final int MAX_VISITS = 20;
     /** Longest detail kept per event, characters (a report's text is cut there). */
     static final int MAX_DETAIL = 300;
 
@@ -130,8 +132,8 @@ final class HostActivity {
     }
 
     /**
-     * The itinerary as a watcher shows it: the visits made (with outcomes), the stop the agent is
-     * at, then the stops ahead. The agent's own thread may be changing it: a copy that fails is
+     * The itinerary as a watcher shows it: the latest {@value #MAX_VISITS} visits made (with
+     * outcomes), the stop the agent is at, then the stops ahead. The agent's own thread may be changing it: a copy that fails is
      * sent as "not known" this time.
      */
     private static void writeItinerary(DataOutputStream s, HostedAgent h) throws IOException {
@@ -141,6 +143,7 @@ final class HostActivity {
         try {
             Itinerary it = h.agent.itinerary();
             visits = it.history();
+            visits = visits.subList(Math.max(0, visits.size() - MAX_VISITS), visits.size());
             stops = it.stops();
             current = it.currentIndex();
         } catch (RuntimeException e) {

@@ -86,6 +86,23 @@ class HostWatchTest {
     }
 
     @Test
+    void anAgentGoingRoundAtOneHostStaysListedThere() throws Exception {
+        AgentHost home = host("home");
+        AgentHost b = host("b");
+        VisitorAgent agent = new VisitorAgent().holdUntilReleased();
+        agent.itinerary().repeat(3);
+        AgentRef ref = home.sendAgent(b.address(), agent);
+        Await.until("listed at b", WITHIN, () -> !b.agents().isEmpty());
+        ref.sendMessage("release", Duration.ofSeconds(5));
+        Await.until("on its second round at b", WITHIN, () -> b.agents().stream().anyMatch(a -> a.hop() >= 2));
+        assertEquals(1, b.agents().size(), "the agent, once: its new copy replaced the old one");
+        ref.sendMessage("release", Duration.ofSeconds(5));
+        Await.until("on its third round", WITHIN, () -> b.agents().stream().anyMatch(a -> a.hop() >= 3));
+        ref.sendMessage("release", Duration.ofSeconds(5));
+        assertEquals(List.of("b", "b", "b"), ref.result().get(10, java.util.concurrent.TimeUnit.SECONDS));
+    }
+
+    @Test
     void aWatcherWithoutTheClusterKeyIsRefused() throws Exception {
         AgentHost a = host("a");
         HostWatch stranger = HostWatch.of(a.address(), ClusterKey.fromPassphrase("not ours"), false, "stranger");

@@ -90,7 +90,8 @@ public final class ConsoleView implements Observer {
         } else if (o instanceof Observation.World w) {
             world = w.map();
             worldVersion++;
-        } else if (o instanceof Observation.RobotPose p) {
+        } else if (o instanceof Observation.RobotPose raw) {
+            Observation.RobotPose p = placed(raw);
             RobotState r = robot(p.robot());
             if (r.truth && !p.truth()) {
                 return; // the simulator's truth wins over the robot's own estimate
@@ -150,6 +151,26 @@ public final class ConsoleView implements Observer {
             m.put("detail", t.text());
             addEvent(m);
         }
+    }
+
+    /**
+     * A robot's odometry counts from where it started; in a world whose map says where that was
+     * (a robot of that name), the page draws it from there: start pose, then odometry in the
+     * start's frame. True poses are the world's already.
+     */
+    private Observation.RobotPose placed(Observation.RobotPose p) {
+        if (p.truth() || world == null) {
+            return p;
+        }
+        for (WorldMap.RobotMark m : world.robots()) {
+            if (m.name().equals(p.robot())) {
+                double c = Math.cos(m.startHeading());
+                double s = Math.sin(m.startHeading());
+                return new Observation.RobotPose(p.timeNanos(), p.robot(), m.startX() + c * p.x() - s * p.y(), m.startY() + s * p.x() + c * p.y(),
+                        m.startHeading() + p.heading(), false);
+            }
+        }
+        return p;
     }
 
     private void addEvent(Map<String, Object> m) {
@@ -218,7 +239,9 @@ public final class ConsoleView implements Observer {
                 rs.add(m);
             }
             u.put("robots", rs);
-            u.put("hosts", new ArrayList<>(hosts.values()));
+            List<HostView> byName = new ArrayList<>(hosts.values());
+            byName.sort(java.util.Comparator.comparing(HostView::name).thenComparing(HostView::address));
+            u.put("hosts", byName);
             List<Map<String, Object>> fresh = new ArrayList<>();
             for (Map<String, Object> e : events) {
                 if ((Long) e.get("seq") > cursor.eventSeq) {

@@ -111,10 +111,14 @@ function apply(u) {
   renderAll();
 }
 
+// The side panels are redrawn only when what they show changed, so a button stays put under the pointer.
+let drawnRobots = "", drawnHosts = "";
 function renderAll() {
   renderMap();
-  renderRobots();
-  renderHosts();
+  const robots = JSON.stringify([...model.robots.values()].map(r => [r, Math.round(model.now)])) + model.connected + JSON.stringify(model.controls);
+  if (robots !== drawnRobots) { drawnRobots = robots; renderRobots(); }
+  const hosts = JSON.stringify(model.hosts) + model.connected + JSON.stringify(model.controls) + Math.round(model.now);
+  if (hosts !== drawnHosts) { drawnHosts = hosts; renderHosts(); }
 }
 
 // ---- the map ----
@@ -292,5 +296,5 @@ function addEvent(e) {
   while (list.children.length > MAX_EVENTS_SHOWN) list.lastChild.remove();
 }
 
-setInterval(() => { if (!model.connected) renderHosts(); }, 1000);
+setInterval(() => { if (!model.connected) { drawnHosts = ""; renderAll(); } }, 1000);
 connect();
