@@ -139,8 +139,17 @@ final class DemoCommand implements Callable<Integer> {
         }
         long started = System.nanoTime();
         List<Process> hosts = new ArrayList<>();
-        List<AutoCloseable> closeLater = new ArrayList<>();
-        Thread reaper = new Thread(() -> hosts.forEach(Process::destroyForcibly), "mw-demo-reaper");
+        List<AutoCloseable> closeLater = new java.util.concurrent.CopyOnWriteArrayList<>();
+        Thread reaper = new Thread(() -> {
+            hosts.forEach(Process::destroyForcibly);
+            for (AutoCloseable c : closeLater) {
+                try {
+                    c.close(); // a demo stopped by Ctrl-C still gets its recording's summary and footer
+                } catch (Exception e) {
+                    System.err.println("mw demo: closing " + c + " failed: " + e);
+                }
+            }
+        }, "mw-demo-reaper");
         Runtime.getRuntime().addShutdownHook(reaper);
         try (Simulation sim = Simulation.load(worldFile, Set.copyOf(ROBOTS));
              BrickEmulator nxtBrick = NxtEmulator.bind(sim, "nxt");
