@@ -53,6 +53,7 @@ final class Calls implements HostEndpoint.Handler {
             case EVENT -> home.onEvent(peer, body);
             case MESSAGE -> onMessage(peer, body);
             case RETRACT, DISPOSE -> onRequest(peer, op, body);
+            case DESCRIBE -> Reply.ok(host.messaging.describeSelf().encode());
             case WATCH -> onWatch(body);
         };
     }

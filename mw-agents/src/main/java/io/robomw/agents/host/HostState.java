@@ -56,6 +56,8 @@ final class HostState {
     };
     AgentStore store;
     String address;
+    /** The host's messaging; set by {@link AgentHost} before the host takes calls. */
+    HostMessaging messaging;
     volatile boolean closed;
 
     HostState(AgentHost facade, String name, Robot robot, StateCodec codec, int timeoutMillis) {

@@ -62,6 +62,7 @@ final class Trips {
         String poolName = t.getName();
         t.setName("agent-" + h.shortId() + "-" + simpleName(h.className) + "@" + host.name);
         try {
+            host.messaging.met(h);
             Itinerary it = h.agent.itinerary();
             String stopHost = it.currentStop().map(Itinerary.Stop::host).orElse(host.address);
             if (interrupted) {
@@ -108,6 +109,7 @@ final class Trips {
 
     /** After a stop: home if retracted, the end if disposed of, else on to the next reachable stop or the end of the trip. */
     void moveOn(HostedAgent h) {
+        host.messaging.left(h);
         h.agent.attach(host.contextOf(h));
         if (h.retractRequested) {
             goHome(h);
