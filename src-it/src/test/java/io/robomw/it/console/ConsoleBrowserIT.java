@@ -78,7 +78,7 @@ class ConsoleBrowserIT {
         beta.await(" ready at ", WITHIN);
         console = MwProcess.start("console-it-console", "console", "--host", "rmi://127.0.0.1:" + alphaPort + "/alpha",
                 "--host", "rmi://127.0.0.1:" + betaPort + "/beta", "--robot", "tcp://127.0.0.1:" + robotPort + "/nxt", "--world", world.toString(),
-                "--port", "0", "--period-ms", "300", "--key-file", keyFile.toString());
+                "--port", "0", "--period-ms", "300", "--key-file", keyFile.toString(), "--record", recording().toString());
         String page = console.await("console at http://127.0.0.1:", WITHIN).replace("console at ", "").trim();
         assertTrue(page.contains("#token="), page);
         home = AgentHost.builder("it-console-home").clusterKey(KEY).start();
@@ -189,6 +189,26 @@ class ConsoleBrowserIT {
         waitFor("its card no longer greyed", () -> !hostCard("beta").getAttribute("class").contains("stale"));
         survey.result().get(60, TimeUnit.SECONDS);
         screenshot("console-after");
+    }
+
+    @Test
+    @Order(5)
+    void whatTheConsoleRecordedReplaysIntoAPicture() throws Exception {
+        console.close(); // SIGTERM, as Ctrl-C: the recording gets its summary and footer
+        console = null;
+        Path png = dir.resolve("replay.png");
+        try (MwProcess replay = MwProcess.start("console-it-replay", "replay", recording().toString(), "--speed", "0", "--no-console", "--png",
+                png.toString())) {
+            String played = replay.await("replayed ", WITHIN);
+            assertTrue(played.matches("replayed \\d+ messages .*") && !played.contains("ends early"), played);
+            replay.await("wrote " + png, WITHIN);
+            assertEquals(0, replay.waitFor(WITHIN));
+        }
+        assertTrue(Files.size(png) > 10_000, "a picture of the arena and the robot's path");
+    }
+
+    private static Path recording() {
+        return Path.of("target", "console-it.mcap").toAbsolutePath();
     }
 
     private static LingeringAgent lingering(int rounds) {
