@@ -59,6 +59,9 @@ final class ConsoleCommand implements Callable<Integer> {
         @Option(names = "--world", paramLabel = "WORLD.yaml", description = "the world the robots live in, drawn as the map")
         Path world;
 
+        @Option(names = "--discover", description = "also watch the hosts the watched hosts know (the cluster's directory, from each host's DESCRIBE)")
+        boolean discover;
+
         @Option(names = "--period-ms", defaultValue = "500", description = "how often hosts are asked, ms (robots twice as often; default ${DEFAULT-VALUE})")
         long periodMillis;
 
@@ -79,6 +82,9 @@ final class ConsoleCommand implements Callable<Integer> {
                 throw new IllegalArgumentException("--period-ms must be 50 to 60000, got " + periodMillis);
             }
             b.hosts(hosts).robots(robots).period(java.time.Duration.ofMillis(periodMillis));
+            if (discover) {
+                b.discover();
+            }
             if (!hosts.isEmpty()) {
                 b.clusterKey(cluster.key(), cluster.tls() != null);
             } else {

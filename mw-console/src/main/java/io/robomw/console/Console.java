@@ -46,8 +46,8 @@ public final class Console implements AutoCloseable {
     private final ConsoleView view;
     private final McapRecorder recorder;
     private final Observer observer;
-    private final List<HostWatcher> hosts = new ArrayList<>();
-    private final List<RobotWatcher> robots = new ArrayList<>();
+    private final List<HostWatcher> hosts = new java.util.concurrent.CopyOnWriteArrayList<>();
+    private final List<RobotWatcher> robots = new java.util.concurrent.CopyOnWriteArrayList<>();
     private final List<AutoCloseable> others = new ArrayList<>();
     private final Simulation sim;
     private final ClusterKey key;
@@ -84,6 +84,7 @@ public final class Console implements AutoCloseable {
         private Path recording;
         private final Map<String, String> about = new LinkedHashMap<>();
         private Duration period = Duration.ofMillis(500);
+        private boolean discover;
 
         private Builder(String title) {
             this.title = Objects.requireNonNull(title);
@@ -147,6 +148,20 @@ public final class Console implements AutoCloseable {
             return this;
         }
 
+        /**
+         * Also watches the hosts the watched hosts know (their directory: each host's
+         * {@code DESCRIBE} lists the hosts it has met), asking every {@value #DISCOVER_SECONDS} s.
+         *
+         * @return this
+         */
+        public Builder discover() {
+            this.discover = true;
+            return this;
+        }
+
+        /** Seconds between two looks at the watched hosts' directories. */
+        public static final int DISCOVER_SECONDS = 5;
+
         /** @param period how often hosts and robots are asked @return this */
         public Builder period(Duration period) {
             this.period = period;
@@ -189,8 +204,45 @@ public final class Console implements AutoCloseable {
         for (String r : b.robotAddresses) {
             robots.add(RobotWatcher.watch(r, observer, b.period.dividedBy(2)));
         }
+        if (b.discover) {
+            java.util.concurrent.ScheduledExecutorService s = java.util.concurrent.Executors.newSingleThreadScheduledExecutor(r -> {
+                Thread t = new Thread(r, "console-discover");
+                t.setDaemon(true);
+                return t;
+            });
+            s.scheduleWithFixedDelay(this::discoverHosts, 0, Builder.DISCOVER_SECONDS, java.util.concurrent.TimeUnit.SECONDS);
+            others.add(s::shutdownNow);
+        }
         if (b.page) {
             server = ConsoleServer.start(view, new ConsoleControls(), b.bind, b.port);
+        }
+    }
+
+    /** Asks each watched host which hosts it knows, and watches the ones not watched yet. */
+    private void discoverHosts() {
+        try {
+            for (HostWatcher w : List.copyOf(hosts)) {
+                if (!w.last().up()) {
+                    continue;
+                }
+                io.robomw.agents.host.HostDescription d;
+                try {
+                    d = io.robomw.agents.host.AgentHost.describe(w.address(), key != null ? key : ClusterKey.tlsOnly(), key == null);
+                } catch (IOException | RuntimeException e) {
+                    LOG.debug("console: {} did not say which hosts it knows: {}", w.address(), e.toString());
+                    continue;
+                }
+                for (io.robomw.agents.host.HostDescription.Known k : d.known()) {
+                    synchronized (this) {
+                        if (!closed && hosts.stream().noneMatch(h -> h.address().equals(k.address()))) {
+                            LOG.info("console: {} knows host {} at {}: watching it too", w.address(), k.name(), k.address());
+                            watchHost(k.address());
+                        }
+                    }
+                }
+            }
+        } catch (RuntimeException | Error e) {
+            LOG.error("console: looking for more hosts failed: {}", e.toString(), e);
         }
     }
 
@@ -211,6 +263,11 @@ public final class Console implements AutoCloseable {
      */
     public void watchRobot(Robot robot, String source) {
         robots.add(RobotWatcher.watch(robot, source, observer, period.dividedBy(2)));
+    }
+
+    /** @return the addresses of the hosts watched, those found through the directory included */
+    public List<String> watchedHosts() {
+        return hosts.stream().map(HostWatcher::address).toList();
     }
 
     /** @return where observations go (add sources of your own: a robot's commands, a replay) */
