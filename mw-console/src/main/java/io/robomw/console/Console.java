@@ -366,6 +366,16 @@ public final class Console implements AutoCloseable {
         }
 
         @Override
+        public java.util.Set<String> stoppableRobots() {
+            java.util.Set<String> names = new java.util.TreeSet<>();
+            robots.forEach(w -> names.add(w.name()));
+            if (sim != null) {
+                sim.robots().forEach(r -> names.add(r.name()));
+            }
+            return names;
+        }
+
+        @Override
         public String stop(String robot) {
             for (RobotWatcher w : robots) {
                 if (w.name().equals(robot)) {

@@ -170,6 +170,7 @@ public final class ConsoleServer implements AutoCloseable {
         c.put("agents", controls.agentsControllable());
         c.put("agentsWhyNot", controls.agentsWhyNot());
         c.put("robots", controls != Controls.NONE);
+        c.put("stoppable", new java.util.TreeSet<>(controls.stoppableRobots()));
         return c;
     }
 

@@ -25,6 +25,11 @@ public interface Controls {
     /** @param robot a robot the console watches @return what happened @throws Exception with a line for the page */
     String stop(String robot) throws Exception;
 
+    /** @return the robots {@link #stop} can stop (a robot driven through its brick by another process cannot be) */
+    default java.util.Set<String> stoppableRobots() {
+        return java.util.Set.of();
+    }
+
     /** No buttons: a replay, or a console without key or robots. */
     Controls NONE = new Controls() {
         @Override

@@ -201,8 +201,10 @@ function renderRobots() {
     const badge = !model.connected ? el("span", { class: "badge stale" }, "stale")
       : !r.reachable ? el("span", { class: "badge down" }, "unreachable") : el("span", { class: "badge up" }, "live");
     const stop = el("button", { class: "danger", "data-action": "stop", "data-robot": name, onclick: () => send({ op: "stop", robot: name }, "stop " + name) }, "Stop");
-    stop.disabled = !model.controls.robots || !token || !model.connected;
-    stop.title = !token ? "open the address the console printed: it carries the access token" : "stop every motor of " + name;
+    const stoppable = (model.controls.stoppable || []).includes(name);
+    stop.disabled = !stoppable || !token || !model.connected;
+    stop.title = !stoppable ? "this console does not drive " + name + " (it is driven through its brick by another process)"
+      : !token ? "open the address the console printed: it carries the access token" : "stop every motor of " + name;
     const kv = el("dl", { class: "kv" });
     if (r.pose) {
       kv.append(el("dt", {}, r.pose.truth ? "pose (true)" : "pose (odometry)"), el("dd", { "data-field": "pose" },

@@ -65,6 +65,11 @@ class ConsoleServerTest {
         public String stop(String robot) {
             return "robot " + robot + " stopped";
         }
+
+        @Override
+        public java.util.Set<String> stoppableRobots() {
+            return java.util.Set.of("nxt");
+        }
     };
 
     @BeforeEach
@@ -145,6 +150,7 @@ class ConsoleServerTest {
         assertEquals(1, first.get("robots").get(0).get("trail").size());
         assertEquals("a", first.get("hosts").get(0).get("name").asText());
         assertTrue(first.get("hosts").get(0).get("owed").isNull(), "owed deliveries: not reported");
+        assertEquals("nxt", first.get("controls").get("stoppable").get(0).asText());
         view.observe(new Observation.RobotPose(2_000_000_000L, "nxt", 1.5, 1, 0, true));
         Await.until("the page gets the new trail point alone", WITHIN, () -> {
             JsonNode u = p.received.poll();

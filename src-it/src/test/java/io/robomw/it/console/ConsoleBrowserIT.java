@@ -189,6 +189,13 @@ class ConsoleBrowserIT {
         waitFor("its card no longer greyed", () -> !hostCard("beta").getAttribute("class").contains("stale"));
         survey.result().get(60, TimeUnit.SECONDS);
         screenshot("console-after");
+        By stop = By.cssSelector(".card[data-robot=nxt] button[data-action=stop]");
+        waitFor("the robot's stop button is enabled", () -> browser.findElement(stop).isEnabled());
+        waitFor("the stop button pressed", () -> {
+            browser.findElement(stop).click();
+            return true;
+        });
+        waitFor("the page says the robot stopped", () -> browser.findElement(By.id("toast")).getText().contains("robot nxt stopped"));
     }
 
     @Test
