@@ -92,6 +92,9 @@ final class ReplayCommand implements Callable<Integer> {
             } catch (McapFormatException e) {
                 err.println("mw replay: " + e.getMessage());
                 return 2;
+            } catch (java.nio.file.NoSuchFileException e) {
+                err.println("mw replay: there is no file " + file);
+                return 2;
             } catch (IOException e) {
                 err.println("mw replay: cannot replay " + file + ": " + e.getMessage());
                 return 2;
