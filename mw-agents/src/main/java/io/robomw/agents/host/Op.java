@@ -20,7 +20,9 @@ enum Op {
     /** End an agent's trip here. Code 6. */
     DISPOSE(6),
     /** Say who this host is: name, robot, messaging addresses, the hosts it knows ({@link HostDescription}). Code 7. */
-    DESCRIBE(7);
+    DESCRIBE(7),
+    /** What a watcher (a console) sees: the host, its agents and itineraries, recent events ({@link HostWatch}). Code 8. */
+    WATCH(8);
 
     private final int code;
 
@@ -48,7 +50,8 @@ enum Op {
             case 5 -> RETRACT;
             case 6 -> DISPOSE;
             case 7 -> DESCRIBE;
-            default -> throw new IllegalArgumentException("unknown operation code " + code + " (this host knows 0-7: TRANSFER, PUT_ARCHIVE, LIST, EVENT, MESSAGE, RETRACT, DISPOSE, DESCRIBE)");
+            case 8 -> WATCH;
+            default -> throw new IllegalArgumentException("unknown operation code " + code + " (this host knows 0-8: TRANSFER, PUT_ARCHIVE, LIST, EVENT, MESSAGE, RETRACT, DISPOSE, DESCRIBE, WATCH)");
         };
     }
 }
