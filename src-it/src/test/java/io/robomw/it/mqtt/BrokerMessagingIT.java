@@ -117,6 +117,34 @@ abstract class BrokerMessagingIT {
     }
 
     @Test
+    void aPlainMqttClientsPublicationReachesASubscriberAsTextButNotAProtectedTopic() throws Exception {
+        java.util.concurrent.BlockingQueue<Message> plain = new java.util.concurrent.LinkedBlockingQueue<>();
+        java.util.concurrent.BlockingQueue<Message> guarded = new java.util.concurrent.LinkedBlockingQueue<>();
+        local.addMessageListener("sensors/light", null, plain::add);
+        local.subscribeMessage("sensors/light", null);
+        local.addMessageListener("sensors/guarded", "pw", guarded::add);
+        local.subscribeMessage("sensors/guarded", "pw");
+        int port = Integer.parseInt(broker.address().substring(broker.address().lastIndexOf(':') + 1));
+        var device = com.hivemq.client.mqtt.MqttClient.builder().useMqttVersion5().identifier(name("device"))
+                .serverHost("127.0.0.1").serverPort(port).buildBlocking();
+        device.connect();
+        try {
+            device.publishWith().topic("robomw/pub/sensors/guarded").qos(com.hivemq.client.mqtt.datatypes.MqttQos.AT_LEAST_ONCE)
+                    .payload("forged".getBytes(java.nio.charset.StandardCharsets.UTF_8)).send();
+            device.publishWith().topic("robomw/pub/sensors/light").qos(com.hivemq.client.mqtt.datatypes.MqttQos.AT_LEAST_ONCE)
+                    .payload("412 lux".getBytes(java.nio.charset.StandardCharsets.UTF_8)).send();
+        } finally {
+            device.disconnect();
+        }
+        Message m = plain.poll(WAIT.toSeconds(), TimeUnit.SECONDS);
+        assertTrue(m != null, "the plain client's publication arrived");
+        assertEquals("412 lux", m.payload());
+        assertEquals("mqtt", m.sender());
+        assertTrue(guarded.isEmpty(), "an unsigned publication on a password-protected topic is dropped");
+        assertTrue(local.stats().dropped(io.robomw.agents.messaging.DropReason.MISSING_MAC) >= 1);
+    }
+
+    @Test
     void aWrongTopicPasswordIsRefusedAtTheReceiver() {
         long before = dropped(server, "BAD_MAC");
         local.sendMessage(name("server"), broker.address(), "wrong", "guarded", 0, "go");
