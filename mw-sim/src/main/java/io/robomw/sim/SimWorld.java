@@ -1,5 +1,6 @@
 package io.robomw.sim;
 
+import io.robomw.api.Clock;
 import io.robomw.api.ManualClock;
 import io.robomw.api.Pose;
 import io.robomw.config.description.Body;
@@ -70,6 +71,23 @@ public final class SimWorld implements AutoCloseable {
     private long[] sensingPeriods;
     private final RayCaster rayCaster;
     private final RangeMethod rangeMethod;
+    /** The wall clock phases are timed with, when profiling ({@link #profile}); {@code null} otherwise. */
+    private Clock profileClock;
+    private final long[] phaseNanos = new long[Phase.values().length];
+
+    /** The phases of a step that {@link #profile} times, in the order a step runs them. */
+    public enum Phase {
+        /** dyn4j's step: broadphase, contacts, integration (on the stepping thread). */
+        PHYSICS,
+        /** Encoders, contacts and poses from the motion, per robot (worker threads). */
+        AFTER_STEP,
+        /** Re-indexing the robots and casting the range sensors' rays that are due (worker threads). */
+        SENSING,
+        /** The robots' execution action threads that are due, and their pending reads (worker threads). */
+        CYCLE,
+        /** Body velocities from the commanded wheel speeds (worker threads). */
+        DRIVE
+    }
 
     /** Casts one ray for a range sensor. */
     @FunctionalInterface
@@ -316,17 +334,49 @@ public final class SimWorld implements AutoCloseable {
         return parallel;
     }
 
+    /**
+     * Times every phase of the following steps on a wall clock (for benchmarks and diagnosis:
+     * where a step's time goes); {@code null} stops. The totals are in {@link #phaseNanos()}.
+     *
+     * @param wall the wall clock, or {@code null}
+     */
+    public void profile(Clock wall) {
+        profileClock = wall;
+        java.util.Arrays.fill(phaseNanos, 0);
+    }
+
+    /** @return wall nanoseconds spent in each {@link Phase} (by ordinal) since {@link #profile} */
+    public long[] phaseNanos() {
+        return phaseNanos.clone();
+    }
+
+    private long tick(long since, Phase phase) {
+        Clock c = profileClock;
+        if (c == null) {
+            return 0;
+        }
+        long now = c.nanoTime();
+        if (phase != null) {
+            phaseNanos[phase.ordinal()] += now - since;
+        }
+        return now;
+    }
+
     private void advance() {
         if (initialSampleDue) {
             sampleRangeSensors();
             initialSampleDue = false;
         }
+        long t = tick(0, null);
         physics.step(1, stepSeconds);
+        t = tick(t, Phase.PHYSICS);
         steps++;
         boolean record = steps % trajectoryEvery == 0;
         parallel.forEach(robots.size(), i -> robots.get(i).afterStep(physics, stepSeconds, record));
+        t = tick(t, Phase.AFTER_STEP);
         clock.advanceNanos(stepNanos);
         sampleRangeSensors();
+        t = tick(t, Phase.SENSING);
         long now = clock.nanoTime();
         parallel.forEach(cycledRobots.size(), i -> {
             SimRobot robot = cycledRobots.get(i);
@@ -337,7 +387,9 @@ public final class SimWorld implements AutoCloseable {
             }
             robot.completeReads(this);
         });
+        t = tick(t, Phase.CYCLE);
         parallel.forEach(robots.size(), i -> robots.get(i).applyDrive());
+        tick(t, Phase.DRIVE);
     }
 
     /** Samples every range sensor that is due at this step. */

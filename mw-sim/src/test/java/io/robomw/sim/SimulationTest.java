@@ -156,6 +156,25 @@ class SimulationTest {
     }
 
     @Test
+    void shouldTimeEveryPhaseOfEveryStepOnTheProfileClockAndStopWhenAskedTo() throws Exception {
+        try (Simulation sim = world(1, 1, 0, 0, "")) {
+            long[] now = {0};
+            // a clock that moves 1 ns each time it is read: each phase of each step gets 1 ns
+            sim.world().profile(() -> ++now[0]);
+            sim.runFor(Duration.ofMillis(100));
+            long[] phases = sim.world().phaseNanos();
+            assertEquals(SimWorld.Phase.values().length, phases.length);
+            for (SimWorld.Phase p : SimWorld.Phase.values()) {
+                assertEquals(10, phases[p.ordinal()], p + ": ten steps at 100 Hz, one reading each");
+            }
+            sim.world().profile(null);
+            long read = now[0];
+            sim.runFor(Duration.ofMillis(100));
+            assertEquals(read, now[0], "not profiling: the clock is not read");
+        }
+    }
+
+    @Test
     void shouldGiveIdenticalTrajectoriesForSameSeed() throws Exception {
         List<Pose> first = wanderTrace();
         List<Pose> second = wanderTrace();

@@ -62,7 +62,9 @@ public final class AgentBenchmark {
 
     static final int[] PAYLOADS = {0, 10 * 1024, 1024 * 1024};
     static final int WARMUP = 200;
-    static final int ITERATIONS = 3000;
+    static final int ITERATIONS = Integer.getInteger("agent.bench.iterations", 3000);
+    /** Round trips measured at 1 MB ({@code -Dagent.bench.iterations1MB}); by default as many as the others. */
+    static final int ITERATIONS_1MB = Integer.getInteger("agent.bench.iterations1MB", ITERATIONS);
     /**
      * Fresh JVMs are warmed (JIT) before anything is measured, RoboMW's and JADE's alike: passes
      * of {@value #WARMUP_PASS} round trips at 0 B, discarded, until a pass's p50 is within
@@ -70,8 +72,8 @@ public final class AgentBenchmark {
      * {@value #MAX_PASSES} passes). JADE's author found one pass of 2000 enough for JADE; RoboMW's
      * hop path was still getting faster after ten (bench runs: p50 535, 285, 247, 187, 154, 146, 133, 111, 100, 103 µs).
      */
-    static final int WARMUP_PASS = 2000;
-    static final int MIN_PASSES = 12;
+    static final int WARMUP_PASS = Integer.getInteger("agent.bench.pass", 2000);
+    static final int MIN_PASSES = Integer.getInteger("agent.bench.minPasses", 12);
     static final int MAX_PASSES = 24;
     static final int STEADY_PERCENT = 5;
 
@@ -198,8 +200,36 @@ public final class AgentBenchmark {
         }
     }
 
+    /**
+     * @return the systems this run measures, {@code -Dagent.bench.modes} (a comma-separated subset
+     *         of memory, durable, jade; default all three): {@code bench/all} measures each in JVMs
+     *         of its own, and then no table is written, only the {@code BENCH} lines
+     */
+    private static List<String> modes() {
+        return Arrays.asList(System.getProperty("agent.bench.modes", "memory,durable,jade").trim().split("\\s*,\\s*"));
+    }
+
+    /** @return the round trips measured at a payload */
+    private static int iterations(int payload) {
+        return payload >= 1 << 20 ? ITERATIONS_1MB : ITERATIONS;
+    }
+
     void run() throws Exception {
         String loadBefore = loadAverage();
+        List<String> modes = modes();
+        if (!modes.containsAll(List.of("memory", "durable", "jade"))) {
+            if (modes.contains("memory")) {
+                mode("memory", false);
+            }
+            if (modes.contains("durable")) {
+                mode("durable", true);
+            }
+            if (modes.contains("jade")) {
+                jade();
+            }
+            say("partial run (-Dagent.bench.modes=" + String.join(",", modes) + "): BENCH lines only, no table");
+            return;
+        }
         Mode memory = mode("memory", false);
         Mode durable = mode("durable", true);
         List<JadeMoveBaseline.RoundTrips> jade = new ArrayList<>();
@@ -208,18 +238,31 @@ public final class AgentBenchmark {
             write(memory, durable, jade, loadBefore, loadAverage());
             return;
         }
+        jade.addAll(jade());
+        String loadAfter = loadAverage();
+        write(memory, durable, jade, loadBefore, loadAfter);
+    }
+
+    /** JADE's two containers in fresh JVMs: warmed as RoboMW is, then each payload. */
+    private List<JadeMoveBaseline.RoundTrips> jade() throws Exception {
+        List<JadeMoveBaseline.RoundTrips> jade = new ArrayList<>();
         try (JadeMoveBaseline j = JadeMoveBaseline.start()) {
             List<Double> w = warmUp(() -> j.measure(0, 0, WARMUP_PASS).p50Micros());
             jadeWarmup = w;
             say("JADE JVM warm-up passes (p50 µs, discarded): " + format(w));
             for (int p : PAYLOADS) {
-                JadeMoveBaseline.RoundTrips r = j.measure(p, WARMUP, ITERATIONS);
+                JadeMoveBaseline.RoundTrips r = j.measure(p, WARMUP, iterations(p));
                 jade.add(r);
                 say(String.format(Locale.ROOT, "JADE doMove A->B->A %8d B  p50 %8.1f µs  p99 %8.1f µs", p, r.p50Micros(), r.p99Micros()));
+                System.out.println(BenchReport.line("agents.jade." + payloadId(p), r.p50Micros(), "µs"));
             }
         }
-        String loadAfter = loadAverage();
-        write(memory, durable, jade, loadBefore, loadAfter);
+        return jade;
+    }
+
+    /** @return 0B, 10KB or 1MB: a payload as the BENCH lines name it */
+    private static String payloadId(int bytes) {
+        return bytes >= 1 << 20 ? bytes / (1 << 20) + "MB" : bytes >= 1024 ? bytes / 1024 + "KB" : bytes + "B";
     }
 
     // ---- one mode: host A here, host B in its own JVM ----
@@ -242,9 +285,13 @@ public final class AgentBenchmark {
                 say("RoboMW " + name + " JVM warm-up passes (p50 µs, discarded): " + format(w));
                 List<RoundTrips> warm = new ArrayList<>();
                 for (int p : PAYLOADS) {
-                    RoundTrips r = warm(a, far, agentClass, p, WARMUP, ITERATIONS);
+                    RoundTrips r = warm(a, far, agentClass, p, WARMUP, iterations(p));
                     warm.add(r);
                     say(String.format(Locale.ROOT, "RoboMW %-7s A->B->A %8d B  p50 %8.1f µs  p99 %8.1f µs", name, p, r.p50(), r.p99()));
+                    System.out.println(BenchReport.line("agents." + name + "." + payloadId(p), r.p50(), "µs"));
+                }
+                if (!Boolean.parseBoolean(System.getProperty("agent.bench.extras", "true"))) {
+                    return new Mode(name, warm, null, List.of());
                 }
                 List<Wire> wire = new ArrayList<>();
                 for (int p : PAYLOADS) {

@@ -37,9 +37,11 @@ import java.util.function.LongSupplier;
 public final class MessagingBenchmark {
 
     static final int SIZE = 64;
-    static final int LATENCY_WARMUP = 20_000;
-    static final int LATENCY_MEASURED = 100_000;
-    static final long PUBSUB_WARMUP = 300_000;
+    static final int LATENCY_WARMUP = Integer.getInteger("bench.rrWarmup", 20_000);
+    static final int LATENCY_MEASURED = Integer.getInteger("bench.rrMeasured", 100_000);
+    static final long PUBSUB_WARMUP = Long.getLong("bench.psWarmup", 300_000);
+    /** Measured messages of the JeroMQ and TCP publish/subscribe cases ({@code -Dbench.psMessages}); the others take a fraction. */
+    static final long PUBSUB_MESSAGES = Long.getLong("bench.psMessages", 2_000_000);
     static final int ROUNDS = 3;
 
     private final List<String> rows = new ArrayList<>();
@@ -71,11 +73,11 @@ public final class MessagingBenchmark {
         latency(latencies, "rr-udp", () -> mwReqRep("udp", "udp://127.0.0.1:0"));
         latency(latencies, "rr-multicast", () -> mwReqRep("multicast", group()));
         List<Throughput> throughputs = new ArrayList<>();
-        throughput(throughputs, "ps-zmq", () -> zmqPubSub(2_000_000));
-        throughput(throughputs, "ps-tcp", () -> mwPubSub("tcp", "tcp://127.0.0.1:0", 2_000_000));
-        throughput(throughputs, "ps-rmi", () -> mwPubSub("rmi", "rmi://127.0.0.1:0/bench", 1_000_000));
-        throughput(throughputs, "ps-udp", () -> mwPubSub("udp", "udp://127.0.0.1:0", 500_000));
-        throughput(throughputs, "ps-multicast", () -> mwPubSub("multicast", group(), 500_000));
+        throughput(throughputs, "ps-zmq", () -> zmqPubSub(PUBSUB_MESSAGES));
+        throughput(throughputs, "ps-tcp", () -> mwPubSub("tcp", "tcp://127.0.0.1:0", PUBSUB_MESSAGES));
+        throughput(throughputs, "ps-rmi", () -> mwPubSub("rmi", "rmi://127.0.0.1:0/bench", PUBSUB_MESSAGES / 2));
+        throughput(throughputs, "ps-udp", () -> mwPubSub("udp", "udp://127.0.0.1:0", PUBSUB_MESSAGES / 4));
+        throughput(throughputs, "ps-multicast", () -> mwPubSub("multicast", group(), PUBSUB_MESSAGES / 4));
         write(latencies, throughputs);
     }
 
@@ -88,13 +90,15 @@ public final class MessagingBenchmark {
     /** Runs a latency case unless {@code -Dbench.cases} leaves it out. */
     private static void latency(List<Latency> into, String key, LatencyCase c) throws Exception {
         if (selected(key)) {
-            into.add(c.run());
+            Latency l = c.run();
+            System.out.println(BenchReport.line("msg." + key, l.p50(), "µs"));
+            into.add(l);
         }
     }
 
     private void throughput(List<Throughput> into, String key, Case c) throws Exception {
         if (selected(key)) {
-            into.add(median(c));
+            into.add(median(key, c));
         }
     }
 
@@ -120,11 +124,13 @@ public final class MessagingBenchmark {
     }
 
     /** Runs a throughput case {@value #ROUNDS} times (throughput on a shared 2-core machine varies) and keeps the median. */
-    private Throughput median(Case c) throws Exception {
+    private Throughput median(String key, Case c) throws Exception {
         List<Throughput> runs = new ArrayList<>();
         int rounds = rounds();
         for (int i = 0; i < rounds; i++) {
-            runs.add(c.run());
+            Throughput t = c.run();
+            System.out.println(BenchReport.line("msg." + key, t.perSecond(), "msg/s"));
+            runs.add(t);
         }
         say(runs.get(0).name() + " runs (msg/s): " + runs.stream().map(t -> String.format(Locale.ROOT, "%,.0f", t.perSecond())).toList());
         runs.sort(java.util.Comparator.comparingDouble(Throughput::perSecond));

@@ -72,6 +72,11 @@ public final class MqttBenchmark {
                     ps[1][r] = roboPubSub(broker.address());
                     System.out.printf(Locale.ROOT, "%s round %d: rr p50 bare %.0f us, robomw %.0f us; pub/sub bare %.0f msg/s, robomw %.0f msg/s%n",
                             kind, r + 1, rr[0][r], rr[1][r], ps[0][r], ps[1][r]);
+                    String id = "mqtt." + kind.name().toLowerCase(Locale.ROOT);
+                    System.out.println(BenchReport.line(id + ".rr-bare", rr[0][r], "µs"));
+                    System.out.println(BenchReport.line(id + ".rr-robomw", rr[1][r], "µs"));
+                    System.out.println(BenchReport.line(id + ".ps-bare", ps[0][r], "msg/s"));
+                    System.out.println(BenchReport.line(id + ".ps-robomw", ps[1][r], "msg/s"));
                 }
                 row(kind, "request/reply p50 latency (us)", rr, false);
                 row(kind, "publish/subscribe (messages/s)", ps, true);

@@ -37,6 +37,10 @@ public final class SwarmBenchmark {
      * @throws IOException if the temporary robot file cannot be written
      */
     public static void main(String[] args) throws IOException {
+        if (args.length > 0 && args[0].equals("--sample")) {
+            sample(args);
+            return;
+        }
         List<Integer> counts = new ArrayList<>();
         boolean quick = false;
         for (String a : args) {
@@ -77,9 +81,176 @@ public final class SwarmBenchmark {
         }
     }
 
+    /** The configurations by the key a sample names. */
+    private static final java.util.Map<String, Config> BY_KEY = java.util.Map.of(
+            "grid50", new Config("grid, physics 50 Hz, sensors 10 Hz", 50, 10, SimWorld.RangeMethod.GRID),
+            "grid20", new Config("grid, physics 20 Hz, sensors 10 Hz", 20, 10, SimWorld.RangeMethod.GRID),
+            "naive50", new Config("naive dyn4j ray casts, physics 50 Hz, sensors 10 Hz", 50, 10, SimWorld.RangeMethod.DYN4J_RAYCAST),
+            "naive50s50", new Config("naive dyn4j ray casts, physics 50 Hz, sensors 50 Hz", 50, 50, SimWorld.RangeMethod.DYN4J_RAYCAST),
+            "naive10", new Config("naive dyn4j ray casts, everything at 10 Hz", 10, 10, SimWorld.RangeMethod.DYN4J_RAYCAST));
+
+    /**
+     * One sample for {@code bench/all}, in a JVM of its own: {@code --sample N CONFIG [--warmup S]
+     * [--measure S] [--placement]} (CONFIG: grid50, grid20, naive50, naive50s50, naive10; S: wall-clock seconds,
+     * default 4 and 8). The world runs for the warm-up (JIT, heap sizing; longer while the JIT
+     * still compiles more than 50 ms a second, up to twice plus 10 s), then for the measured
+     * window in whole steps; prints the real-time factor of the window and of each of its seconds,
+     * where the step's time went (phases, on the world's profile clock), GC and JIT time in the
+     * window, with {@code --placement} each thread's CPU, processor and migrations
+     * ({@link ThreadPlacement}, which costs some CPU itself), then
+     * {@code BENCH} lines: the real-time factor; for the grid configurations also dyn4j's step
+     * alone as a ceiling (simulated seconds per wall second spent in it), its cost per robot, and
+     * the live heap per robot.
+     */
+    static void sample(String[] args) throws IOException {
+        int n = Integer.parseInt(args[1]);
+        String key = args[2];
+        Config config = BY_KEY.get(key);
+        if (config == null) {
+            throw new IllegalArgumentException("unknown configuration " + key + "; known: " + BY_KEY.keySet());
+        }
+        double warmup = 4;
+        double measure = 8;
+        boolean watchThreads = false;
+        for (int i = 3; i < args.length; i++) {
+            switch (args[i]) {
+                case "--warmup" -> warmup = Double.parseDouble(args[++i]);
+                case "--measure" -> measure = Double.parseDouble(args[++i]);
+                case "--placement" -> watchThreads = true;
+                default -> throw new IllegalArgumentException("unknown option " + args[i]);
+            }
+        }
+        long heapBefore = liveHeap();
+        Path dir = Files.createTempDirectory("robomw-swarm");
+        try (Simulation sim = Simulation.create(world(n, config, dir), Runtime.getRuntime().availableProcessors(), config.method())) {
+            WanderController.install(sim, 10, 1);
+            long heapPerRobot = (liveHeap() - heapBefore) / n;
+            SimWorld w = sim.world();
+            Duration second = Duration.ofSeconds(1);
+            // Warm up for the given wall time, and on while the JIT still compiled more than 50 ms in the last
+            // second of it (a loaded machine starves the compiler threads), at most twice as long plus 10 s.
+            long warmStart = System.nanoTime();
+            long end = warmStart + Math.round(warmup * 1e9);
+            long limit = warmStart + Math.round((2 * warmup + 10) * 1e9);
+            long jitSlice = jitMillis();
+            long slice = System.nanoTime();
+            long jitLast = Long.MAX_VALUE;
+            while (System.nanoTime() < limit && (System.nanoTime() < end || jitLast > 50)) {
+                sim.runFor(second);
+                if (System.nanoTime() - slice >= 1_000_000_000L) {
+                    long j = jitMillis();
+                    jitLast = j - jitSlice;
+                    jitSlice = j;
+                    slice = System.nanoTime();
+                }
+            }
+            double warmedFor = (System.nanoTime() - warmStart) / 1e9;
+            long gcCount0 = gcCount();
+            long gcMillis0 = gcMillis();
+            long jit0 = jitMillis();
+            ThreadPlacement placement = watchThreads ? ThreadPlacement.start() : null;
+            w.profile(io.robomw.api.Clock.system());
+            double sim0 = w.time();
+            long t0 = System.nanoTime();
+            end = t0 + Math.round(measure * 1e9);
+            List<String> perSecond = new ArrayList<>();
+            long mark = t0;
+            double simMark = sim0;
+            long now;
+            do {
+                sim.runFor(Duration.ofMillis(Math.round(w.stepSeconds() * 1000)));
+                now = System.nanoTime();
+                if (now - mark >= 1_000_000_000L) {
+                    perSecond.add(String.format(Locale.ROOT, "%.1f", (w.time() - simMark) / ((now - mark) / 1e9)));
+                    mark = now;
+                    simMark = w.time();
+                }
+            } while (now < end);
+            double simSeconds = w.time() - sim0;
+            double wall = (now - t0) / 1e9;
+            long[] phases = w.phaseNanos();
+            w.profile(null);
+            String threads = placement == null ? "(not watched; --placement)" : placement.stop();
+            double rtf = simSeconds / wall;
+            long stepsTaken = Math.round(simSeconds / w.stepSeconds());
+            StringBuilder p = new StringBuilder();
+            long inWorld = 0;
+            for (SimWorld.Phase phase : SimWorld.Phase.values()) {
+                long ns = phases[phase.ordinal()];
+                inWorld += ns;
+                p.append(String.format(Locale.ROOT, "%s %.1f µs, ", phase.name().toLowerCase(Locale.ROOT), ns / 1e3 / stepsTaken));
+            }
+            p.append(String.format(Locale.ROOT, "controller and rest %.1f µs", ((now - t0) - inWorld) / 1e3 / stepsTaken));
+            System.out.printf(Locale.ROOT, "SAMPLE N=%d %s: %.2f× real time over %.1f s wall (%d steps); per second: %s%n", n, key, rtf, wall, stepsTaken, perSecond);
+            System.out.println("  per step: " + p);
+            long jitInWindow = jitMillis() - jit0;
+            System.out.printf(Locale.ROOT, "  warm-up %.1f s; GC in the window: %d collections, %d ms; JIT compilation in the window: %d ms%s; live heap per robot %d bytes%n",
+                    warmedFor, gcCount() - gcCount0, gcMillis() - gcMillis0, jitInWindow,
+                    jitInWindow > wall * 100 ? " (UNSTEADY: the JIT compiled for more than a tenth of the window)" : "", heapPerRobot);
+            System.out.println("  threads: " + threads);
+            String id = "sim.n" + n + "." + key;
+            System.out.println(io.robomw.sim.bench.SwarmBenchmark.line(id, rtf, "×"));
+            if (config.method() == SimWorld.RangeMethod.GRID && key.equals("grid50")) {
+                double physicsSeconds = phases[SimWorld.Phase.PHYSICS.ordinal()] / 1e9;
+                System.out.println(line("sim.n" + n + ".physics", simSeconds / physicsSeconds, "×"));
+                System.out.println(line("sim.n" + n + ".step-per-robot", physicsSeconds * 1e6 / stepsTaken / n, "µs"));
+                System.out.println(line("sim.n" + n + ".heap-per-robot", heapPerRobot / 1024.0, "KiB"));
+            }
+        } finally {
+            deleteTree(dir);
+        }
+    }
+
+    /** A {@code BENCH} line as {@code bench/all} collects them (the same as src-it's BenchReport.line). */
+    static String line(String id, double value, String unit) {
+        return String.format(Locale.ROOT, "BENCH %s %.6g %s", id, value, unit);
+    }
+
+    private static long liveHeap() {
+        java.lang.management.MemoryMXBean m = java.lang.management.ManagementFactory.getMemoryMXBean();
+        for (int i = 0; i < 2; i++) {
+            System.gc();
+        }
+        return m.getHeapMemoryUsage().getUsed();
+    }
+
+    private static long gcCount() {
+        return java.lang.management.ManagementFactory.getGarbageCollectorMXBeans().stream().mapToLong(b -> Math.max(0, b.getCollectionCount())).sum();
+    }
+
+    private static long gcMillis() {
+        return java.lang.management.ManagementFactory.getGarbageCollectorMXBeans().stream().mapToLong(b -> Math.max(0, b.getCollectionTime())).sum();
+    }
+
+    private static long jitMillis() {
+        java.lang.management.CompilationMXBean c = java.lang.management.ManagementFactory.getCompilationMXBean();
+        return c != null && c.isCompilationTimeMonitoringSupported() ? c.getTotalCompilationTime() : -1;
+    }
+
+    private static void deleteTree(Path dir) throws IOException {
+        try (var walk = Files.walk(dir)) {
+            for (Path p : walk.sorted(java.util.Comparator.reverseOrder()).toList()) {
+                Files.deleteIfExists(p);
+            }
+        }
+    }
+
     /** @return the real-time factor of one run */
     static double run(int n, Config config, double simSeconds) throws IOException {
         Path dir = Files.createTempDirectory("robomw-swarm");
+        try (Simulation sim = Simulation.create(world(n, config, dir), Runtime.getRuntime().availableProcessors(), config.method())) {
+            WanderController.install(sim, 10, 1);
+            sim.runFor(Duration.ofSeconds(2));
+            long start = System.nanoTime();
+            sim.runFor(Duration.ofMillis(Math.round(simSeconds * 1000)));
+            return simSeconds / ((System.nanoTime() - start) / 1e9);
+        } finally {
+            deleteTree(dir);
+        }
+    }
+
+    /** The benchmark's world: N robots, one per square metre, their robot file written into {@code dir}. */
+    static WorldDescription world(int n, Config config, Path dir) throws IOException {
         Path robot = dir.resolve("swarm-bot.yaml");
         StringBuilder sensors = new StringBuilder();
         for (int i = 0; i < 8; i++) {
@@ -102,17 +273,7 @@ public final class SwarmBenchmark {
             placements.add(new WorldDescription.RobotPlacement(robot, "r" + i,
                     new Pose(0.5 + (i % cols), 0.5 + (double) (i / cols), (i * 2.399963) % (2 * Math.PI))));
         }
-        WorldDescription world = new WorldDescription("swarm-" + n, side, side, true, 0.1, 0.8, List.of(), List.of(), placements, 1,
+        return new WorldDescription("swarm-" + n, side, side, true, 0.1, 0.8, List.of(), List.of(), placements, 1,
                 config.physicsHz(), "benchmark");
-        try (Simulation sim = Simulation.create(world, Runtime.getRuntime().availableProcessors(), config.method())) {
-            WanderController.install(sim, 10, 1);
-            sim.runFor(Duration.ofSeconds(2));
-            long start = System.nanoTime();
-            sim.runFor(Duration.ofMillis(Math.round(simSeconds * 1000)));
-            return simSeconds / ((System.nanoTime() - start) / 1e9);
-        } finally {
-            Files.deleteIfExists(robot);
-            Files.deleteIfExists(dir);
-        }
     }
 }

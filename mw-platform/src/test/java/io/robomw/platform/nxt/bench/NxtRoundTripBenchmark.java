@@ -72,6 +72,8 @@ public final class NxtRoundTripBenchmark {
             System.out.printf(Locale.ROOT, "| bare write/read on the pty | %.1f | %.1f |%n", bareP50, bareTimes[bareTimes.length * 99 / 100] / 1000.0);
             System.out.printf(Locale.ROOT, "| NXT driver (NxtBrick.request) | %.1f | %.1f |%n", driverP50, driverTimes[driverTimes.length * 99 / 100] / 1000.0);
             System.out.printf(Locale.ROOT, "driver overhead at p50: %.1f µs (target ≤ 50 µs)%n", driverP50 - bareP50);
+            // for bench/all (io.robomw.bench.BenchReport in src-it reads these)
+            System.out.printf(Locale.ROOT, "BENCH nxt.bare %.6g µs%nBENCH nxt.driver %.6g µs%n", bareP50, driverP50);
             a.interrupt();
             b.interrupt();
         }
