@@ -3,8 +3,6 @@ package io.robomw.agents.host;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
-import io.robomw.agents.messaging.security.ReplayGuard;
-
 import java.io.ByteArrayInputStream;
 import java.io.DataInputStream;
 import java.io.IOException;
@@ -55,7 +53,6 @@ final class HostEndpoint implements AgentHostRemote {
     private final SecureRandom random = new SecureRandom();
     private final Map<String, Long> nonces = new LinkedHashMap<>();
     private final Map<Long, Peer> sessions = new ConcurrentHashMap<>();
-    private final ReplayGuard replays = new ReplayGuard();
     private final LongAdder refused = new LongAdder();
 
     HostEndpoint(String hostName, ClusterKey key, Handler handler) {
@@ -89,7 +86,17 @@ final class HostEndpoint implements AgentHostRemote {
         String peer = "?";
         try {
             DataInputStream in = new DataInputStream(new ByteArrayInputStream(request));
+            int version = in.readUnsignedByte();
+            if (version != Session.PROTOCOL_VERSION) {
+                return refuse(peer, "it speaks agent protocol version " + version + (version == 0 ? " or 1 (a build before 2026-11-24)" : "")
+                        + "; this host speaks version " + Session.PROTOCOL_VERSION + ": run the same RoboMW on both");
+            }
+            int authenticator = in.readUnsignedByte();
             peer = in.readUTF();
+            if (!CallAuthenticator.known(authenticator)) {
+                return refuse(peer, CallAuthenticator.unknown(authenticator));
+            }
+            byte[] terms = Session.terms(version, authenticator);
             byte[] hostNonce = in.readNBytes(32);
             byte[] clientNonce = in.readNBytes(32);
             byte[] proof = in.readNBytes(32);
@@ -105,17 +112,17 @@ final class HostEndpoint implements AgentHostRemote {
             }
             byte[] hostNameBytes = hostName.getBytes(StandardCharsets.UTF_8);
             byte[] peerName = peer.getBytes(StandardCharsets.UTF_8);
-            if (!MessageDigest.isEqual(proof, Session.clientProof(key, hostNameBytes, peerName, hostNonce, clientNonce))) {
+            if (!MessageDigest.isEqual(proof, Session.clientProof(key, terms, hostNameBytes, peerName, hostNonce, clientNonce))) {
                 return refuse(peer, "wrong cluster key");
             }
             long id = random.nextLong();
             if (sessions.size() >= MAX_SESSIONS) {
                 sessions.remove(sessions.keySet().iterator().next());
             }
-            sessions.put(id, new Peer(peer, new Session(id, Session.sessionKey(key, hostNonce, clientNonce))));
+            sessions.put(id, new Peer(peer, new Session(id, Session.sessionKey(key, terms, hostNonce, clientNonce), authenticator)));
             LOG.debug("host {}: peer {} ({}) authenticated", hostName, peer, clientHost());
             return ByteBuffer.allocate(1 + 8 + 32).put(Session.AUTH_ACCEPTED).putLong(id)
-                    .put(Session.hostProof(key, hostNameBytes, peerName, hostNonce, clientNonce)).array();
+                    .put(Session.hostProof(key, terms, hostNameBytes, peerName, hostNonce, clientNonce)).array();
         } catch (IOException | RuntimeException e) {
             return refuse(peer, "malformed authentication request: " + e.getMessage());
         }
@@ -152,7 +159,7 @@ final class HostEndpoint implements AgentHostRemote {
             LOG.warn("host {}: dropped a call from {} claiming peer '{}' session: wrong MAC", hostName, clientHost(), peer.name());
             return new byte[0];
         }
-        if (!replays.accept(id, seq)) {
+        if (!peer.session().firstTime(seq)) {
             refused.increment();
             LOG.warn("host {}: dropped a replayed call (sequence {}) from peer '{}' at {}", hostName, seq, peer.name(), clientHost());
             return new byte[0];

@@ -141,10 +141,14 @@ final class PeerLink {
             byte[] peerName = selfName.getBytes(StandardCharsets.UTF_8);
             ByteArrayOutputStream req = new ByteArrayOutputStream();
             DataOutputStream out = new DataOutputStream(req);
+            int authenticator = CallAuthenticator.DEFAULT;
+            byte[] terms = Session.terms(Session.PROTOCOL_VERSION, authenticator);
+            out.writeByte(Session.PROTOCOL_VERSION);
+            out.writeByte(authenticator);
             out.writeUTF(selfName);
             out.write(hostNonce);
             out.write(clientNonce);
-            out.write(Session.clientProof(key, hostName, peerName, hostNonce, clientNonce));
+            out.write(Session.clientProof(key, terms, hostName, peerName, hostNonce, clientNonce));
             byte[] answer = stub.authenticate(req.toByteArray());
             if (answer.length == 0 || answer[0] != Session.AUTH_ACCEPTED) {
                 String why = answer.length > 1 ? new String(answer, 1, answer.length - 1, StandardCharsets.UTF_8) : "no reason given";
@@ -155,11 +159,11 @@ final class PeerLink {
             long id = b.getLong();
             byte[] proof = new byte[32];
             b.get(proof);
-            if (!MessageDigest.isEqual(proof, Session.hostProof(key, hostName, peerName, hostNonce, clientNonce))) {
+            if (!MessageDigest.isEqual(proof, Session.hostProof(key, terms, hostName, peerName, hostNonce, clientNonce))) {
                 stub = null;
                 throw new PeerException("host " + address + " could not prove it knows the cluster key: not sending it anything", false, null);
             }
-            session = new Session(id, Session.sessionKey(key, hostNonce, clientNonce));
+            session = new Session(id, Session.sessionKey(key, terms, hostNonce, clientNonce), authenticator);
             LOG.debug("authenticated to {} (session {}, attempt {})", address, Long.toHexString(id), attempt);
             return session;
         } catch (RemoteException | NotBoundException e) {

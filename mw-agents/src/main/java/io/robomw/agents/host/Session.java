@@ -1,22 +1,42 @@
 package io.robomw.agents.host;
 
-import javax.crypto.Mac;
-import javax.crypto.spec.SecretKeySpec;
+import io.robomw.agents.messaging.security.ReplayGuard;
+
 import java.nio.ByteBuffer;
-import java.security.GeneralSecurityException;
 import java.util.Arrays;
 
 /**
  * The keys and framing of one authenticated session between a peer and a host: the session key
  * both derive from the cluster key and the two nonces, and the request and reply layouts with
- * their truncated HMACs. All integers are big-endian.
+ * their tags ({@link CallAuthenticator}). All integers are big-endian.
  *
  * <pre>
+ * authentication request [version 1][authenticator 1][peer name: u16 length, UTF-8][host nonce 32][client nonce 32][client proof 32]
+ * authentication answer  [0][session id 8][host proof 32]  or  [1][reason, UTF-8]
  * request  [session id 8][seq 8][op 1][body][mac 16]      mac over everything before it
  * reply    [status 1][body][mac 16]                       mac also covers the request's seq
  * unknown session reply  [status 7]                       alone, without a MAC (the host lost the session)
- * authentication answer  [0][session id 8][host proof 32]  or  [1][reason, UTF-8]
+ *
+ * terms        = [version 1][authenticator 1]
+ * client proof = HMAC-SHA256(cluster key, "robomw-agent-client", terms, host name, peer name, host nonce, client nonce)
+ * host proof   = HMAC-SHA256(cluster key, "robomw-agent-host", terms, host name, peer name, host nonce, client nonce)
+ * session key  = HMAC-SHA256(cluster key, "robomw-agent-session", terms, host nonce, client nonce)
+ *                (ClusterKey.mac: every part prefixed with its length, a u32)
  * </pre>
+ *
+ * <p><b>Protocol version</b> ({@value #PROTOCOL_VERSION}): the first byte of an authentication
+ * request. Version 1 (builds before 2026-11-24) had neither that byte nor the authenticator's,
+ * and its proofs and session key did not cover them; a host refuses any other version than its
+ * own with a reason naming both (a version-1 request reads as version 0: its name's length comes
+ * first), and the authenticator codes of {@link CallAuthenticator} it does not know. The terms are
+ * inside both proofs and the session key, so neither side can be talked into other terms than the
+ * peer proposed.
+ *
+ * <p><b>Replays.</b> Each session keeps the window of the sequence numbers it has served
+ * ({@link ReplayGuard}, {@value ReplayGuard#WINDOW} wide): a number served before, or below the
+ * window, is dropped. The window lives and ends with its session (a host that forgets a session
+ * answers its calls {@code UNKNOWN_SESSION} and serves none), so a host never serves, nor tags a
+ * reply to, one number twice under one key.
  *
  * <table>
  * <caption>Operation codes ({@link Op})</caption>
@@ -53,49 +73,55 @@ final class Session {
     private static final byte[] CLIENT = "robomw-agent-client".getBytes();
     private static final byte[] HOST = "robomw-agent-host".getBytes();
     private static final byte[] SESSION = "robomw-agent-session".getBytes();
-    private static final byte[] REPLY = "reply".getBytes();
+    /** The agent-host protocol version this build speaks: the first byte of an authentication request. */
+    static final int PROTOCOL_VERSION = 2;
     static final int HEADER = 8 + 8 + 1;
     /** The first byte of an authentication answer that accepts the peer. */
     static final byte AUTH_ACCEPTED = 0;
     /** The first byte of an authentication answer that refuses the peer; the reason follows. */
     static final byte AUTH_REFUSED = 1;
-    static final int MAC = ClusterKey.CALL_MAC_LENGTH;
+    static final int MAC = CallAuthenticator.TAG;
 
     final long id;
-    private final SecretKeySpec key;
-    /**
-     * One initialised HMAC per thread that uses this session: {@link Mac#getInstance} and
-     * {@link Mac#init} cost more than the MAC of a small call, and {@link Mac#doFinal} leaves a
-     * {@code Mac} ready for the next message under the same key.
-     */
-    private final ThreadLocal<Mac> macs;
+    private final CallAuthenticator authenticator;
+    private final ReplayGuard served = new ReplayGuard();
 
+    /** A session with the authenticator peers of this build propose. */
     Session(long id, byte[] key) {
+        this(id, key, CallAuthenticator.DEFAULT);
+    }
+
+    /**
+     * @param id                the host's session id
+     * @param key               the session key
+     * @param authenticatorCode a {@link CallAuthenticator} code
+     * @throws IllegalArgumentException naming the code if it is unknown
+     */
+    Session(long id, byte[] key, int authenticatorCode) {
         this.id = id;
-        this.key = new SecretKeySpec(key, "HmacSHA256");
-        this.macs = ThreadLocal.withInitial(this::newMac);
+        this.authenticator = CallAuthenticator.of(authenticatorCode, key);
     }
 
-    private Mac newMac() {
-        try {
-            Mac m = Mac.getInstance("HmacSHA256");
-            m.init(key);
-            return m;
-        } catch (GeneralSecurityException e) {
-            throw new IllegalStateException("this JDK has no HmacSHA256", e);
-        }
+    /** @return the code of the session's authenticator */
+    int authenticatorCode() {
+        return authenticator.code();
     }
 
-    static byte[] clientProof(ClusterKey k, byte[] hostName, byte[] peerName, byte[] hostNonce, byte[] clientNonce) {
-        return k.mac(CLIENT, hostName, peerName, hostNonce, clientNonce);
+    /** @return the terms both proofs and the session key cover: [version][authenticator] */
+    static byte[] terms(int version, int authenticatorCode) {
+        return new byte[] {(byte) version, (byte) authenticatorCode};
     }
 
-    static byte[] hostProof(ClusterKey k, byte[] hostName, byte[] peerName, byte[] hostNonce, byte[] clientNonce) {
-        return k.mac(HOST, hostName, peerName, hostNonce, clientNonce);
+    static byte[] clientProof(ClusterKey k, byte[] terms, byte[] hostName, byte[] peerName, byte[] hostNonce, byte[] clientNonce) {
+        return k.mac(CLIENT, terms, hostName, peerName, hostNonce, clientNonce);
     }
 
-    static byte[] sessionKey(ClusterKey k, byte[] hostNonce, byte[] clientNonce) {
-        return k.mac(SESSION, hostNonce, clientNonce);
+    static byte[] hostProof(ClusterKey k, byte[] terms, byte[] hostName, byte[] peerName, byte[] hostNonce, byte[] clientNonce) {
+        return k.mac(HOST, terms, hostName, peerName, hostNonce, clientNonce);
+    }
+
+    static byte[] sessionKey(ClusterKey k, byte[] terms, byte[] hostNonce, byte[] clientNonce) {
+        return k.mac(SESSION, terms, hostNonce, clientNonce);
     }
 
     /** Writes the header (with an {@link Op#code()}) and the MAC of a request into its frame, in place. */
@@ -103,13 +129,23 @@ final class Session {
         byte[] b = frame.bytes;
         ByteBuffer.wrap(b, 0, HEADER).putLong(id).putLong(seq).put((byte) opCode);
         int n = b.length - MAC;
-        System.arraycopy(mac(b, 0, n), 0, b, n, MAC);
+        authenticator.tag(false, seq, b, 0, n, b, n);
     }
 
     /** @return whether a request's MAC is right (constant time) */
     boolean verifyRequest(byte[] request) {
         int n = request.length - MAC;
-        return n >= HEADER && equalMac(mac(request, 0, n), request, n);
+        return n >= HEADER && authenticator.verify(false, ByteBuffer.wrap(request, 8, 8).getLong(), request, 0, n, request, n);
+    }
+
+    /**
+     * Records a verified request's number as served.
+     *
+     * @param seq its sequence number
+     * @return {@code false} if the session has served it before (or it is below the window): a replay, not to be served
+     */
+    boolean firstTime(long seq) {
+        return served.accept(id, seq);
     }
 
     byte[] reply(long seq, Reply r) {
@@ -118,10 +154,11 @@ final class Session {
 
     /** A reply with any status byte (a host sends only {@link Reply.Status} codes; tests send others). */
     byte[] reply(long seq, int statusCode, byte[] body) {
-        ByteBuffer b = ByteBuffer.allocate(1 + body.length + MAC);
-        b.put((byte) statusCode).put(body);
-        b.put(replyMac(seq, b.array(), 1 + body.length));
-        return b.array();
+        byte[] b = new byte[1 + body.length + MAC];
+        b[0] = (byte) statusCode;
+        System.arraycopy(body, 0, b, 1, body.length);
+        authenticator.tag(true, seq, b, 0, 1 + body.length, b, 1 + body.length);
+        return b;
     }
 
     /**
@@ -133,7 +170,7 @@ final class Session {
      */
     Reply verifyReply(long seq, byte[] reply) {
         int n = reply.length - MAC;
-        if (n < 1 || !equalMac(replyMac(seq, reply, n), reply, n)) {
+        if (n < 1 || !authenticator.verify(true, seq, reply, 0, n, reply, n)) {
             throw new SecurityException("reply has a wrong MAC: not from the host the session was made with");
         }
         return new Reply(Reply.Status.fromCode(reply[0] & 0xFF), Arrays.copyOfRange(reply, 1, n));
@@ -152,44 +189,5 @@ final class Session {
      */
     static boolean isUnknownSession(byte[] reply) {
         return reply.length == 1 && (reply[0] & 0xFF) == Reply.Status.UNKNOWN_SESSION.code();
-    }
-
-    // The MACs are those of ClusterKey.hmac (every part prefixed with its length), computed over
-    // ranges of the message in place instead of over copies of it.
-
-    private byte[] mac(byte[] data, int off, int len) {
-        Mac m = macs.get();
-        updateLength(m, len);
-        m.update(data, off, len);
-        return Arrays.copyOf(m.doFinal(), MAC);
-    }
-
-    private byte[] replyMac(long seq, byte[] data, int len) {
-        Mac m = macs.get();
-        updateLength(m, REPLY.length);
-        m.update(REPLY);
-        updateLength(m, 8);
-        for (int shift = 56; shift >= 0; shift -= 8) {
-            m.update((byte) (seq >>> shift));
-        }
-        updateLength(m, len);
-        m.update(data, 0, len);
-        return Arrays.copyOf(m.doFinal(), MAC);
-    }
-
-    private static void updateLength(Mac m, int n) {
-        m.update((byte) (n >>> 24));
-        m.update((byte) (n >>> 16));
-        m.update((byte) (n >>> 8));
-        m.update((byte) n);
-    }
-
-    /** Compares a computed MAC with the one at {@code off} in a message, in constant time. */
-    private static boolean equalMac(byte[] mac, byte[] message, int off) {
-        int diff = 0;
-        for (int i = 0; i < MAC; i++) {
-            diff |= mac[i] ^ message[off + i];
-        }
-        return diff == 0;
     }
 }
