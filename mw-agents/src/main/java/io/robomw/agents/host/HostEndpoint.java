@@ -154,6 +154,11 @@ final class HostEndpoint implements AgentHostRemote {
             // Not secret: a host that restarted forgot its sessions; the peer authenticates again.
             return Session.unknownSessionReply();
         }
+        if (peer.session().servedBefore(seq)) {
+            refused.increment();
+            LOG.warn("host {}: dropped a replayed call (sequence {}) from peer '{}' at {}", hostName, seq, peer.name(), clientHost());
+            return new byte[0];
+        }
         if (!peer.session().verifyRequest(request)) {
             refused.increment();
             LOG.warn("host {}: dropped a call from {} claiming peer '{}' session: wrong MAC", hostName, clientHost(), peer.name());

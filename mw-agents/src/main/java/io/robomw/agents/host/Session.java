@@ -139,6 +139,14 @@ final class Session {
     }
 
     /**
+     * @param seq a request's sequence number
+     * @return whether the session has served it (or it is below the window): a replay, dropped before its MAC is checked
+     */
+    boolean servedBefore(long seq) {
+        return served.seen(id, seq);
+    }
+
+    /**
      * Records a verified request's number as served.
      *
      * @param seq its sequence number

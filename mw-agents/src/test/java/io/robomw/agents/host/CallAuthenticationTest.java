@@ -86,7 +86,7 @@ class CallAuthenticationTest {
     }
 
     @ParameterizedTest
-    @ValueSource(ints = {CallAuthenticator.HMAC_SHA256_128, CallAuthenticator.AES_256_GMAC})
+    @ValueSource(ints = {CallAuthenticator.HMAC_SHA256_128, CallAuthenticator.AES_256_GCM})
     void aCallSealedOnTheSessionIsServedOnceAndItsReplyChecks(int authenticator) throws IOException {
         Session s = session(authenticator);
         byte[] reply = host.call(sealed(s, 1, "first"));
@@ -95,7 +95,7 @@ class CallAuthenticationTest {
     }
 
     @ParameterizedTest
-    @ValueSource(ints = {CallAuthenticator.HMAC_SHA256_128, CallAuthenticator.AES_256_GMAC})
+    @ValueSource(ints = {CallAuthenticator.HMAC_SHA256_128, CallAuthenticator.AES_256_GCM})
     void aChangedByteAnywhereInACallGetsItDroppedUnserved(int authenticator) throws IOException {
         Session s = session(authenticator);
         byte[] call = sealed(s, 5, "move agent 1 MB");
@@ -109,11 +109,11 @@ class CallAuthenticationTest {
         assertArrayEquals(new byte[0], host.call(cut), "a call cut short");
         assertEquals(List.of(), served);
         assertEquals(6, host.refused());
-        assertEquals("done 1", s.verifyReply(5, host.call(call)).text(), "the genuine call is still served");
+        assertEquals("done 1", s.verifyReply(5, host.call(call)).text(), "the genuine call is still served after tampered copies of it");
     }
 
     @ParameterizedTest
-    @ValueSource(ints = {CallAuthenticator.HMAC_SHA256_128, CallAuthenticator.AES_256_GMAC})
+    @ValueSource(ints = {CallAuthenticator.HMAC_SHA256_128, CallAuthenticator.AES_256_GCM})
     void aReplayedCallIsDroppedAndServedOnlyOnce(int authenticator) throws IOException {
         Session s = session(authenticator);
         byte[] call = sealed(s, 10, "dispose");
@@ -127,21 +127,21 @@ class CallAuthenticationTest {
 
     @Test
     void aCallSealedUnderAnotherKeyIsDroppedEvenWithALiveSessionId() throws IOException {
-        Session genuine = session(CallAuthenticator.AES_256_GMAC);
-        Session forger = new Session(genuine.id, OTHER_KEY.mac("guessed session key".getBytes(StandardCharsets.UTF_8)), CallAuthenticator.AES_256_GMAC);
+        Session genuine = session(CallAuthenticator.AES_256_GCM);
+        Session forger = new Session(genuine.id, OTHER_KEY.mac("guessed session key".getBytes(StandardCharsets.UTF_8)), CallAuthenticator.AES_256_GCM);
         assertArrayEquals(new byte[0], host.call(sealed(forger, 1, "forged")));
         assertEquals(List.of(), served);
     }
 
     @Test
     void aPeerWithTheWrongClusterKeyIsRefused() throws IOException {
-        Handshake h = authenticate(OTHER_KEY, Session.PROTOCOL_VERSION, CallAuthenticator.AES_256_GMAC, CallAuthenticator.AES_256_GMAC);
+        Handshake h = authenticate(OTHER_KEY, Session.PROTOCOL_VERSION, CallAuthenticator.AES_256_GCM, CallAuthenticator.AES_256_GCM);
         assertEquals(Session.AUTH_REFUSED, h.answer()[0]);
         assertTrue(refusal(h.answer()).contains("wrong cluster key"), refusal(h.answer()));
     }
 
     @ParameterizedTest
-    @ValueSource(ints = {CallAuthenticator.HMAC_SHA256_128, CallAuthenticator.AES_256_GMAC})
+    @ValueSource(ints = {CallAuthenticator.HMAC_SHA256_128, CallAuthenticator.AES_256_GCM})
     void aReplyIsTakenOnlyAsSealedAndOnlyForTheCallItAnswers(int authenticator) throws IOException {
         Session s = session(authenticator);
         byte[] reply = host.call(sealed(s, 3, "list"));
@@ -156,8 +156,8 @@ class CallAuthenticationTest {
 
     @Test
     void theProofsCoverTheAuthenticatorSoAPeerCannotBeTalkedIntoAnother() throws IOException {
-        // A request that says HMAC (1) with a proof made for GMAC (2), as a man in the middle rewriting the byte would send.
-        Handshake h = authenticate(KEY, Session.PROTOCOL_VERSION, CallAuthenticator.HMAC_SHA256_128, CallAuthenticator.AES_256_GMAC);
+        // A request that says HMAC (1) with a proof made for the GCM tag (2), as a man in the middle rewriting the byte would send.
+        Handshake h = authenticate(KEY, Session.PROTOCOL_VERSION, CallAuthenticator.HMAC_SHA256_128, CallAuthenticator.AES_256_GCM);
         assertEquals(Session.AUTH_REFUSED, h.answer()[0]);
         assertTrue(refusal(h.answer()).contains("wrong cluster key"), refusal(h.answer()));
     }
@@ -167,12 +167,12 @@ class CallAuthenticationTest {
         Handshake h = authenticate(KEY, Session.PROTOCOL_VERSION, 99, 99);
         assertEquals(Session.AUTH_REFUSED, h.answer()[0]);
         String why = refusal(h.answer());
-        assertTrue(why.contains("unknown call authenticator code 99") && why.contains("2 AES-256-GMAC"), why);
+        assertTrue(why.contains("unknown call authenticator code 99") && why.contains("2 AES-256-GCM tag"), why);
     }
 
     @Test
     void aPeerOfAnotherProtocolVersionIsRefusedNamingBoth() throws IOException {
-        Handshake h = authenticate(KEY, 3, CallAuthenticator.AES_256_GMAC, CallAuthenticator.AES_256_GMAC);
+        Handshake h = authenticate(KEY, 3, CallAuthenticator.AES_256_GCM, CallAuthenticator.AES_256_GCM);
         assertEquals(Session.AUTH_REFUSED, h.answer()[0]);
         assertTrue(refusal(h.answer()).contains("version 3; this host speaks version 2"), refusal(h.answer()));
         // A protocol-1 request (no version byte: the peer name's u16 length first) reads as version 0.
@@ -188,9 +188,9 @@ class CallAuthenticationTest {
 
     @Test
     void theSameReplyNumberTaggedTwiceInARowIsAnErrorNotATag() {
-        Session s = new Session(7, new byte[32], CallAuthenticator.AES_256_GMAC);
+        Session s = new Session(7, new byte[32], CallAuthenticator.AES_256_GCM);
         s.reply(9, Reply.ok());
-        // GMAC under one key and nonce twice would give the hash subkey away. The replay window keeps a host from
+        // GCM under one key and nonce twice would give the hash subkey away. The replay window keeps a host from
         // answering a number twice; the JDK's refusal to reuse the nonce it has just used is the last safety net.
         assertThrows(IllegalStateException.class, () -> s.reply(9, Reply.of(Reply.Status.REFUSED, "other")));
     }

@@ -46,6 +46,21 @@ public final class ReplayGuard {
     }
 
     /**
+     * Says whether a frame would be a replay, without recording it (for checking before the
+     * costlier MAC; only {@link #accept} records).
+     *
+     * @param source        the frame's source
+     * @param messageNumber its message number
+     * @return {@code true} if it was accepted before or is below the source's window
+     */
+    public boolean seen(long source, long messageNumber) {
+        synchronized (sources) {
+            Window w = sources.get(source);
+            return w != null && w.seen(messageNumber);
+        }
+    }
+
+    /**
      * @param timestampMicros the frame's timestamp
      * @param nowMicros       this host's clock
      * @param maxSkewMicros   how far apart they may be, either way
@@ -87,6 +102,13 @@ public final class ReplayGuard {
             }
             set(n);
             return true;
+        }
+
+        boolean seen(long n) {
+            if (highest == Long.MIN_VALUE || n > highest) {
+                return false;
+            }
+            return highest - n >= WINDOW || isSet(n);
         }
 
         private int index(long n) {

@@ -49,4 +49,17 @@ class ReplayGuardTest {
         assertFalse(ReplayGuard.fresh(1_000, 1_501, 500));
         assertFalse(ReplayGuard.fresh(2_001, 1_500, 500));
     }
+
+    @Test
+    void seenTellsAReplayWithoutRecordingAnything() {
+        assertFalse(guard.seen(1, 5), "nothing from the source yet");
+        assertTrue(guard.accept(1, 5));
+        assertTrue(guard.seen(1, 5));
+        assertFalse(guard.seen(1, 4), "below the highest, in the window, not seen");
+        assertFalse(guard.seen(1, 6));
+        assertTrue(guard.accept(1, 4), "seen did not record 4");
+        assertTrue(guard.accept(1, 6 + ReplayGuard.WINDOW));
+        assertTrue(guard.seen(1, 6), "below the window");
+        assertFalse(guard.seen(2, 5), "another source");
+    }
 }
