@@ -148,7 +148,7 @@ public final class Simulation implements AutoCloseable {
 
     private static RobotDescription renamed(RobotDescription d, String name) {
         return new RobotDescription(name, "sim", d.connection(), d.cyclePeriod(), d.watchdogTimeout(), d.capabilities(), d.drive(),
-                d.body(), d.sensors(), d.actuators(), d.source());
+                d.body(), d.sensors(), d.actuators(), d.leggedDrive(), d.highLevelActions(), d.source());
     }
 
     /** @return the world */

@@ -318,6 +318,22 @@ public final class MappingReader {
     }
 
     /**
+     * @param key a key whose value is a list of text values ({@code [legs, head]})
+     * @return the texts, empty when absent; items that are not plain text are reported
+     */
+    public List<String> textList(String key) {
+        List<String> out = new ArrayList<>();
+        for (Node item : sequence(key)) {
+            if (item instanceof ScalarNode s && !s.getTag().equals(Tag.NULL) && !s.getValue().isBlank()) {
+                out.add(s.getValue());
+            } else {
+                problems.add(item.getStartMark(), "'" + where(key) + "' items must be text values, got " + scalarText(item));
+            }
+        }
+        return out;
+    }
+
+    /**
      * @param key a key whose value is a list of lists of numbers ({@code [[0, 1], [2, 3]]})
      * @return the rows with their marks
      */
