@@ -199,6 +199,12 @@ public final class AgentHost implements Agency, AutoCloseable {
             return this;
         }
 
+        /** The host gives its agents no messaging (a home that only receives results). @return this */
+        public Builder noMessaging() {
+            this.messaging = null;
+            return this;
+        }
+
         /** @param key the cluster key every peer must prove @return this */
         public Builder clusterKey(ClusterKey key) {
             this.key = key;

@@ -1,7 +1,9 @@
 package io.robomw.config.description;
 
 import io.robomw.api.Capability;
+import io.robomw.api.spi.AgencyConfig;
 import io.robomw.api.spi.ConnectionSettings;
+import io.robomw.api.spi.MessagingConfig;
 import io.robomw.api.spi.MotorChannel;
 
 import java.time.Duration;
@@ -28,6 +30,8 @@ import java.util.stream.Stream;
  * @param leggedDrive     the legged drive, if the robot walks by its firmware's own commands
  *                        (then {@code drive} is empty)
  * @param highLevelActions named actions the firmware performs by itself (sit, kick, head.pan)
+ * @param messaging       how its communication component starts (the {@code messaging:} section, or defaults)
+ * @param agency          how its agency starts (the {@code agency:} section, or defaults)
  * @param source          the file it was read from, for messages
  */
 public record RobotDescription(String name, String platform, ConnectionSettings connection,
@@ -35,7 +39,7 @@ public record RobotDescription(String name, String platform, ConnectionSettings 
                                Set<Capability> capabilities, Optional<DifferentialDrive> drive,
                                Body body, List<SensorSpec> sensors, List<ActuatorSpec> actuators,
                                Optional<LeggedDrive> leggedDrive, List<HighLevelAction> highLevelActions,
-                               String source) {
+                               MessagingConfig messaging, AgencyConfig agency, String source) {
 
     /** Copies collections. */
     public RobotDescription {
@@ -46,6 +50,8 @@ public record RobotDescription(String name, String platform, ConnectionSettings 
         actuators = List.copyOf(actuators);
         Objects.requireNonNull(leggedDrive, "leggedDrive");
         highLevelActions = List.copyOf(highLevelActions);
+        Objects.requireNonNull(messaging, "messaging");
+        Objects.requireNonNull(agency, "agency");
     }
 
     /** @return every motor port the description uses: wheels first, then actuators */

@@ -47,7 +47,7 @@ class LeggedRobotTest {
 
     private final FakeHighLevelPlatform platform = new FakeHighLevelPlatform();
     private final RobotDescription description = new RobotDescriptionLoader().parse(DOG, "dog.yaml");
-    private final ConfiguredRobot robot = new ConfiguredRobot(() -> description, platform, null, null, null);
+    private final ConfiguredRobot robot = ConfiguredRobot.withComponents(() -> description, platform, null);
 
     private void advance(double seconds) {
         platform.clock.advanceNanos(Math.round(seconds * 1e9));
@@ -207,7 +207,7 @@ class LeggedRobotTest {
 
     @Test
     void shouldRefuseALeggedDriveOnAPlatformWithoutHighLevelCommands() {
-        ConfiguredRobot onMotors = new ConfiguredRobot(() -> description, new FakePlatform(), null, null, null);
+        ConfiguredRobot onMotors = ConfiguredRobot.withComponents(() -> description, new FakePlatform(), null);
 
         UnsupportedActionException e = assertThrows(UnsupportedActionException.class, () -> onMotors.move(0.1, 0.1));
 
