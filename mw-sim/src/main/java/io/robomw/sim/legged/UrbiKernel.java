@@ -204,7 +204,7 @@ public final class UrbiKernel {
         private final Sink sink;
         private final UrbiStatementSplitter splitter = new UrbiStatementSplitter();
         private final Queue<Object> inbound = new ConcurrentLinkedQueue<>();
-        private final Deque<Statement> pending = new ArrayDeque<>();
+        private final Deque<Object> pending = new ArrayDeque<>();
         private final List<Job> running = new ArrayList<>();
         private Job blocking;
         private volatile boolean closed;
@@ -282,19 +282,22 @@ public final class UrbiKernel {
                 return;
             }
             for (Object o; (o = inbound.poll()) != null; ) {
-                if (o instanceof Refused r) {
-                    emit(r.tag(), Kind.ERROR, r.message());
-                } else if (pending.size() >= MAX_PENDING) {
-                    Statement st = (Statement) o;
-                    emit(st.tag(), Kind.ERROR, "too many commands waiting (" + MAX_PENDING + "); this one was dropped");
+                if (pending.size() >= MAX_PENDING) {
+                    String tag = o instanceof Statement st ? st.tag() : ((Refused) o).tag();
+                    emit(tag, Kind.ERROR, "too many commands waiting (" + MAX_PENDING + "); this one was dropped");
                 } else {
-                    pending.add((Statement) o);
+                    pending.add(o);
                 }
             }
             boolean advanced = false;
             do {
                 while (blocking == null && !pending.isEmpty()) {
-                    Statement st = pending.poll();
+                    Object next = pending.poll();
+                    if (next instanceof Refused r) {
+                        emit(r.tag(), Kind.ERROR, r.message());
+                        continue;
+                    }
+                    Statement st = (Statement) next;
                     if (running.size() >= MAX_JOBS) {
                         emit(st.tag(), Kind.ERROR, "too many commands running (" + MAX_JOBS + "); stop some first");
                         continue;
