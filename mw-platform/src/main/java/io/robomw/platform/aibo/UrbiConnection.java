@@ -356,7 +356,11 @@ final class UrbiConnection implements AutoCloseable {
         decoder.reset();
         down.set(false);
         LOG.info("robot '{}': reconnected {}", robot, describe());
-        sendStartup();
+        sendStartup().whenComplete((v, e) -> {
+            if (e != null) {
+                LOG.error("robot '{}': {} refused the startup command '{}' on the new connection: {}", robot, describe(), startup, e.getMessage());
+            }
+        });
         for (byte[] s : streams) {
             send(s);
         }
