@@ -183,4 +183,28 @@ class UrbiCodecTest {
     private static UrbiReply value(String text) {
         return new UrbiReply(1, "t", UrbiReply.Kind.VALUE, text, null);
     }
+
+    @Test
+    void shouldSurviveRandomBytesAndReadTheMessageThatFollows() {
+        java.util.SplittableRandom random = new java.util.SplittableRandom(16);
+        UrbiReplyDecoder d = new UrbiReplyDecoder(256, 1024);
+        Collected c = new Collected();
+        byte[] alphabet = ascii("[]:0123456789 *!BIN\n\rabc_.\"");
+        for (int round = 0; round < 2000; round++) {
+            byte[] chunk = new byte[random.nextInt(1, 64)];
+            for (int i = 0; i < chunk.length; i++) {
+                chunk[i] = random.nextBoolean() ? alphabet[random.nextInt(alphabet.length)] : (byte) random.nextInt(256);
+            }
+            d.feed(chunk, 0, chunk.length, c);
+        }
+        c.replies.clear();
+        // Whatever state the garbage left: a newline ends a line, a BIN length is bounded by 1024 bytes.
+        byte[] flush = new byte[1025];
+        java.util.Arrays.fill(flush, (byte) '\n');
+        d.feed(flush, 0, flush.length, c);
+        c.replies.clear();
+        d.feed(ascii("[42:ok] 1\n"), 0, 10, c);
+
+        assertEquals(List.of(new UrbiReply(42, "ok", UrbiReply.Kind.VALUE, "1", null)), c.replies);
+    }
 }

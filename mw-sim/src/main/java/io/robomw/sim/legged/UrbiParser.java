@@ -313,12 +313,12 @@ public final class UrbiParser {
             if (depth > MAX_DEPTH) {
                 throw error("nesting deeper than " + MAX_DEPTH + " levels");
             }
-            Expr left = term(depth + 1);
+            Expr left = term(depth);
             while (true) {
                 skipSpace();
                 if (peek('+') || peek('-')) {
                     char op = s.charAt(i++);
-                    left = new Binary(op, left, term(depth + 1));
+                    left = new Binary(op, left, term(depth));
                 } else {
                     return left;
                 }
@@ -326,12 +326,12 @@ public final class UrbiParser {
         }
 
         Expr term(int depth) throws UrbiSyntaxException {
-            Expr left = unary(depth + 1);
+            Expr left = unary(depth);
             while (true) {
                 skipSpace();
                 if (peek('*') || peek('/')) {
                     char op = s.charAt(i++);
-                    left = new Binary(op, left, unary(depth + 1));
+                    left = new Binary(op, left, unary(depth));
                 } else {
                     return left;
                 }
@@ -351,7 +351,7 @@ public final class UrbiParser {
                 i++;
                 return unary(depth + 1);
             }
-            return primary(depth + 1);
+            return primary(depth);
         }
 
         Expr primary(int depth) throws UrbiSyntaxException {

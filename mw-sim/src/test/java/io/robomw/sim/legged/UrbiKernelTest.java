@@ -143,4 +143,25 @@ class UrbiKernelTest {
         assertEquals(30, dog.joint("headPan").angle(), 1e-9);
         assertEquals(List.of("[410:c1] *** end"), out);
     }
+
+    @Test
+    void shouldSurviveRandomBytesAndAnswerTheStatementsThatFollow() {
+        java.util.SplittableRandom random = new java.util.SplittableRandom(16);
+        byte[] alphabet = "{}();,|&:+-*/=. \n\"0123456789robot.walkheadPan.valstopeveryloopmsBIN".getBytes(java.nio.charset.StandardCharsets.US_ASCII);
+        for (int round = 0; round < 500; round++) {
+            byte[] chunk = new byte[random.nextInt(1, 64)];
+            for (int i = 0; i < chunk.length; i++) {
+                chunk[i] = random.nextBoolean() ? alphabet[random.nextInt(alphabet.length)] : (byte) random.nextInt(256);
+            }
+            session.submit(chunk, 0, chunk.length);
+            step(0.01);
+        }
+        UrbiKernel.Session fresh = kernel.open("after", (millis, tag, kind, text) -> out.add(tag + " " + text));
+        out.clear();
+
+        fresh.submit("p1: ping;");
+        step(0.01);
+
+        assertTrue(out.stream().anyMatch(line -> line.startsWith("p1 pong time=")), out::toString);
+    }
 }

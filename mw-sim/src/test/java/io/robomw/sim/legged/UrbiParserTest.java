@@ -78,6 +78,15 @@ class UrbiParserTest {
     }
 
     @Test
+    void shouldReadNestingUpToTheLimit() throws Exception {
+        String parens = "x = " + "(".repeat(60) + "1" + ")".repeat(60);
+        String blocks = "{".repeat(60) + "ping" + "}".repeat(60);
+
+        assertEquals(new Num(1, false), ((Assign) UrbiParser.parse(parens, ';').command()).value());
+        assertTrue(UrbiParser.parse(blocks, ';').command() instanceof Block);
+    }
+
+    @Test
     void shouldRefuseNestingDeeperThanTheLimitWithoutOverflowingTheStack() {
         String deep = "{".repeat(10_000) + "}".repeat(10_000);
         String parens = "x = " + "(".repeat(10_000) + "1" + ")".repeat(10_000);
