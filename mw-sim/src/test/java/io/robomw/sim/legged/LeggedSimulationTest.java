@@ -105,4 +105,24 @@ class LeggedSimulationTest {
                     () -> assertEquals(0, seen[2], "a hind paw does not"));
         }
     }
+
+    @Test
+    void shouldSeeTheFloorWhenTheHeadLooksDown() throws IOException {
+        try (Simulation sim = world(2.5, 1.0, 0)) {
+            Robot dog = sim.robot("aibo");
+            double[] seen = new double[2];
+
+            sim.run(LIMIT, () -> {
+                seen[0] = dog.getValue("head_far", ReturnType.METERS);
+                dog.perform("head.tilt", Math.toRadians(-20));
+                dog.perform("neck.tilt", Math.toRadians(-20));
+                dog.perform("head.pan", 0);
+                seen[1] = dog.getValue("head_far", ReturnType.METERS);
+            });
+
+            // head 0.22 m above the floor (its option height), looking 40° down: the floor 0.262 m ahead
+            assertEquals(2.5 - 1.0 - 0.15, seen[0], 0.02, "level, it sees the wall");
+            assertEquals(0.22 / Math.tan(Math.toRadians(40)), seen[1], 0.01, "looking down, it sees the floor");
+        }
+    }
 }
