@@ -96,10 +96,35 @@ final class DemoCommand implements Callable<Integer> {
     @Option(names = "--timeout", defaultValue = "PT2M", description = "longest the agents may take (default ${DEFAULT-VALUE})")
     Duration timeout;
 
+    @Option(names = "--console", description = "show the run live in a web page (prints its address); the page stays up after the demo until Ctrl-C")
+    boolean console;
+
+    @Option(names = "--console-port", defaultValue = "8080", description = "the page's port (default ${DEFAULT-VALUE}; 0 picks a free one)")
+    int consolePort;
+
+    @Option(names = "--record", paramLabel = "FILE.mcap", description = "record the run (both robots' poses and sensors, the agents' events) into an MCAP file that Foxglove opens")
+    Path record;
+
     @Spec
     CommandSpec spec;
 
     private PrintWriter out;
+    /** Counted down once everything is closed: a Ctrl-C waits for it (the recording's footer) before the JVM ends. */
+    private final java.util.concurrent.CountDownLatch closed = new java.util.concurrent.CountDownLatch(1);
+
+    /** Waits for Ctrl-C (or SIGTERM), so the page stays up after the demo. */
+    private void awaitCtrlC() throws InterruptedException {
+        java.util.concurrent.CountDownLatch interrupted = new java.util.concurrent.CountDownLatch(1);
+        Runtime.getRuntime().addShutdownHook(new Thread(() -> {
+            interrupted.countDown();
+            try {
+                closed.await(30, TimeUnit.SECONDS);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        }, "mw-demo-shutdown"));
+        interrupted.await();
+    }
 
     @Override
     public Integer call() throws Exception {
@@ -135,8 +160,17 @@ final class DemoCommand implements Callable<Integer> {
         }
         long started = System.nanoTime();
         List<Process> hosts = new ArrayList<>();
-        List<Emulator> emulators = new ArrayList<>();
-        Thread reaper = new Thread(() -> hosts.forEach(Process::destroyForcibly), "mw-demo-reaper");
+        List<AutoCloseable> closeLater = new java.util.concurrent.CopyOnWriteArrayList<>();
+        Thread reaper = new Thread(() -> {
+            hosts.forEach(Process::destroyForcibly);
+            for (AutoCloseable c : closeLater) {
+                try {
+                    c.close(); // a demo stopped by Ctrl-C still gets its recording's summary and footer
+                } catch (Exception e) {
+                    System.err.println("mw demo: closing " + c + " failed: " + e);
+                }
+            }
+        }, "mw-demo-reaper");
         Runtime.getRuntime().addShutdownHook(reaper);
         try (Simulation sim = Simulation.load(worldFile, Set.copyOf(names))) {
             step("world %s: robots %s", description.name(), names);
@@ -144,7 +178,7 @@ final class DemoCommand implements Callable<Integer> {
             for (String r : names) {
                 EmulatorKind kind = EMULATORS.get(platforms.get(r));
                 Emulator e = kind.bind().apply(sim, r);
-                emulators.add(e);
+                closeLater.add(e);
                 if (kind.tcp()) {
                     int port = e.startOnTcp("127.0.0.1", 0);
                     links.put(r, Map.of("host", "127.0.0.1", "port", String.valueOf(port)));
@@ -152,6 +186,15 @@ final class DemoCommand implements Callable<Integer> {
                     links.put(r, Map.of("port", e.startOnPseudoTerminal()));
                 }
                 step("virtual %s for %s on %s", kind.title(), r, describeLink(links.get(r)));
+            }
+            io.robomw.console.Console watching = null;
+            if (console || record != null) {
+                io.robomw.console.Console.Builder b = io.robomw.console.Console.builder("mw demo").simulation(sim).record(record)
+                        .clusterKey(ClusterKey.read(keyFile), false).about("world", worldFile.toString());
+                watching = (console ? b.page("127.0.0.1", consolePort) : b.noPage()).start();
+                closeLater.add(watching);
+                watching.pageAddress().ifPresent(a -> step("console at %s", a));
+                watching.recording().ifPresent(f -> step("recording to %s", f));
             }
             sim.startRealTime(1.0);
             Map<String, String> addresses = new LinkedHashMap<>();
@@ -165,6 +208,9 @@ final class DemoCommand implements Callable<Integer> {
                 awaitReady(r, hosts.get(i), logDir);
                 step("agent host %s ready at %s (driver: %s over %s)", r, addresses.get(r), EMULATORS.get(platforms.get(r)).title(),
                         describeLink(links.get(r)));
+                if (watching != null) {
+                    watching.watchHost(addresses.get(r));
+                }
             }
             Map<String, Pose> startPoses = new LinkedHashMap<>();
             for (String r : names) {
@@ -174,6 +220,9 @@ final class DemoCommand implements Callable<Integer> {
             try (URLClassLoader code = new URLClassLoader(new URL[] {jar.toUri().toURL()}, Agent.class.getClassLoader());
                  AgentHost home = AgentHost.builder("demo").clusterKey(ClusterKey.read(keyFile)).start()) {
                 Agent agent = (Agent) code.loadClass(AGENT).getConstructor(double.class).newInstance(side);
+                if (watching != null) {
+                    watching.watchHost(home.address());
+                }
                 List<AgentRef> refs = home.dispatchClones(agent, addresses.values().toArray(String[]::new));
                 step("dispatched clones of %s (its code from %s) to %s", AGENT, jar.getFileName(), hostsWord(names.size()));
                 results = new LinkedHashMap<>();
@@ -215,10 +264,22 @@ final class DemoCommand implements Callable<Integer> {
             }
             PngRenderer.write(sim.world(), picture, RenderOptions.DEFAULT);
             step("wrote %s (the trajectories)", picture);
+            if (console) {
+                stopHosts(hosts);
+                step("the console keeps showing the run until Ctrl-C");
+                awaitCtrlC();
+            }
         } finally {
             stopHosts(hosts);
-            emulators.forEach(Emulator::close);
-            Runtime.getRuntime().removeShutdownHook(reaper);
+            for (AutoCloseable c : closeLater) {
+                c.close();
+            }
+            closed.countDown();
+            try {
+                Runtime.getRuntime().removeShutdownHook(reaper);
+            } catch (IllegalStateException e) {
+                // the JVM is shutting down (Ctrl-C after the demo): the hook is running
+            }
         }
         step("stopped %s, the virtual robots and the world; done in %.1f s (host logs in %s)", hostsWord(names.size()),
                 (System.nanoTime() - started) / 1e9, logDir);

@@ -21,8 +21,8 @@ import java.util.function.Function;
 
 /**
  * A robot's communication component: a {@link MessagingNode} set up as the robot file's
- * {@code messaging:} section says, started when the robot opens if the section names listen
- * addresses, else on first use on loopback at an ephemeral port ({@link MessagingConfig#DEFAULT_LISTEN}).
+ * {@code messaging:} section says, started when the robot opens if the section names listen or
+ * connect addresses, else on first use on loopback at an ephemeral port ({@link MessagingConfig#DEFAULT_LISTEN}).
  * The start is logged once, with the addresses.
  *
  * <p>A topic whose password the section names by reference ({@code topics: {alerts:

@@ -3,12 +3,15 @@ package io.robomw.agents.host;
 import io.robomw.agents.host.code.StateCodec;
 import io.robomw.agents.host.store.JournalStore;
 import io.robomw.agents.host.store.MemoryStore;
+import io.robomw.agents.messaging.MessagingNode;
+import io.robomw.agents.messaging.MessagingSettings;
 import io.robomw.agents.messaging.security.TlsSettings;
 import io.robomw.api.Agency;
 import io.robomw.api.Agent;
 import io.robomw.api.AgentRef;
 import io.robomw.api.Itinerary;
 import io.robomw.api.Messaging;
+import io.robomw.api.MessagingException;
 import io.robomw.api.Robot;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -30,6 +33,7 @@ import java.security.SecureRandom;
 import java.time.Duration;
 import java.util.List;
 import java.util.Objects;
+import java.util.Optional;
 import java.util.concurrent.TimeUnit;
 
 /**
@@ -71,7 +75,7 @@ public final class AgentHost implements Agency, AutoCloseable {
     private final String name;
     private final String bind;
     private final int requestedPort;
-    private final Messaging messaging;
+    private final HostMessaging messaging;
     private final ClusterKey key;
     private final TlsSettings tls;
     private final Path storeDir;
@@ -90,7 +94,6 @@ public final class AgentHost implements Agency, AutoCloseable {
         this.name = b.name;
         this.bind = b.bind;
         this.requestedPort = b.port;
-        this.messaging = b.messaging;
         this.key = b.key;
         this.tls = b.tls;
         this.storeDir = b.storeDir;
@@ -98,6 +101,8 @@ public final class AgentHost implements Agency, AutoCloseable {
         this.robot = new RobotTurns(b.name, b.robot);
         this.code = new CodeLoaders(state);
         Peers peers = new Peers(state, key, tls != null, this::serveSelf);
+        this.messaging = new HostMessaging(state, peers, b.node, b.node != null && b.ownsNode);
+        state.messaging = messaging;
         this.owed = new OwedEvents(state, peers);
         this.trips = new Trips(state, new HopSender(state, peers), owed, robot);
         this.home = new Home(state, code, trips, new AgentRequests(state, peers));
@@ -118,7 +123,11 @@ public final class AgentHost implements Agency, AutoCloseable {
         private String bind = "127.0.0.1";
         private int port;
         private Robot robot;
-        private Messaging messaging;
+        private String messagingAddress;
+        private MessagingSettings messagingSettings = MessagingSettings.defaults();
+        private boolean withMessaging = true;
+        private MessagingNode node;
+        private boolean ownsNode;
         private ClusterKey key;
         private TlsSettings tls;
         private Path storeDir;
@@ -151,15 +160,42 @@ public final class AgentHost implements Agency, AutoCloseable {
             return this;
         }
 
-        /** @param messaging the messaging agents here use, or {@code null} @return this */
-        public Builder messaging(Messaging messaging) {
-            this.messaging = messaging;
+        /**
+         * Where the host's own messaging node receives; without this (and without
+         * {@link #noMessaging()}) it receives at {@code tcp://BIND:0}, a free port on the host's
+         * bind address. Agents here use it through {@code context().messaging()}.
+         *
+         * @param address a messaging address, for example {@code tcp://127.0.0.1:7000}
+         * @return this
+         */
+        public Builder messaging(String address) {
+            this.messagingAddress = Objects.requireNonNull(address, "address");
+            this.withMessaging = true;
+            return this;
+        }
+
+        /** @param settings the settings of the host's own messaging node (its allow-list, timeouts, TLS) @return this */
+        public Builder messagingSettings(MessagingSettings settings) {
+            this.messagingSettings = Objects.requireNonNull(settings, "settings");
+            return this;
+        }
+
+        /**
+         * Agents here use this node (which the caller keeps and closes) instead of one of the host's own.
+         *
+         * @param node the node
+         * @return this
+         */
+        public Builder messagingNode(MessagingNode node) {
+            this.node = Objects.requireNonNull(node, "node");
+            this.withMessaging = true;
             return this;
         }
 
         /** The host gives its agents no messaging (a home that only receives results). @return this */
         public Builder noMessaging() {
-            this.messaging = null;
+            this.withMessaging = false;
+            this.node = null;
             return this;
         }
 
@@ -218,7 +254,24 @@ public final class AgentHost implements Agency, AutoCloseable {
             if (key == null) {
                 key = ClusterKey.tlsOnly();
             }
-            AgentHost host = new AgentHost(this);
+            if (withMessaging && node == null) {
+                try {
+                    node = MessagingNode.builder(name).settings(messagingSettings)
+                            .bind(messagingAddress != null ? messagingAddress : "tcp://" + (bind.contains(":") ? "[" + bind + "]" : bind) + ":0").build();
+                    ownsNode = true;
+                } catch (MessagingException e) {
+                    throw new IOException("agent host " + name + " cannot start its messaging node: " + e.getMessage(), e);
+                }
+            }
+            AgentHost host;
+            try {
+                host = new AgentHost(this);
+            } catch (RuntimeException e) {
+                if (ownsNode) {
+                    node.close();
+                }
+                throw e;
+            }
             try {
                 host.open();
             } catch (IOException | RuntimeException e) {
@@ -267,9 +320,11 @@ public final class AgentHost implements Agency, AutoCloseable {
             }
         }
         state.address = new HostAddress(bind, port, name).toString();
+        messaging.started();
         new Recovery(state, code, trips, owed).resume();
-        LOG.info("agent host {} listening at {} ({} store{}, robot: {})", name, state.address, state.store.durable() ? "durable " + storeDir : "memory-only",
-                tls != null ? ", mutual TLS" : "", state.robot == null ? "none" : state.robot.name());
+        LOG.info("agent host {} listening at {} ({} store{}, robot: {}, messaging: {})", name, state.address,
+                state.store.durable() ? "durable " + storeDir : "memory-only", tls != null ? ", mutual TLS" : "",
+                state.robot == null ? "none" : state.robot.name(), messaging.addresses().isEmpty() ? "none" : messaging.addresses());
     }
 
     private static int freePort(InetAddress bindAddress) throws IOException {
@@ -326,6 +381,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         } catch (IOException e) {
             LOG.warn("agent host {}: closing the store failed: {}", name, e.toString());
         }
+        messaging.close();
     }
 
     // ---- what the host is ----
@@ -345,8 +401,19 @@ public final class AgentHost implements Agency, AutoCloseable {
         return robot.claim(h);
     }
 
-    Messaging messaging() {
-        return messaging;
+    /** @return an agent's view of this host's messaging node */
+    Messaging messagingFor(HostedAgent h) {
+        return messaging.forAgent(h);
+    }
+
+    /** @return where this host's messaging node receives (empty when it has none), as agents and {@code mw host} give it */
+    public List<String> messagingAddresses() {
+        return messaging.addresses();
+    }
+
+    /** @return this host's messaging node, or empty when it has none (for serving its robot on it) */
+    public Optional<MessagingNode> messagingNode() {
+        return Optional.ofNullable(messaging.node());
     }
 
     /** @return the agents at this host now */
@@ -394,6 +461,28 @@ public final class AgentHost implements Agency, AutoCloseable {
     /** An agent here sends a value home. */
     void report(HostedAgent h, Serializable value) {
         owed.report(h, value);
+    }
+
+    // ---- asking another host ----
+
+    /**
+     * Asks a host who it is (for {@code mw agents} and tools): its name, robot, messaging
+     * addresses and the hosts it knows.
+     *
+     * @param address the host
+     * @param key     the cluster key
+     * @param useTls  whether the host uses TLS
+     * @return its description
+     * @throws IOException if the host cannot be reached, refuses this peer, or answers something else
+     */
+    public static HostDescription describe(String address, ClusterKey key, boolean useTls) throws IOException {
+        HostAddress a = HostAddress.parse(address);
+        PeerLink link = new PeerLink(a, "mw-" + ProcessHandle.current().pid(), key, new HostSockets.Client(a.host(), useTls, 10_000), new SecureRandom());
+        Reply r = link.call(Op.DESCRIBE, new byte[0]);
+        if (r.status() != Reply.Status.OK) {
+            throw new IOException(address + " answered " + r.status() + ": " + r.text());
+        }
+        return HostDescription.decode(r.body(), address);
     }
 
     // ---- listing another host ----

@@ -53,7 +53,15 @@ final class Calls implements HostEndpoint.Handler {
             case EVENT -> home.onEvent(peer, body);
             case MESSAGE -> onMessage(peer, body);
             case RETRACT, DISPOSE -> onRequest(peer, op, body);
+            case DESCRIBE -> Reply.ok(host.messaging.describeSelf().encode());
+            case WATCH -> onWatch(body);
         };
+    }
+
+    /** What a watcher sees: body = the last event number it saw (u64), or nothing for all. */
+    private Reply onWatch(byte[] body) {
+        long since = body.length >= 8 ? java.nio.ByteBuffer.wrap(body).getLong() : 0;
+        return Reply.ok(host.activity.watchReply(host.name, host.robot == null ? "" : host.robot.name(), host.hosted.values(), since));
     }
 
     /** @return the agents at this host now */

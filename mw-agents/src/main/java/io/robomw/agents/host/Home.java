@@ -132,6 +132,7 @@ final class Home {
         Trips.Departure d = trips.depart(h);
         if (d.delivered()) {
             handle.location(d.target());
+            host.messaging.met(d.target());
             return handle;
         }
         host.handles.remove(id);

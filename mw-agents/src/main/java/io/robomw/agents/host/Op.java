@@ -18,7 +18,11 @@ enum Op {
     /** Send an agent here home. Code 5. */
     RETRACT(5),
     /** End an agent's trip here. Code 6. */
-    DISPOSE(6);
+    DISPOSE(6),
+    /** Say who this host is: name, robot, messaging addresses, the hosts it knows ({@link HostDescription}). Code 7. */
+    DESCRIBE(7),
+    /** What a watcher (a console) sees: the host, its agents and itineraries, recent events ({@link HostWatch}). Code 8. */
+    WATCH(8);
 
     private final int code;
 
@@ -45,7 +49,9 @@ enum Op {
             case 4 -> MESSAGE;
             case 5 -> RETRACT;
             case 6 -> DISPOSE;
-            default -> throw new IllegalArgumentException("unknown operation code " + code + " (this host knows 0-6: TRANSFER, PUT_ARCHIVE, LIST, EVENT, MESSAGE, RETRACT, DISPOSE)");
+            case 7 -> DESCRIBE;
+            case 8 -> WATCH;
+            default -> throw new IllegalArgumentException("unknown operation code " + code + " (this host knows 0-8: TRANSFER, PUT_ARCHIVE, LIST, EVENT, MESSAGE, RETRACT, DISPOSE, DESCRIBE, WATCH)");
         };
     }
 }

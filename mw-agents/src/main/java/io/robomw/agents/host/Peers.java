@@ -62,6 +62,23 @@ final class Peers {
         return link(target).call(op, frame);
     }
 
+    /**
+     * @param target a host's address
+     * @return what it says of itself
+     * @throws PeerException if it cannot be reached, refuses, or answers something that is not a description
+     */
+    HostDescription describe(String target) throws PeerException {
+        Reply r = call(target, Op.DESCRIBE, new byte[0]);
+        if (r.status() != Reply.Status.OK) {
+            throw new PeerException(target + " answered " + r.status() + " to DESCRIBE: " + r.text(), false, null);
+        }
+        try {
+            return HostDescription.decode(r.body(), target);
+        } catch (IllegalArgumentException e) {
+            throw new PeerException(e.getMessage(), false, e);
+        }
+    }
+
     private PeerLink link(String target) {
         return links.computeIfAbsent(target, t -> {
             HostAddress a = HostAddress.parse(t);

@@ -28,6 +28,8 @@ import java.util.Arrays;
  * <tr><td>4</td><td>MESSAGE</td><td>{@link Bodies#message}</td></tr>
  * <tr><td>5</td><td>RETRACT</td><td>{@link Bodies#agentRequest}</td></tr>
  * <tr><td>6</td><td>DISPOSE</td><td>{@link Bodies#agentRequest}</td></tr>
+ * <tr><td>7</td><td>DESCRIBE</td><td>empty; the reply is a {@link HostDescription}</td></tr>
+ * <tr><td>8</td><td>WATCH</td><td>the last event number the watcher saw (u64); the reply is laid out in {@link HostWatch}</td></tr>
  * </table>
  *
  * <table>

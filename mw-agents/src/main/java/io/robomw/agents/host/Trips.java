@@ -62,6 +62,7 @@ final class Trips {
         String poolName = t.getName();
         t.setName("agent-" + h.shortId() + "-" + simpleName(h.className) + "@" + host.name);
         try {
+            host.messaging.met(h);
             Itinerary it = h.agent.itinerary();
             String stopHost = it.currentStop().map(Itinerary.Stop::host).orElse(host.address);
             if (interrupted) {
@@ -88,9 +89,11 @@ final class Trips {
                             h.agent.run();
                         }
                         it.record(stopHost, Itinerary.Outcome.DONE, "");
+                        host.activity.record(h.id, h.className, HostActivity.STOP_DONE, host.address, "");
                     } catch (Exception | LinkageError | AssertionError | StackOverflowError e) {
                         LOG.warn("host {}: agent {} ({}) failed at its stop: {}", host.name, h.id, h.className, e.toString());
                         it.record(stopHost, Itinerary.Outcome.FAILED, e.toString());
+                        host.activity.record(h.id, h.className, HostActivity.STOP_FAILED, host.address, e.toString());
                     }
                 }
             }
@@ -106,6 +109,7 @@ final class Trips {
 
     /** After a stop: home if retracted, the end if disposed of, else on to the next reachable stop or the end of the trip. */
     void moveOn(HostedAgent h) {
+        host.messaging.left(h);
         h.agent.attach(host.contextOf(h));
         if (h.retractRequested) {
             goHome(h);
@@ -117,7 +121,8 @@ final class Trips {
         }
         Departure d = depart(h);
         if (d.delivered()) {
-            host.hosted.remove(h.id);
+            // Only this copy: an agent whose next stop is this host was accepted again under the same id.
+            host.hosted.remove(h.id, h);
             return;
         }
         if (!host.closed) {
@@ -160,6 +165,7 @@ final class Trips {
             h.imageSize = frame.bodyLength();
             String why = hops.send(h, image, frame, target, it);
             if (why == null) {
+                host.activity.record(h.id, h.className, HostActivity.DEPARTED, host.address, target);
                 return new Departure(true, target, null);
             }
             h.agent.attach(host.contextOf(h));
@@ -208,6 +214,8 @@ final class Trips {
         }
         h.status = k == AgentEvent.Kind.RESULT ? AgentStatus.COMPLETED : k == AgentEvent.Kind.DISPOSED ? AgentStatus.DISPOSED : AgentStatus.FAILED;
         AgentEvent event = new AgentEvent(h.id, h.eventSeq++, k, host.address, payload);
+        host.activity.record(h.id, h.className, k == AgentEvent.Kind.RESULT ? HostActivity.RESULT : k == AgentEvent.Kind.DISPOSED ? HostActivity.DISPOSED
+                : HostActivity.FAILED, host.address, k == AgentEvent.Kind.RESULT ? HostActivity.describe(h.result) : new String(payload, StandardCharsets.UTF_8));
         owed.owe(h.home, event);
         try {
             host.store.departed(h.id);
@@ -220,6 +228,7 @@ final class Trips {
 
     /** Sends a retracted agent home, retrying until its home takes it. */
     void goHome(HostedAgent h) {
+        host.activity.record(h.id, h.className, HostActivity.RETRACTED, host.address, "going home to " + h.home);
         try {
             h.agent.onDispatching();
         } catch (RuntimeException e) {
@@ -255,7 +264,7 @@ final class Trips {
         Itinerary plan = image.kind() == AgentImage.Kind.HOMECOMING ? homeward() : h.agent.itinerary();
         String why = hops.send(h, image, Frame.of(image.encode()), target, plan);
         if (why == null) {
-            host.hosted.remove(h.id);
+            host.hosted.remove(h.id, h);
             return;
         }
         h.agent.itinerary().record(target, Itinerary.Outcome.UNREACHABLE, why);

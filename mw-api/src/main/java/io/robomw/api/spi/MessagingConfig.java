@@ -8,9 +8,10 @@ import java.util.Objects;
  * How a robot's communication component (the paper's messaging) is set up: the optional
  * {@code messaging:} section of its robot file, or the defaults.
  *
- * <p>With {@link #listen()} empty the component starts on first use, listening on loopback at an
- * ephemeral port ({@link #DEFAULT_LISTEN}); with addresses given it starts when the robot opens,
- * so that peers can reach it at once.
+ * <p>With neither {@link #listen()} nor {@link #connect()} addresses the component starts on first
+ * use, listening on loopback at an ephemeral port ({@link #DEFAULT_LISTEN}); with addresses given it
+ * starts when the robot opens, so that peers can reach it, and it has their subscriptions, before
+ * the robot's first messaging call.
  *
  * @param nodeName       the node's name: the sender name of its messages, and the receiver name
  *                       it answers to (by default the robot's name)
@@ -48,6 +49,6 @@ public record MessagingConfig(String nodeName, List<String> listen, List<String>
 
     /** @return whether the component starts on first use rather than when the robot opens */
     public boolean startsOnFirstUse() {
-        return listen.isEmpty();
+        return listen.isEmpty() && connect.isEmpty();
     }
 }
