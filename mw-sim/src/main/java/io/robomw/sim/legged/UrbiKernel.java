@@ -62,7 +62,8 @@ import java.util.function.LongSupplier;
  * <h2>Bad input</h2>
  * A statement that cannot be parsed, or that fails, is answered with {@code !!!} and its tag (when
  * it could be read), and the session goes on. A session may have at most {@value #MAX_PENDING}
- * statements waiting and {@value #MAX_JOBS} running.
+ * statements waiting and {@value #MAX_JOBS} running; a client that sends more between two steps
+ * than the queue holds loses the excess, told by one error at the next step.
  *
  * <h2>Threads</h2>
  * {@link Session#submit} may be called from any thread (a client's reader); it only parses and
@@ -204,6 +205,9 @@ public final class UrbiKernel {
         private final Sink sink;
         private final UrbiStatementSplitter splitter = new UrbiStatementSplitter();
         private final Queue<Object> inbound = new ConcurrentLinkedQueue<>();
+        /** How many statements {@link #inbound} holds: a client sending faster than the steps take them loses the excess. */
+        private final java.util.concurrent.atomic.AtomicInteger inboundSize = new java.util.concurrent.atomic.AtomicInteger();
+        private final java.util.concurrent.atomic.AtomicLong dropped = new java.util.concurrent.atomic.AtomicLong();
         private final Deque<Object> pending = new ArrayDeque<>();
         private final List<Job> running = new ArrayList<>();
         private Job blocking;
@@ -227,18 +231,37 @@ public final class UrbiKernel {
             splitter.feed(bytes, off, len, new UrbiStatementSplitter.Listener() {
                 @Override
                 public void statement(String text, char terminator) {
+                    if (full()) {
+                        return;
+                    }
                     try {
-                        inbound.add(UrbiParser.parse(text, terminator));
+                        queue(UrbiParser.parse(text, terminator));
                     } catch (UrbiParser.UrbiSyntaxException e) {
-                        inbound.add(new Refused(e.tag(), e.getMessage()));
+                        queue(new Refused(e.tag(), e.getMessage()));
                     }
                 }
 
                 @Override
                 public void error(String message) {
-                    inbound.add(new Refused("", "syntax error: " + message));
+                    if (!full()) {
+                        queue(new Refused("", "syntax error: " + message));
+                    }
                 }
             });
+        }
+
+        /** @return whether the statements waiting for the next step fill the queue; if so this one is dropped and counted */
+        private boolean full() {
+            if (inboundSize.get() >= MAX_PENDING) {
+                dropped.incrementAndGet();
+                return true;
+            }
+            return false;
+        }
+
+        private void queue(Object statementOrRefusal) {
+            inboundSize.incrementAndGet();
+            inbound.add(statementOrRefusal);
         }
 
         /**
@@ -276,18 +299,24 @@ public final class UrbiKernel {
                     running.clear();
                     pending.clear();
                     inbound.clear();
+                    inboundSize.set(0);
                     blocking = null;
                     sessions.remove(this);
                 }
                 return;
             }
             for (Object o; (o = inbound.poll()) != null; ) {
+                inboundSize.decrementAndGet();
                 if (pending.size() >= MAX_PENDING) {
                     String tag = o instanceof Statement st ? st.tag() : ((Refused) o).tag();
                     emit(tag, Kind.ERROR, "too many commands waiting (" + MAX_PENDING + "); this one was dropped");
                 } else {
                     pending.add(o);
                 }
+            }
+            long lost = dropped.getAndSet(0);
+            if (lost > 0) {
+                emit("", Kind.ERROR, "too many commands waiting (" + MAX_PENDING + "); " + lost + " dropped");
             }
             boolean advanced = false;
             do {

@@ -164,4 +164,108 @@ class UrbiKernelTest {
 
         assertTrue(out.stream().anyMatch(line -> line.startsWith("p1 pong time=")), out::toString);
     }
+
+    @Test
+    void shouldDropAFloodBeyondItsQueueWithOneErrorAndAnswerTheRest() {
+        session.submit("p: ping;".repeat(UrbiKernel.MAX_PENDING + 5000));
+        step(0.01);
+
+        long pongs = out.stream().filter(line -> line.contains(":p] *** pong")).count();
+        List<String> errors = out.stream().filter(line -> line.contains("!!!")).toList();
+        assertEquals(UrbiKernel.MAX_PENDING, pongs);
+        assertEquals(List.of("[10] !!! too many commands waiting (" + UrbiKernel.MAX_PENDING + "); 5000 dropped"), errors);
+
+        out.clear();
+        session.submit("p1: ping;");
+        step(0.01);
+        assertEquals(1, out.size(), out::toString);
+    }
+
+    /**
+     * Mutation fuzzing from valid input: every statement the driver sends and a person at a terminal
+     * types, each mutated 200 times (bytes changed, inserted from URBI's punctuation, deleted,
+     * pieces repeated, cut short), is sent to a session of its own. The server core must answer each
+     * with its normal replies or {@code !!!} errors, never with an internal error (which closes the
+     * session), and must stay bounded; afterwards it answers as usual.
+     */
+    @Test
+    void shouldAnswerMutatedStatementsWithRepliesOrErrorsNeverAnInternalError() {
+        List<String> seeds = List.of(
+                "o1+end: { motoron; robot.watchdogInterval = 0.5 },\n",
+                "c7+end: { robot.walk(0.5, 0.15) },\n",
+                "c8+end: { robot.turn(-1.570796, 1) },\n",
+                "c9+end: { robot.arc(0.3, 1.5, 0.1) },\n",
+                "c10+end: { robot.drive(0.1, 0.5) },\n",
+                "stop c7,\nx9+end: { robot.stop() },\n",
+                "s2: every(100ms) distanceFar.val,\n",
+                "r3: headPan.val;\n",
+                "c11+end: { headPan.val = 30 time:400 },\n",
+                "c12+end: { headPan.val = 0 time:400 & headTilt.val = 0 time:400 },\n",
+                "c13+end: { tailPan.val = 40 time:250; tailPan.val = -40 time:500; tailPan.val = 0 time:250 },\n",
+                "legLF1.val = 10 speed:30; loop accelX.val, robot.sit(); robot.stand(); robot.lie(); robot.kick();\n",
+                "p: ping; motoroff; motors on; x = 2 * (3 + -1) / 4; // a comment\n",
+                "speaker.val = BIN 4 raw\nabcd;\n");
+        byte[] punctuation = "{}();,|&:+-*/=.\"\n 0123456789".getBytes(java.nio.charset.StandardCharsets.US_ASCII);
+        java.util.SplittableRandom random = new java.util.SplittableRandom(1616);
+        int inputs = 0;
+        for (String seed : seeds) {
+            byte[] valid = seed.getBytes(java.nio.charset.StandardCharsets.US_ASCII);
+            for (int round = 0; round < 200; round++) {
+                byte[] input = mutate(valid, random, punctuation);
+                List<String> said = new ArrayList<>();
+                UrbiKernel.Session s = kernel.open("fuzz", (millis, tag, kind, text) -> said.add(kind + " " + text));
+                s.submit(input, 0, input.length);
+                step(0.05);
+                s.close();
+                step(0.01);
+                inputs++;
+                assertTrue(said.stream().noneMatch(line -> line.contains("internal error")),
+                        () -> "input " + printable(input) + " caused " + said);
+            }
+        }
+        out.clear();
+        session.submit("p1: ping;");
+        step(0.01);
+
+        assertEquals(seeds.size() * 200, inputs);
+        assertTrue(out.stream().anyMatch(line -> line.startsWith("[") && line.contains(":p1] *** pong time=")), out::toString);
+    }
+
+    /** One to four mutations of a valid input. */
+    private static byte[] mutate(byte[] valid, java.util.SplittableRandom random, byte[] punctuation) {
+        byte[] x = valid.clone();
+        for (int m = random.nextInt(1, 5); m > 0; m--) {
+            int at = x.length == 0 ? 0 : random.nextInt(x.length);
+            x = switch (random.nextInt(5)) {
+                case 0 -> {                                   // change a byte
+                    if (x.length > 0) {
+                        x[at] = random.nextBoolean() ? punctuation[random.nextInt(punctuation.length)] : (byte) random.nextInt(256);
+                    }
+                    yield x;
+                }
+                case 1 -> splice(x, at, at, new byte[] {punctuation[random.nextInt(punctuation.length)]});   // insert
+                case 2 -> splice(x, at, Math.min(x.length, at + random.nextInt(1, 4)), new byte[0]);         // delete
+                case 3 -> splice(x, at, at, java.util.Arrays.copyOfRange(x, at, Math.min(x.length, at + random.nextInt(1, 12)))); // repeat
+                default -> java.util.Arrays.copyOf(x, at);     // cut short
+            };
+        }
+        return x;
+    }
+
+    private static byte[] splice(byte[] x, int from, int to, byte[] with) {
+        byte[] y = new byte[x.length - (to - from) + with.length];
+        System.arraycopy(x, 0, y, 0, from);
+        System.arraycopy(with, 0, y, from, with.length);
+        System.arraycopy(x, to, y, from + with.length, x.length - to);
+        return y;
+    }
+
+    private static String printable(byte[] input) {
+        StringBuilder sb = new StringBuilder("\"");
+        for (byte v : input) {
+            int c = v & 0xFF;
+            sb.append(c >= 32 && c < 127 ? String.valueOf((char) c) : String.format("\\x%02x", c));
+        }
+        return sb.append('"').toString();
+    }
 }
