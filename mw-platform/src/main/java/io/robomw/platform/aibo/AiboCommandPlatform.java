@@ -79,6 +79,7 @@ final class AiboCommandPlatform extends HighLevelCommandPlatform {
             failed(run, "the robot answered \"" + UrbiProtocol.ERROR_PREFIX + " " + reply.text() + "\"");
         } else if (reply.isEnd()) {
             connection.forget(tag);
+            tags.remove(run, tag);
             finished(run);
         }
     }
