@@ -298,6 +298,15 @@ final class DemoCommand implements Callable<Integer> {
             "ft-txt", new EmulatorKind("fischertechnik TXT", true, TxtEmulator::bind),
             "aibo", new EmulatorKind("Sony Aibo (URBI server)", true, AiboEmulator::bind));
 
+    /** @return whether the robot walks on legs: its pose is then dead reckoning, not encoder odometry */
+    private static boolean legged(Path robotFile) {
+        try {
+            return new RobotDescriptionLoader().load(robotFile).leggedDrive().isPresent();
+        } catch (RuntimeException e) {
+            return false;
+        }
+    }
+
     private static String describeLink(Map<String, String> link) {
         return link.containsKey("host") ? "tcp " + link.get("host") + ":" + link.get("port") : link.get("port");
     }
@@ -336,7 +345,8 @@ final class DemoCommand implements Callable<Integer> {
             out.printf(Locale.ROOT, "== %s (%s, host %s) ==%n", robot, robotFile.getFileName(), component(result, "host"));
             out.printf(Locale.ROOT, "  distance driven    %8.3f m%n", (Double) component(result, "distanceDriven"));
             out.printf(Locale.ROOT, "  final pose error   %8.3f m, %5.1f deg   (true pose in the world vs. where it started)%n", closure, headingError);
-            out.printf(Locale.ROOT, "  odometry closure   %8.3f m            (what the robot's own encoders say)%n", (Double) component(result, "odometryClosure"));
+            out.printf(Locale.ROOT, "  odometry closure   %8.3f m            (%s)%n", (Double) component(result, "odometryClosure"),
+                    legged(robotFile) ? "the robot's own dead reckoning from its commanded gait" : "what the robot's own encoders say");
             out.printf(Locale.ROOT, "  samples            %8d%n", samples.size());
             out.printf(Locale.ROOT, "  %8s %8s %9s%n", "x (m)", "y (m)", "range (m)");
             for (Object s : samples) {

@@ -84,6 +84,7 @@ class DemoIT {
             assertTrue(error.find(), dog);
             assertTrue(Double.parseDouble(error.group(1)) < 0.10, "the dog ends within 10 cm of its start: " + error.group(0));
             assertTrue(Double.parseDouble(error.group(2)) < 20, "and within 20 degrees of its heading: " + error.group(0));
+            assertTrue(dog.contains("(the robot's own dead reckoning from its commanded gait)"), "a dog has no encoders: " + dog);
             assertTrue(out.contains("stopped all 3 hosts"), out);
         }
     }
