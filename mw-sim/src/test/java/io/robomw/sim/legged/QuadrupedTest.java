@@ -64,6 +64,49 @@ class QuadrupedTest {
         assertEquals(0.49, wa, 0.013, "2 % slip, jitter σ ≈ 4 mm");
     }
 
+    /**
+     * The statistics the full-stack tolerances are derived from (AiboFullStackTest, aibo.yaml's
+     * gait: 2.5 steps a second, each {@code 1 + 0.03·N(0, 1)} times as fast, 2 % slip): over 400
+     * seeds, a 0.5 m walk at 0.1 m/s (12.5 steps) covers 0.49 m with σ = 0.03 × 0.5 / √12.5 = 4.2 mm,
+     * and a quarter turn at 1 rad/s (3.9 steps) 0.98 × π/2 rad (and up to one 10 ms physics step
+     * more) with σ = 0.03 × π/2 / √3.9 = 0.024 rad.
+     */
+    @Test
+    void shouldSpreadWalksAndTurnsAsTheGaitModelPredictsOverManySeeds() {
+        int seeds = 400;
+        double[] walks = new double[seeds];
+        double[] turns = new double[seeds];
+        for (int seed = 0; seed < seeds; seed++) {
+            Quadruped w = new Quadruped(drive(0.03, 0.02), seed);
+            w.walk(0.5, 0.1);
+            walks[seed] = run(w, 600);
+            Quadruped t = new Quadruped(drive(0.03, 0.02), seed);
+            t.turn(Math.PI / 2, 1.0);
+            double turned = 0;
+            for (int i = 0; i < 300; i++) {
+                turned += t.angularVelocity() * DT;
+                t.advance(DT);
+            }
+            turns[seed] = turned;
+        }
+        double[] walk = meanAndDeviation(walks);
+        double[] turn = meanAndDeviation(turns);
+        String seen = String.format(java.util.Locale.ROOT, "walk %.4f m σ %.2f mm, turn %.4f rad σ %.4f rad", walk[0], walk[1] * 1000, turn[0], turn[1]);
+
+        assertAll(
+                () -> assertEquals(0.49, walk[0], 0.001, seen),
+                () -> assertEquals(0.0042, walk[1], 0.0012, seen),
+                // A motion ends at the first 10 ms step at or after its time: π/2 s runs 1.58 s.
+                () -> assertEquals(0.98 * (Math.PI / 2 + 0.005), turn[0], 0.006, seen),
+                () -> assertEquals(0.024, turn[1], 0.007, seen));
+    }
+
+    private static double[] meanAndDeviation(double[] xs) {
+        double mean = java.util.Arrays.stream(xs).average().orElseThrow();
+        double var = java.util.Arrays.stream(xs).map(x -> (x - mean) * (x - mean)).sum() / (xs.length - 1);
+        return new double[] {mean, Math.sqrt(var)};
+    }
+
     @Test
     void shouldEndTheCurrentMotionWhenANewOneStarts() {
         Quadruped dog = new Quadruped(drive(0, 0), 1);
