@@ -183,7 +183,8 @@ public final class BrickPlatform implements RobotPlatform {
     }
 
     /**
-     * Stops every motor, hands the stop to the hardware, stops the threads and closes the link.
+     * Stops every motor, hands the stop to the hardware, stops the threads, leaves every output
+     * idle (coasting, as the bricks' own tools do when a program stops) and closes the link.
      */
     @Override
     public void close() {
@@ -198,6 +199,10 @@ public final class BrickPlatform implements RobotPlatform {
             }
         }
         motors.flushOutputs();
+        if (!linkDown) {
+            serviceLink();
+        }
+        motors.coastAll();
         if (!linkDown) {
             serviceLink();
         }

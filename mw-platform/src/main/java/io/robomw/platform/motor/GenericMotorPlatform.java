@@ -63,7 +63,8 @@ public abstract class GenericMotorPlatform {
     private final Set<String> ports;
     private final List<String> portOrder;
     private final Map<String, MotorState> wanted = new LinkedHashMap<>();
-    private final Map<String, MotorState> published = new ConcurrentHashMap<>();
+    /** States the action side published for the link side; guarded by itself, so a cycle's batch is handed over whole. */
+    private final Map<String, MotorState> published = new LinkedHashMap<>();
     private final Map<String, MotorState> changed = new LinkedHashMap<>();
     private final Map<String, Reading> degrees = new ConcurrentHashMap<>();
     private final Map<String, Double> startDegrees = new LinkedHashMap<>();
@@ -203,7 +204,8 @@ public abstract class GenericMotorPlatform {
             startedAt[0] = now;
             for (int i = 0; i < targets.size(); i++) {
                 MotorTarget t = targets.get(i);
-                startDegrees.put(t.port(), motorDegrees(t.port()));
+                // Where the motor is now: its last reading, moved on by the speed it was turning at.
+                startDegrees.put(t.port(), estimatedDegrees(t.port(), wanted.get(t.port()).degreesPerSecond()));
                 started[i] = new MotorState(t.port(), t.degrees() == 0 ? 0 : t.degreesPerSecond(), t.degrees(), MotorState.StopMode.BRAKE);
                 setWanted(started[i], !t.continuous());
             }
@@ -269,7 +271,7 @@ public abstract class GenericMotorPlatform {
     }
 
     private double turned(MotorTarget t) {
-        return Math.abs(estimatedDegrees(t) - startDegrees.getOrDefault(t.port(), 0.0));
+        return Math.abs(estimatedDegrees(t.port(), t.degreesPerSecond()) - startDegrees.getOrDefault(t.port(), 0.0));
     }
 
     /** How long a rotation may take before it counts as blocked: three times its time at speed, plus 2 s. */
@@ -282,13 +284,13 @@ public abstract class GenericMotorPlatform {
      * cycles): feedback arrives at least one link round trip late, and stopping on stale readings
      * would overshoot by that much.
      */
-    private double estimatedDegrees(MotorTarget t) {
-        Reading r = degrees.get(t.port());
+    private double estimatedDegrees(String port, double degreesPerSecond) {
+        Reading r = degrees.get(port);
         if (r == null) {
             return 0.0;
         }
         long age = Math.min(Math.max(0, clock.nanoTime() - r.atNanos()), 3 * cyclePeriodNanos);
-        return r.degrees() + t.degreesPerSecond() * age / 1e9;
+        return r.degrees() + degreesPerSecond * age / 1e9;
     }
 
     /** @param always publish it even if it equals the wanted state (a new rotation, which the brick must start again) */
@@ -309,9 +311,23 @@ public abstract class GenericMotorPlatform {
         if (changed.isEmpty()) {
             return false;
         }
-        published.putAll(changed);
+        synchronized (published) {
+            published.putAll(changed);
+        }
         changed.clear();
         return true;
+    }
+
+    /**
+     * Sets every motor to coast (its output idle, drawing no current) and publishes it: what a
+     * robot leaves its motors in when it closes, as the bricks' own tools do on stop-and-disconnect.
+     * Called by the closing thread once the execution action thread has stopped.
+     */
+    public void coastAll() {
+        for (String port : portOrder) {
+            setWanted(MotorState.stopped(port, MotorState.StopMode.COAST), false);
+        }
+        flushOutputs();
     }
 
     // ---- link side ----
@@ -323,22 +339,36 @@ public abstract class GenericMotorPlatform {
      * @throws IOException if the link failed; unsent states are kept and sent on the next call
      */
     public final void serviceLink() throws IOException {
-        if (!published.isEmpty()) {
-            List<MotorState> batch = new ArrayList<>();
+        List<MotorState> batch = new ArrayList<>();
+        synchronized (published) {
             for (String port : portOrder) {
                 MotorState s = published.remove(port);
                 if (s != null) {
                     batch.add(s);
                 }
             }
+        }
+        if (!batch.isEmpty()) {
+            // The states count as sent from here on, so that a driver that reads the brick in the
+            // same exchange (a pipelined poll) reports on these states, not the ones before.
+            Map<String, MotorState> before = new LinkedHashMap<>();
+            for (MotorState s : batch) {
+                before.put(s.port(), sentStates.put(s.port(), s));
+            }
             try {
                 runImpl(batch);
-                for (MotorState s : batch) {
-                    sentStates.put(s.port(), s);
-                }
             } catch (IOException | RuntimeException e) {
-                for (MotorState s : batch) {
-                    published.putIfAbsent(s.port(), s);
+                before.forEach((port, s) -> {
+                    if (s == null) {
+                        sentStates.remove(port);
+                    } else {
+                        sentStates.put(port, s);
+                    }
+                });
+                synchronized (published) {
+                    for (MotorState s : batch) {
+                        published.putIfAbsent(s.port(), s);
+                    }
                 }
                 throw e;
             }

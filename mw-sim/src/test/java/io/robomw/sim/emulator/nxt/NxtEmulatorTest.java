@@ -90,6 +90,66 @@ class NxtEmulatorTest {
         assertEquals(90, Math.toDegrees(truePose().heading()), 2.0);
     }
 
+    /**
+     * A move pre-empted by a turn, then a move again: the firmware adds each tacho limit to the
+     * target of the last one, so a driver that only sent limits would see the turn's backward
+     * wheel stop at once and its forward wheel run on to the move's old target. Each command must
+     * end its own rotation from where the robot is when it arrives.
+     */
+    @Test
+    void shouldEndAMovePreemptedByATurnAndThenAMoveWhereTheyShould() throws Exception {
+        start(0.5);
+        preemptedMoveTurnMove();
+    }
+
+    /**
+     * On firmware without UPDATE_RESET_COUNT the platform stops rotations by the encoder, as late as
+     * its link and cycle: this world runs in real time, so those delays are what a real robot sees.
+     */
+    @Test
+    void shouldEndAPreemptedMoveTurnAndMoveWhereTheyShouldOnFirmwareWithoutUpdateResetCount() throws Exception {
+        stack = new EmulatorStack<>(dir, ROBOT, "nxt-1", NxtEmulator::bindLegacyFirmware);
+        robot = stack.openOnPseudoTerminal(0.5, 1);
+        preemptedMoveTurnMove();
+    }
+
+    private void preemptedMoveTurnMove() throws Exception {
+        CompletableFuture<Void> longMove = robot.moveAsync(1.0, 0.15);
+        stack.awaitStep(() -> truePose().x() > 0.7, Duration.ofSeconds(20), "the robot drove 20 cm");
+        robot.turn(Math.PI / 2, 1.0);
+        ExecutionException preempted = assertThrows(ExecutionException.class, () -> longMove.get(5, TimeUnit.SECONDS));
+        assertInstanceOf(io.robomw.api.CommandPreemptedException.class, preempted.getCause());
+        Pose afterTurn = truePose();
+        assertEquals(90, Math.toDegrees(afterTurn.heading()), 2.0, "the turn turned a quarter from where the move was cut: " + afterTurn);
+        assertEquals(1.5, afterTurn.y(), 0.01, "and on the spot");
+
+        robot.move(0.3, 0.15);
+
+        Pose end = truePose();
+        assertEquals(afterTurn.x(), end.x(), 0.01, "the second move went straight along the new heading: " + end);
+        assertEquals(afterTurn.y() + 0.3, end.y(), 0.01, "and 30 cm: " + end);
+        assertEquals(90, Math.toDegrees(end.heading()), 2.0);
+    }
+
+    /**
+     * Closing the robot leaves every output idle (no power, no brake, no regulation), as the
+     * brick's own stop does, rather than braked and regulated, drawing current until the brick
+     * is switched off.
+     */
+    @Test
+    void shouldLeaveEveryOutputCoastingWhenTheRobotCloses() throws Exception {
+        start(0.5);
+        robot.move(0.1, 0.15);
+        robot.close();
+
+        for (int port = 0; port < 3; port++) {
+            byte[] state = stack.emulator().handle(new byte[]{0x00, 0x06, (byte) port});
+            assertEquals(0x00, state[5], "output " + port + ": mode byte (MOTORON, BRAKE, REGULATED all off)");
+            assertEquals(0x00, state[6], "output " + port + ": regulation idle");
+            assertEquals(0x00, state[8], "output " + port + ": run state idle");
+        }
+    }
+
     @Test
     void shouldReadDistanceToWallWithUltrasonicOverI2c() throws Exception {
         start(2.0);
