@@ -49,7 +49,7 @@ final class EmulateCommand implements Callable<Integer> {
     private String robot;
 
     @Option(names = "--tcp", paramLabel = "PORT", description = "serve on TCP 127.0.0.1:PORT (0 = any) instead of a pseudo-terminal; "
-            + "the TXT is TCP only (default 65000)")
+            + "the TXT is TCP only (default 65000) and also listens on PORT + 2, its I²C channel")
     private Integer tcpPort;
 
     @Option(names = "--speed", defaultValue = "1", description = "simulated seconds per second (default ${DEFAULT-VALUE})")
@@ -85,16 +85,38 @@ final class EmulateCommand implements Callable<Integer> {
             if (brick == Brick.ft_txt && tcpPort == null) {
                 tcpPort = 65000;
             }
-            String where = tcpPort == null ? emulator.startOnPseudoTerminal() : "tcp://127.0.0.1:" + emulator.startOnTcp("127.0.0.1", tcpPort);
+            String where;
+            if (tcpPort == null) {
+                where = emulator.startOnPseudoTerminal();
+            } else if (emulator instanceof TxtEmulator txt) {
+                // A real TXT also accepts its I²C channel on the command port + 2 when a client goes online.
+                where = "tcp://127.0.0.1:" + txt.startOnTcpPair("127.0.0.1", tcpPort);
+            } else {
+                where = "tcp://127.0.0.1:" + emulator.startOnTcp("127.0.0.1", tcpPort);
+            }
             out.println(where);
             out.flush();
             err.printf("%s emulator for robot '%s' of %s; connect the %s driver to %s; Ctrl-C stops it%n", brick, robot, world, brick, where);
             err.flush();
             sim.startRealTime(speed);
-            Runtime.getRuntime().addShutdownHook(new Thread(stopped::countDown, "mw-emulate-shutdown"));
-            stopped.await();
+            Thread hook = new Thread(stopped::countDown, "mw-emulate-shutdown");
+            Runtime.getRuntime().addShutdownHook(hook);
+            try {
+                stopped.await();
+            } finally {
+                removeHook(hook);
+            }
         }
         return 0;
+    }
+
+    /** Removes the shutdown hook when the command ends otherwise (interrupted); not possible while the JVM shuts down. */
+    private static void removeHook(Thread hook) {
+        try {
+            Runtime.getRuntime().removeShutdownHook(hook);
+        } catch (IllegalStateException e) {
+            // the JVM is shutting down: the hook is what ended the wait
+        }
     }
 
     private BrickEmulator bind(Simulation sim) {
