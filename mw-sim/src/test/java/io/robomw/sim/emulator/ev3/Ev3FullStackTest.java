@@ -82,6 +82,19 @@ class Ev3FullStackTest {
         return stack.truePose();
     }
 
+    /** Closing the robot leaves its outputs coasting, not braked (a braked EV3 motor draws current until the brick is off). */
+    @Test
+    void shouldLeaveEveryOutputCoastingWhenTheRobotCloses() throws Exception {
+        startOnPty(1.0);
+        robot.move(0.1, 0.15);
+        assertTrue(stack.emulator().braking("B"), "a finished move brakes");
+        robot.close();
+
+        for (String port : new String[]{"B", "C"}) {
+            assertTrue(!stack.emulator().braking(port), "output " + port + " coasts after close");
+        }
+    }
+
     @Test
     void shouldMoveSimulatedRobotHalfAMetreWithinOneCentimetre() throws Exception {
         startOnPty(0.5);
