@@ -45,6 +45,7 @@ public abstract class BrickEmulator implements AutoCloseable {
     private final java.util.List<Runnable> closeActions = new java.util.concurrent.CopyOnWriteArrayList<>();
     private volatile boolean running;
     private volatile Link link;
+    private volatile LinkModel linkModel;
     private Thread thread;
 
     /**
@@ -65,6 +66,35 @@ public abstract class BrickEmulator implements AutoCloseable {
         this.kind = kind;
         this.robot = robot;
         this.framing = framing;
+    }
+
+    /**
+     * @return how slow this brick's usual link is (the emulator serves at this speed unless told
+     *         otherwise); by default none
+     */
+    protected LinkModel defaultLinkModel() {
+        return LinkModel.NONE;
+    }
+
+    /**
+     * Sets how slow the emulated link is, before the emulator starts serving.
+     *
+     * @param model the link model; {@link LinkModel#NONE} serves as fast as the pseudo-terminal or socket goes
+     * @return this
+     * @throws IllegalStateException if it already serves
+     */
+    public synchronized BrickEmulator linkModel(LinkModel model) {
+        if (thread != null) {
+            throw new IllegalStateException("the " + kind + " emulator already serves on " + link.describe() + "; set its link model before it starts");
+        }
+        linkModel = java.util.Objects.requireNonNull(model, "model");
+        return this;
+    }
+
+    /** @return how slow the emulated link is */
+    public LinkModel linkModel() {
+        LinkModel m = linkModel;
+        return m == null ? defaultLinkModel() : m;
     }
 
     /**
@@ -167,12 +197,13 @@ public abstract class BrickEmulator implements AutoCloseable {
             endpoint.close();
             throw new IllegalStateException("the " + kind + " emulator of '" + robot.robot().name() + "' is already serving on " + link.describe());
         }
-        link = endpoint;
+        LinkModel model = linkModel();
+        link = model.isNone() ? endpoint : new DelayedLink(endpoint, model);
         running = true;
         thread = new Thread(this::serve, "emulator-" + kind + "-" + robot.robot().name());
         thread.setDaemon(true);
         thread.start();
-        LOG.info("{} emulator for '{}' serving on {}", kind, robot.robot().name(), endpoint.describe());
+        LOG.info("{} emulator for '{}' serving on {}", kind, robot.robot().name(), link.describe());
     }
 
     private void serve() {

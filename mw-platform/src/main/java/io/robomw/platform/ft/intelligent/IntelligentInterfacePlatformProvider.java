@@ -32,7 +32,7 @@ public final class IntelligentInterfacePlatformProvider implements PlatformProvi
         }
         Duration timeout = Duration.ofMillis(config.connection().integer("reply_timeout_ms", 250));
         BrickChannel channel = BrickChannel.open(config.robotName(), config.connection(),
-                SerialSettings.of(9600, 8, SerialSettings.Parity.NONE, 1), 0, timeout);
+                SerialSettings.of(IntelligentInterfaceTelegram.BAUD, 8, SerialSettings.Parity.NONE, 1), 0, timeout);
         try {
             IntelligentInterfaceInputs inputs = new IntelligentInterfaceInputs();
             IntelligentInterfaceMotorPlatform motors = new IntelligentInterfaceMotorPlatform(config, channel, inputs);

@@ -16,6 +16,7 @@ import io.robomw.platform.ev3.Ev3Subcode;
 import io.robomw.sim.SimMotors;
 import io.robomw.sim.Simulation;
 import io.robomw.sim.emulator.BrickEmulator;
+import io.robomw.sim.emulator.LinkModel;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -208,6 +209,12 @@ public final class Ev3Emulator extends BrickEmulator {
     /** @return tones played (opSOUND TONE) */
     public long tonesPlayed() {
         return tones.get();
+    }
+
+    /** An EV3 is usually reached over Bluetooth: {@link LinkModel#BLUETOOTH_SPP}. */
+    @Override
+    protected LinkModel defaultLinkModel() {
+        return LinkModel.BLUETOOTH_SPP;
     }
 
     // ---- simulation thread ----

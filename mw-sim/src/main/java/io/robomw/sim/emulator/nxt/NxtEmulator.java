@@ -8,6 +8,7 @@ import io.robomw.platform.nxt.NxtTelegram;
 import io.robomw.sim.SimMotors;
 import io.robomw.sim.Simulation;
 import io.robomw.sim.emulator.BrickEmulator;
+import io.robomw.sim.emulator.LinkModel;
 
 import java.util.Arrays;
 
@@ -117,6 +118,12 @@ public final class NxtEmulator extends BrickEmulator {
      */
     public static NxtEmulator bindLegacyFirmware(Simulation simulation, String robotName) {
         return bind(simulation, robotName, motors -> new NxtEmulator(motors, simulation.world().stepSeconds(), false));
+    }
+
+    /** An NXT is usually reached over Bluetooth: {@link LinkModel#BLUETOOTH_SPP}. */
+    @Override
+    protected LinkModel defaultLinkModel() {
+        return LinkModel.BLUETOOTH_SPP;
     }
 
     // ---- simulation thread ----

@@ -9,6 +9,7 @@ import io.robomw.platform.ft.intelligent.IntelligentInterfaceTelegram;
 import io.robomw.sim.SimMotors;
 import io.robomw.sim.Simulation;
 import io.robomw.sim.emulator.BrickEmulator;
+import io.robomw.sim.emulator.LinkModel;
 import io.robomw.sim.emulator.Framing;
 
 import java.util.ArrayList;
@@ -137,6 +138,12 @@ public final class IntelligentInterfaceEmulator extends BrickEmulator {
             }
             return false;
         }
+    }
+
+    /** The interface's RS-232 line: 9600 baud, 8N1, no latency beyond the bytes' time. */
+    @Override
+    protected LinkModel defaultLinkModel() {
+        return LinkModel.serial(IntelligentInterfaceTelegram.BAUD, 10);
     }
 
     // ---- I/O thread ----

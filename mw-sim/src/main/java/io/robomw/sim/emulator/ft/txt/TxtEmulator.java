@@ -10,6 +10,7 @@ import io.robomw.platform.ft.txt.TxtProtocol;
 import io.robomw.sim.SimMotors;
 import io.robomw.sim.Simulation;
 import io.robomw.sim.emulator.BrickEmulator;
+import io.robomw.sim.emulator.LinkModel;
 import io.robomw.sim.emulator.Framing;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -252,6 +253,12 @@ public final class TxtEmulator extends BrickEmulator {
     public int i2cPort() {
         ServerSocket s = i2cServer;
         return s == null ? -1 : s.getLocalPort();
+    }
+
+    /** A TXT over USB or WLAN: TCP with about a millisecond each way. */
+    @Override
+    protected LinkModel defaultLinkModel() {
+        return new LinkModel(java.time.Duration.ofMillis(1), 0, 10);
     }
 
     // ---- simulation thread ----
