@@ -39,6 +39,9 @@ public final class BrickChannel implements AutoCloseable {
     private final ReentrantLock lock = new ReentrantLock(true);
     private boolean down;
     private long lastAttempt;
+    private volatile long exchangeStartedAt;
+    private volatile boolean exchanging;
+    private final RoundTripEstimate exchangeTime = new RoundTripEstimate();
 
     /**
      * @param robot        the robot's name, for messages
@@ -94,6 +97,19 @@ public final class BrickChannel implements AutoCloseable {
         return communicator;
     }
 
+    /**
+     * How long until the exchange under way is expected to end (by the smoothed time exchanges
+     * take): a command handed to the channel now waits that long before it is sent.
+     *
+     * @return nanoseconds, 0 if no exchange is under way
+     */
+    public long nanosUntilFree() {
+        if (!exchanging) {
+            return 0;
+        }
+        return Math.max(0, exchangeStartedAt + exchangeTime.nanos() - System.nanoTime());
+    }
+
     /** @return how long each reply is awaited */
     public Duration replyTimeout() {
         return replyTimeout;
@@ -111,11 +127,18 @@ public final class BrickChannel implements AutoCloseable {
         lock.lock();
         try {
             ensureOpen();
+            long started = System.nanoTime();
+            exchangeStartedAt = started;
+            exchanging = true;
             try {
-                return exchange.run(communicator, replyTimeout);
+                T result = exchange.run(communicator, replyTimeout);
+                exchangeTime.sample(System.nanoTime() - started);
+                return result;
             } catch (IOException e) {
                 markDown(e);
                 throw e;
+            } finally {
+                exchanging = false;
             }
         } finally {
             lock.unlock();

@@ -39,10 +39,13 @@ import java.util.concurrent.ConcurrentHashMap;
  *
  * <h2>Reaching a target</h2>
  * A logic object per motor watches its rotation since the container started, and stops the motor
- * when the rotation is within half a cycle's travel of the target. The last encoder reading is
- * extrapolated by the commanded speed over its age, so a link's feedback delay does not become
- * overshoot. A motor without encoder is
- * stopped by time: {@code degrees / speed} after the start.
+ * when the rotation is within half a cycle's travel of the target. A reading is a sample the brick
+ * took one link delay ({@link #linkDelayNanos()}) before it arrived, and a stop sent now reaches
+ * the brick one link delay later: so the logic compares the target with the last reading moved on
+ * by the commanded speed over its age and the time a command takes to reach the brick
+ * ({@link #commandDelayNanos()}: a link delay, and on a link that carries one exchange at a time
+ * the wait for the one under way), so a slow link's delays do not become overshoot. A motor without encoder is stopped by
+ * time: {@code degrees / speed} after the start.
  *
  * <p>A brick that ends a limited rotation itself (the NXT's tacho limit; {@link #stopsAtLimit()})
  * is not stopped by the middleware: the rotation is done when the driver reports, with
@@ -67,7 +70,8 @@ public abstract class GenericMotorPlatform {
     private final Map<String, MotorState> published = new LinkedHashMap<>();
     private final Map<String, MotorState> changed = new LinkedHashMap<>();
     private final Map<String, Reading> degrees = new ConcurrentHashMap<>();
-    private final Map<String, Double> startDegrees = new LinkedHashMap<>();
+    /** Where each motor was, by prediction, when the brick took the running state last sent for it; link side writes. */
+    private final Map<String, Start> starts = new ConcurrentHashMap<>();
     private final Map<String, MotorState> sentStates = new ConcurrentHashMap<>();
     private final Map<String, MotorState> stoppedAtLimit = new ConcurrentHashMap<>();
     private volatile long cyclePeriodNanos = 10_000_000L;
@@ -161,11 +165,37 @@ public abstract class GenericMotorPlatform {
      * @param reading degrees of the motor shaft
      */
     protected final void reportDegrees(String port, double reading) {
-        degrees.put(port, new Reading(reading, clock.nanoTime()));
+        degrees.put(port, new Reading(reading, clock.nanoTime() - linkDelayNanos()));
     }
 
-    /** An encoder reading and the clock time it was reported at. */
+    /**
+     * How long the link takes one way: a reading is that old when it arrives, and a command takes
+     * that long to reach the brick. Drivers on slow links return half their measured round trip
+     * (see {@code RoundTripEstimate}); the default, 0, suits links without delay.
+     *
+     * @return the one-way delay, nanoseconds
+     */
+    protected long linkDelayNanos() {
+        return 0;
+    }
+
+    /**
+     * How long a command handed to the link now takes to reach the brick: the link's one-way delay,
+     * plus the wait for an exchange already under way on a link that carries one at a time.
+     * Drivers on slow links override it; the default is {@link #linkDelayNanos()}.
+     *
+     * @return nanoseconds
+     */
+    protected long commandDelayNanos() {
+        return linkDelayNanos();
+    }
+
+    /** An encoder reading and the clock time the brick sampled it at. */
     private record Reading(double degrees, long atNanos) {
+    }
+
+    /** A rotation's state, and where the motor was predicted to be when the brick took it. */
+    private record Start(MotorState state, double degrees) {
     }
 
     /**
@@ -204,8 +234,6 @@ public abstract class GenericMotorPlatform {
             startedAt[0] = now;
             for (int i = 0; i < targets.size(); i++) {
                 MotorTarget t = targets.get(i);
-                // Where the motor is now: its last reading, moved on by the speed it was turning at.
-                startDegrees.put(t.port(), estimatedDegrees(t.port(), wanted.get(t.port()).degreesPerSecond()));
                 started[i] = new MotorState(t.port(), t.degrees() == 0 ? 0 : t.degreesPerSecond(), t.degrees(), MotorState.StopMode.BRAKE);
                 setWanted(started[i], !t.continuous());
             }
@@ -260,18 +288,31 @@ public abstract class GenericMotorPlatform {
         if (t.degrees() == 0 || speed == 0) {
             return true;
         }
+        if (stoppedAtLimit.get(t.port()) == started) {
+            return true;
+        }
         if (stopsAtLimit()) {
-            return stoppedAtLimit.get(t.port()) == started;
+            return false;
         }
         if (!hasEncoder(t.port())) {
             return elapsedNanos >= t.degrees() / speed * 1e9;
         }
+        Start start = starts.get(t.port());
+        if (start == null || start.state() != started) {
+            return false;
+        }
         double lead = speed * cyclePeriodNanos / 2e9;
-        return turned(t) >= t.degrees() - lead;
+        return turned(t.port(), start) >= t.degrees() - lead;
+    }
+
+    /** How far a rotation has turned by the time a command sent now reaches the brick. */
+    private double turned(String port, Start start) {
+        return Math.abs(predictedDegrees(port, start.state().degreesPerSecond()) - start.degrees());
     }
 
     private double turned(MotorTarget t) {
-        return Math.abs(estimatedDegrees(t.port(), t.degreesPerSecond()) - startDegrees.getOrDefault(t.port(), 0.0));
+        Start start = starts.get(t.port());
+        return start == null ? 0 : turned(t.port(), start);
     }
 
     /** How long a rotation may take before it counts as blocked: three times its time at speed, plus 2 s. */
@@ -280,17 +321,20 @@ public abstract class GenericMotorPlatform {
     }
 
     /**
-     * The encoder reading moved on by the commanded speed for the reading's age (at most three
-     * cycles): feedback arrives at least one link round trip late, and stopping on stale readings
-     * would overshoot by that much.
+     * Where the motor will be when a command sent now reaches the brick: the last reading moved on
+     * by the speed for the reading's age and the command's delay (together at most three cycles
+     * and those delays, so a reading that stopped coming is not extrapolated without end).
+     * Feedback arrives a link delay late and a stop reaches the brick a command delay after it is
+     * sent; stopping on the bare reading would overshoot by both.
      */
-    private double estimatedDegrees(String port, double degreesPerSecond) {
+    private double predictedDegrees(String port, double degreesPerSecond) {
         Reading r = degrees.get(port);
         if (r == null) {
             return 0.0;
         }
-        long age = Math.min(Math.max(0, clock.nanoTime() - r.atNanos()), 3 * cyclePeriodNanos);
-        return r.degrees() + degreesPerSecond * age / 1e9;
+        long delay = commandDelayNanos();
+        long ahead = Math.min(Math.max(0, clock.nanoTime() - r.atNanos()) + delay, 3 * cyclePeriodNanos + 4 * linkDelayNanos() + delay);
+        return r.degrees() + degreesPerSecond * ahead / 1e9;
     }
 
     /** @param always publish it even if it equals the wanted state (a new rotation, which the brick must start again) */
@@ -339,20 +383,31 @@ public abstract class GenericMotorPlatform {
      * @throws IOException if the link failed; unsent states are kept and sent on the next call
      */
     public final void serviceLink() throws IOException {
-        List<MotorState> batch = new ArrayList<>();
+        Map<String, MotorState> drained = new LinkedHashMap<>();
         synchronized (published) {
-            for (String port : portOrder) {
-                MotorState s = published.remove(port);
-                if (s != null) {
-                    batch.add(s);
-                }
+            drained.putAll(published);
+            published.clear();
+        }
+        if (stopsOnLinkSide()) {
+            anticipateStops(drained);
+        }
+        List<MotorState> batch = new ArrayList<>();
+        for (String port : portOrder) {
+            MotorState s = drained.get(port);
+            if (s != null) {
+                batch.add(s);
             }
         }
         if (!batch.isEmpty()) {
             // The states count as sent from here on, so that a driver that reads the brick in the
-            // same exchange (a pipelined poll) reports on these states, not the ones before.
+            // same exchange (a pipelined poll) reports on these states, not the ones before; a
+            // rotation counts from where the motor will be when the brick takes it.
             Map<String, MotorState> before = new LinkedHashMap<>();
             for (MotorState s : batch) {
+                MotorState previous = sentStates.get(s.port());
+                if (s.running()) {
+                    starts.put(s.port(), new Start(s, predictedDegrees(s.port(), previous == null ? 0 : previous.degreesPerSecond())));
+                }
                 before.put(s.port(), sentStates.put(s.port(), s));
             }
             try {
@@ -374,6 +429,47 @@ public abstract class GenericMotorPlatform {
             }
         }
         pollFeedback();
+    }
+
+    /**
+     * @return whether the link side stops limited rotations itself, just in time by its own
+     *         prediction, rather than waiting for the execution action thread's decision (which a
+     *         slow link carrying one exchange at a time can send an exchange late); default no
+     */
+    protected boolean stopsOnLinkSide() {
+        return false;
+    }
+
+    /**
+     * How long until the link side can next send a command after this service: a cycle, or the
+     * exchange that the service itself runs if that takes longer. Drivers on slow links override it.
+     *
+     * @return nanoseconds
+     */
+    protected long nextSendNanos() {
+        return cyclePeriodNanos;
+    }
+
+    /**
+     * Adds a stop to the batch for every limited rotation that would reach its target, by
+     * prediction, closer to now than to the next chance to send; marks it stopped at its limit.
+     */
+    private void anticipateStops(Map<String, MotorState> batch) {
+        for (String port : portOrder) {
+            MotorState s = sentStates.get(port);
+            if (batch.containsKey(port) || s == null || !s.running() || Double.isInfinite(s.limitDegrees()) || !hasEncoder(port)) {
+                continue;
+            }
+            Start start = starts.get(port);
+            if (start == null || start.state() != s) {
+                continue;
+            }
+            double remaining = s.limitDegrees() - turned(port, start);
+            if (remaining <= Math.abs(s.degreesPerSecond()) * nextSendNanos() / 2e9) {
+                batch.put(port, MotorState.stopped(port, MotorState.StopMode.BRAKE));
+                stoppedAtLimit.put(port, s);
+            }
+        }
     }
 
     private void requirePort(String port) {

@@ -2,6 +2,7 @@ package io.robomw.platform.nxt;
 
 import io.robomw.platform.brick.LittleEndian;
 import io.robomw.platform.brick.BrickChannel;
+import io.robomw.platform.brick.RoundTripEstimate;
 import io.robomw.platform.link.LinkLostException;
 
 import java.io.IOException;
@@ -18,6 +19,7 @@ public final class NxtBrick {
 
     private final String robot;
     private final BrickChannel channel;
+    private final RoundTripEstimate roundTrip = new RoundTripEstimate();
 
     /**
      * @param robot   the robot's name, for messages
@@ -31,6 +33,16 @@ public final class NxtBrick {
     /** @return the robot's name */
     public String robot() {
         return robot;
+    }
+
+    /** @return how long until the exchange under way on the channel is expected to end, nanoseconds */
+    public long nanosUntilFree() {
+        return channel.nanosUntilFree();
+    }
+
+    /** @return the link's measured round trip, request sent to reply received */
+    public RoundTripEstimate roundTrip() {
+        return roundTrip;
     }
 
     /**
@@ -99,9 +111,13 @@ public final class NxtBrick {
                     out.writeBytes(NxtTelegram.withLengthPrefix(requests.get(next).telegram()));
                     next++;
                 }
+                long sent = System.nanoTime();
                 c.send(out.toByteArray());
                 for (int i = first; i < next; i++) {
                     replies.add(readReply(c, timeout, requests.get(i)));
+                    if (i == first) {
+                        roundTrip.sample(System.nanoTime() - sent);
+                    }
                 }
             }
             return replies;
@@ -163,8 +179,11 @@ public final class NxtBrick {
     public byte[] requestAllowing(byte[] telegram, int replyLength, int port) throws IOException {
         Request request = new Request(telegram, replyLength, port);
         return channel.exchange((c, timeout) -> {
+            long sent = System.nanoTime();
             c.send(NxtTelegram.withLengthPrefix(telegram));
-            return readReply(c, timeout, request);
+            byte[] reply = readReply(c, timeout, request);
+            roundTrip.sample(System.nanoTime() - sent);
+            return reply;
         });
     }
 

@@ -104,6 +104,30 @@ public final class NxtMotorPlatform extends GenericMotorPlatform {
         return resetCountCommand;
     }
 
+    /** Half the measured round trip of the brick's link. */
+    @Override
+    protected long linkDelayNanos() {
+        return brick.roundTrip().oneWayNanos();
+    }
+
+    /** The link's one-way delay, after the exchange under way (a poll, a sensor read) ends. */
+    @Override
+    protected long commandDelayNanos() {
+        return brick.nanosUntilFree() + linkDelayNanos();
+    }
+
+    /** Without tacho limits (firmware before 1.29), the link thread stops rotations just in time itself. */
+    @Override
+    protected boolean stopsOnLinkSide() {
+        return !resetCountCommand;
+    }
+
+    /** The next telegram can go after this cycle's pipelined exchange, at the earliest a cycle from now. */
+    @Override
+    protected long nextSendNanos() {
+        return Math.max(super.nextSendNanos(), brick.roundTrip().nanos());
+    }
+
     @Override
     protected void runImpl(List<MotorState> motors) throws IOException {
         boolean sync = motors.size() == 2 && motors.get(0).running() && motors.get(1).running()

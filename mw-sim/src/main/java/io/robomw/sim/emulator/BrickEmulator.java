@@ -46,6 +46,7 @@ public abstract class BrickEmulator implements AutoCloseable {
     private volatile boolean running;
     private volatile Link link;
     private volatile LinkModel linkModel;
+    private volatile io.robomw.sim.Simulation simulation;
     private Thread thread;
 
     /**
@@ -139,6 +140,21 @@ public abstract class BrickEmulator implements AutoCloseable {
     }
 
     /**
+     * @return the wall-clock time the world step now being taken stands for (see
+     *         {@code Simulation.stepWallNanos}); the time now for an emulator not bound to a simulation
+     */
+    protected long stepWallNanos() {
+        io.robomw.sim.Simulation s = simulation;
+        return s == null ? System.nanoTime() : s.stepWallNanos();
+    }
+
+    /** @return simulated seconds per wall-clock second: the real-time run's speed, 1 when not bound or not in real time */
+    protected double simulatedSecondsPerSecond() {
+        io.robomw.sim.Simulation s = simulation;
+        return s == null ? 1 : s.realTimeSpeed();
+    }
+
+    /**
      * Makes an emulator for a robot of a simulation and steps it with the world; closing it
      * unbinds it. Each emulator's {@code bind} is this with its constructor.
      *
@@ -155,6 +171,7 @@ public abstract class BrickEmulator implements AutoCloseable {
         SimMotors motors = SimMotors.of(simulation.world(), robotName).orElseThrow(() -> new IllegalArgumentException(
                 "world '" + simulation.world().description().name() + "' has no robot '" + robotName + "'"));
         E e = emulator.apply(motors);
+        ((BrickEmulator) e).simulation = simulation;
         simulation.addStepListener(e.stepListener());
         e.onClose(() -> simulation.removeStepListener(e.stepListener()));
         return e;
