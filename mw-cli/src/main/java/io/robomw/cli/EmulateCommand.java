@@ -6,7 +6,9 @@ import io.robomw.sim.emulator.BrickEmulator;
 import io.robomw.sim.emulator.ev3.Ev3Emulator;
 import io.robomw.sim.emulator.ft.intelligent.IntelligentInterfaceEmulator;
 import io.robomw.sim.emulator.ft.txt.TxtEmulator;
+import io.robomw.sim.emulator.LinkModel;
 import io.robomw.sim.emulator.nxt.NxtEmulator;
+import io.robomw.sim.emulator.rcx.RcxEmulator;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
@@ -15,6 +17,7 @@ import picocli.CommandLine.Spec;
 
 import java.io.PrintWriter;
 import java.nio.file.Path;
+import java.time.Duration;
 import java.util.Set;
 import java.util.concurrent.Callable;
 import java.util.concurrent.CountDownLatch;
@@ -27,7 +30,7 @@ import java.util.concurrent.CountDownLatch;
 @Command(name = "emulate", description = "Run a virtual brick bound to a robot in a simulated world; print its device path.")
 final class EmulateCommand implements Callable<Integer> {
 
-    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick: nxt, ev3, ft-intelligent, ft-txt (TCP only)", converter = BrickConverter.class)
+    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick: nxt, ev3, rcx, ft-intelligent, ft-txt (TCP only)", converter = BrickConverter.class)
     private Brick brick;
 
     /** Accepts the bricks' platform names (with dashes). */
@@ -37,7 +40,7 @@ final class EmulateCommand implements Callable<Integer> {
             try {
                 return Brick.valueOf(value.replace('-', '_'));
             } catch (IllegalArgumentException e) {
-                throw new picocli.CommandLine.TypeConversionException("unknown brick '" + value + "'; emulated bricks: nxt, ev3, ft-intelligent, ft-txt");
+                throw new picocli.CommandLine.TypeConversionException("unknown brick '" + value + "'; emulated bricks: nxt, ev3, rcx, ft-intelligent, ft-txt");
             }
         }
     }
@@ -55,6 +58,14 @@ final class EmulateCommand implements Callable<Integer> {
     @Option(names = "--speed", defaultValue = "1", description = "simulated seconds per second (default ${DEFAULT-VALUE})")
     private double speed;
 
+    @Option(names = "--latency", paramLabel = "MS", description = "delay of every telegram on the link, each way, milliseconds "
+            + "(default: the brick's usual link: 15 for the NXT and EV3 over Bluetooth, 0 for the serial bricks, 1 for the TXT)")
+    private Integer latencyMillis;
+
+    @Option(names = "--baud", paramLabel = "N", description = "the link's byte rate in baud, 0 for none (default: the brick's usual link: "
+            + "115200 for Bluetooth, 9600 for the Intelligent Interface, 2400 for the RCX's IR tower)")
+    private Integer baud;
+
     @Spec
     private CommandSpec spec;
 
@@ -62,6 +73,7 @@ final class EmulateCommand implements Callable<Integer> {
     enum Brick {
         nxt,
         ev3,
+        rcx,
         ft_intelligent,
         ft_txt
     }
@@ -85,6 +97,22 @@ final class EmulateCommand implements Callable<Integer> {
             if (brick == Brick.ft_txt && tcpPort == null) {
                 tcpPort = 65000;
             }
+            LinkModel link = emulator.linkModel();
+            if (latencyMillis != null) {
+                if (latencyMillis < 0) {
+                    err.println("--latency must be 0 or more milliseconds, got " + latencyMillis);
+                    return 2;
+                }
+                link = link.withLatency(Duration.ofMillis(latencyMillis));
+            }
+            if (baud != null) {
+                if (baud < 0) {
+                    err.println("--baud must be 0 (no byte-rate limit) or more, got " + baud);
+                    return 2;
+                }
+                link = link.withBaud(baud);
+            }
+            emulator.linkModel(link);
             String where;
             if (tcpPort == null) {
                 where = emulator.startOnPseudoTerminal();
@@ -96,7 +124,8 @@ final class EmulateCommand implements Callable<Integer> {
             }
             out.println(where);
             out.flush();
-            err.printf("%s emulator for robot '%s' of %s; connect the %s driver to %s; Ctrl-C stops it%n", brick, robot, world, brick, where);
+            err.printf("%s emulator for robot '%s' of %s, link: %s; connect the %s driver to %s; Ctrl-C stops it%n",
+                    brick, robot, world, link, brick, where);
             err.flush();
             sim.startRealTime(speed);
             Thread hook = new Thread(stopped::countDown, "mw-emulate-shutdown");
@@ -123,6 +152,7 @@ final class EmulateCommand implements Callable<Integer> {
         return switch (brick) {
             case nxt -> NxtEmulator.bind(sim, robot);
             case ev3 -> Ev3Emulator.bind(sim, robot);
+            case rcx -> RcxEmulator.bind(sim, robot);
             case ft_intelligent -> IntelligentInterfaceEmulator.bind(sim, robot);
             case ft_txt -> TxtEmulator.bind(sim, robot);
         };

@@ -1,6 +1,9 @@
 package io.robomw.cli;
 
 import io.robomw.platform.ft.txt.TxtProtocol;
+import io.robomw.platform.link.SerialLink;
+import io.robomw.platform.rcx.RcxPacket;
+import io.robomw.platform.rcx.RcxPlatformProvider;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -17,10 +20,12 @@ import java.nio.ByteBuffer;
 import java.nio.ByteOrder;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.time.Duration;
 import java.util.concurrent.BlockingQueue;
 import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
 
+import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
 import static org.junit.jupiter.api.Assertions.assertTrue;
@@ -32,6 +37,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 class EmulateCommandTest {
 
     private static final Path TXT_ROBOT = Path.of("../examples/robots/ft-txt.yaml").toAbsolutePath().normalize();
+    private static final Path RCX_ROBOT = Path.of("../examples/robots/rcx-two-wheeled.yaml").toAbsolutePath().normalize();
 
     @TempDir
     Path dir;
@@ -100,6 +106,35 @@ class EmulateCommandTest {
             new DataInputStream(commands.getInputStream()).readFully(reply);
             assertEquals(TxtProtocol.QUERY_STATUS_REPLY, TxtProtocol.messageId(reply), "the command port answers queryStatus");
             assertTrue(i2c.isConnected(), "the I²C channel on port + 2 accepted the connection, as ftrobopy's startOnline needs");
+        }
+    }
+
+    @Test
+    void shouldServeAnRcxBehindItsEchoingTowerOnAPseudoTerminal() throws Exception {
+        Files.writeString(dir.resolve("world.yaml"), """
+                name: rcx-world
+                arena: { width: 3, height: 3 }
+                robots:
+                  - { robot: %s, name: rcx, x: 1.0, y: 1.5, heading: 0 }
+                """.formatted(RCX_ROBOT));
+        start("emulate", "rcx", "--world", dir.resolve("world.yaml").toString(), "--robot", "rcx", "--latency", "0", "--baud", "0");
+        String device = lines.poll(30, TimeUnit.SECONDS);
+        assertNotNull(device, "mw emulate printed the device");
+        assertTrue(device.startsWith("/dev/"), device);
+
+        try (SerialLink tower = new SerialLink(device, RcxPlatformProvider.TOWER)) {
+            tower.open();
+            byte[] alive = RcxPacket.encode(RcxPacket.ALIVE);
+            tower.write(alive, 0, alive.length);
+            byte[] back = new byte[2 * alive.length];
+            int got = 0;
+            while (got < back.length) {
+                int n = tower.read(back, got, back.length - got, Duration.ofSeconds(5));
+                assertTrue(n > 0, "the echo and the reply came");
+                got += n;
+            }
+            assertArrayEquals(alive, java.util.Arrays.copyOf(back, alive.length), "the tower's echo");
+            assertEquals(RcxPacket.replyOpcode(RcxPacket.ALIVE), RcxPacket.decode(java.util.Arrays.copyOfRange(back, alive.length, back.length)).opcode());
         }
     }
 

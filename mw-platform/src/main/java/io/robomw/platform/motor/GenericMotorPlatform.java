@@ -180,6 +180,18 @@ public abstract class GenericMotorPlatform {
     }
 
     /**
+     * The speed a brick actually turns a motor at in a state: the state's own speed by default;
+     * a brick that sets speeds in steps (the RCX's eight power steps) returns its step's speed, so
+     * that predictions of where the motor is use it.
+     *
+     * @param state a motor state
+     * @return degrees per second, signed
+     */
+    protected double actualDegreesPerSecond(MotorState state) {
+        return state.degreesPerSecond();
+    }
+
+    /**
      * How long a command handed to the link now takes to reach the brick: the link's one-way delay,
      * plus the wait for an exchange already under way on a link that carries one at a time.
      * Drivers on slow links override it; the default is {@link #linkDelayNanos()}.
@@ -307,7 +319,7 @@ public abstract class GenericMotorPlatform {
 
     /** How far a rotation has turned by the time a command sent now reaches the brick. */
     private double turned(String port, Start start) {
-        return Math.abs(predictedDegrees(port, start.state().degreesPerSecond()) - start.degrees());
+        return Math.abs(predictedDegrees(port, actualDegreesPerSecond(start.state())) - start.degrees());
     }
 
     private double turned(MotorTarget t) {
@@ -406,7 +418,7 @@ public abstract class GenericMotorPlatform {
             for (MotorState s : batch) {
                 MotorState previous = sentStates.get(s.port());
                 if (s.running()) {
-                    starts.put(s.port(), new Start(s, predictedDegrees(s.port(), previous == null ? 0 : previous.degreesPerSecond())));
+                    starts.put(s.port(), new Start(s, predictedDegrees(s.port(), previous == null ? 0 : actualDegreesPerSecond(previous))));
                 }
                 before.put(s.port(), sentStates.put(s.port(), s));
             }
@@ -465,7 +477,7 @@ public abstract class GenericMotorPlatform {
                 continue;
             }
             double remaining = s.limitDegrees() - turned(port, start);
-            if (remaining <= Math.abs(s.degreesPerSecond()) * nextSendNanos() / 2e9) {
+            if (remaining <= Math.abs(actualDegreesPerSecond(s)) * nextSendNanos() / 2e9) {
                 batch.put(port, MotorState.stopped(port, MotorState.StopMode.BRAKE));
                 stoppedAtLimit.put(port, s);
             }
