@@ -41,6 +41,7 @@ public final class NxtEmulator extends BrickEmulator {
     private final Input[] inputs = new Input[INPUTS];
     private final double stepSeconds;
     private final boolean resetCountCommand;
+    private final java.util.Map<Integer, java.util.concurrent.atomic.AtomicLong> served = new java.util.concurrent.ConcurrentHashMap<>();
 
     /** One sensor input's firmware state. */
     private static final class Input {
@@ -120,6 +121,16 @@ public final class NxtEmulator extends BrickEmulator {
         return bind(simulation, robotName, motors -> new NxtEmulator(motors, simulation.world().stepSeconds(), false));
     }
 
+    /**
+     * @param opcode a direct command's opcode
+     * @param port   the port its first payload byte names (an output or input)
+     * @return how many such telegrams the emulator has answered
+     */
+    public long telegrams(int opcode, int port) {
+        java.util.concurrent.atomic.AtomicLong n = served.get(opcode << 8 | port);
+        return n == null ? 0 : n.get();
+    }
+
     /** An NXT is usually reached over Bluetooth: {@link LinkModel#BLUETOOTH_SPP}. */
     @Override
     protected LinkModel defaultLinkModel() {
@@ -182,6 +193,7 @@ public final class NxtEmulator extends BrickEmulator {
         }
         int type = frame[0] & 0xFF;
         int op = frame[1] & 0xFF;
+        served.computeIfAbsent(op << 8 | (frame.length > 2 ? frame[2] & 0xFF : 0xFF), k -> new java.util.concurrent.atomic.AtomicLong()).incrementAndGet();
         boolean wantsReply = (type & 0x80) == 0;
         byte[] reply;
         if ((type & 0x7F) == NxtTelegram.SYSTEM) {

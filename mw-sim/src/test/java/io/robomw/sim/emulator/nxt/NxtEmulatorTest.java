@@ -6,6 +6,7 @@ import io.robomw.api.ReturnType;
 import io.robomw.api.Robot;
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.SensorType;
+import io.robomw.platform.nxt.NxtTelegram;
 import io.robomw.sim.emulator.EmulatorStack;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.BeforeEach;
@@ -129,6 +130,27 @@ class NxtEmulatorTest {
         assertEquals(afterTurn.x(), end.x(), 0.01, "the second move went straight along the new heading: " + end);
         assertEquals(afterTurn.y() + 0.3, end.y(), 0.01, "and 30 cm: " + end);
         assertEquals(90, Math.toDegrees(end.heading()), 2.0);
+    }
+
+    /**
+     * Over Bluetooth every telegram costs a round trip, so the driver reads only the motors that
+     * matter: the gripper on A, at rest, is read about once a second while the wheels are read
+     * every cycle.
+     */
+    @Test
+    void shouldPollTheWheelsThatTurnEveryCycleAndTheGripperAtRestSeldom() throws Exception {
+        stack = new EmulatorStack<>(dir, ROBOT.replace("sensors:", "actuators:\n  - { name: gripper, port: A, actions: { open: { degrees: 90, speed: 180 } } }\nsensors:"),
+                "nxt-1", NxtEmulator::bind);
+        start(0.5);
+        long gripperBefore = stack.emulator().telegrams(NxtTelegram.GETOUTPUTSTATE, 0);
+        long wheelBefore = stack.emulator().telegrams(NxtTelegram.GETOUTPUTSTATE, 1);
+        long t0 = System.nanoTime();
+        robot.move(0.4, 0.15);
+        double seconds = (System.nanoTime() - t0) / 1e9;
+        long gripper = stack.emulator().telegrams(NxtTelegram.GETOUTPUTSTATE, 0) - gripperBefore;
+        long wheel = stack.emulator().telegrams(NxtTelegram.GETOUTPUTSTATE, 1) - wheelBefore;
+        assertTrue(wheel >= 5 * seconds, "the wheel B was read " + wheel + " times in " + seconds + " s");
+        assertTrue(gripper <= seconds + 2, "the gripper A at rest was read " + gripper + " times in " + seconds + " s");
     }
 
     /**
