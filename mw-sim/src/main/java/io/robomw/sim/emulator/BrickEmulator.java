@@ -47,6 +47,8 @@ public abstract class BrickEmulator implements AutoCloseable {
     private volatile Link link;
     private volatile LinkModel linkModel;
     private volatile io.robomw.sim.Simulation simulation;
+    /** When the telegram being handled arrived; touched by the I/O thread only. */
+    private long frameArrivalNanos;
     private Thread thread;
 
     /**
@@ -132,6 +134,15 @@ public abstract class BrickEmulator implements AutoCloseable {
             action.run();
         }
         closeActions.clear();
+    }
+
+    /**
+     * @return when the telegram {@link #handle} is answering arrived over the link (its last byte):
+     *         a real brick acts on a telegram then, however late a loaded host lets the emulator's
+     *         thread get to it. I/O thread only.
+     */
+    protected long frameArrivalNanos() {
+        return frameArrivalNanos;
     }
 
     /** @return the simulated robot */
@@ -248,6 +259,8 @@ public abstract class BrickEmulator implements AutoCloseable {
                     }
                     continue;
                 }
+                Link l = link;
+                frameArrivalNanos = l instanceof DelayedLink d ? d.lastDeliveredAt() : System.nanoTime();
                 byte[] reply;
                 try {
                     reply = handle(frame);

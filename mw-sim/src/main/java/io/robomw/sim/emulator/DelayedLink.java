@@ -48,6 +48,7 @@ final class DelayedLink implements Link {
     private final Thread sender;
     private long inboundWireFree;
     private long outboundWireFree;
+    private volatile long lastDeliveredAt = System.nanoTime();
     private volatile boolean closed;
 
     /** Bytes that arrive at {@code deliverAt}, or (with {@code lost} set) the news that the peer left. */
@@ -199,6 +200,7 @@ final class DelayedLink implements Link {
                     }
                     int n = Math.min(len, head.bytes.length - head.consumed);
                     System.arraycopy(head.bytes, head.consumed, buf, off, n);
+                    lastDeliveredAt = head.deliverAt;
                     head.consumed += n;
                     if (head.consumed == head.bytes.length) {
                         inbound.pollFirst();
@@ -222,6 +224,14 @@ final class DelayedLink implements Link {
         } finally {
             lock.unlock();
         }
+    }
+
+    /**
+     * @return when the bytes the last {@link #read} returned arrived over the modelled link (not
+     *         when the reading thread got to them: on a loaded host that can be later)
+     */
+    long lastDeliveredAt() {
+        return lastDeliveredAt;
     }
 
     @Override

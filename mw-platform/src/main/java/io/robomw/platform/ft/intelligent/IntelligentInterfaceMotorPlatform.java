@@ -321,9 +321,10 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
 
     /**
      * Moves each counted wheel by this poll's switch and the on-time of the byte in force since
-     * the last poll, and reports the wheels' rotation. The interface took each command somewhere
-     * between its sending and its reply, so the last byte was in force for at least the time from
-     * the last reply to this sending and at most from the last sending to this reply.
+     * the last poll, and reports the wheels' rotation. The interface took each command between its
+     * sending and the sooner of its reply and {@link #COMMAND_ARRIVES_WITHIN_NANOS} later, so the
+     * last byte was in force for at least the time from the last command's latest arrival to this
+     * sending, and at most from the last sending to this command's latest arrival.
      *
      * @param sentAt     when this poll's command was sent
      * @param receivedAt when its reply came
@@ -331,8 +332,8 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
     private void count(int digital, long sentAt, long receivedAt) {
         boolean first = lastSentAt == Long.MIN_VALUE;
         long interval = first ? 0 : sentAt - lastSentAt;
-        double leastOn = first ? 0 : Math.max(0, sentAt - lastReceivedAt) / 1e9;
-        double mostOn = first ? 0 : (receivedAt - lastSentAt) / 1e9;
+        double leastOn = first ? 0 : Math.max(0, sentAt - tookAtMost(lastSentAt, lastReceivedAt)) / 1e9;
+        double mostOn = first ? 0 : (tookAtMost(sentAt, receivedAt) - lastSentAt) / 1e9;
         longestGap = Math.max(longestGap, interval);
         recentGap = Math.max(interval, (long) (recentGap * GAP_DECAY));
         for (int motor = 0; motor < counters.length; motor++) {
@@ -354,6 +355,22 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
         }
         previousDigital = digital;
     }
+
+    /**
+     * The latest the interface can have taken a command: when its reply came, or
+     * {@link #COMMAND_ARRIVES_WITHIN_NANOS} after it was sent, whichever is sooner. The interface
+     * itself never waits: a reply that comes later was held up on the host's side.
+     */
+    private static long tookAtMost(long sentAt, long receivedAt) {
+        return Math.min(receivedAt, sentAt + COMMAND_ARRIVES_WITHIN_NANOS);
+    }
+
+    /**
+     * How soon after it is sent a command reaches the interface, at most: its two bytes take 2.1 ms
+     * at 9600 baud; the rest allows for a USB serial adapter and for the thread being held up
+     * between reading the clock and writing.
+     */
+    static final long COMMAND_ARRIVES_WITHIN_NANOS = 10_000_000L;
 
     /** @return transitions counted beyond what the switches showed, because polls came late */
     public long recoveredTicks() {

@@ -36,9 +36,9 @@ import static org.junit.jupiter.api.Assertions.fail;
  * four times real time. Checks are on the simulated robot's true pose. Waits are on conditions
  * checked at every world step, each with a deadline; nothing sleeps.
  */
-class Ev3FullStackTest {
+public class Ev3FullStackTest {
 
-    static final String ROBOT = """
+    public static final String ROBOT = """
             name: ev3-1
             platform: ev3
             connection: { %s }

@@ -32,9 +32,9 @@ import static org.junit.jupiter.api.Assertions.fail;
  * against the NXT emulator, whose motors and sensors are a robot in a simulated world running at
  * four times real time. Checks are on the simulated robot's true pose.
  */
-class NxtEmulatorTest {
+public class NxtEmulatorTest {
 
-    static final String ROBOT = """
+    public static final String ROBOT = """
             name: nxt-1
             platform: nxt
             connection: { %s }

@@ -32,9 +32,9 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
  * turn, 22.5° of motor, 11.0 mm of travel on 56 mm wheels; every packet takes about 0.12 s, so
  * each wheel is read about four times a second. That is the resolution of every distance below.
  */
-class RcxFullStackTest {
+public class RcxFullStackTest {
 
-    static final String ROBOT = """
+    public static final String ROBOT = """
             name: rcx-1
             platform: rcx
             connection: { %s }

@@ -206,7 +206,7 @@ public final class IntelligentInterfaceEmulator extends BrickEmulator {
     protected byte[] handle(byte[] frame) {
         int command = frame[0] & 0xFF;
         synchronized (firmware) {
-            long now = System.nanoTime();
+            long now = frameArrivalNanos();
             motorBytes.command(now, frame[1] & 0xFF);
             int digital = digitalAt(now);
             return switch (command) {

@@ -33,9 +33,9 @@ import static org.junit.jupiter.api.Assertions.fail;
  * distance below. The interface stops nothing by itself, so the driver's stop is as late as its
  * link's latency in wall-clock time: the precision tests run the world in real time.
  */
-class IntelligentInterfaceEmulatorTest {
+public class IntelligentInterfaceEmulatorTest {
 
-    static final String ROBOT = """
+    public static final String ROBOT = """
             name: ft-1
             platform: ft-intelligent
             connection: { %s }
