@@ -180,6 +180,27 @@ public abstract class GenericMotorPlatform {
     }
 
     /**
+     * How long before {@link #runImpl} returns the brick acted on the last command it sent: by
+     * default the link's one-way delay (the reply's way back).
+     *
+     * @return nanoseconds
+     */
+    protected long actedNanosAgo() {
+        return linkDelayNanos();
+    }
+
+    /**
+     * @param port a motor port
+     * @return the degrees one count of its encoder stands for, when the encoder is so coarse that
+     *         a reading is only the nearest count (a rotation sensor's 22.5°): the platform then
+     *         predicts by the motor's own speed since it started, within half a count of the
+     *         reading; 0 (the default) for encoders whose readings are taken as they are
+     */
+    protected double encoderResolutionDegrees(String port) {
+        return 0;
+    }
+
+    /**
      * The speed a brick actually turns a motor at in a state: the state's own speed by default;
      * a brick that sets speeds in steps (the RCX's eight power steps) returns its step's speed, so
      * that predictions of where the motor is use it.
@@ -206,8 +227,12 @@ public abstract class GenericMotorPlatform {
     private record Reading(double degrees, long atNanos) {
     }
 
-    /** A rotation's state, and where the motor was predicted to be when the brick took it. */
-    private record Start(MotorState state, double degrees) {
+    /**
+     * A rotation's state, where the motor was predicted to be when the brick took it, and when
+     * that was ({@link Long#MAX_VALUE} while the driver is still sending it: a brick that takes
+     * several packets to start a motor starts it only with the last).
+     */
+    private record Start(MotorState state, double degrees, long sinceNanos) {
     }
 
     /**
@@ -319,7 +344,16 @@ public abstract class GenericMotorPlatform {
 
     /** How far a rotation has turned by the time a command sent now reaches the brick. */
     private double turned(String port, Start start) {
-        return Math.abs(predictedDegrees(port, actualDegreesPerSecond(start.state())) - start.degrees());
+        double speed = actualDegreesPerSecond(start.state());
+        double predicted = predictedDegrees(port, speed, start.sinceNanos());
+        double resolution = encoderResolutionDegrees(port);
+        if (resolution > 0 && start.sinceNanos() <= clock.nanoTime()) {
+            // A coarse encoder (a reading is the nearest count): believe the motor's own speed since
+            // it started, within the half count either side of the reading that the count allows.
+            double byTime = start.degrees() + speed * (clock.nanoTime() + commandDelayNanos() - start.sinceNanos()) / 1e9;
+            predicted = Math.max(predicted - resolution / 2, Math.min(predicted + resolution / 2, byTime));
+        }
+        return Math.abs(predicted - start.degrees());
     }
 
     private double turned(MotorTarget t) {
@@ -334,18 +368,24 @@ public abstract class GenericMotorPlatform {
 
     /**
      * Where the motor will be when a command sent now reaches the brick: the last reading moved on
-     * by the speed for the reading's age and the command's delay (together at most three cycles
-     * and those delays, so a reading that stopped coming is not extrapolated without end).
+     * by the speed for the reading's age (or since the motor started turning, if later) and the
+     * command's delay (together at most three cycles and those delays, so a reading that stopped
+     * coming is not extrapolated without end).
      * Feedback arrives a link delay late and a stop reaches the brick a command delay after it is
      * sent; stopping on the bare reading would overshoot by both.
      */
-    private double predictedDegrees(String port, double degreesPerSecond) {
+    private double predictedDegrees(String port, double degreesPerSecond, long turningSince) {
         Reading r = degrees.get(port);
         if (r == null) {
             return 0.0;
         }
+        long now = clock.nanoTime();
+        if (turningSince > now) {
+            return r.degrees();
+        }
         long delay = commandDelayNanos();
-        long ahead = Math.min(Math.max(0, clock.nanoTime() - r.atNanos()) + delay, 3 * cyclePeriodNanos + 4 * linkDelayNanos() + delay);
+        long from = Math.max(r.atNanos(), turningSince);
+        long ahead = Math.min(Math.max(0, now - from) + delay, 3 * cyclePeriodNanos + 4 * linkDelayNanos() + delay);
         return r.degrees() + degreesPerSecond * ahead / 1e9;
     }
 
@@ -418,12 +458,22 @@ public abstract class GenericMotorPlatform {
             for (MotorState s : batch) {
                 MotorState previous = sentStates.get(s.port());
                 if (s.running()) {
-                    starts.put(s.port(), new Start(s, predictedDegrees(s.port(), previous == null ? 0 : actualDegreesPerSecond(previous))));
+                    Start was = starts.get(s.port());
+                    long since = was != null && was.state() == previous ? was.sinceNanos() : Long.MIN_VALUE;
+                    double speed = previous == null ? 0 : actualDegreesPerSecond(previous);
+                    starts.put(s.port(), new Start(s, predictedDegrees(s.port(), speed, since), Long.MAX_VALUE));
                 }
                 before.put(s.port(), sentStates.put(s.port(), s));
             }
             try {
                 runImpl(batch);
+                long took = clock.nanoTime() - actedNanosAgo();
+                for (MotorState s : batch) {
+                    Start start = starts.get(s.port());
+                    if (start != null && start.state() == s) {
+                        starts.put(s.port(), new Start(s, start.degrees(), took));
+                    }
+                }
             } catch (IOException | RuntimeException e) {
                 before.forEach((port, s) -> {
                     if (s == null) {
@@ -463,10 +513,17 @@ public abstract class GenericMotorPlatform {
     }
 
     /**
-     * Adds a stop to the batch for every limited rotation that would reach its target, by
-     * prediction, closer to now than to the next chance to send; marks it stopped at its limit.
+     * Adds a stop to the batch for every limited rotation that reaches its target, by prediction,
+     * before the link side's next chance to send ({@link #nextSendNanos()}), and marks it stopped
+     * at its limit. They go together, one batch, at the mean of the moments each should be sent (a
+     * stop sent then reaches the brick as the motor reaches its target): a slow link could not send
+     * a second batch in time, and two motors of one move or turn, started together at one speed,
+     * should stop together. The link thread waits for that moment. Time here is the injected
+     * clock's; the wait is a real one only on the wall clock.
      */
     private void anticipateStops(Map<String, MotorState> batch) {
+        long next = nextSendNanos();
+        Map<String, Long> due = new LinkedHashMap<>();
         for (String port : portOrder) {
             MotorState s = sentStates.get(port);
             if (batch.containsKey(port) || s == null || !s.running() || Double.isInfinite(s.limitDegrees()) || !hasEncoder(port)) {
@@ -477,10 +534,26 @@ public abstract class GenericMotorPlatform {
                 continue;
             }
             double remaining = s.limitDegrees() - turned(port, start);
-            if (remaining <= Math.abs(actualDegreesPerSecond(s)) * nextSendNanos() / 2e9) {
-                batch.put(port, MotorState.stopped(port, MotorState.StopMode.BRAKE));
-                stoppedAtLimit.put(port, s);
+            double speed = Math.abs(actualDegreesPerSecond(s));
+            long eta = speed == 0 ? Long.MAX_VALUE : (long) Math.max(0, remaining / speed * 1e9);
+            if (eta < next) {
+                due.put(port, eta);
             }
+        }
+        if (due.isEmpty()) {
+            return;
+        }
+        long wait = (long) due.values().stream().mapToLong(Long::longValue).average().orElse(0);
+        if (wait > 0 && clock == Clock.system()) {
+            // The action side unparks the link thread whenever it publishes: wait out the time.
+            long until = clock.nanoTime() + wait;
+            for (long left = wait; left > 0; left = until - clock.nanoTime()) {
+                java.util.concurrent.locks.LockSupport.parkNanos(this, left);
+            }
+        }
+        for (String port : due.keySet()) {
+            batch.put(port, MotorState.stopped(port, MotorState.StopMode.BRAKE));
+            stoppedAtLimit.put(port, sentStates.get(port));
         }
     }
 

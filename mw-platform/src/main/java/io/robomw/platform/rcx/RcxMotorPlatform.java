@@ -104,6 +104,12 @@ public final class RcxMotorPlatform extends GenericMotorPlatform {
         return counterOf.containsKey(port) && ticksPerRevolution > 0;
     }
 
+    /** A rotation sensor's count is 22.5° of its axle (16 a turn). */
+    @Override
+    protected double encoderResolutionDegrees(String port) {
+        return hasEncoder(port) ? 360.0 / ticksPerRevolution : 0;
+    }
+
     /** The RCX turns a motor at its power step's speed, not the one asked for. */
     @Override
     protected double actualDegreesPerSecond(MotorState state) {
@@ -116,15 +122,29 @@ public final class RcxMotorPlatform extends GenericMotorPlatform {
         return true;
     }
 
-    /** Half the measured round trip of a packet and its reply. */
+    /**
+     * How old a rotation sensor's reading is when it arrives: the brick reads the sensor when a Get
+     * value packet (11 bytes) has arrived, and its echo and reply (22 bytes) follow: two thirds of
+     * the measured round trip.
+     */
     @Override
     protected long linkDelayNanos() {
-        return brick.roundTrip().oneWayNanos();
+        return brick.roundTrip().nanos() * 2 / 3;
     }
 
+    /** The last packet of a batch acted when it had arrived: its echo and reply (16 of 25 bytes) came after. */
+    @Override
+    protected long actedNanosAgo() {
+        return brick.roundTrip().nanos() * 16 / 25;
+    }
+
+    /**
+     * How long a stop takes to act: a Set motor on/off packet (9 bytes) is about a third of its
+     * round trip with echo and reply (25 bytes); after the exchange under way.
+     */
     @Override
     protected long commandDelayNanos() {
-        return brick.nanosUntilFree() + linkDelayNanos();
+        return brick.nanosUntilFree() + brick.roundTrip().nanos() * 9 / 25;
     }
 
     /** The next packet can go after this cycle's exchanges: a round trip for each wheel read. */

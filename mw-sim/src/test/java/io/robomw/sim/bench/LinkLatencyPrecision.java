@@ -30,7 +30,7 @@ import java.util.function.BiFunction;
  * byte rate. For each brick and latency: {@code move(0.5 m)} from rest and {@code turn(90°)},
  * several runs, the median and the largest error of the robot's true pose.
  *
- * <p>Run on demand: {@code bench/link-latency [--runs N] [LATENCY_MS ...]} (see
+ * <p>Run on demand: {@code bench/link-latency [--runs N] [--brick NAME] [LATENCY_MS ...]} (see
  * {@code docs/bricks.md}). Not a test.
  */
 public final class LinkLatencyPrecision {
@@ -44,15 +44,19 @@ public final class LinkLatencyPrecision {
     }
 
     /**
-     * @param args {@code --runs N} (default 3), then one-way latencies in milliseconds (default 0 15 30 60 120)
+     * @param args {@code --runs N} (default 3), {@code --brick NAME} (the bricks whose name starts so, case aside;
+     *             default all), then one-way latencies in milliseconds (default 0 15 30 60 120)
      * @throws Exception if a run cannot start
      */
     public static void main(String[] args) throws Exception {
         int runs = 3;
+        String only = null;
         List<Integer> latencies = new ArrayList<>();
         for (int i = 0; i < args.length; i++) {
             if (args[i].equals("--runs")) {
                 runs = Integer.parseInt(args[++i]);
+            } else if (args[i].equals("--brick")) {
+                only = args[++i].toLowerCase(Locale.ROOT);
             } else {
                 latencies.add(Integer.parseInt(args[i]));
             }
@@ -60,13 +64,15 @@ public final class LinkLatencyPrecision {
         if (latencies.isEmpty()) {
             latencies = List.of(0, 15, 30, 60, 120);
         }
-        List<Brick> bricks = List.of(
+        List<Brick> all = List.of(
                 new Brick("NXT (firmware 1.29+, tacho limits)", NxtEmulatorTest.ROBOT, "nxt-1", NxtEmulator::bind, LinkModel.BLUETOOTH_SPP, 0.15, 1.0),
                 new Brick("NXT (firmware before 1.29)", NxtEmulatorTest.ROBOT, "nxt-1", NxtEmulator::bindLegacyFirmware, LinkModel.BLUETOOTH_SPP, 0.15, 1.0),
                 new Brick("EV3", Ev3FullStackTest.ROBOT, "ev3-1", Ev3Emulator::bind, LinkModel.BLUETOOTH_SPP, 0.15, 1.0),
                 new Brick("Intelligent Interface", IntelligentInterfaceEmulatorTest.ROBOT, "ft-1", IntelligentInterfaceEmulator::bind,
                         LinkModel.serial(9600, 10), 0.15, 1.0),
                 new Brick("RCX", RcxFullStackTest.ROBOT, "rcx-1", RcxEmulator::bind, LinkModel.serial(2400, 11), 0.10, 0.5));
+        String prefix = only;
+        List<Brick> bricks = prefix == null ? all : all.stream().filter(b -> b.name().toLowerCase(Locale.ROOT).startsWith(prefix)).toList();
         System.out.printf(Locale.ROOT, "| brick | latency each way | move 0.5 m: median error | max | turn 90°: median error | max |%n");
         System.out.printf(Locale.ROOT, "|---|---|---|---|---|---|%n");
         for (Brick brick : bricks) {

@@ -181,9 +181,10 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
             if (pulse) {
                 pulses++;
             }
-            long shortBy = MIN_PULSE_NANOS - (clock().nanoTime() - pulseStart);
-            if (shortBy > 0) {
-                LockSupport.parkNanos(shortBy);
+            // The action side unparks the link thread whenever it publishes: wait out the time.
+            for (long left = MIN_PULSE_NANOS - (clock().nanoTime() - pulseStart); left > 0;
+                 left = MIN_PULSE_NANOS - (clock().nanoTime() - pulseStart)) {
+                LockSupport.parkNanos(this, left);
             }
             poll(without(nextMotorByteAfterPulse(), pulsed));
         } else if (reached) {
