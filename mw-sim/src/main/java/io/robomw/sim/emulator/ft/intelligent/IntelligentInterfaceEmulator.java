@@ -207,7 +207,7 @@ public final class IntelligentInterfaceEmulator extends BrickEmulator {
         int command = frame[0] & 0xFF;
         synchronized (firmware) {
             long now = frameArrivalNanos();
-            motorBytes.command(now, frame[1] & 0xFF);
+            record(now, frame[1] & 0xFF);
             int digital = digitalAt(now);
             return switch (command) {
                 case IntelligentInterfaceTelegram.DIGITAL -> new byte[]{(byte) digital};
@@ -222,6 +222,27 @@ public final class IntelligentInterfaceEmulator extends BrickEmulator {
     }
 
     /**
+     * Records a command that arrived at a wall-clock time. A command can arrive before the wall
+     * time the last world step stood for (the emulator's thread got to it after that step): the
+     * motors' rotation up to that step, counted with the byte in force before, is corrected.
+     */
+    private void record(long at, int motorByte) {
+        boolean late = lastStepWall != Long.MIN_VALUE && at < lastStepWall;
+        double[] before = new double[shafts.length];
+        if (late) {
+            for (int i = 0; i < shafts.length; i++) {
+                before[i] = degreesDriven(i, at, lastStepWall);
+            }
+        }
+        motorBytes.command(at, motorByte);
+        if (late) {
+            for (int i = 0; i < shafts.length; i++) {
+                shafts[i].driven += degreesDriven(i, at, lastStepWall) - before[i];
+            }
+        }
+    }
+
+    /**
      * The digital inputs at a wall-clock time: the switches as the last step saw them, and each
      * impulse wheel's switch at the rotation the motor's on-time has given it by now (less what the
      * world held the wheel back by).
@@ -231,7 +252,10 @@ public final class IntelligentInterfaceEmulator extends BrickEmulator {
         if (ticksPerRevolution > 0 && lastStepWall != Long.MIN_VALUE) {
             for (Counter c : counters) {
                 Shaft shaft = shafts[motorIndex(c.motorPort())];
-                double drivenNow = shaft.driven + degreesDriven(motorIndex(c.motorPort()), lastStepWall, now);
+                // A command may be answered at a time before the last step's: its rotation then is
+                // the last step's, less the motor's on-time since.
+                double drivenNow = shaft.driven + (now >= lastStepWall ? degreesDriven(motorIndex(c.motorPort()), lastStepWall, now)
+                        : -degreesDriven(motorIndex(c.motorPort()), now, lastStepWall));
                 double degrees = shaft.wheel + drivenNow - shaft.carriedOut();
                 if (impulseSwitchClosed(degrees)) {
                     bits |= 1 << c.bit();
