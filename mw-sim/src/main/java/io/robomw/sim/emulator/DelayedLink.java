@@ -29,7 +29,9 @@ import java.util.concurrent.locks.ReentrantLock;
  * that peer are dropped, and the pump goes on reading, which accepts the next peer.
  *
  * <p>Threads: one thread may read while another writes, as {@link Link} allows; the pump and
- * sender threads ({@code <link>-in}, {@code <link>-out}) end on {@link #close()}.
+ * sender threads ({@code <link>-in}, {@code <link>-out}) end on {@link #close()}. A model without
+ * latency (a plain serial line) needs neither: the reading and writing threads wait out the bytes'
+ * time themselves.
  */
 final class DelayedLink implements Link {
 
@@ -74,12 +76,51 @@ final class DelayedLink implements Link {
     DelayedLink(Link inner, LinkModel model) {
         this.inner = inner;
         this.model = model;
+        this.inline = model.latency().isZero();
+        if (inline) {
+            this.pump = null;
+            this.sender = null;
+            return;
+        }
         this.pump = new Thread(this::pump, inner.describe() + "-in");
         this.sender = new Thread(this::send, inner.describe() + "-out");
         pump.setDaemon(true);
         sender.setDaemon(true);
         pump.start();
         sender.start();
+    }
+
+    /**
+     * Without latency a link is a plain serial line: the emulator's own thread reads each chunk
+     * as it comes and waits out the time its bytes take, and waits out a reply's bytes before
+     * writing it. No threads of its own, so a loaded host holds up one thread, not three.
+     */
+    private final boolean inline;
+
+    private int readInline(byte[] buf, int off, int len, Duration timeout) throws IOException {
+        int n = inner.read(buf, off, len, timeout);
+        if (n > 0) {
+            long now = System.nanoTime();
+            long at = Math.max(now, inboundWireFree) + model.transmissionNanos(n);
+            inboundWireFree = at;
+            lastDeliveredAt = at;
+            waitUntil(at);
+        }
+        return n;
+    }
+
+    private void writeInline(byte[] data, int off, int len) throws IOException {
+        long now = System.nanoTime();
+        long at = Math.max(now, outboundWireFree) + model.transmissionNanos(len);
+        outboundWireFree = at;
+        waitUntil(at);
+        inner.write(data, off, len);
+    }
+
+    private static void waitUntil(long at) {
+        for (long left = at - System.nanoTime(); left > 0; left = at - System.nanoTime()) {
+            java.util.concurrent.locks.LockSupport.parkNanos(left);
+        }
     }
 
     /** When a chunk of {@code n} bytes handed over now arrives, given when its wire is next free. */
@@ -170,6 +211,10 @@ final class DelayedLink implements Link {
         if (closed) {
             throw new IOException(describe() + " is closed");
         }
+        if (inline) {
+            writeInline(data, off, len);
+            return;
+        }
         long now = System.nanoTime();
         lock.lock();
         try {
@@ -184,6 +229,12 @@ final class DelayedLink implements Link {
 
     @Override
     public int read(byte[] buf, int off, int len, Duration timeout) throws IOException {
+        if (closed) {
+            throw new IOException(describe() + " is closed");
+        }
+        if (inline) {
+            return readInline(buf, off, len, timeout);
+        }
         long deadline = System.nanoTime() + timeout.toNanos();
         lock.lock();
         try {
@@ -249,6 +300,9 @@ final class DelayedLink implements Link {
             outboundChanged.signalAll();
         } finally {
             lock.unlock();
+        }
+        if (inline) {
+            return;
         }
         sender.interrupt();
         for (Thread t : new Thread[]{pump, sender}) {

@@ -74,6 +74,7 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
     private int previousDigital = -1;
     private boolean readEy;
     private long lastSentAt = Long.MIN_VALUE;
+    private long lastWrittenAt = Long.MIN_VALUE;
     private long lastReceivedAt = Long.MIN_VALUE;
     private int lastMotorByte;
     private long recentGap;
@@ -282,21 +283,25 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
         int command = readEy ? ANALOG_EY : ANALOG_EX;
         readEy = !readEy;
         byte[] request = IntelligentInterfaceTelegram.request(command, motorByte);
-        long[] sent = new long[1];
+        long[] sent = new long[2];
         byte[] reply = channel.exchange((c, timeout) -> {
-            // Taken once the channel is ours: a sensor read may have held it.
+            // Taken once the channel is ours (a sensor read may have held it), before and after
+            // writing: a host held up in between writes late.
             sent[0] = clock().nanoTime();
             c.send(request);
+            sent[1] = clock().nanoTime();
             return c.receiveExactly(3, timeout);
         });
         long sentAt = sent[0];
+        long writtenAt = sent[1];
         // The interface took the command, and sampled its inputs, between sending and receiving.
         long receivedAt = clock().nanoTime();
         int digital = reply[0] & 0xFF;
         inputs.publish(digital, command == ANALOG_EX ? IntelligentInterfaceTelegram.analog(reply) : -1,
                 command == ANALOG_EY ? IntelligentInterfaceTelegram.analog(reply) : -1);
-        count(digital, sentAt, receivedAt);
+        count(digital, sentAt, writtenAt, receivedAt);
         lastSentAt = sentAt;
+        lastWrittenAt = writtenAt;
         lastReceivedAt = receivedAt;
         lastMotorByte = motorByte;
         return enforceLimits(motorByte);
@@ -330,14 +335,15 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
      * last byte was in force for at least the time from the last command's latest arrival to this
      * sending, and at most from the last sending to this command's latest arrival.
      *
-     * @param sentAt     when this poll's command was sent
+     * @param sentAt     when this poll's command was about to be written
+     * @param writtenAt  when its writing returned
      * @param receivedAt when its reply came
      */
-    private void count(int digital, long sentAt, long receivedAt) {
+    private void count(int digital, long sentAt, long writtenAt, long receivedAt) {
         boolean first = lastSentAt == Long.MIN_VALUE;
         long interval = first ? 0 : sentAt - lastSentAt;
-        double leastOn = first ? 0 : Math.max(0, sentAt - tookAtMost(lastSentAt, lastReceivedAt)) / 1e9;
-        double mostOn = first ? 0 : (tookAtMost(sentAt, receivedAt) - lastSentAt) / 1e9;
+        double leastOn = first ? 0 : Math.max(0, sentAt - tookAtMost(lastWrittenAt, lastReceivedAt)) / 1e9;
+        double mostOn = first ? 0 : (tookAtMost(writtenAt, receivedAt) - lastSentAt) / 1e9;
         longestGap = Math.max(longestGap, interval);
         recentGap = Math.max(interval, (long) (recentGap * GAP_DECAY));
         for (int motor = 0; motor < counters.length; motor++) {
@@ -362,19 +368,19 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
 
     /**
      * The latest the interface can have taken a command: when its reply came, or
-     * {@link #COMMAND_ARRIVES_WITHIN_NANOS} after it was sent, whichever is sooner. The interface
-     * itself never waits: a reply that comes later was held up on the host's side.
+     * {@link #COMMAND_ARRIVES_WITHIN_NANOS} after it was written, whichever is sooner. The
+     * interface itself never waits: a reply that comes later was held up on the host's side.
      */
-    private static long tookAtMost(long sentAt, long receivedAt) {
-        return Math.min(receivedAt, sentAt + COMMAND_ARRIVES_WITHIN_NANOS);
+    private static long tookAtMost(long writtenAt, long receivedAt) {
+        return Math.min(receivedAt, writtenAt + COMMAND_ARRIVES_WITHIN_NANOS);
     }
 
     /**
-     * How soon after it is sent a command reaches the interface, at most: its two bytes take 2.1 ms
-     * at 9600 baud; the rest allows for a USB serial adapter and for the thread being held up
-     * between reading the clock and writing, which a loaded host does for tens of milliseconds.
+     * How soon after it is written a command reaches the interface, at most: its two bytes take
+     * 2.1 ms at 9600 baud; the rest allows for a USB serial adapter's buffering and for a loaded
+     * host's kernel sending them late.
      */
-    static final long COMMAND_ARRIVES_WITHIN_NANOS = 30_000_000L;
+    static final long COMMAND_ARRIVES_WITHIN_NANOS = 20_000_000L;
 
     /** @return transitions counted beyond what the switches showed, because polls came late */
     public long recoveredTicks() {
