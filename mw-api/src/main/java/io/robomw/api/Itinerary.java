@@ -51,26 +51,96 @@ public final class Itinerary implements Serializable {
         }
     }
 
-    /** What to do when the next stop's host cannot be reached or refuses the agent. */
+    /**
+     * What to do when the next stop's host cannot be reached or refuses the agent. Each policy
+     * travels as its {@code code} (see {@link Itinerary}'s serial form), never as its position here.
+     */
     public enum UnreachablePolicy {
-        /** Go on to the stop after it (the default). */
-        SKIP,
-        /** Try again {@link #retries()} times, {@link #retryBackoff()} apart; then skip it. */
-        RETRY,
-        /** End the trip: the agent's result goes home now. */
-        RETURN_HOME
+        /** Go on to the stop after it (the default). Code 0. */
+        SKIP(0),
+        /** Try again {@link #retries()} times, {@link #retryBackoff()} apart; then skip it. Code 1. */
+        RETRY(1),
+        /** End the trip: the agent's result goes home now. Code 2. */
+        RETURN_HOME(2);
+
+        private final int code;
+
+        UnreachablePolicy(int code) {
+            this.code = code;
+        }
+
+        /** @return the policy's code in the serial form */
+        int code() {
+            return code;
+        }
+
+        /**
+         * @param code a code read from the serial form
+         * @return its policy
+         * @throws InvalidObjectException if no policy has that code
+         */
+        static UnreachablePolicy fromCode(int code) throws InvalidObjectException {
+            return switch (code) {
+                case 0 -> SKIP;
+                case 1 -> RETRY;
+                case 2 -> RETURN_HOME;
+                default -> throw new InvalidObjectException("unknown unreachable-policy code " + code + " in an itinerary (known: 0 SKIP, 1 RETRY, 2 RETURN_HOME)");
+            };
+        }
     }
 
-    /** How a stop ended. */
+    /**
+     * How a stop ended. Each outcome travels as its {@code code} (see {@link Itinerary}'s serial
+     * form), never as its position here.
+     */
     public enum Outcome {
-        /** Its work ran to the end. */
-        DONE,
-        /** Its work threw; the detail says what. */
-        FAILED,
-        /** Its host could not be reached, and the policy went on without it. */
-        UNREACHABLE,
-        /** Its host stopped (was killed) while the work ran; the work is never run twice, so it was not run again. */
-        INTERRUPTED
+        /** Its work ran to the end. Code 0. */
+        DONE(0),
+        /** Its work threw; the detail says what. Code 1. */
+        FAILED(1),
+        /** Its host could not be reached, and the policy went on without it. Code 2. */
+        UNREACHABLE(2),
+        /** Its host stopped (was killed) while the work ran; the work is never run twice, so it was not run again. Code 3. */
+        INTERRUPTED(3);
+
+        private final int code;
+
+        Outcome(int code) {
+            this.code = code;
+        }
+
+        /** @return the outcome's code in the serial form */
+        int code() {
+            return code;
+        }
+
+        /**
+         * @param code a code read from the serial form
+         * @return its outcome
+         * @throws InvalidObjectException if no outcome has that code
+         */
+        static Outcome fromCode(int code) throws InvalidObjectException {
+            Outcome o = lookup(code);
+            if (o == null) {
+                throw new InvalidObjectException(unknown(code));
+            }
+            return o;
+        }
+
+        /** @return the outcome of a code, or {@code null} if none has it */
+        static Outcome lookup(int code) {
+            return switch (code) {
+                case 0 -> DONE;
+                case 1 -> FAILED;
+                case 2 -> UNREACHABLE;
+                case 3 -> INTERRUPTED;
+                default -> null;
+            };
+        }
+
+        static String unknown(int code) {
+            return "unknown visit-outcome code " + code + " in an itinerary (known: 0 DONE, 1 FAILED, 2 UNREACHABLE, 3 INTERRUPTED)";
+        }
     }
 
     /**
@@ -307,17 +377,27 @@ public final class Itinerary implements Serializable {
      * of the time to read it.
      *
      * @serialData the position ({@code current}, {@code round}, {@code rounds}: ints), the
-     * unreachable policy's ordinal (byte), the retries (int) and back-off (long, milliseconds);
+     * unreachable policy's code (byte), the retries (int) and back-off (long, milliseconds);
      * the number of stops (int), then each stop's host (a {@code String} object) and task (an
      * object, or null); the number of visits (int), then each visit's round (int), host
-     * ({@code String} object), outcome ordinal (byte) and detail ({@code String} object)
+     * ({@code String} object), outcome code (byte) and detail ({@code String} object). The codes
+     * (the values they had as ordinals before they were made explicit, so the form is unchanged):
+     * <table>
+     * <caption>Codes in an itinerary's serial form</caption>
+     * <tr><th>code</th><th>{@link UnreachablePolicy}</th><th>{@link Outcome}</th></tr>
+     * <tr><td>0</td><td>{@code SKIP}</td><td>{@code DONE}</td></tr>
+     * <tr><td>1</td><td>{@code RETRY}</td><td>{@code FAILED}</td></tr>
+     * <tr><td>2</td><td>{@code RETURN_HOME}</td><td>{@code UNREACHABLE}</td></tr>
+     * <tr><td>3</td><td></td><td>{@code INTERRUPTED}</td></tr>
+     * </table>
+     * An unknown code fails the read with an {@link InvalidObjectException} naming it.
      */
     private void writeObject(ObjectOutputStream out) throws IOException {
         out.defaultWriteObject();
         out.writeInt(current);
         out.writeInt(round);
         out.writeInt(rounds);
-        out.writeByte(policy.ordinal());
+        out.writeByte(policy.code());
         out.writeInt(retries);
         out.writeLong(retryBackoffMillis);
         out.writeInt(stops.size());
@@ -329,12 +409,17 @@ public final class Itinerary implements Serializable {
         for (Visit v : history) {
             out.writeInt(v.round());
             out.writeObject(v.host());
-            out.writeByte(v.outcome().ordinal());
+            out.writeByte(v.outcome().code());
             out.writeObject(v.detail());
         }
     }
 
-    /** Reads what {@link #writeObject} wrote, and checks it as the public methods would. */
+    /**
+     * Reads what {@link #writeObject} wrote, and checks it as the public methods would. The codes
+     * and settings are checked once all of this itinerary's data has been read: an exception
+     * thrown with data left unread would reach the caller as the stream's "unread block data"
+     * instead of the reason.
+     */
     private void readObject(ObjectInputStream in) throws IOException, ClassNotFoundException {
         in.defaultReadObject();
         int cur = in.readInt();
@@ -343,10 +428,6 @@ public final class Itinerary implements Serializable {
         int pol = in.readUnsignedByte();
         int tries = in.readInt();
         long backoff = in.readLong();
-        if (rnds < 1 || rnd < 0 || rnd >= rnds || pol >= UnreachablePolicy.values().length || tries < 0 || backoff < 0) {
-            throw new InvalidObjectException("itinerary settings out of range: round " + rnd + " of " + rnds + ", policy " + pol + ", retries " + tries
-                    + ", back-off " + backoff);
-        }
         ArrayList<Stop> readStops = new ArrayList<>();
         for (int i = count(in); i > 0; i--) {
             String host = string(in.readObject());
@@ -356,26 +437,36 @@ public final class Itinerary implements Serializable {
             }
             readStops.add(new Stop(host, (Task) task));
         }
-        if (cur < -1 || cur > readStops.size()) {
-            throw new InvalidObjectException("itinerary position " + cur + " outside its " + readStops.size() + " stops");
-        }
         ArrayList<Visit> readHistory = new ArrayList<>();
+        String badVisit = null;
         for (int i = count(in); i > 0; i--) {
             int visitRound = in.readInt();
             String host = string(in.readObject());
-            int outcome = in.readUnsignedByte();
+            int code = in.readUnsignedByte();
             String detail = string(in.readObject());
-            if (host == null || detail == null || outcome >= Outcome.values().length) {
-                throw new InvalidObjectException("malformed itinerary visit (" + host + ", outcome " + outcome + ")");
+            Outcome outcome = Outcome.lookup(code);
+            if (badVisit == null && (host == null || detail == null || outcome == null)) {
+                badVisit = outcome == null ? Outcome.unknown(code) : "malformed itinerary visit (" + host + ", outcome " + code + ")";
             }
-            readHistory.add(new Visit(visitRound, host, Outcome.values()[outcome], detail));
+            readHistory.add(new Visit(visitRound, host, outcome, detail));
+        }
+        if (badVisit != null) {
+            throw new InvalidObjectException(badVisit);
+        }
+        UnreachablePolicy readPolicy = UnreachablePolicy.fromCode(pol);
+        if (rnds < 1 || rnd < 0 || rnd >= rnds || tries < 0 || backoff < 0) {
+            throw new InvalidObjectException("itinerary settings out of range: round " + rnd + " of " + rnds + ", policy " + pol + ", retries " + tries
+                    + ", back-off " + backoff);
+        }
+        if (cur < -1 || cur > readStops.size()) {
+            throw new InvalidObjectException("itinerary position " + cur + " outside its " + readStops.size() + " stops");
         }
         stops = readStops;
         history = readHistory;
         current = cur;
         round = rnd;
         rounds = rnds;
-        policy = UnreachablePolicy.values()[pol];
+        policy = readPolicy;
         retries = tries;
         retryBackoffMillis = backoff;
     }

@@ -1,19 +1,24 @@
 package io.robomw.cli;
 
 import io.robomw.agents.host.ClusterKey;
+import io.robomw.agents.host.ClusterKeyLookup;
 import io.robomw.agents.messaging.security.TlsSettings;
+import io.robomw.api.spi.AgencyConfig;
+import io.robomw.api.spi.SecretRef;
 import picocli.CommandLine.Option;
 
 import java.io.IOException;
 import java.nio.file.Path;
+import java.util.Optional;
 
 /** How an agent command proves it belongs to the cluster: the cluster key, and optionally mutual TLS. */
 final class ClusterOptions {
 
     /** Environment variable holding the cluster passphrase when no key file is given. */
-    static final String KEY_VARIABLE = "MW_CLUSTER_KEY";
+    static final String KEY_VARIABLE = AgencyConfig.KEY_VARIABLE;
 
-    @Option(names = "--key-file", paramLabel = "FILE", description = "file holding the cluster passphrase (default: the " + KEY_VARIABLE + " environment variable)")
+    @Option(names = "--key-file", paramLabel = "FILE", description = "file holding the cluster passphrase (default: the " + KEY_VARIABLE
+            + " environment variable, then ~/" + AgencyConfig.DEFAULT_KEY_FILE + ")")
     Path keyFile;
 
     @Option(names = "--tls-keystore", paramLabel = "FILE", description = "PKCS#12 key store: turns on mutual TLS for the RMI endpoint")
@@ -26,17 +31,13 @@ final class ClusterOptions {
     String storePassword;
 
     ClusterKey key() throws IOException {
-        if (keyFile != null) {
-            return ClusterKey.read(keyFile);
+        ClusterKeyLookup lookup = ClusterKeyLookup.ofThisProcess();
+        Optional<SecretRef> file = Optional.ofNullable(keyFile).map(f -> new SecretRef(SecretRef.Kind.FILE, f.toString(), "--key-file"));
+        Optional<ClusterKey> key = lookup.find(file);
+        if (key.isPresent() || keyStore != null) {
+            return key.orElse(null); // without a key, TLS alone authenticates
         }
-        String env = System.getenv(KEY_VARIABLE);
-        if (env != null && !env.isBlank()) {
-            return ClusterKey.fromPassphrase(env.strip());
-        }
-        if (keyStore != null) {
-            return null; // TLS alone authenticates
-        }
-        throw new IOException("no cluster key: give --key-file FILE or set " + KEY_VARIABLE + " (every host of a cluster must share it)");
+        return lookup.require(file, "this command");
     }
 
     TlsSettings tls() {

@@ -1,6 +1,10 @@
 package io.robomw.cli;
 
 import io.robomw.agents.host.AgentHost;
+import io.robomw.agents.messaging.MessagingNode;
+import io.robomw.agents.messaging.MessagingSettings;
+import io.robomw.agents.messaging.robot.RobotProtocol;
+import io.robomw.agents.messaging.robot.RobotServer;
 import io.robomw.api.Robot;
 import io.robomw.api.RobotException;
 import io.robomw.api.Robots;
@@ -61,11 +65,20 @@ final class HostCommand implements Callable<Integer> {
     @Option(names = "--allow", split = ",", paramLabel = "CLASS", description = "classes agent state may hold besides the agent's own code and JDK value types")
     List<String> allow = new ArrayList<>();
 
-    @Option(names = "--serve", paramLabel = "ADDRESS", description = "also serve the robot to Robots.remote at this messaging address, e.g. tcp://127.0.0.1:7000 (then Robots.remote(\"tcp://127.0.0.1:7000/ROBOT\"))")
+    @Option(names = "--serve", paramLabel = "ADDRESS", description = "also serve the robot to Robots.remote at this messaging address, e.g. tcp://127.0.0.1:7000 (then Robots.remote(\"tcp://127.0.0.1:7000/ROBOT\")); the host's messaging node receives there too")
     String serve;
+
+    @Option(names = "--messaging", paramLabel = "ADDRESS", description = "where the host's messaging node, which its agents use, receives (default: tcp://BIND:0, a free port)")
+    String messaging;
+
+    @Option(names = "--no-messaging", description = "start the host without a messaging node (its agents then have no messaging)")
+    boolean noMessaging;
 
     @Option(names = "--serve-password", description = "password callers of --serve must give")
     String servePassword;
+
+    @Option(names = "--record", paramLabel = "FILE.mcap", description = "record this host's agents (arrivals, stops, reports, results) and its robot (commands, pose, sensors) into an MCAP file")
+    Path record;
 
     @Mixin
     ClusterOptions cluster;
@@ -79,13 +92,15 @@ final class HostCommand implements Callable<Integer> {
         PrintWriter err = spec.commandLine().getErr();
         List<AutoCloseable> open = new ArrayList<>();
         Robot robot = null;
+        io.robomw.console.Console console = null;
+        Simulation sim = null;
         try {
             if (world != null) {
                 if (worldRobot == null) {
                     err.println("--world needs --world-robot NAME: which of its robots agents drive");
                     return 2;
                 }
-                Simulation sim = Simulation.load(world);
+                sim = Simulation.load(world);
                 open.add(0, sim);
                 sim.startRealTime(speed);
                 robot = sim.robot(worldRobot);
@@ -95,23 +110,50 @@ final class HostCommand implements Callable<Integer> {
                 robot = Robots.open(robotFile, services);
                 open.add(0, robot);
             }
+            if (serve != null && robot == null) {
+                err.println("--serve needs a robot (--robot or --world)");
+                return 2;
+            }
+            if (noMessaging && messaging != null) {
+                err.println("--messaging and --no-messaging contradict each other; give one");
+                return 2;
+            }
+            if (record != null) {
+                console = io.robomw.console.Console.builder("mw " + String.join(" ", spec.commandLine().getParseResult().originalArgs()))
+                        .noPage().record(record).clusterKey(cluster.key(), cluster.tls() != null).simulation(sim).start();
+                if (robot != null) {
+                    console.watchRobot(robot, robotFile != null ? robotFile.toString() : world + " (" + worldRobot + ")");
+                    robot = console.recordCommands(robot);
+                }
+            }
+            MessagingSettings settings = serve == null ? MessagingSettings.defaults() : RobotProtocol.forServer(MessagingSettings.defaults());
+            AgentHost.Builder builder = AgentHost.builder(name).bind(bind).port(port).robot(robot).clusterKey(cluster.key()).tls(cluster.tls())
+                    .store(store).allow(allow).messagingSettings(settings);
+            if (noMessaging) {
+                builder.noMessaging();
+            } else if (messaging != null) {
+                builder.messaging(messaging);
+            }
+            AgentHost host = builder.start();
+            open.add(0, host);
+            if (console != null) {
+                console.watchHost(host.address());
+                open.add(0, console);
+                out.printf("recording to %s%n", record);
+            }
             String served = null;
             if (serve != null) {
-                if (robot == null) {
-                    err.println("--serve needs a robot (--robot or --world)");
-                    return 2;
+                MessagingNode node = host.messagingNode().orElse(null);
+                if (node == null) {
+                    node = MessagingNode.builder(name + "-robot").settings(settings).build();
+                    open.add(0, node);
                 }
-                io.robomw.agents.messaging.MessagingNode node = io.robomw.agents.messaging.MessagingNode.builder(name + "-robot")
-                        .settings(io.robomw.agents.messaging.robot.RobotProtocol.forServer(io.robomw.agents.messaging.MessagingSettings.defaults())).build();
-                open.add(0, node);
                 served = node.bind(serve) + "/" + robot.name();
-                open.add(0, io.robomw.agents.messaging.robot.RobotServer.serve(node, robot, servePassword));
+                open.add(0, RobotServer.serve(node, robot, servePassword));
             }
-            AgentHost host = AgentHost.builder(name).bind(bind).port(port).robot(robot).clusterKey(cluster.key()).tls(cluster.tls())
-                    .store(store).allow(allow).start();
-            open.add(0, host);
             out.printf("agent host %s ready at %s (robot: %s, store: %s)%n", name, host.address(), robot == null ? "none" : robot.name(),
                     store == null ? "memory" : store);
+            out.printf("messaging at %s%n", host.messagingAddresses().isEmpty() ? "none (--no-messaging)" : String.join(" ", host.messagingAddresses()));
             if (served != null) {
                 out.printf("robot %s served at %s%n", robot.name(), served);
             }
@@ -127,6 +169,9 @@ final class HostCommand implements Callable<Integer> {
         } catch (RobotException | IllegalArgumentException | IllegalStateException | java.io.IOException e) {
             err.println("mw host: " + e.getMessage());
             err.flush();
+            if (console != null && !open.contains(console)) {
+                console.close();
+            }
             closeAll(open);
             return 2;
         }

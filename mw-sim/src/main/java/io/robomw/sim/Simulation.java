@@ -3,6 +3,8 @@ package io.robomw.sim;
 import io.robomw.api.Robot;
 import io.robomw.api.RobotException;
 import io.robomw.api.spi.PlatformProvider;
+import io.robomw.api.spi.AgencyConfig;
+import io.robomw.api.spi.MessagingConfig;
 import io.robomw.api.spi.PlatformServices;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.config.description.RobotDescription;
@@ -81,7 +83,12 @@ public final class Simulation implements AutoCloseable {
                 RobotDescription d = r.description();
                 PlatformProvider provider = DescriptionRobotFactory.provider(d);
                 RobotPlatform platform = provider.open(DescriptionRobotFactory.platformConfig(d, services, world.clock()));
-                robots.put(r.name(), new ConfiguredRobot(() -> d, platform, null, null, null));
+                try {
+                    robots.put(r.name(), ConfiguredRobot.withComponents(() -> d, platform, null));
+                } catch (RuntimeException e) {
+                    platform.close();
+                    throw e;
+                }
             }
         } catch (IOException e) {
             close();
@@ -149,8 +156,15 @@ public final class Simulation implements AutoCloseable {
     }
 
     private static RobotDescription renamed(RobotDescription d, String name) {
+        MessagingConfig m = d.messaging();
+        AgencyConfig a = d.agency();
+        // A node or home named after the robot (the default) takes the name the world gives it.
+        MessagingConfig messaging = m.nodeName().equals(d.name())
+                ? new MessagingConfig(name, m.listen(), m.connect(), m.topicPasswords(), m.source()) : m;
+        AgencyConfig agency = a.homeName().equals(AgencyConfig.defaults(d.name(), a.source()).homeName())
+                ? new AgencyConfig(AgencyConfig.defaults(name, a.source()).homeName(), a.bind(), a.port(), a.clusterKey(), a.source()) : a;
         return new RobotDescription(name, "sim", d.connection(), d.cyclePeriod(), d.watchdogTimeout(), d.capabilities(), d.drive(),
-                d.body(), d.sensors(), d.actuators(), d.source());
+                d.body(), d.sensors(), d.actuators(), messaging, agency, d.source());
     }
 
     /** @return the world */

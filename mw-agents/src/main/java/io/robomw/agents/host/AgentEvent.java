@@ -5,7 +5,21 @@ import java.nio.charset.StandardCharsets;
 import java.util.UUID;
 
 /**
- * What a host tells an agent's home.
+ * What a host tells an agent's home. All integers are big-endian.
+ *
+ * <pre>
+ * [id 16][seq 8][kind 1][location length 2][location UTF-8][payload]
+ * </pre>
+ *
+ * <table>
+ * <caption>Event kind codes ({@link Kind})</caption>
+ * <tr><th>code</th><th>kind</th><th>payload</th></tr>
+ * <tr><td>0</td><td>ARRIVED</td><td>empty</td></tr>
+ * <tr><td>1</td><td>REPORT</td><td>the serialized value</td></tr>
+ * <tr><td>2</td><td>RESULT</td><td>the serialized result</td></tr>
+ * <tr><td>3</td><td>FAILED</td><td>why, UTF-8</td></tr>
+ * <tr><td>4</td><td>DISPOSED</td><td>where, UTF-8</td></tr>
+ * </table>
  *
  * @param id       the agent
  * @param seq      its order among the agent's reports and results (0 for arrivals, which are not ordered)
@@ -15,42 +29,71 @@ import java.util.UUID;
  */
 record AgentEvent(UUID id, long seq, Kind kind, String location, byte[] payload) {
 
-    /** What happened. */
+    /** What happened. Each kind travels as its {@link #code()}, never as its position here. */
     enum Kind {
-        /** The agent arrived at {@code location}. */
-        ARRIVED,
-        /** The agent sent a value home. */
-        REPORT,
-        /** The trip ended; the payload is the result. */
-        RESULT,
-        /** The trip ended in failure; the payload says why. */
-        FAILED,
-        /** The agent was disposed of. */
-        DISPOSED
+        /** The agent arrived at {@code location}. Code 0. */
+        ARRIVED(0),
+        /** The agent sent a value home. Code 1. */
+        REPORT(1),
+        /** The trip ended; the payload is the result. Code 2. */
+        RESULT(2),
+        /** The trip ended in failure; the payload says why. Code 3. */
+        FAILED(3),
+        /** The agent was disposed of. Code 4. */
+        DISPOSED(4);
+
+        private final int code;
+
+        Kind(int code) {
+            this.code = code;
+        }
+
+        /** @return the kind's code on the wire and in the store */
+        int code() {
+            return code;
+        }
+
+        /**
+         * @param code a kind byte as read (unsigned)
+         * @return its kind
+         * @throws IllegalArgumentException naming the code if no kind has it
+         */
+        static Kind fromCode(int code) {
+            return switch (code) {
+                case 0 -> ARRIVED;
+                case 1 -> REPORT;
+                case 2 -> RESULT;
+                case 3 -> FAILED;
+                case 4 -> DISPOSED;
+                default -> throw new IllegalArgumentException("unknown event kind code " + code + " (known: 0-4: ARRIVED, REPORT, RESULT, FAILED, DISPOSED)");
+            };
+        }
     }
 
     byte[] encode() {
         byte[] loc = location.getBytes(StandardCharsets.UTF_8);
         ByteBuffer b = ByteBuffer.allocate(16 + 8 + 1 + 2 + loc.length + payload.length);
-        b.putLong(id.getMostSignificantBits()).putLong(id.getLeastSignificantBits()).putLong(seq).put((byte) kind.ordinal());
+        b.putLong(id.getMostSignificantBits()).putLong(id.getLeastSignificantBits()).putLong(seq).put((byte) kind.code());
         b.putShort((short) loc.length).put(loc).put(payload);
         return b.array();
     }
 
+    /**
+     * @param bytes an encoded event
+     * @return the event
+     * @throws IllegalArgumentException if it is cut short or its kind is unknown (the message names the code)
+     */
     static AgentEvent decode(byte[] bytes) {
         ByteBuffer b = ByteBuffer.wrap(bytes);
         try {
             UUID id = new UUID(b.getLong(), b.getLong());
             long seq = b.getLong();
-            int kind = b.get();
-            if (kind < 0 || kind >= Kind.values().length) {
-                throw new IllegalArgumentException("unknown event kind " + kind);
-            }
+            Kind kind = Kind.fromCode(b.get() & 0xFF);
             byte[] loc = new byte[Short.toUnsignedInt(b.getShort())];
             b.get(loc);
             byte[] payload = new byte[b.remaining()];
             b.get(payload);
-            return new AgentEvent(id, seq, Kind.values()[kind], new String(loc, StandardCharsets.UTF_8), payload);
+            return new AgentEvent(id, seq, kind, new String(loc, StandardCharsets.UTF_8), payload);
         } catch (java.nio.BufferUnderflowException e) {
             throw new IllegalArgumentException("agent event cut short (" + bytes.length + " bytes)", e);
         }

@@ -23,7 +23,7 @@ final class AgentHandle implements AgentRef {
 
     private static final Logger LOG = LoggerFactory.getLogger(AgentHandle.class);
 
-    private final AgentHost home;
+    private final AgentRequests home;
     private final UUID id;
     private final String className;
     final ClassLoader loader;
@@ -36,7 +36,7 @@ final class AgentHandle implements AgentRef {
     /** The last request made through this ref: the next one is sent after it has been answered. */
     private CompletableFuture<?> lastRequest = CompletableFuture.completedFuture(null);
 
-    AgentHandle(AgentHost home, UUID id, String className, ClassLoader loader, String firstLocation) {
+    AgentHandle(AgentRequests home, UUID id, String className, ClassLoader loader, String firstLocation) {
         this.home = home;
         this.id = id;
         this.className = className;

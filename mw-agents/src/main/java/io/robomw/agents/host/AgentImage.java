@@ -13,8 +13,24 @@ import java.util.UUID;
  * An agent as it travels and as a host stores it: who it is, which hop this is, where its home
  * is, which archive holds its code, and its serialized state. The header is compact (numbers as
  * varints, no class name: the state names its class), so a warm hop costs little more than the
- * state itself: {@code [kind|flags 1][id 16][hop varint][eventSeq varint][home length varint][home]
- * [digest 32][state]}.
+ * state itself. Varints are unsigned LEB128 (7 bits a byte, least significant first); the id is
+ * big-endian.
+ *
+ * <pre>
+ * [kind|flags 1][id 16][hop varint][eventSeq varint][home length varint][home UTF-8][digest 32][state]
+ *
+ * kind|flags:  bit 7 0 | bit 6 FROM_HOME | bits 5-4 0 | bits 3-0 kind code
+ * </pre>
+ *
+ * <table>
+ * <caption>Image kind codes ({@link Kind})</caption>
+ * <tr><th>code</th><th>kind</th></tr>
+ * <tr><td>0</td><td>TRIP: to its next stop</td></tr>
+ * <tr><td>1</td><td>HOMECOMING: home, retracted</td></tr>
+ * </table>
+ *
+ * <p>A first byte with a bit set outside these fields, or a kind code that is not in the table,
+ * is refused naming the byte.
  *
  * @param id       the agent's id
  * @param hop      counts the agent's hops, from 1; a host never accepts a hop it has seen, so a retried transfer is not run twice
@@ -38,12 +54,36 @@ record AgentImage(UUID id, long hop, Kind kind, boolean fromHome, String home, C
     private static final int FROM_HOME = 0x40;
     private static final int KIND_MASK = 0x0f;
 
-    /** Why an agent travels. */
+    /** Why an agent travels. Each kind travels as its {@link #code()}, never as its position here. */
     enum Kind {
-        /** To its next stop. */
-        TRIP,
-        /** Home, retracted: its state completes the retract. */
-        HOMECOMING
+        /** To its next stop. Code 0. */
+        TRIP(0),
+        /** Home, retracted: its state completes the retract. Code 1. */
+        HOMECOMING(1);
+
+        private final int code;
+
+        Kind(int code) {
+            this.code = code;
+        }
+
+        /** @return the kind's code in the image's first byte */
+        int code() {
+            return code;
+        }
+
+        /**
+         * @param code the low four bits of an image's first byte
+         * @return its kind
+         * @throws IllegalArgumentException naming the code if no kind has it
+         */
+        static Kind fromCode(int code) {
+            return switch (code) {
+                case 0 -> TRIP;
+                case 1 -> HOMECOMING;
+                default -> throw new IllegalArgumentException("unknown agent image kind code " + code + " (known: 0 TRIP, 1 HOMECOMING)");
+            };
+        }
     }
 
     byte[] encode() {
@@ -56,7 +96,7 @@ record AgentImage(UUID id, long hop, Kind kind, boolean fromHome, String home, C
     private ByteBuffer header(int room) {
         byte[] homeBytes = home.getBytes(StandardCharsets.UTF_8);
         ByteBuffer b = ByteBuffer.allocate(1 + 16 + 10 + 10 + 5 + homeBytes.length + CodeArchive.Digest.LENGTH + room);
-        b.put((byte) (kind.ordinal() | (fromHome ? FROM_HOME : 0)));
+        b.put((byte) (kind.code() | (fromHome ? FROM_HOME : 0)));
         b.putLong(id.getMostSignificantBits()).putLong(id.getLeastSignificantBits());
         putVarint(b, hop);
         putVarint(b, eventSeq);
@@ -89,11 +129,11 @@ record AgentImage(UUID id, long hop, Kind kind, boolean fromHome, String home, C
     static AgentImage decode(byte[] bytes, int offset, int length) {
         ByteBuffer b = ByteBuffer.wrap(bytes, offset, length);
         try {
-            int first = b.get();
-            int kind = first & KIND_MASK;
-            if ((first & ~(KIND_MASK | FROM_HOME)) != 0 || kind >= Kind.values().length) {
-                throw new IllegalArgumentException("unknown image kind " + first);
+            int first = b.get() & 0xFF;
+            if ((first & ~(KIND_MASK | FROM_HOME)) != 0) {
+                throw new IllegalArgumentException(String.format("agent image's first byte 0x%02x sets bits outside its kind and flags", first));
             }
+            Kind kind = Kind.fromCode(first & KIND_MASK);
             UUID id = new UUID(b.getLong(), b.getLong());
             long hop = varint(b);
             long eventSeq = varint(b);
@@ -105,7 +145,7 @@ record AgentImage(UUID id, long hop, Kind kind, boolean fromHome, String home, C
             b.get(home);
             byte[] digest = new byte[CodeArchive.Digest.LENGTH];
             b.get(digest);
-            return new AgentImage(id, hop, Kind.values()[kind], (first & FROM_HOME) != 0, new String(home, StandardCharsets.UTF_8),
+            return new AgentImage(id, hop, kind, (first & FROM_HOME) != 0, new String(home, StandardCharsets.UTF_8),
                     new CodeArchive.Digest(digest), eventSeq, bytes, b.position(), b.remaining());
         } catch (java.nio.BufferUnderflowException e) {
             throw new IllegalArgumentException("agent image cut short (" + length + " bytes)", e);

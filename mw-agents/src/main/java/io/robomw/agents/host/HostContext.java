@@ -54,11 +54,7 @@ final class HostContext implements AgentContext {
 
     @Override
     public Messaging messaging() {
-        Messaging m = host.messaging();
-        if (m == null) {
-            throw new UnsupportedActionException(host.name(), "messaging", "agent host " + host.address() + " has no messaging node");
-        }
-        return m;
+        return host.messagingFor(hosted);
     }
 
     @Override

@@ -114,7 +114,7 @@ final class HostEndpoint implements AgentHostRemote {
             }
             sessions.put(id, new Peer(peer, new Session(id, Session.sessionKey(key, hostNonce, clientNonce))));
             LOG.debug("host {}: peer {} ({}) authenticated", hostName, peer, clientHost());
-            return ByteBuffer.allocate(1 + 8 + 32).put((byte) 0).putLong(id)
+            return ByteBuffer.allocate(1 + 8 + 32).put(Session.AUTH_ACCEPTED).putLong(id)
                     .put(Session.hostProof(key, hostNameBytes, peerName, hostNonce, clientNonce)).array();
         } catch (IOException | RuntimeException e) {
             return refuse(peer, "malformed authentication request: " + e.getMessage());
@@ -126,7 +126,7 @@ final class HostEndpoint implements AgentHostRemote {
         LOG.warn("host {}: refused peer '{}' from {}: {}", hostName, peer, clientHost(), why);
         byte[] text = ("refused: " + why).getBytes(StandardCharsets.UTF_8);
         byte[] out = new byte[1 + text.length];
-        out[0] = 1;
+        out[0] = Session.AUTH_REFUSED;
         System.arraycopy(text, 0, out, 1, text.length);
         return out;
     }
@@ -141,11 +141,11 @@ final class HostEndpoint implements AgentHostRemote {
         ByteBuffer b = ByteBuffer.wrap(request);
         long id = b.getLong();
         long seq = b.getLong();
-        int opCode = b.get();
+        int opCode = b.get() & 0xFF;
         Peer peer = sessions.get(id);
         if (peer == null) {
             // Not secret: a host that restarted forgot its sessions; the peer authenticates again.
-            return new byte[] {(byte) Reply.Status.UNKNOWN_SESSION.ordinal()};
+            return Session.unknownSessionReply();
         }
         if (!peer.session().verifyRequest(request)) {
             refused.increment();
@@ -157,13 +157,20 @@ final class HostEndpoint implements AgentHostRemote {
             LOG.warn("host {}: dropped a replayed call (sequence {}) from peer '{}' at {}", hostName, seq, peer.name(), clientHost());
             return new byte[0];
         }
+        Op op;
+        try {
+            op = Op.fromCode(opCode);
+        } catch (IllegalArgumentException e) {
+            refused.increment();
+            LOG.warn("host {}: refused a call from peer '{}' at {}: {}", hostName, peer.name(), clientHost(), e.getMessage());
+            return peer.session().reply(seq, Reply.of(Reply.Status.REFUSED, "host " + hostName + " refused the call: " + e.getMessage()));
+        }
         Reply reply;
         try {
-            Op op = Op.of(opCode);
             reply = handler.handle(peer.name(), op, request, Session.HEADER, request.length - Session.MAC - Session.HEADER);
         } catch (RuntimeException e) {
             refused.increment();
-            LOG.warn("host {}: call {} from peer '{}' failed: {}", hostName, opCode, peer.name(), e.toString());
+            LOG.warn("host {}: {} call from peer '{}' failed: {}", hostName, op, peer.name(), e.toString());
             reply = Reply.of(Reply.Status.REFUSED, "the host could not handle the call: " + e.getMessage());
         }
         return peer.session().reply(seq, reply);

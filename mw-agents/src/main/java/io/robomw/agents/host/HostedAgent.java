@@ -30,6 +30,8 @@ final class HostedAgent {
     volatile Serializable result;
     /** The length of its image when it last travelled, to size the frame it is written into next. */
     volatile int imageSize;
+    /** Its view of the host's messaging, once it asked for it; guarded by this object. */
+    AgentMessaging messaging;
 
     HostedAgent(AgentImage image, Agent agent, ClassLoader loader) {
         this.id = image.id();

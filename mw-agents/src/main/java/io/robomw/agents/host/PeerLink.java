@@ -68,6 +68,23 @@ final class PeerLink {
      * @throws PeerException if the host cannot be reached, refuses this peer, or the call fails
      */
     Reply call(Op op, Frame frame) throws PeerException {
+        return call(op.code(), op.name(), frame);
+    }
+
+    /**
+     * A call with an operation code that may be none of {@link Op}'s: for probes that check how a
+     * host answers codes it does not know.
+     *
+     * @param opCode the operation byte to send
+     * @param body   the body
+     * @return the host's verified reply
+     * @throws PeerException if the host cannot be reached, refuses this peer, or the call fails
+     */
+    Reply callWithCode(int opCode, byte[] body) throws PeerException {
+        return call(opCode, "operation " + opCode, Frame.of(body));
+    }
+
+    private Reply call(int opCode, String op, Frame frame) throws PeerException {
         for (int attempt = 0; ; attempt++) {
             Session s;
             AgentHostRemote remote;
@@ -78,20 +95,14 @@ final class PeerLink {
             long n = seq.incrementAndGet();
             byte[] raw;
             try {
-                s.seal(n, op, frame);
+                s.seal(n, opCode, frame);
                 raw = remote.call(frame.bytes);
             } catch (RemoteException e) {
                 drop();
                 throw failure(op, e);
             }
-            Reply r;
-            try {
-                r = s.verifyReply(n, raw);
-            } catch (RuntimeException e) {
-                drop();
-                throw new PeerException("host " + address + " sent a bad reply to " + op + ": " + e.getMessage(), true, e);
-            }
-            if (r.status() == Reply.Status.UNKNOWN_SESSION && attempt == 0) {
+            if (Session.isUnknownSession(raw) && attempt == 0) {
+                // The host forgot the session (it keeps a bounded number): it did not serve the call.
                 synchronized (this) {
                     if (session == s) {
                         session = null;
@@ -99,7 +110,12 @@ final class PeerLink {
                 }
                 continue;
             }
-            return r;
+            try {
+                return s.verifyReply(n, raw);
+            } catch (RuntimeException e) {
+                drop();
+                throw new PeerException("host " + address + " sent a bad reply to " + op + ": " + e.getMessage(), true, e);
+            }
         }
     }
 
@@ -130,7 +146,7 @@ final class PeerLink {
             out.write(clientNonce);
             out.write(Session.clientProof(key, hostName, peerName, hostNonce, clientNonce));
             byte[] answer = stub.authenticate(req.toByteArray());
-            if (answer.length == 0 || answer[0] != 0) {
+            if (answer.length == 0 || answer[0] != Session.AUTH_ACCEPTED) {
                 String why = answer.length > 1 ? new String(answer, 1, answer.length - 1, StandardCharsets.UTF_8) : "no reason given";
                 stub = null;
                 throw new PeerException("host " + address + " refused this peer (" + selfName + "): " + why, false, null);
@@ -148,7 +164,7 @@ final class PeerLink {
             return session;
         } catch (RemoteException | NotBoundException e) {
             stub = null;
-            PeerException f = failure(Op.TRANSFER, e);
+            PeerException f = failure(Op.TRANSFER.name(), e);
             throw new PeerException(f.getMessage().replace(" (the TRANSFER may have reached it)", ""), false, e);
         } catch (IOException e) {
             stub = null;
@@ -159,7 +175,7 @@ final class PeerLink {
         }
     }
 
-    private PeerException failure(Op op, Exception e) {
+    private PeerException failure(String op, Exception e) {
         boolean delivered = !(e instanceof ConnectException || e instanceof ConnectIOException || e instanceof NoSuchObjectException
                 || e instanceof NotBoundException || e instanceof UnknownHostException);
         String what = e instanceof NotBoundException ? "nothing is bound as '" + address.name() + "' there" : String.valueOf(e.getMessage());

@@ -10,32 +10,56 @@ import java.nio.charset.StandardCharsets;
  */
 record Reply(Status status, byte[] body) {
 
-    /** Outcomes of a call. */
+    /**
+     * Outcomes of a call. Each travels as its {@link #code()} in the reply's status byte (the table
+     * is in {@link Session}), never as its position here.
+     */
     enum Status {
-        /** Done. */
-        OK,
-        /** The transfer names an archive this host lacks: send it, then the transfer again. */
-        NEED_ARCHIVE,
-        /** Already done before (a retried transfer); counts as done. */
-        DUPLICATE,
-        /** Refused; the body says why. */
-        REFUSED,
-        /** The agent has moved on; the body is where to. */
-        MOVED,
-        /** No such agent here. */
-        GONE,
-        /** The agent did not handle the message. */
-        NOT_HANDLED,
-        /** The session is unknown (the host restarted): authenticate again. */
-        UNKNOWN_SESSION;
+        /** Done. Code 0. */
+        OK(0),
+        /** The transfer names an archive this host lacks: send it, then the transfer again. Code 1. */
+        NEED_ARCHIVE(1),
+        /** Already done before (a retried transfer); counts as done. Code 2. */
+        DUPLICATE(2),
+        /** Refused; the body says why. Code 3. */
+        REFUSED(3),
+        /** The agent has moved on; the body is where to. Code 4. */
+        MOVED(4),
+        /** No such agent here. Code 5. */
+        GONE(5),
+        /** The agent did not handle the message. Code 6. */
+        NOT_HANDLED(6),
+        /** The session is unknown (the host restarted): authenticate again. Code 7, sent alone and without a MAC. */
+        UNKNOWN_SESSION(7);
 
-        private static final Status[] ALL = values();
+        private final int code;
 
-        static Status of(int code) {
-            if (code < 0 || code >= ALL.length) {
-                throw new IllegalArgumentException("unknown reply status " + code);
-            }
-            return ALL[code];
+        Status(int code) {
+            this.code = code;
+        }
+
+        /** @return the status's code on the wire */
+        int code() {
+            return code;
+        }
+
+        /**
+         * @param code a status byte as received (unsigned)
+         * @return its status
+         * @throws IllegalArgumentException naming the code if no status has it
+         */
+        static Status fromCode(int code) {
+            return switch (code) {
+                case 0 -> OK;
+                case 1 -> NEED_ARCHIVE;
+                case 2 -> DUPLICATE;
+                case 3 -> REFUSED;
+                case 4 -> MOVED;
+                case 5 -> GONE;
+                case 6 -> NOT_HANDLED;
+                case 7 -> UNKNOWN_SESSION;
+                default -> throw new IllegalArgumentException("unknown reply status code " + code + " (known: 0-7)");
+            };
         }
     }
 

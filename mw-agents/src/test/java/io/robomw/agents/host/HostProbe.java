@@ -67,8 +67,29 @@ public final class HostProbe {
      * @throws IOException if the host cannot be reached
      */
     public String transfer(CodeArchive.Digest digest, String className, byte[] state) throws IOException {
-        AgentImage image = new AgentImage(UUID.randomUUID(), 1, AgentImage.Kind.TRIP, false, "rmi://127.0.0.1:1/probe-home", digest, 1, state);
-        Reply r = link.call(Op.TRANSFER, image.encode());
+        Reply r = link.call(Op.TRANSFER, image(digest, state));
         return r.status() + " " + r.text();
+    }
+
+    /**
+     * Sends a call with any operation code and body, as no honest peer would.
+     *
+     * @param opCode the operation byte (the known ones are 0-6)
+     * @param body   the body
+     * @return the host's answer: its status, a space, and its text
+     * @throws IOException if the host cannot be reached
+     */
+    public String call(int opCode, byte[] body) throws IOException {
+        Reply r = link.callWithCode(opCode, body);
+        return r.status() + " " + r.text();
+    }
+
+    /**
+     * @param digest the archive the state's classes come from
+     * @param state  the state stream
+     * @return a transfer's body: the image of hop 1 of a new agent whose home is nowhere (its first byte is the kind code)
+     */
+    public static byte[] image(CodeArchive.Digest digest, byte[] state) {
+        return new AgentImage(UUID.randomUUID(), 1, AgentImage.Kind.TRIP, false, "rmi://127.0.0.1:1/probe-home", digest, 1, state).encode();
     }
 }

@@ -1,7 +1,9 @@
 package io.robomw.config.description;
 
 import io.robomw.api.Capability;
+import io.robomw.api.spi.AgencyConfig;
 import io.robomw.api.spi.ConnectionSettings;
+import io.robomw.api.spi.MessagingConfig;
 import io.robomw.api.spi.MotorChannel;
 
 import java.time.Duration;
@@ -25,13 +27,15 @@ import java.util.stream.Stream;
  * @param body            size and mass, for the simulator
  * @param sensors         the sensors
  * @param actuators       extra actuators with named actions
+ * @param messaging       how its communication component starts (the {@code messaging:} section, or defaults)
+ * @param agency          how its agency starts (the {@code agency:} section, or defaults)
  * @param source          the file it was read from, for messages
  */
 public record RobotDescription(String name, String platform, ConnectionSettings connection,
                                Duration cyclePeriod, Duration watchdogTimeout,
                                Set<Capability> capabilities, Optional<DifferentialDrive> drive,
                                Body body, List<SensorSpec> sensors, List<ActuatorSpec> actuators,
-                               String source) {
+                               MessagingConfig messaging, AgencyConfig agency, String source) {
 
     /** Copies collections. */
     public RobotDescription {
@@ -40,6 +44,8 @@ public record RobotDescription(String name, String platform, ConnectionSettings 
         capabilities = Set.copyOf(capabilities);
         sensors = List.copyOf(sensors);
         actuators = List.copyOf(actuators);
+        Objects.requireNonNull(messaging, "messaging");
+        Objects.requireNonNull(agency, "agency");
     }
 
     /** @return every motor port the description uses: wheels first, then actuators */

@@ -3,7 +3,9 @@ package io.robomw.config.description;
 import io.robomw.api.Capability;
 import io.robomw.api.Position;
 import io.robomw.api.SensorType;
+import io.robomw.api.spi.AgencyConfig;
 import io.robomw.api.spi.ConnectionSettings;
+import io.robomw.api.spi.MessagingConfig;
 import io.robomw.config.yaml.MappingReader;
 import io.robomw.config.yaml.YamlDocument;
 
@@ -73,12 +75,15 @@ public final class RobotDescriptionLoader {
         List<Read<ActuatorSpec>> actuators = root.mappingList("actuators").stream()
                 .flatMap(m -> actuator(m).map(a -> new Read<>(a, m)).stream()).toList();
         checkPorts(drive, driveNode, sensors, actuators);
+        ComponentSections components = new ComponentSections(name, source);
+        MessagingConfig messaging = components.messaging(root.mapping("messaging"));
+        AgencyConfig agency = components.agency(root.mapping("agency"));
         root.finish();
         root.problems().throwIfAny();
         return new RobotDescription(name, platform, new ConnectionSettings(connection, source),
                 Duration.ofNanos(Math.round(1e9 / cycleHz)), Duration.ofNanos(Math.round(watchdog * 1e9)),
                 capabilities, drive, body, sensors.stream().map(Read::value).toList(),
-                actuators.stream().map(Read::value).toList(), source);
+                actuators.stream().map(Read::value).toList(), messaging, agency, source);
     }
 
     private Optional<DifferentialDrive> drive(MappingReader m) {

@@ -14,7 +14,10 @@ import io.robomw.api.Robot;
 import io.robomw.api.SensorInfo;
 import io.robomw.api.SensorType;
 import io.robomw.api.UnsupportedActionException;
+import io.robomw.api.spi.AgencyComponent;
 import io.robomw.api.spi.CommandPriority;
+import io.robomw.api.spi.MessagingComponent;
+import io.robomw.api.spi.RobotComponents;
 import io.robomw.api.spi.MotorCommand;
 import io.robomw.api.spi.MotorTarget;
 import io.robomw.api.spi.RobotPlatform;
@@ -32,6 +35,7 @@ import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
+import java.util.Objects;
 import java.util.Set;
 import java.util.UUID;
 import java.util.concurrent.CompletableFuture;
@@ -44,8 +48,11 @@ import java.util.stream.Collectors;
  * and hands it to the platform. Every call reads the description in force at that moment, so a
  * reload applies to the next command.
  *
- * <p>Messaging and agents are delegated to the components given at construction; without them
- * those calls throw {@link UnsupportedActionException}.
+ * <p>The paper's four components are linked here: motion and perception go to the platform,
+ * messaging and agents to the robot's communication component and agency, which the providers
+ * found through the SPI open ({@link RobotComponents}: {@code mw-agents} provides both; without
+ * it those calls throw {@link UnsupportedActionException} saying what to add). The robot closes
+ * them with itself.
  *
  * <p>Thread-safe. Odometry is updated under a lock whenever a motion starts or ends, on
  * {@link #drive}, and on {@link #pose()}.
@@ -54,8 +61,8 @@ public final class ConfiguredRobot implements Robot {
 
     private final Supplier<RobotDescription> description;
     private final RobotPlatform platform;
-    private final Messaging messaging;
-    private final Agency agency;
+    private final MessagingComponent messaging;
+    private final AgencyComponent agency;
     private final AutoCloseable onClose;
     private final Object odometryLock = new Object();
     private Odometry odometry;
@@ -66,17 +73,47 @@ public final class ConfiguredRobot implements Robot {
     /**
      * @param description the description in force (read on every call)
      * @param platform    the opened platform
-     * @param messaging   the messaging component, or {@code null}
-     * @param agency      the agent runtime, or {@code null}
+     * @param messaging   the communication component
+     * @param agency      the agency
      * @param onClose     closed after the platform (a description watcher), or {@code null}
      */
     public ConfiguredRobot(Supplier<RobotDescription> description, RobotPlatform platform,
-                           Messaging messaging, Agency agency, AutoCloseable onClose) {
+                           MessagingComponent messaging, AgencyComponent agency, AutoCloseable onClose) {
         this.description = description;
         this.platform = platform;
-        this.messaging = messaging;
-        this.agency = agency;
+        this.messaging = Objects.requireNonNull(messaging, "messaging");
+        this.agency = Objects.requireNonNull(agency, "agency");
         this.onClose = onClose;
+    }
+
+    /**
+     * A robot with every component: its messaging and agency come from the providers on the class
+     * path, set up as its description's {@code messaging:} and {@code agency:} sections say.
+     *
+     * @param description the description in force (read on every call; the sections are read now)
+     * @param platform    the opened platform
+     * @param onClose     closed after the platform, or {@code null}
+     * @return the robot
+     */
+    public static ConfiguredRobot withComponents(Supplier<RobotDescription> description, RobotPlatform platform, AutoCloseable onClose) {
+        RobotDescription d = description.get();
+        MessagingComponent messaging = RobotComponents.messaging(d.name(), d.messaging());
+        try {
+            return new ConfiguredRobot(description, platform, messaging, RobotComponents.agency(d.name(), d.agency()), onClose);
+        } catch (RuntimeException e) {
+            messaging.close();
+            throw e;
+        }
+    }
+
+    /** @return its communication component: where it receives, once started */
+    public MessagingComponent messaging() {
+        return messaging;
+    }
+
+    /** @return its agency */
+    public AgencyComponent agency() {
+        return agency;
     }
 
     @Override
@@ -242,62 +279,62 @@ public final class ConfiguredRobot implements Robot {
 
     @Override
     public UUID sendMessage(String name, String host, String pass, String topic, Serializable object, String function) {
-        return messaging("sendMessage").sendMessage(name, host, pass, topic, object, function);
+        return messaging.sendMessage(name, host, pass, topic, object, function);
     }
 
     @Override
     public Message waitForReply(String topic, String host) {
-        return messaging("waitForReply").waitForReply(topic, host);
+        return messaging.waitForReply(topic, host);
     }
 
     @Override
     public Message waitForReply(String topic, String host, Duration timeout) {
-        return messaging("waitForReply").waitForReply(topic, host, timeout);
+        return messaging.waitForReply(topic, host, timeout);
     }
 
     @Override
     public Message waitForReply(UUID correlationId, Duration timeout) {
-        return messaging("waitForReply").waitForReply(correlationId, timeout);
+        return messaging.waitForReply(correlationId, timeout);
     }
 
     @Override
     public void replyMessage(Message request, Serializable object, String function) {
-        messaging("replyMessage").replyMessage(request, object, function);
+        messaging.replyMessage(request, object, function);
     }
 
     @Override
     public void publishMessage(String topic, Serializable object, String function, String password) {
-        messaging("publishMessage").publishMessage(topic, object, function, password);
+        messaging.publishMessage(topic, object, function, password);
     }
 
     @Override
     public void subscribeMessage(String topic, String password) {
-        messaging("subscribeMessage").subscribeMessage(topic, password);
+        messaging.subscribeMessage(topic, password);
     }
 
     @Override
     public void addMessageListener(String topic, String password, MessageListener listener) {
-        messaging("addMessageListener").addMessageListener(topic, password, listener);
+        messaging.addMessageListener(topic, password, listener);
     }
 
     @Override
     public void removeMessageListener(String topic, MessageListener listener) {
-        messaging("removeMessageListener").removeMessageListener(topic, listener);
+        messaging.removeMessageListener(topic, listener);
     }
 
     @Override
     public AgentRef sendAgent(String host, Agent agent) {
-        return agency("sendAgent").sendAgent(host, agent);
+        return agency.sendAgent(host, agent);
     }
 
     @Override
     public AgentRef startTrip(Agent agent) {
-        return agency("startTrip").startTrip(agent);
+        return agency.startTrip(agent);
     }
 
     @Override
     public List<AgentRef> dispatchClones(Agent agent, String... hosts) {
-        return agency("dispatchClones").dispatchClones(agent, hosts);
+        return agency.dispatchClones(agent, hosts);
     }
 
     @Override
@@ -309,13 +346,9 @@ public final class ConfiguredRobot implements Robot {
         try {
             platform.close();
         } finally {
-            if (onClose != null) {
-                try {
-                    onClose.close();
-                } catch (Exception e) {
-                    org.slf4j.LoggerFactory.getLogger(ConfiguredRobot.class).warn("closing {}: {}", name(), e.toString());
-                }
-            }
+            closeQuietly(agency);
+            closeQuietly(messaging);
+            closeQuietly(onClose);
         }
     }
 
@@ -411,17 +444,14 @@ public final class ConfiguredRobot implements Robot {
                 .map(s -> s.name() + " (" + s.type() + " at " + s.position() + ")").collect(Collectors.joining(", "));
     }
 
-    private Messaging messaging(String action) {
-        if (messaging == null) {
-            throw new UnsupportedActionException(name(), action, "no messaging component was set up for it (mw-agents provides one)");
+    private void closeQuietly(AutoCloseable c) {
+        if (c == null) {
+            return;
         }
-        return messaging;
-    }
-
-    private Agency agency(String action) {
-        if (agency == null) {
-            throw new UnsupportedActionException(name(), action, "no agent runtime was set up for it (run it on an agent host: mw host)");
+        try {
+            c.close();
+        } catch (Exception e) {
+            org.slf4j.LoggerFactory.getLogger(ConfiguredRobot.class).warn("closing {} of {}: {}", c, name(), e.toString());
         }
-        return agency;
     }
 }

@@ -56,13 +56,21 @@ public final class DescriptionRobotFactory implements RobotFactory {
             description.close();
             throw e;
         }
+        ConfiguredRobot robot;
+        try {
+            robot = ConfiguredRobot.withComponents(description::current, platform, description);
+        } catch (RuntimeException e) {
+            platform.close();
+            description.close();
+            throw e;
+        }
         try {
             description.watch();
         } catch (IOException e) {
             org.slf4j.LoggerFactory.getLogger(DescriptionRobotFactory.class)
                     .warn("{}: changes will not be reloaded automatically: {}", d.source(), e.toString());
         }
-        return new ConfiguredRobot(description::current, platform, null, null, description);
+        return robot;
     }
 
     /**

@@ -163,6 +163,15 @@ public final class ReloadableDescription implements AutoCloseable {
         if (!a.motorPorts().equals(b.motorPorts())) {
             return "the motor ports (" + a.motorPorts() + " -> " + b.motorPorts() + ")";
         }
+        if (!a.motors().equals(b.motors())) {
+            return "the wheels' encoder ticks or counters, which its driver reads when it opens";
+        }
+        if (!a.messaging().equals(b.messaging())) {
+            return "the messaging section, which its communication component reads when it starts";
+        }
+        if (!a.agency().equals(b.agency())) {
+            return "the agency section, which its agency reads when it starts";
+        }
         if (!Objects.equals(channels(a), channels(b))) {
             return "the sensors' names, types or ports";
         }

@@ -318,6 +318,31 @@ public final class MappingReader {
     }
 
     /**
+     * @param key a key whose value is one text or a list of texts ({@code listen: tcp://...} or
+     *            {@code listen: [tcp://..., udp://...]})
+     * @return the texts, empty when absent; items that are not texts are reported
+     */
+    public List<String> textList(String key) {
+        Node value = value(key);
+        if (value instanceof ScalarNode scalar && !scalar.getTag().equals(Tag.NULL)) {
+            if (scalar.getValue().isBlank()) {
+                problem(key, "must not be empty");
+                return List.of();
+            }
+            return List.of(scalar.getValue());
+        }
+        List<String> out = new ArrayList<>();
+        for (Node item : sequence(key)) {
+            if (item instanceof ScalarNode s && !s.getTag().equals(Tag.NULL) && !s.getValue().isBlank()) {
+                out.add(s.getValue());
+            } else {
+                problems.add(item.getStartMark(), "'" + where(key) + "' items must be texts, got " + scalarText(item));
+            }
+        }
+        return out;
+    }
+
+    /**
      * @param key a key whose value is a list of lists of numbers ({@code [[0, 1], [2, 3]]})
      * @return the rows with their marks
      */

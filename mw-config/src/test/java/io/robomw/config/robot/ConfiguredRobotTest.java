@@ -25,7 +25,7 @@ class ConfiguredRobotTest {
 
     private final FakePlatform platform = new FakePlatform();
     private final AtomicReference<RobotDescription> description = new AtomicReference<>(scout(0.056, 0.3));
-    private final ConfiguredRobot robot = new ConfiguredRobot(description::get, platform, null, null, null);
+    private final ConfiguredRobot robot = ConfiguredRobot.withComponents(description::get, platform, null);
 
     /** An NXT robot with wheels on B and C, a sonar in front, a bumper at the back and a gripper on A. */
     private static RobotDescription scout(double wheelDiameter, double maxSpeed) {
@@ -315,11 +315,12 @@ class ConfiguredRobotTest {
     // ---- messaging and agents ----
 
     @Test
-    void shouldRefuseSendMessageWithoutMessagingComponent() {
+    void shouldRefuseSendMessageSayingWhichArtifactAddsMessagingWhenNoProviderIsOnTheClassPath() {
         UnsupportedActionException e = assertThrows(UnsupportedActionException.class,
                 () -> robot.sendMessage("scout", "localhost", "secret", "news", "hello", "greet"));
 
         assertEquals("scout", e.robot());
+        assertTrue(e.getMessage().contains("io.robomw:mw-agents"), e.getMessage());
     }
 
     @Test
@@ -335,6 +336,7 @@ class ConfiguredRobotTest {
         UnsupportedActionException e = assertThrows(UnsupportedActionException.class, () -> robot.sendAgent("localhost", agent));
 
         assertEquals("scout", e.robot());
+        assertTrue(e.getMessage().contains("io.robomw:mw-agents"), e.getMessage());
     }
 
     // ---- pose ----

@@ -188,6 +188,19 @@ class ReloadableDescriptionTest {
     }
 
     @Test
+    void shouldRejectMessagingChangeSayingRestart() throws IOException {
+        ReloadableDescription d = open(robot(0.056));
+        RobotDescription before = d.current();
+        write(robot(0.056) + "messaging: {listen: tcp://127.0.0.1:7100}\n");
+
+        ReloadOutcome outcome = d.reload();
+
+        assertFalse(outcome.accepted());
+        assertTrue(outcome.message().contains("messaging section") && outcome.message().contains("restart"), outcome.message());
+        assertSame(before, d.current());
+    }
+
+    @Test
     void shouldRejectNameChangeSayingRestart() throws IOException {
         ReloadableDescription d = open(robot(0.056));
         write(robot("rover", "nxt", 0.056, "B"));

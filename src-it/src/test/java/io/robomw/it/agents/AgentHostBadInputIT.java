@@ -73,6 +73,19 @@ class AgentHostBadInputIT {
     }
 
     @Test
+    void callsWithCodesTheHostDoesNotKnowAreRefused() throws Exception {
+        String op = probe().call(9, new byte[0]);
+        assertTrue(op.startsWith("REFUSED") && op.contains("unknown operation code 9"), op);
+        byte[] image = HostProbe.image(archive.digest(), HostProbe.state(new VisitorAgent()));
+        image[0] = 5; // the image kind code: 0 trip, 1 homecoming
+        String transfer = probe().call(0, image);
+        assertTrue(transfer.startsWith("REFUSED") && transfer.contains("unknown agent image kind code 5"), transfer);
+        logSays("refused a call from peer 'probe'");
+        logSays("unknown agent image kind code 5");
+        hostStillServesAgents();
+    }
+
+    @Test
     void tamperedArchiveIsRefused() throws Exception {
         byte[] jar = archive.bytes();
         jar[jar.length / 2] ^= 0x5A;

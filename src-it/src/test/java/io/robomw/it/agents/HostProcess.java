@@ -33,6 +33,8 @@ final class HostProcess implements AutoCloseable {
     private final List<String> hostArgs;
     private final Path log;
     private Process process;
+    private String messaging;
+    private String served;
 
     private HostProcess(String name, int port, List<String> hostArgs) throws IOException {
         this.name = name;
@@ -61,12 +63,25 @@ final class HostProcess implements AutoCloseable {
         return "rmi://127.0.0.1:" + port + "/" + name;
     }
 
+    /** @return the address its messaging node receives at, as it printed it ("none (--no-messaging)" without one) */
+    String messaging() {
+        return messaging;
+    }
+
+    /** @return the address its robot is served at (with --serve), for Robots.remote */
+    String served() {
+        return served;
+    }
+
     /** Starts it again, same name, port and options (after {@link #kill()}). */
     void restart() throws IOException {
         launch();
     }
 
     private void launch() throws IOException {
+        boolean readyLine = false;
+        messaging = null;
+        served = null;
         List<String> command = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
                 "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-cp", middlewareOnlyClassPath(), "io.robomw.cli.Mw", "host",
                 "--name", name, "--port", String.valueOf(port)));
@@ -86,7 +101,16 @@ final class HostProcess implements AutoCloseable {
                 close();
                 fail("agent host " + name + " did not start within " + START + " (log: " + log + ")");
             }
+            if (line.startsWith("messaging at ")) {
+                messaging = line.substring("messaging at ".length()).split(" ")[0];
+            }
+            if (line.contains(" served at ")) {
+                served = line.substring(line.indexOf(" served at ") + " served at ".length()).strip();
+            }
             if (line.contains(" ready at ")) {
+                readyLine = true;
+            }
+            if (readyLine && messaging != null && (served != null || !hostArgs.contains("--serve"))) {
                 return;
             }
         }

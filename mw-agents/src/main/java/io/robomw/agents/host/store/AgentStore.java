@@ -53,6 +53,9 @@ public interface AgentStore extends AutoCloseable {
     /** @return whether this store survives the host being killed */
     boolean durable();
 
+    /** @return where this store keeps agents, for messages: its journal file, or "memory" */
+    String location();
+
     /**
      * @param id     the agent
      * @param hop    the hop that brought it

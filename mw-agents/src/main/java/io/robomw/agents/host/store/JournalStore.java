@@ -20,6 +20,7 @@ import java.util.ArrayList;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
+import java.util.HexFormat;
 import java.util.Optional;
 import java.util.UUID;
 import java.util.concurrent.ConcurrentHashMap;
@@ -29,11 +30,39 @@ import java.util.zip.CRC32C;
  * A durable {@link AgentStore}: an append-only journal in one directory, replayed when the host
  * starts again, and the archives of agent code beside it ({@code archives/<sha256>.jar}).
  *
- * <p>Each record is {@code [length][type][payload][CRC32C]}; a record cut short by a kill, or
- * with a bad checksum, ends the replay there and is cut off. Records that must survive a power
- * cut (an accepted agent, a started stop, an owed result, an archive) are forced to the disk
- * ({@code fdatasync}) before the call returns; the others only need to survive the process being
- * killed, which the page cache does. The journal is rewritten with only what is live when it
+ * <p>The journal begins with a header, then its records. All integers are big-endian.
+ *
+ * <pre>
+ * header  [magic 0x89 'R' 'M' 'J' 4][format version 4]
+ * record  [payload length 4][type 1][agent id 16][number 8]([data length 4][data])[CRC32C of the payload 4]
+ *          \------------------------- payload -------------------------/
+ * </pre>
+ *
+ * <table>
+ * <caption>Record types ({@link RecordType}); the phase is the {@link AgentStore.Phase} the agent is in after it</caption>
+ * <tr><th>code</th><th>type</th><th>number</th><th>data</th><th>forced</th><th>effect on replay</th></tr>
+ * <tr><td>1</td><td>ACCEPTED</td><td>hop</td><td>the image</td><td>yes</td><td>the agent is held, phase ACCEPTED; the hop is seen</td></tr>
+ * <tr><td>2</td><td>STARTED</td><td>hop</td><td>none</td><td>yes</td><td>phase STARTED (its stop's work had begun)</td></tr>
+ * <tr><td>3</td><td>DEPARTING</td><td>the next hop</td><td>the image</td><td>no</td><td>phase DEPARTING, with the image it leaves with</td></tr>
+ * <tr><td>4</td><td>DEPARTED</td><td>0</td><td>none</td><td>no</td><td>the agent is no longer held</td></tr>
+ * <tr><td>5</td><td>EVENT_PENDING</td><td>event seq</td><td>the owed event</td><td>yes</td><td>an event owed to its home</td></tr>
+ * <tr><td>6</td><td>EVENT_DELIVERED</td><td>event seq</td><td>none</td><td>no</td><td>that event is no longer owed</td></tr>
+ * <tr><td>7</td><td>SEEN</td><td>hop</td><td>none</td><td>no</td><td>the highest hop seen of the agent (compaction writes these)</td></tr>
+ * </table>
+ *
+ * <p><b>Format version.</b> The header is written when the journal is made (every open rewrites
+ * the journal with what is live, header first), and checked when it is opened: a journal of a
+ * version other than {@value #FORMAT_VERSION}, or whose first bytes are neither the header nor a
+ * record, is refused with an error naming the file, and so is a record of a type not in the
+ * table. A journal written before the header existed (its records are those of version 1) is
+ * recognised by a first record that reads as one (a known type and a good checksum), or by
+ * nothing but the zeros ahead of where records would go, and is read as version 1 and rewritten
+ * with the header, so the agents it holds are not lost.
+ *
+ * <p>A record cut short by a kill, or with a bad checksum, ends the replay there and is cut off.
+ * Records that must survive a power cut (an accepted agent, a started stop, an owed result, an
+ * archive) are forced to the disk ({@code fdatasync}) before the call returns; the others only
+ * need to survive the process being killed, which the page cache does. The journal is rewritten with only what is live when it
  * grows past {@value #COMPACT_BYTES} bytes and four times what is live. One host per directory
  * (a file lock says so). Thread-safe.
  *
@@ -54,13 +83,61 @@ public final class JournalStore implements AgentStore {
     private static final int PREALLOCATE_MAX_RECORD = 256 << 10;
     private static final ByteBuffer ZEROS = ByteBuffer.allocateDirect(1 << 20).asReadOnlyBuffer();
 
-    private static final byte ACCEPTED = 1;
-    private static final byte STARTED = 2;
-    private static final byte DEPARTING = 3;
-    private static final byte DEPARTED = 4;
-    private static final byte EVENT_PENDING = 5;
-    private static final byte EVENT_DELIVERED = 6;
-    private static final byte SEEN = 7;
+    /** The first four bytes of a journal: not a record length (negative), not text. */
+    static final byte[] MAGIC = {(byte) 0x89, 'R', 'M', 'J'};
+    /** The format this store reads and writes. */
+    static final int FORMAT_VERSION = 1;
+    /** The header's length: magic and version. */
+    static final int HEADER_LENGTH = 8;
+    /** The shortest record payload: type, id, number. */
+    private static final int MIN_PAYLOAD = 1 + 16 + 8;
+
+    /** The kinds of records, each written as its {@link #code()} (the table is in the class javadoc). */
+    enum RecordType {
+        /** An agent accepted; its image. */
+        ACCEPTED(1),
+        /** Its stop's work begun. */
+        STARTED(2),
+        /** It is being sent on; its image after the stop. */
+        DEPARTING(3),
+        /** It is no longer here. */
+        DEPARTED(4),
+        /** An event owed to its home. */
+        EVENT_PENDING(5),
+        /** The home has that event. */
+        EVENT_DELIVERED(6),
+        /** The highest hop of it ever accepted. */
+        SEEN(7);
+
+        private final int code;
+
+        RecordType(int code) {
+            this.code = code;
+        }
+
+        /** @return the record type's code in the journal */
+        int code() {
+            return code;
+        }
+
+        /**
+         * @param code a type byte as read (unsigned)
+         * @return its record type
+         * @throws IllegalArgumentException naming the code if no type has it
+         */
+        static RecordType fromCode(int code) {
+            return switch (code) {
+                case 1 -> ACCEPTED;
+                case 2 -> STARTED;
+                case 3 -> DEPARTING;
+                case 4 -> DEPARTED;
+                case 5 -> EVENT_PENDING;
+                case 6 -> EVENT_DELIVERED;
+                case 7 -> SEEN;
+                default -> throw new IllegalArgumentException("unknown record type code " + code + " (known: 1-7)");
+            };
+        }
+    }
 
     private final Path dir;
     private final Path journal;
@@ -115,11 +192,17 @@ public final class JournalStore implements AgentStore {
         return true;
     }
 
+    /** @return the journal file */
+    @Override
+    public String location() {
+        return journal.toString();
+    }
+
     @Override
     public void accepted(UUID id, long hop, byte[] from, int offset, int length) throws IOException {
         byte[] image = java.util.Arrays.copyOfRange(from, offset, offset + length);
         synchronized (writeLock) {
-            append(ACCEPTED, id, hop, image, true);
+            append(RecordType.ACCEPTED, id, hop, image, true);
             put(new StoredAgent(id, hop, Phase.ACCEPTED, image));
             seen.merge(id, hop, Math::max);
         }
@@ -128,7 +211,7 @@ public final class JournalStore implements AgentStore {
     @Override
     public void started(UUID id, long hop) throws IOException {
         synchronized (writeLock) {
-            append(STARTED, id, hop, null, true);
+            append(RecordType.STARTED, id, hop, null, true);
             StoredAgent a = live.get(id);
             if (a != null) {
                 live.put(id, new StoredAgent(id, hop, Phase.STARTED, a.image()));
@@ -140,7 +223,7 @@ public final class JournalStore implements AgentStore {
     public void departing(UUID id, long hop, byte[] from, int offset, int length) throws IOException {
         byte[] image = java.util.Arrays.copyOfRange(from, offset, offset + length);
         synchronized (writeLock) {
-            append(DEPARTING, id, hop, image, false);
+            append(RecordType.DEPARTING, id, hop, image, false);
             put(new StoredAgent(id, hop, Phase.DEPARTING, image));
         }
     }
@@ -148,7 +231,7 @@ public final class JournalStore implements AgentStore {
     @Override
     public void departed(UUID id) throws IOException {
         synchronized (writeLock) {
-            append(DEPARTED, id, 0, null, false);
+            append(RecordType.DEPARTED, id, 0, null, false);
             remove(id);
             maybeCompact();
         }
@@ -162,7 +245,7 @@ public final class JournalStore implements AgentStore {
     @Override
     public void eventPending(PendingEvent event) throws IOException {
         synchronized (writeLock) {
-            append(EVENT_PENDING, event.id(), event.seq(), event.event(), true);
+            append(RecordType.EVENT_PENDING, event.id(), event.seq(), event.event(), true);
             events.put(key(event.id(), event.seq()), event);
             liveBytes += event.event().length;
         }
@@ -171,7 +254,7 @@ public final class JournalStore implements AgentStore {
     @Override
     public void eventDelivered(UUID id, long seq) throws IOException {
         synchronized (writeLock) {
-            append(EVENT_DELIVERED, id, seq, null, false);
+            append(RecordType.EVENT_DELIVERED, id, seq, null, false);
             PendingEvent e = events.remove(key(id, seq));
             if (e != null) {
                 liveBytes -= e.event().length;
@@ -264,7 +347,7 @@ public final class JournalStore implements AgentStore {
         return id + "/" + seq;
     }
 
-    private void append(byte type, UUID id, long number, byte[] data, boolean force) throws IOException {
+    private void append(RecordType type, UUID id, long number, byte[] data, boolean force) throws IOException {
         ByteBuffer b = encode(type, id, number, data);
         int length = b.remaining();
         if (length <= PREALLOCATE_MAX_RECORD && end + length > allocated) {
@@ -295,10 +378,10 @@ public final class JournalStore implements AgentStore {
         allocated = at;
     }
 
-    private static ByteBuffer encode(byte type, UUID id, long number, byte[] data) {
-        int payload = 1 + 16 + 8 + (data == null ? 0 : 4 + data.length);
+    private static ByteBuffer encode(RecordType type, UUID id, long number, byte[] data) {
+        int payload = MIN_PAYLOAD + (data == null ? 0 : 4 + data.length);
         ByteBuffer b = ByteBuffer.allocate(4 + payload + 4);
-        b.putInt(payload).put(type).putLong(id.getMostSignificantBits()).putLong(id.getLeastSignificantBits()).putLong(number);
+        b.putInt(payload).put((byte) type.code()).putLong(id.getMostSignificantBits()).putLong(id.getLeastSignificantBits()).putLong(number);
         if (data != null) {
             b.putInt(data.length).put(data);
         }
@@ -308,10 +391,17 @@ public final class JournalStore implements AgentStore {
         return b.flip();
     }
 
+    /**
+     * Reads the journal's header and replays its records into the maps.
+     *
+     * @throws IOException naming the file if its header is missing or of another version, or a record is of an unknown type or malformed
+     */
     private void replay() throws IOException {
         long good = 0;
         if (Files.exists(journal)) {
+            long size = Files.size(journal);
             try (InputStream raw = Files.newInputStream(journal); DataInputStream in = new DataInputStream(new BufferedInputStream(raw, 1 << 16))) {
+                good = readHeader(in, size);
                 while (true) {
                     int payload;
                     try {
@@ -322,8 +412,12 @@ public final class JournalStore implements AgentStore {
                     if (payload == 0) {
                         break; // the zero-filled space ahead of the records
                     }
-                    if (payload < 25 || payload > MAX_RECORD) {
+                    if (payload < MIN_PAYLOAD || payload > MAX_RECORD) {
                         LOG.warn("agent store {}: bad record length {} at byte {}; the journal is cut off there", dir, payload, good);
+                        break;
+                    }
+                    if (good + 4 + payload + 4 > size) {
+                        LOG.warn("agent store {}: the last record (at byte {}) was cut short, as a kill leaves it; dropped", dir, good);
                         break;
                     }
                     byte[] body = new byte[payload];
@@ -341,7 +435,7 @@ public final class JournalStore implements AgentStore {
                         LOG.warn("agent store {}: record at byte {} has a bad checksum; the journal is cut off there", dir, good);
                         break;
                     }
-                    apply(ByteBuffer.wrap(body));
+                    apply(ByteBuffer.wrap(body), good);
                     good += 4 + payload + 4;
                 }
             }
@@ -352,14 +446,98 @@ public final class JournalStore implements AgentStore {
         allocated = good;
     }
 
-    private void apply(ByteBuffer b) {
-        byte type = b.get();
+    /**
+     * Checks the journal's header.
+     *
+     * @return where the records start: after the header, or at 0 in a journal written before the header existed
+     * @throws IOException naming the file if the header is of another version, or the journal has neither a header nor a first record
+     */
+    private long readHeader(DataInputStream in, long size) throws IOException {
+        in.mark(HEADER_LENGTH);
+        byte[] head = in.readNBytes(HEADER_LENGTH);
+        if (head.length == 0) {
+            return 0; // empty
+        }
+        if (head.length >= MAGIC.length && java.util.Arrays.equals(head, 0, MAGIC.length, MAGIC, 0, MAGIC.length)) {
+            if (head.length < HEADER_LENGTH) {
+                throw new IOException("agent store journal " + journal + " is cut short inside its header (" + head.length + " bytes)");
+            }
+            int version = ByteBuffer.wrap(head, MAGIC.length, 4).getInt();
+            if (version != FORMAT_VERSION) {
+                throw new IOException("agent store journal " + journal + " has format version " + version + "; this RoboMW reads version "
+                        + FORMAT_VERSION + " (start the host with the RoboMW that wrote it until its agents have left, or move the journal away)");
+            }
+            return HEADER_LENGTH;
+        }
+        in.reset();
+        if (!headerless(in, size)) {
+            throw new IOException("agent store journal " + journal + " has no format header (it begins with 0x" + HexFormat.of().formatHex(head)
+                    + "): it is not a RoboMW agent journal, or one damaged at its start; move it away to start the host with an empty store");
+        }
+        LOG.info("agent store {}: the journal has no format header (written before RoboMW gave it one); reading it as version {} and adding the header",
+                dir, FORMAT_VERSION);
+        return 0;
+    }
+
+    /**
+     * @return whether the journal reads as one written before the header existed: nothing but the
+     *         zeros ahead of records, or a first record of a known type with a good checksum (the
+     *         stream is left at its start)
+     */
+    private static boolean headerless(DataInputStream in, long size) throws IOException {
+        in.mark(Integer.MAX_VALUE); // the buffer grows only as far as the first record
+        try {
+            int payload = in.readInt();
+            if (payload == 0) {
+                return true;
+            }
+            if (payload < MIN_PAYLOAD || 4L + payload + 4 > size) {
+                return false;
+            }
+            byte[] body = new byte[payload];
+            in.readFully(body);
+            int crcValue = in.readInt();
+            CRC32C crc = new CRC32C();
+            crc.update(body);
+            RecordType.fromCode(body[0] & 0xFF);
+            return (int) crc.getValue() == crcValue;
+        } catch (EOFException | IllegalArgumentException e) {
+            return false;
+        } finally {
+            in.reset();
+        }
+    }
+
+    /**
+     * Applies one record's payload (its checksum already checked).
+     *
+     * @param at where the record starts in the journal, for errors
+     * @throws IOException naming the file and the offset if its type is unknown or its data is malformed
+     */
+    private void apply(ByteBuffer b, long at) throws IOException {
+        int code = b.get() & 0xFF;
+        RecordType type;
+        try {
+            type = RecordType.fromCode(code);
+        } catch (IllegalArgumentException e) {
+            throw new IOException("agent store journal " + journal + ": the record at byte " + at + " has an " + e.getMessage()
+                    + "; it was written by another RoboMW (start the host with the RoboMW that wrote it, or move the journal away)");
+        }
         UUID id = new UUID(b.getLong(), b.getLong());
         long number = b.getLong();
         byte[] data = null;
-        if (b.remaining() >= 4) {
-            data = new byte[b.getInt()];
+        if (b.remaining() > 0) {
+            int length = b.remaining() >= 4 ? b.getInt() : -1;
+            if (length != b.remaining()) {
+                throw new IOException("agent store journal " + journal + ": the " + type + " record at byte " + at + " declares " + length
+                        + " bytes of data but holds " + b.remaining());
+            }
+            data = new byte[length];
             b.get(data);
+        }
+        boolean needsData = type == RecordType.ACCEPTED || type == RecordType.DEPARTING || type == RecordType.EVENT_PENDING;
+        if (needsData != (data != null)) {
+            throw new IOException("agent store journal " + journal + ": the " + type + " record at byte " + at + (needsData ? " has no data" : " has data it should not have"));
         }
         switch (type) {
             case ACCEPTED -> {
@@ -385,7 +563,6 @@ public final class JournalStore implements AgentStore {
                 }
             }
             case SEEN -> seen.merge(id, number, Math::max);
-            default -> LOG.warn("agent store {}: unknown record type {} ignored", dir, type);
         }
     }
 
@@ -402,19 +579,20 @@ public final class JournalStore implements AgentStore {
             Path fresh = dir.resolve("journal.new");
             try (FileChannel out = FileChannel.open(fresh, StandardOpenOption.CREATE, StandardOpenOption.WRITE, StandardOpenOption.TRUNCATE_EXISTING)) {
                 List<ByteBuffer> records = new ArrayList<>();
-                seen.forEach((id, hop) -> records.add(encode(SEEN, id, hop, null)));
+                records.add(ByteBuffer.allocate(HEADER_LENGTH).put(MAGIC).putInt(FORMAT_VERSION).flip());
+                seen.forEach((id, hop) -> records.add(encode(RecordType.SEEN, id, hop, null)));
                 for (StoredAgent a : live.values()) {
                     switch (a.phase()) {
-                        case ACCEPTED -> records.add(encode(ACCEPTED, a.id(), a.hop(), a.image()));
+                        case ACCEPTED -> records.add(encode(RecordType.ACCEPTED, a.id(), a.hop(), a.image()));
                         case STARTED -> {
-                            records.add(encode(ACCEPTED, a.id(), a.hop(), a.image()));
-                            records.add(encode(STARTED, a.id(), a.hop(), null));
+                            records.add(encode(RecordType.ACCEPTED, a.id(), a.hop(), a.image()));
+                            records.add(encode(RecordType.STARTED, a.id(), a.hop(), null));
                         }
-                        case DEPARTING -> records.add(encode(DEPARTING, a.id(), a.hop(), a.image()));
+                        case DEPARTING -> records.add(encode(RecordType.DEPARTING, a.id(), a.hop(), a.image()));
                     }
                 }
                 for (PendingEvent e : events.values()) {
-                    records.add(encode(EVENT_PENDING, e.id(), e.seq(), e.event()));
+                    records.add(encode(RecordType.EVENT_PENDING, e.id(), e.seq(), e.event()));
                 }
                 for (ByteBuffer r : records) {
                     while (r.hasRemaining()) {

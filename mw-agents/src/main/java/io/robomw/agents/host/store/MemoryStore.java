@@ -30,6 +30,11 @@ public final class MemoryStore implements AgentStore {
     }
 
     @Override
+    public String location() {
+        return "memory";
+    }
+
+    @Override
     public void accepted(UUID id, long hop, byte[] image, int offset, int length) {
         synchronized (seen) {
             seen.merge(id, hop, Math::max);

@@ -45,6 +45,24 @@ import java.util.UUID;
  * +---------------------------------------------------------------+
  * </pre>
  *
+ * <table>
+ * <caption>KIND codes ({@link FrameKind})</caption>
+ * <tr><th>code</th><th>kind</th></tr>
+ * <tr><td>1</td><td>MESSAGE</td></tr>
+ * <tr><td>2</td><td>REPLY</td></tr>
+ * <tr><td>3</td><td>ERROR</td></tr>
+ * <tr><td>4</td><td>PUBLISH</td></tr>
+ * <tr><td>5</td><td>SUBSCRIBE</td></tr>
+ * <tr><td>6</td><td>UNSUBSCRIBE</td></tr>
+ * </table>
+ *
+ * <p>FLAGS: bit 0 is {@link #FLAG_MAC}; the other bits are reserved, written 0 and ignored on
+ * reading. PAYLOAD TYPE codes are those of
+ * {@link io.robomw.agents.messaging.security.PayloadCodec} (0 null, 1 bytes, 2 string, 3 int,
+ * 4 long, 5 double, 6 float, 7 boolean, 127 serialized object); an unknown one is refused when the
+ * payload is decoded. An unknown KIND code, MAGIC or VERSION drops the frame as
+ * {@link DropReason#MALFORMED} with a message naming the value.
+ *
  * <p>The MAC covers every byte before it except the stream sequence, which each link rewrites
  * when it sends the frame (so one authenticated frame can go to many subscribers). Replay
  * detection therefore uses SOURCE and MESSAGE NUMBER, which the MAC covers.
@@ -220,10 +238,7 @@ public final class FrameCodec {
         if (length > declared) {
             throw new FrameException(DropReason.MALFORMED, "frame declares " + declared + " bytes but " + length + " arrived");
         }
-        FrameKind kind = FrameKind.of(buf[offset + KIND_OFFSET] & 0xFF);
-        if (kind == null) {
-            throw new FrameException(DropReason.MALFORMED, "unknown frame kind " + (buf[offset + KIND_OFFSET] & 0xFF));
-        }
+        FrameKind kind = FrameKind.fromCode(buf[offset + KIND_OFFSET] & 0xFF);
         int flags = buf[offset + FLAGS_OFFSET] & 0xFF;
         boolean mac = (flags & FLAG_MAC) != 0;
         int senderLength = u16(buf, offset + SENDER_LENGTH_OFFSET);

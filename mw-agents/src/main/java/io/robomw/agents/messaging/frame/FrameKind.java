@@ -1,6 +1,11 @@
 package io.robomw.agents.messaging.frame;
 
-/** What a frame is for. The code is the frame's {@code kind} byte. */
+import io.robomw.agents.messaging.DropReason;
+
+/**
+ * What a frame is for. Each kind travels as its {@link #code()} in the frame's {@code KIND} byte
+ * (the table is in {@link FrameCodec}), never as its position here.
+ */
 public enum FrameKind {
     /** A point-to-point message ({@code sendMessage}); may be answered. */
     MESSAGE(1),
@@ -27,15 +32,19 @@ public enum FrameKind {
     }
 
     /**
-     * @param code a wire code
-     * @return its kind, or {@code null} if it is none
+     * @param code a {@code KIND} byte as received (unsigned)
+     * @return its kind
+     * @throws FrameException ({@link DropReason#MALFORMED}) naming the code if no kind has it
      */
-    public static FrameKind of(int code) {
-        for (FrameKind k : values()) {
-            if (k.code == code) {
-                return k;
-            }
-        }
-        return null;
+    public static FrameKind fromCode(int code) throws FrameException {
+        return switch (code) {
+            case 1 -> MESSAGE;
+            case 2 -> REPLY;
+            case 3 -> ERROR;
+            case 4 -> PUBLISH;
+            case 5 -> SUBSCRIBE;
+            case 6 -> UNSUBSCRIBE;
+            default -> throw new FrameException(DropReason.MALFORMED, "unknown frame kind code " + code + " (known: 1-6)");
+        };
     }
 }

@@ -17,6 +17,7 @@ import io.robomw.api.RobotLinkException;
 import io.robomw.api.SensorInfo;
 import io.robomw.api.SensorType;
 import io.robomw.api.UnsupportedActionException;
+import io.robomw.api.spi.AgencyComponent;
 
 import java.io.Serializable;
 import java.time.Duration;
@@ -36,14 +37,17 @@ import java.util.concurrent.CompletionException;
  * answer in time (the reply timeout, plus the motion's own duration) or the link closes, the call
  * fails with {@link RobotLinkException}, like a local robot whose link failed.
  *
- * <p>Messaging calls go through the local node. Agents are not sent through a remote robot
- * handle. Closing releases the link (and the node, if this robot made it); the remote robot keeps
- * running, and motions already started finish there. Thread-safe.
+ * <p>Messaging calls go through the local node, which is connected to the serving host's node:
+ * publications reach that host's subscribers (its agents), and its publications reach this
+ * program. Agents are sent through this program's own agency (an in-process home, as for a
+ * local robot). Closing releases the link, the home and the node (if this robot made it); the
+ * remote robot keeps running, and motions already started finish there. Thread-safe.
  */
 public final class RemoteRobot implements Robot {
 
     private final MessagingNode node;
     private final boolean ownsNode;
+    private final AgencyComponent agency;
     private final String host;
     private final String password;
     private final String topic;
@@ -57,11 +61,13 @@ public final class RemoteRobot implements Robot {
      * @param host      the serving node's address, for example {@code tcp://127.0.0.1:7000}
      * @param robotName the robot's name there
      * @param password  the robot topic's password, or {@code null}
+     * @param agency    how this program sends agents (closed with this robot)
      * @throws RobotLinkException if the robot does not answer
      */
-    public RemoteRobot(MessagingNode node, boolean ownsNode, String host, String robotName, String password) {
+    public RemoteRobot(MessagingNode node, boolean ownsNode, String host, String robotName, String password, AgencyComponent agency) {
         this.node = node;
         this.ownsNode = ownsNode;
+        this.agency = agency;
         this.host = host;
         this.password = password;
         this.topic = RobotProtocol.topic(robotName);
@@ -204,23 +210,27 @@ public final class RemoteRobot implements Robot {
 
     @Override
     public AgentRef sendAgent(String host, Agent agent) {
-        throw new UnsupportedActionException(name(), "sendAgent", "a remote robot handle does not send agents; send them to an agent host (mw host)");
+        return agency.sendAgent(host, agent);
     }
 
     @Override
     public AgentRef startTrip(Agent agent) {
-        throw new UnsupportedActionException(name(), "startTrip", "a remote robot handle does not send agents; send them to an agent host (mw host)");
+        return agency.startTrip(agent);
     }
 
     @Override
     public List<AgentRef> dispatchClones(Agent agent, String... hosts) {
-        throw new UnsupportedActionException(name(), "dispatchClones", "a remote robot handle does not send agents; send them to an agent host (mw host)");
+        return agency.dispatchClones(agent, hosts);
     }
 
     @Override
     public void close() {
-        if (ownsNode) {
-            node.close();
+        try {
+            agency.close();
+        } finally {
+            if (ownsNode) {
+                node.close();
+            }
         }
     }
 

@@ -1,10 +1,13 @@
 package io.robomw.agents.messaging.robot;
 
+import io.robomw.agents.components.RobotAgency;
+import io.robomw.agents.host.ClusterKeyLookup;
 import io.robomw.agents.messaging.Address;
 import io.robomw.agents.messaging.MessagingNode;
 import io.robomw.agents.messaging.MessagingSettings;
 import io.robomw.api.Robot;
 import io.robomw.api.RobotException;
+import io.robomw.api.spi.AgencyConfig;
 import io.robomw.api.spi.PlatformServices;
 import io.robomw.api.spi.RobotFactory;
 
@@ -16,7 +19,8 @@ import java.security.SecureRandom;
  * {@code tcp://host:port/robot} or {@code rmi://host:port/name[/robot]} (the robot defaults to the
  * RMI name). An optional {@code ?password=...} is the robot topic's password (it shows in process
  * lists and logs: prefer TLS, given as {@link MessagingSettings} in the {@link PlatformServices}).
- * Each remote robot gets its own messaging node, closed with it.
+ * Each remote robot gets its own messaging node and agency (an in-process home, started on first
+ * use: {@link RobotAgency}; an {@link AgencyConfig} in the {@link PlatformServices} says how), closed with it.
  */
 public abstract class RemoteRobotFactory implements RobotFactory {
 
@@ -51,9 +55,12 @@ public abstract class RemoteRobotFactory implements RobotFactory {
         MessagingSettings settings = RobotProtocol.forClient(services.find(MessagingSettings.class).orElse(MessagingSettings.defaults()));
         MessagingNode node = MessagingNode.builder("remote-" + robot + "-" + Long.toHexString(new SecureRandom().nextLong()).substring(0, 6))
                 .settings(settings).build();
+        AgencyConfig agencyConfig = services.find(AgencyConfig.class).orElse(AgencyConfig.defaults(robot, location.toString()));
+        RobotAgency agency = new RobotAgency(agencyConfig, ClusterKeyLookup.ofThisProcess());
         try {
-            return new RemoteRobot(node, true, host, robot, a.query().get("password"));
+            return new RemoteRobot(node, true, host, robot, a.query().get("password"), agency);
         } catch (RuntimeException e) {
+            agency.close();
             node.close();
             throw e;
         }

@@ -127,7 +127,7 @@ public final class PayloadCodec {
             case SERIALIZED:
                 return deserialize(bytes);
             default:
-                return bad(type, bytes);
+                throw new PayloadRejectedException("unknown payload type code " + type + " (known: 0-7 and 127)", null);
         }
     }
 

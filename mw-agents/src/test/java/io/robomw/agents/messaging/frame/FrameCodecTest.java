@@ -91,6 +91,25 @@ class FrameCodecTest {
         assertEquals(DropReason.MALFORMED, assertThrows(FrameException.class, () -> FrameCodec.decode(bytes, 0, bytes.length, MAX)).reason());
     }
 
+    @org.junit.jupiter.params.ParameterizedTest
+    @org.junit.jupiter.params.provider.EnumSource(FrameKind.class)
+    void shouldWriteEveryKindAsTheCodeOfTheTableAndReadItBack(FrameKind kind) throws FrameException {
+        java.util.Map<FrameKind, Integer> table = java.util.Map.of(FrameKind.MESSAGE, 1, FrameKind.REPLY, 2, FrameKind.ERROR, 3,
+                FrameKind.PUBLISH, 4, FrameKind.SUBSCRIBE, 5, FrameKind.UNSUBSCRIBE, 6);
+        Frame f = new Frame(kind, 5, 1, 9, new UUID(1, 2), 1_000_000L, "a", "b", "t", "f", 2, new byte[0], false);
+        byte[] bytes = FrameCodec.encode(f, false);
+        assertEquals(table.get(kind), bytes[FrameCodec.KIND_OFFSET] & 0xFF);
+        assertEquals(kind, FrameCodec.decode(bytes, 0, bytes.length, MAX).kind());
+    }
+
+    @Test
+    void shouldNameAnUnknownKindCode() {
+        byte[] bytes = FrameCodec.encode(sample(new byte[0]), false);
+        bytes[FrameCodec.KIND_OFFSET] = (byte) 0xAB;
+        FrameException e = assertThrows(FrameException.class, () -> FrameCodec.decode(bytes, 0, bytes.length, MAX));
+        assertTrue(e.getMessage().contains("unknown frame kind code 171"), e.getMessage());
+    }
+
     @Test
     void shouldDecodeAFrameInTheMiddleOfABuffer() throws FrameException {
         byte[] frame = FrameCodec.encode(sample(new byte[] {7}), false);

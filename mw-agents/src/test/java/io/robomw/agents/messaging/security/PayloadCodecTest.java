@@ -51,6 +51,12 @@ class PayloadCodecTest {
     }
 
     @Test
+    void shouldRejectAnUnknownPayloadTypeCodeNamingIt() {
+        PayloadRejectedException e = org.junit.jupiter.api.Assertions.assertThrows(PayloadRejectedException.class, () -> jdkOnly.decode(42, new byte[1]));
+        org.junit.jupiter.api.Assertions.assertTrue(e.getMessage().contains("unknown payload type code 42"), e.getMessage());
+    }
+
+    @Test
     void shouldRejectAClassNotOnTheAllowList() {
         PayloadRejectedException e = assertThrows(PayloadRejectedException.class, () -> roundTrip(jdkOnly, new Point(1, 2)));
         assertTrue(e.getMessage().contains(Point.class.getName()), e.getMessage());

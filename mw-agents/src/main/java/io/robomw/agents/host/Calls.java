@@ -1,0 +1,171 @@
+package io.robomw.agents.host;
+
+import io.robomw.agents.host.code.StateCodec;
+import io.robomw.agents.host.code.StateRejectedException;
+import io.robomw.api.AgentMessage;
+import io.robomw.api.AgentStatus;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import java.io.IOException;
+import java.io.Serializable;
+import java.util.Arrays;
+import java.util.List;
+import java.util.UUID;
+import java.util.concurrent.TimeUnit;
+
+/**
+ * The calls a host serves, once {@link HostEndpoint} has verified them: passes a transfer on to
+ * {@link Transfers} in place, the rest by operation; lists the agents here, and serves the
+ * messages and the retract and dispose requests for agents here. A call for an agent that has
+ * left is answered with where it went ({@link Reply.Status#MOVED}) when the host remembers.
+ */
+final class Calls implements HostEndpoint.Handler {
+
+    private static final Logger LOG = LoggerFactory.getLogger(Calls.class);
+
+    private final HostState host;
+    private final Transfers transfers;
+    private final CodeLoaders code;
+    private final Home home;
+
+    Calls(HostState host, Transfers transfers, CodeLoaders code, Home home) {
+        this.host = host;
+        this.transfers = transfers;
+        this.code = code;
+        this.home = home;
+    }
+
+    /** Serves a verified call; a transfer is decoded in place (it may be megabytes), other bodies are copied out. */
+    @Override
+    public Reply handle(String peer, Op op, byte[] message, int offset, int length) {
+        if (op == Op.TRANSFER && !host.closed) {
+            return transfers.acceptWithRunner(peer, message, offset, length);
+        }
+        byte[] body = Arrays.copyOfRange(message, offset, offset + length);
+        if (host.closed) {
+            return Reply.of(Reply.Status.REFUSED, "host " + host.name + " is closing");
+        }
+        return switch (op) {
+            case TRANSFER -> transfers.accept(peer, body, 0, body.length, null);
+            case PUT_ARCHIVE -> code.onArchive(peer, body);
+            case LIST -> Reply.ok(Bodies.listReply(agents()));
+            case EVENT -> home.onEvent(peer, body);
+            case MESSAGE -> onMessage(peer, body);
+            case RETRACT, DISPOSE -> onRequest(peer, op, body);
+            case DESCRIBE -> Reply.ok(host.messaging.describeSelf().encode());
+            case WATCH -> onWatch(body);
+        };
+    }
+
+    /** What a watcher sees: body = the last event number it saw (u64), or nothing for all. */
+    private Reply onWatch(byte[] body) {
+        long since = body.length >= 8 ? java.nio.ByteBuffer.wrap(body).getLong() : 0;
+        return Reply.ok(host.activity.watchReply(host.name, host.robot == null ? "" : host.robot.name(), host.hosted.values(), since));
+    }
+
+    /** @return the agents at this host now */
+    List<AgentInfo> agents() {
+        return host.hosted.values().stream().map(HostedAgent::info).toList();
+    }
+
+    /** Where an agent went, for calls that arrive after it left. */
+    private Reply whereIs(UUID id) {
+        String to = host.forwardOf(id);
+        return to != null ? Reply.of(Reply.Status.MOVED, to) : Reply.of(Reply.Status.GONE, "agent " + id + " is not at host " + host.name);
+    }
+
+    /** The agent, once it has settled: one that is leaving is waited for until it has left (then it is not here). */
+    private HostedAgent present(UUID id) {
+        HostedAgent h = host.hosted.get(id);
+        if (h != null && h.status == AgentStatus.IN_TRANSIT) {
+            try {
+                h.departure.get(host.timeoutMillis, TimeUnit.MILLISECONDS);
+            } catch (Exception e) {
+                return h;
+            }
+            return host.hosted.get(id);
+        }
+        return h;
+    }
+
+    private Reply onMessage(String peer, byte[] body) {
+        Bodies.Message sent;
+        try {
+            sent = Bodies.readMessage(body);
+        } catch (IllegalArgumentException e) {
+            return host.refuse("refused a message from peer '" + peer + "': " + e.getMessage());
+        }
+        UUID id = sent.id();
+        HostedAgent h = present(id);
+        if (h == null) {
+            return whereIs(id);
+        }
+        Serializable value;
+        try {
+            value = host.codec.read(sent.content(), h.loader, Serializable.class);
+        } catch (StateRejectedException e) {
+            return host.refuse("refused a message for agent " + id + ": " + e.getMessage());
+        }
+        Message m = new Message(value);
+        boolean handled;
+        try {
+            handled = h.agent.handleMessage(m);
+        } catch (RuntimeException e) {
+            return Reply.of(Reply.Status.REFUSED, "agent " + id + " threw while handling the message: " + e);
+        }
+        if (!handled) {
+            if (sent.oneway()) {
+                LOG.info("host {}: agent {} did not handle a one-way message; dropped", host.name, id);
+            }
+            return Reply.of(Reply.Status.NOT_HANDLED, "agent " + id + " (" + h.className + ") did not handle the message");
+        }
+        try {
+            return Reply.ok(m.reply == null ? new byte[0] : StateCodec.write(m.reply));
+        } catch (IOException e) {
+            return Reply.of(Reply.Status.REFUSED, "agent " + id + "'s reply is not serializable: " + e.getMessage());
+        }
+    }
+
+    /** A message as an agent handles it; the first reply it sends is the answer. */
+    private static final class Message implements AgentMessage {
+        private final Serializable content;
+        private volatile Serializable reply;
+
+        Message(Serializable content) {
+            this.content = content;
+        }
+
+        @Override
+        public Serializable content() {
+            return content;
+        }
+
+        @Override
+        public void sendReply(Serializable r) {
+            if (reply == null) {
+                reply = r;
+            }
+        }
+    }
+
+    private Reply onRequest(String peer, Op op, byte[] body) {
+        UUID id;
+        try {
+            id = Bodies.readAgentRequest(body);
+        } catch (IllegalArgumentException e) {
+            return host.refuse("refused a " + op + " from peer '" + peer + "': " + e.getMessage());
+        }
+        HostedAgent h = present(id);
+        if (h == null) {
+            return whereIs(id);
+        }
+        if (op == Op.RETRACT) {
+            h.retractRequested = true;
+        } else {
+            h.disposeRequested = true;
+        }
+        LOG.info("host {}: {} requested for agent {}; it takes effect when its current callback returns", host.name, op, id);
+        return Reply.ok();
+    }
+}

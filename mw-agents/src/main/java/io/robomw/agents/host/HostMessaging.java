@@ -1,0 +1,151 @@
+package io.robomw.agents.host;
+
+import io.robomw.agents.messaging.MessagingNode;
+import io.robomw.api.Itinerary;
+import io.robomw.api.Messaging;
+import io.robomw.api.UnsupportedActionException;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import java.util.List;
+import java.util.Set;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.RejectedExecutionException;
+
+/**
+ * A host's messaging: the node its agents use ({@code context().messaging()}, each through its own
+ * {@link AgentMessaging}), the directory of other hosts, and the host's description for
+ * {@link Op#DESCRIBE}.
+ *
+ * <p>The host's node is connected to the nodes of the hosts it knows: when it meets a new host
+ * (an agent's home or stop), it describes it in the background and connects to its messaging
+ * address, so that a publication by an agent anywhere in the cluster reaches the subscribers of
+ * every host that knows the publisher's host, and subscriptions travel the same links.
+ *
+ * <p>Thread-safe.
+ */
+final class HostMessaging implements AutoCloseable {
+
+    private static final Logger LOG = LoggerFactory.getLogger(HostMessaging.class);
+
+    private final HostState host;
+    private final Peers peers;
+    private final MessagingNode node;
+    private final boolean ownsNode;
+    private final Set<String> met = ConcurrentHashMap.newKeySet();
+    private final Set<String> connected = ConcurrentHashMap.newKeySet();
+    private volatile HostDirectory directory;
+
+    /**
+     * @param host     the host
+     * @param peers    how other hosts are called
+     * @param node     the host's node, or {@code null} for a host without messaging
+     * @param ownsNode whether closing the host closes the node
+     */
+    HostMessaging(HostState host, Peers peers, MessagingNode node, boolean ownsNode) {
+        this.host = host;
+        this.peers = peers;
+        this.node = node;
+        this.ownsNode = ownsNode;
+    }
+
+    /** Called once the host knows its own address, before it takes calls. */
+    void started() {
+        directory = new HostDirectory(host.address);
+        if (node != null && host.robot != null) {
+            node.answerTo(host.robot.name());
+        }
+    }
+
+    /** @return the node, or {@code null} when the host has none */
+    MessagingNode node() {
+        return node;
+    }
+
+    /** @return where the node receives; empty without one */
+    List<String> addresses() {
+        return node == null ? List.of() : node.boundAddresses().stream().map(Object::toString).toList();
+    }
+
+    /** @return an agent's view of the node, made on first use and released when the agent leaves */
+    Messaging forAgent(HostedAgent h) {
+        if (node == null) {
+            throw new UnsupportedActionException(host.name, "messaging", "agent host " + host.address
+                    + " was started without messaging (mw host --no-messaging); start it with a messaging node (the default)");
+        }
+        synchronized (h) {
+            if (h.messaging == null) {
+                h.messaging = new AgentMessaging(node, target -> directory.resolve(target, h.home, peers::describe));
+            }
+            return h.messaging;
+        }
+    }
+
+    /** The agent leaves this host or ends: its listeners here are removed. */
+    void left(HostedAgent h) {
+        AgentMessaging m;
+        synchronized (h) {
+            m = h.messaging;
+            h.messaging = null;
+        }
+        if (m != null) {
+            m.release();
+        }
+    }
+
+    /** Learns the hosts an agent here knows of: its home and its itinerary's stops. */
+    void met(HostedAgent h) {
+        met(h.home);
+        for (Itinerary.Stop s : h.agent.itinerary().stops()) {
+            met(s.host());
+        }
+    }
+
+    /** Learns of a host met on the way; a new one is described and connected to in the background. */
+    void met(String hostAddress) {
+        HostDirectory d = directory;
+        if (d == null || hostAddress == null || hostAddress.equals(host.address) || !met.add(hostAddress)) {
+            return;
+        }
+        d.learn(hostAddress);
+        if (node == null || host.closed) {
+            return;
+        }
+        try {
+            host.requests.execute(() -> connect(hostAddress));
+        } catch (RejectedExecutionException closing) {
+            met.remove(hostAddress);
+        }
+    }
+
+    private void connect(String hostAddress) {
+        try {
+            HostDescription other = peers.describe(hostAddress);
+            directory.learn(other);
+            other.messaging().stream().filter(m -> m.startsWith("tcp://")).findFirst().ifPresent(m -> {
+                if (connected.add(m) && !addresses().contains(m)) {
+                    node.connect(m);
+                    LOG.info("host {}: messaging connected to {} ({})", host.name, other.name(), m);
+                }
+            });
+            other.known().forEach(k -> met(k.address()));
+        } catch (PeerException | RuntimeException e) {
+            met.remove(hostAddress); // asked again when it is met again
+            LOG.debug("host {}: cannot describe {} yet: {}", host.name, hostAddress, e.toString());
+        }
+    }
+
+    /** @return what this host says of itself when asked */
+    HostDescription describeSelf() {
+        HostDirectory d = directory;
+        return new HostDescription(host.name, host.address, host.robot == null ? "" : host.robot.name(), addresses(),
+                d == null ? List.of() : d.known());
+    }
+
+    @Override
+    public void close() {
+        if (node != null && ownsNode) {
+            node.close();
+        }
+    }
+}

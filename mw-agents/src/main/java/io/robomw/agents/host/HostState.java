@@ -1,0 +1,112 @@
+package io.robomw.agents.host;
+
+import io.robomw.agents.host.code.StateCodec;
+import io.robomw.agents.host.store.AgentStore;
+import io.robomw.api.Robot;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import java.util.LinkedHashMap;
+import java.util.Map;
+import java.util.UUID;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.ExecutorService;
+import java.util.concurrent.Executors;
+import java.util.concurrent.ThreadFactory;
+import java.util.concurrent.atomic.AtomicInteger;
+
+/**
+ * What the parts of one {@link AgentHost} share: who the host is, where it keeps agents, the
+ * agents here ({@link #hosted}) and the ones sent from here ({@link #handles}), where agents went
+ * from here, and its two thread pools (agents' stops; the home's requests of its agents).
+ *
+ * <p>{@link #store} and {@link #address} are set once by {@link AgentHost}'s start, before the
+ * host takes calls or resumes agents; the rest is fixed at construction or thread-safe.
+ */
+final class HostState {
+
+    private static final Logger LOG = LoggerFactory.getLogger(HostState.class);
+    /** How many departed agents a host remembers the next host of, for calls that chase them. */
+    private static final int MAX_FORWARDS = 100_000;
+
+    final String name;
+    final Robot robot;
+    final StateCodec codec;
+    /** How long a call to another host may take, in milliseconds. */
+    final int timeoutMillis;
+    /** The agents at this host now. */
+    final Map<UUID, HostedAgent> hosted = new ConcurrentHashMap<>();
+    /** The handles of the agents whose home this host is. */
+    final Map<UUID, AgentHandle> handles = new ConcurrentHashMap<>();
+    /** What happened here lately, for watchers (a console): {@link Op#WATCH}. */
+    final HostActivity activity = new HostActivity();
+    /** Runs agents' stops, one pooled thread per agent at a time. */
+    final ExecutorService runners;
+    /** Runs the home's calls to its agents (messages, retract and dispose requests) and clone launches. */
+    final ExecutorService requests;
+    private final AgentHost facade;
+    private final AtomicInteger refused = new AtomicInteger();
+    private final Map<UUID, String> forwards = new LinkedHashMap<>(256, 0.75f, false) {
+        private static final long serialVersionUID = 1L;
+
+        @Override
+        protected boolean removeEldestEntry(Map.Entry<UUID, String> eldest) {
+            return size() > MAX_FORWARDS;
+        }
+    };
+    AgentStore store;
+    String address;
+    /** The host's messaging; set by {@link AgentHost} before the host takes calls. */
+    HostMessaging messaging;
+    volatile boolean closed;
+
+    HostState(AgentHost facade, String name, Robot robot, StateCodec codec, int timeoutMillis) {
+        this.facade = facade;
+        this.name = name;
+        this.robot = robot;
+        this.codec = codec;
+        this.timeoutMillis = timeoutMillis;
+        this.runners = Executors.newCachedThreadPool(named("agent-runner-" + name));
+        this.requests = Executors.newCachedThreadPool(named("agent-requests-" + name));
+    }
+
+    /** @return a new context for an agent here, to attach to it before one of its callbacks */
+    HostContext contextOf(HostedAgent h) {
+        return new HostContext(facade, h);
+    }
+
+    /** Counts, logs and answers a refused call or archive. */
+    Reply refuse(String why) {
+        refused.incrementAndGet();
+        LOG.warn("host {}: {}", name, why);
+        return Reply.of(Reply.Status.REFUSED, why);
+    }
+
+    /** @return how many calls, archives and agents this host refused after the caller authenticated */
+    int refused() {
+        return refused.get();
+    }
+
+    /** Remembers where an agent went from here, for calls that arrive after it left. */
+    void forwarded(UUID id, String to) {
+        synchronized (forwards) {
+            forwards.put(id, to);
+        }
+    }
+
+    /** @return where an agent went from here, or {@code null} if this host does not remember it */
+    String forwardOf(UUID id) {
+        synchronized (forwards) {
+            return forwards.get(id);
+        }
+    }
+
+    private static ThreadFactory named(String prefix) {
+        AtomicInteger n = new AtomicInteger();
+        return r -> {
+            Thread t = new Thread(r, prefix + "-" + n.incrementAndGet());
+            t.setDaemon(true);
+            return t;
+        };
+    }
+}

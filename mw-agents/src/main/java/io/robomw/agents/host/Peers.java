@@ -1,0 +1,88 @@
+package io.robomw.agents.host;
+
+import java.security.SecureRandom;
+import java.util.Map;
+import java.util.concurrent.ConcurrentHashMap;
+
+/**
+ * A host's calls to other hosts: one authenticated {@link PeerLink} per host called, made on first
+ * use and kept. A call to this host's own address is served here directly, without RMI. A
+ * transfer's frame goes to the link as it is: sealed in place, not copied into a request.
+ * Thread-safe.
+ */
+final class Peers {
+
+    private final HostState host;
+    private final ClusterKey key;
+    private final boolean tls;
+    private final HostEndpoint.Handler self;
+    private final SecureRandom random = new SecureRandom();
+    private final Map<String, PeerLink> links = new ConcurrentHashMap<>();
+
+    /**
+     * @param host the host calling
+     * @param key  the cluster key to prove
+     * @param tls  whether to call over TLS
+     * @param self serves calls this host makes to itself
+     */
+    Peers(HostState host, ClusterKey key, boolean tls, HostEndpoint.Handler self) {
+        this.host = host;
+        this.key = key;
+        this.tls = tls;
+        this.self = self;
+    }
+
+    /**
+     * @param target the host's address
+     * @param op     the operation
+     * @param body   its body (copied into the call's frame)
+     * @return the host's verified reply
+     * @throws PeerException if the host cannot be reached, refuses this host, or the call fails
+     */
+    Reply call(String target, Op op, byte[] body) throws PeerException {
+        if (target.equals(host.address)) {
+            return self.handle(host.name, op, body, 0, body.length);
+        }
+        return link(target).call(op, body);
+    }
+
+    /**
+     * A call whose body is already in its frame (a transfer): sent without copying it into a request.
+     *
+     * @param target the host's address
+     * @param op     the operation
+     * @param frame  the body in its frame, sealed in place
+     * @return the host's verified reply
+     * @throws PeerException if the host cannot be reached, refuses this host, or the call fails
+     */
+    Reply call(String target, Op op, Frame frame) throws PeerException {
+        if (target.equals(host.address)) {
+            return self.handle(host.name, op, frame.bytes, frame.bodyOffset(), frame.bodyLength());
+        }
+        return link(target).call(op, frame);
+    }
+
+    /**
+     * @param target a host's address
+     * @return what it says of itself
+     * @throws PeerException if it cannot be reached, refuses, or answers something that is not a description
+     */
+    HostDescription describe(String target) throws PeerException {
+        Reply r = call(target, Op.DESCRIBE, new byte[0]);
+        if (r.status() != Reply.Status.OK) {
+            throw new PeerException(target + " answered " + r.status() + " to DESCRIBE: " + r.text(), false, null);
+        }
+        try {
+            return HostDescription.decode(r.body(), target);
+        } catch (IllegalArgumentException e) {
+            throw new PeerException(e.getMessage(), false, e);
+        }
+    }
+
+    private PeerLink link(String target) {
+        return links.computeIfAbsent(target, t -> {
+            HostAddress a = HostAddress.parse(t);
+            return new PeerLink(a, host.name, key, new HostSockets.Client(a.host(), tls, host.timeoutMillis), random);
+        });
+    }
+}

@@ -1,0 +1,286 @@
+package io.robomw.agents.host;
+
+import io.robomw.agents.host.code.StateCodec;
+import io.robomw.api.AgentStatus;
+import io.robomw.api.Itinerary;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+import java.io.IOException;
+import java.nio.charset.StandardCharsets;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Optional;
+
+/**
+ * Agents' trips through a host: runs an agent's stop here ({@link #runStop}), then sends it on to
+ * its next reachable stop ({@link #depart}), home when it was retracted ({@link #goHome}), or ends
+ * its trip here and owes its home the result ({@link #finish}).
+ *
+ * <p>Each stop runs on a pooled runner thread named after the agent while it runs. The stop is
+ * marked started in the store before its work begins, so a host killed during the work resumes the
+ * agent after the stop ({@code interrupted}) rather than run it twice.
+ */
+final class Trips {
+
+    private static final Logger LOG = LoggerFactory.getLogger(Trips.class);
+    /** How long an agent waits to leave until its reports from here are home. */
+    private static final long REPORT_FLUSH_MILLIS = 5_000;
+    private static final byte[] NO_STATE = new byte[0];
+
+    private final HostState host;
+    private final HopSender hops;
+    private final OwedEvents owed;
+    private final RobotTurns robot;
+
+    /**
+     * Where an agent went, or why it did not go anywhere.
+     *
+     * @param delivered whether the next host has it
+     * @param target    that host
+     * @param reason    why it was not delivered
+     */
+    record Departure(boolean delivered, String target, String reason) {
+    }
+
+    Trips(HostState host, HopSender hops, OwedEvents owed, RobotTurns robot) {
+        this.host = host;
+        this.hops = hops;
+        this.owed = owed;
+        this.robot = robot;
+    }
+
+    /**
+     * Runs an agent's stop at this host and moves it on. Called on a runner thread.
+     *
+     * @param h           the agent, accepted and stored
+     * @param interrupted whether the stop's work had begun when the host last stopped (then it is not run again)
+     */
+    void runStop(HostedAgent h, boolean interrupted) {
+        Thread t = Thread.currentThread();
+        String poolName = t.getName();
+        t.setName("agent-" + h.shortId() + "-" + simpleName(h.className) + "@" + host.name);
+        try {
+            host.messaging.met(h);
+            Itinerary it = h.agent.itinerary();
+            String stopHost = it.currentStop().map(Itinerary.Stop::host).orElse(host.address);
+            if (interrupted) {
+                it.record(stopHost, Itinerary.Outcome.INTERRUPTED, "host " + host.name + " stopped while this stop's work ran; it is not run twice");
+                LOG.info("host {}: agent {} ({}) was mid-stop when the host stopped; going on without running the stop again", host.name, h.id, h.className);
+            } else {
+                boolean marked = false;
+                try {
+                    host.store.started(h.id, h.hop);
+                    marked = true;
+                } catch (IOException e) {
+                    LOG.error("host {}: cannot mark agent {}'s stop as started ({}); not running it", host.name, h.id, e.toString());
+                    it.record(stopHost, Itinerary.Outcome.FAILED, "the host's store failed: " + e.getMessage());
+                }
+                if (marked) {
+                    HostContext ctx = host.contextOf(h);
+                    h.agent.attach(ctx);
+                    try {
+                        h.agent.onArrival();
+                        Itinerary.Task task = it.currentStop().map(Itinerary.Stop::task).orElse(null);
+                        if (task != null) {
+                            task.execute(ctx);
+                        } else {
+                            h.agent.run();
+                        }
+                        it.record(stopHost, Itinerary.Outcome.DONE, "");
+                        host.activity.record(h.id, h.className, HostActivity.STOP_DONE, host.address, "");
+                    } catch (Exception | LinkageError | AssertionError | StackOverflowError e) {
+                        LOG.warn("host {}: agent {} ({}) failed at its stop: {}", host.name, h.id, h.className, e.toString());
+                        it.record(stopHost, Itinerary.Outcome.FAILED, e.toString());
+                        host.activity.record(h.id, h.className, HostActivity.STOP_FAILED, host.address, e.toString());
+                    }
+                }
+            }
+            robot.release();
+            moveOn(h);
+        } catch (RuntimeException e) {
+            LOG.error("host {}: agent {} ({}) could not go on: {}", host.name, h.id, h.className, e.toString(), e);
+        } finally {
+            robot.release();
+            t.setName(poolName);
+        }
+    }
+
+    /** After a stop: home if retracted, the end if disposed of, else on to the next reachable stop or the end of the trip. */
+    void moveOn(HostedAgent h) {
+        host.messaging.left(h);
+        h.agent.attach(host.contextOf(h));
+        if (h.retractRequested) {
+            goHome(h);
+            return;
+        }
+        if (h.disposeRequested) {
+            finish(h, AgentEvent.Kind.DISPOSED);
+            return;
+        }
+        Departure d = depart(h);
+        if (d.delivered()) {
+            // Only this copy: an agent whose next stop is this host was accepted again under the same id.
+            host.hosted.remove(h.id, h);
+            return;
+        }
+        if (!host.closed) {
+            LOG.info("host {}: agent {} ends its trip here: {}", host.name, h.id, d.reason());
+            finish(h, AgentEvent.Kind.RESULT);
+        }
+    }
+
+    /**
+     * Sends an agent on to its next reachable stop, following its itinerary's policy for stops
+     * that cannot be reached. Stops at this host run here without a network hop.
+     *
+     * <p>The agent's state is written straight into the transfer call's frame, sized by its image
+     * when it last travelled ({@link AgentImage#frame}): no copy on its way to the wire.
+     */
+    Departure depart(HostedAgent h) {
+        Itinerary it = h.agent.itinerary();
+        List<String> unreachable = new ArrayList<>();
+        while (!host.closed) {
+            Optional<Itinerary.Stop> next = it.goToNext();
+            if (next.isEmpty()) {
+                return new Departure(false, null, unreachable.isEmpty() ? "its itinerary is done" : "no further stop could be reached: " + String.join("; ", unreachable));
+            }
+            String target = next.get().host();
+            try {
+                h.agent.onDispatching();
+            } catch (RuntimeException e) {
+                LOG.warn("host {}: agent {} onDispatching threw {}", host.name, h.id, e.toString());
+            }
+            owed.awaitDelivered(h.id, REPORT_FLUSH_MILLIS);
+            h.agent.attach(null);
+            AgentImage image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.TRIP, h.home.equals(host.address), h.home, h.digest, h.eventSeq, NO_STATE);
+            Frame frame;
+            try {
+                frame = image.frame(h.agent, h.imageSize);
+            } catch (IOException e) {
+                h.agent.attach(host.contextOf(h));
+                return new Departure(false, null, "its state is not serializable: " + e.getMessage());
+            }
+            h.imageSize = frame.bodyLength();
+            String why = hops.send(h, image, frame, target, it);
+            if (why == null) {
+                host.activity.record(h.id, h.className, HostActivity.DEPARTED, host.address, target);
+                return new Departure(true, target, null);
+            }
+            h.agent.attach(host.contextOf(h));
+            it.record(target, Itinerary.Outcome.UNREACHABLE, why);
+            unreachable.add(target + " (" + why + ")");
+            LOG.warn("host {}: agent {} cannot reach {}: {}", host.name, h.id, target, why);
+            if (it.unreachablePolicy() == Itinerary.UnreachablePolicy.RETURN_HOME) {
+                return new Departure(false, null, "its stop " + target + " could not be reached and its policy is to return home");
+            }
+        }
+        return new Departure(false, null, "the host is closing");
+    }
+
+    /**
+     * Ends an agent's trip here: its result (or why it failed, or that it was disposed of) is owed
+     * to its home.
+     *
+     * @param kind {@link AgentEvent.Kind#RESULT} or {@link AgentEvent.Kind#DISPOSED}
+     */
+    void finish(HostedAgent h, AgentEvent.Kind kind) {
+        HostContext ctx = host.contextOf(h);
+        h.agent.attach(ctx);
+        try {
+            h.agent.onDisposing();
+        } catch (RuntimeException e) {
+            LOG.warn("host {}: agent {} onDisposing threw {}", host.name, h.id, e.toString());
+        }
+        h.agent.attach(null);
+        byte[] payload;
+        AgentEvent.Kind k = kind;
+        Optional<Itinerary.Visit> failed = h.agent.itinerary().history().stream()
+                .filter(v -> v.outcome() == Itinerary.Outcome.FAILED).reduce((first, second) -> second);
+        if (kind == AgentEvent.Kind.RESULT && h.result == null && failed.isPresent()) {
+            // Nothing to bring home, and a stop failed: that failure is the outcome of the trip.
+            k = AgentEvent.Kind.FAILED;
+            payload = ("brought no result home: its stop at " + failed.get().host() + " failed: " + failed.get().detail()).getBytes(StandardCharsets.UTF_8);
+        } else if (kind == AgentEvent.Kind.RESULT) {
+            try {
+                payload = StateCodec.write(h.result);
+            } catch (IOException e) {
+                k = AgentEvent.Kind.FAILED;
+                payload = ("ended at " + host.name + " but its result is not serializable: " + e.getMessage()).getBytes(StandardCharsets.UTF_8);
+            }
+        } else {
+            payload = ("was disposed of at " + host.address).getBytes(StandardCharsets.UTF_8);
+        }
+        h.status = k == AgentEvent.Kind.RESULT ? AgentStatus.COMPLETED : k == AgentEvent.Kind.DISPOSED ? AgentStatus.DISPOSED : AgentStatus.FAILED;
+        AgentEvent event = new AgentEvent(h.id, h.eventSeq++, k, host.address, payload);
+        host.activity.record(h.id, h.className, k == AgentEvent.Kind.RESULT ? HostActivity.RESULT : k == AgentEvent.Kind.DISPOSED ? HostActivity.DISPOSED
+                : HostActivity.FAILED, host.address, k == AgentEvent.Kind.RESULT ? HostActivity.describe(h.result) : new String(payload, StandardCharsets.UTF_8));
+        owed.owe(h.home, event);
+        try {
+            host.store.departed(h.id);
+        } catch (IOException e) {
+            LOG.warn("host {}: cannot record agent {} ended: {}", host.name, h.id, e.toString());
+        }
+        host.hosted.remove(h.id);
+        h.departure.complete(null);
+    }
+
+    /** Sends a retracted agent home, retrying until its home takes it. */
+    void goHome(HostedAgent h) {
+        host.activity.record(h.id, h.className, HostActivity.RETRACTED, host.address, "going home to " + h.home);
+        try {
+            h.agent.onDispatching();
+        } catch (RuntimeException e) {
+            LOG.warn("host {}: agent {} onDispatching threw {}", host.name, h.id, e.toString());
+        }
+        h.agent.attach(null);
+        AgentImage image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.HOMECOMING, h.home.equals(host.address), h.home, h.digest, h.eventSeq, NO_STATE);
+        Frame frame;
+        try {
+            frame = image.frame(h.agent, h.imageSize);
+        } catch (IOException e) {
+            finish(h, AgentEvent.Kind.RESULT);
+            return;
+        }
+        if (hops.send(h, image, frame, h.home, homeward()) == null) {
+            host.hosted.remove(h.id);
+        }
+    }
+
+    /**
+     * Sends again an agent that was departing when the host stopped, to the host it was going to.
+     *
+     * @param h     the agent
+     * @param image the image it was departing with, as stored
+     */
+    void resumeDeparture(HostedAgent h, AgentImage image) {
+        String target = image.kind() == AgentImage.Kind.HOMECOMING ? h.home
+                : h.agent.itinerary().currentStop().map(Itinerary.Stop::host).orElse(null);
+        if (target == null) {
+            moveOn(h);
+            return;
+        }
+        Itinerary plan = image.kind() == AgentImage.Kind.HOMECOMING ? homeward() : h.agent.itinerary();
+        String why = hops.send(h, image, Frame.of(image.encode()), target, plan);
+        if (why == null) {
+            host.hosted.remove(h.id, h);
+            return;
+        }
+        h.agent.itinerary().record(target, Itinerary.Outcome.UNREACHABLE, why);
+        if (h.agent.itinerary().unreachablePolicy() == Itinerary.UnreachablePolicy.RETURN_HOME) {
+            finish(h, AgentEvent.Kind.RESULT);
+        } else {
+            moveOn(h);
+        }
+    }
+
+    /** The way home of a retracted agent: retried until the home takes it. */
+    private static Itinerary homeward() {
+        return new Itinerary().onUnreachable(Itinerary.UnreachablePolicy.RETRY).retry(1_000_000, Duration.ofSeconds(1));
+    }
+
+    private static String simpleName(String className) {
+        return className.substring(className.lastIndexOf('.') + 1);
+    }
+}
