@@ -62,6 +62,7 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
 
     private final BrickChannel channel;
     private final IntelligentInterfaceInputs inputs;
+    private final long pulseNanos;
     private final int ticksPerRevolution;
     private final double[] duty = new double[IntelligentInterfaceTelegram.MOTORS];
     private final double[] accumulator = new double[IntelligentInterfaceTelegram.MOTORS];
@@ -93,6 +94,11 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
         super(config.robotName(), config.clock(), config.motorPorts());
         this.channel = channel;
         this.inputs = inputs;
+        int pulseMillis = config.connection().integer("pulse_ms", DEFAULT_PULSE_MILLIS);
+        if (pulseMillis < 0 || pulseMillis > 100) {
+            throw new IllegalArgumentException(config.source() + ": connection.pulse_ms must be 0..100 milliseconds, got " + pulseMillis);
+        }
+        this.pulseNanos = pulseMillis * 1_000_000L;
         for (String port : config.motorPorts()) {
             portOf[FtMotors.index(port, IntelligentInterfaceTelegram.MOTORS)] = port;
         }
@@ -183,8 +189,8 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
                 pulses++;
             }
             // The action side unparks the link thread whenever it publishes: wait out the time.
-            for (long left = MIN_PULSE_NANOS - (clock().nanoTime() - pulseStart); left > 0;
-                 left = MIN_PULSE_NANOS - (clock().nanoTime() - pulseStart)) {
+            for (long left = pulseNanos - (clock().nanoTime() - pulseStart); left > 0;
+                 left = pulseNanos - (clock().nanoTime() - pulseStart)) {
                 LockSupport.parkNanos(this, left);
             }
             poll(without(nextMotorByteAfterPulse(), pulsed));
@@ -268,10 +274,12 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
 
     private static final int ALL_MOTORS = (1 << IntelligentInterfaceTelegram.MOTORS) - 1;
     /**
-     * The shortest pulse: a command and its reply take 5.2 ms at 9600 baud, and a pulse lasts at
-     * least that long on any link (over a faster bridge the link thread waits the rest).
+     * The shortest pulse by default, milliseconds: a command and its reply take 5.2 ms at 9600
+     * baud, and a pulse lasts at least that long on any link (over a faster bridge the link thread
+     * waits the rest). {@code connection: { pulse_ms: N }} lengthens it for motors that need more
+     * to get going.
      */
-    static final long MIN_PULSE_NANOS = 5_000_000L;
+    static final int DEFAULT_PULSE_MILLIS = 5;
 
     /**
      * One exchange: a motor byte, the inputs back.
