@@ -40,6 +40,7 @@ class DemoIT {
      * thread that is now and then held up, both within the same tolerances.
      */
     @Test
+    @SuppressWarnings("try")
     void demoSendsClonesToTheNxtAndTheFischertechnikRobotAndBringsBothResultsHome() throws Exception {
         Path png = dir.resolve("demo.png");
         try (BusyThreads load = new BusyThreads(2);

@@ -107,6 +107,7 @@ public class IntelligentInterfaceEmulatorTest {
      * late the wheels are pulsed, so the move ends within the same two centimetres.
      */
     @Test
+    @SuppressWarnings("try")
     void shouldMoveHalfAMetreWithinTwoCentimetresWhileTwoBusyThreadsLoadTheMachine() throws Exception {
         try (BusyThreads load = new BusyThreads(2)) {
             start(0.5, 1);
@@ -116,6 +117,7 @@ public class IntelligentInterfaceEmulatorTest {
     }
 
     @Test
+    @SuppressWarnings("try")
     void shouldTurnQuarterWithinFiveDegreesWhileTwoBusyThreadsLoadTheMachine() throws Exception {
         try (BusyThreads load = new BusyThreads(2)) {
             start(1.5, 1);
