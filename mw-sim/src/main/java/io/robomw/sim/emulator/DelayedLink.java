@@ -11,27 +11,31 @@ import java.util.ArrayDeque;
 import java.util.Arrays;
 import java.util.Deque;
 import java.util.concurrent.locks.Condition;
+import java.util.concurrent.locks.LockSupport;
 import java.util.concurrent.locks.ReentrantLock;
 
 /**
- * An emulator's end of a link, slowed down to a {@link LinkModel}: two delay lines over the real
- * link (a pseudo-terminal or a TCP server). What the driver writes is read off the real link at
- * once by a pump thread, stamped with the time it would arrive over the modelled link, and handed
- * to the emulator's {@link #read} only then; what the emulator {@link #write}s is queued and put on
- * the real link by a sender thread when it would arrive. Each direction is one wire: a chunk waits
- * until the one before it has been sent ({@code bits / baud}), then takes the latency, and
- * latencies overlap, so a batch written back to back arrives back to back.
+ * An emulator's end of a link, slowed down to a {@link LinkModel}: a delay line each way over
+ * the real link (a pseudo-terminal or a TCP server). Each direction is one wire: what is handed to
+ * it at a moment starts when the wire is free, each byte then takes {@code bitsPerByte / baud},
+ * and the latency is added; latencies overlap, so a batch written back to back arrives back to
+ * back. Bytes reach the emulator one by one as each arrives, so a telegram's arrival
+ * ({@link #lastDeliveredAt()}) is when its own last byte arrived, even when the driver wrote
+ * several at once.
  *
- * <p>Time is the wall clock: a link's delay is physical time, as a brick's is.
+ * <p>With latency, a pump thread reads what the driver writes off the real link at once and
+ * stamps it, and a sender thread puts the emulator's replies on the real link when they would
+ * arrive, so replies' latencies overlap as the telegrams' do. Without latency (a plain serial
+ * line) neither is needed: the emulator's thread stamps what it reads and waits out the bytes'
+ * time itself, so a loaded host holds up one thread, not three. Time is the wall clock: a link's
+ * delay is physical time, as a brick's is.
  *
  * <p>A peer that leaves (a TCP client) reaches the emulator as the {@link LinkLostException} it
- * would have got from the real link, after the bytes that came before it; replies still queued for
- * that peer are dropped, and the pump goes on reading, which accepts the next peer.
+ * would have got from the real link, after the bytes that came before it; replies still queued
+ * for that peer are dropped, and the pump goes on reading, which accepts the next peer.
  *
  * <p>Threads: one thread may read while another writes, as {@link Link} allows; the pump and
- * sender threads ({@code <link>-in}, {@code <link>-out}) end on {@link #close()}. A model without
- * latency (a plain serial line) needs neither: the reading and writing threads wait out the bytes'
- * time themselves.
+ * sender threads ({@code <link>-in}, {@code <link>-out}) end on {@link #close()}.
  */
 final class DelayedLink implements Link {
 
@@ -41,6 +45,8 @@ final class DelayedLink implements Link {
 
     private final Link inner;
     private final LinkModel model;
+    private final boolean inline;
+    private final long byteNanos;
     private final ReentrantLock lock = new ReentrantLock();
     private final Condition inboundChanged = lock.newCondition();
     private final Condition outboundChanged = lock.newCondition();
@@ -48,27 +54,31 @@ final class DelayedLink implements Link {
     private final Deque<Chunk> outbound = new ArrayDeque<>();
     private final Thread pump;
     private final Thread sender;
+    private final byte[] inlineBuffer = new byte[CHUNK_BYTES];
     private long inboundWireFree;
     private long outboundWireFree;
     private volatile long lastDeliveredAt = System.nanoTime();
     private volatile boolean closed;
 
-    /** Bytes that arrive at {@code deliverAt}, or (with {@code lost} set) the news that the peer left. */
+    /**
+     * Bytes whose first starts arriving at {@code startAt}, each taking {@code byteNanos}, or (with
+     * {@code lost} set) the news that the peer left.
+     */
     private static final class Chunk {
         final byte[] bytes;
-        final long deliverAt;
+        final long startAt;
         final LinkLostException lost;
         int consumed;
 
-        Chunk(byte[] bytes, long deliverAt, LinkLostException lost) {
+        Chunk(byte[] bytes, long startAt, LinkLostException lost) {
             this.bytes = bytes;
-            this.deliverAt = deliverAt;
+            this.startAt = startAt;
             this.lost = lost;
         }
     }
 
     /**
-     * Starts the pump and sender threads over an open link.
+     * Starts the pump and sender threads over an open link, if the model has latency.
      *
      * @param inner the real link, open
      * @param model how slow to make it
@@ -76,6 +86,7 @@ final class DelayedLink implements Link {
     DelayedLink(Link inner, LinkModel model) {
         this.inner = inner;
         this.model = model;
+        this.byteNanos = model.transmissionNanos(1);
         this.inline = model.latency().isZero();
         if (inline) {
             this.pump = null;
@@ -90,43 +101,23 @@ final class DelayedLink implements Link {
         sender.start();
     }
 
-    /**
-     * Without latency a link is a plain serial line: the emulator's own thread reads each chunk
-     * as it comes and waits out the time its bytes take, and waits out a reply's bytes before
-     * writing it. No threads of its own, so a loaded host holds up one thread, not three.
-     */
-    private final boolean inline;
-
-    private int readInline(byte[] buf, int off, int len, Duration timeout) throws IOException {
-        int n = inner.read(buf, off, len, timeout);
-        if (n > 0) {
-            long now = System.nanoTime();
-            long at = Math.max(now, inboundWireFree) + model.transmissionNanos(n);
-            inboundWireFree = at;
-            lastDeliveredAt = at;
-            waitUntil(at);
-        }
-        return n;
+    /** @return when byte {@code index} of a chunk has arrived */
+    private long dueAt(Chunk c, int index) {
+        return c.startAt + (index + 1) * byteNanos;
     }
 
-    private void writeInline(byte[] data, int off, int len) throws IOException {
+    /** A chunk handed to a wire now: it starts when the wire is free, after the latency. */
+    private Chunk onWire(byte[] bytes, boolean in) {
         long now = System.nanoTime();
-        long at = Math.max(now, outboundWireFree) + model.transmissionNanos(len);
-        outboundWireFree = at;
-        waitUntil(at);
-        inner.write(data, off, len);
-    }
-
-    private static void waitUntil(long at) {
-        for (long left = at - System.nanoTime(); left > 0; left = at - System.nanoTime()) {
-            java.util.concurrent.locks.LockSupport.parkNanos(left);
+        long free = in ? inboundWireFree : outboundWireFree;
+        long start = Math.max(now, free);
+        long end = start + bytes.length * byteNanos;
+        if (in) {
+            inboundWireFree = end;
+        } else {
+            outboundWireFree = end;
         }
-    }
-
-    /** When a chunk of {@code n} bytes handed over now arrives, given when its wire is next free. */
-    private long arrival(long now, long wireFree, int n) {
-        long start = Math.max(now, wireFree);
-        return start + model.transmissionNanos(n) + model.latency().toNanos();
+        return new Chunk(bytes, start + model.latency().toNanos(), null);
     }
 
     private void pump() {
@@ -137,12 +128,9 @@ final class DelayedLink implements Link {
                 if (n <= 0) {
                     continue;
                 }
-                long now = System.nanoTime();
                 lock.lock();
                 try {
-                    long at = arrival(now, inboundWireFree, n);
-                    inboundWireFree = Math.max(now, inboundWireFree) + model.transmissionNanos(n);
-                    inbound.add(new Chunk(Arrays.copyOf(buf, n), at, null));
+                    inbound.add(onWire(Arrays.copyOf(buf, n), true));
                     inboundChanged.signalAll();
                 } finally {
                     lock.unlock();
@@ -171,7 +159,7 @@ final class DelayedLink implements Link {
             lock.lock();
             try {
                 next = outbound.peekFirst();
-                long wait = next == null ? Long.MAX_VALUE : next.deliverAt - System.nanoTime();
+                long wait = next == null ? Long.MAX_VALUE : dueAt(next, next.bytes.length - 1) - System.nanoTime();
                 if (next == null || wait > 0) {
                     if (next == null) {
                         outboundChanged.await();
@@ -212,15 +200,14 @@ final class DelayedLink implements Link {
             throw new IOException(describe() + " is closed");
         }
         if (inline) {
-            writeInline(data, off, len);
+            Chunk c = onWire(Arrays.copyOfRange(data, off, off + len), false);
+            waitUntil(dueAt(c, len - 1));
+            inner.write(data, off, len);
             return;
         }
-        long now = System.nanoTime();
         lock.lock();
         try {
-            long at = arrival(now, outboundWireFree, len);
-            outboundWireFree = Math.max(now, outboundWireFree) + model.transmissionNanos(len);
-            outbound.add(new Chunk(Arrays.copyOfRange(data, off, off + len), at, null));
+            outbound.add(onWire(Arrays.copyOfRange(data, off, off + len), false));
             outboundChanged.signalAll();
         } finally {
             lock.unlock();
@@ -232,9 +219,25 @@ final class DelayedLink implements Link {
         if (closed) {
             throw new IOException(describe() + " is closed");
         }
-        if (inline) {
-            return readInline(buf, off, len, timeout);
+        return inline ? readInline(buf, off, len, timeout) : readQueued(buf, off, len, timeout);
+    }
+
+    /** Without latency: the emulator's own thread reads a whole chunk, then hands its bytes out as each arrives. */
+    private int readInline(byte[] buf, int off, int len, Duration timeout) throws IOException {
+        Chunk head = inbound.peekFirst();
+        if (head == null) {
+            int n = inner.read(inlineBuffer, 0, inlineBuffer.length, timeout);
+            if (n <= 0) {
+                return n;
+            }
+            head = onWire(Arrays.copyOf(inlineBuffer, n), true);
+            inbound.add(head);
         }
+        waitUntil(dueAt(head, head.consumed));
+        return take(head, buf, off, len, System.nanoTime());
+    }
+
+    private int readQueued(byte[] buf, int off, int len, Duration timeout) throws IOException {
         long deadline = System.nanoTime() + timeout.toNanos();
         lock.lock();
         try {
@@ -244,26 +247,19 @@ final class DelayedLink implements Link {
                 }
                 Chunk head = inbound.peekFirst();
                 long now = System.nanoTime();
-                if (head != null && head.deliverAt <= now) {
-                    if (head.lost != null) {
-                        inbound.pollFirst();
-                        throw head.lost;
-                    }
-                    int n = Math.min(len, head.bytes.length - head.consumed);
-                    System.arraycopy(head.bytes, head.consumed, buf, off, n);
-                    lastDeliveredAt = head.deliverAt;
-                    head.consumed += n;
-                    if (head.consumed == head.bytes.length) {
-                        inbound.pollFirst();
-                    }
-                    return n;
+                if (head != null && head.lost != null && head.startAt <= now) {
+                    inbound.pollFirst();
+                    throw head.lost;
                 }
-                long wait = deadline - now;
-                if (head != null) {
-                    wait = Math.min(wait, head.deliverAt - now);
+                if (head != null && head.lost == null && dueAt(head, head.consumed) <= now) {
+                    return take(head, buf, off, len, now);
                 }
                 if (deadline - now <= 0) {
                     return 0;
+                }
+                long wait = deadline - now;
+                if (head != null) {
+                    wait = Math.min(wait, (head.lost != null ? head.startAt : dueAt(head, head.consumed)) - now);
                 }
                 try {
                     inboundChanged.awaitNanos(wait);
@@ -277,9 +273,29 @@ final class DelayedLink implements Link {
         }
     }
 
+    /** Hands out the head chunk's bytes that have arrived by now, at most len; the chunk goes when spent. */
+    private int take(Chunk head, byte[] buf, int off, int len, long now) {
+        int arrived = byteNanos == 0 ? head.bytes.length
+                : (int) Math.min(head.bytes.length, Math.max(head.consumed + 1, (now - head.startAt) / byteNanos));
+        int n = Math.min(len, arrived - head.consumed);
+        System.arraycopy(head.bytes, head.consumed, buf, off, n);
+        head.consumed += n;
+        lastDeliveredAt = dueAt(head, head.consumed - 1);
+        if (head.consumed == head.bytes.length) {
+            inbound.pollFirst();
+        }
+        return n;
+    }
+
+    private static void waitUntil(long at) {
+        for (long left = at - System.nanoTime(); left > 0; left = at - System.nanoTime()) {
+            LockSupport.parkNanos(left);
+        }
+    }
+
     /**
-     * @return when the bytes the last {@link #read} returned arrived over the modelled link (not
-     *         when the reading thread got to them: on a loaded host that can be later)
+     * @return when the last byte the last {@link #read} returned arrived over the modelled link
+     *         (not when the reading thread got to it: on a loaded host that can be later)
      */
     long lastDeliveredAt() {
         return lastDeliveredAt;
@@ -294,15 +310,15 @@ final class DelayedLink implements Link {
     public void close() {
         closed = true;
         inner.close();
+        if (inline) {
+            return;
+        }
         lock.lock();
         try {
             inboundChanged.signalAll();
             outboundChanged.signalAll();
         } finally {
             lock.unlock();
-        }
-        if (inline) {
-            return;
         }
         sender.interrupt();
         for (Thread t : new Thread[]{pump, sender}) {

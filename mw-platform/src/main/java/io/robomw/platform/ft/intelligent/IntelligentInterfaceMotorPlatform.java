@@ -63,6 +63,8 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
     private final BrickChannel channel;
     private final IntelligentInterfaceInputs inputs;
     private final long pulseNanos;
+    /** Whether the interface is on a serial line, whose byte timing times pulses (not a TCP bridge). */
+    private final boolean serialLine;
     private final int ticksPerRevolution;
     private final double[] duty = new double[IntelligentInterfaceTelegram.MOTORS];
     private final double[] accumulator = new double[IntelligentInterfaceTelegram.MOTORS];
@@ -94,6 +96,7 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
         super(config.robotName(), config.clock(), config.motorPorts());
         this.channel = channel;
         this.inputs = inputs;
+        this.serialLine = config.connection().text("host").isEmpty();
         int pulseMillis = config.connection().integer("pulse_ms", DEFAULT_PULSE_MILLIS);
         if (pulseMillis < 0 || pulseMillis > 100) {
             throw new IllegalArgumentException(config.source() + ": connection.pulse_ms must be 0..100 milliseconds, got " + pulseMillis);
@@ -182,6 +185,16 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
         boolean pulse = pulsing();
         int sent = nextMotorByte();
         int pulsed = wheelsOn(sent) & (pulse ? ALL_MOTORS : creeping());
+        if (pulsed != 0 && serialLine) {
+            if (pulse) {
+                pulses++;
+            }
+            if (burst(sent, without(sent, pulsed))) {
+                poll(nextMotorByteAfterPulse());
+            }
+            lastServiceEnd = clock().nanoTime();
+            return;
+        }
         long pulseStart = clock().nanoTime();
         boolean reached = poll(sent);
         if (pulsed != 0) {
@@ -282,6 +295,66 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
     static final int DEFAULT_PULSE_MILLIS = 5;
 
     /**
+     * A pulse timed by the line itself: the commands that switch the pulsed wheels on and the one
+     * that switches them off go out in one write, so the interface, taking each as its two bytes
+     * arrive, keeps the wheels on for exactly their bytes' time (2.1 ms a command at 9600 baud),
+     * however late the host gets to anything. Every command is answered; each answer shows the
+     * switches as its command arrived.
+     *
+     * @param on  the byte that switches the pulsed wheels on
+     * @param off the same with them off
+     * @return whether a motor still on after the pulse has reached its target
+     */
+    private boolean burst(int on, int off) throws IOException {
+        int onCommands = (int) Math.max(1, (pulseNanos + COMMAND_WIRE_NANOS - 1) / COMMAND_WIRE_NANOS);
+        int count = onCommands + 1;
+        int[] commands = new int[count];
+        byte[] request = new byte[2 * count];
+        for (int i = 0; i < count; i++) {
+            commands[i] = readEy ? ANALOG_EY : ANALOG_EX;
+            readEy = !readEy;
+            byte[] one = IntelligentInterfaceTelegram.request(commands[i], i < onCommands ? on : off);
+            System.arraycopy(one, 0, request, 2 * i, 2);
+        }
+        long[] times = new long[2 + count];
+        byte[][] replies = channel.exchange((c, timeout) -> {
+            times[0] = clock().nanoTime();
+            c.send(request);
+            times[1] = clock().nanoTime();
+            byte[][] r = new byte[count][];
+            for (int i = 0; i < count; i++) {
+                r[i] = c.receiveExactly(3, timeout);
+                times[2 + i] = clock().nanoTime();
+            }
+            return r;
+        });
+        for (int i = 0; i < count; i++) {
+            int digital = replies[i][0] & 0xFF;
+            inputs.publish(digital, commands[i] == ANALOG_EX ? IntelligentInterfaceTelegram.analog(replies[i]) : -1,
+                    commands[i] == ANALOG_EY ? IntelligentInterfaceTelegram.analog(replies[i]) : -1);
+            if (i == 0) {
+                count(digital, times[0], times[1], times[2]);
+                lastSentAt = times[0];
+                lastWrittenAt = times[1];
+                lastReceivedAt = times[2];
+            } else {
+                // The command before this one was in force for exactly one command's bytes.
+                countFor(digital, COMMAND_WIRE_NANOS * (1 - WIRE_SLACK) / 1e9, COMMAND_WIRE_NANOS * (1 + WIRE_SLACK) / 1e9);
+                lastSentAt += COMMAND_WIRE_NANOS;
+                lastWrittenAt += COMMAND_WIRE_NANOS;
+                lastReceivedAt = Math.max(lastReceivedAt + COMMAND_WIRE_NANOS, times[2 + i]);
+            }
+            lastMotorByte = i < onCommands ? on : off;
+        }
+        return enforceLimits(off);
+    }
+
+    /** The time a command's two bytes take at the interface's 9600 baud, 10 bits each. */
+    static final long COMMAND_WIRE_NANOS = 2L * 10 * 1_000_000_000L / IntelligentInterfaceTelegram.BAUD;
+    /** How far a line's actual bit timing may stray. */
+    private static final double WIRE_SLACK = 0.05;
+
+    /**
      * One exchange: a motor byte, the inputs back.
      *
      * @param motorByte the motors' state from now on
@@ -354,6 +427,14 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
         double mostOn = first ? 0 : (tookAtMost(writtenAt, receivedAt) - lastSentAt) / 1e9;
         longestGap = Math.max(longestGap, interval);
         recentGap = Math.max(interval, (long) (recentGap * GAP_DECAY));
+        countFor(digital, leastOn, mostOn);
+    }
+
+    /**
+     * Moves each counted wheel by a poll's switch and the least and most time the byte in force
+     * before it was on, and reports the wheels' rotation.
+     */
+    private void countFor(int digital, double leastOn, double mostOn) {
         for (int motor = 0; motor < counters.length; motor++) {
             ImpulseCounter counter = counters[motor];
             if (counter == null) {
@@ -366,8 +447,8 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
             long before = counter.recovered();
             counter.poll(changed, previousDigital >= 0 ? driven : 0, lastDirection[motor], leastOn, mostOn);
             if (counter.recovered() != before) {
-                LOG.debug("robot '{}': poll {} ms after the last with {} on: counted {} transitions its switch did not show",
-                        robot(), interval / 1_000_000, portOf[motor], counter.recovered() - before);
+                LOG.debug("robot '{}': a poll up to {} ms after the last with {} on: counted {} transitions its switch did not show",
+                        robot(), Math.round(mostOn * 1000), portOf[motor], counter.recovered() - before);
             }
             reportDegrees(portOf[motor], counter.ticks() * 360.0 / ticksPerRevolution);
         }
