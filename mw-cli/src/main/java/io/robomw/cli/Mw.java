@@ -9,8 +9,8 @@ import picocli.CommandLine.Command;
  */
 @Command(name = "mw", mixinStandardHelpOptions = true, version = "RoboMW 0.1.0",
         description = "RoboMW: one Java API over many robots.",
-        subcommands = {DescribeCommand.class, SimCommand.class, EmulateCommand.class, MsgCommand.class, HostCommand.class, AgentsCommand.class,
-                DispatchCommand.class, DemoCommand.class, ConsoleCommand.class, RecordCommand.class, ReplayCommand.class,
+        subcommands = {DescribeCommand.class, SimCommand.class, EmulateCommand.class, MsgCommand.class, BrokerCommand.class, HostCommand.class,
+                AgentsCommand.class, DispatchCommand.class, DemoCommand.class, ConsoleCommand.class, RecordCommand.class, ReplayCommand.class,
                 CommandLine.HelpCommand.class})
 public final class Mw {
 
