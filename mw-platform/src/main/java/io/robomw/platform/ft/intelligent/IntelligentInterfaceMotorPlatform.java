@@ -10,6 +10,7 @@ import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 import java.io.IOException;
+import java.util.Arrays;
 import java.util.List;
 import java.util.concurrent.locks.LockSupport;
 
@@ -22,23 +23,27 @@ import static io.robomw.platform.ft.intelligent.IntelligentInterfaceTelegram.ANA
  * <ul>
  *   <li>{@link #runImpl} only records each motor's wanted duty (speed ÷ full speed);</li>
  *   <li>{@link #pollFeedback}, on the link thread every cycle whatever the application does, sends
- *   the motor byte (keeping the interface alive) with each motor on or off for this cycle by a
- *   sigma-delta over its duty (so 40 % duty is on in 2 cycles of 5), alternating the EX and EY
- *   reads, and reads the inputs back;</li>
+ *   the motor byte (keeping the interface alive) and reads the inputs back, alternating the EX and
+ *   EY reads;</li>
  *   <li>a wheel's rotation comes from the impulse wheel on the digital input its description names
  *   ({@code counter: E1}), {@code encoder_ticks_per_revolution} switch transitions per motor turn,
- *   kept by an {@link ImpulseCounter} from the switch and the motor's on-time: a poll that comes
- *   late (a loaded host) after the motor passed two or more transitions still counts them, and
- *   between transitions the rotation moves on with the motor;</li>
- *   <li>when the link thread has lately been away between cycles for longer than half a tick's
- *   time at full speed (a loaded host), wheel motors are pulsed: on for one exchange, off with the
- *   next, so none runs unwatched through the thread's absence; the robot slows down meanwhile;</li>
- *   <li>a limited move creeps over its last three ticks, its wheel pulsed in at most half the
- *   cycles (fewer when polls have lately come further apart than half a tick's time at full
- *   speed); the link thread stops it
- *   itself when its rotation reaches the limit (as a brick with a tacho limit would), at once with
- *   an extra exchange if the byte just sent had the motor on, so neither a busy action thread nor
- *   a late poll lets it run on.</li>
+ *   kept by an {@link ImpulseCounter} from the switch and the motor's on-time;</li>
+ *   <li>on a serial line the wheels turn only inside <b>line-timed bursts</b>: one write of
+ *   read-digital commands, each with the wheels that are on for its 2.1 ms, and a last command
+ *   that switches them off. The interface takes each command as its bytes arrive, so a wheel is on
+ *   exactly as long as its commands' bytes take, and never while the host is away, however late a
+ *   loaded host gets to anything; and every command's answer shows the impulse switch, so
+ *   transitions (36 ms apart at full speed) are read every 2.1 ms while a wheel turns. Each wheel
+ *   is on in a share of the commands by its duty of the time since the last poll (the robot slows
+ *   down when the host was away, and reaches about three quarters of full speed at most); a
+ *   limited move is given no more commands than its rest needs, and its wheel is switched off on
+ *   the link thread as its rotation reaches the limit (as a brick with a tacho limit would);</li>
+ *   <li>over a TCP bridge, whose timing the host cannot know, each motor is on or off for a whole
+ *   cycle by a sigma-delta over its duty; a poll that comes late after the motor passed two or
+ *   more transitions still counts them from the motor's on-time; when the link thread has lately
+ *   been away between cycles for longer than half a tick's time at full speed, wheel motors are
+ *   pulsed (on for one exchange, at least {@code pulse_ms}, off with the next), and a limited move
+ *   creeps over its last three ticks.</li>
  * </ul>
  * Positive speeds turn a motor clockwise ("right", bits {@code 10}). Time is the injected clock's:
  * a real robot's is the wall clock, which the interface's motors run on.
@@ -48,9 +53,10 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
     private static final Logger LOG = LoggerFactory.getLogger(IntelligentInterfaceMotorPlatform.class);
 
     /**
-     * Share of the cycles in which a limited move's wheel is pulsed (on for one exchange, off with
-     * the next) over its last {@link #CREEP_TICKS} ticks: it is never left on across the link
-     * thread's wait between cycles, so a late cycle cannot carry it past its target.
+     * Over a TCP bridge: the share of the cycles in which a limited move's wheel is pulsed (on for
+     * one exchange, off with the next) over its last {@link #CREEP_TICKS} ticks: it is never left
+     * on across the link thread's wait between cycles, so a late cycle cannot carry it past its
+     * target.
      */
     static final double CREEP_DUTY = 0.5;
     /** Ticks before a target at which a limited move creeps. */
@@ -63,7 +69,7 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
     private final BrickChannel channel;
     private final IntelligentInterfaceInputs inputs;
     private final long pulseNanos;
-    /** Whether the interface is on a serial line, whose byte timing times pulses (not a TCP bridge). */
+    /** Whether the interface is on a serial line, whose byte timing times the wheels (not a TCP bridge). */
     private final boolean serialLine;
     private final int ticksPerRevolution;
     private final double[] duty = new double[IntelligentInterfaceTelegram.MOTORS];
@@ -85,6 +91,12 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
     private long lastServiceEnd = Long.MIN_VALUE;
     private volatile long longestGap;
     private volatile long pulses;
+    /** Commands' wire times each counted wheel is owed on a serial line, by its duty, not yet sent. */
+    private final double[] credit = new double[IntelligentInterfaceTelegram.MOTORS];
+    private long lastPollStart = Long.MIN_VALUE;
+    private long lineRoundTripNanos = Long.MAX_VALUE;
+    private volatile long bursts;
+    private volatile long wheelCommandsOn;
 
     /**
      * @param config      the platform configuration (motor ports M1..M4; which input counts which wheel)
@@ -134,6 +146,7 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
             duty[i] = FtMotors.duty(m.degreesPerSecond());
             limit[i] = m.running() ? m.limitDegrees() : Double.POSITIVE_INFINITY;
             ticksAtStart[i] = counters[i] == null ? 0 : counters[i].ticks();
+            credit[i] = 0;
         }
     }
 
@@ -169,32 +182,34 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
     }
 
     /**
-     * Polls the interface. Normally once, with each motor on or off for the cycle by its duty; a
-     * motor that reaches its target with the byte just sent on is switched off at once with a
-     * second exchange. When the link thread has lately been away for longer than half a tick's
-     * time at full speed between cycles (a loaded host), a wheel motor that is due on is pulsed:
-     * on with one exchange and off again with the next, so it never runs unwatched through the
-     * thread's absence; the robot slows down until the gaps are gone.
+     * Polls the interface. On a serial line, every cycle in which a wheel turns is one line-timed
+     * burst ({@link #lineTimedBurst}): the wheels are never left on when the host stops watching.
+     * Over a TCP bridge (whose timing the host cannot know) it polls once, with each motor on or off
+     * for the cycle by its duty; a motor that reaches its target with the byte just sent on is
+     * switched off at once with a second exchange; when the link thread has lately been away for
+     * longer than half a tick's time at full speed between cycles (a loaded host), a wheel motor
+     * that is due on is pulsed: on with one exchange and off again with the next.
      */
     @Override
     protected void pollFeedback() throws IOException {
         long now = clock().nanoTime();
+        long sinceLastPoll = lastPollStart == Long.MIN_VALUE ? 0 : now - lastPollStart;
+        lastPollStart = now;
+        if (serialLine) {
+            int[] slots = wheelSlots(sinceLastPoll);
+            if (Arrays.stream(slots).max().orElse(0) > 0) {
+                lineTimedBurst(slots);
+            } else {
+                poll(nextMotorByte(unCounted()));
+            }
+            return;
+        }
         if (lastServiceEnd != Long.MIN_VALUE) {
             recentServiceGap = Math.max(now - lastServiceEnd, (long) (recentServiceGap * GAP_DECAY));
         }
         boolean pulse = pulsing();
-        int sent = nextMotorByte();
+        int sent = nextMotorByte(ALL_MOTORS);
         int pulsed = wheelsOn(sent) & (pulse ? ALL_MOTORS : creeping());
-        if (pulsed != 0 && serialLine) {
-            if (pulse) {
-                pulses++;
-            }
-            if (burst(sent, without(sent, pulsed))) {
-                poll(nextMotorByteAfterPulse());
-            }
-            lastServiceEnd = clock().nanoTime();
-            return;
-        }
         long pulseStart = clock().nanoTime();
         boolean reached = poll(sent);
         if (pulsed != 0) {
@@ -213,16 +228,139 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
         lastServiceEnd = clock().nanoTime();
     }
 
+    /**
+     * How many of a burst's commands each counted wheel is on for: its duty of the time since the
+     * last poll, in commands' wire times, owed and paid in whole commands (at most
+     * {@link #burstSlots()} owed, so a host that was away does not make the wheel catch up: the
+     * robot slows down instead), and for a limited move no more than its rest needs at full speed.
+     *
+     * @param sinceLastPoll nanoseconds since the last poll began
+     * @return commands on, by motor
+     */
+    private int[] wheelSlots(long sinceLastPoll) {
+        int[] slots = new int[duty.length];
+        double elapsedSlots = sinceLastPoll / (double) COMMAND_WIRE_NANOS;
+        for (int i = 0; i < duty.length; i++) {
+            if (counters[i] == null) {
+                continue;
+            }
+            if (duty[i] == 0) {
+                credit[i] = 0;
+                continue;
+            }
+            credit[i] = Math.min(burstSlots(), credit[i] + Math.abs(duty[i]) * elapsedSlots);
+            int n = (int) Math.floor(credit[i]);
+            if (Double.isFinite(limit[i])) {
+                n = Math.min(n, (int) Math.ceil(Math.max(0, limit[i] - done(i)) / SLOT_DEGREES - 1e-9));
+            }
+            slots[i] = n;
+            credit[i] -= n;
+        }
+        return slots;
+    }
+
+    /**
+     * One cycle's wheel motion timed by the serial line itself. The wheels' commands and the one
+     * that switches them off again go out in one write: {@code n} read-digital commands
+     * ({@code C1}, answered with one byte), each with the wheels that are on for that command's
+     * 2.1 ms, then one analog read ({@code C5} or {@code C9}, alternating) with every wheel off. The
+     * interface takes each command as its two bytes arrive, so a wheel is on for exactly its
+     * commands' wire time, however late the host gets to anything, and never while the host is
+     * away; and each answer shows the impulse switch as its command arrived, every 2.1 ms while a
+     * wheel turns (a tick takes 36 ms at full speed), so no transition is missed. Motors without a
+     * counter keep their cycle's state through the burst.
+     *
+     * @param slots the commands each counted wheel is on for, from the first
+     */
+    private void lineTimedBurst(int[] slots) throws IOException {
+        int held = nextMotorByte(unCounted());
+        int on = Arrays.stream(slots).max().orElse(0);
+        int count = on + 1;
+        int[] commands = new int[count];
+        int[] motorBytes = new int[count];
+        byte[] request = new byte[2 * count];
+        for (int k = 0; k < count; k++) {
+            int motorByte = held;
+            for (int i = 0; i < slots.length; i++) {
+                if (k < slots[i]) {
+                    motorByte = IntelligentInterfaceTelegram.withMotor(motorByte, i,
+                            duty[i] > 0 ? IntelligentInterfaceTelegram.CW : IntelligentInterfaceTelegram.CCW);
+                }
+            }
+            if (k < on) {
+                commands[k] = IntelligentInterfaceTelegram.DIGITAL;
+            } else {
+                commands[k] = readEy ? ANALOG_EY : ANALOG_EX;
+                readEy = !readEy;
+            }
+            motorBytes[k] = motorByte;
+            System.arraycopy(IntelligentInterfaceTelegram.request(commands[k], motorByte), 0, request, 2 * k, 2);
+        }
+        for (int i = 0; i < slots.length; i++) {
+            if (slots[i] > 0) {
+                lastDirection[i] = duty[i] > 0 ? 1 : -1;
+            }
+        }
+        long[] times = new long[3];
+        byte[][] replies = channel.exchange((c, timeout) -> {
+            // Taken once the channel is ours, before and after writing.
+            times[0] = clock().nanoTime();
+            c.send(request);
+            times[1] = clock().nanoTime();
+            byte[][] r = new byte[count][];
+            for (int k = 0; k < count; k++) {
+                r[k] = c.receiveExactly(IntelligentInterfaceTelegram.replyLength(commands[k]), timeout);
+                if (k == 0) {
+                    times[2] = clock().nanoTime();
+                }
+            }
+            return r;
+        });
+        for (int k = 0; k < count; k++) {
+            int digital = replies[k][0] & 0xFF;
+            if (k == 0) {
+                // The byte before this burst had every wheel off: its time does not move them.
+                count(digital, times[0], times[1], times[2]);
+                lastSentAt = times[0];
+                lastWrittenAt = times[1];
+                lastReceivedAt = times[2];
+            } else {
+                // The command before this one was in force for exactly one command's bytes.
+                countFor(digital, COMMAND_WIRE_NANOS * (1 - WIRE_SLACK) / 1e9, COMMAND_WIRE_NANOS * (1 + WIRE_SLACK) / 1e9);
+                lastSentAt += COMMAND_WIRE_NANOS;
+                lastWrittenAt += COMMAND_WIRE_NANOS;
+                lastReceivedAt += COMMAND_WIRE_NANOS;
+            }
+            if (commands[k] != IntelligentInterfaceTelegram.DIGITAL) {
+                inputs.publish(digital, commands[k] == ANALOG_EX ? IntelligentInterfaceTelegram.analog(replies[k]) : -1,
+                        commands[k] == ANALOG_EY ? IntelligentInterfaceTelegram.analog(replies[k]) : -1);
+            } else {
+                inputs.publish(digital, -1, -1);
+            }
+            lastMotorByte = motorBytes[k];
+        }
+        sampleLineRoundTrip(times[2] - times[1]);
+        bursts++;
+        wheelCommandsOn += on;
+        enforceLimits(motorBytes[on]);
+    }
+
     /** @return whether wheel motors are pulsed this cycle: the link thread has lately been away too long between cycles */
     private boolean pulsing() {
         double halfTickSeconds = 180.0 / ticksPerRevolution / FtMotors.DEGREES_PER_SECOND_AT_FULL_POWER;
         return ticksPerRevolution > 0 && recentServiceGap / 1e9 > halfTickSeconds;
     }
 
-    /** The motor byte for this cycle: each motor on or off by its sigma-delta. */
-    private int nextMotorByte() {
+    /**
+     * The motor byte for this cycle: each motor of the mask on or off by its sigma-delta, the
+     * others off.
+     */
+    private int nextMotorByte(int motors) {
         int motorByte = 0;
         for (int i = 0; i < duty.length; i++) {
+            if ((motors & 1 << i) == 0) {
+                continue;
+            }
             int direction = 0;
             if (duty[i] != 0) {
                 accumulator[i] += cycleDuty(i);
@@ -286,71 +424,63 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
     }
 
     private static final int ALL_MOTORS = (1 << IntelligentInterfaceTelegram.MOTORS) - 1;
+
+    /** @return the motors without an impulse counter, as a mask */
+    private int unCounted() {
+        int mask = 0;
+        for (int i = 0; i < counters.length; i++) {
+            if (counters[i] == null) {
+                mask |= 1 << i;
+            }
+        }
+        return mask;
+    }
+
     /**
-     * The shortest pulse by default, milliseconds: a command and its reply take 5.2 ms at 9600
-     * baud, and a pulse lasts at least that long on any link (over a faster bridge the link thread
-     * waits the rest). {@code connection: { pulse_ms: N }} lengthens it for motors that need more
-     * to get going.
+     * The most commands of a line-timed burst a wheel is on for: 16.7 ms of motion at 9600 baud.
+     * A burst of n such commands and the one that switches the wheels off keeps the line busy for
+     * (n + 1) × 2.1 ms and its last answer comes 3.1 ms after that, so at full duty a wheel is on
+     * about three quarters of the time (full speed is not reached on a serial line; a longer burst
+     * would come closer but leave the platform's commands waiting longer).
+     */
+    static final int BURST_SLOTS = 8;
+    /** The most commands a wheel is on for in a burst over a link with latency: 267 ms. */
+    static final int MAX_BURST_SLOTS = 128;
+
+    /**
+     * The commands a wheel may be on for in one burst: {@link #BURST_SLOTS}, or as many as fill the
+     * link's own round trip on a link with latency (a serial adapter over Bluetooth, say), whose
+     * bursts cannot come more often, so that the wheels keep their speed there too.
+     */
+    private int burstSlots() {
+        long rt = lineRoundTripNanos;
+        if (rt == Long.MAX_VALUE) {
+            return BURST_SLOTS;
+        }
+        return (int) Math.max(BURST_SLOTS, Math.min(MAX_BURST_SLOTS, rt / COMMAND_WIRE_NANOS));
+    }
+
+    /**
+     * Keeps the link's own round trip: the least time from a write to its first answer lately (a
+     * host held up in between only makes a sample longer), rising slowly when the least grows.
+     */
+    private void sampleLineRoundTrip(long nanos) {
+        long rt = lineRoundTripNanos;
+        lineRoundTripNanos = rt == Long.MAX_VALUE || nanos < rt ? nanos : rt + (nanos - rt) / 64;
+    }
+
+    /**
+     * The shortest pulse over a TCP bridge by default, milliseconds: a pulse lasts an exchange, and
+     * at least this long (the link thread waits the rest). {@code connection: { pulse_ms: N }}
+     * lengthens it for motors that need more to get going. On a serial line the bursts' commands
+     * time the wheels instead.
      */
     static final int DEFAULT_PULSE_MILLIS = 5;
 
-    /**
-     * A pulse timed by the line itself: the commands that switch the pulsed wheels on and the one
-     * that switches them off go out in one write, so the interface, taking each as its two bytes
-     * arrive, keeps the wheels on for exactly their bytes' time (2.1 ms a command at 9600 baud),
-     * however late the host gets to anything. Every command is answered; each answer shows the
-     * switches as its command arrived.
-     *
-     * @param on  the byte that switches the pulsed wheels on
-     * @param off the same with them off
-     * @return whether a motor still on after the pulse has reached its target
-     */
-    private boolean burst(int on, int off) throws IOException {
-        int onCommands = (int) Math.max(1, (pulseNanos + COMMAND_WIRE_NANOS - 1) / COMMAND_WIRE_NANOS);
-        int count = onCommands + 1;
-        int[] commands = new int[count];
-        byte[] request = new byte[2 * count];
-        for (int i = 0; i < count; i++) {
-            commands[i] = readEy ? ANALOG_EY : ANALOG_EX;
-            readEy = !readEy;
-            byte[] one = IntelligentInterfaceTelegram.request(commands[i], i < onCommands ? on : off);
-            System.arraycopy(one, 0, request, 2 * i, 2);
-        }
-        long[] times = new long[2 + count];
-        byte[][] replies = channel.exchange((c, timeout) -> {
-            times[0] = clock().nanoTime();
-            c.send(request);
-            times[1] = clock().nanoTime();
-            byte[][] r = new byte[count][];
-            for (int i = 0; i < count; i++) {
-                r[i] = c.receiveExactly(3, timeout);
-                times[2 + i] = clock().nanoTime();
-            }
-            return r;
-        });
-        for (int i = 0; i < count; i++) {
-            int digital = replies[i][0] & 0xFF;
-            inputs.publish(digital, commands[i] == ANALOG_EX ? IntelligentInterfaceTelegram.analog(replies[i]) : -1,
-                    commands[i] == ANALOG_EY ? IntelligentInterfaceTelegram.analog(replies[i]) : -1);
-            if (i == 0) {
-                count(digital, times[0], times[1], times[2]);
-                lastSentAt = times[0];
-                lastWrittenAt = times[1];
-                lastReceivedAt = times[2];
-            } else {
-                // The command before this one was in force for exactly one command's bytes.
-                countFor(digital, COMMAND_WIRE_NANOS * (1 - WIRE_SLACK) / 1e9, COMMAND_WIRE_NANOS * (1 + WIRE_SLACK) / 1e9);
-                lastSentAt += COMMAND_WIRE_NANOS;
-                lastWrittenAt += COMMAND_WIRE_NANOS;
-                lastReceivedAt = Math.max(lastReceivedAt + COMMAND_WIRE_NANOS, times[2 + i]);
-            }
-            lastMotorByte = i < onCommands ? on : off;
-        }
-        return enforceLimits(off);
-    }
-
     /** The time a command's two bytes take at the interface's 9600 baud, 10 bits each. */
     static final long COMMAND_WIRE_NANOS = 2L * 10 * 1_000_000_000L / IntelligentInterfaceTelegram.BAUD;
+    /** Degrees a motor at full power turns in one command's wire time: 1.3°. */
+    static final double SLOT_DEGREES = FtMotors.DEGREES_PER_SECOND_AT_FULL_POWER * COMMAND_WIRE_NANOS / 1e9;
     /** How far a line's actual bit timing may stray. */
     private static final double WIRE_SLACK = 0.05;
 
@@ -377,6 +507,7 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
         long writtenAt = sent[1];
         // The interface took the command, and sampled its inputs, between sending and receiving.
         long receivedAt = clock().nanoTime();
+        sampleLineRoundTrip(receivedAt - writtenAt);
         int digital = reply[0] & 0xFF;
         inputs.publish(digital, command == ANALOG_EX ? IntelligentInterfaceTelegram.analog(reply) : -1,
                 command == ANALOG_EY ? IntelligentInterfaceTelegram.analog(reply) : -1);
@@ -483,6 +614,16 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
     /** @return cycles in which wheel motors were pulsed because the link thread had been away too long */
     public long pulses() {
         return pulses;
+    }
+
+    /** @return line-timed bursts sent (serial line: cycles in which a wheel turned) */
+    public long bursts() {
+        return bursts;
+    }
+
+    /** @return commands of line-timed bursts that had a wheel on */
+    public long wheelCommandsOn() {
+        return wheelCommandsOn;
     }
 
     /** @return the longest time between two polls so far, nanoseconds */

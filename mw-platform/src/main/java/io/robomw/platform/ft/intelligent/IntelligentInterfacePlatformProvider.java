@@ -14,7 +14,7 @@ import java.time.Duration;
 /**
  * {@code platform: ft-intelligent}: a fischertechnik Intelligent Interface 30402 on a serial port
  * (9600 8N1). Connection keys: {@code port}, {@code reply_timeout_ms} (default 250),
- * {@code pulse_ms} (default 5: the shortest time a pulsed wheel motor is on), {@code wire_log}. Keep {@code cycle_hz} at 20 or more: the interface stops its motors when it
+ * {@code pulse_ms} (default 5: over a TCP bridge, the shortest time a pulsed wheel motor is on), {@code wire_log}. Keep {@code cycle_hz} at 20 or more: the interface stops its motors when it
  * hears nothing for 300 ms, and the platform refreshes it once a cycle.
  */
 public final class IntelligentInterfacePlatformProvider implements PlatformProvider {
