@@ -45,16 +45,20 @@ public final class LinkLatencyPrecision {
 
     /**
      * @param args {@code --runs N} (default 3), {@code --brick NAME} (the bricks whose name starts so, case aside;
-     *             default all), then one-way latencies in milliseconds (default 0 15 30 60 120)
+     *             default all), {@code --each} (print every run's signed errors too), then one-way latencies in
+     *             milliseconds (default 0 15 30 60 120)
      * @throws Exception if a run cannot start
      */
     public static void main(String[] args) throws Exception {
         int runs = 3;
         String only = null;
+        boolean each = false;
         List<Integer> latencies = new ArrayList<>();
         for (int i = 0; i < args.length; i++) {
             if (args[i].equals("--runs")) {
                 runs = Integer.parseInt(args[++i]);
+            } else if (args[i].equals("--each")) {
+                each = true;
             } else if (args[i].equals("--brick")) {
                 only = args[++i].toLowerCase(Locale.ROOT);
             } else {
@@ -81,6 +85,10 @@ public final class LinkLatencyPrecision {
                 List<Double> turnErrors = new ArrayList<>();
                 for (int run = 0; run < runs; run++) {
                     double[] e = trial(brick, brick.usual().withLatency(Duration.ofMillis(latency)));
+                    if (each) {
+                        System.out.printf(Locale.ROOT, "  %s, %d ms, run %d: move %+.1f mm, turn %+.1f°%n", brick.name(), latency, run + 1,
+                                e[2] * 1000, e[3]);
+                    }
                     moveErrors.add(e[0]);
                     turnErrors.add(e[1]);
                 }
@@ -90,7 +98,7 @@ public final class LinkLatencyPrecision {
         }
     }
 
-    /** @return the move's error (m) and the turn's error (degrees), both absolute */
+    /** @return the move's error (m) and the turn's error (degrees), both absolute, then both signed (past the target positive) */
     @SuppressWarnings("unchecked")
     private static double[] trial(Brick brick, LinkModel link) throws Exception {
         Path dir = Files.createTempDirectory("link-latency-");
@@ -107,7 +115,7 @@ public final class LinkLatencyPrecision {
             robot.turn(Math.PI / 2, brick.turnRate());
             stack.awaitHalfASimulatedSecond();
             double turned = Math.toDegrees(stack.truePose().heading() - afterMove.heading());
-            return new double[]{moveError, Math.abs(turned - 90)};
+            return new double[]{moveError, Math.abs(turned - 90), afterMove.x() - 1.0, turned - 90};
         } finally {
             try (var files = Files.walk(dir)) {
                 files.sorted(java.util.Comparator.reverseOrder()).forEach(p -> p.toFile().delete());

@@ -74,6 +74,9 @@ public final class IntelligentInterfaceEmulator extends BrickEmulator {
         double wheel;
         double requestedLastStep;
         double requestedStepBefore;
+        /** The impulse wheel's rotation as its switch last showed it, and when ({@link Long#MIN_VALUE} before the first). */
+        double impulseWheel;
+        long impulseWheelAt = Long.MIN_VALUE;
 
         /** @return the rotation the world's wheel has been asked for and has had the time to carry out */
         double carriedOut() {
@@ -246,18 +249,36 @@ public final class IntelligentInterfaceEmulator extends BrickEmulator {
      * The digital inputs at a wall-clock time: the switches as the last step saw them, and each
      * impulse wheel's switch at the rotation the motor's on-time has given it by now (less what the
      * world held the wheel back by).
+     *
+     * <p>The impulse wheel sits on the motor's shaft, so it turns only while the motor is on, and
+     * only the way the motor turns: where the world's wheel falls short of what it was asked for
+     * (a wall, or the body's top speed a hair under the motor's), the shaft waits until the motor
+     * has made up for it, rather than turning back. A switch that turned back across an edge would
+     * show two transitions that the real wheel never made.
      */
     private int digitalAt(long now) {
         int bits = switches;
         if (ticksPerRevolution > 0 && lastStepWall != Long.MIN_VALUE) {
             for (Counter c : counters) {
-                Shaft shaft = shafts[motorIndex(c.motorPort())];
+                int motor = motorIndex(c.motorPort());
+                Shaft shaft = shafts[motor];
                 // A command may be answered at a time before the last step's: its rotation then is
                 // the last step's, less the motor's on-time since.
-                double drivenNow = shaft.driven + (now >= lastStepWall ? degreesDriven(motorIndex(c.motorPort()), lastStepWall, now)
-                        : -degreesDriven(motorIndex(c.motorPort()), now, lastStepWall));
+                double drivenNow = shaft.driven + (now >= lastStepWall ? degreesDriven(motor, lastStepWall, now)
+                        : -degreesDriven(motor, now, lastStepWall));
                 double degrees = shaft.wheel + drivenNow - shaft.carriedOut();
-                if (impulseSwitchClosed(degrees)) {
+                if (shaft.impulseWheelAt == Long.MIN_VALUE) {
+                    shaft.impulseWheel = degrees;
+                } else if (now > shaft.impulseWheelAt) {
+                    double on = motorBytes.signedOnSeconds(motor, shaft.impulseWheelAt, now);
+                    if (on > 0) {
+                        shaft.impulseWheel = Math.max(shaft.impulseWheel, degrees);
+                    } else if (on < 0) {
+                        shaft.impulseWheel = Math.min(shaft.impulseWheel, degrees);
+                    }
+                }
+                shaft.impulseWheelAt = Math.max(shaft.impulseWheelAt, now);
+                if (impulseSwitchClosed(shaft.impulseWheel)) {
                     bits |= 1 << c.bit();
                 }
             }

@@ -162,6 +162,48 @@ public class IntelligentInterfaceEmulatorTest {
         assertEquals(0.8, truePose().x(), 0.02);
     }
 
+    /**
+     * The impulse wheel is on the motor's shaft: it turns only while the motor is on. A robot
+     * pushed against a wall and pulsed forward (on for 21 ms, off for 21 ms, as a driver's bursts
+     * do) is read all along; while its motors are off, its impulse switches must not change. (The
+     * emulator once placed the switch by the world's wheel plus the motor's rotation not yet carried
+     * out: each pulse moved it forward, and the world's next steps, holding the wheel, moved it back
+     * while the motor was off, across an edge and back again on the next pulse: two transitions a
+     * pulse that no real wheel makes, which a driver counts as forward travel.)
+     */
+    @Test
+    void shouldNotTurnTheImpulseWheelsWhileTheMotorsAreOffAgainstAWall() throws Exception {
+        // Facing the east wall, front bumper touching it: the body cannot move forward.
+        String pty = stack.startOnPseudoTerminal(3.0 - 0.10, 1);
+        try (SerialLink link = new SerialLink(pty, SerialSettings.of(9600, 8, SerialSettings.Parity.NONE, 1))) {
+            link.open();
+            int bothForward = IntelligentInterfaceTelegram.withMotor(IntelligentInterfaceTelegram.withMotor(0, 0, IntelligentInterfaceTelegram.CW),
+                    1, IntelligentInterfaceTelegram.CW);
+            int counters = 0b11;
+            int changesWhileOff = 0;
+            for (int pulse = 0; pulse < 20; pulse++) {
+                for (int motorByte : new int[]{bothForward, 0}) {
+                    int previous = -1;
+                    // 10 commands of 2.1 ms each: 21 ms with the motors on (13° of motor), then 21 ms off.
+                    for (int i = 0; i < 10; i++) {
+                        byte[] request = IntelligentInterfaceTelegram.request(IntelligentInterfaceTelegram.DIGITAL, motorByte);
+                        link.write(request, 0, request.length);
+                        byte[] reply = new byte[1];
+                        assertEquals(1, link.read(reply, 0, 1, Duration.ofSeconds(2)));
+                        int switches = reply[0] & counters;
+                        // Each answer shows the switches as its command arrived: from the second
+                        // off command on, the motors were off since the last answer.
+                        if (motorByte == 0 && previous >= 0 && switches != previous) {
+                            changesWhileOff++;
+                        }
+                        previous = switches;
+                    }
+                }
+            }
+            assertEquals(0, changesWhileOff, "the impulse switches changed while the motors were off");
+        }
+    }
+
     @Test
     void shouldStopMotorsWhenDriverStopsRefreshing() throws Exception {
         String pty = stack.startOnPseudoTerminal(0.5, 1);
