@@ -39,6 +39,19 @@ public final class BrickChannel implements AutoCloseable {
     private final ReentrantLock lock = new ReentrantLock(true);
     private boolean down;
     private long lastAttempt;
+    /**
+     * The least time the first exchange on a newly opened channel waits for its replies: a brick
+     * just connected (a Bluetooth link still being set up, an emulator whose process has only just
+     * started on a loaded host) can take longer to answer its first telegram than any later one.
+     */
+    public static final Duration FIRST_REPLY_TIMEOUT = Duration.ofSeconds(2);
+
+    private static Duration max(Duration a, Duration b) {
+        return a.compareTo(b) >= 0 ? a : b;
+    }
+
+    /** Whether an exchange has succeeded on this channel; guarded by the lock. */
+    private boolean answered;
     private volatile long exchangeStartedAt;
     private volatile boolean exchanging;
     private final RoundTripEstimate exchangeTime = new RoundTripEstimate();
@@ -131,7 +144,9 @@ public final class BrickChannel implements AutoCloseable {
             exchangeStartedAt = started;
             exchanging = true;
             try {
-                T result = exchange.run(communicator, replyTimeout);
+                Duration timeout = answered ? replyTimeout : max(replyTimeout, FIRST_REPLY_TIMEOUT);
+                T result = exchange.run(communicator, timeout);
+                answered = true;
                 exchangeTime.sample(System.nanoTime() - started);
                 return result;
             } catch (IOException e) {
