@@ -15,6 +15,7 @@ import picocli.CommandLine.Spec;
 
 import java.io.PrintWriter;
 import java.nio.file.Path;
+import java.util.Map;
 import java.util.Set;
 import java.util.concurrent.Callable;
 import java.util.concurrent.CountDownLatch;
@@ -24,21 +25,26 @@ import java.util.concurrent.CountDownLatch;
  * world. It prints the serial device (or TCP port) the real driver connects to, runs the world in
  * real time, and serves until interrupted (Ctrl-C).
  */
-@Command(name = "emulate", description = "Run a virtual brick bound to a robot in a simulated world; print its device path.")
+@Command(mixinStandardHelpOptions = true, name = "emulate", description = "Run a virtual brick bound to a robot in a simulated world; print its device path.")
 final class EmulateCommand implements Callable<Integer> {
 
-    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick: nxt, ev3, ft-intelligent, ft-txt (TCP only)", converter = BrickConverter.class)
+    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick, by its robot files' platform name: nxt, ev3, ft-intelligent, ft-txt (TCP only)",
+            converter = BrickConverter.class)
     private Brick brick;
 
-    /** Accepts the bricks' platform names (with dashes). */
+    /** Accepts the bricks' platform names, exactly as robot files spell them. */
     static final class BrickConverter implements picocli.CommandLine.ITypeConverter<Brick> {
         @Override
         public Brick convert(String value) {
-            try {
-                return Brick.valueOf(value.replace('-', '_'));
-            } catch (IllegalArgumentException e) {
-                throw new picocli.CommandLine.TypeConversionException("unknown brick '" + value + "'; emulated bricks: nxt, ev3, ft-intelligent, ft-txt");
+            for (Brick b : Brick.values()) {
+                if (b.platform.equals(value)) {
+                    return b;
+                }
             }
+            String near = value.replace('_', '-').toLowerCase(java.util.Locale.ROOT);
+            String hint = java.util.Arrays.stream(Brick.values()).anyMatch(b -> b.platform.equals(near)) ? "did you mean '" + near + "'? " : "";
+            throw new picocli.CommandLine.TypeConversionException("unknown brick '" + value + "'; " + hint + "emulated bricks: "
+                    + String.join(", ", java.util.Arrays.stream(Brick.values()).map(b -> b.platform).toList()));
         }
     }
 
@@ -55,15 +61,31 @@ final class EmulateCommand implements Callable<Integer> {
     @Option(names = "--speed", defaultValue = "1", description = "simulated seconds per second (default ${DEFAULT-VALUE})")
     private double speed;
 
+    @Option(names = "--write-robot", paramLabel = "FILE.yaml", description = "write a copy of the robot's file whose connection points at this emulator,"
+            + " ready for Robots.open, mw host --robot or mw robot")
+    private Path writeRobot;
+
     @Spec
     private CommandSpec spec;
 
-    /** The bricks that can be emulated. */
+    /** The bricks that can be emulated, by their platform names. */
     enum Brick {
-        nxt,
-        ev3,
-        ft_intelligent,
-        ft_txt
+        NXT("nxt"),
+        EV3("ev3"),
+        FT_INTELLIGENT("ft-intelligent"),
+        FT_TXT("ft-txt");
+
+        /** The {@code platform:} value of its robot files. */
+        final String platform;
+
+        Brick(String platform) {
+            this.platform = platform;
+        }
+
+        @Override
+        public String toString() {
+            return platform;
+        }
     }
 
     @Override
@@ -80,13 +102,39 @@ final class EmulateCommand implements Callable<Integer> {
             err.println(e.getMessage());
             return 2;
         }
+        String platform = sim.world().robot(robot).description().platform();
+        if (writeRobot != null && !platform.equals(brick.platform)) {
+            sim.close();
+            err.println("mw emulate: robot '" + robot + "' of " + world + " is a " + platform + " robot (its file says platform: " + platform
+                    + "), so a " + brick + " emulator cannot write a robot file for it; emulate " + platform + ", or leave out --write-robot");
+            return 2;
+        }
         CountDownLatch stopped = new CountDownLatch(1);
         try (sim; BrickEmulator emulator = bind(sim)) {
-            if (brick == Brick.ft_txt && tcpPort == null) {
+            if (brick == Brick.FT_TXT && tcpPort == null) {
                 tcpPort = 65000;
             }
-            String where = tcpPort == null ? emulator.startOnPseudoTerminal() : "tcp://127.0.0.1:" + emulator.startOnTcp("127.0.0.1", tcpPort);
+            String where;
+            if (tcpPort == null) {
+                where = emulator.startOnPseudoTerminal();
+            } else {
+                tcpPort = emulator.startOnTcp("127.0.0.1", tcpPort);
+                where = "tcp://127.0.0.1:" + tcpPort;
+            }
+            if (writeRobot != null) {
+                // Written before the device is printed: whoever waits for that line finds the file.
+                Path source = sim.world().description().robots().stream().filter(r -> r.name().equals(robot)).findFirst().orElseThrow().description();
+                Map<String, String> connection = new java.util.LinkedHashMap<>();
+                if (tcpPort != null) {
+                    connection.put("host", "127.0.0.1");
+                }
+                connection.put("port", tcpPort == null ? where : String.valueOf(tcpPort));
+                ReadyRobotFile.write(source, writeRobot, connection, "mw emulate " + brick + " --robot " + robot + " --world " + world);
+            }
             out.println(where);
+            if (writeRobot != null) {
+                out.println("wrote " + writeRobot + ": robot '" + robot + "' with its connection at this emulator");
+            }
             out.flush();
             err.printf("%s emulator for robot '%s' of %s; connect the %s driver to %s; Ctrl-C stops it%n", brick, robot, world, brick, where);
             err.flush();
@@ -99,10 +147,10 @@ final class EmulateCommand implements Callable<Integer> {
 
     private BrickEmulator bind(Simulation sim) {
         return switch (brick) {
-            case nxt -> NxtEmulator.bind(sim, robot);
-            case ev3 -> Ev3Emulator.bind(sim, robot);
-            case ft_intelligent -> IntelligentInterfaceEmulator.bind(sim, robot);
-            case ft_txt -> TxtEmulator.bind(sim, robot);
+            case NXT -> NxtEmulator.bind(sim, robot);
+            case EV3 -> Ev3Emulator.bind(sim, robot);
+            case FT_INTELLIGENT -> IntelligentInterfaceEmulator.bind(sim, robot);
+            case FT_TXT -> TxtEmulator.bind(sim, robot);
         };
     }
 }
