@@ -102,7 +102,9 @@ final class EmulateCommand implements Callable<Integer> {
             err.println(e.getMessage());
             return 2;
         }
-        String platform = sim.world().robot(robot).description().platform();
+        // The robot file's own platform: inside the world every robot is simulated.
+        Path robotFile = sim.world().description().robots().stream().filter(r -> r.name().equals(robot)).findFirst().orElseThrow().description();
+        String platform = writeRobot == null ? brick.platform : new io.robomw.config.description.RobotDescriptionLoader().load(robotFile).platform();
         if (writeRobot != null && !platform.equals(brick.platform)) {
             sim.close();
             err.println("mw emulate: robot '" + robot + "' of " + world + " is a " + platform + " robot (its file says platform: " + platform
@@ -123,7 +125,7 @@ final class EmulateCommand implements Callable<Integer> {
             }
             if (writeRobot != null) {
                 // Written before the device is printed: whoever waits for that line finds the file.
-                Path source = sim.world().description().robots().stream().filter(r -> r.name().equals(robot)).findFirst().orElseThrow().description();
+                Path source = robotFile;
                 Map<String, String> connection = new java.util.LinkedHashMap<>();
                 if (tcpPort != null) {
                     connection.put("host", "127.0.0.1");

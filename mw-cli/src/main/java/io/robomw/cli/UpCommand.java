@@ -94,23 +94,28 @@ final class UpCommand implements java.util.concurrent.Callable<Integer> {
                 List<String> command = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
                         "-Dmw.home=" + System.getProperty("mw.home", "."), "-cp", DistributionClassPath.with(List.of()), Mw.class.getName()));
                 e.args().forEach(a -> command.add(a.replace("${run}", run.toString())));
-                Process p = new ProcessBuilder(command).directory(dir.toFile()).redirectErrorStream(true).start();
+                Process p = new ProcessBuilder(command).directory(dir.toFile()).start();
                 CompletableFuture<Void> ready = new CompletableFuture<>();
                 CompletableFuture<Void> output = new CompletableFuture<>();
+                // Standard output decides readiness; standard error (logs, errors) is shown the same way.
                 Thread relay = new Thread(() -> {
-                    relay(e, p, ready, out);
+                    relay(e, p.getInputStream(), ready, out);
                     output.complete(null);
                 }, "mw-up-" + e.name());
-                relay.setDaemon(true);
-                relay.start();
+                Thread relayErr = new Thread(() -> relay(e, p.getErrorStream(), null, out), "mw-up-" + e.name() + "-err");
+                for (Thread t : List.of(relay, relayErr)) {
+                    t.setDaemon(true);
+                    t.start();
+                }
                 synchronized (started) {
                     started.add(new Running(e, p, output));
                 }
                 try {
                     ready.get(readyTimeout.toMillis(), TimeUnit.MILLISECONDS);
                 } catch (java.util.concurrent.TimeoutException | java.util.concurrent.ExecutionException x) {
-                    ended = e.name() + (p.isAlive() ? " printed no '" + (e.ready() == null ? "line" : e.ready()) + "' within " + Durations.format(readyTimeout)
-                            : " ended with status " + p.waitFor() + " before it was ready");
+                    boolean gone = p.waitFor(5, TimeUnit.SECONDS);
+                    ended = e.name() + (gone ? " ended with status " + p.exitValue() + " before it was ready"
+                            : " printed no '" + (e.ready() == null ? "line" : e.ready()) + "' within " + Durations.format(readyTimeout));
                     break;
                 }
             }
@@ -167,21 +172,24 @@ final class UpCommand implements java.util.concurrent.Callable<Integer> {
         }
     }
 
-    private static void relay(Entry e, Process p, CompletableFuture<Void> ready, PrintWriter out) {
-        try (BufferedReader r = new BufferedReader(new InputStreamReader(p.getInputStream(), StandardCharsets.UTF_8))) {
+    /** Shows a process's lines prefixed with its name; completes {@code ready} (if given) at its ready line. */
+    private static void relay(Entry e, java.io.InputStream stream, CompletableFuture<Void> ready, PrintWriter out) {
+        try (BufferedReader r = new BufferedReader(new InputStreamReader(stream, StandardCharsets.UTF_8))) {
             for (String line; (line = r.readLine()) != null; ) {
                 synchronized (out) {
                     out.println("[" + e.name() + "] " + line);
                     out.flush();
                 }
-                if (e.ready() == null || line.contains(e.ready())) {
+                if (ready != null && (e.ready() == null || line.contains(e.ready()))) {
                     ready.complete(null);
                 }
             }
         } catch (IOException x) {
             // the process is gone
         }
-        ready.completeExceptionally(new IOException(e.name() + " ended"));
+        if (ready != null) {
+            ready.completeExceptionally(new IOException(e.name() + " ended"));
+        }
     }
 
     /** Stops every process, the last started first: SIGTERM (their own clean stop), then SIGKILL after 15 s. */
