@@ -6,7 +6,6 @@ import java.io.IOException;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
-import java.util.ArrayList;
 import java.util.List;
 import java.util.concurrent.TimeUnit;
 import java.util.stream.Stream;
@@ -27,7 +26,6 @@ final class FreshRepository {
     /** The modules a generated project uses, in install order. */
     static final List<String> MODULES = List.of("mw-api", "mw-config", "mw-platform", "mw-sim", "mw-agents");
     static final String VERSION = "0.1.0-SNAPSHOT";
-    private static final String INSTALL = "org.apache.maven.plugins:maven-install-plugin:3.1.4:install-file";
 
     private FreshRepository() {
     }
@@ -53,23 +51,41 @@ final class FreshRepository {
             }
         }
         Path checkout = MwProcess.CHECKOUT;
-        install(repo, dir, checkout.resolve("pom.xml"), checkout.resolve("pom.xml"), "robomw-parent", "pom");
-        install(repo, dir, checkout.resolve("mw-bom/pom.xml"), checkout.resolve("mw-bom/pom.xml"), "mw-bom", "pom");
+        StringBuilder executions = new StringBuilder();
+        execution(executions, "robomw-parent", "pom", checkout.resolve("pom.xml"), checkout.resolve("pom.xml"));
+        execution(executions, "mw-bom", "pom", checkout.resolve("mw-bom/pom.xml"), checkout.resolve("mw-bom/pom.xml"));
         for (String m : MODULES) {
             Path jar = checkout.resolve(m).resolve("target").resolve(m + "-" + VERSION + ".jar");
             assertTrue(Files.isRegularFile(jar), "built by this build: " + jar);
-            install(repo, dir, jar, checkout.resolve(m).resolve("pom.xml"), m, "jar");
+            execution(executions, m, "jar", jar, checkout.resolve(m).resolve("pom.xml"));
         }
+        // One Maven run: a pom whose build installs each artifact (install:install-file, as mvn install would).
+        Path installer = Files.createDirectories(dir.resolve("installer"));
+        Files.writeString(installer.resolve("pom.xml"), """
+                <project xmlns="http://maven.apache.org/POM/4.0.0">
+                  <modelVersion>4.0.0</modelVersion>
+                  <groupId>io.robomw.it</groupId><artifactId>installer</artifactId><version>1</version><packaging>pom</packaging>
+                  <build><plugins><plugin>
+                    <groupId>org.apache.maven.plugins</groupId><artifactId>maven-install-plugin</artifactId><version>3.1.4</version>
+                    <executions>
+                """ + executions + """
+                    </executions>
+                  </plugin></plugins></build>
+                </project>
+                """);
+        Path log = dir.resolve("install.log");
+        Process p = new ProcessBuilder("mvn", "-o", "-B", "-q", "-Dmaven.repo.local=" + repo, "validate").directory(installer.toFile())
+                .redirectErrorStream(true).redirectOutput(log.toFile()).start();
+        assertTrue(p.waitFor(300, TimeUnit.SECONDS), "mvn install-file within 300 s");
+        assertEquals(0, p.exitValue(), "installing RoboMW into " + repo + ": " + Files.readString(log, StandardCharsets.UTF_8));
         assertTrue(Files.isRegularFile(repo.resolve("io/robomw/mw-bom/" + VERSION + "/mw-bom-" + VERSION + ".pom")), "the BOM is installed");
         return repo;
     }
 
-    private static void install(Path repo, Path dir, Path file, Path pom, String artifactId, String packaging) throws IOException, InterruptedException {
-        List<String> command = new ArrayList<>(List.of("mvn", "-o", "-B", "-q", "-Dmaven.repo.local=" + repo, INSTALL, "-Dfile=" + file, "-DpomFile=" + pom,
-                "-DgroupId=io.robomw", "-DartifactId=" + artifactId, "-Dversion=" + VERSION, "-Dpackaging=" + packaging));
-        Path log = dir.resolve("install-" + artifactId + ".log");
-        Process p = new ProcessBuilder(command).directory(dir.toFile()).redirectErrorStream(true).redirectOutput(log.toFile()).start();
-        assertTrue(p.waitFor(180, TimeUnit.SECONDS), "mvn install-file " + artifactId + " within 180 s");
-        assertEquals(0, p.exitValue(), "mvn install-file " + artifactId + ": " + Files.readString(log, StandardCharsets.UTF_8));
+    private static void execution(StringBuilder b, String artifactId, String packaging, Path file, Path pom) {
+        b.append("      <execution><id>").append(artifactId).append("</id><phase>validate</phase><goals><goal>install-file</goal></goals><configuration>")
+                .append("<file>").append(file).append("</file><pomFile>").append(pom).append("</pomFile>")
+                .append("<groupId>io.robomw</groupId><artifactId>").append(artifactId).append("</artifactId><version>").append(VERSION)
+                .append("</version><packaging>").append(packaging).append("</packaging></configuration></execution>\n");
     }
 }
