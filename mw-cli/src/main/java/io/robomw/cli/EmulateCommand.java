@@ -2,7 +2,8 @@ package io.robomw.cli;
 
 import io.robomw.config.description.DescriptionException;
 import io.robomw.sim.Simulation;
-import io.robomw.sim.emulator.BrickEmulator;
+import io.robomw.sim.emulator.Emulator;
+import io.robomw.sim.emulator.aibo.AiboEmulator;
 import io.robomw.sim.emulator.ev3.Ev3Emulator;
 import io.robomw.sim.emulator.ft.intelligent.IntelligentInterfaceEmulator;
 import io.robomw.sim.emulator.ft.txt.TxtEmulator;
@@ -21,14 +22,14 @@ import java.util.concurrent.Callable;
 import java.util.concurrent.CountDownLatch;
 
 /**
- * {@code mw emulate nxt --world W.yaml --robot R}: a virtual brick for one robot of a simulated
- * world. It prints the serial device (or TCP port) the real driver connects to, runs the world in
- * real time, and serves until interrupted (Ctrl-C).
+ * {@code mw emulate nxt --world W.yaml --robot R}: a virtual brick (or a virtual Aibo's URBI server)
+ * for one robot of a simulated world. It prints the serial device (or TCP port) the real driver
+ * connects to, runs the world in real time, and serves until interrupted (Ctrl-C).
  */
-@Command(mixinStandardHelpOptions = true, name = "emulate", description = "Run a virtual brick bound to a robot in a simulated world; print its device path.")
+@Command(mixinStandardHelpOptions = true, name = "emulate", description = "Run a virtual brick (or Aibo) bound to a robot in a simulated world; print its device path or port.")
 final class EmulateCommand implements Callable<Integer> {
 
-    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick, by its robot files' platform name: nxt, ev3, ft-intelligent, ft-txt (TCP only)",
+    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick, by its robot files' platform name: nxt, ev3, ft-intelligent, ft-txt (TCP only), aibo (URBI, TCP only)",
             converter = BrickConverter.class)
     private Brick brick;
 
@@ -73,7 +74,8 @@ final class EmulateCommand implements Callable<Integer> {
         NXT("nxt"),
         EV3("ev3"),
         FT_INTELLIGENT("ft-intelligent"),
-        FT_TXT("ft-txt");
+        FT_TXT("ft-txt"),
+        AIBO("aibo");
 
         /** The {@code platform:} value of its robot files. */
         final String platform;
@@ -112,9 +114,20 @@ final class EmulateCommand implements Callable<Integer> {
             return 2;
         }
         CountDownLatch stopped = new CountDownLatch(1);
-        try (sim; BrickEmulator emulator = bind(sim)) {
+        Emulator emulator;
+        try {
+            emulator = bind(sim);
+        } catch (IllegalArgumentException e) {
+            sim.close();
+            err.println(e.getMessage());
+            return 2;
+        }
+        try (sim; emulator) {
             if (brick == Brick.FT_TXT && tcpPort == null) {
                 tcpPort = 65000;
+            }
+            if (brick == Brick.AIBO && tcpPort == null) {
+                tcpPort = 54000;
             }
             String where;
             if (tcpPort == null) {
@@ -147,12 +160,13 @@ final class EmulateCommand implements Callable<Integer> {
         return 0;
     }
 
-    private BrickEmulator bind(Simulation sim) {
+    private Emulator bind(Simulation sim) {
         return switch (brick) {
             case NXT -> NxtEmulator.bind(sim, robot);
             case EV3 -> Ev3Emulator.bind(sim, robot);
             case FT_INTELLIGENT -> IntelligentInterfaceEmulator.bind(sim, robot);
             case FT_TXT -> TxtEmulator.bind(sim, robot);
+            case AIBO -> AiboEmulator.bind(sim, robot);
         };
     }
 }

@@ -43,9 +43,9 @@ class DescribeCommandTest {
     void aWorldFileIsDescribedWithItsRobots() {
         CliRun run = CliRun.mw("describe", "../examples/worlds/arena.yaml");
         assertEquals(0, run.status(), run.err());
-        assertTrue(run.out().contains("world 'arena', arena 4.00 × 3.00 m with walls, 3 obstacles, 1 floor patch, 2 robots"), run.out());
+        assertTrue(run.out().contains("world 'arena', arena 4.00 × 3.00 m with walls, 3 obstacles, 1 floor patch, 3 robots"), run.out());
         assertTrue(run.out().contains("robot 'nxt' at (2.60, 0.40)"), run.out());
-        assertTrue(run.out().contains("robot 'nxt-1' on platform 'nxt'") && run.out().contains("on platform 'ft-intelligent'"), run.out());
+        assertTrue(run.out().contains("robot 'nxt-1' on platform 'nxt'") && run.out().contains("on platform 'ft-intelligent'") && run.out().contains("on platform 'aibo'"), run.out());
     }
 
     @Test
