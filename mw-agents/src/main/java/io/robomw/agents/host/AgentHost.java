@@ -79,6 +79,7 @@ public final class AgentHost implements Agency, AutoCloseable {
     private final ClusterKey key;
     private final TlsSettings tls;
     private final Path storeDir;
+    private final Duration stopGrace;
     private final HostState state;
     private final RobotTurns robot;
     private final CodeLoaders code;
@@ -97,6 +98,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         this.key = b.key;
         this.tls = b.tls;
         this.storeDir = b.storeDir;
+        this.stopGrace = b.stopGrace;
         this.state = new HostState(this, b.name, b.robot, new StateCodec(b.allowed, b.maxStateBytes), (int) b.callTimeout.toMillis());
         this.robot = new RobotTurns(b.name, b.robot);
         this.code = new CodeLoaders(state);
@@ -134,6 +136,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         private List<String> allowed = List.of();
         private long maxStateBytes = 64L << 20;
         private Duration callTimeout = Duration.ofSeconds(30);
+        private Duration stopGrace = Duration.ofSeconds(5);
 
         private Builder(String name) {
             if (name == null || !name.matches("[A-Za-z0-9._-]+")) {
@@ -242,6 +245,20 @@ public final class AgentHost implements Agency, AutoCloseable {
         }
 
         /**
+         * @param grace how long {@link AgentHost#close()} lets the stops running then finish before it
+         *              interrupts them (default 5 s); with a durable store an interrupted stop is
+         *              resumed after it at the next start, not run again
+         * @return this
+         */
+        public Builder stopGrace(Duration grace) {
+            if (grace.isNegative()) {
+                throw new IllegalArgumentException("stop grace " + grace + " is negative: it is how long running stops may finish when the host closes");
+            }
+            this.stopGrace = grace;
+            return this;
+        }
+
+        /**
          * Starts the host: opens its store, resumes the agents it holds, and binds its RMI endpoint.
          *
          * @return the running host
@@ -334,7 +351,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         }
     }
 
-    /** Stops serving: no new agents; running stops get 5 s to finish; durable agents stay in the store for the next start. */
+    /** Stops serving: no new agents; running stops get the stop grace (5 s by default) to finish; durable agents stay in the store for the next start. */
     @Override
     public void close() {
         if (state.closed) {
@@ -358,7 +375,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         state.runners.shutdown();
         state.requests.shutdown();
         try {
-            if (!state.runners.awaitTermination(5, TimeUnit.SECONDS)) {
+            if (!state.runners.awaitTermination(stopGrace.toMillis(), TimeUnit.MILLISECONDS)) {
                 state.runners.shutdownNow();
             }
         } catch (InterruptedException e) {

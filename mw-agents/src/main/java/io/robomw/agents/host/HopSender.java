@@ -84,6 +84,8 @@ final class HopSender {
             LOG.warn("host {}: cannot record agent {} departed: {}", host.name, h.id, e.toString());
         }
         host.forwarded(h.id, target);
+        // The next host has it: it is no longer here (only this object: the agent may be back already).
+        host.hosted.remove(h.id, h);
         h.departure.complete(target);
         AgentHandle handle = host.handles.get(h.id);
         if (handle != null) {

@@ -74,6 +74,8 @@ final class Recovery {
                 LOG.error("host {}: cannot resume agent {} from the store: {}", host.name, image.id(), e.getMessage());
                 continue;
             }
+            // Its image numbers its events from where they were when it arrived: events it owed since are numbered past that.
+            h.eventSeq = Math.max(h.eventSeq, host.store.nextEventSeq(h.id));
             switch (s.phase()) {
                 case ACCEPTED -> {
                     accepted++;

@@ -119,8 +119,7 @@ final class Trips {
         }
         Departure d = depart(h);
         if (d.delivered()) {
-            host.hosted.remove(h.id);
-            return;
+            return; // HopSender removed it from the agents here when the next host acknowledged
         }
         if (!host.closed) {
             LOG.info("host {}: agent {} ends its trip here: {}", host.name, h.id, d.reason());
@@ -216,7 +215,7 @@ final class Trips {
         } catch (IOException e) {
             LOG.warn("host {}: cannot record agent {} ended: {}", host.name, h.id, e.toString());
         }
-        host.hosted.remove(h.id);
+        host.hosted.remove(h.id, h);
         h.departure.complete(null);
     }
 
@@ -236,9 +235,7 @@ final class Trips {
             finish(h, AgentEvent.Kind.RESULT);
             return;
         }
-        if (hops.send(h, image, frame, h.home, homeward()) == null) {
-            host.hosted.remove(h.id);
-        }
+        hops.send(h, image, frame, h.home, homeward());
     }
 
     /**
@@ -257,7 +254,6 @@ final class Trips {
         Itinerary plan = image.kind() == AgentImage.Kind.HOMECOMING ? homeward() : h.agent.itinerary();
         String why = hops.send(h, image, Frame.of(image.encode()), target, plan);
         if (why == null) {
-            host.hosted.remove(h.id);
             return;
         }
         h.agent.itinerary().record(target, Itinerary.Outcome.UNREACHABLE, why);

@@ -96,6 +96,17 @@ public interface AgentStore extends AutoCloseable {
     long highestHop(UUID id);
 
     /**
+     * The number an agent held here gives its next report or result: one past the highest of the
+     * events this store recorded it owing since it arrived, or 0 if none (then its image's number
+     * stands). An agent resumed after a restart numbers on from the larger of the two, so its home,
+     * which drops numbers it has seen, never takes a new report for a repeat.
+     *
+     * @param id the agent
+     * @return the next number, or 0
+     */
+    long nextEventSeq(UUID id);
+
+    /**
      * @param event an event owed to a home (durable before return)
      * @throws IOException if it cannot be written
      */

@@ -10,6 +10,7 @@ import java.io.EOFException;
 import java.io.IOException;
 import java.io.InputStream;
 import java.nio.ByteBuffer;
+import java.nio.channels.ClosedByInterruptException;
 import java.nio.channels.FileChannel;
 import java.nio.channels.FileLock;
 import java.nio.file.Files;
@@ -48,11 +49,20 @@ import java.util.zip.CRC32C;
  * <tr><td>5</td><td>EVENT_PENDING</td><td>event seq</td><td>the owed event</td><td>yes</td><td>an event owed to its home</td></tr>
  * <tr><td>6</td><td>EVENT_DELIVERED</td><td>event seq</td><td>none</td><td>no</td><td>that event is no longer owed</td></tr>
  * <tr><td>7</td><td>SEEN</td><td>hop</td><td>none</td><td>no</td><td>the highest hop seen of the agent (compaction writes these)</td></tr>
+ * <tr><td>8</td><td>EVENT_SEQ</td><td>next event seq</td><td>none</td><td>no</td><td>the number the held agent's next report or result takes
+ *     (compaction writes these; version 2)</td></tr>
  * </table>
+ *
+ * <p><b>Event numbers.</b> An agent's reports and results are numbered, and its home drops a number
+ * it has seen. An agent held here carries in its image the next number as it was when it arrived;
+ * the numbers of the events it owed since are in the EVENT_PENDING records (and, once the journal
+ * is compacted, in an EVENT_SEQ record), so {@link #nextEventSeq} gives an agent resumed after a kill
+ * the next number never used rather than the one it arrived with.
  *
  * <p><b>Format version.</b> The header is written when the journal is made (every open rewrites
  * the journal with what is live, header first), and checked when it is opened: a journal of a
- * version other than {@value #FORMAT_VERSION}, or whose first bytes are neither the header nor a
+ * version this store does not read (it reads 1 and {@value #FORMAT_VERSION}, and writes
+ * {@value #FORMAT_VERSION}), or whose first bytes are neither the header nor a
  * record, is refused with an error naming the file, and so is a record of a type not in the
  * table. A journal written before the header existed (its records are those of version 1) is
  * recognised by a first record that reads as one (a known type and a good checksum), or by
@@ -85,8 +95,10 @@ public final class JournalStore implements AgentStore {
 
     /** The first four bytes of a journal: not a record length (negative), not text. */
     static final byte[] MAGIC = {(byte) 0x89, 'R', 'M', 'J'};
-    /** The format this store reads and writes. */
-    static final int FORMAT_VERSION = 1;
+    /** The format this store writes; version 2 added the EVENT_SEQ record. */
+    static final int FORMAT_VERSION = 2;
+    /** The oldest format this store reads (its records are a subset of version 2's). */
+    static final int OLDEST_READABLE_VERSION = 1;
     /** The header's length: magic and version. */
     static final int HEADER_LENGTH = 8;
     /** The shortest record payload: type, id, number. */
@@ -107,7 +119,9 @@ public final class JournalStore implements AgentStore {
         /** The home has that event. */
         EVENT_DELIVERED(6),
         /** The highest hop of it ever accepted. */
-        SEEN(7);
+        SEEN(7),
+        /** The next event number of an agent held here (from version 2). */
+        EVENT_SEQ(8);
 
         private final int code;
 
@@ -134,7 +148,8 @@ public final class JournalStore implements AgentStore {
                 case 5 -> EVENT_PENDING;
                 case 6 -> EVENT_DELIVERED;
                 case 7 -> SEEN;
-                default -> throw new IllegalArgumentException("unknown record type code " + code + " (known: 1-7)");
+                case 8 -> EVENT_SEQ;
+                default -> throw new IllegalArgumentException("unknown record type code " + code + " (known: 1-8)");
             };
         }
     }
@@ -147,6 +162,8 @@ public final class JournalStore implements AgentStore {
     private final Object writeLock = new Object();
     private final Map<UUID, StoredAgent> live = new LinkedHashMap<>();
     private final Map<UUID, Long> seen = new ConcurrentHashMap<>();
+    /** The next event number of each agent held here that has owed an event since it arrived. */
+    private final Map<UUID, Long> eventSeqs = new ConcurrentHashMap<>();
     private final Map<String, PendingEvent> events = new LinkedHashMap<>();
     private final Map<CodeArchive.Digest, CodeArchive> archiveCache = new ConcurrentHashMap<>();
     private final List<StoredAgent> recoveredAgents;
@@ -233,6 +250,7 @@ public final class JournalStore implements AgentStore {
         synchronized (writeLock) {
             append(RecordType.DEPARTED, id, 0, null, false);
             remove(id);
+            eventSeqs.remove(id);
             maybeCompact();
         }
     }
@@ -243,9 +261,17 @@ public final class JournalStore implements AgentStore {
     }
 
     @Override
+    public long nextEventSeq(UUID id) {
+        return eventSeqs.getOrDefault(id, 0L);
+    }
+
+    @Override
     public void eventPending(PendingEvent event) throws IOException {
         synchronized (writeLock) {
             append(RecordType.EVENT_PENDING, event.id(), event.seq(), event.event(), true);
+            if (live.containsKey(event.id())) {
+                eventSeqs.merge(event.id(), event.seq() + 1, Math::max);
+            }
             events.put(key(event.id(), event.seq()), event);
             liveBytes += event.event().length;
         }
@@ -317,12 +343,47 @@ public final class JournalStore implements AgentStore {
     @Override
     public void close() throws IOException {
         synchronized (writeLock) {
-            if (channel != null) {
-                channel.truncate(end); // no zeros left behind
-                channel.close();
+            try {
+                if (channel != null) {
+                    uninterrupted(() -> channel.truncate(end)); // no zeros left behind
+                    channel.close();
+                }
+            } finally {
+                try {
+                    lock.release();
+                } finally {
+                    lockChannel.close(); // the directory is free for the next host even if the journal could not be tidied
+                }
             }
-            lock.release();
-            lockChannel.close();
+        }
+    }
+
+    /** A write to the journal. */
+    private interface JournalIo {
+        void run() throws IOException;
+    }
+
+    /**
+     * Runs a write to the journal so that a thread's interrupt does not break the store: a
+     * {@link FileChannel} closes itself when a thread blocked in it is interrupted, which would
+     * fail every later write of every thread. The interrupt status is cleared for the write and
+     * set again after it; an interrupt that arrives during the write closes the channel, which is
+     * opened again and the write (to the same position, so it is the same bytes) done once more.
+     */
+    private void uninterrupted(JournalIo io) throws IOException {
+        boolean interrupted = Thread.interrupted();
+        try {
+            try {
+                io.run();
+            } catch (ClosedByInterruptException e) {
+                interrupted |= Thread.interrupted();
+                channel = FileChannel.open(journal, StandardOpenOption.WRITE);
+                io.run();
+            }
+        } finally {
+            if (interrupted) {
+                Thread.currentThread().interrupt();
+            }
         }
     }
 
@@ -348,20 +409,25 @@ public final class JournalStore implements AgentStore {
     }
 
     private void append(RecordType type, UUID id, long number, byte[] data, boolean force) throws IOException {
-        ByteBuffer b = encode(type, id, number, data);
-        int length = b.remaining();
+        ByteBuffer record = encode(type, id, number, data);
+        int length = record.remaining();
         if (length <= PREALLOCATE_MAX_RECORD && end + length > allocated) {
-            preallocate(end + length + PREALLOCATE_BYTES);
+            long size = end + length + PREALLOCATE_BYTES;
+            uninterrupted(() -> preallocate(size));
         }
-        long at = end;
-        while (b.hasRemaining()) {
-            at += channel.write(b, at);
-        }
-        end = at;
+        long start = end;
+        uninterrupted(() -> {
+            ByteBuffer b = record.duplicate();
+            long at = start;
+            while (b.hasRemaining()) {
+                at += channel.write(b, at);
+            }
+            if (force) {
+                channel.force(false);
+            }
+        });
+        end = start + length;
         allocated = Math.max(allocated, end);
-        if (force) {
-            channel.force(false);
-        }
     }
 
     /** Zero-fills the file up to {@code size} and makes that durable (size and blocks), once per step. */
@@ -463,9 +529,12 @@ public final class JournalStore implements AgentStore {
                 throw new IOException("agent store journal " + journal + " is cut short inside its header (" + head.length + " bytes)");
             }
             int version = ByteBuffer.wrap(head, MAGIC.length, 4).getInt();
-            if (version != FORMAT_VERSION) {
-                throw new IOException("agent store journal " + journal + " has format version " + version + "; this RoboMW reads version "
-                        + FORMAT_VERSION + " (start the host with the RoboMW that wrote it until its agents have left, or move the journal away)");
+            if (version < OLDEST_READABLE_VERSION || version > FORMAT_VERSION) {
+                throw new IOException("agent store journal " + journal + " has format version " + version + "; this RoboMW reads versions "
+                        + OLDEST_READABLE_VERSION + " to " + FORMAT_VERSION + " (start the host with the RoboMW that wrote it until its agents have left, or move the journal away)");
+            }
+            if (version < FORMAT_VERSION) {
+                LOG.info("agent store {}: the journal has format version {}; rewriting it as version {}", dir, version, FORMAT_VERSION);
             }
             return HEADER_LENGTH;
         }
@@ -551,10 +620,16 @@ public final class JournalStore implements AgentStore {
                 }
             }
             case DEPARTING -> put(new StoredAgent(id, number, Phase.DEPARTING, data));
-            case DEPARTED -> remove(id);
+            case DEPARTED -> {
+                remove(id);
+                eventSeqs.remove(id);
+            }
             case EVENT_PENDING -> {
                 events.put(key(id, number), new PendingEvent(id, number, data));
                 liveBytes += data.length;
+                if (live.containsKey(id)) {
+                    eventSeqs.merge(id, number + 1, Math::max);
+                }
             }
             case EVENT_DELIVERED -> {
                 PendingEvent e = events.remove(key(id, number));
@@ -563,13 +638,14 @@ public final class JournalStore implements AgentStore {
                 }
             }
             case SEEN -> seen.merge(id, number, Math::max);
+            case EVENT_SEQ -> eventSeqs.merge(id, number, Math::max);
         }
     }
 
     private void maybeCompact() throws IOException {
         long size = end;
         if (size > COMPACT_BYTES && size > 4 * Math.max(liveBytes, 1)) {
-            compact();
+            uninterrupted(this::compact);
         }
     }
 
@@ -591,6 +667,11 @@ public final class JournalStore implements AgentStore {
                         case DEPARTING -> records.add(encode(RecordType.DEPARTING, a.id(), a.hop(), a.image()));
                     }
                 }
+                eventSeqs.forEach((id, next) -> {
+                    if (live.containsKey(id)) {
+                        records.add(encode(RecordType.EVENT_SEQ, id, next, null));
+                    }
+                });
                 for (PendingEvent e : events.values()) {
                     records.add(encode(RecordType.EVENT_PENDING, e.id(), e.seq(), e.event()));
                 }

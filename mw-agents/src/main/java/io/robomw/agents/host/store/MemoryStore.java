@@ -60,6 +60,12 @@ public final class MemoryStore implements AgentStore {
         }
     }
 
+    /** A memory store resumes nothing: the agent's own number always stands. */
+    @Override
+    public long nextEventSeq(UUID id) {
+        return 0;
+    }
+
     @Override
     public void eventPending(PendingEvent event) {
     }

@@ -29,6 +29,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 class JournalFormatTest {
 
     private static final byte[] HEADER_V1 = {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 1};
+    private static final byte[] HEADER_V2 = {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 2};
     private static final UUID ID = UUID.fromString("00000000-0000-0001-0000-000000000002");
 
     @TempDir
@@ -45,14 +46,14 @@ class JournalFormatTest {
         s.eventPending(new AgentStore.PendingEvent(ID, 1, new byte[] {9}));
         s.eventDelivered(ID, 1);
         byte[] file = Files.readAllBytes(store.resolve("journal"));
-        assertArrayEquals(HEADER_V1, java.util.Arrays.copyOf(file, 8));
+        assertArrayEquals(HEADER_V2, java.util.Arrays.copyOf(file, 8));
         assertEquals(List.of(1, 2, 3, 4, 5, 6), typesOf(file, 8), "ACCEPTED, STARTED, DEPARTING, DEPARTED, EVENT_PENDING, EVENT_DELIVERED");
         s.close();
 
         JournalStore compacted = JournalStore.open(store); // rewrites what is live: the hop seen
         compacted.close();
         byte[] rewritten = Files.readAllBytes(store.resolve("journal"));
-        assertArrayEquals(HEADER_V1, java.util.Arrays.copyOf(rewritten, 8));
+        assertArrayEquals(HEADER_V2, java.util.Arrays.copyOf(rewritten, 8));
         assertEquals(List.of(7), typesOf(rewritten, 8), "SEEN");
         try (JournalStore again = JournalStore.open(store)) {
             assertEquals(3, again.highestHop(ID));
@@ -61,9 +62,9 @@ class JournalFormatTest {
 
     @Test
     void aJournalOfAnotherFormatVersionIsRefusedNamingTheFileAndTheVersion() throws Exception {
-        Path journal = journal(new byte[] {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 2}, record(1, ID, 1, new byte[] {1}));
+        Path journal = journal(new byte[] {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 3}, record(1, ID, 1, new byte[] {1}));
         IOException e = assertThrows(IOException.class, () -> JournalStore.open(journal.getParent()));
-        assertTrue(e.getMessage().contains(journal.toString()) && e.getMessage().contains("format version 2"), e.getMessage());
+        assertTrue(e.getMessage().contains(journal.toString()) && e.getMessage().contains("format version 3"), e.getMessage());
         assertEquals(8 + record(1, ID, 1, new byte[] {1}).length, Files.size(journal), "left as it was");
     }
 
@@ -92,7 +93,40 @@ class JournalFormatTest {
         assertEquals(1, s.recoveredEvents().size());
         assertEquals(5, s.highestHop(ID));
         s.close();
-        assertArrayEquals(HEADER_V1, java.util.Arrays.copyOf(Files.readAllBytes(journal), 8));
+        assertArrayEquals(HEADER_V2, java.util.Arrays.copyOf(Files.readAllBytes(journal), 8));
+    }
+
+    @Test
+    void aVersion1JournalIsReadAndRewrittenAsVersion2() throws Exception {
+        Path journal = journal(HEADER_V1, record(1, ID, 5, new byte[] {4, 2}), record(2, ID, 5, null));
+        JournalStore s = JournalStore.open(journal.getParent());
+        assertEquals(AgentStore.Phase.STARTED, s.recoveredAgents().get(0).phase());
+        s.close();
+        assertArrayEquals(HEADER_V2, java.util.Arrays.copyOf(Files.readAllBytes(journal), 8));
+    }
+
+    @Test
+    void anAgentsNextEventNumberSurvivesItsEventsBeingDeliveredAndTheJournalCompacted() throws Exception {
+        Path store = dir.resolve("seq");
+        JournalStore s = JournalStore.open(store);
+        s.accepted(ID, 2, new byte[] {1}, 0, 1);
+        s.started(ID, 2);
+        for (long seq = 4; seq <= 6; seq++) {
+            s.eventPending(new AgentStore.PendingEvent(ID, seq, new byte[] {(byte) seq}));
+            s.eventDelivered(ID, seq);
+        }
+        assertEquals(7, s.nextEventSeq(ID));
+        s.close();
+        JournalStore replayed = JournalStore.open(store); // replays the EVENT_PENDING records, then compacts: an EVENT_SEQ record
+        assertEquals(7, replayed.nextEventSeq(ID));
+        replayed.close();
+        byte[] compacted = Files.readAllBytes(store.resolve("journal"));
+        assertEquals(List.of(7, 1, 2, 8), typesOf(compacted, 8), "SEEN, ACCEPTED, STARTED, EVENT_SEQ");
+        try (JournalStore again = JournalStore.open(store)) {
+            assertEquals(7, again.nextEventSeq(ID));
+            again.departed(ID);
+            assertEquals(0, again.nextEventSeq(ID), "an agent that left numbers its events from its image again");
+        }
     }
 
     @Test
@@ -101,7 +135,7 @@ class JournalFormatTest {
         JournalStore s = JournalStore.open(journal.getParent());
         assertTrue(s.recoveredAgents().isEmpty());
         s.close();
-        assertArrayEquals(HEADER_V1, Files.readAllBytes(journal));
+        assertArrayEquals(HEADER_V2, Files.readAllBytes(journal));
     }
 
     @Test
