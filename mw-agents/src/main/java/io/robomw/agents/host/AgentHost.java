@@ -29,7 +29,6 @@ import java.rmi.registry.LocateRegistry;
 import java.rmi.registry.Registry;
 import java.rmi.server.ExportException;
 import java.rmi.server.UnicastRemoteObject;
-import java.security.SecureRandom;
 import java.time.Duration;
 import java.util.List;
 import java.util.Objects;
@@ -105,10 +104,10 @@ public final class AgentHost implements Agency, AutoCloseable {
         Peers peers = new Peers(state, key, tls != null, this::serveSelf);
         this.messaging = new HostMessaging(state, peers, b.node, b.node != null && b.ownsNode);
         state.messaging = messaging;
-        this.owed = new OwedEvents(state, peers);
-        this.trips = new Trips(state, new HopSender(state, peers), owed, robot);
+        this.owed = new OwedEvents(state, peers, b.delivery);
+        this.trips = new Trips(state, new HopSender(state, peers), owed, robot, b.delivery.expiry());
         this.home = new Home(state, code, trips, new AgentRequests(state, peers));
-        this.calls = new Calls(state, new Transfers(state, code, trips, home, owed), code, home);
+        this.calls = new Calls(state, new Transfers(state, code, trips, home, owed), code, home, owed);
     }
 
     /**
@@ -137,6 +136,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         private long maxStateBytes = 64L << 20;
         private Duration callTimeout = Duration.ofSeconds(30);
         private Duration stopGrace = Duration.ofSeconds(5);
+        private DeliveryPolicy delivery = DeliveryPolicy.defaults();
 
         private Builder(String name) {
             if (name == null || !name.matches("[A-Za-z0-9._-]+")) {
@@ -241,6 +241,16 @@ public final class AgentHost implements Agency, AutoCloseable {
         /** @param timeout how long a call to another host may take @return this */
         public Builder callTimeout(Duration timeout) {
             this.callTimeout = timeout;
+            return this;
+        }
+
+        /**
+         * @param policy how reports and results owed to homes that do not answer are retried, and
+         *               after how long they are given up (default {@link DeliveryPolicy#defaults()})
+         * @return this
+         */
+        public Builder deliveryPolicy(DeliveryPolicy policy) {
+            this.delivery = Objects.requireNonNull(policy, "policy");
             return this;
         }
 
@@ -438,6 +448,27 @@ public final class AgentHost implements Agency, AutoCloseable {
         return calls.agents();
     }
 
+    /** @return the reports and results this host owes agents' homes and has not delivered yet, the oldest first */
+    public List<OwedDelivery> owed() {
+        return owed.owed();
+    }
+
+    /**
+     * Drops deliveries this host owes: it stops trying and forgets them, durably. For a home that
+     * is gone for good (a {@code mw dispatch} that was stopped), rather than wait for their expiry.
+     *
+     * @param which the deliveries to drop
+     * @return the ones dropped
+     */
+    public List<OwedDelivery> dropOwed(OwedSelector which) {
+        return owed.drop(which::matches, "dropped by the operator (" + which + ")");
+    }
+
+    /** @return how many threads deliver to homes now (one per home with something to deliver, until idle) */
+    int deliveryThreads() {
+        return owed.deliveryThreads();
+    }
+
     /** @return bytes received by this host's RMI endpoint so far (without TLS) */
     public long wireBytesIn() {
         return counters.in.sum();
@@ -493,13 +524,7 @@ public final class AgentHost implements Agency, AutoCloseable {
      * @throws IOException if the host cannot be reached, refuses this peer, or answers something else
      */
     public static HostDescription describe(String address, ClusterKey key, boolean useTls) throws IOException {
-        HostAddress a = HostAddress.parse(address);
-        PeerLink link = new PeerLink(a, "mw-" + ProcessHandle.current().pid(), key, new HostSockets.Client(a.host(), useTls, 10_000), new SecureRandom());
-        Reply r = link.call(Op.DESCRIBE, new byte[0]);
-        if (r.status() != Reply.Status.OK) {
-            throw new IOException(address + " answered " + r.status() + ": " + r.text());
-        }
-        return HostDescription.decode(r.body(), address);
+        return new HostClient(key, useTls, 10_000).describe(address);
     }
 
     // ---- listing another host ----
@@ -514,13 +539,7 @@ public final class AgentHost implements Agency, AutoCloseable {
      * @throws IOException if the host cannot be reached or refuses this peer
      */
     public static List<AgentInfo> list(String address, ClusterKey key, boolean useTls) throws IOException {
-        HostAddress a = HostAddress.parse(address);
-        PeerLink link = new PeerLink(a, "mw-agents-" + ProcessHandle.current().pid(), key, new HostSockets.Client(a.host(), useTls, 10_000), new SecureRandom());
-        Reply r = link.call(Op.LIST, new byte[0]);
-        if (r.status() != Reply.Status.OK) {
-            throw new IOException(address + " answered " + r.status() + ": " + r.text());
-        }
-        return Bodies.readListReply(r.body(), address);
+        return new HostClient(key, useTls, 10_000).agents(address);
     }
 
     @Override

@@ -28,9 +28,11 @@ final class Calls implements HostEndpoint.Handler {
     private final Transfers transfers;
     private final CodeLoaders code;
     private final Home home;
+    private final OwedEvents owed;
 
-    Calls(HostState host, Transfers transfers, CodeLoaders code, Home home) {
+    Calls(HostState host, Transfers transfers, CodeLoaders code, Home home, OwedEvents owed) {
         this.host = host;
+        this.owed = owed;
         this.transfers = transfers;
         this.code = code;
         this.home = home;
@@ -54,7 +56,19 @@ final class Calls implements HostEndpoint.Handler {
             case MESSAGE -> onMessage(peer, body);
             case RETRACT, DISPOSE -> onRequest(peer, op, body);
             case DESCRIBE -> Reply.ok(host.messaging.describeSelf().encode());
+            case OWED -> Reply.ok(Bodies.owedReply(owed.owed()));
+            case DROP_OWED -> onDropOwed(peer, body);
         };
+    }
+
+    private Reply onDropOwed(String peer, byte[] body) {
+        OwedSelector which;
+        try {
+            which = Bodies.readDropOwed(body);
+        } catch (IllegalArgumentException e) {
+            return host.refuse("refused a DROP_OWED from peer '" + peer + "': " + e.getMessage());
+        }
+        return Reply.ok(Bodies.owedReply(owed.drop(which::matches, "dropped by peer '" + peer + "' (" + which + ")")));
     }
 
     /** @return the agents at this host now */

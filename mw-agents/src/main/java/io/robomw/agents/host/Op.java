@@ -20,7 +20,11 @@ enum Op {
     /** End an agent's trip here. Code 6. */
     DISPOSE(6),
     /** Say who this host is: name, robot, messaging addresses, the hosts it knows ({@link HostDescription}). Code 7. */
-    DESCRIBE(7);
+    DESCRIBE(7),
+    /** List the reports and results this host owes homes and has not delivered ({@link OwedDelivery}). Code 8. */
+    OWED(8),
+    /** Drop owed deliveries ({@link OwedSelector}); the reply lists the ones dropped. Code 9. */
+    DROP_OWED(9);
 
     private final int code;
 
@@ -48,7 +52,10 @@ enum Op {
             case 5 -> RETRACT;
             case 6 -> DISPOSE;
             case 7 -> DESCRIBE;
-            default -> throw new IllegalArgumentException("unknown operation code " + code + " (this host knows 0-7: TRANSFER, PUT_ARCHIVE, LIST, EVENT, MESSAGE, RETRACT, DISPOSE, DESCRIBE)");
+            case 8 -> OWED;
+            case 9 -> DROP_OWED;
+            default -> throw new IllegalArgumentException("unknown operation code " + code
+                    + " (this host knows 0-9: TRANSFER, PUT_ARCHIVE, LIST, EVENT, MESSAGE, RETRACT, DISPOSE, DESCRIBE, OWED, DROP_OWED)");
         };
     }
 }

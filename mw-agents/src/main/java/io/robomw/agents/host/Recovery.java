@@ -95,7 +95,9 @@ final class Recovery {
                 }
             }
         }
-        events.forEach(owed::resend);
+        for (int i = 0; i < events.size(); i++) {
+            owed.resend(events.get(i), pending.get(i).owedSince());
+        }
         if (accepted + interrupted + departing + events.size() > 0) {
             LOG.info("host {}: resumed {} agents from {} ({} not yet started, {} interrupted mid-stop, {} departing) and {} events owed to homes",
                     host.name, accepted + interrupted + departing, host.store.location(), accepted, interrupted, departing, events.size());

@@ -33,6 +33,8 @@ final class Trips {
     private final HopSender hops;
     private final OwedEvents owed;
     private final RobotTurns robot;
+    /** How long a retracted agent tries to get home (the delivery expiry) before its trip ends where it is. */
+    private final Duration homewardFor;
 
     /**
      * Where an agent went, or why it did not go anywhere.
@@ -44,8 +46,9 @@ final class Trips {
     record Departure(boolean delivered, String target, String reason) {
     }
 
-    Trips(HostState host, HopSender hops, OwedEvents owed, RobotTurns robot) {
+    Trips(HostState host, HopSender hops, OwedEvents owed, RobotTurns robot, Duration homewardFor) {
         this.host = host;
+        this.homewardFor = homewardFor;
         this.hops = hops;
         this.owed = owed;
         this.robot = robot;
@@ -235,7 +238,13 @@ final class Trips {
             finish(h, AgentEvent.Kind.RESULT);
             return;
         }
-        hops.send(h, image, frame, h.home, homeward());
+        String why = hops.send(h, image, frame, h.home, homeward());
+        if (why != null && !host.closed) {
+            LOG.warn("host {}: retracted agent {} could not be sent home to {} within {} ({}); its trip ends here", host.name, h.id, h.home,
+                    homewardFor, why);
+            h.agent.itinerary().record(h.home, Itinerary.Outcome.UNREACHABLE, "retracted, but its home did not take it back: " + why);
+            finish(h, AgentEvent.Kind.RESULT);
+        }
     }
 
     /**
@@ -256,17 +265,21 @@ final class Trips {
         if (why == null) {
             return;
         }
+        if (host.closed) {
+            return; // still departing in the store: sent again at the next start
+        }
         h.agent.itinerary().record(target, Itinerary.Outcome.UNREACHABLE, why);
-        if (h.agent.itinerary().unreachablePolicy() == Itinerary.UnreachablePolicy.RETURN_HOME) {
+        if (image.kind() == AgentImage.Kind.HOMECOMING || h.agent.itinerary().unreachablePolicy() == Itinerary.UnreachablePolicy.RETURN_HOME) {
             finish(h, AgentEvent.Kind.RESULT);
         } else {
             moveOn(h);
         }
     }
 
-    /** The way home of a retracted agent: retried until the home takes it. */
-    private static Itinerary homeward() {
-        return new Itinerary().onUnreachable(Itinerary.UnreachablePolicy.RETRY).retry(1_000_000, Duration.ofSeconds(1));
+    /** The way home of a retracted agent: retried every second until the home takes it, for as long as a delivery to it is owed. */
+    private Itinerary homeward() {
+        int retries = (int) Math.min(Integer.MAX_VALUE, Math.max(1, homewardFor.toSeconds()));
+        return new Itinerary().onUnreachable(Itinerary.UnreachablePolicy.RETRY).retry(retries, Duration.ofSeconds(1));
     }
 
     private static String simpleName(String className) {

@@ -43,11 +43,13 @@ public interface AgentStore extends AutoCloseable {
     /**
      * A result or report a home has not acknowledged yet.
      *
-     * @param id    the agent
-     * @param seq   its order among that agent's events
-     * @param event the encoded event
+     * @param id        the agent
+     * @param seq       its order among that agent's events
+     * @param owedSince when the host began to owe it, in milliseconds since the epoch (its age
+     *                  counts from there, across restarts, for the delivery's expiry)
+     * @param event     the encoded event
      */
-    record PendingEvent(UUID id, long seq, byte[] event) {
+    record PendingEvent(UUID id, long seq, long owedSince, byte[] event) {
     }
 
     /** @return whether this store survives the host being killed */

@@ -46,7 +46,8 @@ import java.util.zip.CRC32C;
  * <tr><td>2</td><td>STARTED</td><td>hop</td><td>none</td><td>yes</td><td>phase STARTED (its stop's work had begun)</td></tr>
  * <tr><td>3</td><td>DEPARTING</td><td>the next hop</td><td>the image</td><td>no</td><td>phase DEPARTING, with the image it leaves with</td></tr>
  * <tr><td>4</td><td>DEPARTED</td><td>0</td><td>none</td><td>no</td><td>the agent is no longer held</td></tr>
- * <tr><td>5</td><td>EVENT_PENDING</td><td>event seq</td><td>the owed event</td><td>yes</td><td>an event owed to its home</td></tr>
+ * <tr><td>5</td><td>EVENT_PENDING</td><td>event seq</td><td>[owed since 8, ms since the epoch][the owed event] (version 1: the owed
+ *     event alone, owed since the journal was opened)</td><td>yes</td><td>an event owed to its home</td></tr>
  * <tr><td>6</td><td>EVENT_DELIVERED</td><td>event seq</td><td>none</td><td>no</td><td>that event is no longer owed</td></tr>
  * <tr><td>7</td><td>SEEN</td><td>hop</td><td>none</td><td>no</td><td>the highest hop seen of the agent (compaction writes these)</td></tr>
  * <tr><td>8</td><td>EVENT_SEQ</td><td>next event seq</td><td>none</td><td>no</td><td>the number the held agent's next report or result takes
@@ -174,6 +175,10 @@ public final class JournalStore implements AgentStore {
     /** The file's size, zero-filled from {@link #end} on. */
     private long allocated;
     private long liveBytes;
+    /** The format version of the journal as it was read (its records are rewritten in {@link #FORMAT_VERSION}). */
+    private int readVersion = FORMAT_VERSION;
+    /** When the journal was opened: the owed-since of events a version 1 journal holds. */
+    private final long openedAt = System.currentTimeMillis();
 
     private JournalStore(Path dir) throws IOException {
         this.dir = dir;
@@ -268,7 +273,7 @@ public final class JournalStore implements AgentStore {
     @Override
     public void eventPending(PendingEvent event) throws IOException {
         synchronized (writeLock) {
-            append(RecordType.EVENT_PENDING, event.id(), event.seq(), event.event(), true);
+            append(RecordType.EVENT_PENDING, event.id(), event.seq(), pendingData(event), true);
             if (live.containsKey(event.id())) {
                 eventSeqs.merge(event.id(), event.seq() + 1, Math::max);
             }
@@ -404,6 +409,11 @@ public final class JournalStore implements AgentStore {
         }
     }
 
+    /** @return an EVENT_PENDING record's data: when it was first owed, then the event */
+    private static byte[] pendingData(PendingEvent e) {
+        return ByteBuffer.allocate(8 + e.event().length).putLong(e.owedSince()).put(e.event()).array();
+    }
+
     private static String key(UUID id, long seq) {
         return id + "/" + seq;
     }
@@ -533,6 +543,7 @@ public final class JournalStore implements AgentStore {
                 throw new IOException("agent store journal " + journal + " has format version " + version + "; this RoboMW reads versions "
                         + OLDEST_READABLE_VERSION + " to " + FORMAT_VERSION + " (start the host with the RoboMW that wrote it until its agents have left, or move the journal away)");
             }
+            readVersion = version;
             if (version < FORMAT_VERSION) {
                 LOG.info("agent store {}: the journal has format version {}; rewriting it as version {}", dir, version, FORMAT_VERSION);
             }
@@ -543,8 +554,9 @@ public final class JournalStore implements AgentStore {
             throw new IOException("agent store journal " + journal + " has no format header (it begins with 0x" + HexFormat.of().formatHex(head)
                     + "): it is not a RoboMW agent journal, or one damaged at its start; move it away to start the host with an empty store");
         }
-        LOG.info("agent store {}: the journal has no format header (written before RoboMW gave it one); reading it as version {} and adding the header",
-                dir, FORMAT_VERSION);
+        readVersion = 1;
+        LOG.info("agent store {}: the journal has no format header (written before RoboMW gave it one); reading it as version 1 and rewriting it as"
+                + " version {}", dir, FORMAT_VERSION);
         return 0;
     }
 
@@ -625,7 +637,16 @@ public final class JournalStore implements AgentStore {
                 eventSeqs.remove(id);
             }
             case EVENT_PENDING -> {
-                events.put(key(id, number), new PendingEvent(id, number, data));
+                long since = openedAt;
+                if (readVersion >= 2) {
+                    if (data.length < 8) {
+                        throw new IOException("agent store journal " + journal + ": the EVENT_PENDING record at byte " + at + " holds " + data.length
+                                + " bytes, fewer than its 8-byte owed-since time");
+                    }
+                    since = ByteBuffer.wrap(data).getLong();
+                    data = java.util.Arrays.copyOfRange(data, 8, data.length);
+                }
+                events.put(key(id, number), new PendingEvent(id, number, since, data));
                 liveBytes += data.length;
                 if (live.containsKey(id)) {
                     eventSeqs.merge(id, number + 1, Math::max);
@@ -673,7 +694,7 @@ public final class JournalStore implements AgentStore {
                     }
                 });
                 for (PendingEvent e : events.values()) {
-                    records.add(encode(RecordType.EVENT_PENDING, e.id(), e.seq(), e.event()));
+                    records.add(encode(RecordType.EVENT_PENDING, e.id(), e.seq(), pendingData(e)));
                 }
                 for (ByteBuffer r : records) {
                     while (r.hasRemaining()) {

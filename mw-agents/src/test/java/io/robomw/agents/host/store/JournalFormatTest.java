@@ -43,7 +43,7 @@ class JournalFormatTest {
         s.started(ID, 3);
         s.departing(ID, 4, new byte[] {5}, 0, 1);
         s.departed(ID);
-        s.eventPending(new AgentStore.PendingEvent(ID, 1, new byte[] {9}));
+        s.eventPending(new AgentStore.PendingEvent(ID, 1, 1_700_000_000_000L, new byte[] {9}));
         s.eventDelivered(ID, 1);
         byte[] file = Files.readAllBytes(store.resolve("journal"));
         assertArrayEquals(HEADER_V2, java.util.Arrays.copyOf(file, 8));
@@ -112,7 +112,7 @@ class JournalFormatTest {
         s.accepted(ID, 2, new byte[] {1}, 0, 1);
         s.started(ID, 2);
         for (long seq = 4; seq <= 6; seq++) {
-            s.eventPending(new AgentStore.PendingEvent(ID, seq, new byte[] {(byte) seq}));
+            s.eventPending(new AgentStore.PendingEvent(ID, seq, 1_700_000_000_000L, new byte[] {(byte) seq}));
             s.eventDelivered(ID, seq);
         }
         assertEquals(7, s.nextEventSeq(ID));
