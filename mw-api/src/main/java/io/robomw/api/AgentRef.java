@@ -2,6 +2,7 @@ package io.robomw.api;
 
 import java.io.Serializable;
 import java.time.Duration;
+import java.util.List;
 import java.util.UUID;
 import java.util.concurrent.CompletableFuture;
 import java.util.function.Consumer;
@@ -29,6 +30,18 @@ public interface AgentRef {
      *         no result and one of its stops failed (the message names the stop and the cause)
      */
     CompletableFuture<Serializable> result();
+
+    /**
+     * The visits of the agent's trip, as its last host told the home when the trip ended: each
+     * stop's host and how it ended ({@link Itinerary.Outcome}: done, failed with the remote stack
+     * trace in its detail, unreachable with the reason, interrupted). Empty until the trip has
+     * ended, and for hosts that do not tell it.
+     *
+     * @return the visits, in the order they happened
+     */
+    default List<Itinerary.Visit> history() {
+        return List.of();
+    }
 
     /**
      * Listens to the values the agent sends home while it travels ({@link AgentContext#report}),

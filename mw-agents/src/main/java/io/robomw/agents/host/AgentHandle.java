@@ -31,6 +31,7 @@ final class AgentHandle implements AgentRef {
     private final CompletableFuture<Agent> retracted = new CompletableFuture<>();
     private final List<Consumer<Serializable>> reportListeners = new CopyOnWriteArrayList<>();
     private final java.util.Set<Long> reportsSeen = java.util.concurrent.ConcurrentHashMap.newKeySet();
+    private volatile List<io.robomw.api.Itinerary.Visit> history = List.of();
     private volatile String location;
     private volatile AgentStatus status = AgentStatus.CREATED;
     /** The last request made through this ref: the next one is sent after it has been answered. */
@@ -130,7 +131,16 @@ final class AgentHandle implements AgentRef {
         return next;
     }
 
+    @Override
+    public List<io.robomw.api.Itinerary.Visit> history() {
+        return history;
+    }
+
     // ---- updates from the home ----
+
+    void history(List<io.robomw.api.Itinerary.Visit> visits) {
+        history = List.copyOf(visits);
+    }
 
     void location(String where) {
         location = where;
@@ -172,6 +182,7 @@ final class AgentHandle implements AgentRef {
     }
 
     void retracted(String where, Agent agent) {
+        history = List.copyOf(agent.itinerary().history());
         location = where;
         status = AgentStatus.RETRACTED;
         retracted.complete(agent);

@@ -368,12 +368,8 @@ public final class AgentHost implements Agency, AutoCloseable {
             return;
         }
         state.closed = true;
-        try {
-            if (endpoint != null) {
-                UnicastRemoteObject.unexportObject(endpoint, true);
-            }
-        } catch (NoSuchObjectException ignored) {
-            // never exported
+        if (endpoint != null) {
+            unexportAfterCallsInProgress(endpoint);
         }
         try {
             if (registry != null) {
@@ -409,6 +405,27 @@ public final class AgentHost implements Agency, AutoCloseable {
             LOG.warn("agent host {}: closing the store failed: {}", name, e.toString());
         }
         messaging.close();
+    }
+
+    /**
+     * Stops taking calls, letting the calls in progress finish and their replies go out first (for
+     * up to the stop grace): a home that closes right after a result came must still acknowledge
+     * it, or the sending host would owe it again ("Error unmarshaling return header" at the other end).
+     */
+    private void unexportAfterCallsInProgress(HostEndpoint served) {
+        long deadline = System.nanoTime() + Math.max(stopGrace.toNanos(), TimeUnit.SECONDS.toNanos(1));
+        try {
+            while (!UnicastRemoteObject.unexportObject(served, false)) {
+                if (System.nanoTime() - deadline > 0) {
+                    LOG.warn("agent host {}: calls still in progress after {}; closing without waiting for them", name, stopGrace);
+                    UnicastRemoteObject.unexportObject(served, true);
+                    return;
+                }
+                java.util.concurrent.locks.LockSupport.parkNanos(TimeUnit.MILLISECONDS.toNanos(5)); // new calls are refused: these end soon
+            }
+        } catch (NoSuchObjectException ignored) {
+            // never exported
+        }
     }
 
     // ---- what the host is ----

@@ -8,7 +8,7 @@ import java.util.UUID;
  *
  * @param agent     the agent
  * @param seq       the event's number among the agent's reports and results
- * @param kind      what it is: REPORT, RESULT, FAILED or DISPOSED
+ * @param kind      what it is: REPORT, VISITS (the trip's visits, just before its end), RESULT, FAILED or DISPOSED
  * @param home      the home it is owed to
  * @param owedSince when the host began to owe it
  * @param attempts  how many tries have failed

@@ -94,7 +94,7 @@ final class Trips {
                         it.record(stopHost, Itinerary.Outcome.DONE, "");
                     } catch (Exception | LinkageError | AssertionError | StackOverflowError e) {
                         LOG.warn("host {}: agent {} ({}) failed at its stop: {}", host.name, h.id, h.className, e.toString());
-                        it.record(stopHost, Itinerary.Outcome.FAILED, e.toString());
+                        it.record(stopHost, Itinerary.Outcome.FAILED, StackTraces.of(e));
                     }
                 }
             }
@@ -199,7 +199,8 @@ final class Trips {
         if (kind == AgentEvent.Kind.RESULT && h.result == null && failed.isPresent()) {
             // Nothing to bring home, and a stop failed: that failure is the outcome of the trip.
             k = AgentEvent.Kind.FAILED;
-            payload = ("brought no result home: its stop at " + failed.get().host() + " failed: " + failed.get().detail()).getBytes(StandardCharsets.UTF_8);
+            payload = ("brought no result home: its stop at " + failed.get().host() + " failed: " + StackTraces.firstLine(failed.get().detail()))
+                    .getBytes(StandardCharsets.UTF_8);
         } else if (kind == AgentEvent.Kind.RESULT) {
             try {
                 payload = StateCodec.write(h.result);
@@ -211,6 +212,8 @@ final class Trips {
             payload = ("was disposed of at " + host.address).getBytes(StandardCharsets.UTF_8);
         }
         h.status = k == AgentEvent.Kind.RESULT ? AgentStatus.COMPLETED : k == AgentEvent.Kind.DISPOSED ? AgentStatus.DISPOSED : AgentStatus.FAILED;
+        // The visits first, then the event that ends the trip: the home has them when its result future completes.
+        owed.owe(h.home, new AgentEvent(h.id, h.eventSeq++, AgentEvent.Kind.VISITS, host.address, Bodies.visits(h.agent.itinerary().history())));
         AgentEvent event = new AgentEvent(h.id, h.eventSeq++, k, host.address, payload);
         owed.owe(h.home, event);
         try {

@@ -171,6 +171,36 @@ class AgentHostTest {
     }
 
     @Test
+    void theTripsVisitsComeHomeWithAFailedStopsRemoteStackTraceAndAnUnreachableStopsReason() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        VisitorAgent agent = new VisitorAgent();
+        agent.itinerary().addStop(a.address(), ctx -> ctx.robot()).addStop("rmi://127.0.0.1:1/nobody").addStop(a.address());
+        AgentRef ref = home.startTrip(agent);
+        assertEquals(List.of("a"), ref.result().get(10, TimeUnit.SECONDS));
+        List<io.robomw.api.Itinerary.Visit> visits = ref.history();
+        assertEquals(List.of(io.robomw.api.Itinerary.Outcome.FAILED, io.robomw.api.Itinerary.Outcome.UNREACHABLE, io.robomw.api.Itinerary.Outcome.DONE),
+                visits.stream().map(io.robomw.api.Itinerary.Visit::outcome).toList(), visits.toString());
+        String failed = visits.get(0).detail();
+        assertTrue(failed.startsWith("io.robomw.agents.host.NoRobotException: agent host a (" + a.address() + ") has no robot"), failed);
+        assertTrue(failed.contains("\tat io.robomw.agents.host.HostContext.robot"), "the remote stack trace: " + failed);
+        assertEquals("rmi://127.0.0.1:1/nobody", visits.get(1).host());
+        assertTrue(visits.get(1).detail().contains("Connection refused"), visits.get(1).detail());
+    }
+
+    @Test
+    void clonesThatCouldBeSentTravelWhenOthersCouldNotAndTheirHandlesComeWithTheError() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        io.robomw.api.PartialDispatchException e = assertThrows(io.robomw.api.PartialDispatchException.class,
+                () -> home.dispatchClones(new VisitorAgent(), a.address(), "rmi://127.0.0.1:1/nobody"));
+        assertEquals(List.of("rmi://127.0.0.1:1/nobody"), List.copyOf(e.unsent().keySet()));
+        assertTrue(e.unsent().get("rmi://127.0.0.1:1/nobody").contains("Connection refused"), e.unsent().toString());
+        assertEquals(1, e.sent().size());
+        assertEquals(List.of("a"), e.sent().get(0).result().get(10, TimeUnit.SECONDS));
+    }
+
+    @Test
     void lambdaTasksTravelAndRun() throws Exception {
         AgentHost home = host("home");
         AgentHost a = host("a");

@@ -63,12 +63,12 @@ class OwedDeliveryTest {
         Instant before = Instant.now();
         UUID id = sendAgentWithAGoneHome(a);
         HostClient operator = new HostClient(KEY, false, 10_000);
-        Await.until("the report and the result are owed and have been tried", Duration.ofSeconds(10), () -> {
+        Await.until("the report, the visits and the result are owed and have been tried", Duration.ofSeconds(10), () -> {
             List<OwedDelivery> owed = owedAt(operator, a);
-            return owed.size() == 2 && owed.get(0).attempts() > 0; // in order: the result waits behind the report
+            return owed.size() == 3 && owed.get(0).attempts() > 0; // in order: the result waits behind the report
         });
         List<OwedDelivery> owed = operator.owed(a.address());
-        assertEquals(Set.of("REPORT", "RESULT"), owed.stream().map(OwedDelivery::kind).collect(Collectors.toSet()));
+        assertEquals(Set.of("REPORT", "VISITS", "RESULT"), owed.stream().map(OwedDelivery::kind).collect(Collectors.toSet()));
         for (OwedDelivery d : owed) {
             assertEquals(id, d.agent());
             assertEquals("rmi://127.0.0.1:1/probe-home", d.home());
@@ -78,7 +78,7 @@ class OwedDeliveryTest {
         assertTrue(owed.get(0).lastError().contains("127.0.0.1:1"), "the last error says why: " + owed.get(0).lastError());
 
         assertEquals(0, operator.dropOwed(a.address(), OwedSelector.agent(UUID.randomUUID())).size(), "another agent's: nothing dropped");
-        assertEquals(2, operator.dropOwed(a.address(), OwedSelector.home("rmi://127.0.0.1:1/probe-home")).size());
+        assertEquals(3, operator.dropOwed(a.address(), OwedSelector.home("rmi://127.0.0.1:1/probe-home")).size());
         assertTrue(operator.owed(a.address()).isEmpty());
 
         int port = HostAddress.parse(a.address()).port();
@@ -105,12 +105,12 @@ class OwedDeliveryTest {
     void anOwedDeliveryKeepsItsAgeAcrossARestart() throws Exception {
         AgentHost a = started(AgentHost.builder("a").store(dir.resolve("a")));
         sendAgentWithAGoneHome(a);
-        Await.until("the result is owed", Duration.ofSeconds(10), () -> a.owed().size() == 2);
+        Await.until("the result is owed", Duration.ofSeconds(10), () -> a.owed().size() == 3);
         Instant since = a.owed().get(0).owedSince();
         int port = HostAddress.parse(a.address()).port();
         a.close();
         AgentHost again = started(AgentHost.builder("a").port(port).store(dir.resolve("a")));
-        assertEquals(2, again.owed().size());
+        assertEquals(3, again.owed().size());
         assertEquals(since, again.owed().get(0).owedSince());
     }
 

@@ -33,7 +33,7 @@ class WireCodesTest {
             entry(Reply.Status.DUPLICATE, 2), entry(Reply.Status.REFUSED, 3), entry(Reply.Status.MOVED, 4), entry(Reply.Status.GONE, 5),
             entry(Reply.Status.NOT_HANDLED, 6), entry(Reply.Status.UNKNOWN_SESSION, 7));
     private static final Map<AgentEvent.Kind, Integer> EVENT_KINDS = Map.of(AgentEvent.Kind.ARRIVED, 0, AgentEvent.Kind.REPORT, 1,
-            AgentEvent.Kind.RESULT, 2, AgentEvent.Kind.FAILED, 3, AgentEvent.Kind.DISPOSED, 4);
+            AgentEvent.Kind.RESULT, 2, AgentEvent.Kind.FAILED, 3, AgentEvent.Kind.DISPOSED, 4, AgentEvent.Kind.VISITS, 5);
     private static final Map<AgentImage.Kind, Integer> IMAGE_KINDS = Map.of(AgentImage.Kind.TRIP, 0, AgentImage.Kind.HOMECOMING, 1);
     private static final Map<AgentStatus, Integer> AGENT_STATUSES = Map.of(AgentStatus.CREATED, 0, AgentStatus.ACTIVE, 1,
             AgentStatus.IN_TRANSIT, 2, AgentStatus.COMPLETED, 3, AgentStatus.DISPOSED, 4, AgentStatus.RETRACTED, 5, AgentStatus.FAILED, 6);
