@@ -1,23 +1,41 @@
 package io.robomw.cli;
 
-import io.robomw.agents.host.AgentHost;
 import io.robomw.agents.host.AgentInfo;
+import io.robomw.agents.host.HostClient;
+import io.robomw.agents.host.OwedDelivery;
+import io.robomw.agents.host.OwedSelector;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Mixin;
 import picocli.CommandLine.Model.CommandSpec;
+import picocli.CommandLine.Option;
 import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
 
+import java.io.IOException;
 import java.io.PrintWriter;
+import java.time.Duration;
+import java.time.Instant;
 import java.util.List;
+import java.util.UUID;
 import java.util.concurrent.Callable;
 
-/** {@code mw agents HOST}: lists the agents at an agent host. */
-@Command(name = "agents", mixinStandardHelpOptions = true, description = "Lists the agents at an agent host.")
+/**
+ * {@code mw agents HOST...}: lists the agents at agent hosts and what each owes agents' homes
+ * (reports and results not delivered yet, with their age); {@code --drop-owed} drops those.
+ * Exit status 0 when every host answered, 1 when one could not be reached.
+ */
+@Command(name = "agents", mixinStandardHelpOptions = true,
+        description = {"Lists the agents at agent hosts and the deliveries each owes agents' homes.",
+                "Example: mw agents rmi://127.0.0.1:1099/nxt rmi://127.0.0.1:1100/ft",
+                "         mw agents --drop-owed rmi://127.0.0.1:41234/dispatch-4711 rmi://127.0.0.1:1099/nxt"})
 final class AgentsCommand implements Callable<Integer> {
 
-    @Parameters(paramLabel = "HOST", description = "the host's address, rmi://host:port/name")
-    String host;
+    @Parameters(arity = "1..*", paramLabel = "HOST", description = "the hosts' addresses, rmi://host:port/name")
+    List<String> hosts;
+
+    @Option(names = "--drop-owed", paramLabel = "all|AGENT-ID|HOME", description = "drop the deliveries these hosts owe: all of them, those of one"
+            + " agent, or those owed to one home (rmi://...); for a home that is gone for good, rather than wait for their expiry")
+    String dropOwed;
 
     @Mixin
     ClusterOptions cluster;
@@ -28,21 +46,80 @@ final class AgentsCommand implements Callable<Integer> {
     @Override
     public Integer call() throws Exception {
         PrintWriter out = spec.commandLine().getOut();
-        List<AgentInfo> agents;
-        try {
-            agents = AgentHost.list(host, cluster.key() == null ? io.robomw.agents.host.ClusterKey.tlsOnly() : cluster.key(), cluster.tls() != null);
-        } catch (java.io.IOException | IllegalArgumentException e) {
-            spec.commandLine().getErr().println("mw agents: " + e.getMessage());
-            return 2;
-        }
-        out.printf("%d agent%s at %s%n", agents.size(), agents.size() == 1 ? "" : "s", host);
-        if (!agents.isEmpty()) {
-            out.printf("%-36s  %-10s  %4s  %-40s  %s%n", "ID", "STATUS", "HOP", "CLASS", "HOME");
-            for (AgentInfo a : agents) {
-                out.printf("%-36s  %-10s  %4d  %-40s  %s%n", a.id(), a.status(), a.hop(), a.className(), a.home());
+        PrintWriter err = spec.commandLine().getErr();
+        OwedSelector drop = dropOwed == null ? null : selector(dropOwed);
+        int unreachable = 0;
+        try (HostClient client = new HostClient(cluster.keyOrTlsOnly(), cluster.tls() != null, 10_000)) {
+            for (String host : hosts) {
+                try {
+                    if (drop != null) {
+                        List<OwedDelivery> dropped = client.dropOwed(host, drop);
+                        out.printf("%s dropped %d owed deliver%s (%s)%n", host, dropped.size(), dropped.size() == 1 ? "y" : "ies", drop);
+                        printOwed(out, dropped);
+                    } else {
+                        printHost(out, host, client.agents(host), client.owed(host));
+                    }
+                } catch (IOException | IllegalArgumentException e) {
+                    err.printf("mw agents: %s: %s%n", host, Mw.oneLine(e));
+                    unreachable++;
+                }
+                out.flush();
             }
         }
-        out.flush();
-        return 0;
+        err.flush();
+        return unreachable == 0 ? 0 : 1;
+    }
+
+    private static OwedSelector selector(String text) {
+        if (text.equalsIgnoreCase("all")) {
+            return OwedSelector.all();
+        }
+        if (text.startsWith("rmi://")) {
+            return OwedSelector.home(text);
+        }
+        try {
+            return OwedSelector.agent(UUID.fromString(text));
+        } catch (IllegalArgumentException e) {
+            throw new IllegalArgumentException("--drop-owed takes all, an agent id or a home address (rmi://host:port/name), not '" + text + "'");
+        }
+    }
+
+    private static void printHost(PrintWriter out, String host, List<AgentInfo> agents, List<OwedDelivery> owed) {
+        out.printf("%d agent%s at %s%n", agents.size(), agents.size() == 1 ? "" : "s", host);
+        if (!agents.isEmpty()) {
+            out.printf("  %-36s  %-10s  %4s  %-40s  %s%n", "ID", "STATUS", "HOP", "CLASS", "HOME");
+            for (AgentInfo a : agents) {
+                out.printf("  %-36s  %-10s  %4d  %-40s  %s%n", a.id(), a.status(), a.hop(), a.className(), a.home());
+            }
+        }
+        out.printf("%d deliver%s owed by %s%n", owed.size(), owed.size() == 1 ? "y" : "ies", host);
+        printOwed(out, owed);
+    }
+
+    private static void printOwed(PrintWriter out, List<OwedDelivery> owed) {
+        if (owed.isEmpty()) {
+            return;
+        }
+        out.printf("  %-36s  %5s  %-8s  %-9s  %5s  %-40s  %s%n", "AGENT", "EVENT", "KIND", "AGE", "TRIES", "HOME", "LAST ERROR");
+        Instant now = Instant.now();
+        for (OwedDelivery d : owed) {
+            out.printf("  %-36s  %5d  %-8s  %-9s  %5d  %-40s  %s%n", d.agent(), d.seq(), d.kind(), age(Duration.between(d.owedSince(), now)), d.attempts(),
+                    d.home(), d.lastError().lines().findFirst().orElse(""));
+        }
+    }
+
+    /** @return a duration as people read it: 42s, 3m05s, 2h10m, 3d04h */
+    static String age(Duration d) {
+        long s = Math.max(0, d.toSeconds());
+        if (s < 60) {
+            return s + "s";
+        }
+        if (s < 3600) {
+            return String.format("%dm%02ds", s / 60, s % 60);
+        }
+        if (s < 86_400) {
+            return String.format("%dh%02dm", s / 3600, s % 3600 / 60);
+        }
+        return String.format("%dd%02dh", s / 86_400, s % 86_400 / 3600);
     }
 }

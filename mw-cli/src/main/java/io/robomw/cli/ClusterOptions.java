@@ -40,7 +40,13 @@ final class ClusterOptions {
         return lookup.require(file, "this command");
     }
 
-    TlsSettings tls() {
+    /** @return the cluster key, or the TLS-only key when TLS alone authenticates */
+    ClusterKey keyOrTlsOnly() throws IOException {
+        ClusterKey k = key();
+        return k == null ? ClusterKey.tlsOnly() : k;
+    }
+
+        TlsSettings tls() {
         if (keyStore == null) {
             return null;
         }
