@@ -309,6 +309,14 @@ public final class AgentHost implements Agency, AutoCloseable {
         }
     }
 
+    /**
+     * Serves a call as if a verified peer had made it, without RMI: for tests and fuzzing of what
+     * the host does with call bodies.
+     */
+    Reply serve(String peer, Op op, byte[] body) {
+        return calls.handle(peer, op, body, 0, body.length);
+    }
+
     /** Serves a call this host makes to itself (its {@link Calls} are made after its {@link Peers}). */
     private Reply serveSelf(String peer, Op op, byte[] message, int offset, int length) {
         return calls.handle(peer, op, message, offset, length);
