@@ -45,7 +45,9 @@ public interface AgentRef {
 
     /**
      * Listens to the values the agent sends home while it travels ({@link AgentContext#report}),
-     * in the order it sent them. Called on the home's delivery thread.
+     * in the order it sent them. Called on the home's delivery thread. The first listener added
+     * also gets, first, the reports that came before it (an agent may report before the call that
+     * sent it has returned), up to the last 10,000.
      *
      * @param listener the listener
      */

@@ -21,6 +21,9 @@ import java.io.PrintWriter;
                 DispatchCommand.class, RetractCommand.class, DisposeCommand.class, DemoCommand.class, CommandLine.HelpCommand.class})
 public final class Mw {
 
+    /** RMI's keep-alive of idle connection threads, in milliseconds (read once, when RMI's transport loads). */
+    static final String RMI_THREAD_KEEP_ALIVE = "sun.rmi.transport.tcp.threadKeepAliveTime";
+
     @Option(names = "--verbose", scope = ScopeType.INHERIT, description = "on an error, also show its stack trace")
     boolean verbose;
 
@@ -28,6 +31,11 @@ public final class Mw {
      * @param args the command line
      */
     public static void main(String[] args) {
+        // RMI keeps a thread per idle connection for a minute by default: a host that served a burst
+        // of agents would hold hundreds. 10 s is enough to reuse a connection between hops.
+        if (System.getProperty(RMI_THREAD_KEEP_ALIVE) == null) {
+            System.setProperty(RMI_THREAD_KEEP_ALIVE, "10000");
+        }
         System.exit(commandLine().execute(args));
     }
 

@@ -1,0 +1,101 @@
+package io.robomw.it.soak;
+
+import java.io.IOException;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.concurrent.TimeUnit;
+import java.util.regex.Matcher;
+import java.util.regex.Pattern;
+import java.util.stream.Stream;
+
+/**
+ * What one host JVM holds: its threads and open file descriptors (from /proc) and its heap in use
+ * after a full collection ({@code jcmd PID GC.run}, then {@code GC.heap_info}).
+ *
+ * @param threads  live threads
+ * @param files    open file descriptors
+ * @param heapKiB  heap in use after a full GC, KiB
+ * @param threadGroups the most numerous kinds of thread (names without their numbers), for when a bound is broken
+ */
+record HostFigures(int threads, int files, long heapKiB, String threadGroups) {
+
+    private static final Pattern USED = Pattern.compile("used (\\d+)K");
+
+    /**
+     * @param pid a JVM's process id
+     * @return what it holds now
+     * @throws IOException if /proc or jcmd cannot tell
+     */
+    static HostFigures of(long pid) throws IOException {
+        Path proc = Path.of("/proc", Long.toString(pid));
+        int threads = threadsOf(pid);
+        int files = filesOf(pid);
+        jcmd(pid, "GC.run");
+        String info = jcmd(pid, "GC.heap_info");
+        long used = 0;
+        Matcher m = USED.matcher(info);
+        while (m.find()) {
+            used += Long.parseLong(m.group(1)); // each generation's "used": young and old (Metaspace lines say "used NNNK" too, but later: see below)
+        }
+        long metaspace = 0;
+        Matcher meta = Pattern.compile("Metaspace\\s+used (\\d+)K").matcher(info);
+        if (meta.find()) {
+            metaspace = Long.parseLong(meta.group(1));
+        }
+        Matcher klass = Pattern.compile("class space\\s+used (\\d+)K").matcher(info);
+        long classSpace = klass.find() ? Long.parseLong(klass.group(1)) : 0;
+        java.util.Map<String, Integer> groups = new java.util.TreeMap<>();
+        Matcher name = Pattern.compile("(?m)^\"([^\"]*)\"").matcher(jcmd(pid, "Thread.print"));
+        while (name.find()) {
+            groups.merge(name.group(1).replaceAll("\\d+", "N"), 1, Integer::sum);
+        }
+        String top = groups.entrySet().stream().sorted(java.util.Map.Entry.<String, Integer>comparingByValue().reversed()).limit(6)
+                .map(e -> e.getValue() + " " + e.getKey()).collect(java.util.stream.Collectors.joining(", "));
+        return new HostFigures(threads, files, used - metaspace - classSpace, top);
+    }
+
+    /** @return a JVM's open file descriptors, from /proc */
+    static int filesOf(long pid) throws IOException {
+        try (Stream<Path> fds = Files.list(Path.of("/proc", Long.toString(pid), "fd"))) {
+            return (int) fds.count();
+        }
+    }
+
+    /** @return a JVM's live threads, from /proc */
+    static int threadsOf(long pid) throws IOException {
+        for (String line : Files.readAllLines(Path.of("/proc", Long.toString(pid), "status"), StandardCharsets.UTF_8)) {
+            if (line.startsWith("Threads:")) {
+                return Integer.parseInt(line.substring("Threads:".length()).strip());
+            }
+        }
+        throw new IOException("/proc/" + pid + "/status has no Threads line");
+    }
+
+    private static String jcmd(long pid, String command) throws IOException {
+        Path jcmd = Path.of(System.getProperty("java.home"), "bin", "jcmd");
+        Process p = new ProcessBuilder(jcmd.toString(), Long.toString(pid), command).redirectErrorStream(true).start();
+        try {
+            String out = new String(p.getInputStream().readAllBytes(), StandardCharsets.UTF_8);
+            if (!p.waitFor(60, TimeUnit.SECONDS) || p.exitValue() != 0) {
+                throw new IOException("jcmd " + pid + " " + command + " failed: " + out);
+            }
+            return out;
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            throw new IOException("interrupted", e);
+        } finally {
+            p.destroyForcibly();
+        }
+    }
+
+    @Override
+    public String toString() {
+        return threads + " threads, " + files + " files, " + heapKiB / 1024 + " MiB heap";
+    }
+
+    /** @return the figures with the most numerous kinds of thread */
+    String detailed() {
+        return this + " (" + threadGroups + ")";
+    }
+}
