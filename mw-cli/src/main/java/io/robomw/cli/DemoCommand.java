@@ -86,10 +86,35 @@ final class DemoCommand implements Callable<Integer> {
     @Option(names = "--timeout", defaultValue = "PT2M", description = "longest the agents may take (default ${DEFAULT-VALUE})")
     Duration timeout;
 
+    @Option(names = "--console", description = "show the run live in a web page (prints its address); the page stays up after the demo until Ctrl-C")
+    boolean console;
+
+    @Option(names = "--console-port", defaultValue = "8080", description = "the page's port (default ${DEFAULT-VALUE}; 0 picks a free one)")
+    int consolePort;
+
+    @Option(names = "--record", paramLabel = "FILE.mcap", description = "record the run (both robots' poses and sensors, the agents' events) into an MCAP file that Foxglove opens")
+    Path record;
+
     @Spec
     CommandSpec spec;
 
     private PrintWriter out;
+    /** Counted down once everything is closed: a Ctrl-C waits for it (the recording's footer) before the JVM ends. */
+    private final java.util.concurrent.CountDownLatch closed = new java.util.concurrent.CountDownLatch(1);
+
+    /** Waits for Ctrl-C (or SIGTERM), so the page stays up after the demo. */
+    private void awaitCtrlC() throws InterruptedException {
+        java.util.concurrent.CountDownLatch interrupted = new java.util.concurrent.CountDownLatch(1);
+        Runtime.getRuntime().addShutdownHook(new Thread(() -> {
+            interrupted.countDown();
+            try {
+                closed.await(30, TimeUnit.SECONDS);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        }, "mw-demo-shutdown"));
+        interrupted.await();
+    }
 
     @Override
     public Integer call() throws Exception {
@@ -114,7 +139,17 @@ final class DemoCommand implements Callable<Integer> {
         }
         long started = System.nanoTime();
         List<Process> hosts = new ArrayList<>();
-        Thread reaper = new Thread(() -> hosts.forEach(Process::destroyForcibly), "mw-demo-reaper");
+        List<AutoCloseable> closeLater = new java.util.concurrent.CopyOnWriteArrayList<>();
+        Thread reaper = new Thread(() -> {
+            hosts.forEach(Process::destroyForcibly);
+            for (AutoCloseable c : closeLater) {
+                try {
+                    c.close(); // a demo stopped by Ctrl-C still gets its recording's summary and footer
+                } catch (Exception e) {
+                    System.err.println("mw demo: closing " + c + " failed: " + e);
+                }
+            }
+        }, "mw-demo-reaper");
         Runtime.getRuntime().addShutdownHook(reaper);
         try (Simulation sim = Simulation.load(worldFile, Set.copyOf(ROBOTS));
              BrickEmulator nxtBrick = NxtEmulator.bind(sim, "nxt");
@@ -122,6 +157,15 @@ final class DemoCommand implements Callable<Integer> {
             step("world %s: robots %s", description.name(), ROBOTS);
             Map<String, String> devices = Map.of("nxt", nxtBrick.startOnPseudoTerminal(), "ft", ftBrick.startOnPseudoTerminal());
             step("virtual NXT brick on %s, virtual fischertechnik Intelligent Interface on %s", devices.get("nxt"), devices.get("ft"));
+            io.robomw.console.Console watching = null;
+            if (console || record != null) {
+                io.robomw.console.Console.Builder b = io.robomw.console.Console.builder("mw demo").simulation(sim).record(record)
+                        .clusterKey(ClusterKey.read(keyFile), false).about("world", worldFile.toString());
+                watching = (console ? b.page("127.0.0.1", consolePort) : b.noPage()).start();
+                closeLater.add(watching);
+                watching.pageAddress().ifPresent(a -> step("console at %s", a));
+                watching.recording().ifPresent(f -> step("recording to %s", f));
+            }
             sim.startRealTime(1.0);
             Map<String, String> addresses = new LinkedHashMap<>();
             for (String r : ROBOTS) {
@@ -133,6 +177,9 @@ final class DemoCommand implements Callable<Integer> {
                 awaitReady(ROBOTS.get(i), hosts.get(i), logDir);
                 step("agent host %s ready at %s (driver: %s over %s)", ROBOTS.get(i), addresses.get(ROBOTS.get(i)),
                         ROBOTS.get(i).equals("nxt") ? "LEGO NXT" : "fischertechnik Intelligent Interface", devices.get(ROBOTS.get(i)));
+                if (watching != null) {
+                    watching.watchHost(addresses.get(ROBOTS.get(i)));
+                }
             }
             Map<String, Pose> startPoses = new LinkedHashMap<>();
             for (String r : ROBOTS) {
@@ -142,6 +189,9 @@ final class DemoCommand implements Callable<Integer> {
             try (URLClassLoader code = new URLClassLoader(new URL[] {jar.toUri().toURL()}, Agent.class.getClassLoader());
                  AgentHost home = AgentHost.builder("demo").clusterKey(ClusterKey.read(keyFile)).start()) {
                 Agent agent = (Agent) code.loadClass(AGENT).getConstructor(double.class).newInstance(side);
+                if (watching != null) {
+                    watching.watchHost(home.address());
+                }
                 List<AgentRef> refs = home.dispatchClones(agent, addresses.values().toArray(String[]::new));
                 step("dispatched clones of %s (its code from %s) to both hosts", AGENT, jar.getFileName());
                 results = new LinkedHashMap<>();
@@ -183,9 +233,22 @@ final class DemoCommand implements Callable<Integer> {
             }
             PngRenderer.write(sim.world(), picture, RenderOptions.DEFAULT);
             step("wrote %s (both trajectories)", picture);
+            if (console) {
+                stopHosts(hosts);
+                step("the console keeps showing the run until Ctrl-C");
+                awaitCtrlC();
+            }
         } finally {
             stopHosts(hosts);
-            Runtime.getRuntime().removeShutdownHook(reaper);
+            for (AutoCloseable c : closeLater) {
+                c.close();
+            }
+            closed.countDown();
+            try {
+                Runtime.getRuntime().removeShutdownHook(reaper);
+            } catch (IllegalStateException e) {
+                // the JVM is shutting down (Ctrl-C after the demo): the hook is running
+            }
         }
         step("stopped both hosts, both bricks and the world; done in %.1f s (host logs in %s)", (System.nanoTime() - started) / 1e9, logDir);
         return 0;

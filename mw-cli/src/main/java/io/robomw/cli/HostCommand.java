@@ -85,6 +85,9 @@ final class HostCommand implements Callable<Integer> {
             description = "the longest pause between tries to deliver to a home that does not answer (default ${DEFAULT-VALUE})")
     java.time.Duration owedMaxBackoff;
 
+    @Option(names = "--record", paramLabel = "FILE.mcap", description = "record this host's agents (arrivals, stops, reports, results) and its robot (commands, pose, sensors) into an MCAP file")
+    Path record;
+
     @Mixin
     ClusterOptions cluster;
 
@@ -97,13 +100,15 @@ final class HostCommand implements Callable<Integer> {
         PrintWriter err = spec.commandLine().getErr();
         List<AutoCloseable> open = new ArrayList<>();
         Robot robot = null;
+        io.robomw.console.Console console = null;
+        Simulation sim = null;
         try {
             if (world != null) {
                 if (worldRobot == null) {
                     err.println("--world needs --world-robot NAME: which of its robots agents drive");
                     return 2;
                 }
-                Simulation sim = Simulation.load(world);
+                sim = Simulation.load(world);
                 open.add(0, sim);
                 sim.startRealTime(speed);
                 robot = sim.robot(worldRobot);
@@ -121,6 +126,14 @@ final class HostCommand implements Callable<Integer> {
                 err.println("--messaging and --no-messaging contradict each other; give one");
                 return 2;
             }
+            if (record != null) {
+                console = io.robomw.console.Console.builder("mw " + String.join(" ", spec.commandLine().getParseResult().originalArgs()))
+                        .noPage().record(record).clusterKey(cluster.key(), cluster.tls() != null).simulation(sim).start();
+                if (robot != null) {
+                    console.watchRobot(robot, robotFile != null ? robotFile.toString() : world + " (" + worldRobot + ")");
+                    robot = console.recordCommands(robot);
+                }
+            }
             MessagingSettings settings = serve == null ? MessagingSettings.defaults() : RobotProtocol.forServer(MessagingSettings.defaults());
             AgentHost.Builder builder = AgentHost.builder(name).bind(bind).port(port).robot(robot).clusterKey(cluster.key()).tls(cluster.tls())
                     .store(store).allow(allow).messagingSettings(settings)
@@ -132,6 +145,11 @@ final class HostCommand implements Callable<Integer> {
             }
             AgentHost host = builder.start();
             open.add(0, host);
+            if (console != null) {
+                console.watchHost(host.address());
+                open.add(0, console);
+                out.printf("recording to %s%n", record);
+            }
             String served = null;
             if (serve != null) {
                 MessagingNode node = host.messagingNode().orElse(null);
@@ -160,6 +178,9 @@ final class HostCommand implements Callable<Integer> {
         } catch (RobotException | IllegalArgumentException | IllegalStateException | java.io.IOException e) {
             err.println("mw host: " + e.getMessage());
             err.flush();
+            if (console != null && !open.contains(console)) {
+                console.close();
+            }
             closeAll(open);
             return 2;
         }

@@ -113,8 +113,22 @@ final class SimCommand implements Callable<Integer> {
     @Option(names = "--rays", description = "draw range sensors' rays to their latest readings")
     private boolean rays;
 
+    @Option(names = "--console", description = "show the world live in a web page (prints its address); runs in real time unless --fast, and keeps the page up after the run until Ctrl-C")
+    private boolean console;
+
+    @Option(names = "--console-port", paramLabel = "PORT", defaultValue = "8080", description = "the page's port (default: ${DEFAULT-VALUE}; 0 picks a free one)")
+    private int consolePort;
+
+    @Option(names = "--record", paramLabel = "FILE.mcap", description = "record the run (poses, sensors, the programs' commands) into an MCAP file that Foxglove opens")
+    private Path record;
+
     @Spec
     private CommandSpec spec;
+
+    /** The page and recording of this run, if asked for. */
+    private io.robomw.console.Console watching;
+    /** Counted down by Ctrl-C (or SIGTERM), whose hook then finishes the page and the recording. */
+    private final java.util.concurrent.CountDownLatch interrupted = new java.util.concurrent.CountDownLatch(1);
 
     /** Converts {@code square}, {@code wander}, {@code none} (any case) to a {@link Program}. */
     static final class ProgramConverter implements CommandLine.ITypeConverter<Program> {
@@ -160,12 +174,47 @@ final class SimCommand implements Callable<Integer> {
             return INVALID;
         }
         try (sim) {
+            if (console || record != null) {
+                io.robomw.console.Console.Builder b = io.robomw.console.Console.builder("mw " + String.join(" ", spec.commandLine().getParseResult().originalArgs()))
+                        .simulation(sim).record(record).about("world", worldFile.toString());
+                if (console) {
+                    b.page("127.0.0.1", consolePort);
+                } else {
+                    b.noPage();
+                }
+                try {
+                    watching = b.start();
+                } catch (IOException e) {
+                    err.println("mw sim: " + e.getMessage());
+                    return FAILED;
+                }
+                io.robomw.console.Console w = watching;
+                Runtime.getRuntime().addShutdownHook(new Thread(() -> {
+                    interrupted.countDown();
+                    w.close(); // a run stopped by Ctrl-C still gets its recording's summary and footer
+                }, "mw-sim-shutdown"));
+                watching.pageAddress().ifPresent(a -> out.println("console at " + a));
+                watching.recording().ifPresent(f -> out.println("recording to " + f));
+                out.flush();
+            }
+            try {
+                return runAndReport(sim, out, err, options);
+            } finally {
+                if (watching != null) {
+                    watching.close();
+                }
+            }
+        }
+    }
+
+    private int runAndReport(Simulation sim, PrintWriter out, PrintWriter err, RenderOptions options) {
+        {
             long wallStart = System.nanoTime();
             int status = OK;
             try {
                 if (view) {
                     runInViewer(sim, options);
-                } else if (pace != null && pace.realTime) {
+                } else if (pace != null && pace.realTime || console && pace == null) {
                     runInRealTime(sim);
                 } else {
                     runFast(sim);
@@ -189,7 +238,21 @@ final class SimCommand implements Callable<Integer> {
                 }
             }
             printSummary(out, sim.world(), wallSeconds);
+            if (console) {
+                out.println("the console keeps showing the world until Ctrl-C");
+                out.flush();
+                awaitCtrlC();
+            }
             return status;
+        }
+    }
+
+    /** Waits for Ctrl-C (or SIGTERM), so a page stays up after the run. */
+    private void awaitCtrlC() {
+        try {
+            interrupted.await();
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
         }
     }
 
@@ -269,8 +332,9 @@ final class SimCommand implements Callable<Integer> {
     private List<Runnable> squarePrograms(Simulation sim) {
         List<Runnable> programs = new ArrayList<>();
         for (Robot robot : sim.robots()) {
+            Robot driven = watching != null ? watching.recordCommands(robot) : robot;
             sim.world().robot(robot.name()).description().drive().ifPresent(d ->
-                    programs.add(new SquareProgram(robot, side, Math.min(SQUARE_SPEED, d.maxSpeed() * SQUARE_SPEED_SHARE))));
+                    programs.add(new SquareProgram(driven, side, Math.min(SQUARE_SPEED, d.maxSpeed() * SQUARE_SPEED_SHARE))));
         }
         return programs;
     }

@@ -56,9 +56,16 @@ final class Calls implements HostEndpoint.Handler {
             case MESSAGE -> onMessage(peer, body);
             case RETRACT, DISPOSE -> onRequest(peer, op, body);
             case DESCRIBE -> Reply.ok(host.messaging.describeSelf().encode());
+            case WATCH -> onWatch(body);
             case OWED -> Reply.ok(Bodies.owedReply(owed.owed()));
             case DROP_OWED -> onDropOwed(peer, body);
         };
+    }
+
+    /** What a watcher sees: body = the last event number it saw (u64), or nothing for all. */
+    private Reply onWatch(byte[] body) {
+        long since = body.length >= 8 ? java.nio.ByteBuffer.wrap(body).getLong() : 0;
+        return Reply.ok(host.activity.watchReply(host.name, host.robot == null ? "" : host.robot.name(), host.hosted.values(), since));
     }
 
     private Reply onDropOwed(String peer, byte[] body) {

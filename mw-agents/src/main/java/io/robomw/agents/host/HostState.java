@@ -39,6 +39,8 @@ final class HostState {
     final Map<UUID, HostedAgent> hosted = new ConcurrentHashMap<>();
     /** The handles of the agents whose home this host is. */
     final Map<UUID, AgentHandle> handles = new ConcurrentHashMap<>();
+    /** What happened here lately, for watchers (a console): {@link Op#WATCH}. */
+    final HostActivity activity = new HostActivity();
     /** Runs agents' stops, one pooled thread per agent at a time. */
     final ExecutorService runners;
     /** Runs the home's calls to its agents (messages, retract and dispose requests) and clone launches. */

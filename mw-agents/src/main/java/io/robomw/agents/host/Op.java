@@ -21,10 +21,12 @@ enum Op {
     DISPOSE(6),
     /** Say who this host is: name, robot, messaging addresses, the hosts it knows ({@link HostDescription}). Code 7. */
     DESCRIBE(7),
-    /** List the reports and results this host owes homes and has not delivered ({@link OwedDelivery}). Code 8. */
-    OWED(8),
-    /** Drop owed deliveries ({@link OwedSelector}); the reply lists the ones dropped. Code 9. */
-    DROP_OWED(9);
+    /** What a watcher (a console) sees: the host, its agents and itineraries, recent events ({@link HostWatch}). Code 8. */
+    WATCH(8),
+    /** List the reports and results this host owes homes and has not delivered ({@link OwedDelivery}). Code 9. */
+    OWED(9),
+    /** Drop owed deliveries ({@link OwedSelector}); the reply lists the ones dropped. Code 10. */
+    DROP_OWED(10);
 
     private final int code;
 
@@ -52,10 +54,11 @@ enum Op {
             case 5 -> RETRACT;
             case 6 -> DISPOSE;
             case 7 -> DESCRIBE;
-            case 8 -> OWED;
-            case 9 -> DROP_OWED;
+            case 8 -> WATCH;
+            case 9 -> OWED;
+            case 10 -> DROP_OWED;
             default -> throw new IllegalArgumentException("unknown operation code " + code
-                    + " (this host knows 0-9: TRANSFER, PUT_ARCHIVE, LIST, EVENT, MESSAGE, RETRACT, DISPOSE, DESCRIBE, OWED, DROP_OWED)");
+                    + " (this host knows 0-10: TRANSFER, PUT_ARCHIVE, LIST, EVENT, MESSAGE, RETRACT, DISPOSE, DESCRIBE, WATCH, OWED, DROP_OWED)");
         };
     }
 }

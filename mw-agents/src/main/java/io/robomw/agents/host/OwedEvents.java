@@ -49,6 +49,7 @@ final class OwedEvents implements AutoCloseable {
         } catch (IOException e) {
             throw new IllegalArgumentException("report value of agent " + h.id + " is not serializable: " + e.getMessage(), e);
         }
+        host.activity.record(h.id, h.className, HostActivity.REPORT, host.address, HostActivity.describe(value));
         long seq;
         synchronized (h) {
             seq = h.eventSeq++;

@@ -127,6 +127,7 @@ final class Transfers {
             // otherwise it is told, once, as news (a later arrival makes an unsent one moot).
             owed.arrived(h);
         }
+        host.activity.record(h.id, h.className, HostActivity.ARRIVED, host.address, "hop " + h.hop + " from " + peer);
         if (started != null) {
             started[0] = h;
         } else {

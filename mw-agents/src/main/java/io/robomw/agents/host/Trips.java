@@ -92,9 +92,11 @@ final class Trips {
                             h.agent.run();
                         }
                         it.record(stopHost, Itinerary.Outcome.DONE, "");
+                        host.activity.record(h.id, h.className, HostActivity.STOP_DONE, host.address, "");
                     } catch (Exception | LinkageError | AssertionError | StackOverflowError e) {
                         LOG.warn("host {}: agent {} ({}) failed at its stop: {}", host.name, h.id, h.className, e.toString());
                         it.record(stopHost, Itinerary.Outcome.FAILED, StackTraces.of(e));
+                        host.activity.record(h.id, h.className, HostActivity.STOP_FAILED, host.address, e.toString());
                     }
                 }
             }
@@ -164,6 +166,7 @@ final class Trips {
             h.imageSize = frame.bodyLength();
             String why = hops.send(h, image, frame, target, it);
             if (why == null) {
+                host.activity.record(h.id, h.className, HostActivity.DEPARTED, host.address, target);
                 return new Departure(true, target, null);
             }
             h.agent.attach(host.contextOf(h));
@@ -215,6 +218,8 @@ final class Trips {
         // The visits first, then the event that ends the trip: the home has them when its result future completes.
         owed.owe(h.home, new AgentEvent(h.id, h.eventSeq++, AgentEvent.Kind.VISITS, host.address, Bodies.visits(h.agent.itinerary().history())));
         AgentEvent event = new AgentEvent(h.id, h.eventSeq++, k, host.address, payload);
+        host.activity.record(h.id, h.className, k == AgentEvent.Kind.RESULT ? HostActivity.RESULT : k == AgentEvent.Kind.DISPOSED ? HostActivity.DISPOSED
+                : HostActivity.FAILED, host.address, k == AgentEvent.Kind.RESULT ? HostActivity.describe(h.result) : new String(payload, StandardCharsets.UTF_8));
         owed.owe(h.home, event);
         try {
             host.store.departed(h.id);
@@ -227,6 +232,7 @@ final class Trips {
 
     /** Sends a retracted agent home, retrying until its home takes it. */
     void goHome(HostedAgent h) {
+        host.activity.record(h.id, h.className, HostActivity.RETRACTED, host.address, "going home to " + h.home);
         try {
             h.agent.onDispatching();
         } catch (RuntimeException e) {

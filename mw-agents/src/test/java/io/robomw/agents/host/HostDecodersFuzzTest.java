@@ -112,7 +112,7 @@ class HostDecodersFuzzTest {
         if (host == null) {
             host = AgentHost.builder("fuzzed").clusterKey(KEY).noMessaging().stopGrace(java.time.Duration.ZERO).start();
         }
-        Op op = Op.fromCode(data.consumeInt(0, 9));
+        Op op = Op.fromCode(data.consumeInt(0, 10));
         byte[] body = data.consumeRemainingAsBytes();
         Reply r = host.serve("fuzz", op, body);
         if (r == null || r.status() == null) {

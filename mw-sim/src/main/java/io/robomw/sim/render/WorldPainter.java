@@ -141,7 +141,15 @@ public final class WorldPainter {
         paintCaption(g, world, view, heightPx);
     }
 
-    private static void paintArena(Graphics2D g, WorldDescription d, ViewTransform view) {
+    /**
+     * Paints the arena alone: walls, floor, floor patches and obstacles (a replayed recording
+     * draws its own trajectories over it).
+     *
+     * @param g    where to paint
+     * @param d    the world
+     * @param view world-to-screen mapping
+     */
+    public static void paintArena(Graphics2D g, WorldDescription d, ViewTransform view) {
         if (d.walls()) {
             g.setColor(WALL);
             g.fill(rect(view, bounds(d)));

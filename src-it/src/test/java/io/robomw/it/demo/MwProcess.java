@@ -82,6 +82,12 @@ public final class MwProcess implements AutoCloseable {
         return lines.transcript();
     }
 
+    /** kill -9: no shutdown hook; waits until it is gone. */
+    public void kill() throws InterruptedException {
+        process.destroyForcibly();
+        process.waitFor(30, TimeUnit.SECONDS);
+    }
+
     @Override
     public void close() throws InterruptedException {
         process.destroy();
