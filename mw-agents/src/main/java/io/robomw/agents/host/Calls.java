@@ -125,7 +125,7 @@ final class Calls implements HostEndpoint.Handler {
         boolean handled;
         try {
             handled = h.agent.handleMessage(m);
-        } catch (RuntimeException e) {
+        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
             return Reply.of(Reply.Status.REFUSED, "agent " + id + " threw while handling the message: " + e);
         }
         if (!handled) {

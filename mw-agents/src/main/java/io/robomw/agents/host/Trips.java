@@ -93,7 +93,8 @@ final class Trips {
                         }
                         it.record(stopHost, Itinerary.Outcome.DONE, "");
                         host.activity.record(h.id, h.className, HostActivity.STOP_DONE, host.address, "");
-                    } catch (Exception | LinkageError | AssertionError | StackOverflowError e) {
+                    } catch (Throwable e) {
+                        // Whatever the agent's code throws (an exception, a LinkageError, a StackOverflowError...) fails its stop, not the host.
                         LOG.warn("host {}: agent {} ({}) failed at its stop: {}", host.name, h.id, h.className, e.toString());
                         it.record(stopHost, Itinerary.Outcome.FAILED, StackTraces.of(e));
                         host.activity.record(h.id, h.className, HostActivity.STOP_FAILED, host.address, e.toString());
@@ -102,8 +103,18 @@ final class Trips {
             }
             robot.release();
             moveOn(h);
-        } catch (RuntimeException e) {
+        } catch (Throwable e) {
+            // The runner must not die silently with the agent stuck here: say so, and end its trip here unless it has left.
             LOG.error("host {}: agent {} ({}) could not go on: {}", host.name, h.id, h.className, e.toString(), e);
+            if (!h.departure.isDone() && !host.closed) {
+                try {
+                    h.agent.itinerary().record(host.address, Itinerary.Outcome.FAILED, StackTraces.of(e));
+                    finish(h, AgentEvent.Kind.RESULT);
+                } catch (Throwable again) {
+                    LOG.error("host {}: agent {} could not end its trip here either ({}); it stays in the store for the next start", host.name, h.id,
+                            again.toString());
+                }
+            }
         } finally {
             robot.release();
             t.setName(poolName);

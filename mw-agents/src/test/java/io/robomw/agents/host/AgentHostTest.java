@@ -189,6 +189,25 @@ class AgentHostTest {
     }
 
     @Test
+    void anErrorFromAnAgentsCodeFailsItsStopAndTheTripGoesOn() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        VisitorAgent agent = new VisitorAgent();
+        agent.itinerary().addStop(a.address(), ctx -> {
+            throw new NoClassDefFoundError("org/example/Gone");
+        }).addStop(a.address(), ctx -> {
+            throw new InternalError("agent code in trouble");
+        }).addStop(a.address());
+        AgentRef ref = home.startTrip(agent);
+        assertEquals(List.of("a"), ref.result().get(10, TimeUnit.SECONDS));
+        List<io.robomw.api.Itinerary.Visit> visits = ref.history();
+        assertEquals(List.of(io.robomw.api.Itinerary.Outcome.FAILED, io.robomw.api.Itinerary.Outcome.FAILED, io.robomw.api.Itinerary.Outcome.DONE),
+                visits.stream().map(io.robomw.api.Itinerary.Visit::outcome).toList(), visits.toString());
+        assertTrue(visits.get(0).detail().startsWith("java.lang.NoClassDefFoundError: org/example/Gone"), visits.get(0).detail());
+        assertTrue(visits.get(1).detail().startsWith("java.lang.InternalError: agent code in trouble"), visits.get(1).detail());
+    }
+
+    @Test
     void clonesThatCouldBeSentTravelWhenOthersCouldNotAndTheirHandlesComeWithTheError() throws Exception {
         AgentHost home = host("home");
         AgentHost a = host("a");

@@ -17,8 +17,9 @@ import java.util.stream.Stream;
  * @param files    open file descriptors
  * @param heapKiB  heap in use after a full GC, KiB
  * @param threadGroups the most numerous kinds of thread (names without their numbers), for when a bound is broken
+ * @param topClasses   the classes holding the most heap after the full GC ({@code jcmd PID GC.class_histogram})
  */
-record HostFigures(int threads, int files, long heapKiB, String threadGroups) {
+record HostFigures(int threads, int files, long heapKiB, String threadGroups, String topClasses) {
 
     private static final Pattern USED = Pattern.compile("used (\\d+)K");
 
@@ -52,7 +53,10 @@ record HostFigures(int threads, int files, long heapKiB, String threadGroups) {
         }
         String top = groups.entrySet().stream().sorted(java.util.Map.Entry.<String, Integer>comparingByValue().reversed()).limit(6)
                 .map(e -> e.getValue() + " " + e.getKey()).collect(java.util.stream.Collectors.joining(", "));
-        return new HostFigures(threads, files, used - metaspace - classSpace, top);
+        String histogram = jcmd(pid, "GC.class_histogram");
+        String classes = histogram.lines().filter(l -> l.matches("\\s*\\d+:.*")).limit(6)
+                .map(l -> l.trim().split("\\s+")).map(f -> f[3] + " " + Long.parseLong(f[2]) / 1024 + " KiB").collect(java.util.stream.Collectors.joining(", "));
+        return new HostFigures(threads, files, used - metaspace - classSpace, top, classes);
     }
 
     /** @return a JVM's open file descriptors, from /proc */
@@ -96,6 +100,6 @@ record HostFigures(int threads, int files, long heapKiB, String threadGroups) {
 
     /** @return the figures with the most numerous kinds of thread */
     String detailed() {
-        return this + " (" + threadGroups + ")";
+        return this + " (" + threadGroups + "; heap: " + topClasses + ")";
     }
 }

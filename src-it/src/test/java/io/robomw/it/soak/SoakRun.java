@@ -77,6 +77,13 @@ class SoakRun {
                         r.after().threads(), r.before().files(), r.after().files(), r.before().heapKiB() / 1024.0, r.after().heapKiB() / 1024.0));
             }
         }
+        b.append("\nWhat holds the most heap in each host after the run (`jcmd PID GC.class_histogram`):\n\n");
+        for (Soak.Figures f : runs) {
+            for (Soak.HostRow r : f.rows()) {
+                b.append("- ").append(f.plan().name()).append(" ").append(r.host().substring(r.host().lastIndexOf('/') + 1)).append(": ")
+                        .append(r.after().topClasses()).append("\n");
+            }
+        }
         b.append("\n").append(END);
         Path doc = Path.of("..", "docs", "reliability.md");
         String text = Files.readString(doc, StandardCharsets.UTF_8);

@@ -89,6 +89,8 @@ public final class JournalStore implements AgentStore {
 
     private static final Logger LOG = LoggerFactory.getLogger(JournalStore.class);
     private static final long COMPACT_BYTES = 32L << 20;
+    /** How many agents' highest hops the store remembers. */
+    static final int SEEN_CAPACITY = 100_000;
     private static final int MAX_RECORD = Integer.MAX_VALUE - 64;
     private static final int PREALLOCATE_BYTES = 4 << 20;
     private static final int PREALLOCATE_MAX_RECORD = 256 << 10;
@@ -162,7 +164,11 @@ public final class JournalStore implements AgentStore {
     private final FileLock lock;
     private final Object writeLock = new Object();
     private final Map<UUID, StoredAgent> live = new LinkedHashMap<>();
+    /** The highest hop of each agent seen, for the last {@value #SEEN_CAPACITY} agents; read without the write lock. */
     private final Map<UUID, Long> seen = new ConcurrentHashMap<>();
+    /** The agents of {@link #seen} in the order they were first seen, for forgetting the oldest; guarded by the write lock. */
+    private final java.util.ArrayDeque<UUID> seenOrder = new java.util.ArrayDeque<>();
+    private final int seenCapacity;
     /** The next event number of each agent held here that has owed an event since it arrived. */
     private final Map<UUID, Long> eventSeqs = new ConcurrentHashMap<>();
     private final Map<String, PendingEvent> events = new LinkedHashMap<>();
@@ -180,8 +186,9 @@ public final class JournalStore implements AgentStore {
     /** When the journal was opened: the owed-since of events a version 1 journal holds. */
     private final long openedAt = System.currentTimeMillis();
 
-    private JournalStore(Path dir) throws IOException {
+    private JournalStore(Path dir, int seenCapacity) throws IOException {
         this.dir = dir;
+        this.seenCapacity = seenCapacity;
         this.journal = dir.resolve("journal");
         this.archives = dir.resolve("archives");
         Files.createDirectories(archives);
@@ -206,7 +213,12 @@ public final class JournalStore implements AgentStore {
      * @throws IOException if the directory cannot be used or another host holds it
      */
     public static JournalStore open(Path dir) throws IOException {
-        return new JournalStore(dir);
+        return new JournalStore(dir, SEEN_CAPACITY);
+    }
+
+    /** {@link #open(Path)} remembering the hops of at most {@code seenCapacity} agents (for tests). */
+    static JournalStore open(Path dir, int seenCapacity) throws IOException {
+        return new JournalStore(dir, seenCapacity);
     }
 
     @Override
@@ -226,7 +238,7 @@ public final class JournalStore implements AgentStore {
         synchronized (writeLock) {
             append(RecordType.ACCEPTED, id, hop, image, true);
             put(new StoredAgent(id, hop, Phase.ACCEPTED, image));
-            seen.merge(id, hop, Math::max);
+            see(id, hop);
         }
     }
 
@@ -412,6 +424,27 @@ public final class JournalStore implements AgentStore {
     /** @return an EVENT_PENDING record's data: when it was first owed, then the event */
     private static byte[] pendingData(PendingEvent e) {
         return ByteBuffer.allocate(8 + e.event().length).putLong(e.owedSince()).put(e.event()).array();
+    }
+
+    /**
+     * Remembers an agent's highest hop, forgetting the agent first seen longest ago beyond
+     * {@value #SEEN_CAPACITY} agents (as {@link MemoryStore} does), so a host that sees agents for
+     * days keeps a bounded map and journal. Only a transfer of an old hop of a forgotten agent could
+     * then be taken again, and a sender resends a hop only until it is acknowledged. Called with
+     * the write lock held (or during replay).
+     */
+    private void see(UUID id, long hop) {
+        if (seen.put(id, Math.max(hop, seen.getOrDefault(id, hop))) == null) {
+            seenOrder.addLast(id); // first seen now
+        }
+        for (int tries = seenOrder.size(); seen.size() > seenCapacity && tries > 0; tries--) {
+            UUID oldest = seenOrder.pollFirst();
+            if (live.containsKey(oldest)) {
+                seenOrder.addLast(oldest); // still held here: keep it
+            } else {
+                seen.remove(oldest);
+            }
+        }
     }
 
     private static String key(UUID id, long seq) {
@@ -623,7 +656,7 @@ public final class JournalStore implements AgentStore {
         switch (type) {
             case ACCEPTED -> {
                 put(new StoredAgent(id, number, Phase.ACCEPTED, data));
-                seen.merge(id, number, Math::max);
+                see(id, number);
             }
             case STARTED -> {
                 StoredAgent a = live.get(id);
@@ -658,7 +691,7 @@ public final class JournalStore implements AgentStore {
                     liveBytes -= e.event().length;
                 }
             }
-            case SEEN -> seen.merge(id, number, Math::max);
+            case SEEN -> see(id, number);
             case EVENT_SEQ -> eventSeqs.merge(id, number, Math::max);
         }
     }

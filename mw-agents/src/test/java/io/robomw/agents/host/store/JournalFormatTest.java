@@ -130,6 +130,30 @@ class JournalFormatTest {
     }
 
     @Test
+    void theStoreRemembersTheHopsOfABoundedNumberOfAgentsButNeverForgetsOneItHolds() throws Exception {
+        Path store = dir.resolve("bounded");
+        UUID held = new UUID(9, 9);
+        List<UUID> gone = new ArrayList<>();
+        try (JournalStore s = JournalStore.open(store, 3)) {
+            s.accepted(held, 1, new byte[] {1}, 0, 1);
+            for (int i = 0; i < 5; i++) {
+                UUID id = new UUID(1, i);
+                gone.add(id);
+                s.accepted(id, 7, new byte[] {1}, 0, 1);
+                s.departed(id);
+            }
+            assertEquals(1, s.highestHop(held), "an agent held here is never forgotten");
+            assertEquals(-1, s.highestHop(gone.get(0)), "the agent seen longest ago is forgotten");
+            assertEquals(7, s.highestHop(gone.get(4)));
+        }
+        try (JournalStore again = JournalStore.open(store, 3)) {
+            assertEquals(1, again.highestHop(held));
+            assertEquals(7, again.highestHop(gone.get(4)));
+            assertEquals(-1, again.highestHop(gone.get(0)), "compaction writes only what is remembered");
+        }
+    }
+
+    @Test
     void aJournalWrittenBeforeTheHeaderExistedHoldingOnlyZerosIsEmpty() throws Exception {
         Path journal = journal(new byte[4096]);
         JournalStore s = JournalStore.open(journal.getParent());
