@@ -54,8 +54,9 @@ record HostFigures(int threads, int files, long heapKiB, String threadGroups, St
         String top = groups.entrySet().stream().sorted(java.util.Map.Entry.<String, Integer>comparingByValue().reversed()).limit(6)
                 .map(e -> e.getValue() + " " + e.getKey()).collect(java.util.stream.Collectors.joining(", "));
         String histogram = jcmd(pid, "GC.class_histogram");
-        String classes = histogram.lines().filter(l -> l.matches("\\s*\\d+:.*")).limit(6)
-                .map(l -> l.trim().split("\\s+")).map(f -> f[3] + " " + Long.parseLong(f[2]) / 1024 + " KiB").collect(java.util.stream.Collectors.joining(", "));
+        // Rows are "   1:   instances   bytes  class (module)"; jcmd's first line is "PID:".
+        String classes = histogram.lines().map(l -> l.trim().split("\\s+")).filter(f -> f.length >= 4 && f[0].matches("\\d+:")).limit(6)
+                .map(f -> f[3] + " " + Long.parseLong(f[2]) / 1024 + " KiB").collect(java.util.stream.Collectors.joining(", "));
         return new HostFigures(threads, files, used - metaspace - classSpace, top, classes);
     }
 
