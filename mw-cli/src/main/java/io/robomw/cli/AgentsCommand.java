@@ -104,7 +104,7 @@ final class AgentsCommand implements Callable<Integer> {
         Instant now = Instant.now();
         for (OwedDelivery d : owed) {
             out.printf("  %-36s  %5d  %-8s  %-9s  %5d  %-40s  %s%n", d.agent(), d.seq(), d.kind(), age(Duration.between(d.owedSince(), now)), d.attempts(),
-                    d.home(), d.lastError().lines().findFirst().orElse(""));
+                    d.home(), TripSummary.flat(d.lastError()));
         }
     }
 

@@ -119,7 +119,7 @@ final class DispatchCommand implements Callable<Integer> {
             }
             unsent.forEach((h, why) -> {
                 synchronized (out) {
-                    out.printf("[%s] not sent: %s%n", h, why);
+                    out.printf("[%s] not sent: %s%n", h, TripSummary.flat(why));
                 }
             });
         } else {

@@ -67,7 +67,7 @@ final class TripSummary {
                 out.println("    (its last host did not say how its stops went)");
             }
         }
-        unsent.forEach((host, why) -> out.printf("  [%s] not sent%n    %-11s  %s: %s%n", host, "UNREACHABLE", host, why));
+        unsent.forEach((host, why) -> out.printf("  [%s] not sent%n    %-11s  %s: %s%n", host, "UNREACHABLE", host, flat(why)));
     }
 
     private void printVisit(PrintWriter out, Itinerary.Visit v) {
@@ -82,13 +82,18 @@ final class TripSummary {
                     trace.lines().forEach(l -> out.println("                 " + l.strip()));
                 }
             }
-            default -> out.printf("    %-11s  %s: %s%n", v.outcome(), v.host(), firstLine(detail));
+            default -> out.printf("    %-11s  %s: %s%n", v.outcome(), v.host(), flat(detail));
         }
     }
 
     /** A failure that is the user's to fix (a host without a robot, an action the robot cannot do): its trace helps nobody. */
     private static boolean userError(String firstLine) {
         return firstLine.startsWith("io.robomw.agents.host.NoRobotException") || firstLine.startsWith("io.robomw.api.UnsupportedActionException");
+    }
+
+    /** @return a reason on one line (RMI's messages nest their causes on new lines) */
+    static String flat(String text) {
+        return text == null ? "" : text.strip().replaceAll("\\s*\\R\\s*", " ");
     }
 
     private static String firstLine(String detail) {
