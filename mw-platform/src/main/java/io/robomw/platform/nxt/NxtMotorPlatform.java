@@ -21,7 +21,8 @@ public final class NxtMotorPlatform extends GenericMotorPlatform {
     private static final long KEEP_ALIVE_NANOS = 60_000_000_000L;
 
     private final NxtBrick brick;
-    private long lastKeepAlive = System.nanoTime();
+    /** When the last keep-alive went, on the platform's clock (set at the first service). */
+    private long lastKeepAlive = Long.MIN_VALUE;
 
     /**
      * @param config the platform configuration (motor ports A, B, C)
@@ -101,8 +102,10 @@ public final class NxtMotorPlatform extends GenericMotorPlatform {
                 reportStoppedAtLimit(port);
             }
         }
-        long now = System.nanoTime();
-        if (now - lastKeepAlive > KEEP_ALIVE_NANOS) {
+        long now = clock().nanoTime();
+        if (lastKeepAlive == Long.MIN_VALUE) {
+            lastKeepAlive = now;
+        } else if (now - lastKeepAlive > KEEP_ALIVE_NANOS) {
             lastKeepAlive = now;
             brick.keepAlive();
         }
