@@ -152,6 +152,16 @@ final class DispatchCommand implements Callable<Integer> {
                 return failure == null;
             }));
         }
+        // Ctrl-C while agents travel: say what keeps going and how to stop the hosts owing this home their results.
+        Thread interrupted = new Thread(() -> {
+            long travelling = sent.stream().filter(x -> !x.ref().result().isDone()).count();
+            if (travelling > 0) {
+                err.printf("mw dispatch: stopped with %d agent(s) still travelling; their hosts owe their results to %s until delivered or expired."
+                        + " Drop them with: mw agents --drop-owed %s HOST...%n", travelling, home.address(), home.address());
+                err.flush();
+            }
+        }, "mw-dispatch-interrupted");
+        Runtime.getRuntime().addShutdownHook(interrupted);
         boolean timedOut = false;
         try {
             CompletableFuture.allOf(done.toArray(CompletableFuture[]::new)).get(timeout.toMillis(), TimeUnit.MILLISECONDS);
@@ -160,13 +170,19 @@ final class DispatchCommand implements Callable<Integer> {
         } catch (java.util.concurrent.ExecutionException e) {
             throw new IllegalStateException(e); // the handlers above never fail
         }
+        try {
+            Runtime.getRuntime().removeShutdownHook(interrupted);
+        } catch (IllegalStateException shuttingDown) {
+            // the JVM is already stopping: the hook runs
+        }
         TripSummary summary = new TripSummary(sent, unsent, Mw.verbose(spec));
         synchronized (out) {
             summary.print(out, timedOut ? timeout : null);
             out.flush();
         }
         if (timedOut) {
-            err.println("mw dispatch: not every result came home within " + timeout + " (the summary says where each agent was last seen)");
+            err.println("mw dispatch: not every result came home within " + timeout + " (the summary says where each agent was last seen); their hosts"
+                    + " owe the rest to " + home.address() + " until it expires: mw agents --drop-owed " + home.address() + " HOST... drops them");
             return 3;
         }
         if (!done.stream().allMatch(CompletableFuture::join)) {

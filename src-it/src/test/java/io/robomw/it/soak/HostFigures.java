@@ -10,18 +10,17 @@ import java.util.regex.Pattern;
 import java.util.stream.Stream;
 
 /**
- * What one host JVM holds: its threads and open file descriptors (from /proc) and its heap in use
- * after a full collection ({@code jcmd PID GC.run}, then {@code GC.heap_info}).
+ * What one host JVM holds: its threads and open file descriptors (from /proc) and the heap its live
+ * objects take after a full collection ({@code jcmd PID GC.class_histogram}, which collects first).
  *
  * @param threads  live threads
  * @param files    open file descriptors
- * @param heapKiB  heap in use after a full GC, KiB
+ * @param heapKiB  heap the live objects take after a full GC, KiB
  * @param threadGroups the most numerous kinds of thread (names without their numbers), for when a bound is broken
  * @param topClasses   the classes holding the most heap after the full GC ({@code jcmd PID GC.class_histogram})
  */
 record HostFigures(int threads, int files, long heapKiB, String threadGroups, String topClasses) {
 
-    private static final Pattern USED = Pattern.compile("used (\\d+)K");
 
     /**
      * @param pid a JVM's process id
@@ -32,20 +31,6 @@ record HostFigures(int threads, int files, long heapKiB, String threadGroups, St
         Path proc = Path.of("/proc", Long.toString(pid));
         int threads = threadsOf(pid);
         int files = filesOf(pid);
-        jcmd(pid, "GC.run");
-        String info = jcmd(pid, "GC.heap_info");
-        long used = 0;
-        Matcher m = USED.matcher(info);
-        while (m.find()) {
-            used += Long.parseLong(m.group(1)); // each generation's "used": young and old (Metaspace lines say "used NNNK" too, but later: see below)
-        }
-        long metaspace = 0;
-        Matcher meta = Pattern.compile("Metaspace\\s+used (\\d+)K").matcher(info);
-        if (meta.find()) {
-            metaspace = Long.parseLong(meta.group(1));
-        }
-        Matcher klass = Pattern.compile("class space\\s+used (\\d+)K").matcher(info);
-        long classSpace = klass.find() ? Long.parseLong(klass.group(1)) : 0;
         java.util.Map<String, Integer> groups = new java.util.TreeMap<>();
         Matcher name = Pattern.compile("(?m)^\"([^\"]*)\"").matcher(jcmd(pid, "Thread.print"));
         while (name.find()) {
@@ -53,11 +38,14 @@ record HostFigures(int threads, int files, long heapKiB, String threadGroups, St
         }
         String top = groups.entrySet().stream().sorted(java.util.Map.Entry.<String, Integer>comparingByValue().reversed()).limit(6)
                 .map(e -> e.getValue() + " " + e.getKey()).collect(java.util.stream.Collectors.joining(", "));
+        // The class histogram runs a full collection first: its total is the heap the live objects hold.
         String histogram = jcmd(pid, "GC.class_histogram");
+        long liveBytes = histogram.lines().map(String::trim).filter(l -> l.startsWith("Total")).map(l -> l.split("\\s+"))
+                .mapToLong(f -> Long.parseLong(f[2])).findFirst().orElseThrow(() -> new IOException("jcmd " + pid + " GC.class_histogram has no total"));
         // Rows are "   1:   instances   bytes  class (module)"; jcmd's first line is "PID:".
         String classes = histogram.lines().map(l -> l.trim().split("\\s+")).filter(f -> f.length >= 4 && f[0].matches("\\d+:")).limit(6)
                 .map(f -> f[3] + " " + Long.parseLong(f[2]) / 1024 + " KiB").collect(java.util.stream.Collectors.joining(", "));
-        return new HostFigures(threads, files, used - metaspace - classSpace, top, classes);
+        return new HostFigures(threads, files, liveBytes / 1024, top, classes);
     }
 
     /** @return a JVM's open file descriptors, from /proc */

@@ -66,7 +66,7 @@ class SoakRun {
             b.append(String.format("| %s | %d | %d | **%d** | %d | **%d** | **%d** | **%d** | %d | %d | %.0f s |%n", title(f), f.sent(), f.home(), f.lost(),
                     f.stopsRun(), f.stopsRunTwice(), f.reportsLost(), f.reportsDuplicate(), f.interrupted(), f.kills(), f.seconds()));
         }
-        b.append("\nEach host JVM before the run (after a warm-up) and after it (once idle), heap in use after a full GC; bounds: ")
+        b.append("\nEach host JVM before the run (after a warm-up) and after it (once idle), heap of its live objects after a full GC; bounds: ")
                 .append(Soak.THREAD_BOUND).append(" threads, ").append(Soak.FILE_BOUND).append(" files, ").append(Soak.HEAP_BOUND_KIB / 1024)
                 .append(" MiB more after than before.\n\n");
         b.append("| run | host | threads before → after | files before → after | heap before → after (MiB) |\n|---|---|---|---|---|\n");
