@@ -193,16 +193,37 @@ public final class JournalStore implements AgentStore {
         this.archives = dir.resolve("archives");
         Files.createDirectories(archives);
         lockChannel = FileChannel.open(dir.resolve("lock"), StandardOpenOption.CREATE, StandardOpenOption.WRITE);
-        FileLock l = lockChannel.tryLock();
+        FileLock l;
+        try {
+            l = lockChannel.tryLock();
+        } catch (java.nio.channels.OverlappingFileLockException e) {
+            l = null; // held by another store of this process
+        }
         if (l == null) {
             lockChannel.close();
             throw new IOException("agent store " + dir + " is in use by another host (its lock file is held)");
         }
         this.lock = l;
-        replay();
-        recoveredAgents = List.copyOf(live.values());
-        recoveredEvents = List.copyOf(events.values());
-        compact();
+        try {
+            replay();
+            recoveredAgents = List.copyOf(live.values());
+            recoveredEvents = List.copyOf(events.values());
+            compact();
+        } catch (IOException | RuntimeException e) {
+            // A journal this store refuses must not keep the directory locked (a host retrying, or another, could not open it).
+            try {
+                if (channel != null) {
+                    channel.close();
+                }
+            } finally {
+                try {
+                    lock.release();
+                } finally {
+                    lockChannel.close();
+                }
+            }
+            throw e;
+        }
     }
 
     /**

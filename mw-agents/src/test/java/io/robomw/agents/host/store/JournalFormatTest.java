@@ -78,6 +78,25 @@ class JournalFormatTest {
     }
 
     @Test
+    void aRefusedJournalLeavesItsDirectoryFreeForTheNextOpen() throws Exception {
+        Path journal = journal(new byte[] {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 3});
+        assertThrows(IOException.class, () -> JournalStore.open(journal.getParent()));
+        IOException again = assertThrows(IOException.class, () -> JournalStore.open(journal.getParent()));
+        assertTrue(again.getMessage().contains("format version 3"), "refused for its version again, not for a lock it left held: " + again.getMessage());
+        Files.write(journal, HEADER_V2);
+        JournalStore.open(journal.getParent()).close();
+    }
+
+    @Test
+    void aSecondStoreOnADirectoryThisProcessHoldsIsRefusedClearly() throws Exception {
+        Path store = dir.resolve("held");
+        try (JournalStore first = JournalStore.open(store)) {
+            IOException e = assertThrows(IOException.class, () -> JournalStore.open(store));
+            assertTrue(e.getMessage().contains("is in use by another host"), e.getMessage());
+        }
+    }
+
+    @Test
     void aFileWithoutAHeaderThatIsNoJournalIsRefusedNamingTheFile() throws Exception {
         Path journal = journal("these are not the records you are looking for".getBytes(StandardCharsets.US_ASCII));
         IOException e = assertThrows(IOException.class, () -> JournalStore.open(journal.getParent()));
