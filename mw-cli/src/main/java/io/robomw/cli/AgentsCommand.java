@@ -22,16 +22,24 @@ import java.util.concurrent.Callable;
 /**
  * {@code mw agents HOST...}: lists the agents at agent hosts and what each owes agents' homes
  * (reports and results not delivered yet, with their age); {@code --drop-owed} drops those.
- * Exit status 0 when every host answered, 1 when one could not be reached.
+ * Exit status 0 when every host answered, 1 when one could not be reached. {@code mw agents
+ * --cluster BROKER}: every host announced at an MQTT broker and its agents.
  */
 @Command(name = "agents", mixinStandardHelpOptions = true,
-        description = {"Lists the agents at agent hosts and the deliveries each owes agents' homes.",
+        description = {"Lists the agents at agent hosts and the deliveries each owes agents' homes,",
+                "or with --cluster mqtt://BROKER every host announced there (mw host --announce or --serve mqtt://...) and its agents.",
                 "Example: mw agents rmi://127.0.0.1:1099/nxt rmi://127.0.0.1:1100/ft",
                 "         mw agents --drop-owed rmi://127.0.0.1:41234/dispatch-4711 rmi://127.0.0.1:1099/nxt"})
 final class AgentsCommand implements Callable<Integer> {
 
-    @Parameters(arity = "1..*", paramLabel = "HOST", description = "the hosts' addresses, rmi://host:port/name")
-    List<String> hosts;
+    @Parameters(arity = "0..*", paramLabel = "HOST", description = "the hosts' addresses, rmi://host:port/name")
+    List<String> hosts = new java.util.ArrayList<>();
+
+    @Option(names = "--cluster", paramLabel = "BROKER", description = "list every host announced at this broker, mqtt://host:port[/prefix]")
+    String broker;
+
+    @Option(names = "--wait", defaultValue = "3", description = "seconds to wait for the broker's answer with --cluster (default ${DEFAULT-VALUE})")
+    double waitSeconds;
 
     @Option(names = "--drop-owed", paramLabel = "all|AGENT-ID|HOME", description = "drop the deliveries these hosts owe: all of them, those of one"
             + " agent, or those owed to one home (rmi://...); for a home that is gone for good, rather than wait for their expiry")
@@ -47,6 +55,13 @@ final class AgentsCommand implements Callable<Integer> {
     public Integer call() throws Exception {
         PrintWriter out = spec.commandLine().getOut();
         PrintWriter err = spec.commandLine().getErr();
+        if (broker != null) {
+            return listCluster(out);
+        }
+        if (hosts.isEmpty()) {
+            err.println("mw agents: give a HOST (rmi://host:port/name) or --cluster mqtt://BROKER");
+            return 2;
+        }
         OwedSelector drop = dropOwed == null ? null : selector(dropOwed);
         int unreachable = 0;
         try (HostClient client = new HostClient(cluster.keyOrTlsOnly(), cluster.tls() != null, 10_000)) {
@@ -68,6 +83,34 @@ final class AgentsCommand implements Callable<Integer> {
         }
         err.flush();
         return unreachable == 0 ? 0 : 1;
+    }
+
+    private int listCluster(PrintWriter out) {
+        List<io.robomw.agents.messaging.PresenceRecord> all;
+        try {
+            all = io.robomw.agents.messaging.mqtt.BrokerDirectory.read(broker, java.time.Duration.ofMillis((long) (waitSeconds * 1000)));
+        } catch (java.io.IOException | IllegalArgumentException e) {
+            spec.commandLine().getErr().println("mw agents: " + e.getMessage());
+            return 2;
+        }
+        List<io.robomw.agents.messaging.PresenceRecord> hosts = all.stream().filter(p -> p.host() != null).toList();
+        out.printf("%d agent host%s at %s%n", hosts.size(), hosts.size() == 1 ? "" : "s", broker);
+        for (io.robomw.agents.messaging.PresenceRecord p : hosts) {
+            out.printf("%s  %s  %s  robot %s  since %s%n", p.host(), p.online() ? "online" : "offline", p.hostAddress(),
+                    p.robots().isEmpty() ? "none" : String.join(",", p.robots()), p.time());
+            for (String a : p.agents()) {
+                out.printf("    %s%n", a);
+            }
+        }
+        List<io.robomw.agents.messaging.PresenceRecord> others = all.stream().filter(p -> p.host() == null && p.online()).toList();
+        if (!others.isEmpty()) {
+            out.printf("%d other node%s online:%n", others.size(), others.size() == 1 ? "" : "s");
+            for (io.robomw.agents.messaging.PresenceRecord p : others) {
+                out.printf("    %s%s%n", p.node(), p.robots().isEmpty() ? "" : "  robots " + String.join(",", p.robots()));
+            }
+        }
+        out.flush();
+        return 0;
     }
 
     private static OwedSelector selector(String text) {

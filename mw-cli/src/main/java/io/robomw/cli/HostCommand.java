@@ -65,14 +65,19 @@ final class HostCommand implements Callable<Integer> {
     @Option(names = "--allow", split = ",", paramLabel = "CLASS", description = "classes agent state may hold besides the agent's own code and JDK value types")
     List<String> allow = new ArrayList<>();
 
-    @Option(names = "--serve", paramLabel = "ADDRESS", description = "also serve the robot to Robots.remote at this messaging address, e.g. tcp://127.0.0.1:7000 (then Robots.remote(\"tcp://127.0.0.1:7000/ROBOT\")); the host's messaging node receives there too")
+    @Option(names = "--serve", paramLabel = "ADDRESS", description = "also serve the robot to Robots.remote at this messaging address, e.g. tcp://127.0.0.1:7000 (then Robots.remote(\"tcp://127.0.0.1:7000/ROBOT\"))"
+            + " or a broker, mqtt://127.0.0.1:1883 (then Robots.remote(\"mqtt://127.0.0.1:1883/ROBOT\")); the host's messaging node receives there too")
     String serve;
 
-    @Option(names = "--messaging", paramLabel = "ADDRESS", description = "where the host's messaging node, which its agents use, receives (default: tcp://BIND:0, a free port)")
+    @Option(names = "--messaging", paramLabel = "ADDRESS", description = "where the host's messaging node, which its agents use, receives (default: tcp://BIND:0, a free port; mqtt://BROKER joins a broker)")
     String messaging;
 
     @Option(names = "--no-messaging", description = "start the host without a messaging node (its agents then have no messaging)")
     boolean noMessaging;
+
+    @Option(names = "--announce", paramLabel = "BROKER", description = "announce this host, its robot and its agents at an MQTT broker (mqtt://host:port[/prefix]) for mw agents --cluster BROKER;"
+            + " a host whose node is at a broker (--messaging or --serve mqtt://...) announces there already")
+    String announce;
 
     @Option(names = "--serve-password", description = "password callers of --serve must give")
     String servePassword;
@@ -151,14 +156,21 @@ final class HostCommand implements Callable<Integer> {
                 out.printf("recording to %s%n", record);
             }
             String served = null;
+            MessagingNode servingNode = null;
             if (serve != null) {
                 MessagingNode node = host.messagingNode().orElse(null);
                 if (node == null) {
                     node = MessagingNode.builder(name + "-robot").settings(settings).build();
                     open.add(0, node);
                 }
+                servingNode = node;
                 served = node.bind(serve) + "/" + robot.name();
                 open.add(0, RobotServer.serve(node, robot, servePassword));
+            }
+            MessagingNode presenceNode = host.messagingNode().orElse(servingNode);
+            boolean atBroker = host.messagingAddresses().stream().anyMatch(m -> m.startsWith("mqtt"));
+            if (announce != null || atBroker) {
+                open.add(0, HostPresence.start(host, announce, presenceNode));
             }
             out.printf("agent host %s ready at %s (robot: %s, store: %s)%n", name, host.address(), robot == null ? "none" : robot.name(),
                     store == null ? "memory" : store);

@@ -42,7 +42,7 @@ final class MsgPubCommand implements Callable<Integer> {
     @Option(names = "--rate", defaultValue = "1", description = "publications per second (default: ${DEFAULT-VALUE})")
     private double rate;
 
-    @Option(names = "--wait-subscribers", defaultValue = "0", description = "wait until this many peers subscribe before publishing (tcp, udp, rmi)")
+    @Option(names = "--wait-subscribers", defaultValue = "0", description = "wait until this many peers subscribe before publishing (tcp, udp, rmi; not through a broker)")
     private int waitSubscribers;
 
     @Option(names = "--wait-timeout", defaultValue = "30", description = "seconds to wait for --wait-subscribers (default: ${DEFAULT-VALUE})")
@@ -56,6 +56,12 @@ final class MsgPubCommand implements Callable<Integer> {
         PrintWriter out = spec.commandLine().getOut();
         if (rate <= 0) {
             spec.commandLine().getErr().println("--rate must be > 0, got " + rate);
+            return 2;
+        }
+        if (waitSubscribers > 0 && address.startsWith("mqtt")) {
+            spec.commandLine().getErr().println("--wait-subscribers counts peers connected to this publisher; through a broker (" + address
+                    + ") subscribers connect to the broker, which does not say who they are: leave it out (a subscriber with a persistent"
+                    + " session gets what was published while it was away)");
             return 2;
         }
         try (MessagingNode node = MsgCommand.bound(common, address)) {

@@ -17,9 +17,9 @@ import java.io.PrintWriter;
  */
 @Command(name = "mw", mixinStandardHelpOptions = true, version = "RoboMW 0.1.0",
         description = "RoboMW: one Java API over many robots.",
-        subcommands = {DescribeCommand.class, SimCommand.class, EmulateCommand.class, MsgCommand.class, HostCommand.class, AgentsCommand.class,
-                DispatchCommand.class, RetractCommand.class, DisposeCommand.class, DemoCommand.class, ConsoleCommand.class, RecordCommand.class,
-                ReplayCommand.class, CommandLine.HelpCommand.class})
+        subcommands = {DescribeCommand.class, SimCommand.class, EmulateCommand.class, MsgCommand.class, BrokerCommand.class, HostCommand.class,
+                AgentsCommand.class, DispatchCommand.class, RetractCommand.class, DisposeCommand.class, DemoCommand.class, ConsoleCommand.class,
+                RecordCommand.class, ReplayCommand.class, CommandLine.HelpCommand.class})
 public final class Mw {
 
     /** RMI's keep-alive of idle connection threads, in milliseconds (read once, when RMI's transport loads). */

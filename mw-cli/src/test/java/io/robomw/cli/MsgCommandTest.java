@@ -69,4 +69,11 @@ class MsgCommandTest {
         assertEquals(1, send.status());
         assertTrue(send.err().contains("cannot reach"), send.err());
     }
+
+    @Test
+    void pubRefusesToCountSubscribersThroughABroker() throws Exception {
+        Run pub = mw("msg", "pub", "mqtt://127.0.0.1:" + freeTcpPort(), "news", "hi", "--wait-subscribers", "1");
+        assertEquals(2, pub.status());
+        assertTrue(pub.err().contains("through a broker"), pub.err());
+    }
 }

@@ -107,6 +107,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         this.owed = new OwedEvents(state, peers, b.delivery);
         this.trips = new Trips(state, new HopSender(state, peers), owed, robot, b.delivery.expiry());
         this.home = new Home(state, code, trips, new AgentRequests(state, peers));
+        messaging.events(key, home::onEvent);
         this.calls = new Calls(state, new Transfers(state, code, trips, home, owed), code, home, owed);
     }
 

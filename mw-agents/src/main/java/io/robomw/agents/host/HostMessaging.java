@@ -35,6 +35,16 @@ final class HostMessaging implements AutoCloseable {
     private final Set<String> met = ConcurrentHashMap.newKeySet();
     private final Set<String> connected = ConcurrentHashMap.newKeySet();
     private volatile HostDirectory directory;
+    private final List<AutoCloseable> brokerDirectories = new java.util.concurrent.CopyOnWriteArrayList<>();
+    /** Agent hosts announced at a broker the node is at, by agent host address. */
+    private final java.util.Map<String, Announced> announced = new ConcurrentHashMap<>();
+    private volatile ClusterKey eventsKey;
+    private volatile java.util.function.BiFunction<String, byte[], Reply> onEvent;
+    private volatile BrokerEvents brokerEvents;
+
+    /** An agent host seen at a broker: where, whether it is up, and whether the broker keeps messages for it while it is away. */
+    private record Announced(String broker, boolean online, long sessionExpirySeconds) {
+    }
 
     /**
      * @param host     the host
@@ -49,12 +59,76 @@ final class HostMessaging implements AutoCloseable {
         this.ownsNode = ownsNode;
     }
 
+    /**
+     * Lets agent events travel through the brokers the node is at ({@link BrokerEvents}).
+     *
+     * @param key     the cluster key (the events' topic password is derived from it)
+     * @param handler what this host does with an event for one of its agents ({@code Home#onEvent})
+     */
+    void events(ClusterKey key, java.util.function.BiFunction<String, byte[], Reply> handler) {
+        this.eventsKey = key;
+        this.onEvent = handler;
+    }
+
     /** Called once the host knows its own address, before it takes calls. */
     void started() {
         directory = new HostDirectory(host.address);
         if (node != null && host.robot != null) {
             node.answerTo(host.robot.name());
         }
+        if (node != null && eventsKey != null && onEvent != null) {
+            brokerEvents = new BrokerEvents(node, eventsKey, host.name);
+            brokerEvents.receive(onEvent);
+        }
+        if (node != null) {
+            node.presence().host(host.name, host.address);
+            for (String broker : addresses()) {
+                if (broker.startsWith("mqtt://") || broker.startsWith("mqtts://")) {
+                    watchBroker(broker);
+                }
+            }
+        }
+    }
+
+    /**
+     * Learns the agent hosts announced at a broker the node is at, as they come and go, so that
+     * agents here can address them by name (through the broker: hosts found there may be out of
+     * reach otherwise).
+     */
+    private void watchBroker(String broker) {
+        try {
+            io.robomw.agents.messaging.mqtt.BrokerDirectory d = io.robomw.agents.messaging.mqtt.BrokerDirectory.open(broker,
+                    node.settings().connectTimeout(), node.settings().tls());
+            brokerDirectories.add(d);
+            d.onPresence(p -> {
+                if (p.host() != null && !p.hostAddress().equals(host.address)) {
+                    announced.put(p.hostAddress(), new Announced(broker, p.online(), p.sessionExpirySeconds()));
+                }
+                HostDirectory dir = directory;
+                if (dir != null && p.online() && p.host() != null && !p.hostAddress().equals(host.address)) {
+                    List<String> viaBroker = p.messaging().stream().filter(m -> m.startsWith("mqtt")).toList();
+                    dir.learn(new HostDescription(p.host(), p.hostAddress(), p.robots().isEmpty() ? "" : p.robots().get(0), viaBroker, List.of()));
+                }
+            });
+        } catch (java.io.IOException | RuntimeException e) {
+            LOG.warn("host {}: cannot read the hosts announced at {}: {}", host.name, broker, e.getMessage());
+        }
+    }
+
+    /**
+     * @param home an agent's home
+     * @return the broker to send the home's events through: one the home is announced at and where
+     *         it receives now, or where the broker keeps them for it while it is away; {@code null} for
+     *         the home's own address (RMI)
+     */
+    String brokerFor(String home) {
+        Announced a = announced.get(home);
+        return a != null && brokerEvents != null && (a.online() || a.sessionExpirySeconds() > 0) ? a.broker() : null;
+    }
+
+    /** Delivers one event to a home through a broker ({@link BrokerEvents#deliver}). */
+    void deliverThroughBroker(String broker, String home, AgentEvent event) throws java.io.IOException {
+        brokerEvents.deliver(broker, home, event);
     }
 
     /** @return the node, or {@code null} when the host has none */
@@ -144,6 +218,13 @@ final class HostMessaging implements AutoCloseable {
 
     @Override
     public void close() {
+        for (AutoCloseable d : brokerDirectories) {
+            try {
+                d.close();
+            } catch (Exception e) {
+                LOG.debug("host {}: closing a broker directory: {}", host.name, e.toString());
+            }
+        }
         if (node != null && ownsNode) {
             node.close();
         }

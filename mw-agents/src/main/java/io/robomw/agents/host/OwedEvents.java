@@ -14,7 +14,9 @@ import java.util.function.Predicate;
 /**
  * What a host tells agents' homes: reports and results, kept in the store until the home
  * acknowledges them (or the delivery expires, or an operator drops it) and carried by
- * {@link HomeEvents}; and arrivals, sent once as news. Thread-safe.
+ * {@link HomeEvents}; and arrivals, sent once as news. They go to the home's own address over RMI,
+ * or through a broker where the home is announced ({@link BrokerEvents}).
+ * Thread-safe.
  */
 final class OwedEvents implements AutoCloseable {
 
@@ -102,6 +104,12 @@ final class OwedEvents implements AutoCloseable {
     }
 
     private void deliver(String home, AgentEvent event) throws Exception {
+        HostMessaging messaging = host.messaging;
+        String broker = messaging == null ? null : messaging.brokerFor(home);
+        if (broker != null) {
+            messaging.deliverThroughBroker(broker, home, event);
+            return;
+        }
         Reply r = peers.call(home, Op.EVENT, event.encode());
         if (r.status() != Reply.Status.OK) {
             throw new IOException(home + " answered " + r.status() + ": " + r.text());

@@ -8,8 +8,11 @@ import java.util.Objects;
 
 /**
  * A messaging address: {@code tcp://host:port}, {@code udp://host:port},
- * {@code multicast://group:port}, {@code rmi://host:port/name}. Settings a transport reads from
- * the address go in the query, for example {@code multicast://239.1.2.3:5000?interface=lo&ttl=0}.
+ * {@code multicast://group:port}, {@code rmi://host:port/name}, {@code mqtt://broker:port[/prefix]}
+ * (the port may be left out there: 1883, or 8883 for {@code mqtts://}). Settings a transport reads
+ * from the address go in the query, for example {@code multicast://239.1.2.3:5000?interface=lo&ttl=0}.
+ * Credentials never go in an address (it shows in process lists and logs): {@code user:secret@host}
+ * is refused.
  *
  * @param scheme the transport
  * @param host   host name or address literal (IPv6 without brackets)
@@ -43,9 +46,15 @@ public record Address(String scheme, String host, int port, String path, Map<Str
             throw new IllegalArgumentException("'" + text + "' is not an address: " + e.getMessage()
                     + "; expected scheme://host:port, for example tcp://127.0.0.1:7000");
         }
-        if (uri.getScheme() == null || uri.getHost() == null || uri.getPort() < 0) {
+        int port = uri.getPort() >= 0 || uri.getScheme() == null ? uri.getPort() : defaultPort(uri.getScheme());
+        if (uri.getScheme() == null || uri.getHost() == null || port < 0) {
             throw new IllegalArgumentException("'" + text + "' is not an address: expected scheme://host:port[/name],"
-                    + " for example tcp://127.0.0.1:7000, udp://127.0.0.1:7001, multicast://239.1.2.3:7002, rmi://127.0.0.1:1099/robot");
+                    + " for example tcp://127.0.0.1:7000, udp://127.0.0.1:7001, multicast://239.1.2.3:7002, rmi://127.0.0.1:1099/robot,"
+                    + " mqtt://127.0.0.1:1883");
+        }
+        if (uri.getRawUserInfo() != null) {
+            throw new IllegalArgumentException("'" + uri.getScheme() + "://" + uri.getHost() + ":" + port + "': credentials do not go in an address,"
+                    + " where process lists and logs would show them; give them in a file or the environment (docs/messaging.md)");
         }
         String host = uri.getHost();
         if (host.startsWith("[") && host.endsWith("]")) {
@@ -65,7 +74,16 @@ public record Address(String scheme, String host, int port, String path, Map<Str
                 query.put(eq < 0 ? pair : pair.substring(0, eq), eq < 0 ? "" : pair.substring(eq + 1));
             }
         }
-        return new Address(uri.getScheme().toLowerCase(java.util.Locale.ROOT), host, uri.getPort(), path, query);
+        return new Address(uri.getScheme().toLowerCase(java.util.Locale.ROOT), host, port, path, query);
+    }
+
+    /** The port of a scheme whose standard gives one (MQTT: 1883, over TLS 8883), else -1. */
+    private static int defaultPort(String scheme) {
+        return switch (scheme.toLowerCase(java.util.Locale.ROOT)) {
+            case "mqtt" -> 1883;
+            case "mqtts" -> 8883;
+            default -> -1;
+        };
     }
 
     /**

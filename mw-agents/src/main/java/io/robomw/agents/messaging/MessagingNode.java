@@ -46,9 +46,10 @@ import java.util.concurrent.atomic.AtomicInteger;
  *
  * <p>A node <em>binds</em> addresses where it receives ({@code tcp://127.0.0.1:7000},
  * {@code rmi://127.0.0.1:1099/robot}, {@code udp://...}), <em>connects</em> to peers whose
- * publications it wants, and <em>joins</em> multicast groups; the transports are found by scheme
- * through the SPI in {@link io.robomw.agents.messaging.spi}. Messages to a host it has no link to
- * open one on demand.
+ * publications it wants, <em>joins</em> multicast groups, and joins MQTT brokers
+ * ({@code mqtt://broker:1883}, by binding or connecting: there it receives, publishes and
+ * subscribes through the broker); the transports are found by scheme through the SPI in
+ * {@link io.robomw.agents.messaging.spi}. Messages to a host it has no link to open one on demand.
  *
  * <pre>{@code
  * try (MessagingNode node = MessagingNode.builder("nxt-1").bind("tcp://127.0.0.1:0").build()) {
@@ -97,9 +98,12 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     private final Links links;
     private final List<Endpoint> endpoints = new CopyOnWriteArrayList<>();
     private final Set<Channel> connections = ConcurrentHashMap.newKeySet();
+    /** Channels to brokers (MQTT): every publication goes to each of them once. */
+    private final Set<Channel> brokers = ConcurrentHashMap.newKeySet();
     private final List<Address> peers = new CopyOnWriteArrayList<>();
     private final ScheduledExecutorService housekeeping;
     private final Context context = new Context();
+    private final Presence presence;
     private volatile boolean closed;
     private volatile boolean joinedGroup;
 
@@ -115,6 +119,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         this.topics = new LocalTopics(name);
         this.inbound = new Inbound(this, counters, mac, payloads, settings);
         this.links = new Links(name, this::transport, this::linkOpened);
+        this.presence = new Presence(name, this::boundAddresses);
         for (TransportProvider p : ServiceLoader.load(TransportProvider.class, MessagingNode.class.getClassLoader())) {
             providers.putIfAbsent(p.scheme(), p);
         }
@@ -204,6 +209,9 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         try {
             Endpoint e = transport(a.scheme()).bind(a);
             endpoints.add(e);
+            if (e instanceof Channel c && c.isBroker()) {
+                brokers.add(c);
+            }
             joinedGroup |= a.scheme().equals("multicast");
             LOG.info("node '{}' receiving at {}", name, e.address());
             return e.address();
@@ -236,7 +244,9 @@ public final class MessagingNode implements Messaging, AutoCloseable {
      * @param receiverName the name
      */
     public void answerTo(String receiverName) {
-        names.add(receiverName);
+        if (names.add(receiverName)) {
+            transports.values().forEach(t -> t.answerTo(receiverName));
+        }
     }
 
     /** @return the node's name */
@@ -257,6 +267,11 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     public String address(String scheme) {
         return boundAddresses().stream().filter(a -> a.scheme().equals(scheme)).findFirst().map(Address::toString)
                 .orElseThrow(() -> new IllegalStateException("node '" + name + "' has no " + scheme + " address; it is bound at " + boundAddresses()));
+    }
+
+    /** @return what this node announces about itself where it can (the brokers it is connected to) */
+    public Presence presence() {
+        return presence;
     }
 
     /** @return its counters */
@@ -361,6 +376,9 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         for (Channel c : subscribers) {
             limit = Math.min(limit, c.maxFrameBytes());
         }
+        for (Channel c : brokers) {
+            limit = Math.min(limit, c.maxFrameBytes());
+        }
         if (joinedGroup) {
             limit = Math.min(limit, MessagingSettings.MAX_DATAGRAM);
         }
@@ -376,6 +394,15 @@ public final class MessagingNode implements Messaging, AutoCloseable {
                 LOG.warn("node '{}': closing {}, a subscriber of '{}': {}", name, c.peer(), topic, e.getMessage());
                 remoteSubscribers.forget(c);
                 c.close();
+            }
+        }
+        for (Channel b : brokers) {
+            try {
+                b.send(frame);
+                counters.out();
+            } catch (IOException e) {
+                LOG.warn("node '{}': cannot publish on '{}' through {}: {}", name, topic, b.peer(), e.getMessage());
+                brokers.remove(b);
             }
         }
         for (Endpoint e : endpoints) {
@@ -546,8 +573,11 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         return targets;
     }
 
-    /** A new datagram link gets the subscriptions at once (connections get them when they open). */
+    /** A new datagram link gets the subscriptions at once (connections get them when they open); a broker gets publications. */
     private void linkOpened(Link link) {
+        if (link.isBroker()) {
+            brokers.add(link);
+        }
         if (!link.isConnection() && !link.address().scheme().equals("multicast")) {
             topics.subscribed().forEach(topic -> trySend(link, frames.control(FrameKind.SUBSCRIBE, topic)));
         }
@@ -663,6 +693,16 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         }
 
         @Override
+        public Presence presence() {
+            return presence;
+        }
+
+        @Override
+        public Set<String> receiverNames() {
+            return Set.copyOf(names);
+        }
+
+        @Override
         public void onFrame(byte[] buf, int offset, int length, Channel from) {
             inbound.onFrame(buf, offset, length, from);
         }
@@ -683,6 +723,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         @Override
         public void closed(Channel channel) {
             connections.remove(channel);
+            brokers.remove(channel);
             remoteSubscribers.forget(channel);
             for (String host : links.forget(channel)) {
                 replies.linkClosed(host, "connection closed");

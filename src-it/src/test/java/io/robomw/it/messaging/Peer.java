@@ -107,6 +107,14 @@ public final class Peer {
                 out.println(count(c[1]));
             }
             case "count" -> out.println(count(c[1]));
+            case "distinct" -> {
+                List<Object> l = list(c[1]);
+                out.println("DISTINCT " + c[1] + " " + new java.util.HashSet<>(l).size() + " of " + l.size());
+            }
+            case "presence-host" -> {
+                node.presence().host(c[1], c[2]);
+                out.println("OK");
+            }
             case "waitsubs" -> {
                 long deadline = System.nanoTime() + Duration.ofSeconds(Long.parseLong(c[3])).toNanos();
                 while (node.subscriberCount(c[1]) < Integer.parseInt(c[2]) && System.nanoTime() < deadline) {

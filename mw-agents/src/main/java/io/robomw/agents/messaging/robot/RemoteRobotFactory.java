@@ -16,8 +16,10 @@ import java.security.SecureRandom;
 
 /**
  * Opens robots served by other processes for {@code Robots.remote(address)}:
- * {@code tcp://host:port/robot} or {@code rmi://host:port/name[/robot]} (the robot defaults to the
- * RMI name). An optional {@code ?password=...} is the robot topic's password (it shows in process
+ * {@code tcp://host:port/robot}, {@code rmi://host:port/name[/robot]} (the robot defaults to the
+ * RMI name), or through a broker {@code mqtt://broker:port[/prefix]/robot} and {@code mqtts://...}
+ * (the last path level is the robot, the levels before it the topic prefix; the address's options
+ * apply to the broker session). An optional {@code ?password=...} is the robot topic's password (it shows in process
  * lists and logs: prefer TLS, given as {@link MessagingSettings} in the {@link PlatformServices}).
  * Each remote robot gets its own messaging node and agency (an in-process home, started on first
  * use: {@link RobotAgency}; an {@link AgencyConfig} in the {@link PlatformServices} says how), closed with it.
@@ -48,6 +50,9 @@ public abstract class RemoteRobotFactory implements RobotFactory {
         if (scheme.equals("rmi")) {
             host = a.withPath(path[0]).toString();
             robot = path.length > 1 ? path[1] : path[0];
+        } else if (scheme.equals("mqtt") || scheme.equals("mqtts")) {
+            robot = path[path.length - 1];
+            host = brokerAddress(a, String.join("/", java.util.Arrays.copyOf(path, path.length - 1)));
         } else {
             host = a.endpoint();
             robot = path[0];
@@ -63,6 +68,38 @@ public abstract class RemoteRobotFactory implements RobotFactory {
             agency.close();
             node.close();
             throw e;
+        }
+    }
+
+    /** The broker address of a remote robot's address: its prefix, and its options but the robot topic's password. */
+    private static String brokerAddress(Address a, String prefix) {
+        StringBuilder b = new StringBuilder(a.endpoint());
+        if (!prefix.isEmpty()) {
+            b.append('/').append(prefix);
+        }
+        char sep = '?';
+        for (var e : a.query().entrySet()) {
+            if (!e.getKey().equals("password")) {
+                b.append(sep).append(e.getKey()).append('=').append(e.getValue());
+                sep = '&';
+            }
+        }
+        return b.toString();
+    }
+
+    /** {@code mqtt://broker:port[/prefix]/robot}. */
+    public static final class Mqtt extends RemoteRobotFactory {
+        /** For {@link java.util.ServiceLoader}. */
+        public Mqtt() {
+            super("mqtt");
+        }
+    }
+
+    /** {@code mqtts://broker:port[/prefix]/robot}. */
+    public static final class Mqtts extends RemoteRobotFactory {
+        /** For {@link java.util.ServiceLoader}. */
+        public Mqtts() {
+            super("mqtts");
         }
     }
 

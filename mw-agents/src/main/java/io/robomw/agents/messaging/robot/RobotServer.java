@@ -47,6 +47,7 @@ public final class RobotServer implements AutoCloseable {
         RobotServer server = new RobotServer(node, robot);
         node.answerTo(robot.name());
         node.addMessageListener(server.topic, password, server.listener);
+        node.presence().addRobot(robot.name());
         LOG.info("serving robot '{}' at {}", robot.name(), node.boundAddresses());
         return server;
     }
@@ -54,6 +55,7 @@ public final class RobotServer implements AutoCloseable {
     @Override
     public void close() {
         node.removeMessageListener(topic, listener);
+        node.presence().removeRobot(robot.name());
     }
 
     private void onCall(Message m) {

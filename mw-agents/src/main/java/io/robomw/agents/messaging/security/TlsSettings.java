@@ -49,6 +49,44 @@ public record TlsSettings(Path keyStore, String keyStorePassword, Path trustStor
         }
     }
 
+    /**
+     * @return key managers with this node's key (for libraries that take the factories, such as the MQTT client)
+     * @throws IOException naming the file that cannot be read or the password that does not open it
+     */
+    public KeyManagerFactory keyManagerFactory() throws IOException {
+        try {
+            KeyManagerFactory keys = KeyManagerFactory.getInstance(KeyManagerFactory.getDefaultAlgorithm());
+            keys.init(load(keyStore, keyStorePassword), keyStorePassword.toCharArray());
+            return keys;
+        } catch (GeneralSecurityException e) {
+            throw new IOException("cannot read the key in key store " + keyStore + ": " + e.getMessage(), e);
+        }
+    }
+
+    /**
+     * @return trust managers that accept the peers of the trust store
+     * @throws IOException naming the file that cannot be read or the password that does not open it
+     */
+    public TrustManagerFactory trustManagerFactory() throws IOException {
+        return trustManagerFactory(trustStore, trustStorePassword);
+    }
+
+    /**
+     * @param file     a PKCS#12 or JKS trust store ({@code .jks} is read as JKS)
+     * @param password its password
+     * @return trust managers that accept what it vouches for
+     * @throws IOException naming the file that cannot be read
+     */
+    public static TrustManagerFactory trustManagerFactory(Path file, String password) throws IOException {
+        try {
+            TrustManagerFactory trust = TrustManagerFactory.getInstance(TrustManagerFactory.getDefaultAlgorithm());
+            trust.init(load(file, password));
+            return trust;
+        } catch (GeneralSecurityException e) {
+            throw new IOException("cannot read the certificates in trust store " + file + ": " + e.getMessage(), e);
+        }
+    }
+
     private static KeyStore load(Path file, String password) throws IOException, GeneralSecurityException {
         String type = file.toString().endsWith(".jks") ? "JKS" : "PKCS12";
         KeyStore store = KeyStore.getInstance(type);

@@ -58,6 +58,15 @@ public interface Channel {
         return false;
     }
 
+    /**
+     * @return whether this channel leads to a broker that routes frames by their topic and receiver
+     *         (MQTT): the node then hands it every publication and request itself, instead of waiting
+     *         for the peer to subscribe
+     */
+    default boolean isBroker() {
+        return false;
+    }
+
     /** Closes the channel (for a datagram peer: forgets it). Idempotent. */
     void close();
 }

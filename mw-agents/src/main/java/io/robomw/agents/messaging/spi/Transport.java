@@ -31,6 +31,16 @@ public interface Transport extends AutoCloseable {
      */
     Link connect(Address address) throws IOException;
 
+    /**
+     * The node now answers to another receiver name as well ({@code MessagingNode.answerTo}): a
+     * transport that must ask for a receiver's messages (a broker subscription) does it now; the
+     * names known when it starts are in {@link TransportContext#receiverNames()}.
+     *
+     * @param receiverName the new name
+     */
+    default void answerTo(String receiverName) {
+    }
+
     /** Closes every endpoint and link of this transport. Idempotent. */
     @Override
     void close();

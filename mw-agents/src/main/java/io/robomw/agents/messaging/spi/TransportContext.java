@@ -11,6 +11,12 @@ public interface TransportContext {
     /** @return the node's name, for thread names and logs */
     String nodeName();
 
+    /** @return every receiver name the node answers to: its own and those added with {@code MessagingNode.answerTo} */
+    java.util.Set<String> receiverNames();
+
+    /** @return what the node announces about itself, for transports that can announce it (a broker) */
+    io.robomw.agents.messaging.Presence presence();
+
     /** @return the node's settings */
     MessagingSettings settings();
 

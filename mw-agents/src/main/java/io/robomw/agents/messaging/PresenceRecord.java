@@ -1,0 +1,190 @@
+package io.robomw.agents.messaging;
+
+import java.nio.charset.StandardCharsets;
+import java.time.Instant;
+import java.time.format.DateTimeParseException;
+import java.util.ArrayList;
+import java.util.List;
+
+/**
+ * What a messaging node announces about itself where others can look it up (an MQTT broker keeps
+ * it retained, and its will replaces it with the offline version when the node is gone): its
+ * name, whether it is online, where it receives, and what it serves.
+ *
+ * <p>Stored format, version {@value #VERSION}: UTF-8 text, one field a line, {@code KEY VALUE},
+ * in this order; at most {@value #MAX_BYTES} bytes. Values never contain a line break.
+ * <pre>
+ * robomw-presence 1
+ * node NAME
+ * status online|offline
+ * time 2026-11-24T10:15:30.123Z        (when this version was made)
+ * client MQTT-CLIENT-ID                 (empty when not announced through a broker)
+ * session-expiry SECONDS                (how long the broker keeps the node's session when it is away; 0 = clean)
+ * messaging ADDRESS                     (zero or more: where the node receives)
+ * host NAME AGENT-HOST-ADDRESS          (zero or one: the agent host the node belongs to)
+ * robot NAME                            (zero or more: robots it serves, Robots.remote)
+ * agent DESCRIPTION                     (zero or more: agents on its host, "ID CLASS STATUS")
+ * </pre>
+ * Decoding refuses another version, an unknown key, a missing field and an oversized record,
+ * naming what is wrong.
+ *
+ * @param node      the node's name
+ * @param online    whether it is up
+ * @param time      when this version was made
+ * @param client    the MQTT client identifier it announced through, or empty
+ * @param sessionExpirySeconds how long the broker keeps its session while it is away (0: a clean session,
+ *                  nothing is kept for it)
+ * @param messaging where it receives
+ * @param host      the agent host's name, or {@code null}
+ * @param hostAddress the agent host's address, or {@code null}
+ * @param robots    robots it serves
+ * @param agents    agents on its host
+ */
+public record PresenceRecord(String node, boolean online, Instant time, String client, long sessionExpirySeconds, List<String> messaging, String host,
+                             String hostAddress, List<String> robots, List<String> agents) {
+
+    /** The version this class reads and writes. */
+    public static final int VERSION = 1;
+    /** The first line's key. */
+    public static final String MAGIC = "robomw-presence";
+    /** The largest record accepted. */
+    public static final int MAX_BYTES = 65_536;
+
+    /** Checks and copies. */
+    public PresenceRecord {
+        oneLine("node", node);
+        oneLine("client", client);
+        if (sessionExpirySeconds < 0) {
+            throw new IllegalArgumentException("session expiry must be >= 0 seconds, got " + sessionExpirySeconds);
+        }
+        messaging = List.copyOf(messaging);
+        robots = List.copyOf(robots);
+        agents = List.copyOf(agents);
+        messaging.forEach(m -> oneLine("messaging", m));
+        robots.forEach(r -> oneLine("robot", r));
+        agents.forEach(a -> oneLine("agent", a));
+        if ((host == null) != (hostAddress == null)) {
+            throw new IllegalArgumentException("a presence names an agent host with both its name and its address, got " + host + " and " + hostAddress);
+        }
+        if (host != null) {
+            oneLine("host", host);
+            oneLine("host address", hostAddress);
+            if (hostAddress.isEmpty() || hostAddress.contains(" ")) {
+                throw new IllegalArgumentException("agent host address '" + hostAddress + "' must be one word");
+            }
+        }
+    }
+
+    /** @return this record with {@code online} false and the time now */
+    public PresenceRecord offline(Instant now) {
+        return new PresenceRecord(node, false, now, client, sessionExpirySeconds, messaging, host, hostAddress, robots, agents);
+    }
+
+    /** @return the stored format */
+    public byte[] encode() {
+        StringBuilder b = new StringBuilder(256);
+        b.append(MAGIC).append(' ').append(VERSION).append('\n');
+        b.append("node ").append(node).append('\n');
+        b.append("status ").append(online ? "online" : "offline").append('\n');
+        b.append("time ").append(time).append('\n');
+        b.append("client ").append(client).append('\n');
+        b.append("session-expiry ").append(sessionExpirySeconds).append('\n');
+        messaging.forEach(m -> b.append("messaging ").append(m).append('\n'));
+        if (host != null) {
+            b.append("host ").append(host).append(' ').append(hostAddress).append('\n');
+        }
+        robots.forEach(r -> b.append("robot ").append(r).append('\n'));
+        agents.forEach(a -> b.append("agent ").append(a).append('\n'));
+        byte[] bytes = b.toString().getBytes(StandardCharsets.UTF_8);
+        if (bytes.length > MAX_BYTES) {
+            throw new IllegalArgumentException("presence of node '" + node + "' is " + bytes.length + " bytes, above " + MAX_BYTES
+                    + "; it lists " + agents.size() + " agents and " + robots.size() + " robots");
+        }
+        return bytes;
+    }
+
+    /**
+     * @param bytes a stored record
+     * @param where where it came from, for the error
+     * @return the record
+     * @throws IllegalArgumentException naming what is wrong
+     */
+    public static PresenceRecord decode(byte[] bytes, String where) {
+        if (bytes.length > MAX_BYTES) {
+            throw new IllegalArgumentException(where + ": presence of " + bytes.length + " bytes, above " + MAX_BYTES);
+        }
+        String[] lines = new String(bytes, StandardCharsets.UTF_8).split("\n", -1);
+        if (lines.length == 0 || !lines[0].equals(MAGIC + " " + VERSION)) {
+            String first = lines.length == 0 ? "" : lines[0];
+            throw new IllegalArgumentException(where + ": not a RoboMW presence of version " + VERSION + " (first line '"
+                    + (first.length() > 40 ? first.substring(0, 40) + "..." : first) + "')");
+        }
+        String node = null;
+        Boolean online = null;
+        Instant time = null;
+        String client = null;
+        Long expiry = null;
+        String host = null;
+        String hostAddress = null;
+        List<String> messaging = new ArrayList<>();
+        List<String> robots = new ArrayList<>();
+        List<String> agents = new ArrayList<>();
+        for (int i = 1; i < lines.length; i++) {
+            String line = lines[i];
+            if (line.isEmpty() && i == lines.length - 1) {
+                break;
+            }
+            int space = line.indexOf(' ');
+            String key = space < 0 ? line : line.substring(0, space);
+            String value = space < 0 ? "" : line.substring(space + 1);
+            switch (key) {
+                case "node" -> node = value;
+                case "status" -> online = switch (value) {
+                    case "online" -> true;
+                    case "offline" -> false;
+                    default -> throw new IllegalArgumentException(where + ": line " + (i + 1) + ": status '" + value + "' is neither online nor offline");
+                };
+                case "time" -> {
+                    try {
+                        time = Instant.parse(value);
+                    } catch (DateTimeParseException e) {
+                        throw new IllegalArgumentException(where + ": line " + (i + 1) + ": time '" + value + "' is not an ISO-8601 instant");
+                    }
+                }
+                case "client" -> client = value;
+                case "session-expiry" -> {
+                    try {
+                        expiry = Long.parseLong(value);
+                    } catch (NumberFormatException e) {
+                        throw new IllegalArgumentException(where + ": line " + (i + 1) + ": session-expiry '" + value + "' is not a number of seconds");
+                    }
+                }
+                case "messaging" -> messaging.add(value);
+                case "host" -> {
+                    int last = value.lastIndexOf(' ');
+                    if (last <= 0) {
+                        throw new IllegalArgumentException(where + ": line " + (i + 1) + ": 'host' needs a name and an address");
+                    }
+                    host = value.substring(0, last);
+                    hostAddress = value.substring(last + 1);
+                }
+                case "robot" -> robots.add(value);
+                case "agent" -> agents.add(value);
+                default -> throw new IllegalArgumentException(where + ": line " + (i + 1) + ": unknown key '" + key + "' in a presence of version " + VERSION);
+            }
+        }
+        if (node == null || node.isEmpty() || online == null || time == null || client == null || expiry == null) {
+            throw new IllegalArgumentException(where + ": a presence needs node, status, time, client and session-expiry lines");
+        }
+        return new PresenceRecord(node, online, time, client, expiry, messaging, host, hostAddress, robots, agents);
+    }
+
+    private static void oneLine(String what, String value) {
+        if (value == null) {
+            throw new IllegalArgumentException("presence " + what + " is missing");
+        }
+        if (value.indexOf('\n') >= 0 || value.indexOf('\r') >= 0) {
+            throw new IllegalArgumentException("presence " + what + " '" + value.replace("\n", "\\n") + "' must not contain a line break");
+        }
+    }
+}

@@ -1,0 +1,100 @@
+package io.robomw.agents.messaging.mqtt;
+
+import io.robomw.agents.messaging.Address;
+
+import java.nio.file.Path;
+import java.security.SecureRandom;
+import java.util.HexFormat;
+import java.util.Set;
+
+/**
+ * What an {@code mqtt://} or {@code mqtts://} address says: the broker, the topic prefix (the
+ * address's path, default {@value MqttTopics#DEFAULT_PREFIX}) and, in the query:
+ *
+ * <table>
+ * <caption>address options</caption>
+ * <tr><th>option</th><th>default</th><th>meaning</th></tr>
+ * <tr><td>{@code client-id}</td><td>node name and a random suffix; with a session expiry, {@code PREFIX-NODE}</td>
+ *     <td>the MQTT client identifier: a persistent session is found again by it</td></tr>
+ * <tr><td>{@code session-expiry}</td><td>0</td><td>seconds the broker keeps the session (subscriptions and
+ *     the QoS 1 messages for them) after the client is gone; 0 is a clean session</td></tr>
+ * <tr><td>{@code qos}</td><td>1</td><td>0 (at most once) or 1 (at least once) for everything sent</td></tr>
+ * <tr><td>{@code keep-alive}</td><td>10</td><td>seconds; a broker that is silent for 1.5 times that is taken as lost</td></tr>
+ * <tr><td>{@code max-queued}</td><td>10000</td><td>messages that may wait for the broker (in flight or while it is away)</td></tr>
+ * <tr><td>{@code credentials}</td><td>the environment</td><td>a file with {@code username=} and {@code password=} lines
+ *     ({@link BrokerCredentials})</td></tr>
+ * <tr><td>{@code truststore}</td><td>the JVM's</td><td>{@code mqtts}: a PKCS#12 or JKS file of the certificates to trust
+ *     (password in {@code MW_MQTT_TRUSTSTORE_PASSWORD}), unless the node's {@code TlsSettings} give one</td></tr>
+ * </table>
+ *
+ * <p>{@code password} is allowed too and left alone: it is the robot topic's password of
+ * {@code Robots.remote} addresses.
+ *
+ * @param tls                  whether TLS is used ({@code mqtts})
+ * @param host                 the broker's host
+ * @param port                 its port
+ * @param topics               the topic layout
+ * @param clientId             the MQTT client identifier
+ * @param sessionExpirySeconds 0 for a clean session
+ * @param qos                  0 or 1
+ * @param keepAliveSeconds     the keep-alive
+ * @param maxQueued            messages that may wait for the broker
+ * @param credentials          the credentials file, or {@code null} for the environment
+ * @param trustStore           the trust store file, or {@code null}
+ */
+public record MqttOptions(boolean tls, String host, int port, MqttTopics topics, String clientId, long sessionExpirySeconds,
+                          int qos, int keepAliveSeconds, int maxQueued, Path credentials, Path trustStore) {
+
+    private static final Set<String> KNOWN = Set.of("client-id", "session-expiry", "qos", "keep-alive", "max-queued", "credentials",
+            "truststore", "password");
+
+    /**
+     * @param a        an mqtt or mqtts address
+     * @param nodeName the node's name, for the default client identifier
+     * @return its options
+     * @throws IllegalArgumentException naming the option that is unknown or out of range
+     */
+    public static MqttOptions of(Address a, String nodeName) {
+        for (String key : a.query().keySet()) {
+            if (!KNOWN.contains(key)) {
+                throw new IllegalArgumentException("'" + a + "': unknown option '" + key + "'; an mqtt address takes " + KNOWN);
+            }
+        }
+        MqttTopics topics = new MqttTopics(a.path().isEmpty() ? MqttTopics.DEFAULT_PREFIX : a.path());
+        long expiry = number(a, "session-expiry", 0, 0, 0xFFFF_FFFFL);
+        int qos = (int) number(a, "qos", 1, 0, 1);
+        int keepAlive = (int) number(a, "keep-alive", 10, 1, 65_535);
+        int maxQueued = (int) number(a, "max-queued", 10_000, 1, 1_000_000);
+        String clientId = a.query().get("client-id");
+        if (clientId == null || clientId.isEmpty()) {
+            clientId = expiry > 0 ? topics.prefix().replace('/', '-') + "-" + nodeName
+                    : nodeName + "-" + HexFormat.of().formatHex(new SecureRandom().generateSeed(4));
+        }
+        String credentials = a.query().get("credentials");
+        String trust = a.query().get("truststore");
+        return new MqttOptions(a.scheme().equals("mqtts"), a.host(), a.port(), topics, clientId, expiry, qos, keepAlive, maxQueued,
+                credentials == null || credentials.isEmpty() ? null : Path.of(credentials), trust == null || trust.isEmpty() ? null : Path.of(trust));
+    }
+
+    /** @return the broker and prefix: one session per node for each */
+    public String sessionKey() {
+        return (tls ? "mqtts://" : "mqtt://") + (host.contains(":") ? "[" + host + "]" : host) + ":" + port + "/" + topics.prefix();
+    }
+
+    private static long number(Address a, String key, long dflt, long min, long max) {
+        String v = a.query().get(key);
+        if (v == null || v.isEmpty()) {
+            return dflt;
+        }
+        long n;
+        try {
+            n = Long.parseLong(v);
+        } catch (NumberFormatException e) {
+            throw new IllegalArgumentException("'" + a + "': option " + key + "=" + v + " is not a whole number");
+        }
+        if (n < min || n > max) {
+            throw new IllegalArgumentException("'" + a + "': option " + key + "=" + v + " must be " + min + ".." + max);
+        }
+        return n;
+    }
+}

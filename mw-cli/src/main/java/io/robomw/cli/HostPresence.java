@@ -1,0 +1,74 @@
+package io.robomw.cli;
+
+import io.robomw.agents.host.AgentHost;
+import io.robomw.agents.host.AgentInfo;
+import io.robomw.agents.messaging.MessagingNode;
+import io.robomw.agents.messaging.MessagingSettings;
+
+import java.util.List;
+import java.util.concurrent.Executors;
+import java.util.concurrent.ScheduledExecutorService;
+import java.util.concurrent.TimeUnit;
+
+/**
+ * What {@code mw host} announces at a broker: the host (name and agent host address), the robot
+ * it serves and, refreshed every second, its agents, as the presence of a messaging node there
+ * ({@link io.robomw.agents.messaging.PresenceRecord}); the broker replaces it with the offline
+ * version when the host is gone. {@code mw agents --cluster BROKER} reads it.
+ */
+final class HostPresence implements AutoCloseable {
+
+    private static final long REFRESH_MILLIS = 1_000;
+
+    private final MessagingNode node;
+    private final boolean ownsNode;
+    private final ScheduledExecutorService refresh;
+
+    private HostPresence(MessagingNode node, boolean ownsNode, ScheduledExecutorService refresh) {
+        this.node = node;
+        this.ownsNode = ownsNode;
+        this.refresh = refresh;
+    }
+
+    /**
+     * @param host   the agent host
+     * @param broker a broker to announce at besides those the node is at already, or {@code null}
+     * @param node   the host's messaging node (or the node serving its robot), or {@code null} when it has none
+     * @return the running announcement
+     */
+    static HostPresence start(AgentHost host, String broker, MessagingNode node) {
+        boolean own = node == null;
+        if (own) {
+            node = MessagingNode.builder(host.name()).settings(MessagingSettings.defaults()).bind(broker).build();
+        } else if (broker != null) {
+            node.bind(broker);
+        }
+        MessagingNode announcing = node;
+        announcing.presence().host(host.name(), host.address());
+        ScheduledExecutorService refresh = Executors.newSingleThreadScheduledExecutor(r -> {
+            Thread t = new Thread(r, "mw-host-presence-" + host.name());
+            t.setDaemon(true);
+            return t;
+        });
+        refresh.scheduleWithFixedDelay(() -> {
+            try {
+                announcing.presence().agents(describe(host.agents()));
+            } catch (RuntimeException e) {
+                org.slf4j.LoggerFactory.getLogger(HostPresence.class).warn("host {}: cannot announce its agents: {}", host.name(), e.toString());
+            }
+        }, 0, REFRESH_MILLIS, TimeUnit.MILLISECONDS);
+        return new HostPresence(announcing, own, refresh);
+    }
+
+    static List<String> describe(List<AgentInfo> agents) {
+        return agents.stream().map(a -> a.id() + " " + a.className() + " " + a.status()).toList();
+    }
+
+    @Override
+    public void close() {
+        refresh.shutdownNow();
+        if (ownsNode) {
+            node.close();
+        }
+    }
+}

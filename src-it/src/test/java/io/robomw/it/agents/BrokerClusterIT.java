@@ -1,0 +1,94 @@
+package io.robomw.it.agents;
+
+import io.robomw.agents.host.AgentHost;
+import io.robomw.agents.host.trip.ChatCaller;
+import io.robomw.agents.host.trip.ChatResponder;
+import io.robomw.api.AgentRef;
+import io.robomw.it.demo.MwProcess;
+import io.robomw.it.mqtt.Broker;
+import org.junit.jupiter.api.AfterAll;
+import org.junit.jupiter.api.BeforeAll;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.TimeUnit;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+/**
+ * Two {@code mw host} JVMs whose messaging nodes are only at a broker ({@code --messaging mqtt://...}):
+ * their agents talk to each other by host name through it, and {@code mw agents --cluster BROKER}
+ * lists both hosts and their agents from what they announce there. Agents still travel over RMI.
+ */
+class BrokerClusterIT {
+
+    private static final Duration WAIT = Duration.ofSeconds(60);
+
+    @TempDir
+    static Path dir;
+    static Broker broker;
+    static HostProcess a;
+    static HostProcess b;
+    static AgentHost home;
+
+    @BeforeAll
+    static void start() throws Exception {
+        broker = Broker.start(Broker.Kind.EMBEDDED, "cluster-broker");
+        Path keyFile = AgentTripIT.keyFile(dir);
+        String world = AgentTripIT.world().toString();
+        a = HostProcess.start("bc-a", "--world", world, "--world-robot", "sim-1", "--speed", "4", "--key-file", keyFile.toString(),
+                "--messaging", broker.address());
+        b = HostProcess.start("bc-b", "--world", world, "--world-robot", "sim-1", "--speed", "4", "--key-file", keyFile.toString(),
+                "--messaging", broker.address());
+        home = AgentHost.builder("bc-home").clusterKey(AgentTripIT.KEY).start();
+    }
+
+    @AfterAll
+    static void stop() {
+        if (home != null) {
+            home.close();
+        }
+        for (AutoCloseable c : new AutoCloseable[] {a, b, broker}) {
+            if (c != null) {
+                try {
+                    c.close();
+                } catch (Exception e) {
+                    // closing anyway
+                }
+            }
+        }
+    }
+
+    @Test
+    void agentsOnTwoHostsTalkByHostNameThroughTheBrokerAndTheClusterIsListedFromItsPresence() throws Exception {
+        assertTrue(a.messaging().startsWith("mqtt://"), a.messaging());
+        AgentRef responder = home.sendAgent(b.address(), new ChatResponder());
+        CompletableFuture<Void> ready = new CompletableFuture<>();
+        responder.addReportListener(r -> {
+            if ("ready".equals(r)) {
+                ready.complete(null);
+            }
+        });
+        ready.get(WAIT.toSeconds(), TimeUnit.SECONDS);
+        String expected = responder.id() + " " + ChatResponder.class.getName();
+        String out = "";
+        long deadline = System.nanoTime() + WAIT.toNanos();
+        while (!out.contains(expected) && System.nanoTime() < deadline) {
+            // a host announces its agents once a second: list again until the responder shows
+            try (MwProcess list = MwProcess.start("bc-agents", "agents", "--cluster", broker.address())) {
+                assertEquals(0, list.waitFor(WAIT));
+                out = list.output();
+            }
+        }
+        assertTrue(out.contains("2 agent hosts at " + broker.address()), out);
+        assertTrue(out.contains("bc-a  online  " + a.address()) && out.contains("bc-b  online  " + b.address()), out);
+        assertTrue(out.contains(expected), out);
+        AgentRef caller = home.sendAgent(a.address(), new ChatCaller("bc-b"));
+        assertEquals("pong from bc-b", caller.result().get(WAIT.toSeconds(), TimeUnit.SECONDS));
+        assertEquals("heard news from bc-a", responder.result().get(WAIT.toSeconds(), TimeUnit.SECONDS));
+    }
+}

@@ -1,0 +1,266 @@
+package io.robomw.it.mqtt;
+
+import io.robomw.agents.messaging.MessagingNode;
+import io.robomw.agents.messaging.PresenceRecord;
+import io.robomw.agents.messaging.mqtt.BrokerDirectory;
+import io.robomw.api.Message;
+import io.robomw.api.Pose;
+import io.robomw.api.Position;
+import io.robomw.api.ReturnType;
+import io.robomw.api.Robot;
+import io.robomw.api.Robots;
+import io.robomw.api.SensorType;
+import io.robomw.api.UnsupportedActionException;
+import io.robomw.it.messaging.PeerProcess;
+import org.junit.jupiter.api.AfterAll;
+import org.junit.jupiter.api.BeforeAll;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.TestInstance;
+
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.UUID;
+import java.util.concurrent.ExecutorService;
+import java.util.concurrent.Executors;
+import java.util.concurrent.Future;
+import java.util.concurrent.TimeUnit;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+/**
+ * Messaging through an MQTT 5 broker in its own process, between this JVM and peers in others,
+ * all on 127.0.0.1: publications and requests across three JVMs, a wrong topic password, a broker
+ * restart in the middle of a QoS 1 stream, a subscriber away and back with a persistent session,
+ * a remote robot driven through the broker, and presence with a will. Subclasses say which broker.
+ */
+@TestInstance(TestInstance.Lifecycle.PER_CLASS)
+abstract class BrokerMessagingIT {
+
+    static final Duration WAIT = Duration.ofSeconds(60);
+
+    Broker broker;
+    PeerProcess server;
+    PeerProcess subscriber;
+    MessagingNode local;
+
+    abstract Broker.Kind kind();
+
+    String name(String role) {
+        return role + "-" + kind().name().toLowerCase(java.util.Locale.ROOT);
+    }
+
+    @BeforeAll
+    void start() throws Exception {
+        broker = Broker.start(kind(), name("broker"));
+        server = PeerProcess.peer(name("server"), List.of());
+        server.ask("echo echo -", "OK");
+        server.ask("listen guarded right", "OK");
+        server.ask("bind " + broker.address(), "BOUND");
+        subscriber = PeerProcess.peer(name("subscriber"), List.of());
+        subscriber.ask("subscribe numbers -", "OK");
+        subscriber.ask("bind " + broker.address(), "BOUND");
+        local = MessagingNode.builder(name("local")).bind(broker.address()).build();
+    }
+
+    @AfterAll
+    void stop() {
+        for (AutoCloseable c : new AutoCloseable[]{local, server, subscriber, broker}) {
+            if (c != null) {
+                try {
+                    c.close();
+                } catch (Exception e) {
+                    // closing anyway
+                }
+            }
+        }
+    }
+
+    @Test
+    void publicationsReachASubscriberInAnotherJvmInOrder() {
+        for (int i = 0; i < 2000; i++) {
+            local.publishMessage("numbers", i, "count", null);
+        }
+        assertEquals("COUNT numbers 2000 ordered=true", subscriber.ask("await numbers 2000 60", "COUNT", WAIT.plusSeconds(10)));
+    }
+
+    @Test
+    void requestsFromTwoJvmsEachGetTheirOwnReply() throws Exception {
+        ExecutorService pool = Executors.newFixedThreadPool(4);
+        try {
+            List<Future<?>> done = new ArrayList<>();
+            for (int t = 0; t < 4; t++) {
+                int thread = t;
+                done.add(pool.submit(() -> {
+                    for (int i = 0; i < 50; i++) {
+                        String payload = "t" + thread + "-" + i;
+                        UUID id = local.sendMessage(name("server"), broker.address(), null, "echo", payload, "ask");
+                        Message reply = local.waitForReply(id, WAIT);
+                        assertEquals(payload, reply.payload());
+                        assertEquals(id, reply.correlationId());
+                    }
+                    return null;
+                }));
+            }
+            assertEquals("REPLY from-subscriber",
+                    subscriber.ask("request " + broker.address() + " " + name("server") + " echo from-subscriber -", "REPLY"));
+            for (Future<?> f : done) {
+                f.get(WAIT.toSeconds(), TimeUnit.SECONDS);
+            }
+        } finally {
+            pool.shutdownNow();
+        }
+    }
+
+    @Test
+    void aPlainMqttClientsPublicationReachesASubscriberAsTextButNotAProtectedTopic() throws Exception {
+        java.util.concurrent.BlockingQueue<Message> plain = new java.util.concurrent.LinkedBlockingQueue<>();
+        java.util.concurrent.BlockingQueue<Message> guarded = new java.util.concurrent.LinkedBlockingQueue<>();
+        local.addMessageListener("sensors/light", null, plain::add);
+        local.subscribeMessage("sensors/light", null);
+        local.addMessageListener("sensors/guarded", "pw", guarded::add);
+        local.subscribeMessage("sensors/guarded", "pw");
+        int port = Integer.parseInt(broker.address().substring(broker.address().lastIndexOf(':') + 1));
+        var device = com.hivemq.client.mqtt.MqttClient.builder().useMqttVersion5().identifier(name("device"))
+                .serverHost("127.0.0.1").serverPort(port).buildBlocking();
+        device.connect();
+        try {
+            device.publishWith().topic("robomw/pub/sensors/guarded").qos(com.hivemq.client.mqtt.datatypes.MqttQos.AT_LEAST_ONCE)
+                    .payload("forged".getBytes(java.nio.charset.StandardCharsets.UTF_8)).send();
+            device.publishWith().topic("robomw/pub/sensors/light").qos(com.hivemq.client.mqtt.datatypes.MqttQos.AT_LEAST_ONCE)
+                    .payload("412 lux".getBytes(java.nio.charset.StandardCharsets.UTF_8)).send();
+        } finally {
+            device.disconnect();
+        }
+        Message m = plain.poll(WAIT.toSeconds(), TimeUnit.SECONDS);
+        assertTrue(m != null, "the plain client's publication arrived");
+        assertEquals("412 lux", m.payload());
+        assertEquals("mqtt", m.sender());
+        assertTrue(guarded.isEmpty(), "an unsigned publication on a password-protected topic is dropped");
+        assertTrue(local.stats().dropped(io.robomw.agents.messaging.DropReason.MISSING_MAC) >= 1);
+    }
+
+    @Test
+    void aWrongTopicPasswordIsRefusedAtTheReceiver() {
+        long before = dropped(server, "BAD_MAC");
+        local.sendMessage(name("server"), broker.address(), "wrong", "guarded", 0, "go");
+        local.sendMessage(name("server"), broker.address(), "right", "guarded", 1, "go");
+        assertTrue(server.ask("await guarded 1 60", "COUNT", WAIT.plusSeconds(10)).startsWith("COUNT guarded 1 "));
+        assertEquals(before + 1, dropped(server, "BAD_MAC"), "the frame signed with the wrong password was dropped, the right one delivered");
+        assertTrue(server.ask("count guarded", "COUNT").startsWith("COUNT guarded 1 "));
+    }
+
+    @Test
+    void aSubscriberAwayAndBackWithAPersistentSessionGetsWhatWasPublishedMeanwhile() throws Exception {
+        String address = broker.address() + "?session-expiry=600&client-id=" + name("away");
+        try (PeerProcess away = PeerProcess.peer(name("away"), List.of())) {
+            away.ask("subscribe news -", "OK");
+            away.ask("bind " + address, "BOUND");
+        }
+        for (int i = 0; i < 100; i++) {
+            local.publishMessage("news", i, "count", null);
+        }
+        try (PeerProcess back = PeerProcess.peer(name("away"), List.of())) {
+            back.ask("subscribe news -", "OK");
+            back.ask("bind " + address, "BOUND");
+            assertEquals("COUNT news 100 ordered=true", back.ask("await news 100 60", "COUNT", WAIT.plusSeconds(10)));
+        }
+    }
+
+    @Test
+    void aBrokerRestartInTheMiddleOfAQos1StreamLosesNothing() throws Exception {
+        // A broker of its own: the others' clean sessions would lose what is sent to them while they reconnect.
+        try (Broker own = Broker.start(kind(), name("restart-broker"));
+             PeerProcess sub = PeerProcess.peer(name("stream-sub"), List.of());
+             MessagingNode publisher = MessagingNode.builder(name("stream-pub")).bind(own.address() + "?session-expiry=600").build()) {
+            sub.ask("subscribe stream pw", "OK");
+            sub.ask("bind " + own.address() + "?session-expiry=600&client-id=" + name("stream-sub"), "BOUND");
+            int n = 3000;
+            for (int i = 0; i < n / 2; i++) {
+                publisher.publishMessage("stream", i, "count", "pw");
+            }
+            own.restart();
+            for (int i = n / 2; i < n; i++) {
+                publisher.publishMessage("stream", i, "count", "pw");
+            }
+            sub.ask("await stream " + n + " 90", "COUNT", WAIT.plusSeconds(60));
+            assertEquals("DISTINCT stream " + n + " of " + n, sub.ask("distinct stream", "DISTINCT"),
+                    "every publication arrived once (QoS 1 resends; the HMAC'd frames' replay guard drops duplicates)");
+        }
+    }
+
+    @Test
+    void whileTheBrokerIsAwayAtMostMaxQueuedMessagesWaitAndTheNextIsRefusedNamingTheBroker() throws Exception {
+        try (Broker own = Broker.start(kind(), name("bounded-broker"));
+             MessagingNode bounded = MessagingNode.builder(name("bounded")).bind(own.address() + "?max-queued=20").build()) {
+            own.stop();
+            int accepted = 0;
+            io.robomw.api.MessagingException refused = null;
+            for (int i = 0; i < 100 && refused == null; i++) {
+                try {
+                    bounded.publishMessage("bounded", i, "count", null);
+                    accepted++;
+                } catch (io.robomw.api.MessagingException e) {
+                    refused = e;
+                }
+            }
+            assertTrue(refused != null && accepted <= 20, accepted + " publications were accepted with the broker away");
+            assertTrue(refused.getMessage().contains(own.address()), refused.getMessage());
+        }
+    }
+
+    @Test
+    void aRemoteRobotIsDrivenThroughTheBroker() throws Exception {
+        Path world = Path.of(getClass().getResource("/robots/sim-world.yaml").toURI());
+        try (PeerProcess host = PeerProcess.peer(name("robot-host"), List.of())) {
+            host.ask("bind " + broker.address(), "BOUND");
+            host.ask("sim " + world + " sim-1 20", "SERVING sim-1");
+            try (Robot robot = Robots.remote(broker.address() + "/sim-1")) {
+                assertEquals("sim-1", robot.name());
+                robot.resetPose(Pose.ORIGIN);
+                double before = robot.getValue(Position.FRONT, SensorType.SONAR, ReturnType.CENTIMETERS);
+                robot.move(0.25, 0.2);
+                double after = robot.getValue(Position.FRONT, SensorType.SONAR, ReturnType.CENTIMETERS);
+                assertEquals(25.0, before - after, 3.0, "the wall in front came 25 cm closer (" + before + " -> " + after + ")");
+                UnsupportedActionException e = assertThrows(UnsupportedActionException.class, () -> robot.move(1.0, 5.0));
+                assertEquals("sim-1", e.robot());
+            }
+            PresenceRecord p = awaitPresence(name("robot-host"), true);
+            assertEquals(List.of("sim-1"), p.robots());
+            host.process().destroyForcibly().waitFor(10, TimeUnit.SECONDS);
+            assertFalse(awaitPresence(name("robot-host"), false).online(), "the broker published the host's will when it vanished");
+        }
+    }
+
+    /** Reads the presences until the node's has the wanted status (a will comes after the keep-alive runs out). */
+    private PresenceRecord awaitPresence(String node, boolean online) throws Exception {
+        long deadline = System.nanoTime() + WAIT.toNanos();
+        try (BrokerDirectory d = BrokerDirectory.open(broker.address(), Duration.ofSeconds(10))) {
+            while (true) {
+                for (PresenceRecord p : d.records()) {
+                    if (p.node().equals(node) && p.online() == online) {
+                        return p;
+                    }
+                }
+                if (System.nanoTime() > deadline) {
+                    throw new AssertionError("no " + (online ? "online" : "offline") + " presence of " + node + " within " + WAIT + ": " + d.records());
+                }
+                d.awaitQuiet(Duration.ofSeconds(1));
+            }
+        }
+    }
+
+    private static long dropped(PeerProcess peer, String reason) {
+        String stats = peer.ask("stats", "STATS");
+        for (String part : stats.split(" ")) {
+            if (part.startsWith(reason + "=")) {
+                return Long.parseLong(part.substring(reason.length() + 1));
+            }
+        }
+        throw new AssertionError("no " + reason + " in " + stats);
+    }
+}
