@@ -490,6 +490,14 @@ public final class AgentHost implements Agency, AutoCloseable {
         return owed.drop(which::matches, "dropped by the operator (" + which + ")");
     }
 
+    /**
+     * @param id an agent
+     * @return the host an agent went to from here, once that host acknowledged it, or {@code null}
+     */
+    String forwardOf(java.util.UUID id) {
+        return state.forwardOf(id);
+    }
+
     /** @return how many threads deliver to homes now (one per home with something to deliver, until idle) */
     int deliveryThreads() {
         return owed.deliveryThreads();

@@ -213,7 +213,9 @@ final class Home {
         }
         try {
             Agent agent = host.codec.read(image.state(), image.stateOffset(), image.stateLength(), handle.loader, Agent.class);
+            // Seen, so a repeat of this transfer is a duplicate; not held: the agent is back with its handle, not hosted here.
             host.store.accepted(image.id(), image.hop(), new byte[0], 0, 0);
+            host.store.departed(image.id(), image.hop() + 1);
             handle.retracted(peer, agent);
             return Reply.ok();
         } catch (StateRejectedException | IOException e) {

@@ -79,7 +79,8 @@ final class HopSender {
     private void arrivedElsewhere(HostedAgent h, AgentImage image, String target) {
         h.hop = image.hop();
         try {
-            host.store.departed(h.id);
+            // Only the copy that left with this hop: on a hop to this same host the new copy is stored already.
+            host.store.departed(h.id, image.hop());
         } catch (IOException e) {
             LOG.warn("host {}: cannot record agent {} departed: {}", host.name, h.id, e.toString());
         }

@@ -233,7 +233,7 @@ final class Trips {
                 : HostActivity.FAILED, host.address, k == AgentEvent.Kind.RESULT ? HostActivity.describe(h.result) : new String(payload, StandardCharsets.UTF_8));
         owed.owe(h.home, event);
         try {
-            host.store.departed(h.id);
+            host.store.departed(h.id, h.hop + 1);
         } catch (IOException e) {
             LOG.warn("host {}: cannot record agent {} ended: {}", host.name, h.id, e.toString());
         }

@@ -171,6 +171,54 @@ class AgentHostTest {
     }
 
     @Test
+    void anAgentThatHopsToTheSameDurableHostIsResumedFromItsNewCopyAfterTheHostStops(@org.junit.jupiter.api.io.TempDir java.nio.file.Path dir)
+            throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = AgentHost.builder("a").clusterKey(KEY).store(dir.resolve("a")).stopGrace(Duration.ZERO).start();
+        hosts.add(a);
+        VisitorAgent agent = new VisitorAgent().holdUntilReleased();
+        agent.itinerary().addStop(a.address()).addStop(a.address());
+        AgentRef ref = home.startTrip(agent);
+        List<Serializable> reports = new CopyOnWriteArrayList<>();
+        ref.addReportListener(reports::add); // the first listener gets the reports that came before it
+        await(() -> reports.size() == 1);
+        ref.sendMessage("release", Duration.ofSeconds(5)); // once: the second stop holds until the host stops
+        await(() -> reports.size() == 2);
+        // Host a took the hop to itself (the new copy stored) and then recorded the copy that left departed.
+        Await.until("host a has recorded the first copy departed", Duration.ofSeconds(10), () -> a.address().equals(a.forwardOf(ref.id())));
+        int port = HostAddress.parse(a.address()).port();
+        a.close(); // mid-stop at its second stop
+        AgentHost again = AgentHost.builder("a").clusterKey(KEY).port(port).store(dir.resolve("a")).start();
+        hosts.add(again);
+        ref.result().get(30, TimeUnit.SECONDS); // resumed from the copy that hopped to a again: not lost
+        assertEquals(List.of(io.robomw.api.Itinerary.Outcome.DONE, io.robomw.api.Itinerary.Outcome.INTERRUPTED),
+                ref.history().stream().map(io.robomw.api.Itinerary.Visit::outcome).toList(), "its second stop cut short, not run twice");
+        assertEquals(List.of("at a", "at a"), reports);
+    }
+
+    @Test
+    void aDurableHomeThatTookARetractedAgentBackStartsAgainWithNothingToResume(@org.junit.jupiter.api.io.TempDir java.nio.file.Path dir)
+            throws Exception {
+        AgentHost home = AgentHost.builder("home").clusterKey(KEY).store(dir.resolve("home")).start();
+        hosts.add(home);
+        AgentHost a = host("a");
+        VisitorAgent agent = new VisitorAgent().holdUntilReleased();
+        agent.itinerary().addStop(a.address());
+        AgentRef ref = home.startTrip(agent);
+        var retracted = ref.retract();
+        await(() -> {
+            safeSend(ref, "release");
+            return retracted.isDone();
+        });
+        assertEquals(List.of("a"), ((VisitorAgent) retracted.get(10, TimeUnit.SECONDS)).visited());
+        int port = HostAddress.parse(home.address()).port();
+        home.close();
+        AgentHost again = AgentHost.builder("home").clusterKey(KEY).port(port).store(dir.resolve("home")).start();
+        hosts.add(again);
+        assertTrue(again.agents().isEmpty(), "the agent is back with its handle, nothing hosted to resume: " + again.agents());
+    }
+
+    @Test
     void theTripsVisitsComeHomeWithAFailedStopsRemoteStackTraceAndAnUnreachableStopsReason() throws Exception {
         AgentHost home = host("home");
         AgentHost a = host("a");

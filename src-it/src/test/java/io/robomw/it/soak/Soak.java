@@ -112,7 +112,11 @@ final class Soak implements AutoCloseable {
     private SoakAgent agent(long endAt, int first) {
         SoakAgent a = new SoakAgent(endAt, plan.workMillis());
         for (int k = 0; k < hosts.size(); k++) {
-            a.itinerary().addStop(hosts.get((first + k) % hosts.size()).address());
+            int at = (first + k) % hosts.size();
+            a.itinerary().addStop(hosts.get(at).address());
+            if (at == 0) {
+                a.itinerary().addStop(hosts.get(at).address()); // a hop to the same host, the durable one in the kill runs
+            }
         }
         a.itinerary().repeat(1_000_000).onUnreachable(Itinerary.UnreachablePolicy.RETRY).retry(240, Duration.ofMillis(250));
         return a;

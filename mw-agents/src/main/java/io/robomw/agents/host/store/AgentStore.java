@@ -15,7 +15,7 @@ import java.util.UUID;
  * <p>The order of one hop at the receiving host: {@link #accepted} (durable before the sender is
  * acknowledged), {@link #started} (durable before the stop's work begins, so the work never runs
  * twice), {@link #departing} with the state after the work, {@link #departed} once the next host
- * has acknowledged. Thread-safe.
+ * has acknowledged (only that copy: a hop to this same host has stored the next one already). Thread-safe.
  */
 public interface AgentStore extends AutoCloseable {
 
@@ -86,10 +86,18 @@ public interface AgentStore extends AutoCloseable {
     void departing(UUID id, long hop, byte[] image, int offset, int length) throws IOException;
 
     /**
-     * @param id the agent, now stored by the next host or ended here
+     * Forgets the copy of an agent that left this host with {@code hop} (the next host has
+     * acknowledged it), or ended here: unless what is held of the agent came with that hop or a
+     * later one. That happens on a hop to this same host, which stores the new copy (with the
+     * same hop) before the sender records the old one departed, and when the agent comes back
+     * before its sender gets to this call: the new copy must survive a restart.
+     *
+     * @param id  the agent, now stored by the next host or ended here
+     * @param hop the hop that took it on ({@link #departing}'s); for an agent that ended here, one
+     *            past the hop that brought it
      * @throws IOException if it cannot be written
      */
-    void departed(UUID id) throws IOException;
+    void departed(UUID id, long hop) throws IOException;
 
     /**
      * @param id the agent

@@ -45,7 +45,10 @@ import java.util.zip.CRC32C;
  * <tr><td>1</td><td>ACCEPTED</td><td>hop</td><td>the image</td><td>yes</td><td>the agent is held, phase ACCEPTED; the hop is seen</td></tr>
  * <tr><td>2</td><td>STARTED</td><td>hop</td><td>none</td><td>yes</td><td>phase STARTED (its stop's work had begun)</td></tr>
  * <tr><td>3</td><td>DEPARTING</td><td>the next hop</td><td>the image</td><td>no</td><td>phase DEPARTING, with the image it leaves with</td></tr>
- * <tr><td>4</td><td>DEPARTED</td><td>0</td><td>none</td><td>no</td><td>the agent is no longer held</td></tr>
+ * <tr><td>4</td><td>DEPARTED</td><td>the hop it left with (versions 1 and 2: 0)</td><td>none</td><td>no</td><td>the copy that left with that
+ *     hop (or, ending here, came with an earlier one) is no longer held: the agent is forgotten unless what is held of it came
+ *     later (a hop to this same host stores the new copy before the old one is recorded departed); versions 1 and 2: the agent
+ *     is no longer held</td></tr>
  * <tr><td>5</td><td>EVENT_PENDING</td><td>event seq</td><td>[owed since 8, ms since the epoch][the owed event] (version 1: the owed
  *     event alone, owed since the journal was opened)</td><td>yes</td><td>an event owed to its home</td></tr>
  * <tr><td>6</td><td>EVENT_DELIVERED</td><td>event seq</td><td>none</td><td>no</td><td>that event is no longer owed</td></tr>
@@ -98,9 +101,14 @@ public final class JournalStore implements AgentStore {
 
     /** The first four bytes of a journal: not a record length (negative), not text. */
     static final byte[] MAGIC = {(byte) 0x89, 'R', 'M', 'J'};
-    /** The format this store writes; version 2 added the EVENT_SEQ record. */
-    static final int FORMAT_VERSION = 2;
-    /** The oldest format this store reads (its records are a subset of version 2's). */
+    /**
+     * The format this store writes; version 2 added the EVENT_SEQ record, version 3 the hop in
+     * DEPARTED records (before, a DEPARTED record forgot whatever copy of the agent was held).
+     */
+    static final int FORMAT_VERSION = 3;
+    /** The first version whose DEPARTED records carry the hop the agent left with. */
+    static final int DEPARTED_HOP_VERSION = 3;
+    /** The oldest format this store reads (its records are a subset of the current version's). */
     static final int OLDEST_READABLE_VERSION = 1;
     /** The header's length: magic and version. */
     static final int HEADER_LENGTH = 8;
@@ -284,12 +292,24 @@ public final class JournalStore implements AgentStore {
     }
 
     @Override
-    public void departed(UUID id) throws IOException {
+    public void departed(UUID id, long hop) throws IOException {
         synchronized (writeLock) {
-            append(RecordType.DEPARTED, id, 0, null, false);
+            append(RecordType.DEPARTED, id, hop, null, false);
+            forget(id, hop);
+            maybeCompact();
+        }
+    }
+
+    /**
+     * Forgets an agent whose copy that left with {@code hop} is gone, unless what is held of it came
+     * with that hop or a later one: the agent came back, or hopped to this same host, whose
+     * ACCEPTED record is written before the sender records the old copy departed.
+     */
+    private void forget(UUID id, long hop) {
+        StoredAgent held = live.get(id);
+        if (held == null || held.hop() < hop || held.hop() == hop && held.phase() == Phase.DEPARTING) {
             remove(id);
             eventSeqs.remove(id);
-            maybeCompact();
         }
     }
 
@@ -687,8 +707,12 @@ public final class JournalStore implements AgentStore {
             }
             case DEPARTING -> put(new StoredAgent(id, number, Phase.DEPARTING, data));
             case DEPARTED -> {
-                remove(id);
-                eventSeqs.remove(id);
+                if (readVersion >= DEPARTED_HOP_VERSION) {
+                    forget(id, number);
+                } else {
+                    remove(id);
+                    eventSeqs.remove(id);
+                }
             }
             case EVENT_PENDING -> {
                 long since = openedAt;

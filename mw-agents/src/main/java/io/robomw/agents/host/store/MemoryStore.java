@@ -50,7 +50,7 @@ public final class MemoryStore implements AgentStore {
     }
 
     @Override
-    public void departed(UUID id) {
+    public void departed(UUID id, long hop) {
     }
 
     @Override

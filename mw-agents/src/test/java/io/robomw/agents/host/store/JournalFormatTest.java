@@ -30,6 +30,8 @@ class JournalFormatTest {
 
     private static final byte[] HEADER_V1 = {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 1};
     private static final byte[] HEADER_V2 = {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 2};
+    /** The header of the version written now. */
+    private static final byte[] HEADER = {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 3};
     private static final UUID ID = UUID.fromString("00000000-0000-0001-0000-000000000002");
 
     @TempDir
@@ -42,18 +44,18 @@ class JournalFormatTest {
         s.accepted(ID, 3, new byte[] {1, 2}, 0, 2);
         s.started(ID, 3);
         s.departing(ID, 4, new byte[] {5}, 0, 1);
-        s.departed(ID);
+        s.departed(ID, 4);
         s.eventPending(new AgentStore.PendingEvent(ID, 1, 1_700_000_000_000L, new byte[] {9}));
         s.eventDelivered(ID, 1);
         byte[] file = Files.readAllBytes(store.resolve("journal"));
-        assertArrayEquals(HEADER_V2, java.util.Arrays.copyOf(file, 8));
+        assertArrayEquals(HEADER, java.util.Arrays.copyOf(file, 8));
         assertEquals(List.of(1, 2, 3, 4, 5, 6), typesOf(file, 8), "ACCEPTED, STARTED, DEPARTING, DEPARTED, EVENT_PENDING, EVENT_DELIVERED");
         s.close();
 
         JournalStore compacted = JournalStore.open(store); // rewrites what is live: the hop seen
         compacted.close();
         byte[] rewritten = Files.readAllBytes(store.resolve("journal"));
-        assertArrayEquals(HEADER_V2, java.util.Arrays.copyOf(rewritten, 8));
+        assertArrayEquals(HEADER, java.util.Arrays.copyOf(rewritten, 8));
         assertEquals(List.of(7), typesOf(rewritten, 8), "SEEN");
         try (JournalStore again = JournalStore.open(store)) {
             assertEquals(3, again.highestHop(ID));
@@ -62,9 +64,9 @@ class JournalFormatTest {
 
     @Test
     void aJournalOfAnotherFormatVersionIsRefusedNamingTheFileAndTheVersion() throws Exception {
-        Path journal = journal(new byte[] {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 3}, record(1, ID, 1, new byte[] {1}));
+        Path journal = journal(new byte[] {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 4}, record(1, ID, 1, new byte[] {1}));
         IOException e = assertThrows(IOException.class, () -> JournalStore.open(journal.getParent()));
-        assertTrue(e.getMessage().contains(journal.toString()) && e.getMessage().contains("format version 3"), e.getMessage());
+        assertTrue(e.getMessage().contains(journal.toString()) && e.getMessage().contains("format version 4"), e.getMessage());
         assertEquals(8 + record(1, ID, 1, new byte[] {1}).length, Files.size(journal), "left as it was");
     }
 
@@ -79,11 +81,11 @@ class JournalFormatTest {
 
     @Test
     void aRefusedJournalLeavesItsDirectoryFreeForTheNextOpen() throws Exception {
-        Path journal = journal(new byte[] {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 3});
+        Path journal = journal(new byte[] {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 4});
         assertThrows(IOException.class, () -> JournalStore.open(journal.getParent()));
         IOException again = assertThrows(IOException.class, () -> JournalStore.open(journal.getParent()));
-        assertTrue(again.getMessage().contains("format version 3"), "refused for its version again, not for a lock it left held: " + again.getMessage());
-        Files.write(journal, HEADER_V2);
+        assertTrue(again.getMessage().contains("format version 4"), "refused for its version again, not for a lock it left held: " + again.getMessage());
+        Files.write(journal, HEADER);
         JournalStore.open(journal.getParent()).close();
     }
 
@@ -112,16 +114,16 @@ class JournalFormatTest {
         assertEquals(1, s.recoveredEvents().size());
         assertEquals(5, s.highestHop(ID));
         s.close();
-        assertArrayEquals(HEADER_V2, java.util.Arrays.copyOf(Files.readAllBytes(journal), 8));
+        assertArrayEquals(HEADER, java.util.Arrays.copyOf(Files.readAllBytes(journal), 8));
     }
 
     @Test
-    void aVersion1JournalIsReadAndRewrittenAsVersion2() throws Exception {
+    void aVersion1JournalIsReadAndRewrittenInTheCurrentVersion() throws Exception {
         Path journal = journal(HEADER_V1, record(1, ID, 5, new byte[] {4, 2}), record(2, ID, 5, null));
         JournalStore s = JournalStore.open(journal.getParent());
         assertEquals(AgentStore.Phase.STARTED, s.recoveredAgents().get(0).phase());
         s.close();
-        assertArrayEquals(HEADER_V2, java.util.Arrays.copyOf(Files.readAllBytes(journal), 8));
+        assertArrayEquals(HEADER, java.util.Arrays.copyOf(Files.readAllBytes(journal), 8));
     }
 
     @Test
@@ -143,9 +145,53 @@ class JournalFormatTest {
         assertEquals(List.of(7, 1, 2, 8), typesOf(compacted, 8), "SEEN, ACCEPTED, STARTED, EVENT_SEQ");
         try (JournalStore again = JournalStore.open(store)) {
             assertEquals(7, again.nextEventSeq(ID));
-            again.departed(ID);
+            again.departed(ID, 3);
             assertEquals(0, again.nextEventSeq(ID), "an agent that left numbers its events from its image again");
         }
+    }
+
+    @Test
+    void aDepartedRecordForgetsOnlyTheCopyThatLeftNotOneThatCameWithThatHopOrLater() throws Exception {
+        Path store = dir.resolve("same-host");
+        UUID sameHost = new UUID(3, 1);
+        UUID cameBack = new UUID(3, 2);
+        UUID ended = new UUID(3, 3);
+        try (JournalStore s = JournalStore.open(store)) {
+            // A hop to this same host: the new copy is stored (hop 4) before the old one, departing with hop 4, is recorded departed.
+            s.accepted(sameHost, 3, new byte[] {1}, 0, 1);
+            s.started(sameHost, 3);
+            s.departing(sameHost, 4, new byte[] {2}, 0, 1);
+            s.accepted(sameHost, 4, new byte[] {3}, 0, 1);
+            s.departed(sameHost, 4);
+            // Gone to another host and back (hop 5) before the sender recorded hop 4 departed.
+            s.accepted(cameBack, 3, new byte[] {1}, 0, 1);
+            s.departing(cameBack, 4, new byte[] {2}, 0, 1);
+            s.accepted(cameBack, 5, new byte[] {4}, 0, 1);
+            s.departed(cameBack, 4);
+            // Ended here, after a departure that failed.
+            s.accepted(ended, 3, new byte[] {1}, 0, 1);
+            s.departing(ended, 4, new byte[] {2}, 0, 1);
+            s.departed(ended, 4);
+        }
+        try (JournalStore replayed = JournalStore.open(store)) {
+            assertEquals(List.of(new UUID(3, 1) + " 4 ACCEPTED [3]", new UUID(3, 2) + " 5 ACCEPTED [4]"), held(replayed));
+        }
+        try (JournalStore compacted = JournalStore.open(store)) { // what the first open rewrote
+            assertEquals(List.of(new UUID(3, 1) + " 4 ACCEPTED [3]", new UUID(3, 2) + " 5 ACCEPTED [4]"), held(compacted));
+        }
+    }
+
+    @Test
+    void aDepartedRecordOfAVersion2JournalForgetsTheAgentWhateverCopyIsHeld() throws Exception {
+        Path journal = journal(HEADER_V2, record(1, ID, 5, new byte[] {4, 2}), record(4, ID, 0, null));
+        try (JournalStore s = JournalStore.open(journal.getParent())) {
+            assertTrue(s.recoveredAgents().isEmpty(), "version 2's DEPARTED (number 0) forgets the agent: " + held(s));
+            assertEquals(5, s.highestHop(ID));
+        }
+    }
+
+    private static List<String> held(JournalStore s) {
+        return s.recoveredAgents().stream().map(a -> a.id() + " " + a.hop() + " " + a.phase() + " " + java.util.Arrays.toString(a.image())).toList();
     }
 
     @Test
@@ -159,7 +205,7 @@ class JournalFormatTest {
                 UUID id = new UUID(1, i);
                 gone.add(id);
                 s.accepted(id, 7, new byte[] {1}, 0, 1);
-                s.departed(id);
+                s.departed(id, 8);
             }
             assertEquals(1, s.highestHop(held), "an agent held here is never forgotten");
             assertEquals(-1, s.highestHop(gone.get(0)), "the agent seen longest ago is forgotten");
@@ -178,7 +224,7 @@ class JournalFormatTest {
         JournalStore s = JournalStore.open(journal.getParent());
         assertTrue(s.recoveredAgents().isEmpty());
         s.close();
-        assertArrayEquals(HEADER_V2, Files.readAllBytes(journal));
+        assertArrayEquals(HEADER, Files.readAllBytes(journal));
     }
 
     @Test
