@@ -82,7 +82,7 @@ public final class FuzzSeeds {
             s.eventPending(new AgentStore.PendingEvent(id, 4, 1_700_000_000_000L, Bodies.owedEvent(home, new AgentEvent(id, 4, AgentEvent.Kind.REPORT, "a", new byte[3]))));
             s.eventDelivered(id, 4);
             s.departing(id, 3, image, 0, image.length);
-            s.departed(id);
+            s.departed(id, 3);
         }
         byte[] journal = Files.readAllBytes(journalDir.resolve("journal"));
         new Seeds(resources, "io.robomw.agents.host.store.JournalFuzzTest").write("replay", "every-record", journal);
@@ -101,6 +101,14 @@ public final class FuzzSeeds {
             PayloadCodec.Encoded e = payloads.encode((java.io.Serializable) value);
             frames.write("payload", "type-" + e.type() + "-" + value.getClass().getSimpleName(), withTrailingByte(e.bytes(), e.type()));
         }
+        frames.write("presence", "host", new io.robomw.agents.messaging.PresenceRecord("a", true, Instant.parse("2026-11-24T10:15:30.123Z"), "mw-a-1",
+                86_400, List.of("tcp://127.0.0.1:7000"), "a", "rmi://127.0.0.1:1100/a", List.of("nxt"),
+                List.of(id + " io.robomw.examples.Patrol ACTIVE")).encode());
+
+        HostActivity activity = new HostActivity();
+        activity.record(id, "io.robomw.examples.Patrol", HostActivity.ARRIVED, "rmi://127.0.0.1:1100/a", "hop 2 from b");
+        activity.record(id, "io.robomw.examples.Patrol", HostActivity.REPORT, "rmi://127.0.0.1:1100/a", "at a");
+        host.write("watch", "activity", activity.watchReply("a", "nxt", List.of(), 0));
     }
 
     private static byte[] withTrailingByte(byte[] body, int last) {

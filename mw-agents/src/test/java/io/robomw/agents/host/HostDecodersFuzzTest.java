@@ -69,6 +69,16 @@ class HostDecodersFuzzTest {
         }
     }
 
+    /** A host's answer to WATCH, as a watcher ({@code mw console}) reads it. */
+    @FuzzTest
+    void watch(byte[] input) {
+        try {
+            HostWatch.decode("fuzz", input, 0);
+        } catch (IOException refused) {
+            // the documented refusal
+        }
+    }
+
     /** Every layout of {@link Bodies}: the first byte picks the reader, the rest is the body. */
     @FuzzTest
     void bodies(FuzzedDataProvider data) {

@@ -2,6 +2,7 @@ package io.robomw.agents.messaging.frame;
 
 import com.code_intelligence.jazzer.api.FuzzedDataProvider;
 import com.code_intelligence.jazzer.junit.FuzzTest;
+import io.robomw.agents.messaging.PresenceRecord;
 import io.robomw.agents.messaging.io.FrameStreamReader;
 import io.robomw.agents.messaging.security.PayloadAllowList;
 import io.robomw.agents.messaging.security.PayloadCodec;
@@ -46,6 +47,20 @@ class MessageFramesFuzzTest {
             } catch (IOException e) {
                 throw new AssertionError("a stream of bytes in memory failed to read: " + e, e);
             }
+        }
+    }
+
+    /** What a node announces at a broker, read by every node and {@code mw agents --cluster} from the broker's retained messages. */
+    @FuzzTest
+    void presence(byte[] input) {
+        PresenceRecord p;
+        try {
+            p = PresenceRecord.decode(input, "fuzz");
+        } catch (IllegalArgumentException refused) {
+            return;
+        }
+        if (!PresenceRecord.decode(p.encode(), "fuzz").equals(p)) {
+            throw new AssertionError("a presence does not survive its own encoding: " + p);
         }
     }
 
