@@ -187,6 +187,13 @@ class AgentCommandsTest {
     }
 
     @Test
+    void agentsTakesHostsOrABrokerNotBoth() {
+        Run both = mw("agents", "--cluster", "mqtt://127.0.0.1:1", "rmi://127.0.0.1:1/x");
+        assertEquals(2, both.status(), both.toString());
+        assertEquals("mw agents: give HOST addresses or --cluster BROKER, not both", both.err().strip());
+    }
+
+    @Test
     void disposeFindsTheAgentAndRetractOfAnUnknownAgentSaysNoHostKnowsIt() throws Exception {
         AgentHost a = host("a");
         UUID id = sendWithAGoneHome(a, new VisitorAgent().holdUntilReleased());
