@@ -1,12 +1,11 @@
 package io.robomw.platform;
 
 import java.time.Duration;
-import java.util.concurrent.locks.LockSupport;
 import java.util.function.BooleanSupplier;
 
 import static org.junit.jupiter.api.Assertions.fail;
 
-/** mw-platform's one wait helper, for tests on the wall clock: a condition with a deadline, checked every millisecond, never a sleep. */
+/** The Platform Layer tests' one wait: a condition checked every millisecond until a deadline. */
 public final class Await {
 
     private Await() {
@@ -20,10 +19,10 @@ public final class Await {
     public static void until(String what, Duration within, BooleanSupplier condition) {
         long deadline = System.nanoTime() + within.toNanos();
         while (!condition.getAsBoolean()) {
-            if (System.nanoTime() - deadline > 0) {
-                fail("not true within " + within + ": " + what);
+            if (System.nanoTime() > deadline) {
+                fail("not true within " + within.toMillis() + " ms: " + what);
             }
-            LockSupport.parkNanos(1_000_000);
+            java.util.concurrent.locks.LockSupport.parkNanos(1_000_000);
         }
     }
 }
