@@ -24,13 +24,16 @@ import java.util.Arrays;
 @Command(name = "mw", mixinStandardHelpOptions = true, version = "RoboMW 0.1.0",
         description = "RoboMW: one Java API over many robots.",
         subcommands = {DescribeCommand.class, SimCommand.class, EmulateCommand.class, MsgCommand.class, BrokerCommand.class, HostCommand.class,
-                AgentsCommand.class, DispatchCommand.class, DemoCommand.class, ConsoleCommand.class, RecordCommand.class, ReplayCommand.class,
+                AgentsCommand.class, DispatchCommand.class, RetractCommand.class, DisposeCommand.class, DemoCommand.class, ConsoleCommand.class, RecordCommand.class, ReplayCommand.class,
                 RunCommand.class, ClasspathCommand.class, RobotCommand.class, NewCommand.class, UpCommand.class, NodesCommand.class, TopicsCommand.class,
                 CommandLine.HelpCommand.class, AutoComplete.GenerateCompletion.class})
 public final class Mw {
 
     /** Exit status of a usage error or any other error a command did not handle itself. */
     static final int USER_ERROR = 2;
+
+    /** RMI's keep-alive of idle connection threads, in milliseconds (read once, when RMI's transport loads). */
+    static final String RMI_THREAD_KEEP_ALIVE = "sun.rmi.transport.tcp.threadKeepAliveTime";
 
     @Option(names = "--verbose", scope = ScopeType.INHERIT, description = "on an error, also show its stack trace")
     boolean verbose;
@@ -39,6 +42,11 @@ public final class Mw {
      * @param args the command line
      */
     public static void main(String[] args) {
+        // RMI keeps a thread per idle connection for a minute by default: a host that served a burst
+        // of agents would hold hundreds. 10 s is enough to reuse a connection between hops.
+        if (System.getProperty(RMI_THREAD_KEEP_ALIVE) == null) {
+            System.setProperty(RMI_THREAD_KEEP_ALIVE, "10000");
+        }
         System.exit(commandLine().execute(args));
     }
 

@@ -72,7 +72,7 @@ final class Inbound {
             }
         } catch (FrameException e) {
             counters.drop(e.reason(), from.peer(), e.getMessage());
-        } catch (RuntimeException e) {
+        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
             counters.drop(DropReason.MALFORMED, from.peer(), "frame could not be handled: " + e);
         }
     }
@@ -127,7 +127,8 @@ final class Inbound {
         for (MessageListener listener : topic.listeners) {
             try {
                 listener.onMessage(message);
-            } catch (RuntimeException e) {
+            } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+                // A listener's failure (an agent's code: an exception or an error it can cause) is its own, not the connection's.
                 counters.listenerError();
                 LOG.warn("node '{}': a listener of topic '{}' failed on a message from '{}': {}", node.name(), f.topic(), f.sender(), e.toString(), e);
             }

@@ -762,7 +762,15 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         @Override
         public ThreadFactory threads(String role) {
             return r -> {
-                Thread t = new Thread(r, "mw-msg-" + name + "-" + role + "-" + threadNumbers.incrementAndGet());
+                String threadName = "mw-msg-" + name + "-" + role + "-" + threadNumbers.incrementAndGet();
+                Thread t = new Thread(() -> {
+                    try {
+                        r.run();
+                    } catch (Throwable e) {
+                        // Its loop handles what it can; whatever gets here ends the thread, said aloud.
+                        LOG.error("node '{}': thread {} ended by {}", name, threadName, e.toString(), e);
+                    }
+                }, threadName);
                 t.setDaemon(true);
                 return t;
             };

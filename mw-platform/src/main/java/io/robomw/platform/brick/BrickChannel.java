@@ -33,6 +33,9 @@ public final class BrickChannel implements AutoCloseable {
     /** Shortest time between two attempts to reopen a lost link. */
     public static final Duration REOPEN_INTERVAL = Duration.ofMillis(500);
 
+    /** Reopening a link paces itself on the wall clock: a link's real time, whatever clock the robot runs on. */
+    private static final io.robomw.api.Clock LINK_TIME = io.robomw.api.Clock.system();
+
     private final String robot;
     private final Communicator communicator;
     private final Duration replyTimeout;
@@ -164,7 +167,7 @@ public final class BrickChannel implements AutoCloseable {
         if (!down) {
             return;
         }
-        long now = System.nanoTime();
+        long now = LINK_TIME.nanoTime();
         if (now - lastAttempt < REOPEN_INTERVAL.toNanos()) {
             throw new LinkLostException(communicator.describe(), "link to robot '" + robot + "' is down; next reopen attempt within "
                     + REOPEN_INTERVAL.toMillis() + " ms");
@@ -180,7 +183,7 @@ public final class BrickChannel implements AutoCloseable {
             LOG.warn("robot '{}': link {} failed: {}", robot, communicator.describe(), e.getMessage());
         }
         down = true;
-        lastAttempt = System.nanoTime();
+        lastAttempt = LINK_TIME.nanoTime();
     }
 
     /** Closes the link. */

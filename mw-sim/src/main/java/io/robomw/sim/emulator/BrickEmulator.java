@@ -108,6 +108,11 @@ public abstract class BrickEmulator implements Emulator {
      */
     protected abstract byte[] handle(byte[] frame);
 
+    /** @return how telegrams are delimited on this emulator's link (for tests that feed it bytes as its port would) */
+    Framing framing() {
+        return framing;
+    }
+
     /**
      * Applies the firmware's outputs to the robot and samples its inputs. Called on the simulation
      * thread after every world step.
@@ -266,7 +271,7 @@ public abstract class BrickEmulator implements Emulator {
                 byte[] reply;
                 try {
                     reply = handle(frame);
-                } catch (RuntimeException e) {
+                } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
                     drop("telegram " + hex(frame) + " could not be handled: " + e);
                     continue;
                 }

@@ -65,7 +65,7 @@ public final class IntelligentInterfacePlatformProvider implements PlatformProvi
         BrickChannel channel = BrickChannel.open(config.robotName(), config.connection(),
                 SerialSettings.of(IntelligentInterfaceTelegram.BAUD, 8, SerialSettings.Parity.NONE, 1), 0, timeout);
         try {
-            IntelligentInterfaceInputs inputs = new IntelligentInterfaceInputs();
+            IntelligentInterfaceInputs inputs = new IntelligentInterfaceInputs(config.clock());
             IntelligentInterfaceMotorPlatform motors = new IntelligentInterfaceMotorPlatform(config, channel, inputs);
             return new BrickPlatform(config, motors, new IntelligentInterfaceSensorPlatform(config.robotName(), motors, inputs),
                     LinkThreading.OWN_THREAD, channel).start();

@@ -154,7 +154,7 @@ class IntelligentInterfaceLineTimingTest {
                 new ConnectionSettings(Map.of("port", "/dev/ttyS0"), "test.yaml"),
                 List.of(new MotorChannel("M1", MotorChannel.Role.LEFT_WHEEL, TICKS, Optional.of("E1"))), List.of(),
                 Duration.ofMillis(10), Duration.ZERO, Clock.system(), PlatformServices.none());
-        return new IntelligentInterfaceMotorPlatform(config, channel, new IntelligentInterfaceInputs());
+        return new IntelligentInterfaceMotorPlatform(config, channel, new IntelligentInterfaceInputs(config.clock()));
     }
 
     /** Runs the link side, a cycle every 10 ms, until the wheel's limited rotation ended (or 20 s passed). */
