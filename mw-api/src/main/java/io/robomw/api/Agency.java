@@ -40,7 +40,10 @@ public interface Agency {
      * @param agent the agent to clone (it is not sent itself)
      * @param hosts the hosts, one clone each
      * @return one handle per host, in the order of {@code hosts}
-     * @throws AgentException if a host cannot be reached or refuses its clone (the others are still sent)
+     * @throws PartialDispatchException if some hosts could not be reached or refused their clones:
+     *         the others were sent, and the exception holds their handles ({@link PartialDispatchException#sent()})
+     *         and why each of the rest was not sent
+     * @throws AgentException if no clone could be sent
      */
     List<AgentRef> dispatchClones(Agent agent, String... hosts);
 }

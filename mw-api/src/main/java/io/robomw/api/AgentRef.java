@@ -2,6 +2,7 @@ package io.robomw.api;
 
 import java.io.Serializable;
 import java.time.Duration;
+import java.util.List;
 import java.util.UUID;
 import java.util.concurrent.CompletableFuture;
 import java.util.function.Consumer;
@@ -31,8 +32,22 @@ public interface AgentRef {
     CompletableFuture<Serializable> result();
 
     /**
+     * The visits of the agent's trip, as its last host told the home when the trip ended: each
+     * stop's host and how it ended ({@link Itinerary.Outcome}: done, failed with the remote stack
+     * trace in its detail, unreachable with the reason, interrupted). Empty until the trip has
+     * ended, and for hosts that do not tell it.
+     *
+     * @return the visits, in the order they happened
+     */
+    default List<Itinerary.Visit> history() {
+        return List.of();
+    }
+
+    /**
      * Listens to the values the agent sends home while it travels ({@link AgentContext#report}),
-     * in the order it sent them. Called on the home's delivery thread.
+     * in the order it sent them. Called on the home's delivery thread. The first listener added
+     * also gets, first, the reports that came before it (an agent may report before the call that
+     * sent it has returned), up to the last 10,000.
      *
      * @param listener the listener
      */

@@ -22,7 +22,21 @@ public class UnsupportedActionException extends RobotException {
         this.action = action;
     }
 
-    /** @return the robot's name */
+    /**
+     * For subclasses whose message is better said otherwise (a host without any robot).
+     *
+     * @param message the whole message
+     * @param cause   the cause, or {@code null}
+     * @param robot   the robot's name, or what stands for it
+     * @param action  the action asked for
+     */
+    protected UnsupportedActionException(String message, Throwable cause, String robot, String action) {
+        super(message, cause);
+        this.robot = robot;
+        this.action = action;
+    }
+
+        /** @return the robot's name */
     public String robot() {
         return robot;
     }

@@ -1,33 +1,58 @@
 package io.robomw.cli;
 
-import io.robomw.agents.host.AgentHost;
 import io.robomw.agents.host.AgentInfo;
+import io.robomw.agents.host.ClusterKey;
+import io.robomw.agents.host.HostClient;
+import io.robomw.agents.host.OwedDelivery;
+import io.robomw.agents.host.OwedSelector;
+import io.robomw.agents.messaging.PresenceRecord;
+import io.robomw.agents.messaging.mqtt.BrokerDirectory;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Mixin;
 import picocli.CommandLine.Model.CommandSpec;
+import picocli.CommandLine.Option;
 import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
 
+import java.io.IOException;
 import java.io.PrintWriter;
+import java.time.Duration;
+import java.time.Instant;
+import java.util.ArrayList;
 import java.util.List;
+import java.util.Optional;
+import java.util.UUID;
 import java.util.concurrent.Callable;
 
 /**
- * {@code mw agents HOST}: lists the agents at an agent host; {@code mw agents --cluster BROKER}:
- * every host announced at an MQTT broker and its agents.
+ * {@code mw agents HOST...}: lists the agents at agent hosts and what each owes agents' homes
+ * (reports and results not delivered yet, with their age); {@code --drop-owed} drops those.
+ * {@code mw agents --cluster BROKER}: every host announced at an MQTT broker and its agents, and,
+ * when the command has the cluster key, what each host online owes (asked of the host itself;
+ * {@code --drop-owed} drops it at every one). Exit status 0 when every host asked answered, 1 when
+ * one could not be reached, 2 on a usage error or a broker that cannot be read.
  */
-@Command(name = "agents", mixinStandardHelpOptions = true, description = {"Lists the agents at an agent host,",
-        "or with --cluster mqtt://BROKER every host announced there (mw host --announce or --serve mqtt://...) and its agents."})
+@Command(name = "agents", mixinStandardHelpOptions = true,
+        description = {"Lists the agents at agent hosts and the deliveries each owes agents' homes,",
+                "or with --cluster mqtt://BROKER every host announced there (mw host --announce or --serve mqtt://...), its agents",
+                "and, with the cluster key, the deliveries each host online owes.",
+                "Example: mw agents rmi://127.0.0.1:1099/nxt rmi://127.0.0.1:1100/ft",
+                "         mw agents --drop-owed rmi://127.0.0.1:41234/dispatch-4711 rmi://127.0.0.1:1099/nxt",
+                "         mw agents --cluster mqtt://127.0.0.1:1883 --key-file cluster.key"})
 final class AgentsCommand implements Callable<Integer> {
 
-    @Parameters(paramLabel = "HOST", arity = "0..1", description = "the host's address, rmi://host:port/name")
-    String host;
+    @Parameters(arity = "0..*", paramLabel = "HOST", description = "the hosts' addresses, rmi://host:port/name")
+    List<String> hosts = new ArrayList<>();
 
-    @picocli.CommandLine.Option(names = "--cluster", paramLabel = "BROKER", description = "list every host announced at this broker, mqtt://host:port[/prefix]")
+    @Option(names = "--cluster", paramLabel = "BROKER", description = "the hosts announced at this broker, mqtt://host:port[/prefix]")
     String broker;
 
-    @picocli.CommandLine.Option(names = "--wait", defaultValue = "3", description = "seconds to wait for the broker's answer with --cluster (default ${DEFAULT-VALUE})")
-    double waitSeconds;
+    @Option(names = "--wait", defaultValue = "3s", description = "how long to wait for the broker's answer with --cluster: 3, 500ms, 2m, ISO-8601... (default ${DEFAULT-VALUE})")
+    Duration wait;
+
+    @Option(names = "--drop-owed", paramLabel = "all|AGENT-ID|HOME", description = "drop the deliveries these hosts owe: all of them, those of one"
+            + " agent, or those owed to one home (rmi://...); for a home that is gone for good, rather than wait for their expiry")
+    String dropOwed;
 
     @Mixin
     ClusterOptions cluster;
@@ -38,56 +63,155 @@ final class AgentsCommand implements Callable<Integer> {
     @Override
     public Integer call() throws Exception {
         PrintWriter out = spec.commandLine().getOut();
+        PrintWriter err = spec.commandLine().getErr();
+        OwedSelector drop = dropOwed == null ? null : selector(dropOwed);
         if (broker != null) {
-            return listCluster(out);
+            if (!hosts.isEmpty()) {
+                err.println("mw agents: give HOST addresses or --cluster BROKER, not both");
+                return 2;
+            }
+            return listCluster(out, err, drop);
         }
-        if (host == null) {
-            spec.commandLine().getErr().println("mw agents: give a HOST (rmi://host:port/name) or --cluster mqtt://BROKER");
+        if (hosts.isEmpty()) {
+            err.println("mw agents: give a HOST (rmi://host:port/name) or --cluster mqtt://BROKER");
             return 2;
         }
-        List<AgentInfo> agents;
-        try {
-            agents = AgentHost.list(host, cluster.key() == null ? io.robomw.agents.host.ClusterKey.tlsOnly() : cluster.key(), cluster.tls() != null);
-        } catch (java.io.IOException | IllegalArgumentException e) {
-            spec.commandLine().getErr().println("mw agents: " + e.getMessage());
-            return 2;
-        }
-        out.printf("%d agent%s at %s%n", agents.size(), agents.size() == 1 ? "" : "s", host);
-        if (!agents.isEmpty()) {
-            out.printf("%-36s  %-10s  %4s  %-40s  %s%n", "ID", "STATUS", "HOP", "CLASS", "HOME");
-            for (AgentInfo a : agents) {
-                out.printf("%-36s  %-10s  %4d  %-40s  %s%n", a.id(), a.status(), a.hop(), a.className(), a.home());
+        int unreachable = 0;
+        try (HostClient client = client(cluster.keyOrTlsOnly())) {
+            for (String host : hosts) {
+                unreachable += askHost(client, host, null, drop, out, err) ? 0 : 1;
             }
         }
-        out.flush();
-        return 0;
+        err.flush();
+        return unreachable == 0 ? 0 : 1;
     }
 
-    private int listCluster(PrintWriter out) {
-        List<io.robomw.agents.messaging.PresenceRecord> all;
+    private HostClient client(ClusterKey key) {
+        return new HostClient(key, cluster.tls() != null, 10_000);
+    }
+
+    /**
+     * Lists (or drops) what one host holds and owes; prints why not if it cannot be asked.
+     *
+     * @param indent {@code null} for a host given on the command line (its agents are listed too), or the
+     *               indent under a host listed from its presence (its agents are listed from that)
+     * @return whether the host answered
+     */
+    private boolean askHost(HostClient client, String host, String indent, OwedSelector drop, PrintWriter out, PrintWriter err) {
+        String in = indent == null ? "" : indent;
         try {
-            all = io.robomw.agents.messaging.mqtt.BrokerDirectory.read(broker, java.time.Duration.ofMillis((long) (waitSeconds * 1000)));
-        } catch (java.io.IOException | IllegalArgumentException e) {
-            spec.commandLine().getErr().println("mw agents: " + e.getMessage());
+            if (drop != null) {
+                List<OwedDelivery> dropped = client.dropOwed(host, drop);
+                out.printf("%s%s dropped %d owed deliver%s (%s)%n", in, host, dropped.size(), dropped.size() == 1 ? "y" : "ies", drop);
+                printOwed(out, in, dropped);
+            } else {
+                if (indent == null) {
+                    printAgents(out, host, client.agents(host));
+                }
+                List<OwedDelivery> owed = client.owed(host);
+                out.printf("%s%d deliver%s owed by %s%n", in, owed.size(), owed.size() == 1 ? "y" : "ies", host);
+                printOwed(out, in, owed);
+            }
+            return true;
+        } catch (IOException | IllegalArgumentException e) {
+            err.printf("mw agents: %s: %s%n", host, Mw.oneLine(e));
+            return false;
+        } finally {
+            out.flush();
+        }
+    }
+
+    private int listCluster(PrintWriter out, PrintWriter err, OwedSelector drop) throws IOException {
+        List<PresenceRecord> all;
+        try {
+            all = BrokerDirectory.read(broker, wait);
+        } catch (IOException | IllegalArgumentException e) {
+            err.println("mw agents: " + Mw.oneLine(e));
             return 2;
         }
-        List<io.robomw.agents.messaging.PresenceRecord> hosts = all.stream().filter(p -> p.host() != null).toList();
-        out.printf("%d agent host%s at %s%n", hosts.size(), hosts.size() == 1 ? "" : "s", broker);
-        for (io.robomw.agents.messaging.PresenceRecord p : hosts) {
-            out.printf("%s  %s  %s  robot %s  since %s%n", p.host(), p.online() ? "online" : "offline", p.hostAddress(),
-                    p.robots().isEmpty() ? "none" : String.join(",", p.robots()), p.time());
-            for (String a : p.agents()) {
-                out.printf("    %s%n", a);
+        Optional<ClusterKey> key = cluster.keyIfAny();
+        if (drop != null && key.isEmpty()) {
+            err.println("mw agents: --drop-owed asks each host: give the cluster key (--key-file FILE or " + ClusterOptions.KEY_VARIABLE + ")");
+            return 2;
+        }
+        List<PresenceRecord> agentHosts = all.stream().filter(p -> p.host() != null).toList();
+        out.printf("%d agent host%s at %s%n", agentHosts.size(), agentHosts.size() == 1 ? "" : "s", broker);
+        int unreachable = 0;
+        try (HostClient client = key.map(this::client).orElse(null)) {
+            for (PresenceRecord p : agentHosts) {
+                out.printf("%s  %s  %s  robot %s  since %s%n", p.host(), p.online() ? "online" : "offline", p.hostAddress(),
+                        p.robots().isEmpty() ? "none" : String.join(",", p.robots()), p.time());
+                for (String a : p.agents()) {
+                    out.printf("    %s%n", a);
+                }
+                if (client != null && p.online()) {
+                    unreachable += askHost(client, p.hostAddress(), "  ", drop, out, err) ? 0 : 1;
+                }
             }
         }
-        List<io.robomw.agents.messaging.PresenceRecord> others = all.stream().filter(p -> p.host() == null && p.online()).toList();
+        if (key.isEmpty() && !agentHosts.isEmpty()) {
+            out.println("(give the cluster key, --key-file FILE or " + ClusterOptions.KEY_VARIABLE + ", to list the deliveries each host owes)");
+        }
+        List<PresenceRecord> others = all.stream().filter(p -> p.host() == null && p.online()).toList();
         if (!others.isEmpty()) {
             out.printf("%d other node%s online:%n", others.size(), others.size() == 1 ? "" : "s");
-            for (io.robomw.agents.messaging.PresenceRecord p : others) {
+            for (PresenceRecord p : others) {
                 out.printf("    %s%s%n", p.node(), p.robots().isEmpty() ? "" : "  robots " + String.join(",", p.robots()));
             }
         }
         out.flush();
-        return 0;
+        err.flush();
+        return unreachable == 0 ? 0 : 1;
+    }
+
+    private static OwedSelector selector(String text) {
+        if (text.equalsIgnoreCase("all")) {
+            return OwedSelector.all();
+        }
+        if (text.startsWith("rmi://")) {
+            return OwedSelector.home(text);
+        }
+        try {
+            return OwedSelector.agent(UUID.fromString(text));
+        } catch (IllegalArgumentException e) {
+            throw new IllegalArgumentException("--drop-owed takes all, an agent id or a home address (rmi://host:port/name), not '" + text + "'");
+        }
+    }
+
+    private static void printAgents(PrintWriter out, String host, List<AgentInfo> agents) {
+        out.printf("%d agent%s at %s%n", agents.size(), agents.size() == 1 ? "" : "s", host);
+        if (!agents.isEmpty()) {
+            out.printf("  %-36s  %-10s  %4s  %-40s  %s%n", "ID", "STATUS", "HOP", "CLASS", "HOME");
+            for (AgentInfo a : agents) {
+                out.printf("  %-36s  %-10s  %4d  %-40s  %s%n", a.id(), a.status(), a.hop(), a.className(), a.home());
+            }
+        }
+    }
+
+    private static void printOwed(PrintWriter out, String indent, List<OwedDelivery> owed) {
+        if (owed.isEmpty()) {
+            return;
+        }
+        out.printf("%s  %-36s  %5s  %-8s  %-9s  %5s  %-40s  %s%n", indent, "AGENT", "EVENT", "KIND", "AGE", "TRIES", "HOME", "LAST ERROR");
+        Instant now = Instant.now();
+        for (OwedDelivery d : owed) {
+            out.printf("%s  %-36s  %5d  %-8s  %-9s  %5d  %-40s  %s%n", indent, d.agent(), d.seq(), d.kind(), age(Duration.between(d.owedSince(), now)),
+                    d.attempts(), d.home(), TripSummary.flat(d.lastError()));
+        }
+    }
+
+    /** @return a duration as people read it: 42s, 3m05s, 2h10m, 3d04h */
+    static String age(Duration d) {
+        long s = Math.max(0, d.toSeconds());
+        if (s < 60) {
+            return s + "s";
+        }
+        if (s < 3600) {
+            return String.format("%dm%02ds", s / 60, s % 60);
+        }
+        if (s < 86_400) {
+            return String.format("%dh%02dm", s / 3600, s % 3600 / 60);
+        }
+        return String.format("%dd%02dh", s / 86_400, s % 86_400 / 3600);
     }
 }

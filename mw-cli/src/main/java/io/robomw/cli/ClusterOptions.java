@@ -40,7 +40,27 @@ final class ClusterOptions {
         return lookup.require(file, "this command");
     }
 
-    TlsSettings tls() {
+    /**
+     * The key when the command can authenticate, for commands that do more with it but need none
+     * ({@code mw agents --cluster}): a key file given must exist, one looked up may be absent.
+     *
+     * @return the cluster key (or the TLS-only key when TLS alone authenticates), or empty if none is given or found
+     * @throws IOException if the key file given cannot be read
+     */
+    Optional<ClusterKey> keyIfAny() throws IOException {
+        if (keyFile != null || keyStore != null) {
+            return Optional.of(keyOrTlsOnly());
+        }
+        return ClusterKeyLookup.ofThisProcess().find(Optional.empty());
+    }
+
+    /** @return the cluster key, or the TLS-only key when TLS alone authenticates */
+    ClusterKey keyOrTlsOnly() throws IOException {
+        ClusterKey k = key();
+        return k == null ? ClusterKey.tlsOnly() : k;
+    }
+
+        TlsSettings tls() {
         if (keyStore == null) {
             return null;
         }

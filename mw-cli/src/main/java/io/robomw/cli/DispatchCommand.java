@@ -2,7 +2,9 @@ package io.robomw.cli;
 
 import io.robomw.agents.host.AgentHost;
 import io.robomw.api.Agent;
+import io.robomw.api.AgentException;
 import io.robomw.api.AgentRef;
+import io.robomw.api.PartialDispatchException;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Mixin;
 import picocli.CommandLine.Model.CommandSpec;
@@ -12,13 +14,18 @@ import picocli.CommandLine.Spec;
 
 import java.io.PrintWriter;
 import java.io.Serializable;
+import java.lang.reflect.Constructor;
+import java.lang.reflect.InvocationTargetException;
+import java.lang.reflect.Modifier;
 import java.net.URL;
 import java.net.URLClassLoader;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.util.ArrayList;
+import java.util.LinkedHashMap;
 import java.util.List;
+import java.util.Map;
 import java.util.concurrent.Callable;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.TimeUnit;
@@ -26,11 +33,19 @@ import java.util.concurrent.TimeoutException;
 
 /**
  * {@code mw dispatch}: sends an agent class from a jar to agent hosts (a clone per host, or one
- * agent visiting them in turn), prints its reports and results as they come, and exits when all
- * results are home: 0 if every agent completed, 1 if one failed, 3 on time-out.
+ * agent visiting them in turn), prints its reports and results as they come, waits for every
+ * agent that was sent (also when some hosts could not be reached), and ends with a summary of
+ * every stop. It exits after the results it printed have been acknowledged to their hosts (its
+ * home closes only once the calls that brought them have replied), so no host keeps owing them.
+ *
+ * <p>Exit status: 0 every agent that was sent completed; 1 one failed; 2 a usage error, or no
+ * agent could be sent; 3 not every result came home in time (the summary says where each agent
+ * was last seen); 4 with {@code --strict}, a stop was skipped (its host could not be reached, its
+ * clone could not be sent, or its host stopped while it ran).
  */
 @Command(name = "dispatch", mixinStandardHelpOptions = true,
-        description = {"Sends an agent from a jar to agent hosts and prints its results as they come.",
+        description = {"Sends an agent from a jar to agent hosts, prints its results as they come, and ends with a summary of every stop.",
+                "Exit status: 0 all completed, 1 one failed, 2 usage error or nothing sent, 3 time-out, 4 --strict and a stop was skipped.",
                 "Example: mw dispatch --jar my-agents.jar --agent org.example.Survey --clone rmi://127.0.0.1:1099/nxt rmi://127.0.0.1:1100/ft"})
 final class DispatchCommand implements Callable<Integer> {
 
@@ -46,7 +61,10 @@ final class DispatchCommand implements Callable<Integer> {
     @Option(names = "--clone", description = "send one clone to each host, in parallel (default: one agent visits the hosts in turn)")
     boolean clone;
 
-    @Option(names = "--timeout", defaultValue = "PT2M", description = "how long to wait for results (ISO-8601, default ${DEFAULT-VALUE})")
+    @Option(names = "--strict", description = "exit with status 4 when a stop was skipped: its host could not be reached, its clone not sent, or its host stopped while it ran")
+    boolean strict;
+
+    @Option(names = "--timeout", defaultValue = "PT2M", description = "how long to wait for results: 30s, 2m, ISO-8601... (default ${DEFAULT-VALUE})")
     Duration timeout;
 
     @Option(names = "--bind", defaultValue = "127.0.0.1", description = "address of this command's own home host, where results arrive (default ${DEFAULT-VALUE})")
@@ -66,70 +84,147 @@ final class DispatchCommand implements Callable<Integer> {
         PrintWriter out = spec.commandLine().getOut();
         PrintWriter err = spec.commandLine().getErr();
         if (!Files.isRegularFile(jar)) {
-            err.println("mw dispatch: no jar at " + jar);
+            err.println("mw dispatch: no jar at " + jar.toAbsolutePath());
             return 2;
         }
-        try (URLClassLoader code = new URLClassLoader(new URL[] {jar.toUri().toURL()}, Agent.class.getClassLoader());
-             AgentHost home = AgentHost.builder("dispatch-" + ProcessHandle.current().pid()).bind(bind).clusterKey(cluster.key())
-                     .tls(cluster.tls()).start()) {
+        try (URLClassLoader code = new URLClassLoader(new URL[] {jar.toUri().toURL()}, Agent.class.getClassLoader())) {
             Agent agent = instantiate(code);
-            List<AgentRef> refs;
-            if (clone) {
-                refs = home.dispatchClones(agent, hosts.toArray(String[]::new));
-            } else {
-                hosts.forEach(h -> agent.itinerary().addStop(h));
-                refs = List.of(home.startTrip(agent));
+            try (AgentHost home = AgentHost.builder("dispatch-" + ProcessHandle.current().pid()).bind(bind).clusterKey(cluster.key())
+                    .tls(cluster.tls()).start()) {
+                return dispatch(home, agent, out, err);
             }
-            List<CompletableFuture<Boolean>> done = new ArrayList<>();
-            for (int i = 0; i < refs.size(); i++) {
-                AgentRef ref = refs.get(i);
-                String label = clone ? hosts.get(i) : "agent " + ref.id().toString().substring(0, 8);
-                synchronized (out) {
-                    out.printf("sent %s %s to %s%n", agentClass, ref.id(), clone ? hosts.get(i) : String.join(" -> ", hosts));
-                    out.flush();
-                }
-                ref.addReportListener(v -> {
-                    synchronized (out) {
-                        out.printf("[%s] %s%n", label, v);
-                        out.flush();
-                    }
-                });
-                done.add(ref.result().handle((Serializable result, Throwable failure) -> {
-                    synchronized (out) {
-                        if (failure != null) {
-                            out.printf("[%s] FAILED: %s%n", label, failure.getCause() != null ? failure.getCause().getMessage() : failure.getMessage());
-                        } else {
-                            out.printf("[%s] result from %s:%n%s%n", label, ref.location(), ResultText.format(result, "  "));
-                        }
-                        out.flush();
-                    }
-                    return failure == null;
-                }));
+        } catch (AgentException | IllegalArgumentException | java.io.IOException e) {
+            err.println("mw dispatch: " + Mw.oneLine(e));
+            if (Mw.verbose(spec)) {
+                e.printStackTrace(err);
             }
-            try {
-                CompletableFuture.allOf(done.toArray(CompletableFuture[]::new)).get(timeout.toMillis(), TimeUnit.MILLISECONDS);
-            } catch (TimeoutException e) {
-                err.println("mw dispatch: not every result came home within " + timeout);
-                return 3;
-            }
-            return done.stream().allMatch(CompletableFuture::join) ? 0 : 1;
-        } catch (io.robomw.api.AgentException | IllegalArgumentException | java.io.IOException e) {
-            err.println("mw dispatch: " + e.getMessage());
             return 2;
         }
     }
 
-    private Agent instantiate(ClassLoader code) throws ReflectiveOperationException {
+    private int dispatch(AgentHost home, Agent agent, PrintWriter out, PrintWriter err) throws InterruptedException {
+        List<TripSummary.Sent> sent = new ArrayList<>();
+        Map<String, String> unsent = new LinkedHashMap<>();
+        if (clone) {
+            List<AgentRef> refs;
+            try {
+                refs = home.dispatchClones(agent, hosts.toArray(String[]::new));
+            } catch (PartialDispatchException e) {
+                refs = e.sent();
+                unsent.putAll(e.unsent());
+            }
+            List<String> went = hosts.stream().filter(h -> !unsent.containsKey(h)).toList();
+            for (int i = 0; i < refs.size(); i++) {
+                sent.add(new TripSummary.Sent(went.get(i), refs.get(i)));
+            }
+            unsent.forEach((h, why) -> {
+                synchronized (out) {
+                    out.printf("[%s] not sent: %s%n", h, TripSummary.flat(why));
+                }
+            });
+        } else {
+            hosts.forEach(h -> agent.itinerary().addStop(h));
+            AgentRef ref = home.startTrip(agent);
+            sent.add(new TripSummary.Sent("agent " + ref.id().toString().substring(0, 8), ref));
+        }
+        List<CompletableFuture<Boolean>> done = new ArrayList<>();
+        for (TripSummary.Sent s : sent) {
+            AgentRef ref = s.ref();
+            synchronized (out) {
+                out.printf("sent %s %s to %s%n", agentClass, ref.id(), clone ? s.label() : String.join(" -> ", hosts));
+                out.flush();
+            }
+            ref.addReportListener(v -> {
+                synchronized (out) {
+                    out.printf("[%s] %s%n", s.label(), v);
+                    out.flush();
+                }
+            });
+            done.add(ref.result().handle((Serializable result, Throwable failure) -> {
+                synchronized (out) {
+                    if (failure != null) {
+                        out.printf("[%s] FAILED: %s%n", s.label(), Mw.oneLine(failure.getCause() != null ? failure.getCause() : failure));
+                    } else {
+                        out.printf("[%s] result from %s:%n%s%n", s.label(), ref.location(), ResultText.format(result, "  "));
+                    }
+                    out.flush();
+                }
+                return failure == null;
+            }));
+        }
+        // Ctrl-C while agents travel: say what keeps going and how to stop the hosts owing this home their results.
+        Thread interrupted = new Thread(() -> {
+            long travelling = sent.stream().filter(x -> !x.ref().result().isDone()).count();
+            if (travelling > 0) {
+                err.printf("mw dispatch: stopped with %d agent(s) still travelling; their hosts owe their results to %s until delivered or expired."
+                        + " Drop them with: mw agents --drop-owed %s HOST...%n", travelling, home.address(), home.address());
+                err.flush();
+            }
+        }, "mw-dispatch-interrupted");
+        Runtime.getRuntime().addShutdownHook(interrupted);
+        boolean timedOut = false;
+        try {
+            CompletableFuture.allOf(done.toArray(CompletableFuture[]::new)).get(timeout.toMillis(), TimeUnit.MILLISECONDS);
+        } catch (TimeoutException e) {
+            timedOut = true;
+        } catch (java.util.concurrent.ExecutionException e) {
+            throw new IllegalStateException(e); // the handlers above never fail
+        }
+        try {
+            Runtime.getRuntime().removeShutdownHook(interrupted);
+        } catch (IllegalStateException shuttingDown) {
+            // the JVM is already stopping: the hook runs
+        }
+        TripSummary summary = new TripSummary(sent, unsent, Mw.verbose(spec));
+        synchronized (out) {
+            summary.print(out, timedOut ? timeout : null);
+            out.flush();
+        }
+        if (timedOut) {
+            err.println("mw dispatch: not every result came home within " + timeout + " (the summary says where each agent was last seen); their hosts"
+                    + " owe the rest to " + home.address() + " until it expires: mw agents --drop-owed " + home.address() + " HOST... drops them");
+            return 3;
+        }
+        if (!done.stream().allMatch(CompletableFuture::join)) {
+            return 1;
+        }
+        if (strict && summary.skippedStops() > 0) {
+            err.println("mw dispatch: " + summary.skippedStops() + " stop(s) skipped, and --strict was given");
+            return 4;
+        }
+        return 0;
+    }
+
+    /** @return the agent, made from its class in the jar; a clear error in one line when it cannot be */
+    private Agent instantiate(ClassLoader code) {
         Class<?> type;
         try {
             type = Class.forName(agentClass, true, code);
         } catch (ClassNotFoundException e) {
             throw new IllegalArgumentException("class " + agentClass + " is not in " + jar);
+        } catch (LinkageError e) {
+            throw new IllegalArgumentException("class " + agentClass + " in " + jar + " cannot be loaded: " + e);
         }
         if (!Agent.class.isAssignableFrom(type)) {
             throw new IllegalArgumentException(agentClass + " does not extend " + Agent.class.getName());
         }
-        Object o = arg == null ? type.getConstructor().newInstance() : type.getConstructor(String.class).newInstance(arg);
-        return (Agent) o;
+        if (Modifier.isAbstract(type.getModifiers())) {
+            throw new IllegalArgumentException(agentClass + " is abstract: give a concrete agent class");
+        }
+        Constructor<?> constructor;
+        try {
+            constructor = arg == null ? type.getConstructor() : type.getConstructor(String.class);
+        } catch (NoSuchMethodException e) {
+            throw new IllegalArgumentException(agentClass + (arg == null
+                    ? " has no public no-argument constructor (give --arg TEXT if it has a public constructor taking a String)"
+                    : " has no public constructor taking a String (--arg was given; leave it out if it has a public no-argument one)"));
+        }
+        try {
+            return (Agent) constructor.newInstance(arg == null ? new Object[0] : new Object[] {arg});
+        } catch (InvocationTargetException e) {
+            throw new IllegalArgumentException("the constructor of " + agentClass + " threw " + e.getCause(), e.getCause());
+        } catch (ReflectiveOperationException e) {
+            throw new IllegalArgumentException(agentClass + " cannot be made: " + e, e);
+        }
     }
 }

@@ -82,11 +82,22 @@ final class HostCommand implements Callable<Integer> {
     @Option(names = "--serve-password", description = "password callers of --serve must give")
     String servePassword;
 
+    @Option(names = "--owed-expiry", paramLabel = "DURATION", defaultValue = "PT24H",
+            description = "give up a report or result owed to a home that does not answer after this long (ISO-8601, default ${DEFAULT-VALUE}); mw agents lists what is owed")
+    java.time.Duration owedExpiry;
+
+    @Option(names = "--owed-max-backoff", paramLabel = "DURATION", defaultValue = "PT30S",
+            description = "the longest pause between tries to deliver to a home that does not answer (default ${DEFAULT-VALUE})")
+    java.time.Duration owedMaxBackoff;
+
     @Option(names = "--record", paramLabel = "FILE.mcap", description = "record this host's agents (arrivals, stops, reports, results) and its robot (commands, pose, sensors) into an MCAP file")
     Path record;
 
     @Mixin
     ClusterOptions cluster;
+
+    @Mixin
+    BeaconOption beacon;
 
     @Spec
     CommandSpec spec;
@@ -133,7 +144,8 @@ final class HostCommand implements Callable<Integer> {
             }
             MessagingSettings settings = serve == null ? MessagingSettings.defaults() : RobotProtocol.forServer(MessagingSettings.defaults());
             AgentHost.Builder builder = AgentHost.builder(name).bind(bind).port(port).robot(robot).clusterKey(cluster.key()).tls(cluster.tls())
-                    .store(store).allow(allow).messagingSettings(settings);
+                    .store(store).allow(allow).messagingSettings(settings)
+                    .deliveryPolicy(io.robomw.agents.host.DeliveryPolicy.defaults().withExpiry(owedExpiry).withMaxBackoff(owedMaxBackoff));
             if (noMessaging) {
                 builder.noMessaging();
             } else if (messaging != null) {
@@ -162,6 +174,9 @@ final class HostCommand implements Callable<Integer> {
             boolean atBroker = host.messagingAddresses().stream().anyMatch(m -> m.startsWith("mqtt"));
             if (announce != null || atBroker) {
                 open.add(0, HostPresence.start(host, announce, presenceNode));
+            }
+            if (presenceNode != null) {
+                open.add(0, beacon.announce(presenceNode));
             }
             out.printf("agent host %s ready at %s (robot: %s, store: %s)%n", name, host.address(), robot == null ? "none" : robot.name(),
                     store == null ? "memory" : store);

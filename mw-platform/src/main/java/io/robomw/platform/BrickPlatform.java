@@ -32,6 +32,13 @@ import java.util.concurrent.locks.LockSupport;
  * motor link once per cycle. A link failure is reported to the action thread, which stops every
  * command; the link thread keeps trying, so a driver that reopens its link in {@code runImpl} or
  * {@code pollFeedback} recovers by itself.
+ *
+ * <p><b>The link thread never dies silently.</b> What the driver throws besides an I/O failure (an
+ * exception, or an error it can cause: {@link LinkageError}, {@link AssertionError},
+ * {@link StackOverflowError}) is counted and logged, and the loop goes on. Anything else ends the
+ * thread: it is logged, every command is stopped (a safety stop through the action thread, handed
+ * to the link by this thread before it exits), and the robot is marked failed: later commands fail
+ * saying why. {@link #close()} waits until the link thread has really ended.
  */
 public final class BrickPlatform implements RobotPlatform {
 
@@ -47,6 +54,8 @@ public final class BrickPlatform implements RobotPlatform {
     private volatile boolean linkDown;
     private final java.util.concurrent.atomic.AtomicLong driverErrors = new java.util.concurrent.atomic.AtomicLong();
     private Thread linkThread;
+    /** Why the link thread died, once it has. */
+    private volatile RobotLinkException linkThreadFailure;
 
     /**
      * Creates every sensor of the description.
@@ -114,11 +123,53 @@ public final class BrickPlatform implements RobotPlatform {
         }
     }
 
+    /**
+     * Services the link once a cycle: a service that took part of the cycle (a slow link's round
+     * trip) waits only for the rest of it, so readings come as often as the link allows.
+     */
     private void linkLoop() {
+        try {
+            serviceLoop();
+        } catch (Throwable t) {
+            linkThreadDied(t);
+        }
+    }
+
+    /**
+     * The link thread cannot go on: stops every command, hands the stop to the link one last time,
+     * and marks the robot failed. Runs on the dying thread; must not throw.
+     */
+    private void linkThreadDied(Throwable t) {
+        driverErrors.incrementAndGet();
+        RobotLinkException why = new RobotLinkException("robot '" + config.robotName() + "': its link thread died of " + t
+                + "; every command was stopped", t);
+        linkThreadFailure = why;
+        try {
+            LOG.error("robot '{}': the link thread died; stopping every command and marking the robot failed", config.robotName(), t);
+            actionThread.linkFailed(config.platformName(), t);
+            // The last stop: a safety stop through the action thread, then handed to the link from here.
+            actionThread.submit(motors.stopContainer()).get(10 * config.cyclePeriod().toNanos() + 1_000_000_000L,
+                    java.util.concurrent.TimeUnit.NANOSECONDS);
+        } catch (Throwable e) {
+            // the action thread is gone too, or the stop timed out: hand over what it published
+        }
+        try {
+            motors.flushOutputs();
+            motors.serviceLink();
+        } catch (Throwable e) {
+            LOG.error("robot '{}': the last stop could not be handed to the link: {}", config.robotName(), e.toString());
+        }
+    }
+
+    private void serviceLoop() {
         long period = config.cyclePeriod().toNanos();
         while (running) {
+            long started = System.nanoTime();
             serviceLink();
-            LockSupport.parkNanos(this, linkDown ? period * 10 : period);
+            long rest = (linkDown ? period * 10 : period) - (System.nanoTime() - started);
+            if (rest > 0) {
+                LockSupport.parkNanos(this, rest);
+            }
         }
     }
 
@@ -135,13 +186,38 @@ public final class BrickPlatform implements RobotPlatform {
                 LOG.warn("robot '{}': link failed: {}", config.robotName(), e.getMessage());
                 actionThread.linkFailed(config.platformName(), e);
             }
-        } catch (RuntimeException e) {
-            // The brick answered but refused (a bad status): the link is fine; say so and go on.
+        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+            // The brick answered but refused (a bad status), or the driver failed: the link is fine; say so and go on.
             long n = driverErrors.incrementAndGet();
             if (Long.bitCount(n) == 1) {
                 LOG.error("robot '{}': the driver failed ({} times so far): {}", config.robotName(), n, e.getMessage(), e);
             }
         }
+    }
+
+    /** Joins the link thread until it has really ended, interrupting a service blocked on its link (as the action thread's close does). */
+    private void awaitEnd(Thread t) {
+        boolean interrupted = false;
+        while (t.isAlive()) {
+            LockSupport.unpark(t);
+            try {
+                t.join(1_000);
+            } catch (InterruptedException e) {
+                interrupted = true;
+            }
+            if (t.isAlive()) {
+                LOG.warn("robot '{}': waiting for its link thread to end; interrupting it", config.robotName());
+                t.interrupt();
+            }
+        }
+        if (interrupted) {
+            Thread.currentThread().interrupt();
+        }
+    }
+
+    /** @return why the link thread died, if it did */
+    public java.util.Optional<RobotLinkException> linkThreadFailure() {
+        return java.util.Optional.ofNullable(linkThreadFailure);
     }
 
     /** @return how many times the driver's runImpl or pollFeedback threw something other than an I/O failure */
@@ -151,6 +227,11 @@ public final class BrickPlatform implements RobotPlatform {
 
     @Override
     public CompletableFuture<Void> run(MotorCommand command) {
+        RobotLinkException failed = linkThreadFailure;
+        if (failed != null) {
+            return CompletableFuture.failedFuture(new RobotLinkException("robot '" + config.robotName() + "' has failed: " + failed.getMessage()
+                    + "; command '" + command.name() + "' was not run (close the robot and open it again)", failed));
+        }
         if (linkDown) {
             return CompletableFuture.failedFuture(new RobotLinkException("robot '" + config.robotName()
                     + "': its link is down; command '" + command.name() + "' was not run", null));
@@ -183,21 +264,21 @@ public final class BrickPlatform implements RobotPlatform {
     }
 
     /**
-     * Stops every motor, hands the stop to the hardware, stops the threads and closes the link.
+     * Stops every motor, hands the stop to the hardware, stops the threads, leaves every output
+     * idle (coasting, as the bricks' own tools do when a program stops) and closes the link.
      */
     @Override
     public void close() {
         running = false;
         actionThread.close();
         if (linkThread != null) {
-            LockSupport.unpark(linkThread);
-            try {
-                linkThread.join(2000);
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-            }
+            awaitEnd(linkThread);
         }
         motors.flushOutputs();
+        if (!linkDown) {
+            serviceLink();
+        }
+        motors.coastAll();
         if (!linkDown) {
             serviceLink();
         }

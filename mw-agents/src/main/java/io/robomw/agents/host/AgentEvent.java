@@ -19,6 +19,7 @@ import java.util.UUID;
  * <tr><td>2</td><td>RESULT</td><td>the serialized result</td></tr>
  * <tr><td>3</td><td>FAILED</td><td>why, UTF-8</td></tr>
  * <tr><td>4</td><td>DISPOSED</td><td>where, UTF-8</td></tr>
+ * <tr><td>5</td><td>VISITS</td><td>the trip's visits, {@link Bodies#visits}; owed just before the trip's last event</td></tr>
  * </table>
  *
  * @param id       the agent
@@ -40,7 +41,9 @@ record AgentEvent(UUID id, long seq, Kind kind, String location, byte[] payload)
         /** The trip ended in failure; the payload says why. Code 3. */
         FAILED(3),
         /** The agent was disposed of. Code 4. */
-        DISPOSED(4);
+        DISPOSED(4),
+        /** The trip's visits, owed just before the event that ends it. Code 5. */
+        VISITS(5);
 
         private final int code;
 
@@ -65,7 +68,8 @@ record AgentEvent(UUID id, long seq, Kind kind, String location, byte[] payload)
                 case 2 -> RESULT;
                 case 3 -> FAILED;
                 case 4 -> DISPOSED;
-                default -> throw new IllegalArgumentException("unknown event kind code " + code + " (known: 0-4: ARRIVED, REPORT, RESULT, FAILED, DISPOSED)");
+                case 5 -> VISITS;
+                default -> throw new IllegalArgumentException("unknown event kind code " + code + " (known: 0-5: ARRIVED, REPORT, RESULT, FAILED, DISPOSED, VISITS)");
             };
         }
     }

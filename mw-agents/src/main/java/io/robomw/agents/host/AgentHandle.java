@@ -22,6 +22,8 @@ import java.util.function.Consumer;
 final class AgentHandle implements AgentRef {
 
     private static final Logger LOG = LoggerFactory.getLogger(AgentHandle.class);
+    /** How many reports are kept for a listener not added yet (the agent may report before its sender adds one). */
+    static final int MAX_EARLY_REPORTS = 10_000;
 
     private final AgentRequests home;
     private final UUID id;
@@ -30,7 +32,10 @@ final class AgentHandle implements AgentRef {
     private final CompletableFuture<Serializable> result = new CompletableFuture<>();
     private final CompletableFuture<Agent> retracted = new CompletableFuture<>();
     private final List<Consumer<Serializable>> reportListeners = new CopyOnWriteArrayList<>();
+    /** Reports that came before the first listener was added (at most {@link #MAX_EARLY_REPORTS}); guarded by this handle. */
+    private java.util.ArrayDeque<Serializable> earlyReports = new java.util.ArrayDeque<>();
     private final java.util.Set<Long> reportsSeen = java.util.concurrent.ConcurrentHashMap.newKeySet();
+    private volatile List<io.robomw.api.Itinerary.Visit> history = List.of();
     private volatile String location;
     private volatile AgentStatus status = AgentStatus.CREATED;
     /** The last request made through this ref: the next one is sent after it has been answered. */
@@ -64,9 +69,24 @@ final class AgentHandle implements AgentRef {
         return result;
     }
 
+    /** The first listener added also gets, first, the reports that came before it (the agent may report before its sender could add one). */
     @Override
     public void addReportListener(Consumer<Serializable> listener) {
-        reportListeners.add(listener);
+        synchronized (this) {
+            if (earlyReports != null) {
+                earlyReports.forEach(v -> tell(listener, v));
+                earlyReports = null;
+            }
+            reportListeners.add(listener);
+        }
+    }
+
+    private void tell(Consumer<Serializable> l, Serializable value) {
+        try {
+            l.accept(value);
+        } catch (RuntimeException e) {
+            LOG.warn("report listener of agent {} threw {}", id, e.toString());
+        }
     }
 
     @Override
@@ -130,7 +150,16 @@ final class AgentHandle implements AgentRef {
         return next;
     }
 
+    @Override
+    public List<io.robomw.api.Itinerary.Visit> history() {
+        return history;
+    }
+
     // ---- updates from the home ----
+
+    void history(List<io.robomw.api.Itinerary.Visit> visits) {
+        history = List.copyOf(visits);
+    }
 
     void location(String where) {
         location = where;
@@ -147,12 +176,17 @@ final class AgentHandle implements AgentRef {
         if (!reportsSeen.add(seq)) {
             return;
         }
-        for (Consumer<Serializable> l : reportListeners) {
-            try {
-                l.accept(value);
-            } catch (RuntimeException e) {
-                LOG.warn("report listener of agent {} threw {}", id, e.toString());
+        synchronized (this) {
+            if (earlyReports != null) {
+                if (earlyReports.size() == MAX_EARLY_REPORTS) {
+                    earlyReports.removeFirst();
+                }
+                earlyReports.addLast(value);
+                return;
             }
+        }
+        for (Consumer<Serializable> l : reportListeners) {
+            tell(l, value);
         }
     }
 
@@ -172,6 +206,7 @@ final class AgentHandle implements AgentRef {
     }
 
     void retracted(String where, Agent agent) {
+        history = List.copyOf(agent.itinerary().history());
         location = where;
         status = AgentStatus.RETRACTED;
         retracted.complete(agent);

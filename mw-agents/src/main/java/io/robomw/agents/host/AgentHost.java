@@ -29,7 +29,6 @@ import java.rmi.registry.LocateRegistry;
 import java.rmi.registry.Registry;
 import java.rmi.server.ExportException;
 import java.rmi.server.UnicastRemoteObject;
-import java.security.SecureRandom;
 import java.time.Duration;
 import java.util.List;
 import java.util.Objects;
@@ -79,6 +78,7 @@ public final class AgentHost implements Agency, AutoCloseable {
     private final ClusterKey key;
     private final TlsSettings tls;
     private final Path storeDir;
+    private final Duration stopGrace;
     private final HostState state;
     private final RobotTurns robot;
     private final CodeLoaders code;
@@ -97,17 +97,18 @@ public final class AgentHost implements Agency, AutoCloseable {
         this.key = b.key;
         this.tls = b.tls;
         this.storeDir = b.storeDir;
+        this.stopGrace = b.stopGrace;
         this.state = new HostState(this, b.name, b.robot, new StateCodec(b.allowed, b.maxStateBytes), (int) b.callTimeout.toMillis());
         this.robot = new RobotTurns(b.name, b.robot);
         this.code = new CodeLoaders(state);
         Peers peers = new Peers(state, key, tls != null, this::serveSelf);
         this.messaging = new HostMessaging(state, peers, b.node, b.node != null && b.ownsNode);
         state.messaging = messaging;
-        this.owed = new OwedEvents(state, peers);
-        this.trips = new Trips(state, new HopSender(state, peers), owed, robot);
+        this.owed = new OwedEvents(state, peers, b.delivery);
+        this.trips = new Trips(state, new HopSender(state, peers), owed, robot, b.delivery.expiry());
         this.home = new Home(state, code, trips, new AgentRequests(state, peers));
         messaging.events(key, home::onEvent);
-        this.calls = new Calls(state, new Transfers(state, code, trips, home, owed), code, home);
+        this.calls = new Calls(state, new Transfers(state, code, trips, home, owed), code, home, owed);
     }
 
     /**
@@ -135,6 +136,8 @@ public final class AgentHost implements Agency, AutoCloseable {
         private List<String> allowed = List.of();
         private long maxStateBytes = 64L << 20;
         private Duration callTimeout = Duration.ofSeconds(30);
+        private Duration stopGrace = Duration.ofSeconds(5);
+        private DeliveryPolicy delivery = DeliveryPolicy.defaults();
 
         private Builder(String name) {
             if (name == null || !name.matches("[A-Za-z0-9._-]+")) {
@@ -243,6 +246,30 @@ public final class AgentHost implements Agency, AutoCloseable {
         }
 
         /**
+         * @param policy how reports and results owed to homes that do not answer are retried, and
+         *               after how long they are given up (default {@link DeliveryPolicy#defaults()})
+         * @return this
+         */
+        public Builder deliveryPolicy(DeliveryPolicy policy) {
+            this.delivery = Objects.requireNonNull(policy, "policy");
+            return this;
+        }
+
+        /**
+         * @param grace how long {@link AgentHost#close()} lets the stops running then finish before it
+         *              interrupts them (default 5 s); with a durable store an interrupted stop is
+         *              resumed after it at the next start, not run again
+         * @return this
+         */
+        public Builder stopGrace(Duration grace) {
+            if (grace.isNegative()) {
+                throw new IllegalArgumentException("stop grace " + grace + " is negative: it is how long running stops may finish when the host closes");
+            }
+            this.stopGrace = grace;
+            return this;
+        }
+
+        /**
          * Starts the host: opens its store, resumes the agents it holds, and binds its RMI endpoint.
          *
          * @return the running host
@@ -281,6 +308,14 @@ public final class AgentHost implements Agency, AutoCloseable {
             }
             return host;
         }
+    }
+
+    /**
+     * Serves a call as if a verified peer had made it, without RMI: for tests and fuzzing of what
+     * the host does with call bodies.
+     */
+    Reply serve(String peer, Op op, byte[] body) {
+        return calls.handle(peer, op, body, 0, body.length);
     }
 
     /** Serves a call this host makes to itself (its {@link Calls} are made after its {@link Peers}). */
@@ -335,19 +370,15 @@ public final class AgentHost implements Agency, AutoCloseable {
         }
     }
 
-    /** Stops serving: no new agents; running stops get 5 s to finish; durable agents stay in the store for the next start. */
+    /** Stops serving: no new agents; running stops get the stop grace (5 s by default) to finish; durable agents stay in the store for the next start. */
     @Override
     public void close() {
         if (state.closed) {
             return;
         }
         state.closed = true;
-        try {
-            if (endpoint != null) {
-                UnicastRemoteObject.unexportObject(endpoint, true);
-            }
-        } catch (NoSuchObjectException ignored) {
-            // never exported
+        if (endpoint != null) {
+            unexportAfterCallsInProgress(endpoint);
         }
         try {
             if (registry != null) {
@@ -359,7 +390,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         state.runners.shutdown();
         state.requests.shutdown();
         try {
-            if (!state.runners.awaitTermination(5, TimeUnit.SECONDS)) {
+            if (!state.runners.awaitTermination(stopGrace.toMillis(), TimeUnit.MILLISECONDS)) {
                 state.runners.shutdownNow();
             }
         } catch (InterruptedException e) {
@@ -383,6 +414,27 @@ public final class AgentHost implements Agency, AutoCloseable {
             LOG.warn("agent host {}: closing the store failed: {}", name, e.toString());
         }
         messaging.close();
+    }
+
+    /**
+     * Stops taking calls, letting the calls in progress finish and their replies go out first (for
+     * up to the stop grace): a home that closes right after a result came must still acknowledge
+     * it, or the sending host would owe it again ("Error unmarshaling return header" at the other end).
+     */
+    private void unexportAfterCallsInProgress(HostEndpoint served) {
+        long deadline = System.nanoTime() + Math.max(stopGrace.toNanos(), TimeUnit.SECONDS.toNanos(1));
+        try {
+            while (!UnicastRemoteObject.unexportObject(served, false)) {
+                if (System.nanoTime() - deadline > 0) {
+                    LOG.warn("agent host {}: calls still in progress after {}; closing without waiting for them", name, stopGrace);
+                    UnicastRemoteObject.unexportObject(served, true);
+                    return;
+                }
+                java.util.concurrent.locks.LockSupport.parkNanos(TimeUnit.MILLISECONDS.toNanos(5)); // new calls are refused: these end soon
+            }
+        } catch (NoSuchObjectException ignored) {
+            // never exported
+        }
     }
 
     // ---- what the host is ----
@@ -420,6 +472,35 @@ public final class AgentHost implements Agency, AutoCloseable {
     /** @return the agents at this host now */
     public List<AgentInfo> agents() {
         return calls.agents();
+    }
+
+    /** @return the reports and results this host owes agents' homes and has not delivered yet, the oldest first */
+    public List<OwedDelivery> owed() {
+        return owed.owed();
+    }
+
+    /**
+     * Drops deliveries this host owes: it stops trying and forgets them, durably. For a home that
+     * is gone for good (a {@code mw dispatch} that was stopped), rather than wait for their expiry.
+     *
+     * @param which the deliveries to drop
+     * @return the ones dropped
+     */
+    public List<OwedDelivery> dropOwed(OwedSelector which) {
+        return owed.drop(which::matches, "dropped by the operator (" + which + ")");
+    }
+
+    /**
+     * @param id an agent
+     * @return the host an agent went to from here, once that host acknowledged it, or {@code null}
+     */
+    String forwardOf(java.util.UUID id) {
+        return state.forwardOf(id);
+    }
+
+    /** @return how many threads deliver to homes now (one per home with something to deliver, until idle) */
+    int deliveryThreads() {
+        return owed.deliveryThreads();
     }
 
     /** @return bytes received by this host's RMI endpoint so far (without TLS) */
@@ -477,13 +558,7 @@ public final class AgentHost implements Agency, AutoCloseable {
      * @throws IOException if the host cannot be reached, refuses this peer, or answers something else
      */
     public static HostDescription describe(String address, ClusterKey key, boolean useTls) throws IOException {
-        HostAddress a = HostAddress.parse(address);
-        PeerLink link = new PeerLink(a, "mw-" + ProcessHandle.current().pid(), key, new HostSockets.Client(a.host(), useTls, 10_000), new SecureRandom());
-        Reply r = link.call(Op.DESCRIBE, new byte[0]);
-        if (r.status() != Reply.Status.OK) {
-            throw new IOException(address + " answered " + r.status() + ": " + r.text());
-        }
-        return HostDescription.decode(r.body(), address);
+        return new HostClient(key, useTls, 10_000).describe(address);
     }
 
     // ---- listing another host ----
@@ -498,13 +573,7 @@ public final class AgentHost implements Agency, AutoCloseable {
      * @throws IOException if the host cannot be reached or refuses this peer
      */
     public static List<AgentInfo> list(String address, ClusterKey key, boolean useTls) throws IOException {
-        HostAddress a = HostAddress.parse(address);
-        PeerLink link = new PeerLink(a, "mw-agents-" + ProcessHandle.current().pid(), key, new HostSockets.Client(a.host(), useTls, 10_000), new SecureRandom());
-        Reply r = link.call(Op.LIST, new byte[0]);
-        if (r.status() != Reply.Status.OK) {
-            throw new IOException(address + " answered " + r.status() + ": " + r.text());
-        }
-        return Bodies.readListReply(r.body(), address);
+        return new HostClient(key, useTls, 10_000).agents(address);
     }
 
     @Override

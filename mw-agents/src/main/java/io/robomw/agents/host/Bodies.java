@@ -2,6 +2,7 @@ package io.robomw.agents.host;
 
 import io.robomw.agents.host.code.CodeArchive;
 import io.robomw.api.AgentStatus;
+import io.robomw.api.Itinerary;
 
 import java.io.ByteArrayInputStream;
 import java.io.ByteArrayOutputStream;
@@ -29,7 +30,21 @@ import java.util.UUID;
  * RETRACT, DISPOSE [id 16]
  * PUT_ARCHIVE body [claimed SHA-256 32][the jar]
  * owed event       [home length 2][home UTF-8][the encoded AgentEvent]
+ * OWED reply       [count 4] then per delivery: [agent id 16][event seq 8][event kind 1, {@link AgentEvent.Kind}'s code]
+ *                  [home: length 2, modified UTF-8][owed since 8, ms since the epoch][failed tries 4][last error: length 2, modified UTF-8]
+ * DROP_OWED body   [selector 1, {@link OwedSelector.Kind}'s code] then: ALL nothing; AGENT [id 16]; HOME [home: length 2, modified UTF-8]
+ * VISITS payload   [count 4] then per visit: [round 4][host: length 2, modified UTF-8][outcome 1][detail: length 2, modified UTF-8]
  * </pre>
+ *
+ * <table>
+ * <caption>Visit outcome codes in a VISITS payload ({@link Itinerary.Outcome}, an API type, so its codes are kept here;
+ * they are those of the itinerary's serial form)</caption>
+ * <tr><th>code</th><th>outcome</th></tr>
+ * <tr><td>0</td><td>DONE</td></tr>
+ * <tr><td>1</td><td>FAILED</td></tr>
+ * <tr><td>2</td><td>UNREACHABLE</td></tr>
+ * <tr><td>3</td><td>INTERRUPTED</td></tr>
+ * </table>
  *
  * <table>
  * <caption>Agent status codes in a LIST reply ({@link AgentStatus}, an API type, so its codes are kept here)</caption>
@@ -155,6 +170,199 @@ final class Bodies {
             return out;
         } catch (EOFException e) {
             throw new IOException("host " + from + " sent a LIST reply cut short (" + body.length + " bytes)", e);
+        }
+    }
+
+    // ---- OWED, DROP_OWED ----
+
+    /** The longest last-error text an OWED reply carries per delivery. */
+    private static final int MAX_ERROR_CHARS = 500;
+    /** The shortest delivery in an OWED reply: id, seq, kind, empty home, since, tries, empty error. */
+    private static final int MIN_OWED_BYTES = ID_BYTES + 8 + 1 + 2 + 8 + 4 + 2;
+
+    /** @param owed deliveries @return an OWED (or DROP_OWED) reply's body */
+    static byte[] owedReply(List<OwedDelivery> owed) {
+        try {
+            ByteArrayOutputStream bytes = new ByteArrayOutputStream();
+            DataOutputStream out = new DataOutputStream(bytes);
+            out.writeInt(owed.size());
+            for (OwedDelivery d : owed) {
+                out.writeLong(d.agent().getMostSignificantBits());
+                out.writeLong(d.agent().getLeastSignificantBits());
+                out.writeLong(d.seq());
+                out.writeByte(AgentEvent.Kind.valueOf(d.kind()).code());
+                out.writeUTF(d.home());
+                out.writeLong(d.owedSince().toEpochMilli());
+                out.writeInt(d.attempts());
+                String error = d.lastError();
+                out.writeUTF(error.length() > MAX_ERROR_CHARS ? error.substring(0, MAX_ERROR_CHARS) + "..." : error);
+            }
+            return bytes.toByteArray();
+        } catch (IOException e) {
+            throw new UncheckedIOException(e);
+        }
+    }
+
+    /**
+     * @param body an OWED or DROP_OWED reply's body
+     * @param from the host that sent it, for errors
+     * @return the deliveries it lists
+     * @throws IOException naming the host and what is wrong, if it is cut short, has bytes left over or holds an unknown kind code
+     */
+    static List<OwedDelivery> readOwedReply(byte[] body, String from) throws IOException {
+        DataInputStream in = new DataInputStream(new ByteArrayInputStream(body));
+        try {
+            int n = in.readInt();
+            if (n < 0 || n > (body.length - 4) / MIN_OWED_BYTES) {
+                throw new IOException("host " + from + " sent an OWED reply of " + body.length + " bytes claiming " + n + " deliveries");
+            }
+            List<OwedDelivery> out = new ArrayList<>(n);
+            for (int i = 0; i < n; i++) {
+                UUID id = new UUID(in.readLong(), in.readLong());
+                long seq = in.readLong();
+                AgentEvent.Kind kind;
+                try {
+                    kind = AgentEvent.Kind.fromCode(in.readUnsignedByte());
+                } catch (IllegalArgumentException e) {
+                    throw new IOException("host " + from + " listed a delivery of agent " + id + " with an " + e.getMessage(), e);
+                }
+                String home = in.readUTF();
+                java.time.Instant since = java.time.Instant.ofEpochMilli(in.readLong());
+                int attempts = in.readInt();
+                String error = in.readUTF();
+                out.add(new OwedDelivery(id, seq, kind.name(), home, since, attempts, error));
+            }
+            if (in.available() > 0) {
+                throw new IOException("host " + from + " sent an OWED reply with " + in.available() + " bytes after its " + n + " deliveries");
+            }
+            return out;
+        } catch (EOFException e) {
+            throw new IOException("host " + from + " sent an OWED reply cut short (" + body.length + " bytes)", e);
+        } catch (java.time.DateTimeException e) {
+            throw new IOException("host " + from + " sent an OWED reply with a time out of range: " + e.getMessage(), e);
+        }
+    }
+
+    /** @param which the deliveries to drop @return a DROP_OWED body */
+    static byte[] dropOwed(OwedSelector which) {
+        try {
+            ByteArrayOutputStream bytes = new ByteArrayOutputStream();
+            DataOutputStream out = new DataOutputStream(bytes);
+            out.writeByte(which.kind().code());
+            switch (which.kind()) {
+                case ALL -> {
+                }
+                case AGENT -> {
+                    out.writeLong(which.agent().getMostSignificantBits());
+                    out.writeLong(which.agent().getLeastSignificantBits());
+                }
+                case HOME -> out.writeUTF(which.home());
+            }
+            return bytes.toByteArray();
+        } catch (IOException e) {
+            throw new UncheckedIOException(e);
+        }
+    }
+
+    /**
+     * @param body a DROP_OWED body
+     * @return the selector it holds
+     * @throws IllegalArgumentException if it is empty, cut short, has bytes left over or names an unknown selector code
+     */
+    static OwedSelector readDropOwed(byte[] body) {
+        DataInputStream in = new DataInputStream(new ByteArrayInputStream(body));
+        try {
+            OwedSelector.Kind kind = OwedSelector.Kind.fromCode(in.readUnsignedByte());
+            OwedSelector which = switch (kind) {
+                case ALL -> OwedSelector.all();
+                case AGENT -> OwedSelector.agent(new UUID(in.readLong(), in.readLong()));
+                case HOME -> OwedSelector.home(in.readUTF());
+            };
+            if (in.available() > 0) {
+                throw new IllegalArgumentException("a DROP_OWED body with " + in.available() + " bytes after its selector");
+            }
+            return which;
+        } catch (IOException e) {
+            throw new IllegalArgumentException("a DROP_OWED body cut short (" + body.length + " bytes)", e);
+        }
+    }
+
+    // ---- VISITS ----
+
+    /** The longest detail a VISITS payload carries per visit (a stack trace is cut there). */
+    static final int MAX_DETAIL_CHARS = 8_000;
+    /** The shortest visit: round, empty host, outcome, empty detail. */
+    private static final int MIN_VISIT_BYTES = 4 + 2 + 1 + 2;
+
+    /** @return the code of a visit's outcome */
+    static int outcomeCode(Itinerary.Outcome outcome) {
+        return switch (outcome) {
+            case DONE -> 0;
+            case FAILED -> 1;
+            case UNREACHABLE -> 2;
+            case INTERRUPTED -> 3;
+        };
+    }
+
+    /**
+     * @param code an outcome code as read (unsigned)
+     * @return its outcome
+     * @throws IllegalArgumentException naming the code if no outcome has it
+     */
+    static Itinerary.Outcome outcome(int code) {
+        return switch (code) {
+            case 0 -> Itinerary.Outcome.DONE;
+            case 1 -> Itinerary.Outcome.FAILED;
+            case 2 -> Itinerary.Outcome.UNREACHABLE;
+            case 3 -> Itinerary.Outcome.INTERRUPTED;
+            default -> throw new IllegalArgumentException("unknown visit outcome code " + code + " (known: 0 DONE, 1 FAILED, 2 UNREACHABLE, 3 INTERRUPTED)");
+        };
+    }
+
+    /** @param visits a trip's visits @return a VISITS event's payload (each detail cut to {@value #MAX_DETAIL_CHARS} characters) */
+    static byte[] visits(List<Itinerary.Visit> visits) {
+        try {
+            ByteArrayOutputStream bytes = new ByteArrayOutputStream();
+            DataOutputStream out = new DataOutputStream(bytes);
+            out.writeInt(visits.size());
+            for (Itinerary.Visit v : visits) {
+                out.writeInt(v.round());
+                out.writeUTF(v.host());
+                out.writeByte(outcomeCode(v.outcome()));
+                String detail = v.detail() == null ? "" : v.detail();
+                out.writeUTF(detail.length() > MAX_DETAIL_CHARS ? detail.substring(0, MAX_DETAIL_CHARS) + "\n\t..." : detail);
+            }
+            return bytes.toByteArray();
+        } catch (IOException e) {
+            throw new UncheckedIOException(e);
+        }
+    }
+
+    /**
+     * @param payload a VISITS event's payload
+     * @return the visits it holds
+     * @throws IllegalArgumentException if it is cut short, has bytes left over or holds an unknown outcome code
+     */
+    static List<Itinerary.Visit> readVisits(byte[] payload) {
+        DataInputStream in = new DataInputStream(new ByteArrayInputStream(payload));
+        try {
+            int n = in.readInt();
+            if (n < 0 || n > (payload.length - 4) / MIN_VISIT_BYTES) {
+                throw new IllegalArgumentException("a VISITS payload of " + payload.length + " bytes claiming " + n + " visits");
+            }
+            List<Itinerary.Visit> out = new ArrayList<>(n);
+            for (int i = 0; i < n; i++) {
+                int round = in.readInt();
+                String host = in.readUTF();
+                Itinerary.Outcome outcome = outcome(in.readUnsignedByte());
+                out.add(new Itinerary.Visit(round, host, outcome, in.readUTF()));
+            }
+            if (in.available() > 0) {
+                throw new IllegalArgumentException("a VISITS payload with " + in.available() + " bytes after its " + n + " visits");
+            }
+            return out;
+        } catch (IOException e) {
+            throw new IllegalArgumentException("a VISITS payload cut short (" + payload.length + " bytes)", e);
         }
     }
 

@@ -28,9 +28,11 @@ final class Calls implements HostEndpoint.Handler {
     private final Transfers transfers;
     private final CodeLoaders code;
     private final Home home;
+    private final OwedEvents owed;
 
-    Calls(HostState host, Transfers transfers, CodeLoaders code, Home home) {
+    Calls(HostState host, Transfers transfers, CodeLoaders code, Home home, OwedEvents owed) {
         this.host = host;
+        this.owed = owed;
         this.transfers = transfers;
         this.code = code;
         this.home = home;
@@ -55,6 +57,8 @@ final class Calls implements HostEndpoint.Handler {
             case RETRACT, DISPOSE -> onRequest(peer, op, body);
             case DESCRIBE -> Reply.ok(host.messaging.describeSelf().encode());
             case WATCH -> onWatch(body);
+            case OWED -> Reply.ok(Bodies.owedReply(owed.owed()));
+            case DROP_OWED -> onDropOwed(peer, body);
         };
     }
 
@@ -62,6 +66,16 @@ final class Calls implements HostEndpoint.Handler {
     private Reply onWatch(byte[] body) {
         long since = body.length >= 8 ? java.nio.ByteBuffer.wrap(body).getLong() : 0;
         return Reply.ok(host.activity.watchReply(host.name, host.robot == null ? "" : host.robot.name(), host.hosted.values(), since));
+    }
+
+    private Reply onDropOwed(String peer, byte[] body) {
+        OwedSelector which;
+        try {
+            which = Bodies.readDropOwed(body);
+        } catch (IllegalArgumentException e) {
+            return host.refuse("refused a DROP_OWED from peer '" + peer + "': " + e.getMessage());
+        }
+        return Reply.ok(Bodies.owedReply(owed.drop(which::matches, "dropped by peer '" + peer + "' (" + which + ")")));
     }
 
     /** @return the agents at this host now */
@@ -111,7 +125,7 @@ final class Calls implements HostEndpoint.Handler {
         boolean handled;
         try {
             handled = h.agent.handleMessage(m);
-        } catch (RuntimeException e) {
+        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
             return Reply.of(Reply.Status.REFUSED, "agent " + id + " threw while handling the message: " + e);
         }
         if (!handled) {

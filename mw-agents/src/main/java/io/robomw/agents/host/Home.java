@@ -8,6 +8,7 @@ import io.robomw.api.AgentException;
 import io.robomw.api.AgentRef;
 import io.robomw.api.AgentStatus;
 import io.robomw.api.Itinerary;
+import io.robomw.api.PartialDispatchException;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -18,7 +19,9 @@ import java.io.ObjectStreamClass;
 import java.io.Serializable;
 import java.nio.charset.StandardCharsets;
 import java.util.ArrayList;
+import java.util.LinkedHashMap;
 import java.util.List;
+import java.util.Map;
 import java.util.UUID;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CompletionException;
@@ -80,19 +83,24 @@ final class Home {
             }, host.requests));
         }
         List<AgentRef> refs = new ArrayList<>();
-        List<String> failures = new ArrayList<>();
+        Map<String, String> unsent = new LinkedHashMap<>();
         for (int i = 0; i < hosts.length; i++) {
             try {
                 refs.add(sends.get(i).join());
             } catch (CompletionException e) {
-                failures.add(hosts[i] + ": " + e.getCause().getMessage());
+                unsent.put(hosts[i], e.getCause().getMessage());
             }
         }
-        if (!failures.isEmpty()) {
-            throw new AgentException("clones of " + agent.getClass().getName() + " could not be sent to " + failures.size() + " of " + hosts.length
-                    + " hosts (the others were sent): " + String.join("; ", failures));
+        if (unsent.isEmpty()) {
+            return refs;
         }
-        return refs;
+        String why = unsent.entrySet().stream().map(e -> e.getKey() + ": " + e.getValue()).collect(java.util.stream.Collectors.joining("; "));
+        if (refs.isEmpty()) {
+            throw new AgentException("no clone of " + agent.getClass().getName() + " could be sent to its " + hosts.length + " hosts: " + why);
+        }
+        // The clones that went are travelling: their handles go with the exception, so the caller can still wait for them.
+        throw new PartialDispatchException("clones of " + agent.getClass().getName() + " could not be sent to " + unsent.size() + " of " + hosts.length
+                + " hosts; the other " + refs.size() + " were sent and travel: " + why, refs, unsent);
     }
 
     /** A copy of an agent from this process's own state: no filter, the bytes were made here. */
@@ -161,6 +169,13 @@ final class Home {
         }
         switch (e.kind()) {
             case ARRIVED -> h.arrived(e.location());
+            case VISITS -> {
+                try {
+                    h.history(Bodies.readVisits(e.payload()));
+                } catch (IllegalArgumentException ex) {
+                    host.refuse("dropped the visits of agent " + e.id() + " from peer '" + peer + "': " + ex.getMessage());
+                }
+            }
             case REPORT, RESULT -> {
                 Serializable value;
                 try {
@@ -198,7 +213,9 @@ final class Home {
         }
         try {
             Agent agent = host.codec.read(image.state(), image.stateOffset(), image.stateLength(), handle.loader, Agent.class);
+            // Seen, so a repeat of this transfer is a duplicate; not held: the agent is back with its handle, not hosted here.
             host.store.accepted(image.id(), image.hop(), new byte[0], 0, 0);
+            host.store.departed(image.id(), image.hop() + 1);
             handle.retracted(peer, agent);
             return Reply.ok();
         } catch (StateRejectedException | IOException e) {

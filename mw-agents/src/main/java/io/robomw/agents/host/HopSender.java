@@ -79,11 +79,14 @@ final class HopSender {
     private void arrivedElsewhere(HostedAgent h, AgentImage image, String target) {
         h.hop = image.hop();
         try {
-            host.store.departed(h.id);
+            // Only the copy that left with this hop: on a hop to this same host the new copy is stored already.
+            host.store.departed(h.id, image.hop());
         } catch (IOException e) {
             LOG.warn("host {}: cannot record agent {} departed: {}", host.name, h.id, e.toString());
         }
         host.forwarded(h.id, target);
+        // The next host has it: it is no longer here (only this object: the agent may be back already).
+        host.hosted.remove(h.id, h);
         h.departure.complete(target);
         AgentHandle handle = host.handles.get(h.id);
         if (handle != null) {

@@ -47,7 +47,7 @@ final class HostContext implements AgentContext {
     public Robot robot() {
         Robot r = host.claimRobot(hosted);
         if (r == null) {
-            throw new UnsupportedActionException(host.name(), "robot", "agent host " + host.address() + " has no robot (start it with mw host --robot FILE)");
+            throw new NoRobotException(host.name(), host.address());
         }
         return r;
     }

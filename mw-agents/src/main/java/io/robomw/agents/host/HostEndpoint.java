@@ -180,7 +180,7 @@ final class HostEndpoint implements AgentHostRemote {
         Reply reply;
         try {
             reply = handler.handle(peer.name(), op, request, Session.HEADER, request.length - Session.MAC - Session.HEADER);
-        } catch (RuntimeException e) {
+        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
             refused.increment();
             LOG.warn("host {}: {} call from peer '{}' failed: {}", hostName, op, peer.name(), e.toString());
             reply = Reply.of(Reply.Status.REFUSED, "the host could not handle the call: " + e.getMessage());

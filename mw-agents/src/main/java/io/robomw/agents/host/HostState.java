@@ -11,7 +11,6 @@ import java.util.Map;
 import java.util.UUID;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.ExecutorService;
-import java.util.concurrent.Executors;
 import java.util.concurrent.ThreadFactory;
 import java.util.concurrent.atomic.AtomicInteger;
 
@@ -28,6 +27,8 @@ final class HostState {
     private static final Logger LOG = LoggerFactory.getLogger(HostState.class);
     /** How many departed agents a host remembers the next host of, for calls that chase them. */
     private static final int MAX_FORWARDS = 100_000;
+    /** How long a pool thread with nothing to do is kept. */
+    static final long IDLE_THREAD_SECONDS = 10;
 
     final String name;
     final Robot robot;
@@ -66,8 +67,8 @@ final class HostState {
         this.robot = robot;
         this.codec = codec;
         this.timeoutMillis = timeoutMillis;
-        this.runners = Executors.newCachedThreadPool(named("agent-runner-" + name));
-        this.requests = Executors.newCachedThreadPool(named("agent-requests-" + name));
+        this.runners = pool(named("agent-runner-" + name));
+        this.requests = pool(named("agent-requests-" + name));
     }
 
     /** @return a new context for an agent here, to attach to it before one of its callbacks */
@@ -99,6 +100,16 @@ final class HostState {
         synchronized (forwards) {
             return forwards.get(id);
         }
+    }
+
+    /**
+     * A pool that grows with the work (a thread per agent running at once) and gives its threads
+     * back after {@value #IDLE_THREAD_SECONDS} s idle, so a burst of agents leaves no threads behind
+     * on a host that runs for days.
+     */
+    private static ExecutorService pool(ThreadFactory threads) {
+        return new java.util.concurrent.ThreadPoolExecutor(0, Integer.MAX_VALUE, IDLE_THREAD_SECONDS, java.util.concurrent.TimeUnit.SECONDS,
+                new java.util.concurrent.SynchronousQueue<>(), threads);
     }
 
     private static ThreadFactory named(String prefix) {

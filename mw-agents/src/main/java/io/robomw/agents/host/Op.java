@@ -22,7 +22,11 @@ enum Op {
     /** Say who this host is: name, robot, messaging addresses, the hosts it knows ({@link HostDescription}). Code 7. */
     DESCRIBE(7),
     /** What a watcher (a console) sees: the host, its agents and itineraries, recent events ({@link HostWatch}). Code 8. */
-    WATCH(8);
+    WATCH(8),
+    /** List the reports and results this host owes homes and has not delivered ({@link OwedDelivery}). Code 9. */
+    OWED(9),
+    /** Drop owed deliveries ({@link OwedSelector}); the reply lists the ones dropped. Code 10. */
+    DROP_OWED(10);
 
     private final int code;
 
@@ -51,7 +55,10 @@ enum Op {
             case 6 -> DISPOSE;
             case 7 -> DESCRIBE;
             case 8 -> WATCH;
-            default -> throw new IllegalArgumentException("unknown operation code " + code + " (this host knows 0-8: TRANSFER, PUT_ARCHIVE, LIST, EVENT, MESSAGE, RETRACT, DISPOSE, DESCRIBE, WATCH)");
+            case 9 -> OWED;
+            case 10 -> DROP_OWED;
+            default -> throw new IllegalArgumentException("unknown operation code " + code
+                    + " (this host knows 0-10: TRANSFER, PUT_ARCHIVE, LIST, EVENT, MESSAGE, RETRACT, DISPOSE, DESCRIBE, WATCH, OWED, DROP_OWED)");
         };
     }
 }

@@ -7,13 +7,15 @@ import org.slf4j.LoggerFactory;
 
 import java.io.IOException;
 import java.io.Serializable;
+import java.util.List;
 import java.util.UUID;
+import java.util.function.Predicate;
 
 /**
  * What a host tells agents' homes: reports and results, kept in the store until the home
- * acknowledges them and carried by {@link HomeEvents}; and arrivals, sent once as news. They go
- * to the home's own address over RMI, or through a broker where the home is announced
- * ({@link BrokerEvents}).
+ * acknowledges them (or the delivery expires, or an operator drops it) and carried by
+ * {@link HomeEvents}; and arrivals, sent once as news. They go to the home's own address over RMI,
+ * or through a broker where the home is announced ({@link BrokerEvents}).
  * Thread-safe.
  */
 final class OwedEvents implements AutoCloseable {
@@ -24,20 +26,21 @@ final class OwedEvents implements AutoCloseable {
     private final Peers peers;
     private final HomeEvents events;
 
-    OwedEvents(HostState host, Peers peers) {
+    OwedEvents(HostState host, Peers peers, DeliveryPolicy policy) {
         this.host = host;
         this.peers = peers;
-        this.events = new HomeEvents(host.name, this::deliver, this::delivered);
+        this.events = new HomeEvents(host.name, policy, this::deliver, this::settled);
     }
 
     /** Stores an event owed to a home (durably, with a journal) and sends it until the home has it. */
     void owe(String home, AgentEvent event) {
+        long now = System.currentTimeMillis();
         try {
-            host.store.eventPending(new AgentStore.PendingEvent(event.id(), event.seq(), Bodies.owedEvent(home, event)));
+            host.store.eventPending(new AgentStore.PendingEvent(event.id(), event.seq(), now, Bodies.owedEvent(home, event)));
         } catch (IOException ex) {
             LOG.warn("host {}: cannot store {} of agent {} ({}); sending it anyway", host.name, event.kind(), event.id(), ex.toString());
         }
-        events.send(home, event, true);
+        events.owe(home, event, now);
     }
 
     /** Sends an agent's report home, in order with its other reports and its result. */
@@ -58,16 +61,40 @@ final class OwedEvents implements AutoCloseable {
 
     /** Tells an agent's home, once, that it arrived here (a later arrival makes an unsent one moot). */
     void arrived(HostedAgent h) {
-        events.send(h.home, new AgentEvent(h.id, 0, AgentEvent.Kind.ARRIVED, host.address, new byte[0]), false);
-    }
-
-    /** Sends again an event the store still owed when the host started. */
-    void resend(Bodies.OwedEvent owed) {
-        events.send(owed.home(), owed.event(), true);
+        events.arrived(h.home, new AgentEvent(h.id, 0, AgentEvent.Kind.ARRIVED, host.address, new byte[0]));
     }
 
     /**
-     * Waits until the agent's reports from here are home, or the time is up.
+     * Sends again an event the store still owed when the host started.
+     *
+     * @param owed      the event and its home
+     * @param owedSince when it was first owed, as stored
+     */
+    void resend(Bodies.OwedEvent owed, long owedSince) {
+        events.owe(owed.home(), owed.event(), owedSince);
+    }
+
+    /** @return what this host owes homes now, the oldest first */
+    List<OwedDelivery> owed() {
+        return events.owed();
+    }
+
+    /**
+     * @param which the deliveries to drop
+     * @param why   why, for the log
+     * @return the ones dropped
+     */
+    List<OwedDelivery> drop(Predicate<OwedDelivery> which, String why) {
+        return events.drop(which, why);
+    }
+
+    /** @return how many delivery threads run now */
+    int deliveryThreads() {
+        return events.workers();
+    }
+
+    /**
+     * Waits until the agent's reports from here are home (or dropped), or the time is up.
      *
      * @param id        the agent
      * @param maxMillis the longest wait
@@ -89,11 +116,11 @@ final class OwedEvents implements AutoCloseable {
         }
     }
 
-    private void delivered(AgentEvent event) {
+    private void settled(AgentEvent event, boolean delivered) {
         try {
             host.store.eventDelivered(event.id(), event.seq());
         } catch (IOException e) {
-            LOG.warn("host {}: cannot record an event delivered: {}", host.name, e.toString());
+            LOG.warn("host {}: cannot record that the {} of agent {} is no longer owed: {}", host.name, event.kind(), event.id(), e.toString());
         }
     }
 

@@ -74,6 +74,8 @@ final class Recovery {
                 LOG.error("host {}: cannot resume agent {} from the store: {}", host.name, image.id(), e.getMessage());
                 continue;
             }
+            // Its image numbers its events from where they were when it arrived: events it owed since are numbered past that.
+            h.eventSeq = Math.max(h.eventSeq, host.store.nextEventSeq(h.id));
             switch (s.phase()) {
                 case ACCEPTED -> {
                     accepted++;
@@ -93,7 +95,9 @@ final class Recovery {
                 }
             }
         }
-        events.forEach(owed::resend);
+        for (int i = 0; i < events.size(); i++) {
+            owed.resend(events.get(i), pending.get(i).owedSince());
+        }
         if (accepted + interrupted + departing + events.size() > 0) {
             LOG.info("host {}: resumed {} agents from {} ({} not yet started, {} interrupted mid-stop, {} departing) and {} events owed to homes",
                     host.name, accepted + interrupted + departing, host.store.location(), accepted, interrupted, departing, events.size());

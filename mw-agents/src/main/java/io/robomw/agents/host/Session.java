@@ -50,6 +50,8 @@ import java.util.Arrays;
  * <tr><td>6</td><td>DISPOSE</td><td>{@link Bodies#agentRequest}</td></tr>
  * <tr><td>7</td><td>DESCRIBE</td><td>empty; the reply is a {@link HostDescription}</td></tr>
  * <tr><td>8</td><td>WATCH</td><td>the last event number the watcher saw (u64); the reply is laid out in {@link HostWatch}</td></tr>
+ * <tr><td>9</td><td>OWED</td><td>empty; the reply's body is {@link Bodies#owedReply}</td></tr>
+ * <tr><td>10</td><td>DROP_OWED</td><td>{@link Bodies#dropOwed}; the reply's body lists the ones dropped, as {@link Bodies#owedReply}</td></tr>
  * </table>
  *
  * <table>

@@ -33,6 +33,8 @@ final class Trips {
     private final HopSender hops;
     private final OwedEvents owed;
     private final RobotTurns robot;
+    /** How long a retracted agent tries to get home (the delivery expiry) before its trip ends where it is. */
+    private final Duration homewardFor;
 
     /**
      * Where an agent went, or why it did not go anywhere.
@@ -44,8 +46,9 @@ final class Trips {
     record Departure(boolean delivered, String target, String reason) {
     }
 
-    Trips(HostState host, HopSender hops, OwedEvents owed, RobotTurns robot) {
+    Trips(HostState host, HopSender hops, OwedEvents owed, RobotTurns robot, Duration homewardFor) {
         this.host = host;
+        this.homewardFor = homewardFor;
         this.hops = hops;
         this.owed = owed;
         this.robot = robot;
@@ -90,17 +93,28 @@ final class Trips {
                         }
                         it.record(stopHost, Itinerary.Outcome.DONE, "");
                         host.activity.record(h.id, h.className, HostActivity.STOP_DONE, host.address, "");
-                    } catch (Exception | LinkageError | AssertionError | StackOverflowError e) {
+                    } catch (Throwable e) {
+                        // Whatever the agent's code throws (an exception, a LinkageError, a StackOverflowError...) fails its stop, not the host.
                         LOG.warn("host {}: agent {} ({}) failed at its stop: {}", host.name, h.id, h.className, e.toString());
-                        it.record(stopHost, Itinerary.Outcome.FAILED, e.toString());
+                        it.record(stopHost, Itinerary.Outcome.FAILED, StackTraces.of(e));
                         host.activity.record(h.id, h.className, HostActivity.STOP_FAILED, host.address, e.toString());
                     }
                 }
             }
             robot.release();
             moveOn(h);
-        } catch (RuntimeException e) {
+        } catch (Throwable e) {
+            // The runner must not die silently with the agent stuck here: say so, and end its trip here unless it has left.
             LOG.error("host {}: agent {} ({}) could not go on: {}", host.name, h.id, h.className, e.toString(), e);
+            if (!h.departure.isDone() && !host.closed) {
+                try {
+                    h.agent.itinerary().record(host.address, Itinerary.Outcome.FAILED, StackTraces.of(e));
+                    finish(h, AgentEvent.Kind.RESULT);
+                } catch (Throwable again) {
+                    LOG.error("host {}: agent {} could not end its trip here either ({}); it stays in the store for the next start", host.name, h.id,
+                            again.toString());
+                }
+            }
         } finally {
             robot.release();
             t.setName(poolName);
@@ -121,9 +135,7 @@ final class Trips {
         }
         Departure d = depart(h);
         if (d.delivered()) {
-            // Only this copy: an agent whose next stop is this host was accepted again under the same id.
-            host.hosted.remove(h.id, h);
-            return;
+            return; // HopSender removed it from the agents here when the next host acknowledged
         }
         if (!host.closed) {
             LOG.info("host {}: agent {} ends its trip here: {}", host.name, h.id, d.reason());
@@ -201,7 +213,8 @@ final class Trips {
         if (kind == AgentEvent.Kind.RESULT && h.result == null && failed.isPresent()) {
             // Nothing to bring home, and a stop failed: that failure is the outcome of the trip.
             k = AgentEvent.Kind.FAILED;
-            payload = ("brought no result home: its stop at " + failed.get().host() + " failed: " + failed.get().detail()).getBytes(StandardCharsets.UTF_8);
+            payload = ("brought no result home: its stop at " + failed.get().host() + " failed: " + StackTraces.firstLine(failed.get().detail()))
+                    .getBytes(StandardCharsets.UTF_8);
         } else if (kind == AgentEvent.Kind.RESULT) {
             try {
                 payload = StateCodec.write(h.result);
@@ -213,16 +226,18 @@ final class Trips {
             payload = ("was disposed of at " + host.address).getBytes(StandardCharsets.UTF_8);
         }
         h.status = k == AgentEvent.Kind.RESULT ? AgentStatus.COMPLETED : k == AgentEvent.Kind.DISPOSED ? AgentStatus.DISPOSED : AgentStatus.FAILED;
+        // The visits first, then the event that ends the trip: the home has them when its result future completes.
+        owed.owe(h.home, new AgentEvent(h.id, h.eventSeq++, AgentEvent.Kind.VISITS, host.address, Bodies.visits(h.agent.itinerary().history())));
         AgentEvent event = new AgentEvent(h.id, h.eventSeq++, k, host.address, payload);
         host.activity.record(h.id, h.className, k == AgentEvent.Kind.RESULT ? HostActivity.RESULT : k == AgentEvent.Kind.DISPOSED ? HostActivity.DISPOSED
                 : HostActivity.FAILED, host.address, k == AgentEvent.Kind.RESULT ? HostActivity.describe(h.result) : new String(payload, StandardCharsets.UTF_8));
         owed.owe(h.home, event);
         try {
-            host.store.departed(h.id);
+            host.store.departed(h.id, h.hop + 1);
         } catch (IOException e) {
             LOG.warn("host {}: cannot record agent {} ended: {}", host.name, h.id, e.toString());
         }
-        host.hosted.remove(h.id);
+        host.hosted.remove(h.id, h);
         h.departure.complete(null);
     }
 
@@ -243,8 +258,12 @@ final class Trips {
             finish(h, AgentEvent.Kind.RESULT);
             return;
         }
-        if (hops.send(h, image, frame, h.home, homeward()) == null) {
-            host.hosted.remove(h.id);
+        String why = hops.send(h, image, frame, h.home, homeward());
+        if (why != null && !host.closed) {
+            LOG.warn("host {}: retracted agent {} could not be sent home to {} within {} ({}); its trip ends here", host.name, h.id, h.home,
+                    homewardFor, why);
+            h.agent.itinerary().record(h.home, Itinerary.Outcome.UNREACHABLE, "retracted, but its home did not take it back: " + why);
+            finish(h, AgentEvent.Kind.RESULT);
         }
     }
 
@@ -264,20 +283,23 @@ final class Trips {
         Itinerary plan = image.kind() == AgentImage.Kind.HOMECOMING ? homeward() : h.agent.itinerary();
         String why = hops.send(h, image, Frame.of(image.encode()), target, plan);
         if (why == null) {
-            host.hosted.remove(h.id, h);
             return;
         }
+        if (host.closed) {
+            return; // still departing in the store: sent again at the next start
+        }
         h.agent.itinerary().record(target, Itinerary.Outcome.UNREACHABLE, why);
-        if (h.agent.itinerary().unreachablePolicy() == Itinerary.UnreachablePolicy.RETURN_HOME) {
+        if (image.kind() == AgentImage.Kind.HOMECOMING || h.agent.itinerary().unreachablePolicy() == Itinerary.UnreachablePolicy.RETURN_HOME) {
             finish(h, AgentEvent.Kind.RESULT);
         } else {
             moveOn(h);
         }
     }
 
-    /** The way home of a retracted agent: retried until the home takes it. */
-    private static Itinerary homeward() {
-        return new Itinerary().onUnreachable(Itinerary.UnreachablePolicy.RETRY).retry(1_000_000, Duration.ofSeconds(1));
+    /** The way home of a retracted agent: retried every second until the home takes it, for as long as a delivery to it is owed. */
+    private Itinerary homeward() {
+        int retries = (int) Math.min(Integer.MAX_VALUE, Math.max(1, homewardFor.toSeconds()));
+        return new Itinerary().onUnreachable(Itinerary.UnreachablePolicy.RETRY).retry(retries, Duration.ofSeconds(1));
     }
 
     private static String simpleName(String className) {

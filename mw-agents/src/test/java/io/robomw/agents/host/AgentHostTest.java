@@ -1,6 +1,7 @@
 package io.robomw.agents.host;
 
 import io.robomw.agents.host.trip.VisitorAgent;
+import io.robomw.agents.messaging.Await;
 import io.robomw.api.Agent;
 import io.robomw.api.AgentException;
 import io.robomw.api.AgentRef;
@@ -160,11 +161,110 @@ class AgentHostTest {
         VisitorAgent agent = new VisitorAgent().payload(300_000);
         agent.itinerary().addStop(a.address()).addStop(home.address()).addStop(a.address()).addStop(home.address());
         assertEquals(List.of("a", "home", "a", "home"), home.startTrip(agent).result().get(10, TimeUnit.SECONDS));
-        assertTrue(a.agents().isEmpty());
+        // The result can be home before host a has read home's acknowledgement of the last hop there
+        // (home runs the stop as soon as it has stored the agent): a lists it IN_TRANSIT until then.
+        Await.until("host a no longer lists the agent once the hop home is acknowledged", Duration.ofSeconds(10), () -> a.agents().isEmpty());
         a.close();
         AgentHost again = AgentHost.builder("a").clusterKey(KEY).store(dir.resolve("a")).start();
         hosts.add(again);
         assertTrue(again.agents().isEmpty(), "nothing to resume: " + again.agents());
+    }
+
+    @Test
+    void anAgentThatHopsToTheSameDurableHostIsResumedFromItsNewCopyAfterTheHostStops(@org.junit.jupiter.api.io.TempDir java.nio.file.Path dir)
+            throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = AgentHost.builder("a").clusterKey(KEY).store(dir.resolve("a")).stopGrace(Duration.ZERO).start();
+        hosts.add(a);
+        VisitorAgent agent = new VisitorAgent().holdUntilReleased();
+        agent.itinerary().addStop(a.address()).addStop(a.address());
+        AgentRef ref = home.startTrip(agent);
+        List<Serializable> reports = new CopyOnWriteArrayList<>();
+        ref.addReportListener(reports::add); // the first listener gets the reports that came before it
+        await(() -> reports.size() == 1);
+        ref.sendMessage("release", Duration.ofSeconds(5)); // once: the second stop holds until the host stops
+        await(() -> reports.size() == 2);
+        // Host a took the hop to itself (the new copy stored) and then recorded the copy that left departed.
+        Await.until("host a has recorded the first copy departed", Duration.ofSeconds(10), () -> a.address().equals(a.forwardOf(ref.id())));
+        int port = HostAddress.parse(a.address()).port();
+        a.close(); // mid-stop at its second stop
+        AgentHost again = AgentHost.builder("a").clusterKey(KEY).port(port).store(dir.resolve("a")).start();
+        hosts.add(again);
+        ref.result().get(30, TimeUnit.SECONDS); // resumed from the copy that hopped to a again: not lost
+        assertEquals(List.of(io.robomw.api.Itinerary.Outcome.DONE, io.robomw.api.Itinerary.Outcome.INTERRUPTED),
+                ref.history().stream().map(io.robomw.api.Itinerary.Visit::outcome).toList(), "its second stop cut short, not run twice");
+        assertEquals(List.of("at a", "at a"), reports);
+    }
+
+    @Test
+    void aDurableHomeThatTookARetractedAgentBackStartsAgainWithNothingToResume(@org.junit.jupiter.api.io.TempDir java.nio.file.Path dir)
+            throws Exception {
+        AgentHost home = AgentHost.builder("home").clusterKey(KEY).store(dir.resolve("home")).start();
+        hosts.add(home);
+        AgentHost a = host("a");
+        VisitorAgent agent = new VisitorAgent().holdUntilReleased();
+        agent.itinerary().addStop(a.address());
+        AgentRef ref = home.startTrip(agent);
+        var retracted = ref.retract();
+        await(() -> {
+            safeSend(ref, "release");
+            return retracted.isDone();
+        });
+        assertEquals(List.of("a"), ((VisitorAgent) retracted.get(10, TimeUnit.SECONDS)).visited());
+        int port = HostAddress.parse(home.address()).port();
+        home.close();
+        AgentHost again = AgentHost.builder("home").clusterKey(KEY).port(port).store(dir.resolve("home")).start();
+        hosts.add(again);
+        assertTrue(again.agents().isEmpty(), "the agent is back with its handle, nothing hosted to resume: " + again.agents());
+    }
+
+    @Test
+    void theTripsVisitsComeHomeWithAFailedStopsRemoteStackTraceAndAnUnreachableStopsReason() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        VisitorAgent agent = new VisitorAgent();
+        agent.itinerary().addStop(a.address(), ctx -> ctx.robot()).addStop("rmi://127.0.0.1:1/nobody").addStop(a.address());
+        AgentRef ref = home.startTrip(agent);
+        assertEquals(List.of("a"), ref.result().get(10, TimeUnit.SECONDS));
+        List<io.robomw.api.Itinerary.Visit> visits = ref.history();
+        assertEquals(List.of(io.robomw.api.Itinerary.Outcome.FAILED, io.robomw.api.Itinerary.Outcome.UNREACHABLE, io.robomw.api.Itinerary.Outcome.DONE),
+                visits.stream().map(io.robomw.api.Itinerary.Visit::outcome).toList(), visits.toString());
+        String failed = visits.get(0).detail();
+        assertTrue(failed.startsWith("io.robomw.agents.host.NoRobotException: agent host a (" + a.address() + ") has no robot"), failed);
+        assertTrue(failed.contains("\tat io.robomw.agents.host.HostContext.robot"), "the remote stack trace: " + failed);
+        assertEquals("rmi://127.0.0.1:1/nobody", visits.get(1).host());
+        assertTrue(visits.get(1).detail().contains("Connection refused"), visits.get(1).detail());
+    }
+
+    @Test
+    void anErrorFromAnAgentsCodeFailsItsStopAndTheTripGoesOn() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        VisitorAgent agent = new VisitorAgent();
+        agent.itinerary().addStop(a.address(), ctx -> {
+            throw new NoClassDefFoundError("org/example/Gone");
+        }).addStop(a.address(), ctx -> {
+            throw new InternalError("agent code in trouble");
+        }).addStop(a.address());
+        AgentRef ref = home.startTrip(agent);
+        assertEquals(List.of("a"), ref.result().get(10, TimeUnit.SECONDS));
+        List<io.robomw.api.Itinerary.Visit> visits = ref.history();
+        assertEquals(List.of(io.robomw.api.Itinerary.Outcome.FAILED, io.robomw.api.Itinerary.Outcome.FAILED, io.robomw.api.Itinerary.Outcome.DONE),
+                visits.stream().map(io.robomw.api.Itinerary.Visit::outcome).toList(), visits.toString());
+        assertTrue(visits.get(0).detail().startsWith("java.lang.NoClassDefFoundError: org/example/Gone"), visits.get(0).detail());
+        assertTrue(visits.get(1).detail().startsWith("java.lang.InternalError: agent code in trouble"), visits.get(1).detail());
+    }
+
+    @Test
+    void clonesThatCouldBeSentTravelWhenOthersCouldNotAndTheirHandlesComeWithTheError() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        io.robomw.api.PartialDispatchException e = assertThrows(io.robomw.api.PartialDispatchException.class,
+                () -> home.dispatchClones(new VisitorAgent(), a.address(), "rmi://127.0.0.1:1/nobody"));
+        assertEquals(List.of("rmi://127.0.0.1:1/nobody"), List.copyOf(e.unsent().keySet()));
+        assertTrue(e.unsent().get("rmi://127.0.0.1:1/nobody").contains("Connection refused"), e.unsent().toString());
+        assertEquals(1, e.sent().size());
+        assertEquals(List.of("a"), e.sent().get(0).result().get(10, TimeUnit.SECONDS));
     }
 
     @Test
@@ -193,12 +293,6 @@ class AgentHostTest {
     }
 
     static void await(java.util.function.BooleanSupplier condition) {
-        long deadline = System.nanoTime() + 10_000_000_000L;
-        while (!condition.getAsBoolean()) {
-            if (System.nanoTime() > deadline) {
-                throw new AssertionError("condition not met within 10 s");
-            }
-            Thread.onSpinWait();
-        }
+        Await.until("the condition", Duration.ofSeconds(10), condition);
     }
 }

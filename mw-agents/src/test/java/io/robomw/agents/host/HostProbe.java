@@ -74,7 +74,7 @@ public final class HostProbe {
     /**
      * Sends a call with any operation code and body, as no honest peer would.
      *
-     * @param opCode the operation byte (the known ones are 0-6)
+     * @param opCode the operation byte (the known ones are 0-10)
      * @param body   the body
      * @return the host's answer: its status, a space, and its text
      * @throws IOException if the host cannot be reached

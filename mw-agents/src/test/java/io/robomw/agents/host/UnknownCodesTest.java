@@ -48,7 +48,7 @@ class UnknownCodesTest {
     @Test
     void callWithAnUnknownOperationCodeIsRefused() throws Exception {
         long before = host.refused();
-        refusedAndStillServing(probe.call(9, new byte[0]), "unknown operation code 9");
+        refusedAndStillServing(probe.call(42, new byte[0]), "unknown operation code 42");
         assertTrue(host.refused() > before, "counted");
     }
 

@@ -27,13 +27,14 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 class WireCodesTest {
 
     // The tables of Session, AgentEvent, AgentImage and Bodies, written out again.
-    private static final Map<Op, Integer> OPS = Map.of(Op.TRANSFER, 0, Op.PUT_ARCHIVE, 1, Op.LIST, 2, Op.EVENT, 3, Op.MESSAGE, 4,
-            Op.RETRACT, 5, Op.DISPOSE, 6, Op.DESCRIBE, 7, Op.WATCH, 8);
+    private static final Map<Op, Integer> OPS = Map.ofEntries(entry(Op.TRANSFER, 0), entry(Op.PUT_ARCHIVE, 1), entry(Op.LIST, 2), entry(Op.EVENT, 3),
+            entry(Op.MESSAGE, 4), entry(Op.RETRACT, 5), entry(Op.DISPOSE, 6), entry(Op.DESCRIBE, 7), entry(Op.WATCH, 8), entry(Op.OWED, 9),
+            entry(Op.DROP_OWED, 10));
     private static final Map<Reply.Status, Integer> STATUSES = Map.ofEntries(entry(Reply.Status.OK, 0), entry(Reply.Status.NEED_ARCHIVE, 1),
             entry(Reply.Status.DUPLICATE, 2), entry(Reply.Status.REFUSED, 3), entry(Reply.Status.MOVED, 4), entry(Reply.Status.GONE, 5),
             entry(Reply.Status.NOT_HANDLED, 6), entry(Reply.Status.UNKNOWN_SESSION, 7));
     private static final Map<AgentEvent.Kind, Integer> EVENT_KINDS = Map.of(AgentEvent.Kind.ARRIVED, 0, AgentEvent.Kind.REPORT, 1,
-            AgentEvent.Kind.RESULT, 2, AgentEvent.Kind.FAILED, 3, AgentEvent.Kind.DISPOSED, 4);
+            AgentEvent.Kind.RESULT, 2, AgentEvent.Kind.FAILED, 3, AgentEvent.Kind.DISPOSED, 4, AgentEvent.Kind.VISITS, 5);
     private static final Map<AgentImage.Kind, Integer> IMAGE_KINDS = Map.of(AgentImage.Kind.TRIP, 0, AgentImage.Kind.HOMECOMING, 1);
     private static final Map<AgentStatus, Integer> AGENT_STATUSES = Map.of(AgentStatus.CREATED, 0, AgentStatus.ACTIVE, 1,
             AgentStatus.IN_TRANSIT, 2, AgentStatus.COMPLETED, 3, AgentStatus.DISPOSED, 4, AgentStatus.RETRACTED, 5, AgentStatus.FAILED, 6);

@@ -99,6 +99,18 @@ class BadInputTest {
     }
 
     @Test
+    void anErrorThrownByAListenerIsCountedAndTheConnectionGoesOn() throws IOException {
+        server.addMessageListener("cmd", "pw", m -> {
+            if ("boom".equals(m.payload())) {
+                throw new AssertionError("a listener's own bug"); // an error, not an exception: agent code can throw one
+            }
+        });
+        sendTcp(good("boom", 1), good("after", 2));
+        Await.until("the message after the failing one is delivered on the same connection", WAIT, () -> got.contains("after"));
+        assertEquals(List.of("boom", "after"), got);
+    }
+
+    @Test
     void oversizedFrameIsDroppedAndTheNodeKeepsServing() throws IOException {
         byte[] huge = good("x", 1);
         java.nio.ByteBuffer.wrap(huge).putInt(FrameCodec.FRAME_LENGTH_OFFSET, 10_000_000);

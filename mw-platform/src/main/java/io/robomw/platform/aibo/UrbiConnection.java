@@ -42,6 +42,8 @@ import java.util.function.Consumer;
 final class UrbiConnection implements AutoCloseable {
 
     private static final Logger LOG = LoggerFactory.getLogger(UrbiConnection.class);
+    /** The link's time (reopen pacing): the wall clock, as {@code BrickChannel}'s, from the Clock rather than System.nanoTime. */
+    private static final io.robomw.api.Clock LINK_TIME = io.robomw.api.Clock.system();
 
     /** Commands that may wait in the queue. */
     static final int OUTBOX = 1024;
@@ -340,12 +342,12 @@ final class UrbiConnection implements AutoCloseable {
     }
 
     private void reopen() {
-        long now = System.nanoTime();
+        long now = LINK_TIME.nanoTime();
         if (lastReopen != 0 && now - lastReopen < REOPEN_INTERVAL.toNanos()) {
             java.util.concurrent.locks.LockSupport.parkNanos(this, REOPEN_INTERVAL.toNanos() - (now - lastReopen));
             return;
         }
-        lastReopen = System.nanoTime();
+        lastReopen = LINK_TIME.nanoTime();
         try {
             communicator.reopen();
         } catch (IOException e) {

@@ -33,12 +33,31 @@ public final class BrickChannel implements AutoCloseable {
     /** Shortest time between two attempts to reopen a lost link. */
     public static final Duration REOPEN_INTERVAL = Duration.ofMillis(500);
 
+    /** Reopening a link paces itself on the wall clock: a link's real time, whatever clock the robot runs on. */
+    private static final io.robomw.api.Clock LINK_TIME = io.robomw.api.Clock.system();
+
     private final String robot;
     private final Communicator communicator;
     private final Duration replyTimeout;
     private final ReentrantLock lock = new ReentrantLock(true);
     private boolean down;
     private long lastAttempt;
+    /**
+     * The least time the first exchange on a newly opened channel waits for its replies: a brick
+     * just connected (a Bluetooth link still being set up, an emulator whose process has only just
+     * started on a loaded host) can take longer to answer its first telegram than any later one.
+     */
+    public static final Duration FIRST_REPLY_TIMEOUT = Duration.ofSeconds(2);
+
+    private static Duration max(Duration a, Duration b) {
+        return a.compareTo(b) >= 0 ? a : b;
+    }
+
+    /** Whether an exchange has succeeded on this channel; guarded by the lock. */
+    private boolean answered;
+    private volatile long exchangeStartedAt;
+    private volatile boolean exchanging;
+    private final RoundTripEstimate exchangeTime = new RoundTripEstimate();
 
     /**
      * @param robot        the robot's name, for messages
@@ -94,6 +113,19 @@ public final class BrickChannel implements AutoCloseable {
         return communicator;
     }
 
+    /**
+     * How long until the exchange under way is expected to end (by the smoothed time exchanges
+     * take): a command handed to the channel now waits that long before it is sent.
+     *
+     * @return nanoseconds, 0 if no exchange is under way
+     */
+    public long nanosUntilFree() {
+        if (!exchanging) {
+            return 0;
+        }
+        return Math.max(0, exchangeStartedAt + exchangeTime.nanos() - System.nanoTime());
+    }
+
     /** @return how long each reply is awaited */
     public Duration replyTimeout() {
         return replyTimeout;
@@ -111,11 +143,20 @@ public final class BrickChannel implements AutoCloseable {
         lock.lock();
         try {
             ensureOpen();
+            long started = System.nanoTime();
+            exchangeStartedAt = started;
+            exchanging = true;
             try {
-                return exchange.run(communicator, replyTimeout);
+                Duration timeout = answered ? replyTimeout : max(replyTimeout, FIRST_REPLY_TIMEOUT);
+                T result = exchange.run(communicator, timeout);
+                answered = true;
+                exchangeTime.sample(System.nanoTime() - started);
+                return result;
             } catch (IOException e) {
                 markDown(e);
                 throw e;
+            } finally {
+                exchanging = false;
             }
         } finally {
             lock.unlock();
@@ -126,7 +167,7 @@ public final class BrickChannel implements AutoCloseable {
         if (!down) {
             return;
         }
-        long now = System.nanoTime();
+        long now = LINK_TIME.nanoTime();
         if (now - lastAttempt < REOPEN_INTERVAL.toNanos()) {
             throw new LinkLostException(communicator.describe(), "link to robot '" + robot + "' is down; next reopen attempt within "
                     + REOPEN_INTERVAL.toMillis() + " ms");
@@ -142,7 +183,7 @@ public final class BrickChannel implements AutoCloseable {
             LOG.warn("robot '{}': link {} failed: {}", robot, communicator.describe(), e.getMessage());
         }
         down = true;
-        lastAttempt = System.nanoTime();
+        lastAttempt = LINK_TIME.nanoTime();
     }
 
     /** Closes the link. */

@@ -3,6 +3,7 @@ package io.robomw.platform.ev3;
 import io.robomw.platform.brick.LittleEndian;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.Communicator;
+import io.robomw.platform.link.Deadline;
 import io.robomw.platform.link.LinkLostException;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -84,9 +85,9 @@ public final class Ev3Brick {
         if (!command.replyWanted()) {
             return null;
         }
-        long deadline = System.nanoTime() + timeout.toNanos();
+        Deadline deadline = Deadline.after(timeout);
         while (true) {
-            byte[] lengthField = c.receiveExactly(Ev3Frame.LENGTH_FIELD_SIZE, remaining(deadline));
+            byte[] lengthField = c.receiveExactly(Ev3Frame.LENGTH_FIELD_SIZE, deadline.remaining());
             int length = LittleEndian.u16(lengthField, 0);
             if (length < Ev3Frame.MIN_REPLY_LENGTH || length > Ev3Frame.MAX_REPLY_LENGTH) {
                 throw new LinkLostException(channel.describe(), "the EV3 reply to direct command #" + counter + " announced " + length
@@ -95,7 +96,7 @@ public final class Ev3Brick {
             }
             byte[] frame = new byte[Ev3Frame.LENGTH_FIELD_SIZE + length];
             System.arraycopy(lengthField, 0, frame, 0, Ev3Frame.LENGTH_FIELD_SIZE);
-            byte[] rest = c.receiveExactly(length, remaining(deadline));
+            byte[] rest = c.receiveExactly(length, deadline.remaining());
             System.arraycopy(rest, 0, frame, Ev3Frame.LENGTH_FIELD_SIZE, length);
             int type = Ev3Frame.type(frame);
             if (type != Ev3Frame.DIRECT_REPLY && type != Ev3Frame.DIRECT_REPLY_ERROR) {
@@ -119,9 +120,6 @@ public final class Ev3Brick {
         }
     }
 
-    private static Duration remaining(long deadline) {
-        return Duration.ofNanos(Math.max(0, deadline - System.nanoTime()));
-    }
 
     /** @return replies skipped because they carried another message counter (late answers) */
     public long skippedReplies() {

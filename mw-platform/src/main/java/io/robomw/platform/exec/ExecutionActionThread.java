@@ -48,8 +48,19 @@ import java.util.concurrent.locks.LockSupport;
  * in {@link #cycle()}, called either by the thread {@link #start()} creates (named
  * {@code <robot>-action}, paced by the wall clock) or, with a simulated clock, by the simulation,
  * never by both. Action objects, logic objects, end actions and cycle listeners all run on the
- * cycling thread, one at a time; they must not block. Exceptions they throw end their container
- * with that exception, are logged and counted, and the loop goes on.
+ * cycling thread, one at a time; they must not block. What they throw (an exception, or an error a
+ * driver or an agent's code can cause: a {@link LinkageError}, an {@link AssertionError}, a
+ * {@link StackOverflowError}) ends their container with it, is logged and counted, and the loop
+ * goes on.
+ *
+ * <h2>When the thread itself dies</h2>
+ * Any other {@link Throwable} that reaches the loop (an {@link OutOfMemoryError}, an internal
+ * error, a bug here) ends the thread, never silently, as Agrona's {@code AgentRunner} handles its
+ * agents' failures: it is logged and counted; every container ends with a
+ * {@link RobotException} naming it and runs its end action, and the cycle listeners run once more,
+ * so the motor platform hands the last stop to its link before the thread exits; the failure
+ * listeners are told; and the thread is marked failed: later commands fail at once with an error
+ * that says so ({@link #failure()}). {@link #close()} waits until the thread has really ended.
  */
 public final class ExecutionActionThread implements AutoCloseable {
 
@@ -61,6 +72,9 @@ public final class ExecutionActionThread implements AutoCloseable {
     private final Queue<Container> incoming = new ConcurrentLinkedQueue<>();
     private final AtomicReference<RobotLinkException> linkFailure = new AtomicReference<>();
     private final List<Runnable> cycleListeners = new CopyOnWriteArrayList<>();
+    private final List<java.util.function.Consumer<RobotException>> failureListeners = new CopyOnWriteArrayList<>();
+    /** Why the cycling thread died, once it has. */
+    private final AtomicReference<RobotException> failure = new AtomicReference<>();
     private final AtomicReference<Thread> thread = new AtomicReference<>();
     private final AtomicLong cycles = new AtomicLong();
     private final AtomicLong overruns = new AtomicLong();
@@ -106,6 +120,12 @@ public final class ExecutionActionThread implements AutoCloseable {
      * @return its completion future
      */
     public CompletableFuture<Void> submit(Container container) {
+        RobotException failed = failure.get();
+        if (failed != null) {
+            container.completion().completeExceptionally(new RobotException("robot '" + robot + "' has failed: " + failed.getMessage()
+                    + "; command '" + container.name() + "' was not run (close the robot and open it again)", failed));
+            return container.completion();
+        }
         if (closed) {
             container.completion().completeExceptionally(new RobotException("robot '" + robot + "' is closed; command '" + container.name() + "' was not run"));
             return container.completion();
@@ -132,6 +152,19 @@ public final class ExecutionActionThread implements AutoCloseable {
      */
     public void addCycleListener(Runnable listener) {
         cycleListeners.add(listener);
+    }
+
+    /**
+     * @param listener told once, on the dying thread, when the cycling thread dies of a failure it
+     *                 cannot survive (after every container was ended and the last stop handed to the link)
+     */
+    public void addFailureListener(java.util.function.Consumer<RobotException> listener) {
+        failureListeners.add(listener);
+    }
+
+    /** @return why the cycling thread died, if it did */
+    public java.util.Optional<RobotException> failure() {
+        return java.util.Optional.ofNullable(failure.get());
     }
 
     /** @return the actuators held by running containers, as of the last cycle */
@@ -189,7 +222,7 @@ public final class ExecutionActionThread implements AutoCloseable {
             boolean done;
             try {
                 done = c.evaluate(start);
-            } catch (RuntimeException e) {
+            } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
                 fail(c, e);
                 continue;
             }
@@ -200,7 +233,7 @@ public final class ExecutionActionThread implements AutoCloseable {
         for (Runnable listener : cycleListeners) {
             try {
                 listener.run();
-            } catch (RuntimeException e) {
+            } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
                 errors.incrementAndGet();
                 LOG.error("robot '{}': a cycle listener failed", robot, e);
             }
@@ -240,7 +273,7 @@ public final class ExecutionActionThread implements AutoCloseable {
                 try {
                     holder.refresh(now, c);
                     c.completion().complete(null);
-                } catch (RuntimeException e) {
+                } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
                     c.completion().completeExceptionally(e);
                     fail(holder, e);
                 }
@@ -266,12 +299,12 @@ public final class ExecutionActionThread implements AutoCloseable {
         active.add(c);
         try {
             c.start(now);
-        } catch (RuntimeException e) {
+        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
             fail(c, e);
         }
     }
 
-    private void fail(Container c, RuntimeException e) {
+    private void fail(Container c, Throwable e) {
         errors.incrementAndGet();
         LOG.error("robot '{}': command '{}' failed", robot, c.name(), e);
         finish(c, true, e);
@@ -288,7 +321,7 @@ public final class ExecutionActionThread implements AutoCloseable {
         holdersChanged = true;
         try {
             c.end(interrupted);
-        } catch (RuntimeException e) {
+        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
             errors.incrementAndGet();
             LOG.error("robot '{}': end action of '{}' failed", robot, c.name(), e);
         }
@@ -320,21 +353,61 @@ public final class ExecutionActionThread implements AutoCloseable {
     }
 
     private void loop() {
-        long next = clock.nanoTime();
-        while (running) {
-            try {
+        try {
+            long next = clock.nanoTime();
+            while (running) {
                 cycle();
-            } catch (RuntimeException e) {
+                next += periodNanos;
+                long now = clock.nanoTime();
+                if (next < now) {
+                    next = now;
+                }
+                while (running && (now = clock.nanoTime()) < next) {
+                    LockSupport.parkNanos(this, next - now);
+                }
+            }
+        } catch (Throwable t) {
+            died(t);
+        }
+    }
+
+    /**
+     * The cycling thread cannot go on: stops every motor it can, says why, and marks the robot
+     * failed. Runs on the dying thread; must not throw.
+     */
+    void died(Throwable t) {
+        errors.incrementAndGet();
+        RobotException why = new RobotException("robot '" + robot + "': its execution action thread died of " + t
+                + "; every command was stopped", t);
+        failure.compareAndSet(null, why);
+        running = false;
+        try {
+            LOG.error("robot '{}': the execution action thread died; stopping every command and marking the robot failed", robot, t);
+        } catch (Throwable ignored) {
+            // logging itself failed (out of memory): the rest must still happen
+        }
+        for (Container c : List.copyOf(active)) {
+            try {
+                finish(c, true, why);
+            } catch (Throwable e) {
+                c.completion().completeExceptionally(why);
+            }
+        }
+        for (Container c; (c = incoming.poll()) != null; ) {
+            c.completion().completeExceptionally(why);
+        }
+        for (Runnable listener : cycleListeners) {
+            try {
+                listener.run(); // the motor platform hands the last stop to its link
+            } catch (Throwable e) {
                 errors.incrementAndGet();
-                LOG.error("robot '{}': execution action thread cycle failed", robot, e);
             }
-            next += periodNanos;
-            long now = clock.nanoTime();
-            if (next < now) {
-                next = now;
-            }
-            while (running && (now = clock.nanoTime()) < next) {
-                LockSupport.parkNanos(this, next - now);
+        }
+        for (java.util.function.Consumer<RobotException> l : failureListeners) {
+            try {
+                l.accept(why);
+            } catch (Throwable e) {
+                errors.incrementAndGet();
             }
         }
     }
@@ -352,12 +425,7 @@ public final class ExecutionActionThread implements AutoCloseable {
         running = false;
         Thread t = thread.get();
         if (t != null && t != Thread.currentThread()) {
-            LockSupport.unpark(t);
-            try {
-                t.join(Duration.ofSeconds(2).toMillis());
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-            }
+            awaitEnd(t);
         }
         RobotException closing = new RobotException("robot '" + robot + "' was closed");
         for (Container c; (c = incoming.poll()) != null; ) {
@@ -367,7 +435,44 @@ public final class ExecutionActionThread implements AutoCloseable {
             finish(c, true, closing);
         }
         for (Runnable listener : cycleListeners) {
-            listener.run();
+            try {
+                listener.run();
+            } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+                errors.incrementAndGet();
+                LOG.error("robot '{}': a cycle listener failed while closing", robot, e);
+            }
         }
     }
+
+    /**
+     * Waits until the cycling thread has really ended, as Agrona's {@code AgentRunner.close} does:
+     * joins, and if it has not ended, interrupts it (a cycle blocked on something) and joins again,
+     * saying so every few seconds. Containers are only ended after, on this thread, so nothing
+     * runs on two threads at once.
+     */
+    private void awaitEnd(Thread t) {
+        boolean interrupted = false;
+        long waited = 0;
+        while (t.isAlive()) {
+            LockSupport.unpark(t);
+            try {
+                t.join(CLOSE_JOIN_MILLIS);
+            } catch (InterruptedException e) {
+                interrupted = true;
+            }
+            if (t.isAlive()) {
+                waited += CLOSE_JOIN_MILLIS;
+                t.interrupt();
+                if (waited % 5_000 == 0) {
+                    LOG.warn("robot '{}': still waiting for its execution action thread to end ({} ms so far)", robot, waited);
+                }
+            }
+        }
+        if (interrupted) {
+            Thread.currentThread().interrupt();
+        }
+    }
+
+    /** How long {@link #close()} joins the cycling thread before it interrupts it and joins again. */
+    private static final long CLOSE_JOIN_MILLIS = 1_000;
 }

@@ -1,6 +1,7 @@
 package io.robomw.platform.nxt;
 
 import io.robomw.platform.brick.LittleEndian;
+import io.robomw.platform.link.Deadline;
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.spi.SensorChannel;
 import io.robomw.platform.motor.GenericMotorPlatform;
@@ -8,6 +9,7 @@ import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
 
 import java.io.IOException;
+import java.time.Duration;
 import java.util.concurrent.CompletableFuture;
 
 /**
@@ -28,6 +30,10 @@ public final class NxtSensorPlatform extends SensorPlatform {
      * the link's speed (a fast pseudo-terminal spends 200 polls in a few milliseconds).
      */
     private static final long MAX_WAIT_NANOS = 1_000_000_000L;
+
+    /** The sensor types the NXT reads on its input ports (its standard sensors), as {@link #createSensor} sets them up. */
+    static final java.util.Set<io.robomw.api.SensorType> SUPPORTED = java.util.EnumSet.of(io.robomw.api.SensorType.TOUCH,
+            io.robomw.api.SensorType.LIGHT, io.robomw.api.SensorType.SOUND, io.robomw.api.SensorType.COLOR, io.robomw.api.SensorType.SONAR);
 
     private final NxtBrick brick;
 
@@ -91,7 +97,7 @@ public final class NxtSensorPlatform extends SensorPlatform {
     }
 
     private byte[] validInputValues(int port) throws IOException {
-        long deadline = System.nanoTime() + MAX_WAIT_NANOS;
+        Deadline deadline = Deadline.after(Duration.ofNanos(MAX_WAIT_NANOS)); // the brick's time to read its port: wall-clock
         int reads = 0;
         do {
             byte[] reply = brick.request(NxtTelegram.getInputValues(port), NxtTelegram.GETINPUTVALUES_REPLY, port);
@@ -99,7 +105,7 @@ public final class NxtSensorPlatform extends SensorPlatform {
             if (reply[4] != 0) {
                 return reply;
             }
-        } while (System.nanoTime() - deadline < 0);
+        } while (!deadline.expired());
         throw new IOException("robot '" + brick.robot() + "': NXT input port " + (port + 1) + " stayed invalid for " + MAX_WAIT_NANOS / 1_000_000 + " ms (" + reads + " reads)");
     }
 
@@ -109,7 +115,7 @@ public final class NxtSensorPlatform extends SensorPlatform {
             validInputValues(port);
             brick.request(NxtTelegram.lsWrite(true, port, 1, (byte) NxtTelegram.ULTRASONIC_ADDRESS, (byte) NxtTelegram.ULTRASONIC_DISTANCE),
                     NxtTelegram.STATUS_REPLY, port);
-            long deadline = System.nanoTime() + MAX_WAIT_NANOS;
+            Deadline deadline = Deadline.after(Duration.ofNanos(MAX_WAIT_NANOS));
             int polls = 0;
             do {
                 polls++;
@@ -122,7 +128,7 @@ public final class NxtSensorPlatform extends SensorPlatform {
                 if (s != NxtStatus.PENDING && s != NxtStatus.SUCCESS) {
                     throw new NxtException(brick.robot(), NxtTelegram.LSGETSTATUS, port, s);
                 }
-            } while (System.nanoTime() - deadline < 0);
+            } while (!deadline.expired());
             throw new IOException("robot '" + brick.robot() + "': the ultrasonic sensor on S" + (port + 1) + " did not answer within "
                     + MAX_WAIT_NANOS / 1_000_000 + " ms (" + polls + " polls)");
         });

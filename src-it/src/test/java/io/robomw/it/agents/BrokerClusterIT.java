@@ -15,6 +15,7 @@ import java.nio.file.Path;
 import java.time.Duration;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.TimeUnit;
+import java.util.regex.Pattern;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
@@ -22,7 +23,8 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 /**
  * Two {@code mw host} JVMs whose messaging nodes are only at a broker ({@code --messaging mqtt://...}):
  * their agents talk to each other by host name through it, and {@code mw agents --cluster BROKER}
- * lists both hosts and their agents from what they announce there. Agents still travel over RMI.
+ * lists both hosts and their agents from what they announce there, and with the cluster key what
+ * each owes homes (asked of the host). Agents still travel over RMI.
  */
 class BrokerClusterIT {
 
@@ -90,5 +92,18 @@ class BrokerClusterIT {
         AgentRef caller = home.sendAgent(a.address(), new ChatCaller("bc-b"));
         assertEquals("pong from bc-b", caller.result().get(WAIT.toSeconds(), TimeUnit.SECONDS));
         assertEquals("heard news from bc-a", responder.result().get(WAIT.toSeconds(), TimeUnit.SECONDS));
+
+        // With the cluster key, every host online is asked what it owes homes, and --drop-owed drops it at each.
+        String key = dir.resolve("cluster.key").toString();
+        try (MwProcess owed = MwProcess.start("bc-owed", "agents", "--cluster", broker.address(), "--key-file", key)) {
+            assertEquals(0, owed.waitFor(WAIT), owed.output());
+            String text = owed.output();
+            assertTrue(text.matches("(?s).*\\d+ deliver(y|ies) owed by " + Pattern.quote(a.address()) + ".*")
+                    && text.matches("(?s).*\\d+ deliver(y|ies) owed by " + Pattern.quote(b.address()) + ".*"), text);
+        }
+        try (MwProcess drop = MwProcess.start("bc-drop", "agents", "--cluster", broker.address(), "--key-file", key, "--drop-owed", "all")) {
+            assertEquals(0, drop.waitFor(WAIT), drop.output());
+            assertTrue(drop.output().contains(a.address() + " dropped ") && drop.output().contains(b.address() + " dropped "), drop.output());
+        }
     }
 }

@@ -24,7 +24,7 @@ import static org.junit.jupiter.api.Assertions.fail;
  * {@link #kill()} is kill -9; {@link #close()} stops it as Ctrl-C would and always waits for it.
  * Its log (stderr) is appended to {@code target/it-logs/NAME.log} and can be read back.
  */
-final class HostProcess implements AutoCloseable {
+public final class HostProcess implements AutoCloseable {
 
     static final Duration START = Duration.ofSeconds(60);
 
@@ -53,13 +53,13 @@ final class HostProcess implements AutoCloseable {
      * @param extra {@code mw host} options besides --name and --port
      * @return the running host
      */
-    static HostProcess start(String name, String... extra) throws IOException {
+    public static HostProcess start(String name, String... extra) throws IOException {
         HostProcess h = new HostProcess(name, freePort(), List.of(extra));
         h.launch();
         return h;
     }
 
-    String address() {
+    public String address() {
         return "rmi://127.0.0.1:" + port + "/" + name;
     }
 
@@ -74,7 +74,7 @@ final class HostProcess implements AutoCloseable {
     }
 
     /** Starts it again, same name, port and options (after {@link #kill()}). */
-    void restart() throws IOException {
+    public void restart() throws IOException {
         launch();
     }
 
@@ -116,14 +116,24 @@ final class HostProcess implements AutoCloseable {
         }
     }
 
+    /** @return the process id of the host's JVM now (a restart gives a new one) */
+    public long pid() {
+        return process.pid();
+    }
+
+    /** @return whether the host's JVM is running */
+    public boolean alive() {
+        return process != null && process.isAlive();
+    }
+
     /** kill -9: no shutdown hook, no flush. Waits until it is gone. */
-    void kill() throws InterruptedException {
+    public void kill() throws InterruptedException {
         process.destroyForcibly();
         process.waitFor(30, TimeUnit.SECONDS);
     }
 
     /** @return the host's log so far */
-    String log() throws IOException {
+    public String log() throws IOException {
         return Files.readString(log, StandardCharsets.UTF_8);
     }
 

@@ -15,7 +15,7 @@ import java.util.UUID;
  * <p>The order of one hop at the receiving host: {@link #accepted} (durable before the sender is
  * acknowledged), {@link #started} (durable before the stop's work begins, so the work never runs
  * twice), {@link #departing} with the state after the work, {@link #departed} once the next host
- * has acknowledged. Thread-safe.
+ * has acknowledged (only that copy: a hop to this same host has stored the next one already). Thread-safe.
  */
 public interface AgentStore extends AutoCloseable {
 
@@ -43,11 +43,13 @@ public interface AgentStore extends AutoCloseable {
     /**
      * A result or report a home has not acknowledged yet.
      *
-     * @param id    the agent
-     * @param seq   its order among that agent's events
-     * @param event the encoded event
+     * @param id        the agent
+     * @param seq       its order among that agent's events
+     * @param owedSince when the host began to owe it, in milliseconds since the epoch (its age
+     *                  counts from there, across restarts, for the delivery's expiry)
+     * @param event     the encoded event
      */
-    record PendingEvent(UUID id, long seq, byte[] event) {
+    record PendingEvent(UUID id, long seq, long owedSince, byte[] event) {
     }
 
     /** @return whether this store survives the host being killed */
@@ -84,16 +86,35 @@ public interface AgentStore extends AutoCloseable {
     void departing(UUID id, long hop, byte[] image, int offset, int length) throws IOException;
 
     /**
-     * @param id the agent, now stored by the next host or ended here
+     * Forgets the copy of an agent that left this host with {@code hop} (the next host has
+     * acknowledged it), or ended here: unless what is held of the agent came with that hop or a
+     * later one. That happens on a hop to this same host, which stores the new copy (with the
+     * same hop) before the sender records the old one departed, and when the agent comes back
+     * before its sender gets to this call: the new copy must survive a restart.
+     *
+     * @param id  the agent, now stored by the next host or ended here
+     * @param hop the hop that took it on ({@link #departing}'s); for an agent that ended here, one
+     *            past the hop that brought it
      * @throws IOException if it cannot be written
      */
-    void departed(UUID id) throws IOException;
+    void departed(UUID id, long hop) throws IOException;
 
     /**
      * @param id the agent
      * @return the highest hop of it this host ever accepted, or -1
      */
     long highestHop(UUID id);
+
+    /**
+     * The number an agent held here gives its next report or result: one past the highest of the
+     * events this store recorded it owing since it arrived, or 0 if none (then its image's number
+     * stands). An agent resumed after a restart numbers on from the larger of the two, so its home,
+     * which drops numbers it has seen, never takes a new report for a repeat.
+     *
+     * @param id the agent
+     * @return the next number, or 0
+     */
+    long nextEventSeq(UUID id);
 
     /**
      * @param event an event owed to a home (durable before return)

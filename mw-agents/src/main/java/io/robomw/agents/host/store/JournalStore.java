@@ -10,6 +10,7 @@ import java.io.EOFException;
 import java.io.IOException;
 import java.io.InputStream;
 import java.nio.ByteBuffer;
+import java.nio.channels.ClosedByInterruptException;
 import java.nio.channels.FileChannel;
 import java.nio.channels.FileLock;
 import java.nio.file.Files;
@@ -44,15 +45,28 @@ import java.util.zip.CRC32C;
  * <tr><td>1</td><td>ACCEPTED</td><td>hop</td><td>the image</td><td>yes</td><td>the agent is held, phase ACCEPTED; the hop is seen</td></tr>
  * <tr><td>2</td><td>STARTED</td><td>hop</td><td>none</td><td>yes</td><td>phase STARTED (its stop's work had begun)</td></tr>
  * <tr><td>3</td><td>DEPARTING</td><td>the next hop</td><td>the image</td><td>no</td><td>phase DEPARTING, with the image it leaves with</td></tr>
- * <tr><td>4</td><td>DEPARTED</td><td>0</td><td>none</td><td>no</td><td>the agent is no longer held</td></tr>
- * <tr><td>5</td><td>EVENT_PENDING</td><td>event seq</td><td>the owed event</td><td>yes</td><td>an event owed to its home</td></tr>
+ * <tr><td>4</td><td>DEPARTED</td><td>the hop it left with (versions 1 and 2: 0)</td><td>none</td><td>no</td><td>the copy that left with that
+ *     hop (or, ending here, came with an earlier one) is no longer held: the agent is forgotten unless what is held of it came
+ *     later (a hop to this same host stores the new copy before the old one is recorded departed); versions 1 and 2: the agent
+ *     is no longer held</td></tr>
+ * <tr><td>5</td><td>EVENT_PENDING</td><td>event seq</td><td>[owed since 8, ms since the epoch][the owed event] (version 1: the owed
+ *     event alone, owed since the journal was opened)</td><td>yes</td><td>an event owed to its home</td></tr>
  * <tr><td>6</td><td>EVENT_DELIVERED</td><td>event seq</td><td>none</td><td>no</td><td>that event is no longer owed</td></tr>
  * <tr><td>7</td><td>SEEN</td><td>hop</td><td>none</td><td>no</td><td>the highest hop seen of the agent (compaction writes these)</td></tr>
+ * <tr><td>8</td><td>EVENT_SEQ</td><td>next event seq</td><td>none</td><td>no</td><td>the number the held agent's next report or result takes
+ *     (compaction writes these; version 2)</td></tr>
  * </table>
+ *
+ * <p><b>Event numbers.</b> An agent's reports and results are numbered, and its home drops a number
+ * it has seen. An agent held here carries in its image the next number as it was when it arrived;
+ * the numbers of the events it owed since are in the EVENT_PENDING records (and, once the journal
+ * is compacted, in an EVENT_SEQ record), so {@link #nextEventSeq} gives an agent resumed after a kill
+ * the next number never used rather than the one it arrived with.
  *
  * <p><b>Format version.</b> The header is written when the journal is made (every open rewrites
  * the journal with what is live, header first), and checked when it is opened: a journal of a
- * version other than {@value #FORMAT_VERSION}, or whose first bytes are neither the header nor a
+ * version this store does not read (it reads 1 and {@value #FORMAT_VERSION}, and writes
+ * {@value #FORMAT_VERSION}), or whose first bytes are neither the header nor a
  * record, is refused with an error naming the file, and so is a record of a type not in the
  * table. A journal written before the header existed (its records are those of version 1) is
  * recognised by a first record that reads as one (a known type and a good checksum), or by
@@ -78,6 +92,8 @@ public final class JournalStore implements AgentStore {
 
     private static final Logger LOG = LoggerFactory.getLogger(JournalStore.class);
     private static final long COMPACT_BYTES = 32L << 20;
+    /** How many agents' highest hops the store remembers. */
+    static final int SEEN_CAPACITY = 100_000;
     private static final int MAX_RECORD = Integer.MAX_VALUE - 64;
     private static final int PREALLOCATE_BYTES = 4 << 20;
     private static final int PREALLOCATE_MAX_RECORD = 256 << 10;
@@ -85,8 +101,15 @@ public final class JournalStore implements AgentStore {
 
     /** The first four bytes of a journal: not a record length (negative), not text. */
     static final byte[] MAGIC = {(byte) 0x89, 'R', 'M', 'J'};
-    /** The format this store reads and writes. */
-    static final int FORMAT_VERSION = 1;
+    /**
+     * The format this store writes; version 2 added the EVENT_SEQ record, version 3 the hop in
+     * DEPARTED records (before, a DEPARTED record forgot whatever copy of the agent was held).
+     */
+    static final int FORMAT_VERSION = 3;
+    /** The first version whose DEPARTED records carry the hop the agent left with. */
+    static final int DEPARTED_HOP_VERSION = 3;
+    /** The oldest format this store reads (its records are a subset of the current version's). */
+    static final int OLDEST_READABLE_VERSION = 1;
     /** The header's length: magic and version. */
     static final int HEADER_LENGTH = 8;
     /** The shortest record payload: type, id, number. */
@@ -107,7 +130,9 @@ public final class JournalStore implements AgentStore {
         /** The home has that event. */
         EVENT_DELIVERED(6),
         /** The highest hop of it ever accepted. */
-        SEEN(7);
+        SEEN(7),
+        /** The next event number of an agent held here (from version 2). */
+        EVENT_SEQ(8);
 
         private final int code;
 
@@ -134,7 +159,8 @@ public final class JournalStore implements AgentStore {
                 case 5 -> EVENT_PENDING;
                 case 6 -> EVENT_DELIVERED;
                 case 7 -> SEEN;
-                default -> throw new IllegalArgumentException("unknown record type code " + code + " (known: 1-7)");
+                case 8 -> EVENT_SEQ;
+                default -> throw new IllegalArgumentException("unknown record type code " + code + " (known: 1-8)");
             };
         }
     }
@@ -146,7 +172,13 @@ public final class JournalStore implements AgentStore {
     private final FileLock lock;
     private final Object writeLock = new Object();
     private final Map<UUID, StoredAgent> live = new LinkedHashMap<>();
+    /** The highest hop of each agent seen, for the last {@value #SEEN_CAPACITY} agents; read without the write lock. */
     private final Map<UUID, Long> seen = new ConcurrentHashMap<>();
+    /** The agents of {@link #seen} in the order they were first seen, for forgetting the oldest; guarded by the write lock. */
+    private final java.util.ArrayDeque<UUID> seenOrder = new java.util.ArrayDeque<>();
+    private final int seenCapacity;
+    /** The next event number of each agent held here that has owed an event since it arrived. */
+    private final Map<UUID, Long> eventSeqs = new ConcurrentHashMap<>();
     private final Map<String, PendingEvent> events = new LinkedHashMap<>();
     private final Map<CodeArchive.Digest, CodeArchive> archiveCache = new ConcurrentHashMap<>();
     private final List<StoredAgent> recoveredAgents;
@@ -157,23 +189,49 @@ public final class JournalStore implements AgentStore {
     /** The file's size, zero-filled from {@link #end} on. */
     private long allocated;
     private long liveBytes;
+    /** The format version of the journal as it was read (its records are rewritten in {@link #FORMAT_VERSION}). */
+    private int readVersion = FORMAT_VERSION;
+    /** When the journal was opened: the owed-since of events a version 1 journal holds. */
+    private final long openedAt = System.currentTimeMillis();
 
-    private JournalStore(Path dir) throws IOException {
+    private JournalStore(Path dir, int seenCapacity) throws IOException {
         this.dir = dir;
+        this.seenCapacity = seenCapacity;
         this.journal = dir.resolve("journal");
         this.archives = dir.resolve("archives");
         Files.createDirectories(archives);
         lockChannel = FileChannel.open(dir.resolve("lock"), StandardOpenOption.CREATE, StandardOpenOption.WRITE);
-        FileLock l = lockChannel.tryLock();
+        FileLock l;
+        try {
+            l = lockChannel.tryLock();
+        } catch (java.nio.channels.OverlappingFileLockException e) {
+            l = null; // held by another store of this process
+        }
         if (l == null) {
             lockChannel.close();
             throw new IOException("agent store " + dir + " is in use by another host (its lock file is held)");
         }
         this.lock = l;
-        replay();
-        recoveredAgents = List.copyOf(live.values());
-        recoveredEvents = List.copyOf(events.values());
-        compact();
+        try {
+            replay();
+            recoveredAgents = List.copyOf(live.values());
+            recoveredEvents = List.copyOf(events.values());
+            compact();
+        } catch (IOException | RuntimeException e) {
+            // A journal this store refuses must not keep the directory locked (a host retrying, or another, could not open it).
+            try {
+                if (channel != null) {
+                    channel.close();
+                }
+            } finally {
+                try {
+                    lock.release();
+                } finally {
+                    lockChannel.close();
+                }
+            }
+            throw e;
+        }
     }
 
     /**
@@ -184,7 +242,12 @@ public final class JournalStore implements AgentStore {
      * @throws IOException if the directory cannot be used or another host holds it
      */
     public static JournalStore open(Path dir) throws IOException {
-        return new JournalStore(dir);
+        return new JournalStore(dir, SEEN_CAPACITY);
+    }
+
+    /** {@link #open(Path)} remembering the hops of at most {@code seenCapacity} agents (for tests). */
+    static JournalStore open(Path dir, int seenCapacity) throws IOException {
+        return new JournalStore(dir, seenCapacity);
     }
 
     @Override
@@ -204,7 +267,7 @@ public final class JournalStore implements AgentStore {
         synchronized (writeLock) {
             append(RecordType.ACCEPTED, id, hop, image, true);
             put(new StoredAgent(id, hop, Phase.ACCEPTED, image));
-            seen.merge(id, hop, Math::max);
+            see(id, hop);
         }
     }
 
@@ -229,11 +292,24 @@ public final class JournalStore implements AgentStore {
     }
 
     @Override
-    public void departed(UUID id) throws IOException {
+    public void departed(UUID id, long hop) throws IOException {
         synchronized (writeLock) {
-            append(RecordType.DEPARTED, id, 0, null, false);
-            remove(id);
+            append(RecordType.DEPARTED, id, hop, null, false);
+            forget(id, hop);
             maybeCompact();
+        }
+    }
+
+    /**
+     * Forgets an agent whose copy that left with {@code hop} is gone, unless what is held of it came
+     * with that hop or a later one: the agent came back, or hopped to this same host, whose
+     * ACCEPTED record is written before the sender records the old copy departed.
+     */
+    private void forget(UUID id, long hop) {
+        StoredAgent held = live.get(id);
+        if (held == null || held.hop() < hop || held.hop() == hop && held.phase() == Phase.DEPARTING) {
+            remove(id);
+            eventSeqs.remove(id);
         }
     }
 
@@ -243,9 +319,17 @@ public final class JournalStore implements AgentStore {
     }
 
     @Override
+    public long nextEventSeq(UUID id) {
+        return eventSeqs.getOrDefault(id, 0L);
+    }
+
+    @Override
     public void eventPending(PendingEvent event) throws IOException {
         synchronized (writeLock) {
-            append(RecordType.EVENT_PENDING, event.id(), event.seq(), event.event(), true);
+            append(RecordType.EVENT_PENDING, event.id(), event.seq(), pendingData(event), true);
+            if (live.containsKey(event.id())) {
+                eventSeqs.merge(event.id(), event.seq() + 1, Math::max);
+            }
             events.put(key(event.id(), event.seq()), event);
             liveBytes += event.event().length;
         }
@@ -317,12 +401,47 @@ public final class JournalStore implements AgentStore {
     @Override
     public void close() throws IOException {
         synchronized (writeLock) {
-            if (channel != null) {
-                channel.truncate(end); // no zeros left behind
-                channel.close();
+            try {
+                if (channel != null) {
+                    uninterrupted(() -> channel.truncate(end)); // no zeros left behind
+                    channel.close();
+                }
+            } finally {
+                try {
+                    lock.release();
+                } finally {
+                    lockChannel.close(); // the directory is free for the next host even if the journal could not be tidied
+                }
             }
-            lock.release();
-            lockChannel.close();
+        }
+    }
+
+    /** A write to the journal. */
+    private interface JournalIo {
+        void run() throws IOException;
+    }
+
+    /**
+     * Runs a write to the journal so that a thread's interrupt does not break the store: a
+     * {@link FileChannel} closes itself when a thread blocked in it is interrupted, which would
+     * fail every later write of every thread. The interrupt status is cleared for the write and
+     * set again after it; an interrupt that arrives during the write closes the channel, which is
+     * opened again and the write (to the same position, so it is the same bytes) done once more.
+     */
+    private void uninterrupted(JournalIo io) throws IOException {
+        boolean interrupted = Thread.interrupted();
+        try {
+            try {
+                io.run();
+            } catch (ClosedByInterruptException e) {
+                interrupted |= Thread.interrupted();
+                channel = FileChannel.open(journal, StandardOpenOption.WRITE);
+                io.run();
+            }
+        } finally {
+            if (interrupted) {
+                Thread.currentThread().interrupt();
+            }
         }
     }
 
@@ -343,25 +462,56 @@ public final class JournalStore implements AgentStore {
         }
     }
 
+    /** @return an EVENT_PENDING record's data: when it was first owed, then the event */
+    private static byte[] pendingData(PendingEvent e) {
+        return ByteBuffer.allocate(8 + e.event().length).putLong(e.owedSince()).put(e.event()).array();
+    }
+
+    /**
+     * Remembers an agent's highest hop, forgetting the agent first seen longest ago beyond
+     * {@value #SEEN_CAPACITY} agents (as {@link MemoryStore} does), so a host that sees agents for
+     * days keeps a bounded map and journal. Only a transfer of an old hop of a forgotten agent could
+     * then be taken again, and a sender resends a hop only until it is acknowledged. Called with
+     * the write lock held (or during replay).
+     */
+    private void see(UUID id, long hop) {
+        if (seen.put(id, Math.max(hop, seen.getOrDefault(id, hop))) == null) {
+            seenOrder.addLast(id); // first seen now
+        }
+        for (int tries = seenOrder.size(); seen.size() > seenCapacity && tries > 0; tries--) {
+            UUID oldest = seenOrder.pollFirst();
+            if (live.containsKey(oldest)) {
+                seenOrder.addLast(oldest); // still held here: keep it
+            } else {
+                seen.remove(oldest);
+            }
+        }
+    }
+
     private static String key(UUID id, long seq) {
         return id + "/" + seq;
     }
 
     private void append(RecordType type, UUID id, long number, byte[] data, boolean force) throws IOException {
-        ByteBuffer b = encode(type, id, number, data);
-        int length = b.remaining();
+        ByteBuffer record = encode(type, id, number, data);
+        int length = record.remaining();
         if (length <= PREALLOCATE_MAX_RECORD && end + length > allocated) {
-            preallocate(end + length + PREALLOCATE_BYTES);
+            long size = end + length + PREALLOCATE_BYTES;
+            uninterrupted(() -> preallocate(size));
         }
-        long at = end;
-        while (b.hasRemaining()) {
-            at += channel.write(b, at);
-        }
-        end = at;
+        long start = end;
+        uninterrupted(() -> {
+            ByteBuffer b = record.duplicate();
+            long at = start;
+            while (b.hasRemaining()) {
+                at += channel.write(b, at);
+            }
+            if (force) {
+                channel.force(false);
+            }
+        });
+        end = start + length;
         allocated = Math.max(allocated, end);
-        if (force) {
-            channel.force(false);
-        }
     }
 
     /** Zero-fills the file up to {@code size} and makes that durable (size and blocks), once per step. */
@@ -463,9 +613,13 @@ public final class JournalStore implements AgentStore {
                 throw new IOException("agent store journal " + journal + " is cut short inside its header (" + head.length + " bytes)");
             }
             int version = ByteBuffer.wrap(head, MAGIC.length, 4).getInt();
-            if (version != FORMAT_VERSION) {
-                throw new IOException("agent store journal " + journal + " has format version " + version + "; this RoboMW reads version "
-                        + FORMAT_VERSION + " (start the host with the RoboMW that wrote it until its agents have left, or move the journal away)");
+            if (version < OLDEST_READABLE_VERSION || version > FORMAT_VERSION) {
+                throw new IOException("agent store journal " + journal + " has format version " + version + "; this RoboMW reads versions "
+                        + OLDEST_READABLE_VERSION + " to " + FORMAT_VERSION + " (start the host with the RoboMW that wrote it until its agents have left, or move the journal away)");
+            }
+            readVersion = version;
+            if (version < FORMAT_VERSION) {
+                LOG.info("agent store {}: the journal has format version {}; rewriting it as version {}", dir, version, FORMAT_VERSION);
             }
             return HEADER_LENGTH;
         }
@@ -474,8 +628,9 @@ public final class JournalStore implements AgentStore {
             throw new IOException("agent store journal " + journal + " has no format header (it begins with 0x" + HexFormat.of().formatHex(head)
                     + "): it is not a RoboMW agent journal, or one damaged at its start; move it away to start the host with an empty store");
         }
-        LOG.info("agent store {}: the journal has no format header (written before RoboMW gave it one); reading it as version {} and adding the header",
-                dir, FORMAT_VERSION);
+        readVersion = 1;
+        LOG.info("agent store {}: the journal has no format header (written before RoboMW gave it one); reading it as version 1 and rewriting it as"
+                + " version {}", dir, FORMAT_VERSION);
         return 0;
     }
 
@@ -542,7 +697,7 @@ public final class JournalStore implements AgentStore {
         switch (type) {
             case ACCEPTED -> {
                 put(new StoredAgent(id, number, Phase.ACCEPTED, data));
-                seen.merge(id, number, Math::max);
+                see(id, number);
             }
             case STARTED -> {
                 StoredAgent a = live.get(id);
@@ -551,10 +706,29 @@ public final class JournalStore implements AgentStore {
                 }
             }
             case DEPARTING -> put(new StoredAgent(id, number, Phase.DEPARTING, data));
-            case DEPARTED -> remove(id);
+            case DEPARTED -> {
+                if (readVersion >= DEPARTED_HOP_VERSION) {
+                    forget(id, number);
+                } else {
+                    remove(id);
+                    eventSeqs.remove(id);
+                }
+            }
             case EVENT_PENDING -> {
-                events.put(key(id, number), new PendingEvent(id, number, data));
+                long since = openedAt;
+                if (readVersion >= 2) {
+                    if (data.length < 8) {
+                        throw new IOException("agent store journal " + journal + ": the EVENT_PENDING record at byte " + at + " holds " + data.length
+                                + " bytes, fewer than its 8-byte owed-since time");
+                    }
+                    since = ByteBuffer.wrap(data).getLong();
+                    data = java.util.Arrays.copyOfRange(data, 8, data.length);
+                }
+                events.put(key(id, number), new PendingEvent(id, number, since, data));
                 liveBytes += data.length;
+                if (live.containsKey(id)) {
+                    eventSeqs.merge(id, number + 1, Math::max);
+                }
             }
             case EVENT_DELIVERED -> {
                 PendingEvent e = events.remove(key(id, number));
@@ -562,14 +736,15 @@ public final class JournalStore implements AgentStore {
                     liveBytes -= e.event().length;
                 }
             }
-            case SEEN -> seen.merge(id, number, Math::max);
+            case SEEN -> see(id, number);
+            case EVENT_SEQ -> eventSeqs.merge(id, number, Math::max);
         }
     }
 
     private void maybeCompact() throws IOException {
         long size = end;
         if (size > COMPACT_BYTES && size > 4 * Math.max(liveBytes, 1)) {
-            compact();
+            uninterrupted(this::compact);
         }
     }
 
@@ -591,8 +766,13 @@ public final class JournalStore implements AgentStore {
                         case DEPARTING -> records.add(encode(RecordType.DEPARTING, a.id(), a.hop(), a.image()));
                     }
                 }
+                eventSeqs.forEach((id, next) -> {
+                    if (live.containsKey(id)) {
+                        records.add(encode(RecordType.EVENT_SEQ, id, next, null));
+                    }
+                });
                 for (PendingEvent e : events.values()) {
-                    records.add(encode(RecordType.EVENT_PENDING, e.id(), e.seq(), e.event()));
+                    records.add(encode(RecordType.EVENT_PENDING, e.id(), e.seq(), pendingData(e)));
                 }
                 for (ByteBuffer r : records) {
                     while (r.hasRemaining()) {

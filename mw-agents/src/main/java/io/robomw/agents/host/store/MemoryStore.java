@@ -50,7 +50,7 @@ public final class MemoryStore implements AgentStore {
     }
 
     @Override
-    public void departed(UUID id) {
+    public void departed(UUID id, long hop) {
     }
 
     @Override
@@ -58,6 +58,12 @@ public final class MemoryStore implements AgentStore {
         synchronized (seen) {
             return seen.getOrDefault(id, -1L);
         }
+    }
+
+    /** A memory store resumes nothing: the agent's own number always stands. */
+    @Override
+    public long nextEventSeq(UUID id) {
+        return 0;
     }
 
     @Override

@@ -122,7 +122,13 @@ final class RmiLink implements Link {
                 fail("polling failed: " + e.getMessage());
                 return;
             }
-            FrameBatches.deliver(frames, this, context);
+            try {
+                FrameBatches.deliver(frames, this, context);
+            } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+                LOG.error("node '{}': frames from {} could not be handled ({})", context.nodeName(), address, e.toString(), e);
+                fail("frames could not be handled: " + e);
+                return;
+            }
         }
     }
 

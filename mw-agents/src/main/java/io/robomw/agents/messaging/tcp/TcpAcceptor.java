@@ -61,7 +61,7 @@ final class TcpAcceptor implements Endpoint {
             TcpConnection c;
             try {
                 c = new TcpConnection(s, address, peer, context, open);
-            } catch (IOException e) {
+            } catch (IOException | RuntimeException | LinkageError e) {
                 LOG.warn("node '{}': connection from {} failed: {}", context.nodeName(), peer, e.toString());
                 closeQuietly(s);
                 continue;

@@ -143,6 +143,8 @@ final class TcpConnection implements Link {
             if (!closed.get()) {
                 LOG.warn("node '{}': connection {} failed: {}", context.nodeName(), peer, e.toString());
             }
+        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+            LOG.error("node '{}': reading from {} failed ({}); closing this connection, the node goes on", context.nodeName(), peer, e.toString(), e);
         } finally {
             close();
         }

@@ -134,7 +134,12 @@ public final class DatagramPort implements AutoCloseable {
                 context.dropped(DropReason.OVERSIZED, from.toString(), "datagram of " + datagram.length + " bytes, above the limit of " + maxFrame);
                 continue;
             }
-            context.onFrame(datagram, 0, datagram.length, peerOf.apply(from));
+            try {
+                context.onFrame(datagram, 0, datagram.length, peerOf.apply(from));
+            } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+                LOG.error("node '{}': a datagram from {} on {} could not be handled ({}); dropped, the node goes on", context.nodeName(), from, label,
+                        e.toString(), e);
+            }
         }
     }
 }

@@ -29,8 +29,8 @@ class JournalStoreTest {
         accept(store, departing, 1, new byte[] {4});
         store.departing(departing, 2, new byte[] {0, 5, 6, 0}, 1, 2);
         accept(store, gone, 7, new byte[300_000]); // larger than a preallocation step holds ahead
-        store.departed(gone);
-        store.eventPending(new AgentStore.PendingEvent(started, 1, new byte[] {9}));
+        store.departed(gone, 8);
+        store.eventPending(new AgentStore.PendingEvent(started, 1, 1_700_000_000_123L, new byte[] {9}));
         long withZeros = Files.size(live.resolve("journal"));
         assertTrue(withZeros >= 4 << 20, "the journal is grown ahead of its records: " + withZeros);
 
@@ -68,5 +68,7 @@ class JournalStoreTest {
         assertArrayEquals(new byte[] {5, 6}, d.image());
         assertEquals(7, s.highestHop(gone));
         assertEquals(1, s.recoveredEvents().size());
+        assertEquals(1_700_000_000_123L, s.recoveredEvents().get(0).owedSince(), "an owed event keeps its age across restarts");
+        assertArrayEquals(new byte[] {9}, s.recoveredEvents().get(0).event());
     }
 }

@@ -13,12 +13,23 @@ public final class IntelligentInterfaceInputs {
      * @param digital bit i = E(i+1)
      * @param ex      EX, 0..1023, or −1 before it was first read
      * @param ey      EY, 0..1023, or −1 before it was first read
-     * @param atNanos when it was read ({@link System#nanoTime()})
+     * @param atNanos when it was read (the platform's clock)
      */
     public record Snapshot(int digital, int ex, int ey, long atNanos) {
     }
 
+    private final io.robomw.api.Clock clock;
     private volatile Snapshot latest;
+
+    /** @param clock the platform's clock, which dates the polls */
+    public IntelligentInterfaceInputs(io.robomw.api.Clock clock) {
+        this.clock = java.util.Objects.requireNonNull(clock, "clock");
+    }
+
+    /** @return how long ago, on the platform's clock, a snapshot was read */
+    public long ageNanos(Snapshot s) {
+        return clock.nanoTime() - s.atNanos();
+    }
     private final java.util.concurrent.CompletableFuture<Void> firstPoll = new java.util.concurrent.CompletableFuture<>();
 
     /** @return completes when the first poll's inputs are published */
@@ -29,7 +40,7 @@ public final class IntelligentInterfaceInputs {
     void publish(int digital, int ex, int ey) {
         Snapshot previous = latest;
         latest = new Snapshot(digital, ex >= 0 ? ex : previous == null ? -1 : previous.ex(), ey >= 0 ? ey : previous == null ? -1 : previous.ey(),
-                System.nanoTime());
+                clock.nanoTime());
         firstPoll.complete(null);
     }
 

@@ -59,7 +59,7 @@ public final class IntelligentInterfaceSensorPlatform extends SensorPlatform {
                     .thenCompose(e -> e == null ? read(sensor, field) : CompletableFuture.failedFuture(new RobotLinkException(
                             "robot '" + robot + "': the Intelligent Interface has not answered a poll yet", e)));
         }
-        if (System.nanoTime() - s.atNanos() > STALE.toNanos() || field.applyAsInt(s) < 0) {
+        if (inputs.ageNanos(s) > STALE.toNanos() || field.applyAsInt(s) < 0) {
             return CompletableFuture.failedFuture(new RobotLinkException("robot '" + robot + "': no fresh reading of '" + sensor.name()
                     + "' from the Intelligent Interface (none within " + STALE.toMillis() + " ms); is its link up?", null));
         }

@@ -62,7 +62,7 @@ public final class TxtMotorPlatform extends GenericMotorPlatform {
      *
      * @param values     I1..I8 as the TXT reported them
      * @param generation the configuration generation they were read in
-     * @param atNanos    {@link System#nanoTime()} when they arrived
+     * @param atNanos    the platform's clock time when they arrived
      */
     record Inputs(int[] values, int generation, long atNanos) {
     }
@@ -165,8 +165,13 @@ public final class TxtMotorPlatform extends GenericMotorPlatform {
                     direction[i] = Integer.signum(driven);
                 }
             }
-            inputs = new Inputs(reading.reply().input(), reading.generation(), System.nanoTime());
+            inputs = new Inputs(reading.reply().input(), reading.generation(), clock().nanoTime());
         }
+    }
+
+    /** @return how long ago, on the platform's clock, inputs read at {@code atNanos} were read */
+    long ageNanos(Inputs in) {
+        return clock().nanoTime() - in.atNanos();
     }
 
     /** @return the inputs of the last exchange, or {@code null} if it failed or none ran yet */

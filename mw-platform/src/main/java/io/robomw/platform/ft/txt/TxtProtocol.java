@@ -359,7 +359,9 @@ public final class TxtProtocol {
 
         /**
          * @param reply a 24-byte status reply
-         * @return its fields; the name ends at its first NUL
+         * @return its fields; the name ends at its first NUL, and a name that is not UTF-8 is read
+         *         byte by byte, printable ASCII as it is and any other byte as '?' (so it keeps its 16
+         *         bytes: replacement characters would not fit)
          */
         public static Status decode(byte[] reply) {
             check(reply, QUERY_STATUS_REPLY, QUERY_STATUS_REPLY_LENGTH);
@@ -367,8 +369,18 @@ public final class TxtProtocol {
             while (end < STATUS_NAME_OFFSET + DEVICE_NAME_LENGTH && reply[end] != 0) {
                 end++;
             }
-            return new Status(new String(reply, STATUS_NAME_OFFSET, end - STATUS_NAME_OFFSET, StandardCharsets.UTF_8),
-                    LittleEndian.u32(reply, STATUS_VERSION_OFFSET));
+            int length = end - STATUS_NAME_OFFSET;
+            String name;
+            try {
+                name = StandardCharsets.UTF_8.newDecoder().decode(java.nio.ByteBuffer.wrap(reply, STATUS_NAME_OFFSET, length)).toString();
+            } catch (java.nio.charset.CharacterCodingException notUtf8) {
+                StringBuilder b = new StringBuilder(length);
+                for (int i = STATUS_NAME_OFFSET; i < end; i++) {
+                    b.append(reply[i] >= 0x20 && reply[i] < 0x7F ? (char) reply[i] : '?');
+                }
+                name = b.toString();
+            }
+            return new Status(name, LittleEndian.u32(reply, STATUS_VERSION_OFFSET));
         }
     }
 

@@ -108,7 +108,7 @@ public final class TxtSensorPlatform extends SensorPlatform {
 
     private CompletableFuture<Double> read(String name, int input, int generation) {
         TxtMotorPlatform.Inputs in = motors.inputs();
-        if (in == null || in.generation() < generation || System.nanoTime() - in.atNanos() > FRESH_NANOS) {
+        if (in == null || in.generation() < generation || motors.ageNanos(in) > FRESH_NANOS) {
             try {
                 motors.exchangeNow();
             } catch (IOException e) {

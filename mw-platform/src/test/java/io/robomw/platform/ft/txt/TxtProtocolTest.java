@@ -218,4 +218,16 @@ class TxtProtocolTest {
         x.pwm()[0] = 1;
         assertEquals(512, x.pwm()[0]);
     }
+    @Test
+    void aStatusWhoseNameIsNotUtf8IsReadByteByByteAndKeepsItsSixteenBytes() {
+        // Found by fuzzing (BrickRepliesFuzzTest#txtReply): 0xFF decoded as a replacement character took 3 bytes,
+        // and the name no longer fitted its 16, so the driver's handshake failed with an IllegalArgumentException.
+        byte[] reply = new TxtProtocol.Status("TXT-emulator", 0x04060600L).encode();
+        reply[4 + 3] = (byte) 0xFF;
+        TxtProtocol.Status s = TxtProtocol.Status.decode(reply);
+        assertEquals("TXT?emulator", s.deviceName());
+        assertEquals(0x04060600L, s.version());
+        byte[] utf8 = new TxtProtocol.Status("TXT-été", 1).encode();
+        assertEquals("TXT-été", TxtProtocol.Status.decode(utf8).deviceName(), "a UTF-8 name as it is");
+    }
 }

@@ -1,0 +1,146 @@
+package io.robomw.platform;
+
+import com.code_intelligence.jazzer.junit.FuzzTest;
+import io.robomw.api.RobotException;
+import io.robomw.platform.brick.BrickChannel;
+import io.robomw.platform.ev3.Ev3Brick;
+import io.robomw.platform.ev3.Ev3Command;
+import io.robomw.platform.ev3.Ev3Reply;
+import io.robomw.platform.ft.intelligent.IntelligentInterfaceTelegram;
+import io.robomw.platform.ft.txt.TxtController;
+import io.robomw.platform.ft.txt.TxtProtocol;
+import io.robomw.platform.link.Communicator;
+import io.robomw.platform.link.Link;
+import io.robomw.platform.nxt.NxtBrick;
+import io.robomw.platform.nxt.NxtTelegram;
+
+import java.io.IOException;
+import java.time.Duration;
+import java.util.List;
+
+/**
+ * Fuzz tests of what the drivers read from a brick (docs/fuzzing.md): any bytes as everything an
+ * NXT, EV3, TXT or Intelligent Interface sends back, read by the driver's own brick class over a
+ * link that serves them. A driver may refuse what it reads only with an {@link IOException} (the
+ * link failed, lost its framing, or the reply did not come) or a {@link RobotException} (the brick
+ * answered an error), both naming what was wrong; anything else (an index out of bounds, a
+ * negative length) is a finding.
+ */
+class BrickRepliesFuzzTest {
+
+    private static final Duration REPLY_TIMEOUT = Duration.ofMillis(1);
+
+    /** A link whose far end sends {@code bytes} and then nothing; what is written to it is dropped. */
+    private static final class ReplyLink implements Link {
+        private final byte[] bytes;
+        private int at;
+        private boolean open;
+
+        ReplyLink(byte[] bytes) {
+            this.bytes = bytes;
+        }
+
+        @Override
+        public void open() {
+            open = true;
+        }
+
+        @Override
+        public boolean isOpen() {
+            return open;
+        }
+
+        @Override
+        public void write(byte[] data, int off, int len) {
+        }
+
+        @Override
+        public int read(byte[] buf, int off, int len, Duration timeout) {
+            int n = Math.min(len, bytes.length - at);
+            System.arraycopy(bytes, at, buf, off, n);
+            at += n;
+            return n;
+        }
+
+        @Override
+        public String describe() {
+            return "fuzzed brick";
+        }
+
+        @Override
+        public void close() {
+            open = false;
+        }
+    }
+
+    private static BrickChannel channel(byte[] bytes) throws IOException {
+        Communicator c = new Communicator(new ReplyLink(bytes));
+        c.open();
+        return new BrickChannel("fuzzbot", c, REPLY_TIMEOUT);
+    }
+
+    @FuzzTest
+    void nxtReply(byte[] bytes) throws IOException {
+        NxtBrick brick = new NxtBrick("fuzzbot", channel(bytes));
+        try {
+            brick.request(NxtTelegram.getInputValues(0), 16, 0);
+            brick.requestAll(List.of(new NxtBrick.Request(NxtTelegram.resetMotorPosition(true, 1, false), NxtTelegram.STATUS_REPLY, 1), new NxtBrick.Request(NxtTelegram.playTone(true, 440, 10), NxtTelegram.STATUS_REPLY, -1)));
+        } catch (IOException | RobotException refused) {
+            // the documented refusal
+        }
+    }
+
+    @FuzzTest
+    void ev3Reply(byte[] bytes) throws IOException {
+        Ev3Brick brick = new Ev3Brick("fuzzbot", channel(bytes));
+        try {
+            Ev3Reply r = brick.request(Ev3Command.withReply(4).outputGetCount(0, 0).build());
+            r.data32(0);
+        } catch (IOException | RobotException refused) {
+            // the documented refusal
+        }
+        try {
+            Ev3Reply.decode(bytes);
+        } catch (IllegalArgumentException refused) {
+            // the documented refusal
+        }
+    }
+
+    @FuzzTest
+    void txtReply(byte[] bytes) throws IOException {
+        TxtController txt = new TxtController("fuzzbot", channel(bytes));
+        try {
+            txt.open();
+        } catch (IOException | RobotException refused) {
+            // the documented refusal
+        }
+        try {
+            TxtProtocol.Status.decode(bytes);
+        } catch (IllegalArgumentException refused) {
+            // the documented refusal
+        }
+    }
+
+    /** What the TXT's emulator decodes: a configuration request (the driver encodes them). */
+    @FuzzTest
+    void txtConfig(byte[] bytes) {
+        try {
+            TxtProtocol.Config c = TxtProtocol.Config.decode(bytes);
+            if (!TxtProtocol.Config.decode(c.encode()).equals(c)) {
+                throw new AssertionError("a configuration does not survive its own encoding: " + c);
+            }
+        } catch (IllegalArgumentException refused) {
+            // the documented refusal
+        }
+    }
+
+    @FuzzTest
+    void intelligentInterfaceReply(byte[] bytes) {
+        if (bytes.length == 3) {
+            int value = IntelligentInterfaceTelegram.analog(bytes);
+            if (value < 0 || value > 1023) {
+                throw new AssertionError("an analog reading outside 0..1023: " + value);
+            }
+        }
+    }
+}
