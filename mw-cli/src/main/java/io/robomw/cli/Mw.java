@@ -18,6 +18,24 @@ public final class Mw {
      * @param args the command line
      */
     public static void main(String[] args) {
+        boundRmiConnections();
         System.exit(new CommandLine(new Mw()).execute(args));
+    }
+
+    /**
+     * Java RMI's own defaults, set before RMI starts unless the user set them: an RMI connection
+     * that sends no call for 2 minutes is closed (the JDK waits 2 hours, so held connections pile
+     * up), and a thread that served a closed connection ends after 5 s idle (the JDK keeps it a
+     * minute). Agent hosts and RMI messaging endpoints serve peers they do not know yet.
+     */
+    static void boundRmiConnections() {
+        setIfAbsent("sun.rmi.transport.tcp.readTimeout", "120000");
+        setIfAbsent("sun.rmi.transport.tcp.threadKeepAliveTime", "5000");
+    }
+
+    private static void setIfAbsent(String property, String value) {
+        if (System.getProperty(property) == null) {
+            System.setProperty(property, value);
+        }
     }
 }
