@@ -47,6 +47,7 @@ public final class BrickPlatform implements RobotPlatform {
     private volatile boolean linkDown;
     private final java.util.concurrent.atomic.AtomicLong driverErrors = new java.util.concurrent.atomic.AtomicLong();
     private Thread linkThread;
+    private final ThrottledWarnings refusals = new ThrottledWarnings(LOG, java.time.Duration.ofSeconds(1));
 
     /**
      * Creates every sensor of the description.
@@ -136,11 +137,13 @@ public final class BrickPlatform implements RobotPlatform {
                 actionThread.linkFailed(config.platformName(), e);
             }
         } catch (RuntimeException e) {
-            // The brick answered but refused (a bad status): the link is fine; say so and go on.
-            long n = driverErrors.incrementAndGet();
-            if (Long.bitCount(n) == 1) {
-                LOG.error("robot '{}': the driver failed ({} times so far): {}", config.robotName(), n, e.getMessage(), e);
-            }
+            // The brick answered but refused (an error status): the link is fine. The commands
+            // running now fail with the brick's own words, at once; the log gets one line a second
+            // at most, and the stack trace only at debug level.
+            driverErrors.incrementAndGet();
+            actionThread.driverFailed(e);
+            refusals.warn("{}", e.getMessage());
+            LOG.debug("robot '{}': the driver's refusal", config.robotName(), e);
         }
     }
 

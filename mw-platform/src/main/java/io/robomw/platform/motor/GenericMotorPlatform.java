@@ -321,6 +321,7 @@ public abstract class GenericMotorPlatform {
      * thread each cycle, or inline by a simulator.
      *
      * @throws IOException if the link failed; unsent states are kept and sent on the next call
+     * @throws RuntimeException if the hardware refused them (a brick's error status); they are not sent again
      */
     public final void serviceLink() throws IOException {
         if (!published.isEmpty()) {
@@ -336,12 +337,14 @@ public abstract class GenericMotorPlatform {
                 for (MotorState s : batch) {
                     sentStates.put(s.port(), s);
                 }
-            } catch (IOException | RuntimeException e) {
+            } catch (IOException e) {
                 for (MotorState s : batch) {
                     published.putIfAbsent(s.port(), s);
                 }
                 throw e;
             }
+            // A refusal (RuntimeException: the brick answered with an error status) is not sent
+            // again: it would be refused again, every cycle; the commands that wanted it fail with it.
         }
         pollFeedback();
     }

@@ -60,7 +60,7 @@ public final class NxtBrick {
         byte[] reply = requestAllowing(telegram, replyLength, port);
         int status = reply[NxtTelegram.STATUS_OFFSET] & 0xFF;
         if (status != NxtStatus.SUCCESS) {
-            throw new NxtException(robot, telegram[1] & 0xFF, port, status);
+            throw new NxtException(robot, telegram[1] & 0xFF, port, status, telegram);
         }
         return reply;
     }
@@ -100,7 +100,7 @@ public final class NxtBrick {
         });
         for (int i = 0; i < statuses.length; i++) {
             if (statuses[i] != NxtStatus.SUCCESS) {
-                throw new NxtException(robot, telegrams.get(i)[1] & 0xFF, ports[i], statuses[i]);
+                throw new NxtException(robot, telegrams.get(i)[1] & 0xFF, ports[i], statuses[i], telegrams.get(i));
             }
         }
     }
