@@ -168,6 +168,49 @@ class HostileWorldFilesTest {
     }
 
     @Test
+    void selfReferencingAliasInTheWorldFileItselfIsRefusedAtTheAlias() throws IOException {
+        DescriptionException e = refused("""
+                arena: &a { width: 4, height: 3, inner: *a }
+                """);
+
+        Problem p = e.problems().get(0);
+        assertTrue(p.file().endsWith("world.yaml"), p::toString);
+        assertEquals(1, p.line());
+        assertTrue(p.message().contains("*a"), p::toString);
+        assertPlain(p);
+    }
+
+    @Test
+    void duplicateKeysInTheWorldFileAreAnError() throws IOException {
+        DescriptionException e = refused("""
+                arena: { width: 4, height: 3, width: 5 }
+                """);
+
+        assertTrue(e.problems().stream().anyMatch(p -> p.line() == 1 && p.message().contains("width")
+                && p.message().contains("appears twice")), e::getMessage);
+    }
+
+    @Test
+    void worldFileAboveOneMebibyteIsRefusedWithoutReadingItAll() throws IOException {
+        DescriptionException e = refused("arena: { width: 4, height: 3 }\n# " + "x".repeat(2 << 20) + "\n");
+
+        assertTrue(e.getMessage().contains("larger than 1 MiB"), e::getMessage);
+    }
+
+    @Test
+    void nonUtf8WorldFileIsRefusedInWords() throws IOException {
+        Path file = dir.resolve("latin1.yaml");
+        Files.write(file, "arena: { width: 4, height: 3 }\nname: caf\u00e9\n".getBytes(java.nio.charset.StandardCharsets.ISO_8859_1));
+
+        DescriptionException e = assertThrows(DescriptionException.class, () -> Simulation.load(file).close());
+
+        Problem p = e.problems().get(0);
+        assertEquals(2, p.line(), p::toString);
+        assertTrue(p.message().contains("UTF-8"), p::toString);
+        assertPlain(p);
+    }
+
+    @Test
     void rangeIndexRefusesAreasItCannotGridInsteadOfOverflowing() {
         IllegalArgumentException huge = assertThrows(IllegalArgumentException.class,
                 () -> new RangeIndex(-1e300, -1e300, 2e300, 2e300, 2.0, new double[0][], new double[0][]));
