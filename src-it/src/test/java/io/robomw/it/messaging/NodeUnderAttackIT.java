@@ -235,7 +235,8 @@ class NodeUnderAttackIT {
             assertEquals(100, accepted.size(), "accepted beyond the limit");
             assertEquals(200, refused);
         }
-        assertTrue(during.rss() - base.rss() < 64_000_000, "RSS while held: " + during.minus(base));
+        assertTrue(during.heap() - base.heap() < 16_000_000, "heap while held: " + during.minus(base));
+        assertTrue(during.rss() - base.rss() < 96_000_000, "RSS while held: " + during.minus(base));
         assertTrue(during.threads() - base.threads() <= 2 * 100 + 4, "threads while held: " + during.minus(base));
         assertTrue(dropped(node, "TIMED_OUT") >= accepted.size(), "each held connection timed out");
         try (Socket again = new Socket(InetAddress.getLoopbackAddress(), port)) {

@@ -19,19 +19,25 @@ import java.util.concurrent.TimeUnit;
  * ({@link FrameException}); the caller drops the connection and keeps serving the others.
  *
  * <p>What a peer can make it hold is bounded by what the peer sent, not by what it announced: the
- * buffer starts at {@value #INITIAL} bytes and grows (doubling) only as bytes arrive, so a header
- * announcing a 1 MiB frame costs nothing until the megabyte comes; after a large frame the
- * buffer shrinks back. With {@link Timeouts}, a stream that delivers no whole frame within the
- * first-frame timeout (from the start) or the idle timeout (from each call of {@link #next()}) ends with
- * {@link DropReason#TIMED_OUT}: a peer that stops in the middle of a frame, or sends a byte now
- * and then, cannot hold the connection.
+ * buffer starts at {@value #INITIAL} bytes and grows (doubling) only as bytes arrive: to
+ * {@value #STREAMING} while reads keep filling it, beyond that only for a frame that needs it, so
+ * a header announcing a 1 MiB frame costs nothing until the megabyte comes; after a large frame
+ * the buffer shrinks back to {@value #STREAMING}. With {@link Timeouts}, a stream that delivers
+ * no whole frame within the first-frame timeout (from the start) or the idle timeout (from each
+ * call of {@link #next()}) ends with {@link DropReason#TIMED_OUT}: a peer that stops in the
+ * middle of a frame, or sends a byte now and then, cannot hold the connection.
  *
  * <p>Not thread-safe: one reader thread per connection.
  */
 public final class FrameStreamReader {
 
-    /** The buffer's size when it holds no large frame. */
-    public static final int INITIAL = 64 * 1024;
+    /** The buffer's size at first: what a connection that has sent nothing much costs. */
+    public static final int INITIAL = 8 * 1024;
+    /**
+     * The size it grows to while bytes stream in (each read filling it), for reading in large
+     * chunks; and the size it shrinks back to after a frame larger than that.
+     */
+    public static final int STREAMING = 64 * 1024;
 
     /** How a reader bounds the time a read may block: a socket's {@code SO_TIMEOUT}. */
     @FunctionalInterface
@@ -101,9 +107,9 @@ public final class FrameStreamReader {
             // counted from when the caller is done with the last frame (a listener may take long)
             deadline = System.nanoTime() + timeouts.idleNanos();
         }
-        if (buf.length > INITIAL && end - start <= INITIAL) {
+        if (buf.length > STREAMING && end - start <= STREAMING) {
             // a large frame is done: give its memory back
-            byte[] small = new byte[INITIAL];
+            byte[] small = new byte[STREAMING];
             System.arraycopy(buf, start, small, 0, end - start);
             end -= start;
             start = 0;
@@ -153,11 +159,16 @@ public final class FrameStreamReader {
                 // full and the frame goes on: grow with what arrives, never beyond the frame
                 buf = Arrays.copyOf(buf, (int) Math.min(needed, 2L * buf.length));
             }
+            int space = buf.length - end;
             int n = read(needed);
             if (n < 0) {
                 return false;
             }
             end += n;
+            if (n == space && buf.length < STREAMING) {
+                // the peer sends faster than one buffer a read: read in larger chunks
+                buf = Arrays.copyOf(buf, buf.length * 2);
+            }
         }
         return true;
     }

@@ -47,7 +47,8 @@ public final class OutboundBuffer {
         void write(byte[] buf, int offset, int length) throws IOException;
     }
 
-    private static final int INITIAL = 64 * 1024;
+    /** Each of the two buffers starts this small and doubles as frames wait: an idle link holds 8 KiB. */
+    private static final int INITIAL = 4 * 1024;
     private static final byte[] EMPTY = new byte[0];
     private static final int LINGER_BYTES = 32 * 1024;
     private static final long LINGER_NANOS = 50_000;

@@ -40,6 +40,16 @@ class FrameStreamReaderTest {
     }
 
     @Test
+    void aPeerThatSendsOneSmallFrameCostsOnlyTheInitialBuffer() throws Exception {
+        byte[] small = new byte[200];
+        System.arraycopy(prefix(200), 0, small, 0, FrameCodec.PREFIX_LENGTH);
+        FrameStreamReader r = new FrameStreamReader(new ByteArrayInputStream(small), MIB);
+
+        assertEquals(200, r.next());
+        assertEquals(FrameStreamReader.INITIAL, r.capacity());
+    }
+
+    @Test
     void bufferShrinksBackAfterALargeFrame() throws Exception {
         ByteArrayOutputStream s = new ByteArrayOutputStream();
         byte[] big = new byte[MIB];
@@ -53,7 +63,7 @@ class FrameStreamReaderTest {
         assertEquals(MIB, r.next());
         assertEquals(MIB, r.capacity());
         assertEquals(200, r.next());
-        assertEquals(FrameStreamReader.INITIAL, r.capacity());
+        assertEquals(FrameStreamReader.STREAMING, r.capacity());
         assertEquals(-1, r.next());
     }
 }
