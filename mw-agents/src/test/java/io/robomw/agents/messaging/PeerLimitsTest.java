@@ -154,14 +154,32 @@ class PeerLimitsTest {
     }
 
     private static String requestFailure(MessagingNode client, MessagingNode server) {
+        return requestFailure(client, server, "tcp");
+    }
+
+    private static String requestFailure(MessagingNode client, MessagingNode server, String scheme) {
         try {
-            Object answer = client.request("server", server.address("tcp"), null, "ask", "?", "q", Duration.ofSeconds(10)).join().payload();
+            Object answer = client.request("server", server.address(scheme), null, "ask", "?", "q", Duration.ofSeconds(10)).join().payload();
             throw new AssertionError("a node beyond its connection limit answered: " + answer);
         } catch (MessagingException e) {
             return e.getMessage();
         } catch (java.util.concurrent.CompletionException e) {
             return String.valueOf(e.getCause().getMessage());
         }
+    }
+
+    @Test
+    void rmiSessionsBeyondTheLimitAreRefusedNamingIt() {
+        MessagingNode server = node("server", PeerLimits.defaults().withMaxConnections(1), false);
+        server.bind("rmi://127.0.0.1:0/limited");
+        server.addMessageListener("ask", null, m -> server.replyMessage(m, "yes", "answer"));
+        MessagingNode first = node("first", PeerLimits.defaults(), false);
+        assertEquals("yes", first.request("server", server.address("rmi"), null, "ask", "?", "q", Duration.ofSeconds(10)).join().payload());
+
+        MessagingNode second = node("second", PeerLimits.defaults(), false);
+        String failure = requestFailure(second, server, "rmi");
+        assertTrue(failure.contains("serves at most 1 sessions (maxConnections)"), failure);
+        Await.until("the refusal is counted", WAIT, () -> server.stats().dropped(DropReason.LIMIT) == 1);
     }
 
     @Test
