@@ -115,9 +115,11 @@ public interface Motion {
 
     /**
      * Runs a named action of an extra actuator (a gripper, an arm), as listed by
-     * {@link Robot#actions()}, for example {@code perform("gripper.close")}. Blocks until done.
+     * {@link Robot#actions()}, for example {@code perform("gripper.close")}, or a high-level action
+     * of the robot's firmware ({@code perform("sit")}, {@code perform("head.pan", 0.5)}). Blocks
+     * until done.
      *
-     * @param action the action's name, {@code actuator.action}
+     * @param action the action's name, {@code actuator.action}, or the high-level action's name
      * @param args   the action's arguments, if its description asks for any (for example an angle in radians)
      * @throws UnsupportedActionException if the robot has no such action, or the arguments do not fit it
      */

@@ -63,6 +63,12 @@ public interface Perception {
      * The robot's pose as estimated from its wheel encoders (odometry), relative to where it was
      * opened (or last {@link #resetPose reset}). Does not block on the hardware.
      *
+     * <p>A legged robot (its description has a legged drive) reports no wheel travel: its pose is
+     * dead reckoning from the commanded gait. Each walking command counts at its commanded
+     * velocities, whole when the robot reports it done, for the time it ran when it was ended
+     * early; slipping feet, stumbles and walls are not seen, so the estimate drifts as the real
+     * robot's does.
+     *
      * @return the estimated pose
      * @throws UnsupportedActionException if the robot has no encoders to estimate from
      */

@@ -11,6 +11,8 @@ public enum Quantity {
     ANGLE,
     /** Radians per second. */
     ANGULAR_RATE,
+    /** Metres per second squared. */
+    ACCELERATION,
     /** A fraction of full scale, 0 to 1 (reflected or ambient light). */
     RATIO,
     /** True or false (pressed, detected), as 1 or 0. */

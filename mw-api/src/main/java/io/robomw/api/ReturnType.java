@@ -25,6 +25,8 @@ public enum ReturnType {
     DEGREES_PER_SECOND(Set.of(Quantity.ANGULAR_RATE)),
     /** Radians per second. */
     RADIANS_PER_SECOND(Set.of(Quantity.ANGULAR_RATE)),
+    /** Metres per second squared. */
+    METERS_PER_SECOND_SQUARED(Set.of(Quantity.ACCELERATION)),
     /** Lux; fits light sensors whose description gives a lux calibration. */
     LUX(Set.of(Quantity.RATIO)),
     /** Decibels. */

@@ -38,7 +38,11 @@ public interface Robot extends Motion, Perception, Messaging, Agency, AutoClosea
     /** @return the sensors this robot has, in the order of its description */
     List<SensorInfo> sensors();
 
-    /** @return the named actions of its extra actuators ({@code "gripper.open"}...), usable with {@link #perform} */
+    /**
+     * @return the named actions of its extra actuators ({@code "gripper.open"}...) and the
+     *         high-level actions its firmware performs ({@code "sit"}, {@code "head.pan"}), usable
+     *         with {@link #perform}
+     */
     List<String> actions();
 
     /** Stops every motor and releases the link to the hardware. Idempotent. */

@@ -19,7 +19,11 @@ public enum SensorType {
     /** Compass: heading. */
     COMPASS(Quantity.ANGLE),
     /** A motor's rotation counter (tachometer). */
-    TACHO(Quantity.ANGLE);
+    TACHO(Quantity.ANGLE),
+    /** Acceleration along one axis of the robot's body (an accelerometer axis). */
+    ACCELEROMETER(Quantity.ACCELERATION),
+    /** A joint's angle as its servo reports it (a leg, the neck, the tail of a legged robot). */
+    JOINT(Quantity.ANGLE);
 
     private final Quantity quantity;
 

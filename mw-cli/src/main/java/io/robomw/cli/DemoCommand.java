@@ -7,8 +7,13 @@ import io.robomw.api.AgentRef;
 import io.robomw.api.Pose;
 import io.robomw.sim.SimRobot;
 import io.robomw.sim.Simulation;
-import io.robomw.sim.emulator.BrickEmulator;
+import io.robomw.config.description.RobotDescription;
+import io.robomw.config.description.RobotDescriptionLoader;
+import io.robomw.sim.emulator.Emulator;
+import io.robomw.sim.emulator.aibo.AiboEmulator;
+import io.robomw.sim.emulator.ev3.Ev3Emulator;
 import io.robomw.sim.emulator.ft.intelligent.IntelligentInterfaceEmulator;
+import io.robomw.sim.emulator.ft.txt.TxtEmulator;
 import io.robomw.sim.emulator.nxt.NxtEmulator;
 import io.robomw.sim.render.PngRenderer;
 import io.robomw.sim.render.RenderOptions;
@@ -50,25 +55,30 @@ import java.util.concurrent.TimeUnit;
 
 /**
  * {@code mw demo}: the paper's scenario (section IV, Fig. 7-8) in one command. One simulated world
- * with a LEGO NXT robot and a fischertechnik robot; a virtual NXT brick and a virtual
- * fischertechnik Intelligent Interface bound to them, each on its own pseudo-terminal; two agent
- * host processes, each driving its robot through the real driver over that pseudo-terminal; and
- * clones of one agent, shipped from the examples jar, dispatched to both hosts. Each clone drives a
- * square, samples its range sensor and brings the samples home; the demo prints a table per robot,
- * writes a picture of both trajectories, stops every process and exits 0.
+ * with a LEGO NXT robot and a fischertechnik robot (and, with {@code --robots nxt,ft,aibo}, the
+ * paper's third platform, a Sony Aibo); a virtual brick bound to each (a virtual NXT brick and a
+ * virtual fischertechnik Intelligent Interface, each on its own pseudo-terminal; the Aibo's URBI
+ * server on a TCP port); one agent host process per robot, each driving its robot through the real
+ * driver over that link; and clones of one agent, shipped from the examples jar, dispatched to
+ * every host. Each clone drives a square, samples its range sensor and brings the samples home;
+ * the demo prints a table per robot, writes a picture of the trajectories, stops every process and
+ * exits 0.
  */
 @Command(name = "demo", mixinStandardHelpOptions = true,
-        description = {"The paper's scenario: clones of one agent sent to a LEGO NXT and a fischertechnik robot (simulated, behind virtual bricks).",
-                "Writes demo.png (both trajectories) and prints each robot's results."})
+        description = {"The paper's scenario: clones of one agent sent to a LEGO NXT and a fischertechnik robot (simulated, behind virtual bricks);",
+                "--robots nxt,ft,aibo adds the Sony Aibo. Writes demo.png (the trajectories) and prints each robot's results."})
 final class DemoCommand implements Callable<Integer> {
 
     private static final String AGENT = "io.robomw.examples.agents.SquareSurveyAgent";
-    private static final List<String> ROBOTS = List.of("nxt", "ft");
+
+    @Option(names = "--robots", split = ",", defaultValue = "nxt,ft", paramLabel = "NAME,...",
+            description = "the robots of the world to send clones to (default ${DEFAULT-VALUE}, the paper's two; nxt,ft,aibo adds the Aibo)")
+    List<String> robots;
 
     @Option(names = "--home", description = "the RoboMW checkout (default: the mw.home property the mw launcher sets, else .)")
     Path home;
 
-    @Option(names = "--world", paramLabel = "WORLD.yaml", description = "the world (default: examples/worlds/arena.yaml); its robots 'nxt' and 'ft' are used")
+    @Option(names = "--world", paramLabel = "WORLD.yaml", description = "the world (default: examples/worlds/arena.yaml); its robots named by --robots are used")
     Path world;
 
     @Option(names = "--agent-jar", paramLabel = "JAR", description = "the jar with the agent (default: examples/target/examples-0.1.0-SNAPSHOT.jar)")
@@ -132,10 +142,21 @@ final class DemoCommand implements Callable<Integer> {
         new SecureRandom().nextBytes(secret);
         Files.writeString(keyFile, HexFormat.of().formatHex(secret));
         WorldDescription description = new WorldLoader().load(worldFile);
+        List<String> names = List.copyOf(new java.util.LinkedHashSet<>(robots));
         Map<String, Path> robotFiles = new LinkedHashMap<>();
-        for (String r : ROBOTS) {
-            robotFiles.put(r, description.robots().stream().filter(p -> p.name().equals(r)).findFirst()
-                    .orElseThrow(() -> new IllegalArgumentException(worldFile + " has no robot '" + r + "'")).description());
+        Map<String, String> platforms = new LinkedHashMap<>();
+        for (String r : names) {
+            Path file = description.robots().stream().filter(p -> p.name().equals(r)).findFirst()
+                    .orElseThrow(() -> new IllegalArgumentException(worldFile + " has no robot '" + r + "'; its robots are "
+                            + description.robots().stream().map(WorldDescription.RobotPlacement::name).toList())).description();
+            robotFiles.put(r, file);
+            RobotDescription d = new RobotDescriptionLoader().load(file);
+            if (!EMULATORS.containsKey(d.platform())) {
+                spec.commandLine().getErr().println("mw demo: robot '" + r + "' is on platform '" + d.platform() + "', which has no emulator; emulated: "
+                        + EMULATORS.keySet());
+                return 2;
+            }
+            platforms.put(r, d.platform());
         }
         long started = System.nanoTime();
         List<Process> hosts = new ArrayList<>();
@@ -151,12 +172,21 @@ final class DemoCommand implements Callable<Integer> {
             }
         }, "mw-demo-reaper");
         Runtime.getRuntime().addShutdownHook(reaper);
-        try (Simulation sim = Simulation.load(worldFile, Set.copyOf(ROBOTS));
-             BrickEmulator nxtBrick = NxtEmulator.bind(sim, "nxt");
-             BrickEmulator ftBrick = IntelligentInterfaceEmulator.bind(sim, "ft")) {
-            step("world %s: robots %s", description.name(), ROBOTS);
-            Map<String, String> devices = Map.of("nxt", nxtBrick.startOnPseudoTerminal(), "ft", ftBrick.startOnPseudoTerminal());
-            step("virtual NXT brick on %s, virtual fischertechnik Intelligent Interface on %s", devices.get("nxt"), devices.get("ft"));
+        try (Simulation sim = Simulation.load(worldFile, Set.copyOf(names))) {
+            step("world %s: robots %s", description.name(), names);
+            Map<String, Map<String, String>> links = new LinkedHashMap<>();
+            for (String r : names) {
+                EmulatorKind kind = EMULATORS.get(platforms.get(r));
+                Emulator e = kind.bind().apply(sim, r);
+                closeLater.add(e);
+                if (kind.tcp()) {
+                    int port = e.startOnTcp("127.0.0.1", 0);
+                    links.put(r, Map.of("host", "127.0.0.1", "port", String.valueOf(port)));
+                } else {
+                    links.put(r, Map.of("port", e.startOnPseudoTerminal()));
+                }
+                step("virtual %s for %s on %s", kind.title(), r, describeLink(links.get(r)));
+            }
             io.robomw.console.Console watching = null;
             if (console || record != null) {
                 io.robomw.console.Console.Builder b = io.robomw.console.Console.builder("mw demo").simulation(sim).record(record)
@@ -168,21 +198,22 @@ final class DemoCommand implements Callable<Integer> {
             }
             sim.startRealTime(1.0);
             Map<String, String> addresses = new LinkedHashMap<>();
-            for (String r : ROBOTS) {
+            for (String r : names) {
                 int port = freePort();
-                hosts.add(startHost(r, port, robotFiles.get(r), devices.get(r), keyFile, logDir));
+                hosts.add(startHost(r, port, robotFiles.get(r), links.get(r), keyFile, logDir));
                 addresses.put(r, "rmi://127.0.0.1:" + port + "/" + r);
             }
-            for (int i = 0; i < ROBOTS.size(); i++) {
-                awaitReady(ROBOTS.get(i), hosts.get(i), logDir);
-                step("agent host %s ready at %s (driver: %s over %s)", ROBOTS.get(i), addresses.get(ROBOTS.get(i)),
-                        ROBOTS.get(i).equals("nxt") ? "LEGO NXT" : "fischertechnik Intelligent Interface", devices.get(ROBOTS.get(i)));
+            for (int i = 0; i < names.size(); i++) {
+                String r = names.get(i);
+                awaitReady(r, hosts.get(i), logDir);
+                step("agent host %s ready at %s (driver: %s over %s)", r, addresses.get(r), EMULATORS.get(platforms.get(r)).title(),
+                        describeLink(links.get(r)));
                 if (watching != null) {
-                    watching.watchHost(addresses.get(ROBOTS.get(i)));
+                    watching.watchHost(addresses.get(r));
                 }
             }
             Map<String, Pose> startPoses = new LinkedHashMap<>();
-            for (String r : ROBOTS) {
+            for (String r : names) {
                 startPoses.put(r, sim.world().robot(r).pose());
             }
             Map<String, Serializable> results;
@@ -193,11 +224,11 @@ final class DemoCommand implements Callable<Integer> {
                     watching.watchHost(home.address());
                 }
                 List<AgentRef> refs = home.dispatchClones(agent, addresses.values().toArray(String[]::new));
-                step("dispatched clones of %s (its code from %s) to both hosts", AGENT, jar.getFileName());
+                step("dispatched clones of %s (its code from %s) to %s", AGENT, jar.getFileName(), hostsWord(names.size()));
                 results = new LinkedHashMap<>();
                 List<CompletableFuture<Serializable>> pending = new ArrayList<>();
                 for (int i = 0; i < refs.size(); i++) {
-                    String r = ROBOTS.get(i);
+                    String r = names.get(i);
                     refs.get(i).addReportListener(v -> step("[%s] %s", r, v));
                     pending.add(refs.get(i).result());
                 }
@@ -206,16 +237,16 @@ final class DemoCommand implements Callable<Integer> {
                 for (int i = 0; i < refs.size(); i++) {
                     int index = i;
                     pending.get(i).exceptionally(failure -> {
-                        step("[%s] FAILED: %s", ROBOTS.get(index), failure.getCause() != null ? failure.getCause().getMessage() : failure.getMessage());
+                        step("[%s] FAILED: %s", names.get(index), failure.getCause() != null ? failure.getCause().getMessage() : failure.getMessage());
                         return null;
                     });
-                    results.put(ROBOTS.get(i), settled.get(i).get());
+                    results.put(names.get(i), settled.get(i).get());
                 }
             }
-            step("both clones are home after %.1f s", (System.nanoTime() - started) / 1e9);
+            step("%s home after %.1f s", names.size() == 2 ? "both clones are" : "all " + names.size() + " clones are", (System.nanoTime() - started) / 1e9);
             stopHosts(hosts);
             boolean complete = true;
-            for (String r : ROBOTS) {
+            for (String r : names) {
                 if (results.get(r) == null) {
                     step("[%s] no result came home (see %s)", r, logDir.resolve(r + "-host.log"));
                     complete = false;
@@ -232,7 +263,7 @@ final class DemoCommand implements Callable<Integer> {
                 Files.createDirectories(picture.getParent());
             }
             PngRenderer.write(sim.world(), picture, RenderOptions.DEFAULT);
-            step("wrote %s (both trajectories)", picture);
+            step("wrote %s (the trajectories)", picture);
             if (console) {
                 stopHosts(hosts);
                 step("the console keeps showing the run until Ctrl-C");
@@ -250,8 +281,38 @@ final class DemoCommand implements Callable<Integer> {
                 // the JVM is shutting down (Ctrl-C after the demo): the hook is running
             }
         }
-        step("stopped both hosts, both bricks and the world; done in %.1f s (host logs in %s)", (System.nanoTime() - started) / 1e9, logDir);
+        step("stopped %s, the virtual robots and the world; done in %.1f s (host logs in %s)", hostsWord(names.size()),
+                (System.nanoTime() - started) / 1e9, logDir);
         return 0;
+    }
+
+    /** How a robot of a platform is emulated. */
+    private record EmulatorKind(String title, boolean tcp, java.util.function.BiFunction<Simulation, String, Emulator> bind) {
+    }
+
+    /** The emulators, by the platform of the robot files. */
+    private static final Map<String, EmulatorKind> EMULATORS = Map.of(
+            "nxt", new EmulatorKind("LEGO NXT brick", false, NxtEmulator::bind),
+            "ev3", new EmulatorKind("LEGO EV3 brick", false, Ev3Emulator::bind),
+            "ft-intelligent", new EmulatorKind("fischertechnik Intelligent Interface", false, IntelligentInterfaceEmulator::bind),
+            "ft-txt", new EmulatorKind("fischertechnik TXT", true, TxtEmulator::bind),
+            "aibo", new EmulatorKind("Sony Aibo (URBI server)", true, AiboEmulator::bind));
+
+    /** @return whether the robot walks on legs: its pose is then dead reckoning, not encoder odometry */
+    private static boolean legged(Path robotFile) {
+        try {
+            return new RobotDescriptionLoader().load(robotFile).leggedDrive().isPresent();
+        } catch (RuntimeException e) {
+            return false;
+        }
+    }
+
+    private static String describeLink(Map<String, String> link) {
+        return link.containsKey("host") ? "tcp " + link.get("host") + ":" + link.get("port") : link.get("port");
+    }
+
+    private static String hostsWord(int n) {
+        return n == 2 ? "both hosts" : n == 1 ? "the host" : "all " + n + " hosts";
     }
 
     /** Stops the host processes (before the bricks, so their drivers do not see the links vanish). */
@@ -284,7 +345,8 @@ final class DemoCommand implements Callable<Integer> {
             out.printf(Locale.ROOT, "== %s (%s, host %s) ==%n", robot, robotFile.getFileName(), component(result, "host"));
             out.printf(Locale.ROOT, "  distance driven    %8.3f m%n", (Double) component(result, "distanceDriven"));
             out.printf(Locale.ROOT, "  final pose error   %8.3f m, %5.1f deg   (true pose in the world vs. where it started)%n", closure, headingError);
-            out.printf(Locale.ROOT, "  odometry closure   %8.3f m            (what the robot's own encoders say)%n", (Double) component(result, "odometryClosure"));
+            out.printf(Locale.ROOT, "  odometry closure   %8.3f m            (%s)%n", (Double) component(result, "odometryClosure"),
+                    legged(robotFile) ? "the robot's own dead reckoning from its commanded gait" : "what the robot's own encoders say");
             out.printf(Locale.ROOT, "  samples            %8d%n", samples.size());
             out.printf(Locale.ROOT, "  %8s %8s %9s%n", "x (m)", "y (m)", "range (m)");
             for (Object s : samples) {
@@ -309,11 +371,15 @@ final class DemoCommand implements Callable<Integer> {
         throw new IllegalStateException(record.getClass().getName() + " has no component " + name);
     }
 
-    private static Process startHost(String name, int port, Path robotFile, String device, Path keyFile, Path logDir) throws IOException {
+    private static Process startHost(String name, int port, Path robotFile, Map<String, String> link, Path keyFile, Path logDir) throws IOException {
         String java = ProcessHandle.current().info().command().orElse(Path.of(System.getProperty("java.home"), "bin", "java").toString());
-        List<String> command = List.of(java, "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-cp", System.getProperty("java.class.path"),
+        List<String> command = new ArrayList<>(List.of(java, "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-cp", System.getProperty("java.class.path"),
                 Mw.class.getName(), "host", "--name", name, "--port", String.valueOf(port), "--robot", robotFile.toString(),
-                "--connection", "port=" + device, "--key-file", keyFile.toString());
+                "--key-file", keyFile.toString()));
+        for (Map.Entry<String, String> e : link.entrySet()) {
+            command.add("--connection");
+            command.add(e.getKey() + "=" + e.getValue());
+        }
         return new ProcessBuilder(command).redirectError(logDir.resolve(name + "-host.log").toFile()).start();
     }
 

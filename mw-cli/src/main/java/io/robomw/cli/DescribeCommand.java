@@ -2,6 +2,7 @@ package io.robomw.cli;
 
 import io.robomw.config.description.DescriptionException;
 import io.robomw.config.description.DifferentialDrive;
+import io.robomw.config.description.LeggedDrive;
 import io.robomw.config.description.RobotDescription;
 import io.robomw.config.description.RobotDescriptionLoader;
 import io.robomw.config.description.SensorSpec;
@@ -52,11 +53,26 @@ final class DescribeCommand implements Callable<Integer> {
         out.printf(Locale.ROOT, "%s: robot '%s' on platform '%s' %s, %.0f Hz cycle, watchdog %d ms, %s%n", d.source(), d.name(), d.platform(),
                 d.connection().values(), 1e9 / d.cyclePeriod().toNanos(), d.watchdogTimeout().toMillis(), d.capabilities());
         d.drive().ifPresent(drive -> printDrive(out, drive));
+        d.leggedDrive().ifPresent(drive -> printLeggedDrive(out, drive));
         for (SensorSpec s : d.sensors()) {
             out.printf(Locale.ROOT, "  sensor %-12s %-8s at %-11s on %s%n", s.name(), s.type(), s.position(), s.port());
         }
         d.actuators().forEach(a -> a.actions().keySet().stream().sorted()
                 .forEach(action -> out.printf(Locale.ROOT, "  action %s.%s on %s%n", a.name(), action, a.port())));
+        d.highLevelActions().forEach(a -> out.printf(Locale.ROOT, "  action %s%s: %s (%.1f s, uses %s)%n", a.name(),
+                a.arguments().isEmpty() ? "" : a.arguments().toString().replace('[', '(').replace(']', ')'), a.command().text(),
+                a.durationSeconds(), String.join(", ", a.uses())));
+    }
+
+    private static void printLeggedDrive(PrintWriter out, LeggedDrive drive) {
+        out.printf(Locale.ROOT, "  drive: legged, max %.2f m/s, turns at most %.2f rad/s; gait %.1f steps/s, jitter %.0f %%, slip %.0f %%%n",
+                drive.maxSpeed(), drive.maxTurnRate(), drive.gait().stepFrequency(), drive.gait().jitter() * 100, drive.gait().slip() * 100);
+        out.printf(Locale.ROOT, "  move(0.5, 0.1) sends: %s%n", drive.move().render(java.util.Map.of("distance", 0.5, "speed", 0.1, "duration", 5.0)));
+        out.printf(Locale.ROOT, "  turn(π/2, 1) sends: %s%n", drive.turn().render(java.util.Map.of("angle", Math.PI / 2, "speed", 1.0,
+                "duration", Math.PI / 2)));
+        drive.arc().ifPresent(t -> out.printf(Locale.ROOT, "  arc: %s%n", t.text()));
+        drive.drive().ifPresent(t -> out.printf(Locale.ROOT, "  drive: %s%n", t.text()));
+        drive.stop().ifPresent(t -> out.printf(Locale.ROOT, "  stop: %s%n", t.text()));
     }
 
     private static void printDrive(PrintWriter out, DifferentialDrive drive) {

@@ -2,7 +2,8 @@ package io.robomw.cli;
 
 import io.robomw.config.description.DescriptionException;
 import io.robomw.sim.Simulation;
-import io.robomw.sim.emulator.BrickEmulator;
+import io.robomw.sim.emulator.Emulator;
+import io.robomw.sim.emulator.aibo.AiboEmulator;
 import io.robomw.sim.emulator.ev3.Ev3Emulator;
 import io.robomw.sim.emulator.ft.intelligent.IntelligentInterfaceEmulator;
 import io.robomw.sim.emulator.ft.txt.TxtEmulator;
@@ -20,14 +21,14 @@ import java.util.concurrent.Callable;
 import java.util.concurrent.CountDownLatch;
 
 /**
- * {@code mw emulate nxt --world W.yaml --robot R}: a virtual brick for one robot of a simulated
- * world. It prints the serial device (or TCP port) the real driver connects to, runs the world in
- * real time, and serves until interrupted (Ctrl-C).
+ * {@code mw emulate nxt --world W.yaml --robot R}: a virtual brick (or a virtual Aibo's URBI server)
+ * for one robot of a simulated world. It prints the serial device (or TCP port) the real driver
+ * connects to, runs the world in real time, and serves until interrupted (Ctrl-C).
  */
-@Command(name = "emulate", description = "Run a virtual brick bound to a robot in a simulated world; print its device path.")
+@Command(name = "emulate", description = "Run a virtual brick (or Aibo) bound to a robot in a simulated world; print its device path or port.")
 final class EmulateCommand implements Callable<Integer> {
 
-    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick: nxt, ev3, ft-intelligent, ft-txt (TCP only)", converter = BrickConverter.class)
+    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick: nxt, ev3, ft-intelligent, ft-txt (TCP only), aibo (URBI, TCP only)", converter = BrickConverter.class)
     private Brick brick;
 
     /** Accepts the bricks' platform names (with dashes). */
@@ -37,7 +38,7 @@ final class EmulateCommand implements Callable<Integer> {
             try {
                 return Brick.valueOf(value.replace('-', '_'));
             } catch (IllegalArgumentException e) {
-                throw new picocli.CommandLine.TypeConversionException("unknown brick '" + value + "'; emulated bricks: nxt, ev3, ft-intelligent, ft-txt");
+                throw new picocli.CommandLine.TypeConversionException("unknown brick '" + value + "'; emulated bricks: nxt, ev3, ft-intelligent, ft-txt, aibo");
             }
         }
     }
@@ -49,7 +50,7 @@ final class EmulateCommand implements Callable<Integer> {
     private String robot;
 
     @Option(names = "--tcp", paramLabel = "PORT", description = "serve on TCP 127.0.0.1:PORT (0 = any) instead of a pseudo-terminal; "
-            + "the TXT is TCP only (default 65000)")
+            + "the TXT and the Aibo are TCP only (default 65000 and 54000)")
     private Integer tcpPort;
 
     @Option(names = "--speed", defaultValue = "1", description = "simulated seconds per second (default ${DEFAULT-VALUE})")
@@ -63,7 +64,8 @@ final class EmulateCommand implements Callable<Integer> {
         nxt,
         ev3,
         ft_intelligent,
-        ft_txt
+        ft_txt,
+        aibo
     }
 
     @Override
@@ -81,9 +83,20 @@ final class EmulateCommand implements Callable<Integer> {
             return 2;
         }
         CountDownLatch stopped = new CountDownLatch(1);
-        try (sim; BrickEmulator emulator = bind(sim)) {
+        Emulator emulator;
+        try {
+            emulator = bind(sim);
+        } catch (IllegalArgumentException e) {
+            sim.close();
+            err.println(e.getMessage());
+            return 2;
+        }
+        try (sim; emulator) {
             if (brick == Brick.ft_txt && tcpPort == null) {
                 tcpPort = 65000;
+            }
+            if (brick == Brick.aibo && tcpPort == null) {
+                tcpPort = 54000;
             }
             String where = tcpPort == null ? emulator.startOnPseudoTerminal() : "tcp://127.0.0.1:" + emulator.startOnTcp("127.0.0.1", tcpPort);
             out.println(where);
@@ -97,12 +110,13 @@ final class EmulateCommand implements Callable<Integer> {
         return 0;
     }
 
-    private BrickEmulator bind(Simulation sim) {
+    private Emulator bind(Simulation sim) {
         return switch (brick) {
             case nxt -> NxtEmulator.bind(sim, robot);
             case ev3 -> Ev3Emulator.bind(sim, robot);
             case ft_intelligent -> IntelligentInterfaceEmulator.bind(sim, robot);
             case ft_txt -> TxtEmulator.bind(sim, robot);
+            case aibo -> AiboEmulator.bind(sim, robot);
         };
     }
 }

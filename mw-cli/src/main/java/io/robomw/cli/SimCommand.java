@@ -331,13 +331,15 @@ final class SimCommand implements Callable<Integer> {
         return Duration.ofNanos(Math.round(duration * 1e9));
     }
 
-    /** One {@link SquareProgram} per robot that drives; robots without a drive stand still. */
+    /** One {@link SquareProgram} per robot that drives or walks; robots without a drive stand still. */
     private List<Runnable> squarePrograms(Simulation sim) {
         List<Runnable> programs = new ArrayList<>();
         for (Robot robot : sim.robots()) {
             Robot driven = watching != null ? watching.recordCommands(robot) : robot;
-            sim.world().robot(robot.name()).description().drive().ifPresent(d ->
-                    programs.add(new SquareProgram(driven, side, Math.min(SQUARE_SPEED, d.maxSpeed() * SQUARE_SPEED_SHARE))));
+            var d = sim.world().robot(robot.name()).description();
+            // Wheels keep a share of their top speed in reserve for steering; a gait's top speed is a walking speed.
+            d.drive().map(w -> w.maxSpeed() * SQUARE_SPEED_SHARE).or(() -> d.leggedDrive().map(l -> l.maxSpeed())).ifPresent(max ->
+                    programs.add(new SquareProgram(driven, side, Math.min(SQUARE_SPEED, max))));
         }
         return programs;
     }

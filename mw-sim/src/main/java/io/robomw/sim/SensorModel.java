@@ -23,6 +23,11 @@ import java.util.SplittableRandom;
  *   <tr><td>{@code min_range}, {@code max_range}</td><td>metres; beyond max the sensor reports max</td><td>sonar 0.03–2.55, infra-red 0.06–0.80</td></tr>
  *   <tr><td>{@code noise}</td><td>standard deviation of Gaussian noise, metres (seeded)</td><td>0</td></tr>
  *   <tr><td>{@code rate_hz}</td><td>samples per simulated second</td><td>10</td></tr>
+ *   <tr><td>{@code mount}</td><td>{@code head}: the sensor sits in a legged robot's head, so its
+ *   ray turns with the head's pan, and sees the floor when the head looks down</td><td>{@code body}</td></tr>
+ *   <tr><td>{@code height}</td><td>of a head-mounted sensor above the floor, metres</td><td>0.2</td></tr>
+ *   <tr><td>{@code axis}</td><td>of an accelerometer: {@code x} forwards, {@code y} left, {@code z} up</td>
+ *   <td>the port's last letter, if x, y or z; else x</td></tr>
  * </table>
  *
  * <p>Written and read on the simulation thread, except {@link #latest}, which viewers may read.
@@ -44,7 +49,11 @@ public final class SensorModel {
         /** A quiet world: silence. */
         SILENCE,
         /** A motor's encoder (read through the motor platform). */
-        TACHO
+        TACHO,
+        /** Acceleration of the body along one axis. */
+        ACCELERATION,
+        /** A legged robot's joint angle. */
+        JOINT
     }
 
     private final SensorSpec spec;
@@ -59,6 +68,9 @@ public final class SensorModel {
     private final double noise;
     private final double rateHz;
     private final SplittableRandom random;
+    private final boolean headMounted;
+    private final double height;
+    private final char axis;
     private volatile double latest;
 
     SensorModel(SensorSpec spec, Body body, long seed) {
@@ -77,6 +89,13 @@ public final class SensorModel {
         this.noise = number(o, "noise", 0, 0, MAX_NOISE);
         this.rateHz = number(o, "rate_hz", 10, 0.001, MAX_RATE_HZ);
         this.random = new SplittableRandom(seed);
+        Object mountOption = o.getOrDefault("mount", "body");
+        if (!mountOption.equals("body") && !mountOption.equals("head")) {
+            throw new IllegalArgumentException("sensor '" + spec.name() + "': option 'mount' must be body or head, got '" + mountOption + "'");
+        }
+        this.headMounted = mountOption.equals("head");
+        this.height = number(o, "height", 0.2, 0, MAX_MOUNT);
+        this.axis = axisOf(spec, o);
         if (!(maxRange > minRange)) {
             throw new IllegalArgumentException("sensor '" + spec.name() + "': option 'max_range' (" + maxRange + ") must be above 'min_range' ("
                     + minRange + ")");
@@ -127,7 +146,22 @@ public final class SensorModel {
             case GYRO -> Kind.TURNED;
             case SOUND -> Kind.SILENCE;
             case TACHO -> Kind.TACHO;
+            case ACCELEROMETER -> Kind.ACCELERATION;
+            case JOINT -> Kind.JOINT;
         };
+    }
+
+    private static char axisOf(SensorSpec spec, Map<String, Object> o) {
+        Object given = o.get("axis");
+        String a = given != null ? given.toString() : spec.port().isEmpty() ? "x" : spec.port().substring(spec.port().length() - 1);
+        a = a.toLowerCase(java.util.Locale.ROOT);
+        if (a.equals("x") || a.equals("y") || a.equals("z")) {
+            return a.charAt(0);
+        }
+        if (given != null) {
+            throw new IllegalArgumentException(spec.name() + ": sensor option axis must be x, y or z, got '" + given + "'");
+        }
+        return 'x';
     }
 
     /** {x, y, angle} of the middle of the body edge the position names. */
@@ -197,6 +231,16 @@ public final class SensorModel {
         return maxRange;
     }
 
+    /** @return whether it sits in a legged robot's head and turns with it */
+    public boolean headMounted() {
+        return headMounted;
+    }
+
+    /** @return an accelerometer's axis: {@code x} forwards, {@code y} left, {@code z} up */
+    public char axis() {
+        return axis;
+    }
+
     /** @return samples per simulated second */
     public double rateHz() {
         return rateHz;
@@ -220,17 +264,35 @@ public final class SensorModel {
      * @param heading   robot heading
      */
     void sampleRange(SimWorld.RayCaster caster, int self, double x, double y, double heading) {
+        sampleRange(caster, self, x, y, heading, 0, 0);
+    }
+
+    /**
+     * Samples a range sensor that may turn with a head.
+     *
+     * @param caster  casts one ray
+     * @param self    the robot's index
+     * @param x       robot centre x
+     * @param y       robot centre y
+     * @param heading robot heading
+     * @param pan     the head's pan, radians, positive left (0 for a body-mounted sensor)
+     * @param tilt    the head's tilt, radians, positive up; looking down, the ray meets the floor
+     *                at {@code height / tan(-tilt)}
+     */
+    void sampleRange(SimWorld.RayCaster caster, int self, double x, double y, double heading, double pan, double tilt) {
         double c = Math.cos(heading);
         double s = Math.sin(heading);
         double ox = x + mountX * c - mountY * s;
         double oy = y + mountX * s + mountY * c;
-        double centre = heading + mountAngle;
+        double centre = heading + mountAngle + (headMounted ? pan : 0);
+        double floor = headMounted && tilt < -1e-3 ? height / Math.tan(-tilt) : Double.POSITIVE_INFINITY;
         double best = Double.POSITIVE_INFINITY;
         for (int i = 0; i < rays; i++) {
             double a = rays == 1 ? centre : centre - beamWidth / 2 + beamWidth * i / (rays - 1);
             best = Math.min(best, caster.cast(ox, oy, a, maxRange, self));
         }
-        double value = Double.isInfinite(best) ? maxRange : best;
+        best = Math.min(best, floor);
+        double value = Double.isInfinite(best) || best > maxRange ? maxRange : best;
         if (noise > 0) {
             value += gaussian() * noise;
         }

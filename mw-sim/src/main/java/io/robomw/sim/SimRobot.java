@@ -6,6 +6,9 @@ import io.robomw.config.description.DifferentialDrive;
 import io.robomw.config.description.RobotDescription;
 import io.robomw.config.description.SensorSpec;
 import io.robomw.config.kinematics.DifferentialKinematics;
+import io.robomw.sim.legged.AiboDevices;
+import io.robomw.sim.legged.Quadruped;
+import io.robomw.sim.legged.UrbiKernel;
 import io.robomw.sim.lockstep.SimFuture;
 import org.dyn4j.dynamics.contact.ContactConstraint;
 import org.dyn4j.dynamics.contact.SolvedContact;
@@ -16,6 +19,7 @@ import java.util.HashMap;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
+import java.util.OptionalDouble;
 import java.util.Queue;
 import java.util.concurrent.ConcurrentLinkedQueue;
 
@@ -28,6 +32,14 @@ import java.util.concurrent.ConcurrentLinkedQueue;
  * dyn4j then resolves collisions (with the description's mass and friction), so a robot that
  * drives into a wall stops at it. Encoders follow the body's real motion (wheels do not slip), so
  * a blocked robot's encoders stand still, as a stalled motor's do.
+ *
+ * <p>A robot whose description has a legged drive is a {@link Quadruped} instead: its gait sets
+ * the body's velocities, and its URBI server core ({@link UrbiKernel}) answers the Aibo emulator's
+ * clients and the simulator's own platform.
+ *
+ * <p>Every robot has an accelerometer's worth of motion: the body's acceleration in its own frame
+ * (x forwards, y left, z up, gravity included) is computed after every step for the robots that
+ * have an accelerometer or legs.
  *
  * <p>Touched only by the simulation thread, except {@link #pose()} and the trajectory, which
  * viewers read.
@@ -50,6 +62,13 @@ public final class SimRobot {
     private final Queue<PendingRead> reads = new ConcurrentLinkedQueue<>();
     private final Trajectory trajectory = new Trajectory();
     private final boolean hasTouch;
+    private final boolean hasAccel;
+    private final Quadruped quadruped;
+    private final UrbiKernel kernel;
+    private double lastVx;
+    private double lastVy;
+    private final double[] accel = {0, 0, Quadruped.GRAVITY};
+    private int contactQuadrants;
     private double lastX;
     private double lastY;
     private double lastHeading;
@@ -61,7 +80,8 @@ public final class SimRobot {
     private record PendingRead(SensorModel sensor, SimFuture<Double> future) {
     }
 
-    SimRobot(int index, String name, RobotDescription description, org.dyn4j.dynamics.Body body, long seed) {
+    SimRobot(int index, String name, RobotDescription description, org.dyn4j.dynamics.Body body, long seed,
+             java.util.function.LongSupplier nanos) {
         this.index = index;
         this.name = name;
         this.description = description;
@@ -78,6 +98,7 @@ public final class SimRobot {
         actuatorIndex = description.actuators().stream().mapToInt(a -> portIndex.get(a.port())).toArray();
         int i = 0;
         boolean touch = false;
+        boolean acc = false;
         for (SensorSpec s : description.sensors()) {
             SensorModel m = new SensorModel(s, description.body(), seed * 0x9E3779B97F4A7C15L + index * 1_000_003L + i++);
             sensors.put(s.name(), m);
@@ -85,8 +106,12 @@ public final class SimRobot {
                 rangeSensors.add(m);
             }
             touch |= m.kind() == SensorModel.Kind.CONTACT;
+            acc |= m.kind() == SensorModel.Kind.ACCELERATION;
         }
         this.hasTouch = touch;
+        this.hasAccel = acc;
+        this.quadruped = description.leggedDrive().map(d -> new Quadruped(d, seed * 0x9E3779B97F4A7C15L + index * 7_919L + 17)).orElse(null);
+        this.kernel = quadruped == null ? null : new UrbiKernel(name, quadruped, this::urbiSensor, nanos);
         readPose();
         lastX = body.getTransform().getTranslationX();
         lastY = body.getTransform().getTranslationY();
@@ -133,6 +158,16 @@ public final class SimRobot {
         return body;
     }
 
+    /** @return its gait and joints, if it is a legged robot; else {@code null} */
+    public Quadruped quadruped() {
+        return quadruped;
+    }
+
+    /** @return its URBI server core, if it is a legged robot; else {@code null} */
+    public UrbiKernel kernel() {
+        return kernel;
+    }
+
     // ---- motors, as the sim motor platform drives them ----
 
     /**
@@ -158,15 +193,21 @@ public final class SimRobot {
 
     /** Sets the body's velocities from the commanded wheel speeds. */
     void applyDrive() {
-        if (kinematics == null) {
+        double v;
+        double w;
+        if (quadruped != null) {
+            v = quadruped.linearVelocity();
+            w = quadruped.angularVelocity();
+        } else if (kinematics != null) {
+            DifferentialDrive d = kinematics.drive();
+            double max = d.maxSpeed();
+            double vl = clamp(kinematics.wheelMetres(commanded[leftIndex], d.left().reversed()), max);
+            double vr = clamp(kinematics.wheelMetres(commanded[rightIndex], d.right().reversed()), max);
+            v = (vl + vr) / 2;
+            w = (vr - vl) / d.trackWidth();
+        } else {
             return;
         }
-        DifferentialDrive d = kinematics.drive();
-        double max = d.maxSpeed();
-        double vl = clamp(kinematics.wheelMetres(commanded[leftIndex], d.left().reversed()), max);
-        double vr = clamp(kinematics.wheelMetres(commanded[rightIndex], d.right().reversed()), max);
-        double v = (vl + vr) / 2;
-        double w = (vr - vl) / d.trackWidth();
         if (v == 0 && w == 0 && body.isAtRest()) {
             return;
         }
@@ -190,6 +231,14 @@ public final class SimRobot {
      * @param recordTrajectory whether to add the pose to the trajectory this step
      */
     void afterStep(org.dyn4j.world.World<org.dyn4j.dynamics.Body> world, double dt, boolean recordTrajectory) {
+        if (hasAccel || quadruped != null) {
+            accelerate(dt);
+        }
+        if (quadruped != null) {
+            quadruped.advance(dt);
+            contacts(world);
+            kernel.step();
+        }
         if (body.isAtRest() && !hasTouch) {
             if (recordTrajectory) {
                 trajectory.add(lastX, lastY);
@@ -226,6 +275,79 @@ public final class SimRobot {
         }
     }
 
+    /** The body's acceleration in its own frame since the last step, gravity and gait included. */
+    private void accelerate(double dt) {
+        Vector2 v = body.getLinearVelocity();
+        double h = Math.atan2(body.getTransform().getSint(), body.getTransform().getCost());
+        double ax = (v.x - lastVx) / dt;
+        double ay = (v.y - lastVy) / dt;
+        lastVx = v.x;
+        lastVy = v.y;
+        double pitch = quadruped == null ? 0 : quadruped.pitch();
+        double bounce = quadruped == null ? 0 : quadruped.bounce();
+        accel[0] = ax * Math.cos(h) + ay * Math.sin(h) + Quadruped.GRAVITY * Math.sin(pitch);
+        accel[1] = -ax * Math.sin(h) + ay * Math.cos(h);
+        accel[2] = Quadruped.GRAVITY * Math.cos(pitch) + bounce;
+    }
+
+    /**
+     * A device of the dog's URBI server that is a sensor, in the device's own unit.
+     *
+     * @param device the device's name
+     * @return its value, or empty if the dog has no such sensor device
+     */
+    private OptionalDouble urbiSensor(String device) {
+        switch (device) {
+            case "accelX" -> {
+                return OptionalDouble.of(accel[0]);
+            }
+            case "accelY" -> {
+                return OptionalDouble.of(accel[1]);
+            }
+            case "accelZ" -> {
+                return OptionalDouble.of(accel[2]);
+            }
+            case "pawLF" -> {
+                return OptionalDouble.of((contactQuadrants & FRONT_LEFT_QUADRANT) != 0 ? 1 : 0);
+            }
+            case "pawRF" -> {
+                return OptionalDouble.of((contactQuadrants & FRONT_RIGHT_QUADRANT) != 0 ? 1 : 0);
+            }
+            case "pawLH" -> {
+                return OptionalDouble.of((contactQuadrants & BACK_LEFT_QUADRANT) != 0 ? 1 : 0);
+            }
+            case "pawRH" -> {
+                return OptionalDouble.of((contactQuadrants & BACK_RIGHT_QUADRANT) != 0 ? 1 : 0);
+            }
+            default -> {
+            }
+        }
+        Double max = AiboDevices.DISTANCE_MAX_MM.get(device);
+        if (max != null) {
+            for (SensorModel m : rangeSensors) {
+                if (m.spec().port().equals(device)) {
+                    return OptionalDouble.of(Math.min(max, m.latest() * 1000));
+                }
+            }
+            return OptionalDouble.of(max);
+        }
+        return AiboDevices.SENSORS.contains(device) ? OptionalDouble.of(0) : OptionalDouble.empty();
+    }
+
+    /** @return the head's pan, radians, positive left (0 for a robot without a head) */
+    double headPan() {
+        Quadruped.Joint j = quadruped == null ? null : quadruped.joint("headPan");
+        return j == null ? 0 : Math.toRadians(j.angle());
+    }
+
+    /** @return the head's tilt, radians, positive up: the neck's and the head's together */
+    double headTilt() {
+        if (quadruped == null) {
+            return 0;
+        }
+        return Math.toRadians(quadruped.joint("neck").angle() + quadruped.joint("headTilt").angle());
+    }
+
     private void readPose() {
         org.dyn4j.geometry.Transform t = body.getTransform();
         pose = new Pose(t.getTranslationX(), t.getTranslationY(), Math.atan2(t.getSint(), t.getCost()));
@@ -235,10 +357,15 @@ public final class SimRobot {
     private static final int BACK = 2;
     private static final int LEFT = 4;
     private static final int RIGHT = 8;
+    private static final int FRONT_LEFT_QUADRANT = 1;
+    private static final int FRONT_RIGHT_QUADRANT = 2;
+    private static final int BACK_LEFT_QUADRANT = 4;
+    private static final int BACK_RIGHT_QUADRANT = 8;
 
     /** @return a bit set of the sides of the body touching something */
     private int contacts(org.dyn4j.world.World<org.dyn4j.dynamics.Body> world) {
         int sides = 0;
+        int quadrants = 0;
         Body b = description.body();
         for (ContactConstraint<org.dyn4j.dynamics.Body> c : world.getContacts(body)) {
             if (!c.isEnabled() || c.isSensor()) {
@@ -250,8 +377,11 @@ public final class SimRobot {
                 sides |= local.x <= -b.length() / 4 ? BACK : 0;
                 sides |= local.y >= b.width() / 4 ? LEFT : 0;
                 sides |= local.y <= -b.width() / 4 ? RIGHT : 0;
+                quadrants |= local.x >= 0 ? (local.y >= 0 ? FRONT_LEFT_QUADRANT : FRONT_RIGHT_QUADRANT)
+                        : (local.y >= 0 ? BACK_LEFT_QUADRANT : BACK_RIGHT_QUADRANT);
             }
         }
+        contactQuadrants = quadrants;
         return sides;
     }
 
@@ -276,7 +406,10 @@ public final class SimRobot {
         for (PendingRead r; (r = reads.poll()) != null; ) {
             SimFuture<Double> f = r.future();
             try {
-                double raw = r.sensor().spec().conversion().invert(siValue(r.sensor(), world));
+                double si = siValue(r.sensor(), world);
+                SensorModel.Kind kind = r.sensor().kind();
+                double raw = r.sensor().spec().conversion().invert(kind == SensorModel.Kind.JOINT || kind == SensorModel.Kind.TACHO
+                        ? Math.toDegrees(si) : si);
                 world.lockstep().defer(() -> f.complete(raw));
             } catch (RuntimeException e) {
                 world.lockstep().defer(() -> f.completeExceptionally(e));
@@ -298,10 +431,31 @@ public final class SimRobot {
             case TURNED -> turned;
             case SILENCE -> 0.0;
             case TACHO -> Math.toRadians(motorDegrees(sensor.spec().port()));
+            case ACCELERATION -> accel[switch (sensor.axis()) {
+                case 'y' -> 1;
+                case 'z' -> 2;
+                default -> 0;
+            }];
+            case JOINT -> {
+                Quadruped.Joint j = quadruped == null ? null : quadruped.joint(sensor.spec().port());
+                yield j == null ? 0.0 : Math.toRadians(j.angle());
+            }
         };
     }
 
     private boolean touching(SensorModel sensor) {
+        if (quadruped != null) {
+            int quadrant = switch (sensor.spec().position()) {
+                case FRONT_LEFT -> FRONT_LEFT_QUADRANT;
+                case FRONT_RIGHT -> FRONT_RIGHT_QUADRANT;
+                case BACK_LEFT -> BACK_LEFT_QUADRANT;
+                case BACK_RIGHT -> BACK_RIGHT_QUADRANT;
+                default -> 0;
+            };
+            if (quadrant != 0) {
+                return (contactQuadrants & quadrant) != 0;
+            }
+        }
         int mask = switch (sensor.spec().position()) {
             case FRONT -> FRONT;
             case BACK -> BACK;

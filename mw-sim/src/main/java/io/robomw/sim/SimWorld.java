@@ -227,7 +227,7 @@ public final class SimWorld implements AutoCloseable {
         body.translate(start.x(), start.y());
         body.setAtRestDetectionEnabled(true);
         physics.addBody(body);
-        SimRobot robot = new SimRobot(robots.size(), name, description, body, this.description.seed());
+        SimRobot robot = new SimRobot(robots.size(), name, description, body, this.description.seed(), clock::nanoTime);
         robots.add(robot);
         byName.put(name, robot);
         initialSampleDue = true;
@@ -366,7 +366,7 @@ public final class SimWorld implements AutoCloseable {
             Pose p = r.pose();
             for (SensorModel s : r.rangeSensors()) {
                 if (steps % s.everySteps(description.physicsHz()) == 0) {
-                    s.sampleRange(rayCaster, r.index(), p.x(), p.y(), p.heading());
+                    s.sampleRange(rayCaster, r.index(), p.x(), p.y(), p.heading(), r.headPan(), r.headTilt());
                 }
             }
         });

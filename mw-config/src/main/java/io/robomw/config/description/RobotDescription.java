@@ -23,10 +23,13 @@ import java.util.stream.Stream;
  * @param cyclePeriod     the execution action thread's period
  * @param watchdogTimeout continuous commands stop unless repeated within this; zero = off
  * @param capabilities    ground, air, water
- * @param drive           the drive model, if the robot drives
+ * @param drive           the differential drive, if the robot drives on two wheels
  * @param body            size and mass, for the simulator
  * @param sensors         the sensors
  * @param actuators       extra actuators with named actions
+ * @param leggedDrive     the legged drive, if the robot walks by its firmware's own commands
+ *                        (then {@code drive} is empty)
+ * @param highLevelActions named actions the firmware performs by itself (sit, kick, head.pan)
  * @param messaging       how its communication component starts (the {@code messaging:} section, or defaults)
  * @param agency          how its agency starts (the {@code agency:} section, or defaults)
  * @param source          the file it was read from, for messages
@@ -35,6 +38,7 @@ public record RobotDescription(String name, String platform, ConnectionSettings 
                                Duration cyclePeriod, Duration watchdogTimeout,
                                Set<Capability> capabilities, Optional<DifferentialDrive> drive,
                                Body body, List<SensorSpec> sensors, List<ActuatorSpec> actuators,
+                               Optional<LeggedDrive> leggedDrive, List<HighLevelAction> highLevelActions,
                                MessagingConfig messaging, AgencyConfig agency, String source) {
 
     /** Copies collections. */
@@ -44,6 +48,8 @@ public record RobotDescription(String name, String platform, ConnectionSettings 
         capabilities = Set.copyOf(capabilities);
         sensors = List.copyOf(sensors);
         actuators = List.copyOf(actuators);
+        Objects.requireNonNull(leggedDrive, "leggedDrive");
+        highLevelActions = List.copyOf(highLevelActions);
         Objects.requireNonNull(messaging, "messaging");
         Objects.requireNonNull(agency, "agency");
     }
@@ -60,6 +66,14 @@ public record RobotDescription(String name, String platform, ConnectionSettings 
                 new MotorChannel(d.left().port(), MotorChannel.Role.LEFT_WHEEL, d.encoderTicksPerRevolution(), d.left().counter()),
                 new MotorChannel(d.right().port(), MotorChannel.Role.RIGHT_WHEEL, d.encoderTicksPerRevolution(), d.right().counter())));
         return Stream.concat(wheels, actuators.stream().map(a -> MotorChannel.actuator(a.port()))).toList();
+    }
+
+    /**
+     * @param actionName a name {@code perform} was given
+     * @return the high-level action of that name, if the description has one
+     */
+    public Optional<HighLevelAction> highLevelAction(String actionName) {
+        return highLevelActions.stream().filter(a -> a.name().equals(actionName)).findFirst();
     }
 
     /**

@@ -68,13 +68,16 @@ public final class RobotDescriptionLoader {
             capabilities.add(Capability.GROUND);
         }
         Optional<MappingReader> driveNode = root.mapping("drive");
-        Optional<DifferentialDrive> drive = driveNode.flatMap(this::drive);
+        Optional<DifferentialDrive> drive = driveNode.filter(m -> !legged(m)).flatMap(this::drive);
+        Optional<LeggedDrive> leggedDrive = driveNode.filter(this::legged).flatMap(this::leggedDrive);
         Body body = root.mapping("body").map(this::body).orElse(Body.DEFAULT);
         List<Read<SensorSpec>> sensors = root.mappingList("sensors").stream()
                 .flatMap(m -> sensor(m).map(s -> new Read<>(s, m)).stream()).toList();
         List<Read<ActuatorSpec>> actuators = root.mappingList("actuators").stream()
                 .flatMap(m -> actuator(m).map(a -> new Read<>(a, m)).stream()).toList();
+        List<HighLevelAction> highLevelActions = root.mapping("actions").map(this::highLevelActions).orElse(List.of());
         checkPorts(drive, driveNode, sensors, actuators);
+        checkActionNames(root, highLevelActions, actuators);
         ComponentSections components = new ComponentSections(name, source);
         MessagingConfig messaging = components.messaging(root.mapping("messaging"));
         AgencyConfig agency = components.agency(root.mapping("agency"));
@@ -83,13 +86,14 @@ public final class RobotDescriptionLoader {
         return new RobotDescription(name, platform, new ConnectionSettings(connection, source),
                 Duration.ofNanos(Math.round(1e9 / cycleHz)), Duration.ofNanos(Math.round(watchdog * 1e9)),
                 capabilities, drive, body, sensors.stream().map(Read::value).toList(),
-                actuators.stream().map(Read::value).toList(), messaging, agency, source);
+                actuators.stream().map(Read::value).toList(), leggedDrive, highLevelActions, messaging, agency, source);
     }
 
     private Optional<DifferentialDrive> drive(MappingReader m) {
         String type = m.text("type").orElse("differential");
         if (!type.equals("differential")) {
-            m.problem("type", "must be 'differential' (two driven wheels on one axle), got '" + type + "'");
+            m.problem("type", "must be 'differential' (two driven wheels on one axle) or 'legged' (walks by its firmware's own commands), got '"
+                    + type + "'");
         }
         double wheel = m.requireNumber("wheel_diameter", "> 0 metres (0.001 to 10)", v -> v >= 0.001 && v <= 10);
         double track = m.requireNumber("track_width", "> 0 metres (0.001 to 100)", v -> v >= 0.001 && v <= 100);
@@ -109,6 +113,111 @@ public final class RobotDescriptionLoader {
             return Optional.empty();
         }
         return Optional.of(new DifferentialDrive(wheel, track, gear, max, ticks, left.get(), right.get()));
+    }
+
+    private boolean legged(MappingReader driveNode) {
+        return driveNode.has("type") && driveNode.text("type").map("legged"::equals).orElse(false);
+    }
+
+    private Optional<LeggedDrive> leggedDrive(MappingReader m) {
+        m.text("type");
+        double max = m.requireNumber("max_speed", "> 0 metres per second", v -> v > 0 && v < 100);
+        double turnRate = m.requireNumber("max_turn_rate", "> 0 radians per second", v -> v > 0 && v < 100);
+        Optional<MappingReader> commands = m.requireMapping("commands");
+        Optional<CommandTemplate> move = commands.flatMap(c -> template(c, "move", LeggedDrive.MOVE_VALUES, true));
+        Optional<CommandTemplate> turn = commands.flatMap(c -> template(c, "turn", LeggedDrive.TURN_VALUES, true));
+        Optional<CommandTemplate> arc = commands.flatMap(c -> template(c, "arc", LeggedDrive.ARC_VALUES, false));
+        Optional<CommandTemplate> drive = commands.flatMap(c -> template(c, "drive", LeggedDrive.DRIVE_VALUES, false));
+        Optional<CommandTemplate> stop = commands.flatMap(c -> template(c, "stop", java.util.Set.of(), false));
+        commands.ifPresent(MappingReader::finish);
+        LeggedDrive.Gait gait = m.mapping("gait").map(this::gait).orElse(LeggedDrive.Gait.DEFAULT);
+        m.finish();
+        if (move.isEmpty() || turn.isEmpty() || Double.isNaN(max) || Double.isNaN(turnRate)) {
+            return Optional.empty();
+        }
+        return Optional.of(new LeggedDrive(max, turnRate, move.get(), turn.get(), arc, drive, stop, gait));
+    }
+
+    /** Reads a command template, reporting a bad placeholder at its key. */
+    private Optional<CommandTemplate> template(MappingReader m, String key, java.util.Set<String> allowed, boolean required) {
+        String text = required ? m.requireText(key) : m.text(key).orElse("");
+        if (text.isEmpty()) {
+            if (m.has(key) && !required) {
+                m.problem(key, "must not be empty; leave the key out if the firmware has no such command");
+            }
+            return Optional.empty();
+        }
+        try {
+            return Optional.of(CommandTemplate.parse(text, allowed));
+        } catch (IllegalArgumentException e) {
+            m.problem(key, e.getMessage());
+            return Optional.empty();
+        }
+    }
+
+    private LeggedDrive.Gait gait(MappingReader m) {
+        LeggedDrive.Gait g = new LeggedDrive.Gait(
+                m.number("step_frequency", LeggedDrive.Gait.DEFAULT.stepFrequency(), "> 0 steps per second", v -> v > 0 && v < 100),
+                m.number("jitter", 0, ">= 0 (a fraction of the speed)", v -> v >= 0 && v < 1),
+                m.number("slip", 0, "in [0, 1)", v -> v >= 0 && v < 1));
+        m.finish();
+        return g;
+    }
+
+    private List<HighLevelAction> highLevelActions(MappingReader m) {
+        List<HighLevelAction> out = new ArrayList<>();
+        for (String name : m.keys()) {
+            m.mapping(name).ifPresent(a -> highLevelAction(name, a).ifPresent(out::add));
+        }
+        m.finish();
+        return out;
+    }
+
+    private Optional<HighLevelAction> highLevelAction(String name, MappingReader a) {
+        List<String> arguments = a.textList("arguments");
+        Set<String> seen = new HashSet<>();
+        boolean ok = true;
+        for (String arg : arguments) {
+            if (!arg.matches("[a-z][a-z0-9_]*")) {
+                a.problem("arguments", "argument names are lower-case words (angle, speed), got '" + arg + "'");
+                ok = false;
+            } else if (arg.equals("duration")) {
+                a.problem("arguments", "'duration' is given to every action's template already; name the argument otherwise");
+                ok = false;
+            } else if (!seen.add(arg)) {
+                a.problem("arguments", "argument '" + arg + "' is listed twice");
+                ok = false;
+            }
+        }
+        Set<String> allowed = new HashSet<>(arguments);
+        allowed.add("duration");
+        Optional<CommandTemplate> command = template(a, "command", allowed, true);
+        double duration = a.requireNumber("duration", "> 0 seconds", v -> v > 0 && v < 3600);
+        List<String> uses = a.textList("uses");
+        if (uses.isEmpty() && !a.has("uses")) {
+            a.problem("uses", "missing: name the actuator groups the action drives, for example [legs] or [head]");
+        } else if (uses.isEmpty()) {
+            a.problem("uses", "must name at least one actuator group, for example [legs] or [head]");
+        }
+        a.finish();
+        if (command.isEmpty() || Double.isNaN(duration) || uses.isEmpty() || !ok || name.isBlank()) {
+            return Optional.empty();
+        }
+        return Optional.of(new HighLevelAction(name, command.get(), arguments, duration, new LinkedHashSet<>(uses)));
+    }
+
+    private void checkActionNames(MappingReader root, List<HighLevelAction> actions, List<Read<ActuatorSpec>> actuators) {
+        Set<String> actuatorActions = new HashSet<>();
+        for (Read<ActuatorSpec> a : actuators) {
+            for (String action : a.value().actions().keySet()) {
+                actuatorActions.add(a.value().name() + "." + action);
+            }
+        }
+        for (HighLevelAction a : actions) {
+            if (actuatorActions.contains(a.name())) {
+                root.problem("actions", "action '" + a.name() + "' is also an action of an actuator; names must be unique");
+            }
+        }
     }
 
     private DifferentialDrive.Wheel wheel(MappingReader m) {

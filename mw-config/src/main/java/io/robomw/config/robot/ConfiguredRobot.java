@@ -28,6 +28,7 @@ import io.robomw.config.description.SensorSpec;
 import io.robomw.config.kinematics.DifferentialKinematics;
 import io.robomw.config.kinematics.Odometry;
 import io.robomw.config.kinematics.WheelMotion;
+import io.robomw.config.legged.LeggedControl;
 import io.robomw.config.sensing.SensorConverter;
 
 import java.io.Serializable;
@@ -47,6 +48,10 @@ import java.util.stream.Collectors;
  * turns it into motor rotations or sensor reads with the description's geometry and conversions,
  * and hands it to the platform. Every call reads the description in force at that moment, so a
  * reload applies to the next command.
+ *
+ * <p>A robot whose description has a legged drive moves by its firmware's own commands instead
+ * ({@link LeggedControl}, the paper's second Configuration Layer implementation): its motions,
+ * its high-level actions and its pose go there.
  *
  * <p>The paper's four components are linked here: motion and perception go to the platform,
  * messaging and agents to the robot's communication component and agency, which the providers
@@ -69,6 +74,7 @@ public final class ConfiguredRobot implements Robot {
     private DifferentialDrive odometryDrive;
     private volatile boolean closed;
     private volatile DifferentialKinematics kinematics;
+    private final LeggedControl legged;
 
     /**
      * @param description the description in force (read on every call)
@@ -84,6 +90,7 @@ public final class ConfiguredRobot implements Robot {
         this.messaging = Objects.requireNonNull(messaging, "messaging");
         this.agency = Objects.requireNonNull(agency, "agency");
         this.onClose = onClose;
+        this.legged = new LeggedControl(description, platform);
     }
 
     /**
@@ -137,6 +144,7 @@ public final class ConfiguredRobot implements Robot {
         for (ActuatorSpec a : description.get().actuators()) {
             a.actions().keySet().stream().sorted().forEach(action -> out.add(a.name() + "." + action));
         }
+        description.get().highLevelActions().forEach(a -> out.add(a.name()));
         return out;
     }
 
@@ -149,6 +157,9 @@ public final class ConfiguredRobot implements Robot {
 
     @Override
     public CompletableFuture<Void> moveAsync(double distance, double speed) {
+        if (legged()) {
+            return legged.move(distance, speed);
+        }
         String action = String.format(Locale.ROOT, "move(%.3f, %.3f)", distance, speed);
         DifferentialKinematics k = groundDrive(action);
         requireFinite(action, distance, "distance");
@@ -158,6 +169,9 @@ public final class ConfiguredRobot implements Robot {
 
     @Override
     public CompletableFuture<Void> turnAsync(double radians, double speed) {
+        if (legged()) {
+            return legged.turn(radians, speed);
+        }
         String action = String.format(Locale.ROOT, "turn(%.4f, %.4f)", radians, speed);
         DifferentialKinematics k = groundDrive(action);
         requireFinite(action, radians, "angle");
@@ -168,6 +182,9 @@ public final class ConfiguredRobot implements Robot {
 
     @Override
     public CompletableFuture<Void> arcAsync(double radius, double angle, double speed) {
+        if (legged()) {
+            return legged.arc(radius, angle, speed);
+        }
         String action = String.format(Locale.ROOT, "arc(%.3f, %.4f, %.3f)", radius, angle, speed);
         DifferentialKinematics k = groundDrive(action);
         requireFinite(action, radius, "radius");
@@ -181,6 +198,10 @@ public final class ConfiguredRobot implements Robot {
 
     @Override
     public void drive(double linearSpeed, double angularSpeed) {
+        if (legged()) {
+            legged.drive(linearSpeed, angularSpeed);
+            return;
+        }
         String action = "drive";
         DifferentialKinematics k = groundDrive(action);
         requireFinite(action, linearSpeed, "linear speed");
@@ -199,6 +220,7 @@ public final class ConfiguredRobot implements Robot {
     @Override
     public void stop() {
         platform.stopAll();
+        legged.halted();
         trackOdometry();
     }
 
@@ -213,6 +235,9 @@ public final class ConfiguredRobot implements Robot {
 
     @Override
     public CompletableFuture<Void> performAsync(String action, double... args) {
+        if (description.get().highLevelAction(action).isPresent()) {
+            return legged.perform(action, args);
+        }
         String call = "perform(\"" + action + "\")";
         int dot = action.indexOf('.');
         String actuatorName = dot < 0 ? action : action.substring(0, dot);
@@ -264,11 +289,18 @@ public final class ConfiguredRobot implements Robot {
 
     @Override
     public Pose pose() {
+        if (legged()) {
+            return legged.pose();
+        }
         return updateOdometry();
     }
 
     @Override
     public void resetPose(Pose pose) {
+        if (legged()) {
+            legged.resetPose(pose);
+            return;
+        }
         synchronized (odometryLock) {
             updateOdometry();
             odometry.reset(pose);
@@ -358,6 +390,11 @@ public final class ConfiguredRobot implements Robot {
     }
 
     // ---- helpers ----
+
+    /** @return whether the description in force has a legged drive, whose motions go through {@link LeggedControl} */
+    private boolean legged() {
+        return description.get().leggedDrive().isPresent();
+    }
 
     private DifferentialKinematics groundDrive(String action) {
         RobotDescription d = description.get();

@@ -26,9 +26,10 @@ import java.util.function.Consumer;
  * with its error and the old description stays.
  *
  * <p>What may change at run time: geometry, speeds, conversions, positions, capabilities, actions,
- * the watchdog timeout. What may not, because the platform was opened with it: the name, the
- * platform, the connection, the cycle rate, the motor ports and the sensors' names, types and
- * ports. Such a change is rejected with a message saying to restart the robot.
+ * the watchdog timeout, a legged drive's templates, limits and gait. What may not, because the
+ * platform was opened with it: the name, the platform, the connection, the cycle rate, the drive's
+ * type (wheels or legs), the motor ports and the sensors' names, types and ports. Such a change is
+ * rejected with a message saying to restart the robot.
  *
  * <p>Thread-safe. {@link #watch()} starts one named daemon thread that reloads when the file
  * changes; {@link #close()} stops it.
@@ -160,6 +161,9 @@ public final class ReloadableDescription implements AutoCloseable {
         if (!a.cyclePeriod().equals(b.cyclePeriod())) {
             return "cycle_hz";
         }
+        if (a.leggedDrive().isPresent() != b.leggedDrive().isPresent()) {
+            return "the drive's type (" + driveType(a) + " -> " + driveType(b) + "), which decided the platform it was opened on";
+        }
         if (!a.motorPorts().equals(b.motorPorts())) {
             return "the motor ports (" + a.motorPorts() + " -> " + b.motorPorts() + ")";
         }
@@ -176,6 +180,10 @@ public final class ReloadableDescription implements AutoCloseable {
             return "the sensors' names, types or ports";
         }
         return null;
+    }
+
+    private static String driveType(RobotDescription d) {
+        return d.leggedDrive().isPresent() ? "legged" : d.drive().isPresent() ? "differential" : "none";
     }
 
     private static List<String> channels(RobotDescription d) {

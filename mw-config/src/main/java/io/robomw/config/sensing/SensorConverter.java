@@ -10,8 +10,8 @@ import io.robomw.config.description.SensorSpec;
 /**
  * Converts a sensor's raw reading into the unit a program asks for: first into the SI unit of the
  * sensor's quantity with the description's {@link Conversion}, then into the {@link ReturnType}.
- * Tachometers report motor degrees, and their conversion is applied in degrees (a gear ratio, say)
- * before the result is taken as an angle. Stateless.
+ * Tachometers report motor degrees and joints their servo's degrees, and their conversion is applied
+ * in degrees (a gear ratio, say) before the result is taken as an angle. Stateless.
  */
 public final class SensorConverter {
 
@@ -55,7 +55,7 @@ public final class SensorConverter {
         return switch (returnType) {
             case RAW -> raw;
             case PERCENT -> si * 100;
-            case METERS, RADIANS, RADIANS_PER_SECOND, DECIBELS, COLOR_ID -> si;
+            case METERS, RADIANS, RADIANS_PER_SECOND, METERS_PER_SECOND_SQUARED, DECIBELS, COLOR_ID -> si;
             case CENTIMETERS -> si * 100;
             case MILLIMETERS -> si * 1000;
             case DEGREES, DEGREES_PER_SECOND -> Math.toDegrees(si);
@@ -66,7 +66,7 @@ public final class SensorConverter {
 
     private static double toSi(SensorSpec sensor, double raw) {
         double converted = sensor.conversion().apply(raw);
-        return sensor.type() == SensorType.TACHO ? Math.toRadians(converted) : converted;
+        return sensor.type() == SensorType.TACHO || sensor.type() == SensorType.JOINT ? Math.toRadians(converted) : converted;
     }
 
     private static double booleanValue(SensorSpec sensor, double si) {

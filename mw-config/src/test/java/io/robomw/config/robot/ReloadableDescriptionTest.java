@@ -212,6 +212,48 @@ class ReloadableDescriptionTest {
         assertEquals("scout", d.current().name());
     }
 
+    /** A legged robot whose walking command is {@code move}, over {@code drive}. */
+    private static String dog(String move, String drive) {
+        return """
+                name: dog
+                platform: aibo
+                %s
+                sensors:
+                  - {name: head_far, type: infrared, position: front, port: distanceFar, conversion: {scale: 0.001}}
+                """.formatted(drive.formatted(move));
+    }
+
+    private static final String LEGGED = """
+            drive: {type: legged, max_speed: 0.2, max_turn_rate: 1.2, commands: {move: "%s", turn: "robot.turn(${angle}, ${speed})"}}""";
+
+    @Test
+    void shouldApplyAnotherFirmwaresWalkingCommandToTheNextWalk() throws IOException {
+        ReloadableDescription d = open(dog("robot.walk(${distance}, ${speed})", LEGGED));
+        FakeHighLevelPlatform platform = new FakeHighLevelPlatform();
+        ConfiguredRobot robot = ConfiguredRobot.withComponents(d::current, platform, null);
+        robot.moveAsync(0.5, 0.1);
+        write(dog("walk ${distance:mm} ${speed:mm}", LEGGED));
+
+        ReloadOutcome outcome = d.reload();
+        robot.moveAsync(0.5, 0.1);
+
+        assertTrue(outcome.accepted(), outcome.message());
+        assertEquals(List.of("robot.walk(0.5, 0.1)", "walk 500 100"), platform.commands.stream().map(c -> c.text()).toList());
+    }
+
+    @Test
+    void shouldRejectChangingLegsForWheelsSayingRestart() throws IOException {
+        ReloadableDescription d = open(dog("robot.walk(${distance}, ${speed})", LEGGED));
+        RobotDescription before = d.current();
+        write(dog("", "drive: {wheel_diameter: 0.056, track_width: 0.112, max_speed: 0.3, left: {port: B}, right: {port: C}}%s"));
+
+        ReloadOutcome outcome = d.reload();
+
+        assertFalse(outcome.accepted());
+        assertTrue(outcome.message().contains("drive's type (legged -> differential)") && outcome.message().contains("restart"), outcome.message());
+        assertSame(before, d.current());
+    }
+
     @Test
     void shouldRejectReloadOfDeletedFileAndKeepOldDescription() throws IOException {
         ReloadableDescription d = open(robot(0.056));

@@ -229,4 +229,24 @@ class SensorConverterTest {
 
         assertEquals(Math.PI, convert(geared, 360, ReturnType.RADIANS), EPS);
     }
+
+    // ---- a legged robot's joints and accelerometer ----
+
+    @Test
+    void shouldReadAJointsServoDegreesAsAnAngle() {
+        SensorSpec neck = sensor("neck", SensorType.JOINT, Conversion.IDENTITY);
+
+        assertEquals(Math.toRadians(-30), convert(neck, -30, ReturnType.RADIANS), EPS);
+        assertEquals(-30, convert(neck, -30, ReturnType.DEGREES), EPS);
+        assertThrows(UnsupportedActionException.class, () -> convert(neck, -30, ReturnType.METERS));
+    }
+
+    @Test
+    void shouldReadAnAccelerometerInMetresPerSecondSquaredOnly() {
+        SensorSpec accel = sensor("accel_z", SensorType.ACCELEROMETER, Conversion.IDENTITY);
+
+        assertEquals(9.81, convert(accel, 9.81, ReturnType.METERS_PER_SECOND_SQUARED), EPS);
+        assertEquals(9.81, convert(accel, 9.81, ReturnType.RAW), EPS);
+        assertThrows(UnsupportedActionException.class, () -> convert(accel, 9.81, ReturnType.PERCENT));
+    }
 }

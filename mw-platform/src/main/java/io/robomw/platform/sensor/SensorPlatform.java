@@ -21,7 +21,15 @@ public abstract class SensorPlatform {
      * @param motors the motor platform whose encoders {@link #selectMotorSensor} reads
      */
     protected SensorPlatform(GenericMotorPlatform motors) {
-        this.motors = motors;
+        this.motors = java.util.Objects.requireNonNull(motors, "motors");
+    }
+
+    /**
+     * For a platform without motor encoders (a robot that moves by high-level commands):
+     * {@link #selectMotorSensor} then refuses every motor sensor.
+     */
+    protected SensorPlatform() {
+        this.motors = null;
     }
 
     /**
@@ -44,6 +52,9 @@ public abstract class SensorPlatform {
      * @throws IllegalArgumentException if the motor has no such sensor
      */
     public Sensor selectMotorSensor(String motorPort, SensorType type, ReturnType returnType) {
+        if (motors == null) {
+            throw new IllegalArgumentException("motor " + motorPort + " has no " + type + " sensor: this platform has no motors of its own");
+        }
         if (type != SensorType.TACHO || !motors.hasEncoder(motorPort)) {
             throw new IllegalArgumentException("robot '" + motors.robot() + "': motor " + motorPort + " has no " + type + " sensor");
         }

@@ -30,7 +30,7 @@ import java.util.concurrent.atomic.AtomicLong;
  * <p>Bad input never stops it: a zero, oversized or truncated frame is dropped with a log line and
  * counted, and the emulator goes on reading; a TCP client that leaves makes room for the next.
  */
-public abstract class BrickEmulator implements AutoCloseable {
+public abstract class BrickEmulator implements Emulator {
 
     private static final Logger LOG = LoggerFactory.getLogger(BrickEmulator.class);
     private static final Duration POLL = Duration.ofMillis(100);
@@ -144,6 +144,7 @@ public abstract class BrickEmulator implements AutoCloseable {
      * @return the device path a driver opens, for example {@code /dev/pts/5}
      * @throws IOException if no pseudo-terminal can be made
      */
+    @Override
     public String startOnPseudoTerminal() throws IOException {
         PseudoTerminal pty = PseudoTerminal.open();
         start(new PseudoTerminalLink(pty));
@@ -158,6 +159,7 @@ public abstract class BrickEmulator implements AutoCloseable {
      * @return the port it listens on
      * @throws IOException if it cannot listen
      */
+    @Override
     public int startOnTcp(String bindAddress, int port) throws IOException {
         TcpServerLink server = new TcpServerLink(bindAddress, port);
         server.open();
@@ -275,6 +277,7 @@ public abstract class BrickEmulator implements AutoCloseable {
     }
 
     /** @return where it serves, for messages */
+    @Override
     public String describe() {
         Link l = link;
         return l == null ? kind + " emulator (not serving)" : kind + " emulator on " + l.describe();

@@ -1,8 +1,10 @@
 package io.robomw.sim.platform;
 
+import io.robomw.api.Clock;
+import io.robomw.api.spi.HighLevelCommand;
+import io.robomw.api.spi.HighLevelPlatform;
 import io.robomw.api.spi.MotorCommand;
 import io.robomw.api.spi.RobotPlatform;
-import io.robomw.platform.BrickPlatform;
 import io.robomw.sim.lockstep.Lockstep;
 import io.robomw.sim.lockstep.SimFuture;
 
@@ -11,17 +13,38 @@ import java.util.concurrent.CompletionException;
 
 /**
  * A simulated robot's platform as the Configuration Layer sees it: the standard
- * {@link BrickPlatform}, with its futures turned into {@link SimFuture}s so a program blocking on
- * them lets simulated time advance.
+ * {@link io.robomw.platform.BrickPlatform} (or, for a legged robot, a
+ * {@link io.robomw.platform.command.HighLevelRobotPlatform}), with its futures turned into
+ * {@link SimFuture}s so a program blocking on them lets simulated time advance.
  */
-final class SimPlatform implements RobotPlatform {
+class SimPlatform implements RobotPlatform {
 
-    private final BrickPlatform platform;
+    private final RobotPlatform platform;
     private final Lockstep lockstep;
 
-    SimPlatform(BrickPlatform platform, Lockstep lockstep) {
+    SimPlatform(RobotPlatform platform, Lockstep lockstep) {
         this.platform = platform;
         this.lockstep = lockstep;
+    }
+
+    /** The same for a legged robot's platform, which also takes high-level commands. */
+    static final class HighLevel extends SimPlatform implements HighLevelPlatform {
+        private final HighLevelPlatform highLevel;
+
+        <P extends RobotPlatform & HighLevelPlatform> HighLevel(P platform, Lockstep lockstep) {
+            super(platform, lockstep);
+            this.highLevel = platform;
+        }
+
+        @Override
+        public CompletableFuture<Void> execute(HighLevelCommand command) {
+            return wrap(highLevel.execute(command));
+        }
+
+        @Override
+        public Clock clock() {
+            return highLevel.clock();
+        }
     }
 
     @Override
@@ -54,7 +77,7 @@ final class SimPlatform implements RobotPlatform {
         platform.close();
     }
 
-    private <T> CompletableFuture<T> wrap(CompletableFuture<T> inner) {
+    <T> CompletableFuture<T> wrap(CompletableFuture<T> inner) {
         if (inner instanceof SimFuture) {
             return inner;
         }

@@ -5,6 +5,7 @@ import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
 import io.robomw.platform.LinkThreading;
+import io.robomw.platform.command.HighLevelRobotPlatform;
 import io.robomw.sim.SimMotors;
 import io.robomw.sim.SimWorld;
 
@@ -13,7 +14,8 @@ import java.io.IOException;
 /**
  * {@code platform: sim}: a robot in a simulated world. The world comes from the platform
  * services ({@link io.robomw.sim.Simulation} passes it); the robot is the world's robot of the
- * same name.
+ * same name. A robot with a legged drive gets a platform that takes high-level commands
+ * ({@link LeggedSimPlatform}).
  */
 public final class SimPlatformProvider implements PlatformProvider {
 
@@ -29,6 +31,12 @@ public final class SimPlatformProvider implements PlatformProvider {
                         + "(mw sim WORLD.yaml, or Simulation.load(world).robot(name))"));
         SimMotors motors = SimMotors.of(world, config.robotName()).orElseThrow(() -> new IOException(
                 "robot '" + config.robotName() + "' is not in world '" + world.description().name() + "' (" + world.description().source() + ")"));
+        if (motors.robot().quadruped() != null) {
+            LeggedSimPlatform legged = new LeggedSimPlatform(config, motors.robot());
+            HighLevelRobotPlatform platform = new HighLevelRobotPlatform(config, legged, new SimSensorPlatform(motors), null);
+            world.attach(motors.robot(), platform.actionThread());
+            return new SimPlatform.HighLevel(platform, world.lockstep());
+        }
         SimMotorPlatform motorPlatform = new SimMotorPlatform(config, motors);
         BrickPlatform platform = new BrickPlatform(config, motorPlatform, new SimSensorPlatform(motorPlatform, motors), LinkThreading.INLINE, null);
         world.attach(motors.robot(), platform.actionThread());

@@ -19,6 +19,11 @@ final class SimSensorPlatform extends SensorPlatform {
         this.robot = robot;
     }
 
+    /** For a legged robot, which has no motors of its own. */
+    SimSensorPlatform(SimMotors robot) {
+        this.robot = robot;
+    }
+
     @Override
     public Sensor createSensor(SensorChannel sensorObject) {
         return robot.sensor(sensorObject.name());

@@ -50,7 +50,8 @@ public final class WanderController implements Runnable {
         SplittableRandom root = new SplittableRandom(seed);
         for (int i = 0; i < bodies.size(); i++) {
             random[i] = root.split();
-            speed[i] = bodies.get(i).description().drive().map(d -> d.maxSpeed() * 0.6).orElse(0.0);
+            var d = bodies.get(i).description();
+            speed[i] = d.drive().map(dd -> dd.maxSpeed() * 0.6).or(() -> d.leggedDrive().map(l -> l.maxSpeed() * 0.6)).orElse(0.0);
             turnBias[i] = random[i].nextDouble(-0.3, 0.3);
             List<SensorModel> range = bodies.get(i).rangeSensors();
             sectors[i] = new int[range.size()];
@@ -129,11 +130,11 @@ public final class WanderController implements Runnable {
         }
     }
 
-    /** Keeps both wheels within the robot's maximum speed. */
+    /** Keeps both wheels within the robot's maximum speed, or a legged robot within its turn rate. */
     private static double clampTurn(SimRobot body, double v, double w) {
         return body.description().drive().map(d -> {
             double max = (d.maxSpeed() - Math.abs(v)) / (d.trackWidth() / 2);
             return Math.max(-max, Math.min(max, w));
-        }).orElse(0.0);
+        }).or(() -> body.description().leggedDrive().map(l -> Math.max(-l.maxTurnRate(), Math.min(l.maxTurnRate(), w)))).orElse(0.0);
     }
 }

@@ -5,6 +5,7 @@ import io.robomw.config.description.Body;
 import io.robomw.sim.SensorModel;
 import io.robomw.sim.SimRobot;
 import io.robomw.sim.SimWorld;
+import io.robomw.sim.legged.Quadruped;
 import io.robomw.sim.world.WorldDescription;
 
 import java.awt.BasicStroke;
@@ -247,6 +248,9 @@ public final class WorldPainter {
             g.fill(new Ellipse2D.Double(sx - MIN_ROBOT_PX / 2, sy - MIN_ROBOT_PX / 2, MIN_ROBOT_PX, MIN_ROBOT_PX));
             return;
         }
+        if (r.quadruped() != null) {
+            paintLegs(g, r, view, p, b, color);
+        }
         Shape body = orientedRect(view, p.x(), p.y(), p.heading(), b.length(), b.width());
         g.setColor(color);
         g.fill(body);
@@ -257,6 +261,44 @@ public final class WorldPainter {
         double frontY = p.y() + b.length() / 2 * Math.sin(p.heading());
         g.setStroke(new BasicStroke(2.5f, BasicStroke.CAP_ROUND, BasicStroke.JOIN_ROUND));
         g.draw(new Line2D.Double(sx, sy, view.screenX(frontX), view.screenY(frontY)));
+    }
+
+    /**
+     * A legged robot from above: four legs out of the trunk's corners, each swung forwards or back
+     * by its shoulder or hip joint as the gait moves it, a head at the front turned by its pan, and
+     * a tail. Drawn under the trunk.
+     */
+    private static void paintLegs(Graphics2D g, SimRobot r, ViewTransform view, Pose p, Body b, Color color) {
+        Quadruped dog = r.quadruped();
+        double c = Math.cos(p.heading());
+        double s = Math.sin(p.heading());
+        double legLength = b.width() * 0.45;
+        g.setColor(color.darker());
+        g.setStroke(new BasicStroke((float) Math.max(1.5, b.width() * 0.12 * view.scale()), BasicStroke.CAP_ROUND, BasicStroke.JOIN_ROUND));
+        String[] legs = {"LF", "RF", "LH", "RH"};
+        for (String leg : legs) {
+            double lx = (leg.endsWith("F") ? 0.35 : -0.35) * b.length();
+            double ly = (leg.startsWith("L") ? 0.5 : -0.5) * b.width();
+            double swing = Math.toRadians(dog.joint("leg" + leg + "1").angle());
+            double ex = lx + legLength * Math.sin(swing) * 0.8;
+            double ey = ly + Math.signum(ly) * legLength * Math.cos(swing) * 0.6;
+            g.draw(new Line2D.Double(view.screenX(p.x() + lx * c - ly * s), view.screenY(p.y() + lx * s + ly * c),
+                    view.screenX(p.x() + ex * c - ey * s), view.screenY(p.y() + ex * s + ey * c)));
+        }
+        double pan = Math.toRadians(dog.joint("headPan").angle());
+        double neck = b.length() / 2;
+        double headRadius = b.width() * 0.32;
+        double hx = neck + headRadius * 0.6 * Math.cos(pan);
+        double hy = headRadius * 0.6 * Math.sin(pan);
+        double wx = p.x() + hx * c - hy * s;
+        double wy = p.y() + hx * s + hy * c;
+        double rpx = headRadius * view.scale();
+        g.fill(new Ellipse2D.Double(view.screenX(wx) - rpx, view.screenY(wy) - rpx, 2 * rpx, 2 * rpx));
+        double tail = Math.toRadians(dog.joint("tailPan").angle());
+        double tx = -b.length() / 2 - b.width() * 0.4 * Math.cos(tail);
+        double ty = -b.width() * 0.4 * Math.sin(tail);
+        g.draw(new Line2D.Double(view.screenX(p.x() - b.length() / 2 * c), view.screenY(p.y() - b.length() / 2 * s),
+                view.screenX(p.x() + tx * c - ty * s), view.screenY(p.y() + tx * s + ty * c)));
     }
 
     private static void paintLabel(Graphics2D g, SimRobot r, ViewTransform view) {

@@ -28,7 +28,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
  *
  * @param <E> the emulator
  */
-public final class EmulatorStack<E extends BrickEmulator> implements AutoCloseable {
+public final class EmulatorStack<E extends Emulator> implements AutoCloseable {
 
     private final Path dir;
     private final String robotTemplate;
@@ -171,6 +171,23 @@ public final class EmulatorStack<E extends BrickEmulator> implements AutoCloseab
         }
     }
 
+    /**
+     * Waits, checking on the test's thread every millisecond, until the condition holds (for
+     * conditions that ask the robot, which must not run on the world's thread); fails after the
+     * deadline.
+     *
+     * @param condition what to wait for
+     * @param deadline  the longest wait
+     * @param what      the condition, for the failure
+     */
+    public void awaitTrue(BooleanSupplier condition, Duration deadline, String what) {
+        long end = System.nanoTime() + deadline.toNanos();
+        while (!condition.getAsBoolean()) {
+            assertTrue(System.nanoTime() < end, what + " within " + deadline.toMillis() + " ms; robot at " + truePose());
+            java.util.concurrent.locks.LockSupport.parkNanos(1_000_000);
+        }
+    }
+
     /** Waits until half a simulated second has passed (the world runs on), failing after 5 s. */
     public void awaitHalfASimulatedSecond() throws InterruptedException {
         double t0 = sim.world().time();
@@ -182,7 +199,7 @@ public final class EmulatorStack<E extends BrickEmulator> implements AutoCloseab
         if (robot != null) {
             robot.close();
         }
-        emulators.forEach(BrickEmulator::close);
+        emulators.forEach(Emulator::close);
         if (sim != null) {
             sim.close();
         }

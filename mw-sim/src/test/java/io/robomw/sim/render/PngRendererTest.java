@@ -101,6 +101,25 @@ class PngRendererTest {
     }
 
     @Test
+    void shouldDrawALeggedRobotWithItsLegsAndItsHead() throws Exception {
+        Files.writeString(dir.resolve("dog-world.yaml"), """
+                name: dog-world
+                arena: { width: 4, height: 3 }
+                robots:
+                  - { robot: %s, name: aibo, x: 2, y: 1.5, heading: 0 }
+                """.formatted(Path.of("../examples/robots/aibo.yaml").toAbsolutePath()));
+        try (Simulation sim = Simulation.load(dir.resolve("dog-world.yaml"))) {
+            BufferedImage image = PngRenderer.render(sim.world(), OPTIONS);
+            ViewTransform view = WorldPainter.fit(sim.world().description(), 640, 480, OPTIONS.marginPx());
+            Color limbs = WorldPainter.robotColor(0).darker();
+            // The trunk is 0.30 × 0.18 m; the head sits in front of it, the legs stick out of its sides.
+            assertNear(limbs, image, view.screenX(2.21), view.screenY(1.5), "the head, in front of the trunk");
+            assertNear(limbs, image, view.screenX(2.107), view.screenY(1.62), "the left front leg, beside the trunk");
+            assertNear(limbs, image, view.screenX(1.893), view.screenY(1.38), "the right hind leg");
+        }
+    }
+
+    @Test
     void shouldPickScaleBarOfOneTwoOrFiveTimesPowerOfTen() {
         assertEquals(1.0, WorldPainter.scaleBarMetres(100), 1e-12);
         assertEquals(2.0, WorldPainter.scaleBarMetres(37), 1e-12);

@@ -64,6 +64,49 @@ class DemoIT {
     }
 
     @Test
+    void demoWithTheAiboSendsAThirdCloneToTheDogThroughItsUrbiEmulator() throws Exception {
+        try (MwProcess demo = MwProcess.start("demo-aibo", "demo", "--robots", "nxt,ft,aibo", "--png", dir.resolve("demo3.png").toString(),
+                "--logs", dir.resolve("logs3").toString())) {
+            assertEquals(0, demo.waitFor(Duration.ofMinutes(3)), demo.output());
+            String out = demo.output();
+            assertTrue(out.contains("virtual Sony Aibo (URBI server) for aibo on tcp 127.0.0.1:"), out);
+            for (String robot : List.of("nxt", "ft", "aibo")) {
+                String table = out.substring(out.indexOf("== " + robot + " ("));
+                assertTrue(table.contains("distance driven       1.600 m"), table);
+                Matcher samples = Pattern.compile("samples\\s+(\\d+)").matcher(table);
+                assertTrue(samples.find());
+                assertEquals(16, Integer.parseInt(samples.group(1)), robot + " brought 16 range samples home");
+            }
+            // The dog's gait loses 2 % of each motion and varies 3 % step by step (aibo.yaml): a 0.4 m
+            // square in 0.1 m steps ends some 4 cm from its start, 7° off its heading; 10 cm and 20° bound it.
+            String dog = out.substring(out.indexOf("== aibo ("));
+            Matcher error = Pattern.compile("final pose error\\s+([0-9.]+) m,\\s+([0-9.]+) deg").matcher(dog);
+            assertTrue(error.find(), dog);
+            assertTrue(Double.parseDouble(error.group(1)) < 0.10, "the dog ends within 10 cm of its start: " + error.group(0));
+            assertTrue(Double.parseDouble(error.group(2)) < 20, "and within 20 degrees of its heading: " + error.group(0));
+            assertTrue(dog.contains("(the robot's own dead reckoning from its commanded gait)"), "a dog has no encoders: " + dog);
+            assertTrue(out.contains("stopped all 3 hosts"), out);
+        }
+    }
+
+    @Test
+    void emulateAiboServesUrbiOnTheTcpPortItPrints() throws Exception {
+        try (MwProcess dog = MwProcess.start("emulate-aibo", "emulate", "aibo", "--world", "examples/worlds/arena.yaml", "--robot", "aibo", "--tcp", "0")) {
+            String where = dog.await("tcp://", Duration.ofSeconds(60)).strip();
+            int port = Integer.parseInt(where.substring(where.lastIndexOf(':') + 1));
+            try (java.net.Socket s = new java.net.Socket(InetAddress.getLoopbackAddress(), port)) {
+                s.getOutputStream().write("p1: ping;\n".getBytes(java.nio.charset.StandardCharsets.US_ASCII));
+                java.io.BufferedReader in = new java.io.BufferedReader(new java.io.InputStreamReader(s.getInputStream(), java.nio.charset.StandardCharsets.US_ASCII));
+                String line;
+                do {
+                    line = in.readLine();
+                } while (line != null && !line.contains(":p1]"));
+                assertTrue(line != null && line.matches("\\[\\d{8}:p1] \\*\\*\\* pong time=.*"), "the answer to ping: " + line);
+            }
+        }
+    }
+
+    @Test
     void theSameAgentJarDispatchedByHandToHostsStartedByHandGivesTheSameResults() throws Exception {
         Path key = Files.writeString(dir.resolve("cluster.key"), "quickstart passphrase\n");
         List<MwProcess> running = new ArrayList<>();
