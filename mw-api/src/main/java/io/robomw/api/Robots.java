@@ -6,7 +6,6 @@ import io.robomw.api.spi.RobotFactory;
 import java.net.URI;
 import java.nio.file.Path;
 import java.util.ServiceLoader;
-import java.util.stream.Collectors;
 
 /**
  * Opens robots. The implementations are found at run time ({@link RobotFactory} through
@@ -72,9 +71,18 @@ public final class Robots {
                 .map(ServiceLoader.Provider::get)
                 .filter(f -> f.scheme().equals(scheme))
                 .findFirst()
-                .orElseThrow(() -> new RobotException("no robot factory for '" + scheme + "' robots on the class path (found: "
-                        + ServiceLoader.load(RobotFactory.class, Robots.class.getClassLoader()).stream()
-                        .map(p -> p.get().scheme()).collect(Collectors.joining(", "))
-                        + "); add the module that provides it (mw-config for files, mw-agents for remote robots)"));
+                .orElseThrow(() -> new RobotException(noFactory(scheme, loader.stream().map(p -> p.get().scheme()).toList())));
+    }
+
+    /**
+     * @param scheme  the address scheme nobody opens
+     * @param present the schemes the factories on the class path open
+     * @return what is wrong and which artifact fixes it
+     */
+    static String noFactory(String scheme, java.util.List<String> present) {
+        String artifact = "file".equals(scheme) ? "io.robomw:mw-config (robot files) and a driver artifact, io.robomw:mw-platform or io.robomw:mw-sim"
+                : "io.robomw:mw-agents (tcp, udp, rmi, multicast and mqtt addresses)";
+        return "no robot factory for '" + scheme + "' robots on the class path (found: " + (present.isEmpty() ? "none" : String.join(", ", present))
+                + "); add " + artifact + ", or run with the mw distribution's class path (mw run, mw classpath)";
     }
 }

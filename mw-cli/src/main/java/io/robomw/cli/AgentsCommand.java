@@ -26,8 +26,8 @@ final class AgentsCommand implements Callable<Integer> {
     @picocli.CommandLine.Option(names = "--cluster", paramLabel = "BROKER", description = "list every host announced at this broker, mqtt://host:port[/prefix]")
     String broker;
 
-    @picocli.CommandLine.Option(names = "--wait", defaultValue = "3", description = "seconds to wait for the broker's answer with --cluster (default ${DEFAULT-VALUE})")
-    double waitSeconds;
+    @picocli.CommandLine.Option(names = "--wait", defaultValue = "3s", description = "how long to wait for the broker's answer with --cluster (default ${DEFAULT-VALUE})")
+    java.time.Duration wait;
 
     @Mixin
     ClusterOptions cluster;
@@ -66,7 +66,7 @@ final class AgentsCommand implements Callable<Integer> {
     private int listCluster(PrintWriter out) {
         List<io.robomw.agents.messaging.PresenceRecord> all;
         try {
-            all = io.robomw.agents.messaging.mqtt.BrokerDirectory.read(broker, java.time.Duration.ofMillis((long) (waitSeconds * 1000)));
+            all = io.robomw.agents.messaging.mqtt.BrokerDirectory.read(broker, wait);
         } catch (java.io.IOException | IllegalArgumentException e) {
             spec.commandLine().getErr().println("mw agents: " + e.getMessage());
             return 2;

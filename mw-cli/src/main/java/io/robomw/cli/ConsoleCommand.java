@@ -62,8 +62,14 @@ final class ConsoleCommand implements Callable<Integer> {
         @Option(names = "--discover", description = "also watch the hosts the watched hosts know (the cluster's directory, from each host's DESCRIBE)")
         boolean discover;
 
-        @Option(names = "--period-ms", defaultValue = "500", description = "how often hosts are asked, ms (robots twice as often; default ${DEFAULT-VALUE})")
-        long periodMillis;
+        @Option(names = "--period", defaultValue = "500ms", description = "how often hosts are asked: 500ms, 1s... (robots twice as often; default ${DEFAULT-VALUE})")
+        java.time.Duration period;
+
+        /** The option's former spelling, in milliseconds; still read. */
+        @Option(names = "--period-ms", hidden = true)
+        void periodMillis(long millis) {
+            period = java.time.Duration.ofMillis(millis);
+        }
 
         @Mixin
         ClusterOptions cluster;
@@ -78,10 +84,10 @@ final class ConsoleCommand implements Callable<Integer> {
                 }).toList()));
                 b.about("world", world.toString());
             }
-            if (periodMillis < 50 || periodMillis > 60_000) {
-                throw new IllegalArgumentException("--period-ms must be 50 to 60000, got " + periodMillis);
+            if (period.toMillis() < 50 || period.toMillis() > 60_000) {
+                throw new IllegalArgumentException("--period must be 50ms to 1m, got " + Durations.format(period));
             }
-            b.hosts(hosts).robots(robots).period(java.time.Duration.ofMillis(periodMillis));
+            b.hosts(hosts).robots(robots).period(period);
             if (discover) {
                 b.discover();
             }

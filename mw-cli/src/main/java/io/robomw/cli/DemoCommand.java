@@ -93,7 +93,7 @@ final class DemoCommand implements Callable<Integer> {
     @Option(names = "--logs", paramLabel = "DIR", description = "where the host processes' logs go (default: a temporary directory)")
     Path logs;
 
-    @Option(names = "--timeout", defaultValue = "PT2M", description = "longest the agents may take (default ${DEFAULT-VALUE})")
+    @Option(names = "--timeout", defaultValue = "2m", description = "longest the agents may take: 90s, 2m, ISO-8601... (default ${DEFAULT-VALUE})")
     Duration timeout;
 
     @Option(names = "--console", description = "show the run live in a web page (prints its address); the page stays up after the demo until Ctrl-C")

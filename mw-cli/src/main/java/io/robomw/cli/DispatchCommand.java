@@ -46,7 +46,7 @@ final class DispatchCommand implements Callable<Integer> {
     @Option(names = "--clone", description = "send one clone to each host, in parallel (default: one agent visits the hosts in turn)")
     boolean clone;
 
-    @Option(names = "--timeout", defaultValue = "PT2M", description = "how long to wait for results (ISO-8601, default ${DEFAULT-VALUE})")
+    @Option(names = "--timeout", defaultValue = "PT2M", description = "how long to wait for results: 30s, 2m, ISO-8601... (default ${DEFAULT-VALUE})")
     Duration timeout;
 
     @Option(names = "--bind", defaultValue = "127.0.0.1", description = "address of this command's own home host, where results arrive (default ${DEFAULT-VALUE})")

@@ -16,6 +16,7 @@ import picocli.CommandLine.Spec;
 
 import java.io.PrintWriter;
 import java.nio.file.Path;
+import java.util.Map;
 import java.util.Set;
 import java.util.concurrent.Callable;
 import java.util.concurrent.CountDownLatch;
@@ -25,21 +26,26 @@ import java.util.concurrent.CountDownLatch;
  * for one robot of a simulated world. It prints the serial device (or TCP port) the real driver
  * connects to, runs the world in real time, and serves until interrupted (Ctrl-C).
  */
-@Command(name = "emulate", description = "Run a virtual brick (or Aibo) bound to a robot in a simulated world; print its device path or port.")
+@Command(mixinStandardHelpOptions = true, name = "emulate", description = "Run a virtual brick (or Aibo) bound to a robot in a simulated world; print its device path or port.")
 final class EmulateCommand implements Callable<Integer> {
 
-    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick: nxt, ev3, ft-intelligent, ft-txt (TCP only), aibo (URBI, TCP only)", converter = BrickConverter.class)
+    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick, by its robot files' platform name: nxt, ev3, ft-intelligent, ft-txt (TCP only), aibo (URBI, TCP only)",
+            converter = BrickConverter.class)
     private Brick brick;
 
-    /** Accepts the bricks' platform names (with dashes). */
+    /** Accepts the bricks' platform names, exactly as robot files spell them. */
     static final class BrickConverter implements picocli.CommandLine.ITypeConverter<Brick> {
         @Override
         public Brick convert(String value) {
-            try {
-                return Brick.valueOf(value.replace('-', '_'));
-            } catch (IllegalArgumentException e) {
-                throw new picocli.CommandLine.TypeConversionException("unknown brick '" + value + "'; emulated bricks: nxt, ev3, ft-intelligent, ft-txt, aibo");
+            for (Brick b : Brick.values()) {
+                if (b.platform.equals(value)) {
+                    return b;
+                }
             }
+            String near = value.replace('_', '-').toLowerCase(java.util.Locale.ROOT);
+            String hint = java.util.Arrays.stream(Brick.values()).anyMatch(b -> b.platform.equals(near)) ? "did you mean '" + near + "'? " : "";
+            throw new picocli.CommandLine.TypeConversionException("unknown brick '" + value + "'; " + hint + "emulated bricks: "
+                    + String.join(", ", java.util.Arrays.stream(Brick.values()).map(b -> b.platform).toList()));
         }
     }
 
@@ -50,22 +56,38 @@ final class EmulateCommand implements Callable<Integer> {
     private String robot;
 
     @Option(names = "--tcp", paramLabel = "PORT", description = "serve on TCP 127.0.0.1:PORT (0 = any) instead of a pseudo-terminal; "
-            + "the TXT and the Aibo are TCP only (default 65000 and 54000)")
+            + "the TXT is TCP only (default 65000)")
     private Integer tcpPort;
 
     @Option(names = "--speed", defaultValue = "1", description = "simulated seconds per second (default ${DEFAULT-VALUE})")
     private double speed;
 
+    @Option(names = "--write-robot", paramLabel = "FILE.yaml", description = "write a copy of the robot's file whose connection points at this emulator,"
+            + " ready for Robots.open, mw host --robot or mw robot")
+    private Path writeRobot;
+
     @Spec
     private CommandSpec spec;
 
-    /** The bricks that can be emulated. */
+    /** The bricks that can be emulated, by their platform names. */
     enum Brick {
-        nxt,
-        ev3,
-        ft_intelligent,
-        ft_txt,
-        aibo
+        NXT("nxt"),
+        EV3("ev3"),
+        FT_INTELLIGENT("ft-intelligent"),
+        FT_TXT("ft-txt"),
+        AIBO("aibo");
+
+        /** The {@code platform:} value of its robot files. */
+        final String platform;
+
+        Brick(String platform) {
+            this.platform = platform;
+        }
+
+        @Override
+        public String toString() {
+            return platform;
+        }
     }
 
     @Override
@@ -82,6 +104,15 @@ final class EmulateCommand implements Callable<Integer> {
             err.println(e.getMessage());
             return 2;
         }
+        // The robot file's own platform: inside the world every robot is simulated.
+        Path robotFile = sim.world().description().robots().stream().filter(r -> r.name().equals(robot)).findFirst().orElseThrow().description();
+        String platform = writeRobot == null ? brick.platform : new io.robomw.config.description.RobotDescriptionLoader().load(robotFile).platform();
+        if (writeRobot != null && !platform.equals(brick.platform)) {
+            sim.close();
+            err.println("mw emulate: robot '" + robot + "' of " + world + " is a " + platform + " robot (its file says platform: " + platform
+                    + "), so a " + brick + " emulator cannot write a robot file for it; emulate " + platform + ", or leave out --write-robot");
+            return 2;
+        }
         CountDownLatch stopped = new CountDownLatch(1);
         Emulator emulator;
         try {
@@ -92,14 +123,33 @@ final class EmulateCommand implements Callable<Integer> {
             return 2;
         }
         try (sim; emulator) {
-            if (brick == Brick.ft_txt && tcpPort == null) {
+            if (brick == Brick.FT_TXT && tcpPort == null) {
                 tcpPort = 65000;
             }
-            if (brick == Brick.aibo && tcpPort == null) {
+            if (brick == Brick.AIBO && tcpPort == null) {
                 tcpPort = 54000;
             }
-            String where = tcpPort == null ? emulator.startOnPseudoTerminal() : "tcp://127.0.0.1:" + emulator.startOnTcp("127.0.0.1", tcpPort);
+            String where;
+            if (tcpPort == null) {
+                where = emulator.startOnPseudoTerminal();
+            } else {
+                tcpPort = emulator.startOnTcp("127.0.0.1", tcpPort);
+                where = "tcp://127.0.0.1:" + tcpPort;
+            }
+            if (writeRobot != null) {
+                // Written before the device is printed: whoever waits for that line finds the file.
+                Path source = robotFile;
+                Map<String, String> connection = new java.util.LinkedHashMap<>();
+                if (tcpPort != null) {
+                    connection.put("host", "127.0.0.1");
+                }
+                connection.put("port", tcpPort == null ? where : String.valueOf(tcpPort));
+                ReadyRobotFile.write(source, writeRobot, connection, "mw emulate " + brick + " --robot " + robot + " --world " + world);
+            }
             out.println(where);
+            if (writeRobot != null) {
+                out.println("wrote " + writeRobot + ": robot '" + robot + "' with its connection at this emulator");
+            }
             out.flush();
             err.printf("%s emulator for robot '%s' of %s; connect the %s driver to %s; Ctrl-C stops it%n", brick, robot, world, brick, where);
             err.flush();
@@ -112,11 +162,11 @@ final class EmulateCommand implements Callable<Integer> {
 
     private Emulator bind(Simulation sim) {
         return switch (brick) {
-            case nxt -> NxtEmulator.bind(sim, robot);
-            case ev3 -> Ev3Emulator.bind(sim, robot);
-            case ft_intelligent -> IntelligentInterfaceEmulator.bind(sim, robot);
-            case ft_txt -> TxtEmulator.bind(sim, robot);
-            case aibo -> AiboEmulator.bind(sim, robot);
+            case NXT -> NxtEmulator.bind(sim, robot);
+            case EV3 -> Ev3Emulator.bind(sim, robot);
+            case FT_INTELLIGENT -> IntelligentInterfaceEmulator.bind(sim, robot);
+            case FT_TXT -> TxtEmulator.bind(sim, robot);
+            case AIBO -> AiboEmulator.bind(sim, robot);
         };
     }
 }

@@ -92,6 +92,9 @@ final class HostCommand implements Callable<Integer> {
     @Mixin
     ClusterOptions cluster;
 
+    @Mixin
+    BeaconOption beacon;
+
     @Spec
     CommandSpec spec;
 
@@ -167,6 +170,9 @@ final class HostCommand implements Callable<Integer> {
             boolean atBroker = host.messagingAddresses().stream().anyMatch(m -> m.startsWith("mqtt"));
             if (announce != null || atBroker) {
                 open.add(0, HostPresence.start(host, announce, presenceNode));
+            }
+            if (presenceNode != null) {
+                open.add(0, beacon.announce(presenceNode));
             }
             out.printf("agent host %s ready at %s (robot: %s, store: %s)%n", name, host.address(), robot == null ? "none" : robot.name(),
                     store == null ? "memory" : store);

@@ -16,8 +16,8 @@ import java.util.Locale;
  * {@code mw msg pub|sub|send}: messaging by hand, like {@code ros2 topic pub/echo}. Each
  * subcommand is its own class; this one holds what they share.
  */
-@Command(name = "msg", mixinStandardHelpOptions = true, description = "Publish, subscribe and send messages by hand (tcp, udp, multicast, rmi).",
-        subcommands = {MsgPubCommand.class, MsgSubCommand.class, MsgSendCommand.class})
+@Command(name = "msg", mixinStandardHelpOptions = true, description = "Publish, subscribe, send and echo messages by hand (tcp, udp, multicast, rmi, mqtt).",
+        subcommands = {MsgPubCommand.class, MsgSubCommand.class, MsgSendCommand.class, MsgEchoCommand.class})
 final class MsgCommand {
 
     /** Options every msg subcommand has. */

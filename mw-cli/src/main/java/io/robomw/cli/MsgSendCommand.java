@@ -39,8 +39,8 @@ final class MsgSendCommand implements Callable<Integer> {
     @Option(names = "--function", defaultValue = "data", description = "the message function (default: ${DEFAULT-VALUE})")
     private String function;
 
-    @Option(names = "--timeout", defaultValue = "5", description = "seconds to wait for the reply (default: ${DEFAULT-VALUE})")
-    private double timeout;
+    @Option(names = "--timeout", defaultValue = "5s", description = "how long to wait for the reply: 5, 500ms, 2m... (default: ${DEFAULT-VALUE})")
+    private Duration timeout;
 
     @Option(names = "--no-reply", description = "do not wait for a reply")
     private boolean noReply;
@@ -56,7 +56,7 @@ final class MsgSendCommand implements Callable<Integer> {
             if (noReply) {
                 return 0;
             }
-            Message reply = node.waitForReply(id, Duration.ofMillis((long) (timeout * 1000)));
+            Message reply = node.waitForReply(id, timeout);
             spec.commandLine().getOut().println("reply " + MsgCommand.describe(reply));
             return 0;
         } catch (MessagingException e) {

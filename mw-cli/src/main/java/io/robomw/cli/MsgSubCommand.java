@@ -24,6 +24,9 @@ final class MsgSubCommand implements Callable<Integer> {
     @Mixin
     private MsgCommand.Common common;
 
+    @Mixin
+    private BeaconOption beacon;
+
     @Parameters(index = "0", paramLabel = "ADDRESS", description = "the publisher, e.g. tcp://127.0.0.1:7000; or where to listen with --bind")
     private String address;
 
@@ -39,17 +42,18 @@ final class MsgSubCommand implements Callable<Integer> {
     @Option(names = "--count", defaultValue = "0", description = "exit after this many messages; 0 = until interrupted")
     private long count;
 
-    @Option(names = "--timeout", defaultValue = "0", description = "exit with status 1 after this many seconds; 0 = no limit")
-    private double timeout;
+    @Option(names = "--timeout", defaultValue = "0", description = "exit with status 1 after this long (30, 500ms, 2m...); 0 = no limit")
+    private java.time.Duration timeout;
 
     @Spec
     private CommandSpec spec;
 
     @Override
-    public Integer call() throws InterruptedException {
+    public Integer call() throws Exception {
         PrintWriter out = spec.commandLine().getOut();
         CountDownLatch done = new CountDownLatch(count == 0 ? 1 : (int) Math.min(count, Integer.MAX_VALUE));
-        try (MessagingNode node = MessagingNode.builder(common.name).settings(common.settings()).build()) {
+        try (MessagingNode node = MessagingNode.builder(common.name).settings(common.settings()).build();
+             AutoCloseable announced = beacon.announce(node)) {
             node.addMessageListener(topic, common.password, m -> {
                 synchronized (out) {
                     out.println(MsgCommand.describe(m));
@@ -76,8 +80,8 @@ final class MsgSubCommand implements Callable<Integer> {
                 out.println("listening to topic '" + topic + "' " + (node.boundAddresses().isEmpty() ? "from " + address : "at " + node.boundAddresses().get(0)));
                 out.flush();
             }
-            if (timeout > 0) {
-                return done.await((long) (timeout * 1000), TimeUnit.MILLISECONDS) ? 0 : 1;
+            if (!timeout.isZero()) {
+                return done.await(timeout.toNanos(), TimeUnit.NANOSECONDS) ? 0 : 1;
             }
             done.await();
             return 0;

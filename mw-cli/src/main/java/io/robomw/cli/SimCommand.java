@@ -90,8 +90,11 @@ final class SimCommand implements Callable<Integer> {
     @Option(names = "--side", paramLabel = "METRES", defaultValue = "0.5", description = "side of the square program's square (default: ${DEFAULT-VALUE})")
     private double side;
 
-    @Option(names = "--duration", paramLabel = "SECONDS", defaultValue = "20",
-            description = "simulated time to run (default: ${DEFAULT-VALUE}); --view runs until its window closes")
+    @Option(names = "--duration", paramLabel = "TIME", defaultValue = "20s",
+            description = "simulated time to run: 20, 90s, 2m... (default: ${DEFAULT-VALUE}); --view runs until its window closes")
+    private Duration durationOption;
+
+    /** {@link #durationOption} in seconds. */
     private double duration;
 
     @ArgGroup(exclusive = true, multiplicity = "0..1")
@@ -261,9 +264,10 @@ final class SimCommand implements Callable<Integer> {
 
     private void checkOptions() {
         CommandLine cl = spec.commandLine();
-        if (!(duration > 0) || Double.isInfinite(duration)) {
-            throw new CommandLine.ParameterException(cl, "--duration must be a number of seconds > 0, got " + duration);
+        if (durationOption.isZero()) {
+            throw new CommandLine.ParameterException(cl, "--duration must be longer than 0");
         }
+        duration = durationOption.toNanos() / 1e9;
         if (!(side > 0) || Double.isInfinite(side)) {
             throw new CommandLine.ParameterException(cl, "--side must be a number of metres > 0, got " + side);
         }

@@ -24,7 +24,7 @@ class MsgCommandTest {
     private static Run mw(String... args) {
         StringWriter out = new StringWriter();
         StringWriter err = new StringWriter();
-        CommandLine cl = new CommandLine(new Mw());
+        CommandLine cl = Mw.commandLine();
         cl.setOut(new PrintWriter(out, true));
         cl.setErr(new PrintWriter(err, true));
         int status = cl.execute(args);
@@ -68,6 +68,50 @@ class MsgCommandTest {
         Run send = mw("msg", "send", "tcp://127.0.0.1:" + freeTcpPort(), "*", "cmd", "ping", "--timeout", "1");
         assertEquals(1, send.status());
         assertTrue(send.err().contains("cannot reach"), send.err());
+    }
+
+    @Test
+    void pubWaitsForASubscriberSoTheFirstPublicationIsNotLost() throws Exception {
+        String address = "tcp://127.0.0.1:" + freeTcpPort();
+        CompletableFuture<Run> pub = CompletableFuture.supplyAsync(() -> mw("msg", "pub", address, "news", "hello", "--wait-timeout", "20s"));
+        Run sub = mw("msg", "sub", address, "news", "--count", "1", "--timeout", "20s");
+        assertEquals(0, sub.status(), sub.err());
+        assertTrue(sub.out().contains("[news] mw-msg data: hello"), sub.out());
+        Run published = pub.get(20, TimeUnit.SECONDS);
+        assertEquals(0, published.status(), published.err());
+        assertTrue(published.out().contains("waiting up to 20s for a subscriber"), published.out());
+        assertTrue(published.out().contains("published #1: hello (1 subscriber)"), published.out());
+    }
+
+    @Test
+    void pubSaysWhenItHadNoSubscriber() throws Exception {
+        String address = "tcp://127.0.0.1:" + freeTcpPort();
+        Run waited = mw("msg", "pub", address, "news", "hello", "--wait-timeout", "200ms");
+        assertEquals(1, waited.status());
+        assertTrue(waited.err().contains("no subscriber came to " + address + " within 200ms; nothing was published"), waited.err());
+        Run toNobody = mw("msg", "pub", "tcp://127.0.0.1:" + freeTcpPort(), "news", "hello", "--wait-subscribers", "0");
+        assertEquals(0, toNobody.status(), toNobody.err());
+        assertTrue(toNobody.out().contains("published #1: hello (0 subscribers)"), toNobody.out());
+        assertTrue(toNobody.err().contains("no subscriber was connected, so nobody received it"), toNobody.err());
+    }
+
+    @Test
+    void sendSaysTheReceiverRefusedAWrongOrMissingPassword() throws Exception {
+        String address = "tcp://127.0.0.1:" + freeTcpPort();
+        CompletableFuture<Run> sub = CompletableFuture.supplyAsync(() -> mw("msg", "sub", address, "cmd", "--bind", "--echo",
+                "--password", "right", "--count", "1", "--timeout", "20s"));
+        Run wrong;
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(20);
+        do {
+            wrong = mw("msg", "send", address, "*", "cmd", "ping", "--password", "wrong", "--timeout", "5s");
+        } while (System.nanoTime() < deadline && wrong.err().contains("cannot reach"));
+        assertEquals(1, wrong.status());
+        assertTrue(wrong.err().contains("topic 'cmd' is password-protected and the message had a wrong password"), wrong.err());
+        Run missing = mw("msg", "send", address, "*", "cmd", "ping", "--timeout", "5s");
+        assertEquals(1, missing.status());
+        assertTrue(missing.err().contains("the message had no password"), missing.err());
+        assertEquals(0, mw("msg", "send", address, "*", "cmd", "ping", "--password", "right").status());
+        assertEquals(0, sub.get(20, TimeUnit.SECONDS).status());
     }
 
     @Test

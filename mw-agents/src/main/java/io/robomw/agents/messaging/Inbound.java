@@ -25,7 +25,8 @@ import java.time.Instant;
  * or find the topic (or, for a reply, the request), check the receiver's name, authenticate
  * (HMAC, freshness, replay) if the topic has a password, deserialize the payload through the
  * allow-list, and deliver it. Every refusal is counted and logged; refused requests get an
- * {@link FrameKind#ERROR} answer when it is safe to tell (not for authentication failures).
+ * {@link FrameKind#ERROR} answer when it is safe to tell: a request with a missing or wrong
+ * password is told so (nothing more), a stale or replayed frame is not answered.
  *
  * <p>Runs on the transports' receiving threads; listeners run there too.
  */
@@ -119,7 +120,17 @@ final class Inbound {
             refuse(f, from, "no receiver named '" + f.receiver() + "' here; this node answers to " + node.names());
             return;
         }
-        authenticate(topic.key, f, buf, offset, length, from);
+        try {
+            authenticate(topic.key, f, buf, offset, length, from);
+        } catch (FrameException e) {
+            if (request && !from.isGroup() && (e.reason() == DropReason.MISSING_MAC || e.reason() == DropReason.BAD_MAC)) {
+                // The sender is told its password was refused (as HTTP's 401 would), never why in more detail:
+                // a wrong password learns nothing it could not learn from the missing reply.
+                refuse(f, from, "refused by node '" + node.name() + "': topic '" + f.topic() + "' is password-protected and the message "
+                        + (e.reason() == DropReason.MISSING_MAC ? "had no password" : "had a wrong password"));
+            }
+            throw e;
+        }
         Serializable payload;
         try {
             payload = payloads.decode(f.payloadType(), f.payload());

@@ -69,6 +69,11 @@ final class LocalTopics {
         return topics.get(topic);
     }
 
+    /** @return the names of the topics registered here (listened to or subscribed), sorted */
+    List<String> names() {
+        return topics.keySet().stream().sorted().toList();
+    }
+
     List<String> subscribed() {
         return topics.values().stream().filter(t -> t.subscribed).map(t -> t.name).toList();
     }

@@ -91,6 +91,10 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     private final FrameFactory frames;
     private final LocalTopics topics;
     private final RemoteSubscribers remoteSubscribers;
+    /** The topics this node published on, for discovery (at most {@link #MAX_ANNOUNCED_TOPICS}). */
+    private final java.util.Set<String> published = new java.util.concurrent.ConcurrentSkipListSet<>();
+    /** How many published topics a node remembers for {@link #publishedTopics()}. */
+    static final int MAX_ANNOUNCED_TOPICS = 256;
     private final Replies replies = new Replies();
     private final BoundedMap<UUID, Sent> sentRequests = new BoundedMap<>(REMEMBERED_REQUESTS);
     private final BoundedMap<UUID, Origin> receivedRequests = new BoundedMap<>(REMEMBERED_REQUESTS);
@@ -292,6 +296,28 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         return remoteSubscribers.count(topic);
     }
 
+    /** @return the topics this node listens to or subscribes to, sorted (what a discovery beacon announces) */
+    public List<String> listenedTopics() {
+        return topics.names();
+    }
+
+    /**
+     * Says that this node publishes on a topic before it first does (as ROS's advertise), so that
+     * a discovery beacon announces it and subscribers can find it.
+     *
+     * @param topic the topic
+     */
+    public void advertise(String topic) {
+        if (published.size() < MAX_ANNOUNCED_TOPICS) {
+            published.add(requireTopic(topic));
+        }
+    }
+
+    /** @return the topics this node has published on or advertised, sorted (at most 256; what a discovery beacon announces) */
+    public List<String> publishedTopics() {
+        return List.copyOf(published);
+    }
+
     /** @return the settings */
     public MessagingSettings settings() {
         return settings;
@@ -374,6 +400,9 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     @Override
     public void publishMessage(String topic, Serializable object, String function, String password) {
         SecretKey key = keys.key(requireTopic(topic), password);
+        if (published.size() < MAX_ANNOUNCED_TOPICS) {
+            published.add(topic);
+        }
         topics.checkIfRegistered(topic, key);
         byte[] frame = frames.message(FrameKind.PUBLISH, "", topic, object, function, key).bytes();
         List<Channel> subscribers = remoteSubscribers.of(topic);

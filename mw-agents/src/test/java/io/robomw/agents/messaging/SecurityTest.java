@@ -62,12 +62,17 @@ class SecurityTest {
     }
 
     @Test
-    void requestWithTheWrongPasswordGetsNoReply() {
+    void requestWithAWrongOrMissingPasswordIsRefusedSayingSo() {
         MessagingNode server = node(MessagingNode.builder("server").bind("tcp://127.0.0.1:0"));
         server.addMessageListener("cmd", "right", m -> server.replyMessage(m, "done", "ok"));
         MessagingNode client = node(MessagingNode.builder("client"));
         UUID bad = client.sendMessage("server", server.address("tcp"), "wrong", "cmd", "x", "go");
-        assertThrows(MessagingException.class, () -> client.waitForReply(bad, Duration.ofMillis(300)));
+        MessagingException wrong = assertThrows(MessagingException.class, () -> client.waitForReply(bad, WAIT));
+        assertTrue(wrong.getMessage().contains("topic 'cmd' is password-protected and the message had a wrong password"), wrong.getMessage());
+        UUID none = client.sendMessage("server", server.address("tcp"), null, "cmd", "x", "go");
+        MessagingException missing = assertThrows(MessagingException.class, () -> client.waitForReply(none, WAIT));
+        assertTrue(missing.getMessage().contains("had no password"), missing.getMessage());
+        assertEquals(1, server.stats().dropped(DropReason.MISSING_MAC));
         UUID good = client.sendMessage("server", server.address("tcp"), "right", "cmd", "x", "go");
         assertEquals("done", client.waitForReply(good, WAIT).payload());
         assertEquals(1, server.stats().dropped(DropReason.BAD_MAC));

@@ -15,8 +15,11 @@ import io.robomw.config.description.RobotDescriptionLoader;
 import java.io.IOException;
 import java.net.URI;
 import java.nio.file.Path;
+import java.util.List;
+import java.util.Map;
 import java.util.ServiceLoader;
-import java.util.stream.Collectors;
+import java.util.Set;
+import java.util.TreeSet;
 
 /**
  * Opens robots from YAML description files ({@code file:} URIs) for
@@ -48,7 +51,12 @@ public final class DescriptionRobotFactory implements RobotFactory {
         try {
             PlatformConfig config = platformConfig(d, services, clock);
             PlatformConfig opened = services.find(ConnectionOverride.class).map(o -> o.applyTo(config)).orElse(config);
-            platform = provider(d).open(opened);
+            PlatformProvider provider = provider(d);
+            List<String> problems = provider.check(opened);
+            if (!problems.isEmpty()) {
+                throw new RobotException(misfit(d, problems));
+            }
+            platform = provider.open(opened);
         } catch (IOException e) {
             description.close();
             throw new RobotException(d.source() + ": cannot open robot '" + d.name() + "' on platform '" + d.platform() + "': " + e.getMessage(), e);
@@ -86,14 +94,68 @@ public final class DescriptionRobotFactory implements RobotFactory {
     }
 
     /**
+     * The platforms RoboMW's own artifacts provide, and which artifact has each: named in the
+     * error when a robot file's platform has no driver on the class path.
+     */
+    public static final Map<String, String> KNOWN_PLATFORMS = Map.of(
+            "nxt", "io.robomw:mw-platform", "ev3", "io.robomw:mw-platform", "ft-intelligent", "io.robomw:mw-platform",
+            "ft-txt", "io.robomw:mw-platform", "sim", "io.robomw:mw-sim");
+
+    /**
+     * @param d        a description
+     * @param problems what its platform's check found
+     * @return one message naming the file, the robot, the platform and every problem
+     */
+    public static String misfit(RobotDescription d, List<String> problems) {
+        return d.source() + ": robot '" + d.name() + "' does not fit platform '" + d.platform() + "': " + String.join("; ", problems);
+    }
+
+    /**
      * @param d a description
      * @return the provider of its platform
-     * @throws RobotException naming the file and the platforms that are available
+     * @throws RobotException naming the file, the platforms that are available and the artifact that adds the missing one
      */
     public static PlatformProvider provider(RobotDescription d) {
         ServiceLoader<PlatformProvider> loader = ServiceLoader.load(PlatformProvider.class, DescriptionRobotFactory.class.getClassLoader());
         return loader.stream().map(ServiceLoader.Provider::get).filter(p -> p.platformName().equals(d.platform())).findFirst()
-                .orElseThrow(() -> new RobotException(d.source() + ": no driver for platform '" + d.platform()
-                        + "' on the class path; available: " + loader.stream().map(p -> p.get().platformName()).sorted().collect(Collectors.joining(", "))));
+                .orElseThrow(() -> new RobotException(d.source() + ": " + noDriver(d.platform(),
+                        loader.stream().map(p -> p.get().platformName()).sorted().toList())));
+    }
+
+    /**
+     * @param platform a {@code platform:} value without a driver
+     * @param present  the platforms whose drivers are on the class path
+     * @return what is wrong and how to fix it: the artifact that has the driver, or the spelling meant
+     */
+    static String noDriver(String platform, List<String> present) {
+        String has = "drivers on the class path: " + (present.isEmpty() ? "none" : String.join(", ", present));
+        String artifact = KNOWN_PLATFORMS.get(platform);
+        if (artifact != null) {
+            return "no driver for platform '" + platform + "' on the class path (" + has + "); add " + artifact + ", which has it"
+                    + " (the mw distribution has every driver: mw classpath prints its class path)";
+        }
+        Set<String> names = new TreeSet<>(KNOWN_PLATFORMS.keySet());
+        names.addAll(present);
+        String near = names.stream().filter(n -> distance(n, platform) <= 2).findFirst().map(n -> "did you mean '" + n + "'? ").orElse("");
+        return "unknown platform '" + platform + "'; " + near + "platforms: " + String.join(", ", names) + " (" + has + ")";
+    }
+
+    /** @return the Levenshtein distance of two short names */
+    private static int distance(String a, String b) {
+        int[] prev = new int[b.length() + 1];
+        int[] cur = new int[b.length() + 1];
+        for (int j = 0; j <= b.length(); j++) {
+            prev[j] = j;
+        }
+        for (int i = 1; i <= a.length(); i++) {
+            cur[0] = i;
+            for (int j = 1; j <= b.length(); j++) {
+                cur[j] = Math.min(Math.min(cur[j - 1] + 1, prev[j] + 1), prev[j - 1] + (a.charAt(i - 1) == b.charAt(j - 1) ? 0 : 1));
+            }
+            int[] t = prev;
+            prev = cur;
+            cur = t;
+        }
+        return prev[b.length()];
     }
 }

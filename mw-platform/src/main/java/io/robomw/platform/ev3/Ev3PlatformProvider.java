@@ -5,11 +5,13 @@ import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
 import io.robomw.platform.LinkThreading;
+import io.robomw.platform.PlatformCheck;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.SerialSettings;
 
 import java.io.IOException;
 import java.time.Duration;
+import java.util.List;
 
 /**
  * {@code platform: ev3}: a LEGO Mindstorms EV3 running the standard firmware, spoken to with
@@ -29,6 +31,14 @@ public final class Ev3PlatformProvider implements PlatformProvider {
     @Override
     public String platformName() {
         return "ev3";
+    }
+
+    @Override
+    public List<String> check(PlatformConfig config) {
+        return new PlatformCheck(config).connectionHasOneOf("port", "host")
+                .motorPorts(Ev3Ports::outputNumber)
+                .sensors(Ev3Ports::inputNumber, null, "the EV3", Ev3SensorPlatform::setup)
+                .problems();
     }
 
     @Override

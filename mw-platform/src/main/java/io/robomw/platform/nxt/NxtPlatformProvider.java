@@ -5,11 +5,13 @@ import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
 import io.robomw.platform.LinkThreading;
+import io.robomw.platform.PlatformCheck;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.SerialSettings;
 
 import java.io.IOException;
 import java.time.Duration;
+import java.util.List;
 
 /**
  * {@code platform: nxt}: a LEGO Mindstorms NXT over a serial link (a Bluetooth-paired brick is
@@ -22,6 +24,14 @@ public final class NxtPlatformProvider implements PlatformProvider {
     @Override
     public String platformName() {
         return "nxt";
+    }
+
+    @Override
+    public List<String> check(PlatformConfig config) {
+        return new PlatformCheck(config).connectionHasOneOf("port", "host")
+                .motorPorts(NxtMotorPlatform::outputPort)
+                .sensors(NxtSensorPlatform::inputPort, NxtSensorPlatform.SUPPORTED, "the NXT", null)
+                .problems();
     }
 
     @Override

@@ -29,6 +29,10 @@ public final class NxtSensorPlatform extends SensorPlatform {
      */
     private static final long MAX_WAIT_NANOS = 1_000_000_000L;
 
+    /** The sensor types the NXT reads on its input ports (its standard sensors), as {@link #createSensor} sets them up. */
+    static final java.util.Set<io.robomw.api.SensorType> SUPPORTED = java.util.EnumSet.of(io.robomw.api.SensorType.TOUCH,
+            io.robomw.api.SensorType.LIGHT, io.robomw.api.SensorType.SOUND, io.robomw.api.SensorType.COLOR, io.robomw.api.SensorType.SONAR);
+
     private final NxtBrick brick;
 
     /**

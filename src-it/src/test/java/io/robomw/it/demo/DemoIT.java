@@ -113,7 +113,7 @@ class DemoIT {
         try {
             MwProcess nxtBrick = MwProcess.start("quickstart-emulate-nxt", "emulate", "nxt", "--world", "examples/worlds/arena.yaml", "--robot", "nxt");
             running.add(nxtBrick);
-            MwProcess ftBrick = MwProcess.start("quickstart-emulate-ft", "emulate", "ft_intelligent", "--world", "examples/worlds/arena.yaml", "--robot", "ft");
+            MwProcess ftBrick = MwProcess.start("quickstart-emulate-ft", "emulate", "ft-intelligent", "--world", "examples/worlds/arena.yaml", "--robot", "ft");
             running.add(ftBrick);
             String nxtDevice = nxtBrick.await("/dev/", Duration.ofSeconds(60)).strip();
             String ftDevice = ftBrick.await("/dev/", Duration.ofSeconds(60)).strip();

@@ -82,6 +82,11 @@ public final class MwProcess implements AutoCloseable {
         return lines.transcript();
     }
 
+    /** @return the processes it started and that still run */
+    public java.util.List<ProcessHandle> children() {
+        return process.children().toList();
+    }
+
     /** kill -9: no shutdown hook; waits until it is gone. */
     public void kill() throws InterruptedException {
         process.destroyForcibly();

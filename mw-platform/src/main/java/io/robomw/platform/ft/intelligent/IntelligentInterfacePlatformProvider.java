@@ -5,11 +5,14 @@ import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
 import io.robomw.platform.LinkThreading;
+import io.robomw.platform.PlatformCheck;
+import io.robomw.platform.ft.FtMotors;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.SerialSettings;
 
 import java.io.IOException;
 import java.time.Duration;
+import java.util.List;
 
 /**
  * {@code platform: ft-intelligent}: a fischertechnik Intelligent Interface 30402 on a serial port
@@ -22,6 +25,26 @@ public final class IntelligentInterfacePlatformProvider implements PlatformProvi
     @Override
     public String platformName() {
         return "ft-intelligent";
+    }
+
+    @Override
+    public List<String> check(PlatformConfig config) {
+        PlatformCheck check = new PlatformCheck(config).connectionHasOneOf("port", "host")
+                .motorPorts(p -> FtMotors.index(p, IntelligentInterfaceTelegram.MOTORS))
+                .sensors(p -> {
+                    if (IntelligentInterfaceTelegram.digitalInput(p) < 0 && !p.equals("EX") && !p.equals("EY")) {
+                        throw new IllegalArgumentException("the Intelligent Interface has digital inputs E1 to E8 and analog inputs EX and EY, not '" + p + "'");
+                    }
+                }, null, "the Intelligent Interface", null);
+        for (io.robomw.api.spi.MotorChannel w : config.wheels()) {
+            w.counter().filter(c -> IntelligentInterfaceTelegram.digitalInput(c) < 0).ifPresent(c ->
+                    check.problem("wheel counter '" + c + "' must be a digital input of the Intelligent Interface, E1 to E8"));
+        }
+        if (config.cyclePeriod().compareTo(Duration.ofMillis(50)) > 0) {
+            check.problem("cycle_hz must be at least 20 for an Intelligent Interface, which stops its motors after "
+                    + IntelligentInterfaceTelegram.WATCHDOG_MILLIS + " ms without a command");
+        }
+        return check.problems();
     }
 
     @Override

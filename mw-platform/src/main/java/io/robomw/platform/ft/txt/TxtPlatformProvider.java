@@ -5,11 +5,13 @@ import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
 import io.robomw.platform.LinkThreading;
+import io.robomw.platform.PlatformCheck;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.SerialSettings;
 
 import java.io.IOException;
 import java.time.Duration;
+import java.util.List;
 
 /**
  * {@code platform: ft-txt}: a fischertechnik TXT controller in online mode over TCP. Connection
@@ -29,6 +31,19 @@ public final class TxtPlatformProvider implements PlatformProvider {
     @Override
     public String platformName() {
         return "ft-txt";
+    }
+
+    @Override
+    public List<String> check(PlatformConfig config) {
+        PlatformCheck check = new PlatformCheck(config);
+        if (config.connection().text("host").isEmpty()) {
+            check.problem("the ft-txt platform talks TCP: give connection.host (192.168.7.2 over USB, 192.168.8.2 over WLAN, 192.168.9.2 over"
+                    + " Bluetooth) and, if not " + TxtProtocol.TCP_PORT + ", connection.port");
+        }
+        return check.motorPorts(TxtPorts::motor)
+                .run(() -> TxtPorts.wheelCounters(config.motors(), config.source()))
+                .sensors(TxtPorts::input, null, "the TXT", TxtSensorPlatform::modeOf)
+                .problems();
     }
 
     @Override

@@ -1,0 +1,32 @@
+package io.robomw.cli;
+
+import picocli.CommandLine;
+
+import java.io.PrintWriter;
+import java.io.StringWriter;
+
+/**
+ * One {@code mw} command run in this JVM, through {@link Mw#commandLine()} as the launcher runs
+ * it (its converters and error handlers): exit status, standard output and standard error.
+ *
+ * @param status the exit status
+ * @param out    what it printed on standard output
+ * @param err    what it printed on standard error
+ */
+record CliRun(int status, String out, String err) {
+
+    static CliRun mw(String... args) {
+        StringWriter out = new StringWriter();
+        StringWriter err = new StringWriter();
+        CommandLine cl = Mw.commandLine();
+        cl.setOut(new PrintWriter(out, true));
+        cl.setErr(new PrintWriter(err, true));
+        int status = cl.execute(args);
+        return new CliRun(status, out.toString(), err.toString());
+    }
+
+    /** @return standard error's lines, without empty ones */
+    java.util.List<String> errLines() {
+        return err.lines().filter(l -> !l.isBlank()).toList();
+    }
+}

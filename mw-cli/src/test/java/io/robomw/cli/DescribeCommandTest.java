@@ -1,0 +1,80 @@
+package io.robomw.cli;
+
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import java.io.IOException;
+import java.nio.file.Files;
+import java.nio.file.Path;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+/** {@code mw describe}: robot files get the checks {@code mw host} makes; world files are recognised. */
+class DescribeCommandTest {
+
+    private static final Path ROBOTS = Path.of("../examples/robots");
+    private static final Path NXT = ROBOTS.resolve("nxt-two-wheeled.yaml");
+
+    @TempDir
+    Path dir;
+
+    /** @return a copy of the NXT robot file with one text replaced */
+    private Path nxtWith(String name, String text, String replacement) throws IOException {
+        String yaml = Files.readString(NXT);
+        assertTrue(yaml.contains(text), text);
+        Path file = dir.resolve(name);
+        Files.writeString(file, yaml.replace(text, replacement));
+        return file;
+    }
+
+    @Test
+    void everyExampleRobotFitsItsPlatform() throws IOException {
+        try (var files = Files.list(ROBOTS)) {
+            for (Path file : files.filter(f -> f.toString().endsWith(".yaml")).sorted().toList()) {
+                CliRun run = CliRun.mw("describe", file.toString());
+                assertEquals(0, run.status(), file + ": " + run.err());
+                assertTrue(run.out().contains("robot '"), run.out());
+            }
+        }
+    }
+
+    @Test
+    void aWorldFileIsDescribedWithItsRobots() {
+        CliRun run = CliRun.mw("describe", "../examples/worlds/arena.yaml");
+        assertEquals(0, run.status(), run.err());
+        assertTrue(run.out().contains("world 'arena', arena 4.00 × 3.00 m with walls, 3 obstacles, 1 floor patch, 3 robots"), run.out());
+        assertTrue(run.out().contains("robot 'nxt' at (2.60, 0.40)"), run.out());
+        assertTrue(run.out().contains("robot 'nxt-1' on platform 'nxt'") && run.out().contains("on platform 'ft-intelligent'") && run.out().contains("on platform 'aibo'"), run.out());
+    }
+
+    @Test
+    void aMisspelledPlatformIsNamedWithTheSpellingMeant() throws IOException {
+        CliRun run = CliRun.mw("describe", nxtWith("nxtt.yaml", "platform: nxt", "platform: nxtt").toString());
+        assertEquals(2, run.status());
+        assertTrue(run.err().contains("unknown platform 'nxtt'; did you mean 'nxt'?"), run.err());
+    }
+
+    @Test
+    void portsAndSensorTypesTheBrickLacksAreRefusedAsMwHostRefusesThem() throws IOException {
+        Path badPort = nxtWith("s9.yaml", "port: S4", "port: S9");
+        CliRun port = CliRun.mw("describe", badPort.toString());
+        assertEquals(2, port.status());
+        assertTrue(port.err().contains("does not fit platform 'nxt': the NXT has input ports S1 to S4, not 'S9'"), port.err());
+
+        Path gyro = nxtWith("gyro.yaml", "type: sonar", "type: gyro");
+        CliRun type = CliRun.mw("describe", gyro.toString());
+        assertEquals(2, type.status());
+        assertTrue(type.err().contains("sensor 'sonar': the NXT has no standard gyro sensor"), type.err());
+
+        Path motor = nxtWith("motor.yaml", "right: { port: C }", "right: { port: D }");
+        CliRun motorPort = CliRun.mw("describe", motor.toString());
+        assertEquals(2, motorPort.status());
+        assertTrue(motorPort.err().contains("the NXT has motor ports A, B and C, not 'D'"), motorPort.err());
+
+        // mw host makes the same check before it opens the link: the same line, and nothing is opened.
+        CliRun host = CliRun.mw("host", "--name", "h", "--port", "0", "--no-messaging", "--robot", gyro.toString());
+        assertEquals(2, host.status());
+        assertTrue(host.err().contains("sensor 'sonar': the NXT has no standard gyro sensor"), host.err());
+    }
+}

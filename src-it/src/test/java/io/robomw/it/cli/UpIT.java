@@ -1,0 +1,64 @@
+package io.robomw.it.cli;
+
+import io.robomw.it.demo.MwProcess;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import java.io.IOException;
+import java.net.InetAddress;
+import java.net.ServerSocket;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.List;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+
+/**
+ * {@code mw up}: the quickstart's setup (examples/quickstart-up.yaml, with free ports and a key of
+ * the test's) comes up from one file (each host opened its robot file, written by its emulator,
+ * with the real driver, or it would not be ready), the hosts answer, and stopping {@code mw up}
+ * stops every process it started.
+ */
+class UpIT {
+
+    private static final Duration WAIT = Duration.ofSeconds(90);
+
+    @TempDir
+    Path dir;
+
+    private static int freePort() throws IOException {
+        try (ServerSocket s = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            return s.getLocalPort();
+        }
+    }
+
+    @Test
+    void theQuickstartComesUpFromOneFileAndGoesDownWithIt() throws Exception {
+        Path key = dir.resolve("cluster.key");
+        Files.writeString(key, "up test passphrase");
+        int nxtPort = freePort();
+        int ftPort = freePort();
+        String setup = Files.readString(MwProcess.CHECKOUT.resolve("examples/quickstart-up.yaml"))
+                .replace("worlds/arena.yaml", MwProcess.CHECKOUT.resolve("examples/worlds/arena.yaml").toString())
+                .replace("../cluster.key", key.toString())
+                .replace("--port 1099", "--port " + nxtPort).replace("--port 1100", "--port " + ftPort);
+        Path file = dir.resolve("up.yaml");
+        Files.writeString(file, setup);
+        List<ProcessHandle> children;
+        try (MwProcess up = MwProcess.start("up", "up", file.toString())) {
+            up.await("[mw up] 4 processes up", WAIT);
+            try (MwProcess agents = MwProcess.start("up-agents", "agents", "--key-file", key.toString(), "rmi://127.0.0.1:" + nxtPort + "/nxt")) {
+                agents.await("0 agents at rmi://127.0.0.1:" + nxtPort + "/nxt", WAIT);
+                assertEquals(0, agents.waitFor(WAIT));
+            }
+            children = up.children();
+            assertEquals(4, children.size(), "one JVM per process: " + children);
+        }
+        for (ProcessHandle c : children) {
+            c.onExit().get(30, java.util.concurrent.TimeUnit.SECONDS);
+            assertFalse(c.isAlive(), "stopped with mw up: " + c.info());
+        }
+    }
+}
