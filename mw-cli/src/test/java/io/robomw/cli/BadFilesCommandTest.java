@@ -38,7 +38,7 @@ class BadFilesCommandTest {
         return assertTimeoutPreemptively(Duration.ofSeconds(30), () -> {
             StringWriter out = new StringWriter();
             StringWriter err = new StringWriter();
-            CommandLine cl = new CommandLine(new Mw());
+            CommandLine cl = Mw.commandLine();
             cl.setOut(new PrintWriter(out, true));
             cl.setErr(new PrintWriter(err, true));
             int code = cl.execute(args);
