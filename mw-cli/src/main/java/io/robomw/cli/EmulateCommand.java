@@ -2,12 +2,15 @@ package io.robomw.cli;
 
 import io.robomw.config.description.DescriptionException;
 import io.robomw.sim.Simulation;
+import io.robomw.sim.emulator.BrickEmulator;
 import io.robomw.sim.emulator.Emulator;
+import io.robomw.sim.emulator.LinkModel;
 import io.robomw.sim.emulator.aibo.AiboEmulator;
 import io.robomw.sim.emulator.ev3.Ev3Emulator;
 import io.robomw.sim.emulator.ft.intelligent.IntelligentInterfaceEmulator;
 import io.robomw.sim.emulator.ft.txt.TxtEmulator;
 import io.robomw.sim.emulator.nxt.NxtEmulator;
+import io.robomw.sim.emulator.rcx.RcxEmulator;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
@@ -16,6 +19,7 @@ import picocli.CommandLine.Spec;
 
 import java.io.PrintWriter;
 import java.nio.file.Path;
+import java.time.Duration;
 import java.util.Map;
 import java.util.Set;
 import java.util.concurrent.Callable;
@@ -29,7 +33,7 @@ import java.util.concurrent.CountDownLatch;
 @Command(mixinStandardHelpOptions = true, name = "emulate", description = "Run a virtual brick (or Aibo) bound to a robot in a simulated world; print its device path or port.")
 final class EmulateCommand implements Callable<Integer> {
 
-    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick, by its robot files' platform name: nxt, ev3, ft-intelligent, ft-txt (TCP only), aibo (URBI, TCP only)",
+    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick, by its robot files' platform name: nxt, ev3, rcx, ft-intelligent, ft-txt (TCP only), aibo (URBI, TCP only)",
             converter = BrickConverter.class)
     private Brick brick;
 
@@ -66,6 +70,14 @@ final class EmulateCommand implements Callable<Integer> {
             + " ready for Robots.open, mw host --robot or mw robot")
     private Path writeRobot;
 
+    @Option(names = "--latency", paramLabel = "MS", description = "delay of every telegram on the link, each way, milliseconds "
+            + "(default: the brick's usual link: 15 for the NXT and EV3 over Bluetooth, 0 for the serial bricks, 1 for the TXT)")
+    private Integer latencyMillis;
+
+    @Option(names = "--baud", paramLabel = "N", description = "the link's byte rate in baud, 0 for none (default: the brick's usual link: "
+            + "115200 for Bluetooth, 9600 for the Intelligent Interface, 2400 for the RCX's IR tower)")
+    private Integer baud;
+
     @Spec
     private CommandSpec spec;
 
@@ -73,6 +85,7 @@ final class EmulateCommand implements Callable<Integer> {
     enum Brick {
         NXT("nxt"),
         EV3("ev3"),
+        RCX("rcx"),
         FT_INTELLIGENT("ft-intelligent"),
         FT_TXT("ft-txt"),
         AIBO("aibo");
@@ -129,9 +142,36 @@ final class EmulateCommand implements Callable<Integer> {
             if (brick == Brick.AIBO && tcpPort == null) {
                 tcpPort = 54000;
             }
+            String linkText = "";
+            if (emulator instanceof BrickEmulator b) {
+                LinkModel link = b.linkModel();
+                if (latencyMillis != null) {
+                    if (latencyMillis < 0) {
+                        err.println("--latency must be 0 or more milliseconds, got " + latencyMillis);
+                        return 2;
+                    }
+                    link = link.withLatency(Duration.ofMillis(latencyMillis));
+                }
+                if (baud != null) {
+                    if (baud < 0) {
+                        err.println("--baud must be 0 (no byte-rate limit) or more, got " + baud);
+                        return 2;
+                    }
+                    link = link.withBaud(baud);
+                }
+                b.linkModel(link);
+                linkText = ", link: " + link;
+            } else if (latencyMillis != null || baud != null) {
+                err.println("--latency and --baud model a brick's link; the " + brick + " emulator serves on TCP as it is");
+                return 2;
+            }
             String where;
             if (tcpPort == null) {
                 where = emulator.startOnPseudoTerminal();
+            } else if (emulator instanceof TxtEmulator txt) {
+                // A real TXT also accepts its I²C channel on the command port + 2 when a client goes online.
+                tcpPort = txt.startOnTcpPair("127.0.0.1", tcpPort);
+                where = "tcp://127.0.0.1:" + tcpPort;
             } else {
                 tcpPort = emulator.startOnTcp("127.0.0.1", tcpPort);
                 where = "tcp://127.0.0.1:" + tcpPort;
@@ -151,19 +191,34 @@ final class EmulateCommand implements Callable<Integer> {
                 out.println("wrote " + writeRobot + ": robot '" + robot + "' with its connection at this emulator");
             }
             out.flush();
-            err.printf("%s emulator for robot '%s' of %s; connect the %s driver to %s; Ctrl-C stops it%n", brick, robot, world, brick, where);
+            err.printf("%s emulator for robot '%s' of %s%s; connect the %s driver to %s; Ctrl-C stops it%n", brick, robot, world, linkText, brick, where);
             err.flush();
             sim.startRealTime(speed);
-            Runtime.getRuntime().addShutdownHook(new Thread(stopped::countDown, "mw-emulate-shutdown"));
-            stopped.await();
+            Thread hook = new Thread(stopped::countDown, "mw-emulate-shutdown");
+            Runtime.getRuntime().addShutdownHook(hook);
+            try {
+                stopped.await();
+            } finally {
+                removeHook(hook);
+            }
         }
         return 0;
+    }
+
+    /** Removes the shutdown hook when the command ends otherwise (interrupted); not possible while the JVM shuts down. */
+    private static void removeHook(Thread hook) {
+        try {
+            Runtime.getRuntime().removeShutdownHook(hook);
+        } catch (IllegalStateException e) {
+            // the JVM is shutting down: the hook is what ended the wait
+        }
     }
 
     private Emulator bind(Simulation sim) {
         return switch (brick) {
             case NXT -> NxtEmulator.bind(sim, robot);
             case EV3 -> Ev3Emulator.bind(sim, robot);
+            case RCX -> RcxEmulator.bind(sim, robot);
             case FT_INTELLIGENT -> IntelligentInterfaceEmulator.bind(sim, robot);
             case FT_TXT -> TxtEmulator.bind(sim, robot);
             case AIBO -> AiboEmulator.bind(sim, robot);

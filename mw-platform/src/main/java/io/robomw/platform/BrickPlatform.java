@@ -115,11 +115,19 @@ public final class BrickPlatform implements RobotPlatform {
         }
     }
 
+    /**
+     * Services the link once a cycle: a service that took part of the cycle (a slow link's round
+     * trip) waits only for the rest of it, so readings come as often as the link allows.
+     */
     private void linkLoop() {
         long period = config.cyclePeriod().toNanos();
         while (running) {
+            long started = System.nanoTime();
             serviceLink();
-            LockSupport.parkNanos(this, linkDown ? period * 10 : period);
+            long rest = (linkDown ? period * 10 : period) - (System.nanoTime() - started);
+            if (rest > 0) {
+                LockSupport.parkNanos(this, rest);
+            }
         }
     }
 
@@ -186,7 +194,8 @@ public final class BrickPlatform implements RobotPlatform {
     }
 
     /**
-     * Stops every motor, hands the stop to the hardware, stops the threads and closes the link.
+     * Stops every motor, hands the stop to the hardware, stops the threads, leaves every output
+     * idle (coasting, as the bricks' own tools do when a program stops) and closes the link.
      */
     @Override
     public void close() {
@@ -201,6 +210,10 @@ public final class BrickPlatform implements RobotPlatform {
             }
         }
         motors.flushOutputs();
+        if (!linkDown) {
+            serviceLink();
+        }
+        motors.coastAll();
         if (!linkDown) {
             serviceLink();
         }

@@ -57,6 +57,8 @@ public final class Simulation implements AutoCloseable {
     private volatile boolean realTime;
     private volatile boolean paused;
     private volatile double realTimeSpeed = 1;
+    private volatile long stepWallNanos;
+    private volatile boolean stepScheduled;
     private Thread realTimeThread;
 
     private Simulation(WorldDescription description, int sensingThreads, SimWorld.RangeMethod rangeMethod, Set<String> emulated) {
@@ -213,6 +215,18 @@ public final class Simulation implements AutoCloseable {
     }
 
     /**
+     * The wall-clock time the step now being taken stands for, for step listeners that mirror
+     * hardware running in real time (a brick emulator's motors): in a real-time run, the step's
+     * scheduled time, which is in the past when the run catches up after its thread was held up;
+     * otherwise the time now.
+     *
+     * @return {@link System#nanoTime()} time
+     */
+    public long stepWallNanos() {
+        return stepScheduled ? stepWallNanos : System.nanoTime();
+    }
+
+    /**
      * Runs programs in lockstep with the world, as fast as possible, until they all finish.
      * Each program runs on its own thread named {@code program-N}; the world advances only while
      * every program waits for a robot call.
@@ -322,6 +336,8 @@ public final class Simulation implements AutoCloseable {
                     continue;
                 }
                 try {
+                    stepWallNanos = next;
+                    stepScheduled = true;
                     step();
                 } catch (RuntimeException e) {
                     LOG.error("simulation step failed; stopping the real-time run", e);
@@ -396,6 +412,7 @@ public final class Simulation implements AutoCloseable {
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
         }
+        stepScheduled = false;
         realTimeThread = null;
         world.lockstep().driver(null);
     }

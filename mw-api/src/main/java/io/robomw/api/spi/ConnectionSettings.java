@@ -67,4 +67,23 @@ public record ConnectionSettings(Map<String, Object> values, String source) {
         }
         throw new IllegalArgumentException(source + ": connection." + key + " must be a number, got '" + v + "'");
     }
+
+    /**
+     * @param key      a key
+     * @param fallback the value when absent
+     * @return its value as a boolean ({@code true}/{@code false}, also as text)
+     */
+    public boolean bool(String key, boolean fallback) {
+        Object v = values.get(key);
+        if (v == null) {
+            return fallback;
+        }
+        if (v instanceof Boolean b) {
+            return b;
+        }
+        if ("true".equals(v.toString()) || "false".equals(v.toString())) {
+            return Boolean.parseBoolean(v.toString());
+        }
+        throw new IllegalArgumentException(source + ": connection." + key + " must be true or false, got '" + v + "'");
+    }
 }

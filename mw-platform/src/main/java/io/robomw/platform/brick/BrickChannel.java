@@ -39,6 +39,22 @@ public final class BrickChannel implements AutoCloseable {
     private final ReentrantLock lock = new ReentrantLock(true);
     private boolean down;
     private long lastAttempt;
+    /**
+     * The least time the first exchange on a newly opened channel waits for its replies: a brick
+     * just connected (a Bluetooth link still being set up, an emulator whose process has only just
+     * started on a loaded host) can take longer to answer its first telegram than any later one.
+     */
+    public static final Duration FIRST_REPLY_TIMEOUT = Duration.ofSeconds(2);
+
+    private static Duration max(Duration a, Duration b) {
+        return a.compareTo(b) >= 0 ? a : b;
+    }
+
+    /** Whether an exchange has succeeded on this channel; guarded by the lock. */
+    private boolean answered;
+    private volatile long exchangeStartedAt;
+    private volatile boolean exchanging;
+    private final RoundTripEstimate exchangeTime = new RoundTripEstimate();
 
     /**
      * @param robot        the robot's name, for messages
@@ -94,6 +110,19 @@ public final class BrickChannel implements AutoCloseable {
         return communicator;
     }
 
+    /**
+     * How long until the exchange under way is expected to end (by the smoothed time exchanges
+     * take): a command handed to the channel now waits that long before it is sent.
+     *
+     * @return nanoseconds, 0 if no exchange is under way
+     */
+    public long nanosUntilFree() {
+        if (!exchanging) {
+            return 0;
+        }
+        return Math.max(0, exchangeStartedAt + exchangeTime.nanos() - System.nanoTime());
+    }
+
     /** @return how long each reply is awaited */
     public Duration replyTimeout() {
         return replyTimeout;
@@ -111,11 +140,20 @@ public final class BrickChannel implements AutoCloseable {
         lock.lock();
         try {
             ensureOpen();
+            long started = System.nanoTime();
+            exchangeStartedAt = started;
+            exchanging = true;
             try {
-                return exchange.run(communicator, replyTimeout);
+                Duration timeout = answered ? replyTimeout : max(replyTimeout, FIRST_REPLY_TIMEOUT);
+                T result = exchange.run(communicator, timeout);
+                answered = true;
+                exchangeTime.sample(System.nanoTime() - started);
+                return result;
             } catch (IOException e) {
                 markDown(e);
                 throw e;
+            } finally {
+                exchanging = false;
             }
         } finally {
             lock.unlock();

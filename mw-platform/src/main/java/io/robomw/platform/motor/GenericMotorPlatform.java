@@ -39,10 +39,13 @@ import java.util.concurrent.ConcurrentHashMap;
  *
  * <h2>Reaching a target</h2>
  * A logic object per motor watches its rotation since the container started, and stops the motor
- * when the rotation is within half a cycle's travel of the target. The last encoder reading is
- * extrapolated by the commanded speed over its age, so a link's feedback delay does not become
- * overshoot. A motor without encoder is
- * stopped by time: {@code degrees / speed} after the start.
+ * when the rotation is within half a cycle's travel of the target. A reading is a sample the brick
+ * took one link delay ({@link #linkDelayNanos()}) before it arrived, and a stop sent now reaches
+ * the brick one link delay later: so the logic compares the target with the last reading moved on
+ * by the commanded speed over its age and the time a command takes to reach the brick
+ * ({@link #commandDelayNanos()}: a link delay, and on a link that carries one exchange at a time
+ * the wait for the one under way), so a slow link's delays do not become overshoot. A motor without encoder is stopped by
+ * time: {@code degrees / speed} after the start.
  *
  * <p>A brick that ends a limited rotation itself (the NXT's tacho limit; {@link #stopsAtLimit()})
  * is not stopped by the middleware: the rotation is done when the driver reports, with
@@ -63,10 +66,12 @@ public abstract class GenericMotorPlatform {
     private final Set<String> ports;
     private final List<String> portOrder;
     private final Map<String, MotorState> wanted = new LinkedHashMap<>();
-    private final Map<String, MotorState> published = new ConcurrentHashMap<>();
+    /** States the action side published for the link side; guarded by itself, so a cycle's batch is handed over whole. */
+    private final Map<String, MotorState> published = new LinkedHashMap<>();
     private final Map<String, MotorState> changed = new LinkedHashMap<>();
     private final Map<String, Reading> degrees = new ConcurrentHashMap<>();
-    private final Map<String, Double> startDegrees = new LinkedHashMap<>();
+    /** Where each motor was, by prediction, when the brick took the running state last sent for it; link side writes. */
+    private final Map<String, Start> starts = new ConcurrentHashMap<>();
     private final Map<String, MotorState> sentStates = new ConcurrentHashMap<>();
     private final Map<String, MotorState> stoppedAtLimit = new ConcurrentHashMap<>();
     private volatile long cyclePeriodNanos = 10_000_000L;
@@ -160,11 +165,74 @@ public abstract class GenericMotorPlatform {
      * @param reading degrees of the motor shaft
      */
     protected final void reportDegrees(String port, double reading) {
-        degrees.put(port, new Reading(reading, clock.nanoTime()));
+        degrees.put(port, new Reading(reading, clock.nanoTime() - linkDelayNanos()));
     }
 
-    /** An encoder reading and the clock time it was reported at. */
+    /**
+     * How long the link takes one way: a reading is that old when it arrives, and a command takes
+     * that long to reach the brick. Drivers on slow links return half their measured round trip
+     * (see {@code RoundTripEstimate}); the default, 0, suits links without delay.
+     *
+     * @return the one-way delay, nanoseconds
+     */
+    protected long linkDelayNanos() {
+        return 0;
+    }
+
+    /**
+     * How long before {@link #runImpl} returns the brick acted on the last command it sent: by
+     * default the link's one-way delay (the reply's way back).
+     *
+     * @return nanoseconds
+     */
+    protected long actedNanosAgo() {
+        return linkDelayNanos();
+    }
+
+    /**
+     * @param port a motor port
+     * @return the degrees one count of its encoder stands for, when the encoder is so coarse that
+     *         a reading is only the nearest count (a rotation sensor's 22.5°): the platform then
+     *         predicts by the motor's own speed since it started, within half a count of the
+     *         reading; 0 (the default) for encoders whose readings are taken as they are
+     */
+    protected double encoderResolutionDegrees(String port) {
+        return 0;
+    }
+
+    /**
+     * The speed a brick actually turns a motor at in a state: the state's own speed by default;
+     * a brick that sets speeds in steps (the RCX's eight power steps) returns its step's speed, so
+     * that predictions of where the motor is use it.
+     *
+     * @param state a motor state
+     * @return degrees per second, signed
+     */
+    protected double actualDegreesPerSecond(MotorState state) {
+        return state.degreesPerSecond();
+    }
+
+    /**
+     * How long a command handed to the link now takes to reach the brick: the link's one-way delay,
+     * plus the wait for an exchange already under way on a link that carries one at a time.
+     * Drivers on slow links override it; the default is {@link #linkDelayNanos()}.
+     *
+     * @return nanoseconds
+     */
+    protected long commandDelayNanos() {
+        return linkDelayNanos();
+    }
+
+    /** An encoder reading and the clock time the brick sampled it at. */
     private record Reading(double degrees, long atNanos) {
+    }
+
+    /**
+     * A rotation's state, where the motor was predicted to be when the brick took it, and when
+     * that was ({@link Long#MAX_VALUE} while the driver is still sending it: a brick that takes
+     * several packets to start a motor starts it only with the last).
+     */
+    private record Start(MotorState state, double degrees, long sinceNanos) {
     }
 
     /**
@@ -203,7 +271,6 @@ public abstract class GenericMotorPlatform {
             startedAt[0] = now;
             for (int i = 0; i < targets.size(); i++) {
                 MotorTarget t = targets.get(i);
-                startDegrees.put(t.port(), motorDegrees(t.port()));
                 started[i] = new MotorState(t.port(), t.degrees() == 0 ? 0 : t.degreesPerSecond(), t.degrees(), MotorState.StopMode.BRAKE);
                 setWanted(started[i], !t.continuous());
             }
@@ -258,18 +325,40 @@ public abstract class GenericMotorPlatform {
         if (t.degrees() == 0 || speed == 0) {
             return true;
         }
+        if (stoppedAtLimit.get(t.port()) == started) {
+            return true;
+        }
         if (stopsAtLimit()) {
-            return stoppedAtLimit.get(t.port()) == started;
+            return false;
         }
         if (!hasEncoder(t.port())) {
             return elapsedNanos >= t.degrees() / speed * 1e9;
         }
+        Start start = starts.get(t.port());
+        if (start == null || start.state() != started) {
+            return false;
+        }
         double lead = speed * cyclePeriodNanos / 2e9;
-        return turned(t) >= t.degrees() - lead;
+        return turned(t.port(), start) >= t.degrees() - lead;
+    }
+
+    /** How far a rotation has turned by the time a command sent now reaches the brick. */
+    private double turned(String port, Start start) {
+        double speed = actualDegreesPerSecond(start.state());
+        double predicted = predictedDegrees(port, speed, start.sinceNanos());
+        double resolution = encoderResolutionDegrees(port);
+        if (resolution > 0 && start.sinceNanos() <= clock.nanoTime()) {
+            // A coarse encoder (a reading is the nearest count): believe the motor's own speed since
+            // it started, within the half count either side of the reading that the count allows.
+            double byTime = start.degrees() + speed * (clock.nanoTime() + commandDelayNanos() - start.sinceNanos()) / 1e9;
+            predicted = Math.max(predicted - resolution / 2, Math.min(predicted + resolution / 2, byTime));
+        }
+        return Math.abs(predicted - start.degrees());
     }
 
     private double turned(MotorTarget t) {
-        return Math.abs(estimatedDegrees(t) - startDegrees.getOrDefault(t.port(), 0.0));
+        Start start = starts.get(t.port());
+        return start == null ? 0 : turned(t.port(), start);
     }
 
     /** How long a rotation may take before it counts as blocked: three times its time at speed, plus 2 s. */
@@ -278,17 +367,26 @@ public abstract class GenericMotorPlatform {
     }
 
     /**
-     * The encoder reading moved on by the commanded speed for the reading's age (at most three
-     * cycles): feedback arrives at least one link round trip late, and stopping on stale readings
-     * would overshoot by that much.
+     * Where the motor will be when a command sent now reaches the brick: the last reading moved on
+     * by the speed for the reading's age (or since the motor started turning, if later) and the
+     * command's delay (together at most three cycles and those delays, so a reading that stopped
+     * coming is not extrapolated without end).
+     * Feedback arrives a link delay late and a stop reaches the brick a command delay after it is
+     * sent; stopping on the bare reading would overshoot by both.
      */
-    private double estimatedDegrees(MotorTarget t) {
-        Reading r = degrees.get(t.port());
+    private double predictedDegrees(String port, double degreesPerSecond, long turningSince) {
+        Reading r = degrees.get(port);
         if (r == null) {
             return 0.0;
         }
-        long age = Math.min(Math.max(0, clock.nanoTime() - r.atNanos()), 3 * cyclePeriodNanos);
-        return r.degrees() + t.degreesPerSecond() * age / 1e9;
+        long now = clock.nanoTime();
+        if (turningSince > now) {
+            return r.degrees();
+        }
+        long delay = commandDelayNanos();
+        long from = Math.max(r.atNanos(), turningSince);
+        long ahead = Math.min(Math.max(0, now - from) + delay, 3 * cyclePeriodNanos + 4 * linkDelayNanos() + delay);
+        return r.degrees() + degreesPerSecond * ahead / 1e9;
     }
 
     /** @param always publish it even if it equals the wanted state (a new rotation, which the brick must start again) */
@@ -309,9 +407,23 @@ public abstract class GenericMotorPlatform {
         if (changed.isEmpty()) {
             return false;
         }
-        published.putAll(changed);
+        synchronized (published) {
+            published.putAll(changed);
+        }
         changed.clear();
         return true;
+    }
+
+    /**
+     * Sets every motor to coast (its output idle, drawing no current) and publishes it: what a
+     * robot leaves its motors in when it closes, as the bricks' own tools do on stop-and-disconnect.
+     * Called by the closing thread once the execution action thread has stopped.
+     */
+    public void coastAll() {
+        for (String port : portOrder) {
+            setWanted(MotorState.stopped(port, MotorState.StopMode.COAST), false);
+        }
+        flushOutputs();
     }
 
     // ---- link side ----
@@ -324,29 +436,128 @@ public abstract class GenericMotorPlatform {
      * @throws RuntimeException if the hardware refused them (a brick's error status); they are not sent again
      */
     public final void serviceLink() throws IOException {
-        if (!published.isEmpty()) {
-            List<MotorState> batch = new ArrayList<>();
-            for (String port : portOrder) {
-                MotorState s = published.remove(port);
-                if (s != null) {
-                    batch.add(s);
+        Map<String, MotorState> drained = new LinkedHashMap<>();
+        synchronized (published) {
+            drained.putAll(published);
+            published.clear();
+        }
+        if (stopsOnLinkSide()) {
+            anticipateStops(drained);
+        }
+        List<MotorState> batch = new ArrayList<>();
+        for (String port : portOrder) {
+            MotorState s = drained.get(port);
+            if (s != null) {
+                batch.add(s);
+            }
+        }
+        if (!batch.isEmpty()) {
+            // The states count as sent from here on, so that a driver that reads the brick in the
+            // same exchange (a pipelined poll) reports on these states, not the ones before; a
+            // rotation counts from where the motor will be when the brick takes it.
+            Map<String, MotorState> before = new LinkedHashMap<>();
+            for (MotorState s : batch) {
+                MotorState previous = sentStates.get(s.port());
+                if (s.running()) {
+                    Start was = starts.get(s.port());
+                    long since = was != null && was.state() == previous ? was.sinceNanos() : Long.MIN_VALUE;
+                    double speed = previous == null ? 0 : actualDegreesPerSecond(previous);
+                    starts.put(s.port(), new Start(s, predictedDegrees(s.port(), speed, since), Long.MAX_VALUE));
                 }
+                before.put(s.port(), sentStates.put(s.port(), s));
             }
             try {
                 runImpl(batch);
+                long took = clock.nanoTime() - actedNanosAgo();
                 for (MotorState s : batch) {
-                    sentStates.put(s.port(), s);
+                    Start start = starts.get(s.port());
+                    if (start != null && start.state() == s) {
+                        starts.put(s.port(), new Start(s, start.degrees(), took));
+                    }
                 }
-            } catch (IOException e) {
-                for (MotorState s : batch) {
-                    published.putIfAbsent(s.port(), s);
+            } catch (IOException | RuntimeException e) {
+                before.forEach((port, s) -> {
+                    if (s == null) {
+                        sentStates.remove(port);
+                    } else {
+                        sentStates.put(port, s);
+                    }
+                });
+                // A refusal (RuntimeException: the brick answered with an error status) is not sent
+                // again: it would be refused again, every cycle; the commands that wanted it fail with it.
+                synchronized (published) {
+                    for (MotorState s : e instanceof IOException ? batch : List.<MotorState>of()) {
+                        published.putIfAbsent(s.port(), s);
+                    }
                 }
                 throw e;
             }
-            // A refusal (RuntimeException: the brick answered with an error status) is not sent
-            // again: it would be refused again, every cycle; the commands that wanted it fail with it.
         }
         pollFeedback();
+    }
+
+    /**
+     * @return whether the link side stops limited rotations itself, just in time by its own
+     *         prediction, rather than waiting for the execution action thread's decision (which a
+     *         slow link carrying one exchange at a time can send an exchange late); default no
+     */
+    protected boolean stopsOnLinkSide() {
+        return false;
+    }
+
+    /**
+     * How long until the link side can next send a command after this service: a cycle, or the
+     * exchange that the service itself runs if that takes longer. Drivers on slow links override it.
+     *
+     * @return nanoseconds
+     */
+    protected long nextSendNanos() {
+        return cyclePeriodNanos;
+    }
+
+    /**
+     * Adds a stop to the batch for every limited rotation that reaches its target, by prediction,
+     * before the link side's next chance to send ({@link #nextSendNanos()}), and marks it stopped
+     * at its limit. They go together, one batch, at the mean of the moments each should be sent (a
+     * stop sent then reaches the brick as the motor reaches its target): a slow link could not send
+     * a second batch in time, and two motors of one move or turn, started together at one speed,
+     * should stop together. The link thread waits for that moment. Time here is the injected
+     * clock's; the wait is a real one only on the wall clock.
+     */
+    private void anticipateStops(Map<String, MotorState> batch) {
+        long next = nextSendNanos();
+        Map<String, Long> due = new LinkedHashMap<>();
+        for (String port : portOrder) {
+            MotorState s = sentStates.get(port);
+            if (batch.containsKey(port) || s == null || !s.running() || Double.isInfinite(s.limitDegrees()) || !hasEncoder(port)) {
+                continue;
+            }
+            Start start = starts.get(port);
+            if (start == null || start.state() != s) {
+                continue;
+            }
+            double remaining = s.limitDegrees() - turned(port, start);
+            double speed = Math.abs(actualDegreesPerSecond(s));
+            long eta = speed == 0 ? Long.MAX_VALUE : (long) Math.max(0, remaining / speed * 1e9);
+            if (eta < next) {
+                due.put(port, eta);
+            }
+        }
+        if (due.isEmpty()) {
+            return;
+        }
+        long wait = (long) due.values().stream().mapToLong(Long::longValue).average().orElse(0);
+        if (wait > 0 && clock == Clock.system()) {
+            // The action side unparks the link thread whenever it publishes: wait out the time.
+            long until = clock.nanoTime() + wait;
+            for (long left = wait; left > 0; left = until - clock.nanoTime()) {
+                java.util.concurrent.locks.LockSupport.parkNanos(this, left);
+            }
+        }
+        for (String port : due.keySet()) {
+            batch.put(port, MotorState.stopped(port, MotorState.StopMode.BRAKE));
+            stoppedAtLimit.put(port, sentStates.get(port));
+        }
     }
 
     private void requirePort(String port) {

@@ -2,6 +2,7 @@ package io.robomw.platform.nxt;
 
 import io.robomw.platform.brick.LittleEndian;
 import io.robomw.platform.brick.BrickChannel;
+import io.robomw.platform.brick.RoundTripEstimate;
 import io.robomw.platform.link.LinkLostException;
 
 import java.io.IOException;
@@ -18,6 +19,7 @@ public final class NxtBrick {
 
     private final String robot;
     private final BrickChannel channel;
+    private final RoundTripEstimate roundTrip = new RoundTripEstimate();
 
     /**
      * @param robot   the robot's name, for messages
@@ -31,6 +33,16 @@ public final class NxtBrick {
     /** @return the robot's name */
     public String robot() {
         return robot;
+    }
+
+    /** @return how long until the exchange under way on the channel is expected to end, nanoseconds */
+    public long nanosUntilFree() {
+        return channel.nanosUntilFree();
+    }
+
+    /** @return the link's measured round trip, request sent to reply received */
+    public RoundTripEstimate roundTrip() {
+        return roundTrip;
     }
 
     /**
@@ -66,43 +78,92 @@ public final class NxtBrick {
     }
 
     /**
-     * Sends several telegrams back to back, then reads their replies in order: motors started in
-     * one batch start within a few bytes' time of each other, not a round trip apart.
+     * One telegram of a {@link #pipeline pipelined} batch.
      *
-     * @param telegrams   telegrams that each want a status-only reply
-     * @param ports       the port of each, for messages
-     * @throws IOException if the link failed or lost its framing
-     * @throws NxtException naming the first command the brick refused
+     * @param telegram    the telegram, without its length prefix, asking for a reply (type 0x00)
+     * @param replyLength the length of its reply when the brick accepts it, without prefix
+     * @param port        the port it is for, for messages, or -1
      */
-    public void requestAll(java.util.List<byte[]> telegrams, int[] ports) throws IOException {
-        int[] statuses = channel.exchange((c, timeout) -> {
-            java.io.ByteArrayOutputStream out = new java.io.ByteArrayOutputStream();
-            for (byte[] t : telegrams) {
-                out.writeBytes(NxtTelegram.withLengthPrefix(t));
-            }
-            c.send(out.toByteArray());
-            int[] result = new int[telegrams.size()];
-            for (int i = 0; i < telegrams.size(); i++) {
-                int opcode = telegrams.get(i)[1] & 0xFF;
-                byte[] prefix = c.receiveExactly(2, timeout);
-                int length = LittleEndian.u16(prefix, 0);
-                if (length != NxtTelegram.STATUS_REPLY) {
-                    throw new LinkLostException(channel.describe(), "NXT reply to " + NxtTelegram.name(opcode) + " announced " + length
-                            + " bytes, expected " + NxtTelegram.STATUS_REPLY + "; the link lost its framing");
+    public record Request(byte[] telegram, int replyLength, int port) {
+    }
+
+    /**
+     * Sends telegrams back to back and then reads their replies, in order. Over a link with
+     * latency this costs one round trip for the whole batch instead of one per telegram, and
+     * motors started in one batch start within a millisecond of each other (the firmware takes one
+     * telegram from its Bluetooth buffer per 1 ms tick). A batch goes out in writes of at most
+     * {@value #PIPELINE_BYTES} bytes, each followed by its replies, so it never overruns the
+     * brick's Bluetooth receive buffer ({@code d_bt.r}: two buffers of 128 bytes).
+     *
+     * @param requests the telegrams
+     * @return the replies, in the same order, starting with {@code 02 opcode status}, whatever their status
+     * @throws IOException if the link failed or lost its framing
+     */
+    public java.util.List<byte[]> pipeline(java.util.List<Request> requests) throws IOException {
+        return channel.exchange((c, timeout) -> {
+            java.util.List<byte[]> replies = new java.util.ArrayList<>(requests.size());
+            int next = 0;
+            while (next < requests.size()) {
+                java.io.ByteArrayOutputStream out = new java.io.ByteArrayOutputStream();
+                int first = next;
+                while (next < requests.size() && (next == first
+                        || out.size() + requests.get(next).telegram().length + 2 <= PIPELINE_BYTES)) {
+                    out.writeBytes(NxtTelegram.withLengthPrefix(requests.get(next).telegram()));
+                    next++;
                 }
-                byte[] reply = c.receiveExactly(length, timeout);
-                if ((reply[0] & 0xFF) != NxtTelegram.REPLY || (reply[1] & 0xFF) != opcode) {
-                    throw new LinkLostException(channel.describe(), "expected a reply to " + NxtTelegram.name(opcode) + "; the link lost its framing");
+                long sent = System.nanoTime();
+                c.send(out.toByteArray());
+                for (int i = first; i < next; i++) {
+                    replies.add(readReply(c, timeout, requests.get(i)));
+                    if (i == first) {
+                        roundTrip.sample(System.nanoTime() - sent);
+                    }
                 }
-                result[i] = reply[NxtTelegram.STATUS_OFFSET] & 0xFF;
             }
-            return result;
+            return replies;
         });
-        for (int i = 0; i < statuses.length; i++) {
-            if (statuses[i] != NxtStatus.SUCCESS) {
-                throw new NxtException(robot, telegrams.get(i)[1] & 0xFF, ports[i], statuses[i], telegrams.get(i));
+    }
+
+    /** The most bytes one write of a pipelined batch carries: one of the NXT's Bluetooth receive buffers. */
+    public static final int PIPELINE_BYTES = 128;
+
+    private byte[] readReply(io.robomw.platform.link.Communicator c, java.time.Duration timeout, Request request) throws IOException {
+        int opcode = request.telegram()[1] & 0xFF;
+        byte[] prefix = c.receiveExactly(2, timeout);
+        int length = LittleEndian.u16(prefix, 0);
+        if (length < NxtTelegram.STATUS_REPLY || length > NxtTelegram.MAX_LENGTH) {
+            throw new LinkLostException(channel.describe(), "NXT reply to " + NxtTelegram.name(opcode) + " announced " + length
+                    + " bytes; the link lost its framing");
+        }
+        byte[] reply = c.receiveExactly(length, timeout);
+        if ((reply[0] & 0xFF) != NxtTelegram.REPLY || (reply[1] & 0xFF) != opcode) {
+            throw new LinkLostException(channel.describe(), String.format("expected a reply to %s, got %02X %02X; the link lost its framing",
+                    NxtTelegram.name(opcode), reply[0] & 0xFF, reply[1] & 0xFF));
+        }
+        int status = reply[NxtTelegram.STATUS_OFFSET] & 0xFF;
+        if (status == NxtStatus.SUCCESS && length != request.replyLength()) {
+            throw new LinkLostException(channel.describe(), NxtTelegram.name(opcode) + " reply is " + length + " bytes, expected " + request.replyLength());
+        }
+        return reply;
+    }
+
+    /**
+     * {@link #pipeline Pipelines} telegrams and checks every status.
+     *
+     * @param requests the telegrams
+     * @return their replies
+     * @throws IOException if the link failed or lost its framing
+     * @throws NxtException naming the first command the brick refused (all replies were read)
+     */
+    public java.util.List<byte[]> requestAll(java.util.List<Request> requests) throws IOException {
+        java.util.List<byte[]> replies = pipeline(requests);
+        for (int i = 0; i < replies.size(); i++) {
+            int status = replies.get(i)[NxtTelegram.STATUS_OFFSET] & 0xFF;
+            if (status != NxtStatus.SUCCESS) {
+                throw new NxtException(robot, requests.get(i).telegram()[1] & 0xFF, requests.get(i).port(), status, requests.get(i).telegram());
             }
         }
+        return replies;
     }
 
     /**
@@ -116,24 +177,12 @@ public final class NxtBrick {
      * @throws IOException if the link failed or lost its framing
      */
     public byte[] requestAllowing(byte[] telegram, int replyLength, int port) throws IOException {
-        int opcode = telegram[1] & 0xFF;
+        Request request = new Request(telegram, replyLength, port);
         return channel.exchange((c, timeout) -> {
+            long sent = System.nanoTime();
             c.send(NxtTelegram.withLengthPrefix(telegram));
-            byte[] prefix = c.receiveExactly(2, timeout);
-            int length = LittleEndian.u16(prefix, 0);
-            if (length < NxtTelegram.STATUS_REPLY || length > NxtTelegram.MAX_LENGTH) {
-                throw new LinkLostException(channel.describe(), "NXT reply to " + NxtTelegram.name(opcode) + " announced " + length
-                        + " bytes; the link lost its framing");
-            }
-            byte[] reply = c.receiveExactly(length, timeout);
-            if ((reply[0] & 0xFF) != NxtTelegram.REPLY || (reply[1] & 0xFF) != opcode) {
-                throw new LinkLostException(channel.describe(), String.format("expected a reply to %s, got %02X %02X; the link lost its framing",
-                        NxtTelegram.name(opcode), reply[0] & 0xFF, reply[1] & 0xFF));
-            }
-            int status = reply[NxtTelegram.STATUS_OFFSET] & 0xFF;
-            if (status == NxtStatus.SUCCESS && length != replyLength) {
-                throw new LinkLostException(channel.describe(), NxtTelegram.name(opcode) + " reply is " + length + " bytes, expected " + replyLength);
-            }
+            byte[] reply = readReply(c, timeout, request);
+            roundTrip.sample(System.nanoTime() - sent);
             return reply;
         });
     }

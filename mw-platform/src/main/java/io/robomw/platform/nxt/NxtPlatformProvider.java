@@ -17,9 +17,17 @@ import java.util.List;
  * {@code platform: nxt}: a LEGO Mindstorms NXT over a serial link (a Bluetooth-paired brick is
  * {@code /dev/rfcomm0} or {@code COM5}) or a TCP bridge. Connection keys: {@code port} (device
  * path) and {@code baud}, or {@code host} and {@code port}; {@code reply_timeout_ms} (default
- * 300); {@code wire_log} (a file that records every byte).
+ * {@value #DEFAULT_REPLY_TIMEOUT_MS}); {@code wire_log} (a file that records every byte).
  */
 public final class NxtPlatformProvider implements PlatformProvider {
+
+    /**
+     * How long each reply is awaited by default, milliseconds: as the EV3's. A Bluetooth round trip
+     * takes about 30 ms; 300 ms, the old default, took a loaded host held up for a moment for a dead
+     * link. A link that is really gone (the brick switched off, the serial device closed) fails at
+     * once.
+     */
+    public static final int DEFAULT_REPLY_TIMEOUT_MS = 500;
 
     @Override
     public String platformName() {
@@ -36,7 +44,7 @@ public final class NxtPlatformProvider implements PlatformProvider {
 
     @Override
     public RobotPlatform open(PlatformConfig config) throws IOException {
-        Duration timeout = Duration.ofMillis(config.connection().integer("reply_timeout_ms", 300));
+        Duration timeout = Duration.ofMillis(config.connection().integer("reply_timeout_ms", DEFAULT_REPLY_TIMEOUT_MS));
         BrickChannel channel = BrickChannel.open(config.robotName(), config.connection(),
                 SerialSettings.of(115200, 8, SerialSettings.Parity.NONE, 1), 0, timeout);
         try {

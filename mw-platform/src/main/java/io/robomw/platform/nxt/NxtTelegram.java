@@ -20,6 +20,8 @@ import io.robomw.platform.brick.LittleEndian;
  * LSWRITE        0x0F  port u8, tx_len u8, rx_len u8, tx_data[tx_len]
  * LSGETSTATUS    0x0E  port u8  -> bytes_ready u8                                              (4 bytes)
  * LSREAD         0x10  port u8  -> bytes_read u8, data[16]                                     (20 bytes)
+ * RESETMOTORPOSITION 0x0A  port u8, relative bool (1: block tacho count, 0: rotation count)
+ * UPDATE_RESET_COUNT 0x21  port u8   (tacho count and tacho-limit target; firmware 1.29 and later)
  * </pre>
  *
  * Stateless; the encoders return the telegram without its length prefix.
@@ -70,6 +72,15 @@ public final class NxtTelegram {
     public static final int LSREAD = 0x10;
     /** Reads the running program's name. */
     public static final int GETCURRENTPROGRAMNAME = 0x11;
+    /**
+     * Zeroes a motor's tacho count and the target its tacho limits add up to ({@code c_cmd.c}
+     * RC_UPDATE_RESET_COUNT, flag UPDATE_RESET_COUNT; LEGO firmware 1.29 and later: earlier
+     * firmware answers 0xBE).
+     */
+    public static final int UPDATE_RESET_COUNT = 0x21;
+
+    /** SETOUTPUTSTATE's port for all three outputs at once. */
+    public static final int ALL_OUTPUTS = 0xFF;
 
     /** Reply lengths (without the prefix), by opcode. */
     public static final int GETOUTPUTSTATE_REPLY = 25;
@@ -210,6 +221,17 @@ public final class NxtTelegram {
     }
 
     /**
+     * @param reply whether a reply is wanted
+     * @param port  the motor port
+     * @return UPDATE_RESET_COUNT
+     */
+    public static byte[] updateResetCount(boolean reply, int port) {
+        byte[] t = header(reply, UPDATE_RESET_COUNT, 1);
+        t[2] = (byte) port;
+        return t;
+    }
+
+    /**
      * @param reply  whether a reply is wanted
      * @param port   the input port
      * @param rxLength bytes to read back
@@ -290,12 +312,6 @@ public final class NxtTelegram {
         return out;
     }
 
-
-
-
-
-
-
     /**
      * @param opcode an opcode
      * @return its name, for messages
@@ -317,6 +333,7 @@ public final class NxtTelegram {
             case LSWRITE -> "LSWRITE";
             case LSREAD -> "LSREAD";
             case GETCURRENTPROGRAMNAME -> "GETCURRENTPROGRAMNAME";
+            case UPDATE_RESET_COUNT -> "UPDATE_RESET_COUNT";
             default -> String.format("opcode 0x%02X", opcode);
         };
     }

@@ -39,6 +39,8 @@ class NxtTelegramTest {
         assertArrayEquals(hex("000a0000"), NxtTelegram.resetMotorPosition(true, 0, false));
         assertArrayEquals(hex("000b"), NxtTelegram.getBatteryLevel());
         assertArrayEquals(hex("000d"), NxtTelegram.keepAlive());
+        assertArrayEquals(hex("000a0101"), NxtTelegram.resetMotorPosition(true, 1, true), "block tacho count of B");
+        assertArrayEquals(hex("002102"), NxtTelegram.updateResetCount(true, 2), "UPDATE_RESET_COUNT (0x21) of C, as c_cmd.iom numbers it");
     }
 
     @Test

@@ -48,6 +48,10 @@ public abstract class BrickEmulator implements Emulator {
     private final java.util.List<Runnable> closeActions = new java.util.concurrent.CopyOnWriteArrayList<>();
     private volatile boolean running;
     private volatile Link link;
+    private volatile LinkModel linkModel;
+    private volatile io.robomw.sim.Simulation simulation;
+    /** When the telegram being handled arrived; touched by the I/O thread only. */
+    private long frameArrivalNanos;
     private Thread thread;
 
     /**
@@ -68,6 +72,35 @@ public abstract class BrickEmulator implements Emulator {
         this.kind = kind;
         this.robot = robot;
         this.framing = framing;
+    }
+
+    /**
+     * @return how slow this brick's usual link is (the emulator serves at this speed unless told
+     *         otherwise); by default none
+     */
+    protected LinkModel defaultLinkModel() {
+        return LinkModel.NONE;
+    }
+
+    /**
+     * Sets how slow the emulated link is, before the emulator starts serving.
+     *
+     * @param model the link model; {@link LinkModel#NONE} serves as fast as the pseudo-terminal or socket goes
+     * @return this
+     * @throws IllegalStateException if it already serves
+     */
+    public synchronized BrickEmulator linkModel(LinkModel model) {
+        if (thread != null) {
+            throw new IllegalStateException("the " + kind + " emulator already serves on " + link.describe() + "; set its link model before it starts");
+        }
+        linkModel = java.util.Objects.requireNonNull(model, "model");
+        return this;
+    }
+
+    /** @return how slow the emulated link is */
+    public LinkModel linkModel() {
+        LinkModel m = linkModel;
+        return m == null ? defaultLinkModel() : m;
     }
 
     /**
@@ -106,9 +139,33 @@ public abstract class BrickEmulator implements Emulator {
         closeActions.clear();
     }
 
+    /**
+     * @return when the telegram {@link #handle} is answering arrived over the link (its last byte):
+     *         a real brick acts on a telegram then, however late a loaded host lets the emulator's
+     *         thread get to it. I/O thread only.
+     */
+    protected long frameArrivalNanos() {
+        return frameArrivalNanos;
+    }
+
     /** @return the simulated robot */
     protected SimMotors robot() {
         return robot;
+    }
+
+    /**
+     * @return the wall-clock time the world step now being taken stands for (see
+     *         {@code Simulation.stepWallNanos}); the time now for an emulator not bound to a simulation
+     */
+    protected long stepWallNanos() {
+        io.robomw.sim.Simulation s = simulation;
+        return s == null ? System.nanoTime() : s.stepWallNanos();
+    }
+
+    /** @return simulated seconds per wall-clock second: the real-time run's speed, 1 when not bound or not in real time */
+    protected double simulatedSecondsPerSecond() {
+        io.robomw.sim.Simulation s = simulation;
+        return s == null ? 1 : s.realTimeSpeed();
     }
 
     /**
@@ -128,6 +185,7 @@ public abstract class BrickEmulator implements Emulator {
         SimMotors motors = SimMotors.of(simulation.world(), robotName).orElseThrow(() -> new IllegalArgumentException(
                 "world '" + simulation.world().description().name() + "' has no robot '" + robotName + "'"));
         E e = emulator.apply(motors);
+        ((BrickEmulator) e).simulation = simulation;
         simulation.addStepListener(e.stepListener());
         e.onClose(() -> simulation.removeStepListener(e.stepListener()));
         return e;
@@ -172,12 +230,13 @@ public abstract class BrickEmulator implements Emulator {
             endpoint.close();
             throw new IllegalStateException("the " + kind + " emulator of '" + robot.robot().name() + "' is already serving on " + link.describe());
         }
-        link = endpoint;
+        LinkModel model = linkModel();
+        link = model.isNone() ? endpoint : new DelayedLink(endpoint, model);
         running = true;
         thread = new Thread(this::serve, "emulator-" + kind + "-" + robot.robot().name());
         thread.setDaemon(true);
         thread.start();
-        LOG.info("{} emulator for '{}' serving on {}", kind, robot.robot().name(), endpoint.describe());
+        LOG.info("{} emulator for '{}' serving on {}", kind, robot.robot().name(), link.describe());
     }
 
     private void serve() {
@@ -205,6 +264,8 @@ public abstract class BrickEmulator implements Emulator {
                     }
                     continue;
                 }
+                Link l = link;
+                frameArrivalNanos = l instanceof DelayedLink d ? d.lastDeliveredAt() : System.nanoTime();
                 byte[] reply;
                 try {
                     reply = handle(frame);

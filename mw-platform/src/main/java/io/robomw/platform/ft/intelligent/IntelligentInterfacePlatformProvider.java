@@ -16,11 +16,19 @@ import java.util.List;
 
 /**
  * {@code platform: ft-intelligent}: a fischertechnik Intelligent Interface 30402 on a serial port
- * (9600 8N1). Connection keys: {@code port}, {@code reply_timeout_ms} (default 250),
- * {@code wire_log}. Keep {@code cycle_hz} at 20 or more: the interface stops its motors when it
+ * (9600 8N1). Connection keys: {@code port}, {@code reply_timeout_ms} (default {@value #DEFAULT_REPLY_TIMEOUT_MS}),
+ * {@code pulse_ms} (default 5: over a TCP bridge, the shortest time a pulsed wheel motor is on), {@code wire_log}. Keep {@code cycle_hz} at 20 or more: the interface stops its motors when it
  * hears nothing for 300 ms, and the platform refreshes it once a cycle.
  */
 public final class IntelligentInterfacePlatformProvider implements PlatformProvider {
+
+    /**
+     * How long each answer is awaited by default, milliseconds. The interface answers within a few
+     * milliseconds, and stops its motors by itself 300 ms after the last command, so the timeout
+     * only decides how soon a dead link is reported; a second keeps a loaded host (or an emulator
+     * on one) that is held up for a few hundred milliseconds from being taken for a dead link.
+     */
+    public static final int DEFAULT_REPLY_TIMEOUT_MS = 1000;
 
     @Override
     public String platformName() {
@@ -53,9 +61,9 @@ public final class IntelligentInterfacePlatformProvider implements PlatformProvi
             throw new IOException(config.source() + ": cycle_hz must be at least 20 for an Intelligent Interface, which stops its motors "
                     + "after " + IntelligentInterfaceTelegram.WATCHDOG_MILLIS + " ms without a command");
         }
-        Duration timeout = Duration.ofMillis(config.connection().integer("reply_timeout_ms", 250));
+        Duration timeout = Duration.ofMillis(config.connection().integer("reply_timeout_ms", DEFAULT_REPLY_TIMEOUT_MS));
         BrickChannel channel = BrickChannel.open(config.robotName(), config.connection(),
-                SerialSettings.of(9600, 8, SerialSettings.Parity.NONE, 1), 0, timeout);
+                SerialSettings.of(IntelligentInterfaceTelegram.BAUD, 8, SerialSettings.Parity.NONE, 1), 0, timeout);
         try {
             IntelligentInterfaceInputs inputs = new IntelligentInterfaceInputs();
             IntelligentInterfaceMotorPlatform motors = new IntelligentInterfaceMotorPlatform(config, channel, inputs);

@@ -46,6 +46,9 @@ public final class IntelligentInterfaceTelegram {
     public static final int MOTORS = 4;
     /** Digital inputs of one interface. */
     public static final int INPUTS = 8;
+    /** The interface's serial line speed, baud (8 data bits, no parity, 1 stop bit). */
+    public static final int BAUD = 9600;
+
     /** How long the interface keeps its motors on without a command, milliseconds. */
     public static final int WATCHDOG_MILLIS = 300;
 

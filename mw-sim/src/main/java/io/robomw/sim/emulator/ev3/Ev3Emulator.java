@@ -16,6 +16,7 @@ import io.robomw.platform.ev3.Ev3Subcode;
 import io.robomw.sim.SimMotors;
 import io.robomw.sim.Simulation;
 import io.robomw.sim.emulator.BrickEmulator;
+import io.robomw.sim.emulator.LinkModel;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -97,6 +98,10 @@ public final class Ev3Emulator extends BrickEmulator {
         final boolean connected;
         final boolean wheel;
         Run run = Run.IDLE;
+        /** Whether the last opOUTPUT_STOP braked (the motor holds) rather than let it coast. */
+        boolean braked;
+        /** Whether the running step command brakes at its end. */
+        boolean stepBrake;
         int speed;
         double degrees;
         double countOffset;
@@ -189,9 +194,27 @@ public final class Ev3Emulator extends BrickEmulator {
         return vmFailures.get();
     }
 
+    /**
+     * @param port a motor port, A..D
+     * @return whether that output is stopped and braking (holding its motor, drawing current);
+     *         false when it runs or was stopped coasting
+     */
+    public boolean braking(String port) {
+        synchronized (firmware) {
+            Output o = outputs[Ev3Ports.outputNumber(port)];
+            return o.run == Run.IDLE && o.braked;
+        }
+    }
+
     /** @return tones played (opSOUND TONE) */
     public long tonesPlayed() {
         return tones.get();
+    }
+
+    /** An EV3 is usually reached over Bluetooth: {@link LinkModel#BLUETOOTH_SPP}. */
+    @Override
+    protected LinkModel defaultLinkModel() {
+        return LinkModel.BLUETOOTH_SPP;
     }
 
     // ---- simulation thread ----
@@ -250,6 +273,7 @@ public final class Ev3Emulator extends BrickEmulator {
         double left = total - progress;
         if (left <= 1e-9) {
             o.run = Run.IDLE;
+            o.braked = o.stepBrake;
             return 0;
         }
         double factor = 1;
@@ -356,8 +380,11 @@ public final class Ev3Emulator extends BrickEmulator {
             }
             case OUTPUT_STOP -> {
                 int nos = nos(vm);
-                vm.data8();
-                forEach(nos, o -> o.run = Run.IDLE);
+                boolean brake = vm.data8() != 0;
+                forEach(nos, o -> {
+                    o.run = Run.IDLE;
+                    o.braked = brake;
+                });
             }
             case OUTPUT_POWER, OUTPUT_SPEED -> {
                 int nos = nos(vm);
@@ -383,9 +410,10 @@ public final class Ev3Emulator extends BrickEmulator {
                 int step1 = Math.abs(vm.data32());
                 int step2 = Math.abs(vm.data32());
                 int step3 = Math.abs(vm.data32());
-                vm.data8();
+                boolean brake = vm.data8() != 0;
                 forEach(nos, o -> {
                     o.run = Run.STEPPING;
+                    o.stepBrake = brake;
                     o.stepSpeed = speed;
                     o.stepStart = o.degrees;
                     o.step1 = step1;

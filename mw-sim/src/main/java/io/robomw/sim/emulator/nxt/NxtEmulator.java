@@ -1,12 +1,14 @@
 package io.robomw.sim.emulator.nxt;
 
 import io.robomw.platform.brick.LittleEndian;
+import io.robomw.api.SensorType;
 import io.robomw.config.description.SensorSpec;
 import io.robomw.platform.nxt.NxtStatus;
 import io.robomw.platform.nxt.NxtTelegram;
 import io.robomw.sim.SimMotors;
 import io.robomw.sim.Simulation;
 import io.robomw.sim.emulator.BrickEmulator;
+import io.robomw.sim.emulator.LinkModel;
 
 import java.util.Arrays;
 
@@ -17,46 +19,29 @@ import java.util.Arrays;
  * I²C transactions pending (0x20) until the next update, 0xE0 on a port that is not set up for
  * I²C), with its motors and sensors bound to a robot in a simulated world.
  *
- * <p>Motors: power P (regulated) turns at P % of
- * {@link NxtTelegram#DEGREES_PER_SECOND_AT_FULL_POWER}; a tacho limit stops the motor when reached;
- * two motors in sync regulation with a turn ratio run at the firmware's ratio. Counters: tacho
- * count (since the command), block tacho count and rotation count (since their resets). Inputs:
- * the description's sensor on S1..S4, encoded for the type the driver set: switch (raw 183
+ * <p>Motors follow the firmware's output module ({@link NxtOutputs}): power P (regulated) turns at
+ * P % of {@link NxtTelegram#DEGREES_PER_SECOND_AT_FULL_POWER}; tacho limits add up to a running
+ * target that only UPDATE_RESET_COUNT (0x21) zeroes, and a motor that reaches it coasts; a
+ * synchronised pair keeps its block tacho counts together. Counters: tacho count (since
+ * UPDATE_RESET_COUNT), block tacho count and rotation count (since their RESETMOTORPOSITION).
+ * Inputs: the description's sensor on S1..S4, encoded for the type the driver set: switch (raw 183
  * pressed, 1023 released), light (normalized = brightness × 1023), colour (the colour number),
- * ultrasonic over I²C (centimetres, 255 for nothing in range).
+ * ultrasonic over I²C with its identity and measurement registers ({@link NxtUltrasonic}:
+ * "V1.0", "LEGO", "Sonar"; centimetres, 255 for nothing in range).
  */
 public final class NxtEmulator extends BrickEmulator {
 
-    private static final int OUTPUTS = 3;
+    private static final int OUTPUTS = NxtOutputs.COUNT;
     private static final int INPUTS = 4;
     private static final int BATTERY_MILLIVOLTS = 8123;
     private static final long SLEEP_LIMIT_MILLIS = 600_000;
 
     private final Object firmware = new Object();
-    private final Output[] outputs = new Output[OUTPUTS];
+    private final NxtOutputs outputs;
     private final Input[] inputs = new Input[INPUTS];
-
-    /** One motor output's firmware state. */
-    private static final class Output {
-        final String port;
-        final boolean connected;
-        int power;
-        int mode;
-        int regulation;
-        int turnRatio;
-        int runState;
-        long tachoLimit;
-        double degrees;
-        double tachoOffset;
-        double blockOffset;
-        double rotationOffset;
-        double speed;
-
-        Output(String port, boolean connected) {
-            this.port = port;
-            this.connected = connected;
-        }
-    }
+    private final double stepSeconds;
+    private final boolean resetCountCommand;
+    private final java.util.Map<Integer, java.util.concurrent.atomic.AtomicLong> served = new java.util.concurrent.ConcurrentHashMap<>();
 
     /** One sensor input's firmware state. */
     private static final class Input {
@@ -66,7 +51,9 @@ public final class NxtEmulator extends BrickEmulator {
         boolean valid;
         double si;
         int pendingRx = -1;
+        int pendingRegister;
         int bytesReady;
+        final NxtUltrasonic ultrasonic = new NxtUltrasonic();
         final byte[] lsData = new byte[16];
 
         Input(SensorSpec sensor) {
@@ -77,15 +64,34 @@ public final class NxtEmulator extends BrickEmulator {
     private volatile int refuseWith;
 
     /**
-     * @param robot the simulated robot whose motors and sensors it drives
+     * An NXT with firmware 1.29 or later (which has UPDATE_RESET_COUNT).
+     *
+     * @param robot       the simulated robot whose motors and sensors it drives
+     * @param stepSeconds the world's physics step, seconds
      */
-    public NxtEmulator(SimMotors robot) {
+    public NxtEmulator(SimMotors robot, double stepSeconds) {
+        this(robot, stepSeconds, true);
+    }
+
+    /**
+     * @param robot             the simulated robot whose motors and sensors it drives
+     * @param stepSeconds       the world's physics step, seconds
+     * @param resetCountCommand whether the firmware knows UPDATE_RESET_COUNT (0x21; LEGO 1.29 and
+     *                          later); without it, as on earlier firmware, it answers 0xBE
+     */
+    public NxtEmulator(SimMotors robot, double stepSeconds, boolean resetCountCommand) {
         super("nxt", robot, NxtTelegram.MAX_LENGTH);
-        var d = robot.robot().description();
-        for (int i = 0; i < OUTPUTS; i++) {
-            String port = String.valueOf((char) ('A' + i));
-            outputs[i] = new Output(port, d.motorPorts().contains(port));
+        if (!(stepSeconds > 0)) {
+            throw new IllegalArgumentException("stepSeconds must be > 0, got " + stepSeconds);
         }
+        this.stepSeconds = stepSeconds;
+        this.resetCountCommand = resetCountCommand;
+        var d = robot.robot().description();
+        boolean[] connected = new boolean[OUTPUTS];
+        for (int i = 0; i < OUTPUTS; i++) {
+            connected[i] = d.motorPorts().contains(String.valueOf((char) ('A' + i)));
+        }
+        outputs = new NxtOutputs(connected);
         for (int i = 0; i < INPUTS; i++) {
             String port = "S" + (i + 1);
             String bare = String.valueOf(i + 1);
@@ -103,7 +109,34 @@ public final class NxtEmulator extends BrickEmulator {
      *         closing it also unbinds it from the simulation
      */
     public static NxtEmulator bind(Simulation simulation, String robotName) {
-        return bind(simulation, robotName, NxtEmulator::new);
+        return bind(simulation, robotName, motors -> new NxtEmulator(motors, simulation.world().stepSeconds()));
+    }
+
+    /**
+     * Binds an emulator of firmware older than 1.29, which has no UPDATE_RESET_COUNT.
+     *
+     * @param simulation the simulation
+     * @param robotName  the robot
+     * @return the emulator, not yet serving
+     */
+    public static NxtEmulator bindLegacyFirmware(Simulation simulation, String robotName) {
+        return bind(simulation, robotName, motors -> new NxtEmulator(motors, simulation.world().stepSeconds(), false));
+    }
+
+    /**
+     * @param opcode a direct command's opcode
+     * @param port   the port its first payload byte names (an output or input)
+     * @return how many such telegrams the emulator has answered
+     */
+    public long telegrams(int opcode, int port) {
+        java.util.concurrent.atomic.AtomicLong n = served.get(opcode << 8 | port);
+        return n == null ? 0 : n.get();
+    }
+
+    /** An NXT is usually reached over Bluetooth: {@link LinkModel#BLUETOOTH_SPP}. */
+    @Override
+    protected LinkModel defaultLinkModel() {
+        return LinkModel.BLUETOOTH_SPP;
     }
 
     // ---- simulation thread ----
@@ -111,23 +144,16 @@ public final class NxtEmulator extends BrickEmulator {
     @Override
     protected void step(SimMotors robot) {
         synchronized (firmware) {
-            for (Output o : outputs) {
-                if (!o.connected) {
-                    continue;
-                }
-                o.degrees = robot.degrees(o.port);
-                boolean on = o.runState == NxtTelegram.RUN_RUNNING && (o.mode & NxtTelegram.MODE_MOTORON) != 0 && o.power != 0;
-                if (on && o.tachoLimit > 0 && Math.abs(o.degrees - o.tachoOffset) >= o.tachoLimit) {
-                    o.power = 0;
-                    o.runState = NxtTelegram.RUN_IDLE;
-                    on = false;
-                }
-                o.speed = on ? o.power / 100.0 * NxtTelegram.DEGREES_PER_SECOND_AT_FULL_POWER * syncFactor(o) : 0;
+            double[] degrees = new double[OUTPUTS];
+            for (int i = 0; i < OUTPUTS; i++) {
+                NxtOutputs.Output o = outputs.get(i);
+                degrees[i] = o.connected ? robot.degrees(o.port) : 0;
             }
-            correctSyncedPair();
-            for (Output o : outputs) {
+            double[] speeds = outputs.step(degrees, stepSeconds);
+            for (int i = 0; i < OUTPUTS; i++) {
+                NxtOutputs.Output o = outputs.get(i);
                 if (o.connected) {
-                    robot.command(o.port, o.speed);
+                    robot.command(o.port, speeds[i]);
                 }
             }
             for (Input in : inputs) {
@@ -138,7 +164,8 @@ public final class NxtEmulator extends BrickEmulator {
                 in.si = in.sensor == null ? 0 : robot.siValue(in.sensor.name());
                 if (in.pendingRx >= 0) {
                     Arrays.fill(in.lsData, (byte) 0);
-                    in.lsData[0] = (byte) Math.max(0, Math.min(255, Math.round(in.si * 100)));
+                    byte[] answer = in.ultrasonic.read(in.pendingRegister, in.pendingRx, in.si);
+                    System.arraycopy(answer, 0, in.lsData, 0, answer.length);
                     in.bytesReady = in.pendingRx;
                     in.pendingRx = -1;
                 }
@@ -149,61 +176,14 @@ public final class NxtEmulator extends BrickEmulator {
     @Override
     protected void halt(SimMotors robot) {
         synchronized (firmware) {
-            for (Output o : outputs) {
-                o.power = 0;
-                o.runState = NxtTelegram.RUN_IDLE;
+            outputs.halt();
+            for (int i = 0; i < OUTPUTS; i++) {
+                NxtOutputs.Output o = outputs.get(i);
                 if (o.connected) {
                     robot.command(o.port, 0);
                 }
             }
         }
-    }
-
-    /**
-     * The firmware's sync regulation: two motors in sync with turn ratio 0 are kept in step by
-     * slowing the one ahead and speeding up the one behind, in proportion to the difference in
-     * their rotation since the command.
-     */
-    private void correctSyncedPair() {
-        Output a = null;
-        Output b = null;
-        for (Output o : outputs) {
-            if (o.connected && o.speed != 0 && o.regulation == NxtTelegram.REGULATION_SYNC && o.turnRatio == 0) {
-                if (a == null) {
-                    a = o;
-                } else if (b == null) {
-                    b = o;
-                }
-            }
-        }
-        if (a == null || b == null) {
-            return;
-        }
-        double progressA = (a.degrees - a.tachoOffset) * Math.signum(a.speed);
-        double progressB = (b.degrees - b.tachoOffset) * Math.signum(b.speed);
-        double correction = SYNC_GAIN_PER_SECOND * (progressA - progressB);
-        a.speed -= Math.signum(a.speed) * correction;
-        b.speed += Math.signum(b.speed) * correction;
-    }
-
-    /** Degrees per second of correction per degree that two synced motors are apart. */
-    private static final double SYNC_GAIN_PER_SECOND = 25;
-
-    /** The firmware's turn ratio for motors in sync: the first runs at full, the second at 1 − turn/50 (−1 at 100). */
-    private double syncFactor(Output o) {
-        if (o.regulation != NxtTelegram.REGULATION_SYNC || o.turnRatio == 0) {
-            return 1;
-        }
-        int index = Arrays.asList(outputs).indexOf(o);
-        boolean first = true;
-        for (int i = 0; i < index; i++) {
-            first &= outputs[i].regulation != NxtTelegram.REGULATION_SYNC;
-        }
-        double t = o.turnRatio;
-        if (t > 0) {
-            return first ? 1 : 1 - t / 50;
-        }
-        return first ? 1 + t / 50 : 1;
     }
 
     // ---- I/O thread ----
@@ -226,6 +206,7 @@ public final class NxtEmulator extends BrickEmulator {
         }
         int type = frame[0] & 0xFF;
         int op = frame[1] & 0xFF;
+        served.computeIfAbsent(op << 8 | (frame.length > 2 ? frame[2] & 0xFF : 0xFF), k -> new java.util.concurrent.atomic.AtomicLong()).incrementAndGet();
         boolean wantsReply = (type & 0x80) == 0;
         int refusal = refuseWith;
         if (refusal != 0) {
@@ -260,6 +241,7 @@ public final class NxtEmulator extends BrickEmulator {
             case NxtTelegram.GETINPUTVALUES -> getInputValues(t);
             case NxtTelegram.RESETINPUTSCALEDVALUE -> inputPort(t) < 0 ? status(op, NxtStatus.OUT_OF_RANGE) : status(op, NxtStatus.SUCCESS);
             case NxtTelegram.RESETMOTORPOSITION -> resetMotorPosition(t);
+            case NxtTelegram.UPDATE_RESET_COUNT -> updateResetCount(t);
             case NxtTelegram.GETBATTERYLEVEL -> {
                 byte[] r = sized(op, NxtTelegram.GETBATTERYLEVEL_REPLY, NxtStatus.SUCCESS);
                 LittleEndian.putU16(r, 3, BATTERY_MILLIVOLTS);
@@ -285,19 +267,13 @@ public final class NxtEmulator extends BrickEmulator {
             return status(op, NxtStatus.INSANE_PACKET);
         }
         int port = t[2] & 0xFF;
-        if (port >= OUTPUTS && port != 0xFF) {
+        if (port >= OUTPUTS && port != NxtTelegram.ALL_OUTPUTS) {
             return status(op, NxtStatus.OUT_OF_RANGE);
         }
         for (int i = 0; i < OUTPUTS; i++) {
-            if (port == 0xFF || port == i) {
-                Output o = outputs[i];
-                o.power = Math.max(-100, Math.min(100, t[3]));
-                o.mode = t[4] & 0xFF;
-                o.regulation = t[5] & 0xFF;
-                o.turnRatio = Math.max(-100, Math.min(100, t[6]));
-                o.runState = t[7] & 0xFF;
-                o.tachoLimit = LittleEndian.u32(t, 8);
-                o.tachoOffset = o.degrees;
+            if (port == NxtTelegram.ALL_OUTPUTS || port == i) {
+                outputs.setOutputState(i, Math.max(-100, Math.min(100, t[3])), t[4] & 0xFF, t[5] & 0xFF,
+                        Math.max(-100, Math.min(100, t[6])), t[7] & 0xFF, LittleEndian.u32(t, 8));
             }
         }
         return status(op, NxtStatus.SUCCESS);
@@ -308,18 +284,18 @@ public final class NxtEmulator extends BrickEmulator {
         if (t.length < 3 || (t[2] & 0xFF) >= OUTPUTS) {
             return sized(op, NxtTelegram.GETOUTPUTSTATE_REPLY, t.length < 3 ? NxtStatus.INSANE_PACKET : NxtStatus.OUT_OF_RANGE);
         }
-        Output o = outputs[t[2] & 0xFF];
+        NxtOutputs.Output o = outputs.get(t[2] & 0xFF);
         byte[] r = sized(op, NxtTelegram.GETOUTPUTSTATE_REPLY, NxtStatus.SUCCESS);
         r[3] = t[2];
         r[4] = (byte) o.power;
         r[5] = (byte) o.mode;
-        r[6] = (byte) o.regulation;
+        r[6] = (byte) o.regulationMode;
         r[7] = (byte) o.turnRatio;
         r[8] = (byte) o.runState;
         LittleEndian.putU32(r, 9, o.tachoLimit);
-        LittleEndian.putU32(r, 13, Math.round(o.degrees - o.tachoOffset));
-        LittleEndian.putU32(r, 17, Math.round(o.degrees - o.blockOffset));
-        LittleEndian.putU32(r, 21, Math.round(o.degrees - o.rotationOffset));
+        LittleEndian.putU32(r, 13, o.count());
+        LittleEndian.putU32(r, 17, Math.round(o.blockCount()));
+        LittleEndian.putU32(r, 21, Math.round(o.rotationCount()));
         return r;
     }
 
@@ -332,11 +308,23 @@ public final class NxtEmulator extends BrickEmulator {
         if (port >= OUTPUTS) {
             return status(op, NxtStatus.OUT_OF_RANGE);
         }
-        if (t[3] != 0) {
-            outputs[port].blockOffset = outputs[port].degrees;
-        } else {
-            outputs[port].rotationOffset = outputs[port].degrees;
+        outputs.resetPosition(port, t[3] != 0);
+        return status(op, NxtStatus.SUCCESS);
+    }
+
+    private byte[] updateResetCount(byte[] t) {
+        int op = NxtTelegram.UPDATE_RESET_COUNT;
+        if (!resetCountCommand) {
+            return status(op, NxtStatus.UNKNOWN_COMMAND);
         }
+        if (t.length < 3) {
+            return status(op, NxtStatus.INSANE_PACKET);
+        }
+        int port = t[2] & 0xFF;
+        if (port >= OUTPUTS) {
+            return status(op, NxtStatus.OUT_OF_RANGE);
+        }
+        outputs.resetCount(port);
         return status(op, NxtStatus.SUCCESS);
     }
 
@@ -429,14 +417,23 @@ public final class NxtEmulator extends BrickEmulator {
         if (txLength > 16 || rxLength > 16) {
             return status(op, NxtStatus.OUT_OF_RANGE);
         }
-        boolean distance = txLength >= 2 && (t[5] & 0xFF) == NxtTelegram.ULTRASONIC_ADDRESS && (t[6] & 0xFF) == NxtTelegram.ULTRASONIC_DISTANCE;
-        in.pendingRx = rxLength;
-        in.bytesReady = 0;
-        if (!distance || in.sensor == null) {
+        boolean sonar = in.sensor != null && in.sensor.type() == SensorType.SONAR
+                && txLength >= 2 && (t[5] & 0xFF) == NxtTelegram.ULTRASONIC_ADDRESS;
+        if (!sonar) {
+            // Nothing answers at that address: the transaction ends with no data.
             in.pendingRx = -1;
             Arrays.fill(in.lsData, (byte) 0);
             in.bytesReady = rxLength;
+            return status(op, NxtStatus.SUCCESS);
         }
+        int register = t[6] & 0xFF;
+        if (txLength > 2) {
+            in.ultrasonic.write(register, Arrays.copyOfRange(t, 7, 5 + txLength));
+        }
+        // The sensor answers in the next I²C cycle: pending until the next sensor update.
+        in.pendingRegister = register;
+        in.pendingRx = rxLength;
+        in.bytesReady = 0;
         return status(op, NxtStatus.SUCCESS);
     }
 

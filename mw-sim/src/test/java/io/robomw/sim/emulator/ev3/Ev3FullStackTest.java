@@ -36,9 +36,9 @@ import static org.junit.jupiter.api.Assertions.fail;
  * four times real time. Checks are on the simulated robot's true pose. Waits are on conditions
  * checked at every world step, each with a deadline; nothing sleeps.
  */
-class Ev3FullStackTest {
+public class Ev3FullStackTest {
 
-    static final String ROBOT = """
+    public static final String ROBOT = """
             name: ev3-1
             platform: ev3
             connection: { %s }
@@ -80,6 +80,19 @@ class Ev3FullStackTest {
 
     private Pose truePose() {
         return stack.truePose();
+    }
+
+    /** Closing the robot leaves its outputs coasting, not braked (a braked EV3 motor draws current until the brick is off). */
+    @Test
+    void shouldLeaveEveryOutputCoastingWhenTheRobotCloses() throws Exception {
+        startOnPty(1.0);
+        robot.move(0.1, 0.15);
+        assertTrue(stack.emulator().braking("B"), "a finished move brakes");
+        robot.close();
+
+        for (String port : new String[]{"B", "C"}) {
+            assertTrue(!stack.emulator().braking(port), "output " + port + " coasts after close");
+        }
     }
 
     @Test

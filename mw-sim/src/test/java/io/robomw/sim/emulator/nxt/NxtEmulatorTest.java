@@ -7,6 +7,7 @@ import io.robomw.api.Robot;
 import io.robomw.api.RobotException;
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.SensorType;
+import io.robomw.platform.nxt.NxtTelegram;
 import io.robomw.sim.emulator.EmulatorStack;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.BeforeEach;
@@ -35,9 +36,9 @@ import static org.junit.jupiter.api.Assertions.fail;
  * against the NXT emulator, whose motors and sensors are a robot in a simulated world running at
  * four times real time. Checks are on the simulated robot's true pose.
  */
-class NxtEmulatorTest {
+public class NxtEmulatorTest {
 
-    static final String ROBOT = """
+    public static final String ROBOT = """
             name: nxt-1
             platform: nxt
             connection: { %s }
@@ -92,6 +93,87 @@ class NxtEmulatorTest {
         start(1.5);
         robot.turn(Math.PI / 2, 1.0);
         assertEquals(90, Math.toDegrees(truePose().heading()), 2.0);
+    }
+
+    /**
+     * A move pre-empted by a turn, then a move again: the firmware adds each tacho limit to the
+     * target of the last one, so a driver that only sent limits would see the turn's backward
+     * wheel stop at once and its forward wheel run on to the move's old target. Each command must
+     * end its own rotation from where the robot is when it arrives.
+     */
+    @Test
+    void shouldEndAMovePreemptedByATurnAndThenAMoveWhereTheyShould() throws Exception {
+        start(0.5);
+        preemptedMoveTurnMove();
+    }
+
+    /**
+     * On firmware without UPDATE_RESET_COUNT the platform stops rotations by the encoder, as late as
+     * its link and cycle: this world runs in real time, so those delays are what a real robot sees.
+     */
+    @Test
+    void shouldEndAPreemptedMoveTurnAndMoveWhereTheyShouldOnFirmwareWithoutUpdateResetCount() throws Exception {
+        stack = new EmulatorStack<>(dir, ROBOT, "nxt-1", NxtEmulator::bindLegacyFirmware);
+        robot = stack.openOnPseudoTerminal(0.5, 1);
+        preemptedMoveTurnMove();
+    }
+
+    private void preemptedMoveTurnMove() throws Exception {
+        CompletableFuture<Void> longMove = robot.moveAsync(1.0, 0.15);
+        stack.awaitStep(() -> truePose().x() > 0.7, Duration.ofSeconds(20), "the robot drove 20 cm");
+        robot.turn(Math.PI / 2, 1.0);
+        ExecutionException preempted = assertThrows(ExecutionException.class, () -> longMove.get(5, TimeUnit.SECONDS));
+        assertInstanceOf(io.robomw.api.CommandPreemptedException.class, preempted.getCause());
+        Pose afterTurn = truePose();
+        assertEquals(90, Math.toDegrees(afterTurn.heading()), 2.0, "the turn turned a quarter from where the move was cut: " + afterTurn);
+        assertEquals(1.5, afterTurn.y(), 0.01, "and on the spot");
+
+        robot.move(0.3, 0.15);
+
+        Pose end = truePose();
+        assertEquals(afterTurn.x(), end.x(), 0.01, "the second move went straight along the new heading: " + end);
+        assertEquals(afterTurn.y() + 0.3, end.y(), 0.01, "and 30 cm: " + end);
+        assertEquals(90, Math.toDegrees(end.heading()), 2.0);
+    }
+
+    /**
+     * Over Bluetooth every telegram costs a round trip, so the driver reads only the motors that
+     * matter: the gripper on A, at rest, is read about once a second while the wheels are read
+     * every cycle.
+     */
+    @Test
+    void shouldPollTheWheelsThatTurnEveryCycleAndTheGripperAtRestSeldom() throws Exception {
+        stack = new EmulatorStack<>(dir, ROBOT.replace("sensors:", "actuators:\n  - { name: gripper, port: A, actions: { open: { degrees: 90, speed: 180 } } }\nsensors:"),
+                "nxt-1", NxtEmulator::bind);
+        start(0.5);
+        long gripperBefore = stack.emulator().telegrams(NxtTelegram.GETOUTPUTSTATE, 0);
+        long wheelBefore = stack.emulator().telegrams(NxtTelegram.GETOUTPUTSTATE, 1);
+        long t0 = System.nanoTime();
+        robot.move(0.4, 0.15);
+        double seconds = (System.nanoTime() - t0) / 1e9;
+        long gripper = stack.emulator().telegrams(NxtTelegram.GETOUTPUTSTATE, 0) - gripperBefore;
+        long wheel = stack.emulator().telegrams(NxtTelegram.GETOUTPUTSTATE, 1) - wheelBefore;
+        assertTrue(wheel >= 5 * seconds, "the wheel B was read " + wheel + " times in " + seconds + " s");
+        assertTrue(gripper <= seconds + 2, "the gripper A at rest was read " + gripper + " times in " + seconds + " s");
+    }
+
+    /**
+     * Closing the robot leaves every output idle (no power, no brake, no regulation), as the
+     * brick's own stop does, rather than braked and regulated, drawing current until the brick
+     * is switched off.
+     */
+    @Test
+    void shouldLeaveEveryOutputCoastingWhenTheRobotCloses() throws Exception {
+        start(0.5);
+        robot.move(0.1, 0.15);
+        robot.close();
+
+        for (int port = 0; port < 3; port++) {
+            byte[] state = stack.emulator().handle(new byte[]{0x00, 0x06, (byte) port});
+            assertEquals(0x00, state[5], "output " + port + ": mode byte (MOTORON, BRAKE, REGULATED all off)");
+            assertEquals(0x00, state[6], "output " + port + ": regulation idle");
+            assertEquals(0x00, state[8], "output " + port + ": run state idle");
+        }
     }
 
     @Test

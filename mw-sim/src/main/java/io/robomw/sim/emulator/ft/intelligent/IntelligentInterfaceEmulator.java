@@ -9,6 +9,7 @@ import io.robomw.platform.ft.intelligent.IntelligentInterfaceTelegram;
 import io.robomw.sim.SimMotors;
 import io.robomw.sim.Simulation;
 import io.robomw.sim.emulator.BrickEmulator;
+import io.robomw.sim.emulator.LinkModel;
 import io.robomw.sim.emulator.Framing;
 
 import java.util.ArrayList;
@@ -21,6 +22,15 @@ import java.util.Optional;
  * motors on or off in either direction at {@link FtMotors#DEGREES_PER_SECOND_AT_FULL_POWER}, and the
  * interface's watchdog: motors off when no command came for 300 ms (wall-clock time, as the
  * hardware's timer).
+ *
+ * <h2>Real time on a loaded host</h2>
+ * The interface's motors run in real time whatever the host does. The emulator keeps the motor
+ * byte's history by wall-clock time ({@link MotorByteHistory}) and moves the simulated wheels by
+ * it: each world step drives each motor for the time it was on during the wall-clock interval that
+ * step stands for (the steps of a simulation catching up after its thread was held up stand for
+ * the past), so the world follows the commands one step late but exactly. A command is answered
+ * with the impulse switches as they are at that moment: the wheel's rotation at the last step,
+ * moved on by the motor's on-time since.
  *
  * <p>Inputs: a wheel's {@code counter:} input shows its impulse wheel, one transition per
  * {@code 360 / encoder_ticks_per_revolution} degrees of the simulated motor, starting mid-tooth; a touch sensor on a
@@ -37,11 +47,12 @@ public final class IntelligentInterfaceEmulator extends BrickEmulator {
     private final SensorSpec ex;
     private final SensorSpec ey;
     private final int ticksPerRevolution;
-    private int motorByte;
-    private long lastCommandNanos = System.nanoTime();
-    private boolean watchdogTripped;
-    private long watchdogTrips;
-    private int digital;
+    private final MotorByteHistory motorBytes = new MotorByteHistory();
+    private final Shaft[] shafts = new Shaft[IntelligentInterfaceTelegram.MOTORS];
+    private final double stepSeconds;
+    /** The wall-clock time the last step stood for: where the next step's window starts. */
+    private long lastStepWall = Long.MIN_VALUE;
+    private int switches;
     private int exValue;
     private int eyValue;
 
@@ -50,10 +61,42 @@ public final class IntelligentInterfaceEmulator extends BrickEmulator {
     }
 
     /**
-     * @param robot the simulated robot
+     * One motor's shaft as the interface drives it in real time, against the simulated wheel it
+     * turns: {@code driven} is the rotation its on-time gave up to the last step (by wall-clock
+     * time), {@code commanded} what the world has been asked to turn the wheel so far, and the last
+     * two steps' requests, which the world has not carried out yet (a commanded speed moves the
+     * body in the step after next). A wheel that the world holds back (a wall) falls behind, as a
+     * stalled motor does.
      */
-    public IntelligentInterfaceEmulator(SimMotors robot) {
+    private static final class Shaft {
+        double driven;
+        double commanded;
+        double wheel;
+        double requestedLastStep;
+        double requestedStepBefore;
+        /** The impulse wheel's rotation as its switch last showed it, and when ({@link Long#MIN_VALUE} before the first). */
+        double impulseWheel;
+        long impulseWheelAt = Long.MIN_VALUE;
+
+        /** @return the rotation the world's wheel has been asked for and has had the time to carry out */
+        double carriedOut() {
+            return commanded - requestedLastStep - requestedStepBefore;
+        }
+    }
+
+    /**
+     * @param robot       the simulated robot
+     * @param stepSeconds the world's physics step, seconds
+     */
+    public IntelligentInterfaceEmulator(SimMotors robot, double stepSeconds) {
         super("ft-intelligent", robot, framing());
+        if (!(stepSeconds > 0)) {
+            throw new IllegalArgumentException("stepSeconds must be > 0, got " + stepSeconds);
+        }
+        this.stepSeconds = stepSeconds;
+        for (int i = 0; i < shafts.length; i++) {
+            shafts[i] = new Shaft();
+        }
         RobotDescription d = robot.robot().description();
         for (int i = 0; i < motorPorts.length; i++) {
             String port = "M" + (i + 1);
@@ -117,26 +160,47 @@ public final class IntelligentInterfaceEmulator extends BrickEmulator {
      * @return the emulator, not yet serving; closing it unbinds it
      */
     public static IntelligentInterfaceEmulator bind(Simulation simulation, String robotName) {
-        return bind(simulation, robotName, IntelligentInterfaceEmulator::new);
+        return bind(simulation, robotName, motors -> new IntelligentInterfaceEmulator(motors, simulation.world().stepSeconds()));
     }
 
     /** @return how often the watchdog switched the motors off for want of commands */
     public long watchdogTrips() {
         synchronized (firmware) {
-            return watchdogTrips;
+            return motorBytes.watchdogTrips(System.nanoTime());
         }
     }
+
+    /**
+     * @return whether the world's wheels have caught up with the interface's motors: every wheel
+     *         has been asked for all the rotation its motor's on-time gave up to the last step, and
+     *         the world has had the time to carry it out (a simulation held up by a loaded host
+     *         lags behind the interface's real-time motors until then)
+     */
+    public boolean worldCaughtUp() {
+        synchronized (firmware) {
+            for (Shaft shaft : shafts) {
+                if (Math.abs(shaft.driven - shaft.commanded) > CAUGHT_UP_DEGREES || shaft.requestedLastStep != 0 || shaft.requestedStepBefore != 0) {
+                    return false;
+                }
+            }
+            return true;
+        }
+    }
+
+    /** Rotation owed to a wheel that counts as none. */
+    private static final double CAUGHT_UP_DEGREES = 0.5;
 
     /** @return whether any motor is switched on now */
     public boolean motorsOn() {
         synchronized (firmware) {
-            for (int i = 0; i < motorPorts.length; i++) {
-                if (IntelligentInterfaceTelegram.direction(motorByte, i) != 0) {
-                    return true;
-                }
-            }
-            return false;
+            return motorBytes.at(System.nanoTime()) != 0;
         }
+    }
+
+    /** The interface's RS-232 line: 9600 baud, 8N1, no latency beyond the bytes' time. */
+    @Override
+    protected LinkModel defaultLinkModel() {
+        return LinkModel.serial(IntelligentInterfaceTelegram.BAUD, 10);
     }
 
     // ---- I/O thread ----
@@ -145,9 +209,9 @@ public final class IntelligentInterfaceEmulator extends BrickEmulator {
     protected byte[] handle(byte[] frame) {
         int command = frame[0] & 0xFF;
         synchronized (firmware) {
-            motorByte = frame[1] & 0xFF;
-            lastCommandNanos = System.nanoTime();
-            watchdogTripped = false;
+            long now = frameArrivalNanos();
+            record(now, frame[1] & 0xFF);
+            int digital = digitalAt(now);
             return switch (command) {
                 case IntelligentInterfaceTelegram.DIGITAL -> new byte[]{(byte) digital};
                 case IntelligentInterfaceTelegram.ANALOG_EX -> new byte[]{(byte) digital, (byte) (exValue >> 8), (byte) exValue};
@@ -160,26 +224,119 @@ public final class IntelligentInterfaceEmulator extends BrickEmulator {
         }
     }
 
+    /**
+     * Records a command that arrived at a wall-clock time. A command can arrive before the wall
+     * time the last world step stood for (the emulator's thread got to it after that step): the
+     * motors' rotation up to that step, counted with the byte in force before, is corrected.
+     */
+    private void record(long at, int motorByte) {
+        boolean late = lastStepWall != Long.MIN_VALUE && at < lastStepWall;
+        double[] before = new double[shafts.length];
+        if (late) {
+            for (int i = 0; i < shafts.length; i++) {
+                before[i] = degreesDriven(i, at, lastStepWall);
+            }
+        }
+        motorBytes.command(at, motorByte);
+        if (late) {
+            for (int i = 0; i < shafts.length; i++) {
+                shafts[i].driven += degreesDriven(i, at, lastStepWall) - before[i];
+            }
+        }
+    }
+
+    /**
+     * The digital inputs at a wall-clock time: the switches as the last step saw them, and each
+     * impulse wheel's switch at the rotation the motor's on-time has given it by now (less what the
+     * world held the wheel back by).
+     *
+     * <p>The impulse wheel sits on the motor's shaft, so it turns only while the motor is on, and
+     * only the way the motor turns: where the world's wheel falls short of what it was asked for
+     * (a wall, or the body's top speed a hair under the motor's), the shaft waits until the motor
+     * has made up for it, rather than turning back. A switch that turned back across an edge would
+     * show two transitions that the real wheel never made.
+     */
+    private int digitalAt(long now) {
+        int bits = switches;
+        if (ticksPerRevolution > 0 && lastStepWall != Long.MIN_VALUE) {
+            for (Counter c : counters) {
+                int motor = motorIndex(c.motorPort());
+                Shaft shaft = shafts[motor];
+                // A command may be answered at a time before the last step's: its rotation then is
+                // the last step's, less the motor's on-time since.
+                double drivenNow = shaft.driven + (now >= lastStepWall ? degreesDriven(motor, lastStepWall, now)
+                        : -degreesDriven(motor, now, lastStepWall));
+                double degrees = shaft.wheel + drivenNow - shaft.carriedOut();
+                if (shaft.impulseWheelAt == Long.MIN_VALUE) {
+                    shaft.impulseWheel = degrees;
+                } else if (now > shaft.impulseWheelAt) {
+                    double on = motorBytes.signedOnSeconds(motor, shaft.impulseWheelAt, now);
+                    if (on > 0) {
+                        shaft.impulseWheel = Math.max(shaft.impulseWheel, degrees);
+                    } else if (on < 0) {
+                        shaft.impulseWheel = Math.min(shaft.impulseWheel, degrees);
+                    }
+                }
+                shaft.impulseWheelAt = Math.max(shaft.impulseWheelAt, now);
+                if (impulseSwitchClosed(shaft.impulseWheel)) {
+                    bits |= 1 << c.bit();
+                }
+            }
+        }
+        return bits;
+    }
+
+    /**
+     * The switch starts in the middle of a tooth, so the first transition comes after half a tick
+     * whichever way the wheel turns (a real one starts at an unknown phase, and half a tick is its
+     * average).
+     */
+    private boolean impulseSwitchClosed(double degrees) {
+        long tick = (long) Math.floor(degrees * ticksPerRevolution / 360.0 + 0.5);
+        return Math.floorMod(tick, 2) == 1;
+    }
+
+    private int motorIndex(String port) {
+        for (int i = 0; i < motorPorts.length; i++) {
+            if (port.equals(motorPorts[i])) {
+                return i;
+            }
+        }
+        return -1;
+    }
+
     // ---- simulation thread ----
 
+    /** Degrees a motor's on-time in a wall-clock interval turns it (counter-clockwise negative). */
+    private double degreesDriven(int motor, long from, long to) {
+        return FtMotors.DEGREES_PER_SECOND_AT_FULL_POWER * simulatedSecondsPerSecond() * motorBytes.signedOnSeconds(motor, from, to);
+    }
+
+    /**
+     * Adds the wall-clock window since the last step ({@code [last, wall)}) to each motor's driven
+     * rotation, and asks the world to turn the wheel by what it still owes (at most full speed, so
+     * a world catching up after its thread was held up pays the debt over the next steps), then
+     * samples the inputs.
+     */
     @Override
     protected void step(SimMotors robot) {
         synchronized (firmware) {
-            if (!watchdogTripped && System.nanoTime() - lastCommandNanos > IntelligentInterfaceTelegram.WATCHDOG_MILLIS * 1_000_000L) {
-                watchdogTripped = true;
-                if (motorByte != 0) {
-                    watchdogTrips++;
-                }
-                motorByte = 0;
-            }
+            long wall = stepWallNanos();
+            long from = lastStepWall == Long.MIN_VALUE ? wall : lastStepWall;
             for (int i = 0; i < motorPorts.length; i++) {
                 if (motorPorts[i] == null) {
                     continue;
                 }
-                int direction = IntelligentInterfaceTelegram.direction(motorByte, i);
-                double speed = direction == IntelligentInterfaceTelegram.CW ? FtMotors.DEGREES_PER_SECOND_AT_FULL_POWER
-                        : direction == IntelligentInterfaceTelegram.CCW ? -FtMotors.DEGREES_PER_SECOND_AT_FULL_POWER : 0;
+                Shaft shaft = shafts[i];
+                shaft.driven += degreesDriven(i, from, wall);
+                double owed = shaft.driven - shaft.commanded;
+                double speed = Math.max(-FtMotors.DEGREES_PER_SECOND_AT_FULL_POWER,
+                        Math.min(FtMotors.DEGREES_PER_SECOND_AT_FULL_POWER, owed / stepSeconds));
                 robot.command(motorPorts[i], speed);
+                shaft.requestedStepBefore = shaft.requestedLastStep;
+                shaft.requestedLastStep = speed * stepSeconds;
+                shaft.commanded += speed * stepSeconds;
+                shaft.wheel = robot.degrees(motorPorts[i]);
             }
             int bits = 0;
             for (int bit = 0; bit < digitalSensors.length; bit++) {
@@ -188,18 +345,8 @@ public final class IntelligentInterfaceEmulator extends BrickEmulator {
                     bits |= 1 << bit;
                 }
             }
-            if (ticksPerRevolution > 0) {
-                for (Counter c : counters) {
-                    // The switch starts in the middle of a tooth, so the first transition comes after
-                    // half a tick whichever way the wheel turns (a real one starts at an unknown phase,
-                    // and half a tick is its average).
-                    long tick = (long) Math.floor(robot.degrees(c.motorPort()) * ticksPerRevolution / 360.0 + 0.5);
-                    if (Math.floorMod(tick, 2) == 1) {
-                        bits |= 1 << c.bit();
-                    }
-                }
-            }
-            digital = bits;
+            lastStepWall = wall;
+            switches = bits;
             exValue = analog(robot, ex);
             eyValue = analog(robot, ey);
         }
@@ -216,7 +363,7 @@ public final class IntelligentInterfaceEmulator extends BrickEmulator {
     @Override
     protected void halt(SimMotors robot) {
         synchronized (firmware) {
-            motorByte = 0;
+            motorBytes.command(System.nanoTime(), 0);
             for (String port : motorPorts) {
                 if (port != null) {
                     robot.command(port, 0);

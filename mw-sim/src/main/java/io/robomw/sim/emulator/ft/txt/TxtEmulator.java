@@ -10,6 +10,7 @@ import io.robomw.platform.ft.txt.TxtProtocol;
 import io.robomw.sim.SimMotors;
 import io.robomw.sim.Simulation;
 import io.robomw.sim.emulator.BrickEmulator;
+import io.robomw.sim.emulator.LinkModel;
 import io.robomw.sim.emulator.Framing;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -54,10 +55,10 @@ import java.util.concurrent.CopyOnWriteArrayList;
  * </ul>
  *
  * <h2>Ports</h2>
- * {@link #startOnTcp} serves the command port only (port 0 picks any free one, as tests do).
- * {@link #startOnTcpPair} serves a fixed port P and also accepts, and holds without answering,
- * connections on P + 2, the I²C port that ftrobopy's startOnline connects to (P = 65000 makes it
- * look like a real TXT to ftrobopy).
+ * {@link #startOnTcpPair} serves the command port P and also accepts, and holds without
+ * answering, connections on P + 2, the I²C port that ftrobopy's startOnline connects to, as a real
+ * TXT does (P = 65000 makes it look like a real TXT to ftrobopy; 0 picks any free pair).
+ * {@link #startOnTcp} serves the command port only, for tests of the command protocol alone.
  *
  * <p>Threads: as {@link BrickEmulator}; the firmware state is guarded by one lock.
  */
@@ -176,19 +177,23 @@ public final class TxtEmulator extends BrickEmulator {
     };
 
     /**
-     * Serves the command protocol on a fixed port P and accepts connections on P + 2 (I²C), as a
-     * real TXT does for ftrobopy.
+     * Serves the command protocol on port P and accepts connections on P + 2 (I²C), as a real TXT
+     * does when a client goes online: standard TXT clients (ftrobopy) connect to both.
      *
      * @param bindAddress the address to listen on (127.0.0.1 for tests)
-     * @param port        the command port, 1..65533 (65000 like a real TXT)
+     * @param port        the command port, 1..65533 (65000 like a real TXT), or 0 for any free P
+     *                    whose P + 2 is free too
      * @return the command port
      * @throws IOException if either port cannot be bound
-     * @throws IllegalArgumentException if the port is 0 (any free port: use {@link #startOnTcp}) or above 65533
+     * @throws IllegalArgumentException if the port is above 65533
      */
     public synchronized int startOnTcpPair(String bindAddress, int port) throws IOException {
-        if (port < 1 || port > 65533) {
-            throw new IllegalArgumentException("startOnTcpPair needs a fixed port 1..65533, since it also listens on port + 2; got " + port
-                    + " (startOnTcp(address, 0) serves any free port without the I²C listener)");
+        if (port == 0) {
+            return startOnFreeTcpPair(bindAddress);
+        }
+        if (port < 0 || port > 65533) {
+            throw new IllegalArgumentException("startOnTcpPair needs a port 1..65533, since it also listens on port + 2, or 0 for any free pair; got "
+                    + port);
         }
         ServerSocket server = new ServerSocket();
         try {
@@ -204,6 +209,29 @@ public final class TxtEmulator extends BrickEmulator {
         i2cThread.start();
         return port;
     }
+
+    /** Tries free ports P from the operating system until P + 2 is free as well. */
+    private int startOnFreeTcpPair(String bindAddress) throws IOException {
+        IOException last = null;
+        for (int attempt = 0; attempt < FREE_PAIR_ATTEMPTS; attempt++) {
+            int candidate;
+            try (ServerSocket probe = new ServerSocket()) {
+                probe.bind(new InetSocketAddress(bindAddress, 0));
+                candidate = probe.getLocalPort();
+            }
+            if (candidate > 65533) {
+                continue;
+            }
+            try {
+                return startOnTcpPair(bindAddress, candidate);
+            } catch (IOException e) {
+                last = e;
+            }
+        }
+        throw new IOException("no free pair of TCP ports P and P + 2 on " + bindAddress + " in " + FREE_PAIR_ATTEMPTS + " attempts", last);
+    }
+
+    private static final int FREE_PAIR_ATTEMPTS = 20;
 
     /** Accepts I²C clients and holds them open until the emulator closes; the protocol there is unspecified. */
     private void acceptI2c(ServerSocket server) {
@@ -225,6 +253,12 @@ public final class TxtEmulator extends BrickEmulator {
     public int i2cPort() {
         ServerSocket s = i2cServer;
         return s == null ? -1 : s.getLocalPort();
+    }
+
+    /** A TXT over USB or WLAN: TCP with about a millisecond each way. */
+    @Override
+    protected LinkModel defaultLinkModel() {
+        return new LinkModel(java.time.Duration.ofMillis(1), 0, 10);
     }
 
     // ---- simulation thread ----

@@ -8,6 +8,7 @@ import io.robomw.api.SensorType;
 import io.robomw.platform.ft.intelligent.IntelligentInterfaceTelegram;
 import io.robomw.platform.link.SerialLink;
 import io.robomw.platform.link.SerialSettings;
+import io.robomw.sim.emulator.BusyThreads;
 import io.robomw.sim.emulator.EmulatorStack;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.BeforeEach;
@@ -32,9 +33,9 @@ import static org.junit.jupiter.api.Assertions.fail;
  * distance below. The interface stops nothing by itself, so the driver's stop is as late as its
  * link's latency in wall-clock time: the precision tests run the world in real time.
  */
-class IntelligentInterfaceEmulatorTest {
+public class IntelligentInterfaceEmulatorTest {
 
-    static final String ROBOT = """
+    public static final String ROBOT = """
             name: ft-1
             platform: ft-intelligent
             connection: { %s }
@@ -75,7 +76,13 @@ class IntelligentInterfaceEmulatorTest {
         robot = stack.openOnPseudoTerminal(x, speed);
     }
 
-    private Pose truePose() {
+    /**
+     * The robot's true pose once the world has caught up with the interface: the emulator's motors
+     * run in real time and the world follows them a few steps late (more when a loaded host held
+     * the simulation up), so a pose read the moment a command returns may not show all of it yet.
+     */
+    private Pose truePose() throws InterruptedException {
+        stack.awaitStep(() -> stack.emulator().worldCaughtUp(), Duration.ofSeconds(10), "the world caught up with the interface's motors");
         return stack.truePose();
     }
 
@@ -91,6 +98,31 @@ class IntelligentInterfaceEmulatorTest {
     void shouldTurnQuarterWithinFiveDegrees() throws Exception {
         start(1.5, 1);
         robot.turn(Math.PI / 2, 1.0);
+        assertEquals(90, Math.toDegrees(truePose().heading()), 5.0);
+    }
+
+    /**
+     * With two threads keeping the cores busy, the link thread's polls come late now and then:
+     * ticks a late poll could not show are counted from the motor's on-time, and while polls come
+     * late the wheels are pulsed, so the move ends within the same two centimetres.
+     */
+    @Test
+    @SuppressWarnings("try")
+    void shouldMoveHalfAMetreWithinTwoCentimetresWhileTwoBusyThreadsLoadTheMachine() throws Exception {
+        try (BusyThreads load = new BusyThreads(2)) {
+            start(0.5, 1);
+            robot.move(0.5, 0.15);
+        }
+        assertEquals(1.0, truePose().x(), 0.02);
+    }
+
+    @Test
+    @SuppressWarnings("try")
+    void shouldTurnQuarterWithinFiveDegreesWhileTwoBusyThreadsLoadTheMachine() throws Exception {
+        try (BusyThreads load = new BusyThreads(2)) {
+            start(1.5, 1);
+            robot.turn(Math.PI / 2, 1.0);
+        }
         assertEquals(90, Math.toDegrees(truePose().heading()), 5.0);
     }
 
@@ -128,6 +160,48 @@ class IntelligentInterfaceEmulatorTest {
                 + blockedNanos / 1_000_000 + " ms");
         assertEquals(0, stack.emulator().watchdogTrips(), "the platform refreshed the interface all along");
         assertEquals(0.8, truePose().x(), 0.02);
+    }
+
+    /**
+     * The impulse wheel is on the motor's shaft: it turns only while the motor is on. A robot
+     * pushed against a wall and pulsed forward (on for 21 ms, off for 21 ms, as a driver's bursts
+     * do) is read all along; while its motors are off, its impulse switches must not change. (The
+     * emulator once placed the switch by the world's wheel plus the motor's rotation not yet carried
+     * out: each pulse moved it forward, and the world's next steps, holding the wheel, moved it back
+     * while the motor was off, across an edge and back again on the next pulse: two transitions a
+     * pulse that no real wheel makes, which a driver counts as forward travel.)
+     */
+    @Test
+    void shouldNotTurnTheImpulseWheelsWhileTheMotorsAreOffAgainstAWall() throws Exception {
+        // Facing the east wall, front bumper touching it: the body cannot move forward.
+        String pty = stack.startOnPseudoTerminal(3.0 - 0.10, 1);
+        try (SerialLink link = new SerialLink(pty, SerialSettings.of(9600, 8, SerialSettings.Parity.NONE, 1))) {
+            link.open();
+            int bothForward = IntelligentInterfaceTelegram.withMotor(IntelligentInterfaceTelegram.withMotor(0, 0, IntelligentInterfaceTelegram.CW),
+                    1, IntelligentInterfaceTelegram.CW);
+            int counters = 0b11;
+            int changesWhileOff = 0;
+            for (int pulse = 0; pulse < 20; pulse++) {
+                for (int motorByte : new int[]{bothForward, 0}) {
+                    int previous = -1;
+                    // 10 commands of 2.1 ms each: 21 ms with the motors on (13° of motor), then 21 ms off.
+                    for (int i = 0; i < 10; i++) {
+                        byte[] request = IntelligentInterfaceTelegram.request(IntelligentInterfaceTelegram.DIGITAL, motorByte);
+                        link.write(request, 0, request.length);
+                        byte[] reply = new byte[1];
+                        assertEquals(1, link.read(reply, 0, 1, Duration.ofSeconds(2)));
+                        int switches = reply[0] & counters;
+                        // Each answer shows the switches as its command arrived: from the second
+                        // off command on, the motors were off since the last answer.
+                        if (motorByte == 0 && previous >= 0 && switches != previous) {
+                            changesWhileOff++;
+                        }
+                        previous = switches;
+                    }
+                }
+            }
+            assertEquals(0, changesWhileOff, "the impulse switches changed while the motors were off");
+        }
     }
 
     @Test

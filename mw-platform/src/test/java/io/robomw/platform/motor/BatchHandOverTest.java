@@ -1,0 +1,76 @@
+package io.robomw.platform.motor;
+
+import io.robomw.api.ManualClock;
+import io.robomw.api.spi.MotorCommand;
+import io.robomw.api.spi.MotorTarget;
+import io.robomw.platform.exec.ExecutionActionThread;
+import org.junit.jupiter.api.Test;
+
+import java.time.Duration;
+import java.util.List;
+import java.util.concurrent.atomic.AtomicBoolean;
+import java.util.concurrent.atomic.AtomicInteger;
+import java.util.concurrent.atomic.AtomicReference;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+/**
+ * Motors started in one cycle reach the link side in one batch, whatever the timing between the
+ * execution action thread publishing them and the link thread taking them: a batch split in two
+ * would start one wheel a round trip before the other on a slow link, and the robot would veer.
+ */
+class BatchHandOverTest {
+
+    /** Records whether a batch ever carried one wheel without the other. */
+    static final class PairedMotors extends GenericMotorPlatform {
+        final AtomicInteger batches = new AtomicInteger();
+        final AtomicReference<String> split = new AtomicReference<>();
+
+        PairedMotors() {
+            super("paired", new ManualClock(), List.of("B", "C"));
+        }
+
+        @Override
+        protected void runImpl(List<MotorState> motors) {
+            batches.incrementAndGet();
+            if (motors.size() != 2) {
+                split.compareAndSet(null, "a batch of " + motors);
+            } else if (motors.get(0).degreesPerSecond() != motors.get(1).degreesPerSecond()) {
+                split.compareAndSet(null, "a batch mixing two cycles: " + motors);
+            }
+        }
+
+    }
+
+    @Test
+    void shouldHandBothWheelsOfACycleToTheLinkSideTogether() throws Exception {
+        PairedMotors motors = new PairedMotors();
+        ManualClock clock = new ManualClock();
+        ExecutionActionThread action = new ExecutionActionThread("paired", clock, Duration.ofMillis(10));
+        action.addCycleListener(motors::flushOutputs);
+        AtomicBoolean running = new AtomicBoolean(true);
+        Thread link = new Thread(() -> {
+            while (running.get()) {
+                try {
+                    motors.serviceLink();
+                } catch (java.io.IOException e) {
+                    throw new IllegalStateException(e);
+                }
+            }
+        }, "link-under-test");
+        link.start();
+        try {
+            for (int i = 1; i <= 50_000 && motors.split.get() == null; i++) {
+                action.submit(motors.container(MotorCommand.of("drive", List.of(MotorTarget.run("B", i), MotorTarget.run("C", i)))));
+                action.cycle();
+                clock.advanceNanos(10_000_000L);
+            }
+        } finally {
+            running.set(false);
+            link.join(5000);
+        }
+        assertEquals(null, motors.split.get(), "every batch carried both wheels of one cycle");
+        assertTrue(motors.batches.get() > 100, "the link side took many batches: " + motors.batches.get());
+    }
+}

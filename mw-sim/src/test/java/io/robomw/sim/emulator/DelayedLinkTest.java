@@ -1,0 +1,159 @@
+package io.robomw.sim.emulator;
+
+import io.robomw.platform.link.Link;
+import org.junit.jupiter.api.Test;
+
+import java.time.Duration;
+import java.util.ArrayDeque;
+import java.util.ArrayList;
+import java.util.Deque;
+import java.util.List;
+
+import static org.junit.jupiter.api.Assertions.assertArrayEquals;
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+/**
+ * The emulators' slow link over an in-memory one: bytes a driver writes at once reach the
+ * emulator one by one at their own time on the wire, and a reply takes its bytes' time and the
+ * latency to come back.
+ */
+class DelayedLinkTest {
+
+    /** What the driver wrote, all at once; what the emulator wrote back, with when. */
+    static final class MemoryLink implements Link {
+        final Deque<byte[]> fromDriver = new ArrayDeque<>();
+        final List<Long> writtenAt = new ArrayList<>();
+
+        @Override
+        public void open() {
+        }
+
+        @Override
+        public boolean isOpen() {
+            return true;
+        }
+
+        @Override
+        public synchronized void write(byte[] data, int off, int len) {
+            writtenAt.add(System.nanoTime());
+        }
+
+        @Override
+        public int read(byte[] buf, int off, int len, Duration timeout) throws java.io.IOException {
+            byte[] next;
+            synchronized (this) {
+                next = fromDriver.poll();
+            }
+            if (next == null) {
+                try {
+                    Thread.sleep(Math.min(5, timeout.toMillis()));
+                } catch (InterruptedException e) {
+                    throw new java.io.IOException(e);
+                }
+                return 0;
+            }
+            int n = Math.min(len, next.length);
+            System.arraycopy(next, 0, buf, off, n);
+            if (n < next.length) {
+                synchronized (this) {
+                    fromDriver.addFirst(java.util.Arrays.copyOfRange(next, n, next.length));
+                }
+            }
+            return n;
+        }
+
+        @Override
+        public String describe() {
+            return "memory";
+        }
+
+        @Override
+        public void close() {
+        }
+    }
+
+    private static final LinkModel LINE = LinkModel.serial(9600, 10);
+
+    /** Reads exactly n bytes the way an emulator does, and when the last of them arrived. */
+    private static long readExactly(DelayedLink link, byte[] into, int n) throws Exception {
+        int got = 0;
+        while (got < n) {
+            got += link.read(into, got, n - got, Duration.ofMillis(500));
+        }
+        return link.lastDeliveredAt();
+    }
+
+    private static void shouldDeliverEachCommandAtItsOwnTime(LinkModel model) throws Exception {
+        MemoryLink memory = new MemoryLink();
+        DelayedLink link = new DelayedLink(memory, model);
+        try {
+            long written = System.nanoTime();
+            synchronized (memory) {
+                memory.fromDriver.add(new byte[]{1, 2, 3, 4, 5, 6});
+            }
+            long perByte = model.transmissionNanos(1);
+            long latency = model.latency().toNanos();
+            byte[] first = new byte[2];
+            long firstArrived = readExactly(link, first, 2);
+            byte[] rest = new byte[4];
+            long secondArrived = readExactly(link, rest, 2);
+            long thirdArrived = readExactly(link, new byte[2], 2);
+            assertArrayEquals(new byte[]{1, 2}, first);
+            assertArrayEquals(new byte[]{3, 4, 0, 0}, rest);
+            // The second command arrives two bytes' time after the first, not with the whole write.
+            assertEquals(2 * perByte, secondArrived - firstArrived, perByte / 10.0);
+            assertEquals(2 * perByte, thirdArrived - secondArrived, perByte / 10.0);
+            // The first arrives its bytes' time and the latency after the driver wrote it.
+            double firstAfter = firstArrived - written;
+            assertTrue(firstAfter >= latency + 2 * perByte - 1_000_000 && firstAfter < latency + 2 * perByte + 20_000_000,
+                    "the first command arrived " + firstAfter / 1e6 + " ms after it was written");
+            // The emulator does not see a byte before it has arrived.
+            assertTrue(System.nanoTime() >= thirdArrived, "a byte was read before its arrival");
+        } finally {
+            link.close();
+        }
+    }
+
+    @Test
+    void shouldDeliverTheCommandsOfOneWriteEachAtItsOwnTimeOnASerialLine() throws Exception {
+        shouldDeliverEachCommandAtItsOwnTime(LINE);
+    }
+
+    @Test
+    void shouldDeliverTheCommandsOfOneWriteEachAtItsOwnTimeOverALinkWithLatency() throws Exception {
+        shouldDeliverEachCommandAtItsOwnTime(LINE.withLatency(Duration.ofMillis(15)));
+    }
+
+    @Test
+    void shouldSendARepliesBytesAtTheLinesPaceAfterTheLatency() throws Exception {
+        MemoryLink memory = new MemoryLink();
+        LinkModel model = LINE.withLatency(Duration.ofMillis(15));
+        DelayedLink link = new DelayedLink(memory, model);
+        try {
+            long start = System.nanoTime();
+            link.write(new byte[3], 0, 3);
+            link.write(new byte[3], 0, 3);
+            long deadline = System.nanoTime() + 2_000_000_000L;
+            while (System.nanoTime() < deadline) {
+                synchronized (memory) {
+                    if (memory.writtenAt.size() == 2) {
+                        break;
+                    }
+                }
+                Thread.sleep(1);
+            }
+            synchronized (memory) {
+                assertEquals(2, memory.writtenAt.size());
+                long first = memory.writtenAt.get(0) - start;
+                long second = memory.writtenAt.get(1) - start;
+                // Latencies overlap: the second reply follows the first by its own bytes' time.
+                assertTrue(first >= 15_000_000 + model.transmissionNanos(3), "first reply after " + first / 1e6 + " ms");
+                assertTrue(second >= 15_000_000 + model.transmissionNanos(6), "second reply after " + second / 1e6 + " ms");
+                assertTrue(second - first < 15_000_000, "the second reply waited for a latency of its own");
+            }
+        } finally {
+            link.close();
+        }
+    }
+}
