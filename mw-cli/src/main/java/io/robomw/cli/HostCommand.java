@@ -72,6 +72,10 @@ final class HostCommand implements Callable<Integer> {
     @Option(names = "--messaging", paramLabel = "ADDRESS", description = "where the host's messaging node, which its agents use, receives (default: tcp://BIND:0, a free port; mqtt://BROKER joins a broker)")
     String messaging;
 
+    @Option(names = "--max-connections", paramLabel = "N", defaultValue = "128",
+            description = "connections the host's messaging node (and --serve) accepts at once; one more is refused, told why (default ${DEFAULT-VALUE})")
+    int maxConnections;
+
     @Option(names = "--no-messaging", description = "start the host without a messaging node (its agents then have no messaging)")
     boolean noMessaging;
 
@@ -143,6 +147,7 @@ final class HostCommand implements Callable<Integer> {
                 }
             }
             MessagingSettings settings = serve == null ? MessagingSettings.defaults() : RobotProtocol.forServer(MessagingSettings.defaults());
+            settings = settings.withLimits(settings.limits().withMaxConnections(maxConnections));
             AgentHost.Builder builder = AgentHost.builder(name).bind(bind).port(port).robot(robot).clusterKey(cluster.key()).tls(cluster.tls())
                     .store(store).allow(allow).messagingSettings(settings)
                     .deliveryPolicy(io.robomw.agents.host.DeliveryPolicy.defaults().withExpiry(owedExpiry).withMaxBackoff(owedMaxBackoff));

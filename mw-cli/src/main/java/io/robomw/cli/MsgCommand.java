@@ -37,8 +37,13 @@ final class MsgCommand {
         @Option(names = "--tls-password", description = "password of both stores", defaultValue = "")
         String storePassword;
 
+        @Option(names = "--max-connections", paramLabel = "N", defaultValue = "128",
+                description = "connections a bound address accepts at once; one more is refused, told why (default ${DEFAULT-VALUE})")
+        int maxConnections;
+
         MessagingSettings settings() {
             MessagingSettings s = MessagingSettings.defaults();
+            s = s.withLimits(s.limits().withMaxConnections(maxConnections));
             if (keyStore != null) {
                 s = s.withTls(new TlsSettings(keyStore, storePassword, trustStore == null ? keyStore : trustStore, storePassword));
             }

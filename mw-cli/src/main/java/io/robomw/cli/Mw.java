@@ -32,8 +32,6 @@ public final class Mw {
     /** Exit status of a usage error or any other error a command did not handle itself. */
     static final int USER_ERROR = 2;
 
-    /** RMI's keep-alive of idle connection threads, in milliseconds (read once, when RMI's transport loads). */
-    static final String RMI_THREAD_KEEP_ALIVE = "sun.rmi.transport.tcp.threadKeepAliveTime";
 
     @Option(names = "--verbose", scope = ScopeType.INHERIT, description = "on an error, also show its stack trace")
     boolean verbose;
@@ -42,11 +40,7 @@ public final class Mw {
      * @param args the command line
      */
     public static void main(String[] args) {
-        // RMI keeps a thread per idle connection for a minute by default: a host that served a burst
-        // of agents would hold hundreds. 10 s is enough to reuse a connection between hops.
-        if (System.getProperty(RMI_THREAD_KEEP_ALIVE) == null) {
-            System.setProperty(RMI_THREAD_KEEP_ALIVE, "10000");
-        }
+        boundRmiConnections();
         System.exit(commandLine().execute(args));
     }
 
@@ -102,5 +96,24 @@ public final class Mw {
         }
         int nl = m.indexOf('\n');
         return nl < 0 ? m : m.substring(0, nl);
+    }
+
+    /**
+     * Java RMI's own defaults, set before RMI starts unless the user set them: an RMI connection
+     * that sends no call for 2 minutes is closed (the JDK waits 2 hours, so held connections pile
+     * up), and a thread that served a closed connection ends after 5 s idle (the JDK keeps it a
+     * minute). Agent hosts and RMI messaging endpoints serve peers they do not know yet.
+     */
+    static void boundRmiConnections() {
+        setIfAbsent("sun.rmi.transport.tcp.readTimeout", "120000");
+        // RMI keeps a thread per idle connection for a minute by default: a host that served a burst
+        // of agents would hold hundreds. 10 s is enough to reuse a connection between hops.
+        setIfAbsent("sun.rmi.transport.tcp.threadKeepAliveTime", "10000");
+    }
+
+    private static void setIfAbsent(String property, String value) {
+        if (System.getProperty(property) == null) {
+            System.setProperty(property, value);
+        }
     }
 }

@@ -172,8 +172,11 @@ final class SimCommand implements Callable<Integer> {
             err.println(e.getMessage());
             return INVALID;
         } catch (IllegalArgumentException e) {
-            // A robot file whose values the simulator refuses (sensor options); the message names the sensor.
             err.println(worldFile + ": " + e.getMessage());
+            return INVALID;
+        } catch (RobotException e) {
+            // A robot file whose values the simulator refuses (sensor options); the message names the world, the robot's file and the sensor.
+            err.println(e.getMessage());
             return INVALID;
         }
         try (sim) {

@@ -56,6 +56,7 @@ public final class BrickPlatform implements RobotPlatform {
     private Thread linkThread;
     /** Why the link thread died, once it has. */
     private volatile RobotLinkException linkThreadFailure;
+    private final ThrottledWarnings refusals = new ThrottledWarnings(LOG, java.time.Duration.ofSeconds(1));
 
     /**
      * Creates every sensor of the description.
@@ -187,9 +188,17 @@ public final class BrickPlatform implements RobotPlatform {
                 actionThread.linkFailed(config.platformName(), e);
             }
         } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
-            // The brick answered but refused (a bad status), or the driver failed: the link is fine; say so and go on.
+            // The brick answered but refused (an error status), or the driver failed: the link is fine.
+            // The commands running now fail with the brick's own words, at once; the log gets one line
+            // a second at most about refusals (the stack trace at debug level), and the first failures
+            // of the driver itself (an error it can cause) with their stack trace.
             long n = driverErrors.incrementAndGet();
-            if (Long.bitCount(n) == 1) {
+            actionThread.driverFailed(e instanceof RuntimeException r ? r
+                    : new RobotException("robot '" + config.robotName() + "': the driver failed: " + e, e));
+            if (e instanceof RuntimeException) {
+                refusals.warn("{}", e.getMessage());
+                LOG.debug("robot '{}': the driver's refusal", config.robotName(), e);
+            } else if (Long.bitCount(n) == 1) {
                 LOG.error("robot '{}': the driver failed ({} times so far): {}", config.robotName(), n, e.getMessage(), e);
             }
         }

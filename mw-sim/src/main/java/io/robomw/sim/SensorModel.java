@@ -79,38 +79,62 @@ public final class SensorModel {
         Map<String, Object> o = spec.options();
         double[] mount = defaultMount(spec.position(), body);
         boolean sonar = spec.type() == SensorType.SONAR;
-        this.mountX = number(o, "x", mount[0]);
-        this.mountY = number(o, "y", mount[1]);
-        this.mountAngle = number(o, "angle", mount[2]);
-        this.beamWidth = number(o, "beam_width", sonar ? 0.5 : 0);
-        this.rays = Math.max(1, (int) number(o, "rays", sonar ? 5 : 1));
-        this.minRange = number(o, "min_range", sonar ? 0.03 : 0.06);
-        this.maxRange = number(o, "max_range", sonar ? 2.55 : 0.80);
-        this.noise = number(o, "noise", 0);
-        this.rateHz = number(o, "rate_hz", 10);
+        this.mountX = number(o, "x", mount[0], -MAX_MOUNT, MAX_MOUNT);
+        this.mountY = number(o, "y", mount[1], -MAX_MOUNT, MAX_MOUNT);
+        this.mountAngle = number(o, "angle", mount[2], -2 * Math.PI, 2 * Math.PI);
+        this.beamWidth = number(o, "beam_width", sonar ? 0.5 : 0, 0, 2 * Math.PI);
+        this.rays = (int) integer(o, "rays", sonar ? 5 : 1, 1, MAX_RAYS);
+        this.minRange = number(o, "min_range", sonar ? 0.03 : 0.06, 0, MAX_RANGE);
+        this.maxRange = number(o, "max_range", sonar ? 2.55 : 0.80, 0, MAX_RANGE);
+        this.noise = number(o, "noise", 0, 0, MAX_NOISE);
+        this.rateHz = number(o, "rate_hz", 10, 0.001, MAX_RATE_HZ);
         this.random = new SplittableRandom(seed);
         Object mountOption = o.getOrDefault("mount", "body");
         if (!mountOption.equals("body") && !mountOption.equals("head")) {
-            throw new IllegalArgumentException(spec.name() + ": sensor option mount must be body or head, got '" + mountOption + "'");
+            throw new IllegalArgumentException("sensor '" + spec.name() + "': option 'mount' must be body or head, got '" + mountOption + "'");
         }
         this.headMounted = mountOption.equals("head");
-        this.height = number(o, "height", 0.2);
+        this.height = number(o, "height", 0.2, 0, MAX_MOUNT);
         this.axis = axisOf(spec, o);
-        if (!(maxRange > minRange) || minRange < 0 || rateHz <= 0 || noise < 0 || beamWidth < 0) {
-            throw new IllegalArgumentException(spec.name() + ": sensor options must give 0 <= min_range < max_range, rate_hz > 0, noise >= 0, beam_width >= 0; got "
-                    + o);
+        if (!(maxRange > minRange)) {
+            throw new IllegalArgumentException("sensor '" + spec.name() + "': option 'max_range' (" + maxRange + ") must be above 'min_range' ("
+                    + minRange + ")");
         }
     }
 
-    private static double number(Map<String, Object> options, String key, double fallback) {
+    /** Farthest mount point from the body's centre, metres (a body is at most 100 m long). */
+    static final double MAX_MOUNT = 100;
+    /** Most rays across one sensor's cone. */
+    static final int MAX_RAYS = 100;
+    /** Longest range, metres. */
+    static final double MAX_RANGE = 1000;
+    /** Largest noise standard deviation, metres. */
+    static final double MAX_NOISE = 100;
+    /** Fastest sampling, per simulated second. */
+    static final double MAX_RATE_HZ = 1000;
+
+    private double number(Map<String, Object> options, String key, double fallback, double min, double max) {
         Object v = options.get(key);
         if (v == null) {
             return fallback;
         }
-        if (v instanceof Number n) {
+        if (v instanceof Number n && n.doubleValue() >= min && n.doubleValue() <= max) {
             return n.doubleValue();
         }
-        throw new IllegalArgumentException("sensor option '" + key + "' must be a number, got '" + v + "'");
+        throw new IllegalArgumentException("sensor '" + spec.name() + "': option '" + key + "' must be a number from " + min + " to " + max
+                + ", got '" + v + "' (the simulator's sensor options are in docs/simulation.md)");
+    }
+
+    private long integer(Map<String, Object> options, String key, long fallback, long min, long max) {
+        Object v = options.get(key);
+        if (v == null) {
+            return fallback;
+        }
+        if (v instanceof Number n && n.doubleValue() == Math.rint(n.doubleValue()) && n.doubleValue() >= min && n.doubleValue() <= max) {
+            return n.longValue();
+        }
+        throw new IllegalArgumentException("sensor '" + spec.name() + "': option '" + key + "' must be a whole number from " + min + " to " + max
+                + ", got '" + v + "' (the simulator's sensor options are in docs/simulation.md)");
     }
 
     private static Kind kindOf(SensorType type) {

@@ -337,6 +337,10 @@ public final class AgentHost implements Agency, AutoCloseable {
             if (info.arrayLength() > maxCall || info.depth() > 2) {
                 return ObjectInputFilter.Status.REJECTED;
             }
+            if (info.arrayLength() > HostEndpoint.UNPROVEN_MAX_BYTES && !endpoint.callerProved()) {
+                // before a peer at that address has proved the cluster key, only small calls
+                return ObjectInputFilter.Status.REJECTED;
+            }
             Class<?> c = info.serialClass();
             return c == null || c == byte[].class ? ObjectInputFilter.Status.ALLOWED : ObjectInputFilter.Status.REJECTED;
         };

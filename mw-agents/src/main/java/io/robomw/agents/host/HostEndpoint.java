@@ -3,6 +3,8 @@ package io.robomw.agents.host;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
+import io.robomw.agents.net.ThrottledWarnings;
+
 import java.io.ByteArrayInputStream;
 import java.io.DataInputStream;
 import java.io.IOException;
@@ -12,6 +14,7 @@ import java.rmi.server.RemoteServer;
 import java.rmi.server.ServerNotActiveException;
 import java.security.MessageDigest;
 import java.security.SecureRandom;
+import java.time.Duration;
 import java.util.HexFormat;
 import java.util.LinkedHashMap;
 import java.util.Map;
@@ -44,8 +47,11 @@ final class HostEndpoint implements AgentHostRemote {
         Reply handle(String peer, Op op, byte[] message, int offset, int length);
     }
 
-    private record Peer(String name, Session session) {
+    private record Peer(String name, Session session, String clientHost) {
     }
+
+    /** The largest byte array a call may carry from a client host none of whose peers has proved the cluster key. */
+    static final int UNPROVEN_MAX_BYTES = 64 * 1024;
 
     private final String hostName;
     private final ClusterKey key;
@@ -54,6 +60,8 @@ final class HostEndpoint implements AgentHostRemote {
     private final Map<String, Long> nonces = new LinkedHashMap<>();
     private final Map<Long, Peer> sessions = new ConcurrentHashMap<>();
     private final LongAdder refused = new LongAdder();
+    private final ThrottledWarnings refusedPeers = new ThrottledWarnings(LOG, Duration.ofSeconds(1));
+    private final ThrottledWarnings droppedCalls = new ThrottledWarnings(LOG, Duration.ofSeconds(1));
 
     HostEndpoint(String hostName, ClusterKey key, Handler handler) {
         this.hostName = hostName;
@@ -119,18 +127,19 @@ final class HostEndpoint implements AgentHostRemote {
             if (sessions.size() >= MAX_SESSIONS) {
                 sessions.remove(sessions.keySet().iterator().next());
             }
-            sessions.put(id, new Peer(peer, new Session(id, Session.sessionKey(key, terms, hostNonce, clientNonce), authenticator)));
+            sessions.put(id, new Peer(peer, new Session(id, Session.sessionKey(key, terms, hostNonce, clientNonce), authenticator), clientHost()));
             LOG.debug("host {}: peer {} ({}) authenticated", hostName, peer, clientHost());
             return ByteBuffer.allocate(1 + 8 + 32).put(Session.AUTH_ACCEPTED).putLong(id)
                     .put(Session.hostProof(key, terms, hostNameBytes, peerName, hostNonce, clientNonce)).array();
         } catch (IOException | RuntimeException e) {
-            return refuse(peer, "malformed authentication request: " + e.getMessage());
+            return refuse(peer, "malformed authentication request of " + (request == null ? 0 : request.length) + " bytes ("
+                    + (e instanceof java.io.EOFException ? "it ends early" : e.getMessage() == null ? e.getClass().getSimpleName() : e.getMessage()) + ")");
         }
     }
 
     private byte[] refuse(String peer, String why) {
         refused.increment();
-        LOG.warn("host {}: refused peer '{}' from {}: {}", hostName, peer, clientHost(), why);
+        refusedPeers.warn("host {}: refused peer '{}' from {}: {}", hostName, peer, clientHost(), why);
         byte[] text = ("refused: " + why).getBytes(StandardCharsets.UTF_8);
         byte[] out = new byte[1 + text.length];
         out[0] = Session.AUTH_REFUSED;
@@ -142,7 +151,7 @@ final class HostEndpoint implements AgentHostRemote {
     public byte[] call(byte[] request) {
         if (request == null || request.length < Session.HEADER + Session.MAC) {
             refused.increment();
-            LOG.warn("host {}: dropped a call of {} bytes from {}: too short", hostName, request == null ? 0 : request.length, clientHost());
+            droppedCalls.warn("host {}: dropped a call of {} bytes from {}: too short", hostName, request == null ? 0 : request.length, clientHost());
             return new byte[0];
         }
         ByteBuffer b = ByteBuffer.wrap(request);
@@ -161,12 +170,12 @@ final class HostEndpoint implements AgentHostRemote {
         }
         if (!peer.session().verifyRequest(request)) {
             refused.increment();
-            LOG.warn("host {}: dropped a call from {} claiming peer '{}' session: wrong MAC", hostName, clientHost(), peer.name());
+            droppedCalls.warn("host {}: dropped a call from {} claiming peer '{}' session: wrong MAC", hostName, clientHost(), peer.name());
             return new byte[0];
         }
         if (!peer.session().firstTime(seq)) {
             refused.increment();
-            LOG.warn("host {}: dropped a replayed call (sequence {}) from peer '{}' at {}", hostName, seq, peer.name(), clientHost());
+            droppedCalls.warn("host {}: dropped a replayed call (sequence {}) from peer '{}' at {}", hostName, seq, peer.name(), clientHost());
             return new byte[0];
         }
         Op op;
@@ -174,7 +183,7 @@ final class HostEndpoint implements AgentHostRemote {
             op = Op.fromCode(opCode);
         } catch (IllegalArgumentException e) {
             refused.increment();
-            LOG.warn("host {}: refused a call from peer '{}' at {}: {}", hostName, peer.name(), clientHost(), e.getMessage());
+            droppedCalls.warn("host {}: refused a call from peer '{}' at {}: {}", hostName, peer.name(), clientHost(), e.getMessage());
             return peer.session().reply(seq, Reply.of(Reply.Status.REFUSED, "host " + hostName + " refused the call: " + e.getMessage()));
         }
         Reply reply;
@@ -186,6 +195,25 @@ final class HostEndpoint implements AgentHostRemote {
             reply = Reply.of(Reply.Status.REFUSED, "the host could not handle the call: " + e.getMessage());
         }
         return peer.session().reply(seq, reply);
+    }
+
+    /**
+     * Whether the client host of the RMI call being read has a peer that proved the cluster key.
+     * Called by the deserialization filter while a call's arguments are read, before anything is
+     * authenticated: until a peer has proved the key, its host may send only small arrays (an
+     * authentication request is about a hundred bytes), so nobody without the key can make the
+     * host allocate large ones.
+     *
+     * @return whether large call arguments are allowed from it
+     */
+    boolean callerProved() {
+        String host = clientHost();
+        for (Peer p : sessions.values()) {
+            if (p.clientHost().equals(host)) {
+                return true;
+            }
+        }
+        return false;
     }
 
     private static String clientHost() {

@@ -30,10 +30,18 @@ final class HostSockets {
     private HostSockets() {
     }
 
-    /** Bytes read and written by a host's accepted connections. */
+    /**
+     * Connections a host's plain RMI endpoint keeps open at once; one more is closed as soon as it
+     * is accepted (RMI peers reuse a few connections each: hundreds held open are an attack).
+     */
+    static final int MAX_CONNECTIONS = 256;
+
+    /** Bytes read and written by a host's accepted connections, and the connections open and refused. */
     static final class Counters {
         final LongAdder in = new LongAdder();
         final LongAdder out = new LongAdder();
+        final java.util.concurrent.atomic.AtomicInteger open = new java.util.concurrent.atomic.AtomicInteger();
+        final LongAdder refused = new LongAdder();
     }
 
     /** The listening side; identity equality, so the registry and the endpoint share its one socket. */
@@ -64,18 +72,44 @@ final class HostSockets {
 
         @Override
         public Socket accept() throws IOException {
-            Socket s = new CountingSocket(counters);
-            implAccept(s);
-            s.setTcpNoDelay(true);
-            return s;
+            while (true) {
+                CountingSocket s = new CountingSocket(counters);
+                implAccept(s);
+                if (counters.open.incrementAndGet() > MAX_CONNECTIONS) {
+                    counters.open.decrementAndGet();
+                    counters.refused.increment();
+                    s.closeUncounted();
+                    continue;
+                }
+                s.setTcpNoDelay(true);
+                return s;
+            }
         }
     }
 
     private static final class CountingSocket extends Socket {
         private final Counters counters;
+        private final java.util.concurrent.atomic.AtomicBoolean closed = new java.util.concurrent.atomic.AtomicBoolean();
 
         CountingSocket(Counters counters) {
             this.counters = counters;
+        }
+
+        @Override
+        public synchronized void close() throws IOException {
+            if (closed.compareAndSet(false, true)) {
+                counters.open.decrementAndGet();
+            }
+            super.close();
+        }
+
+        void closeUncounted() {
+            closed.set(true);
+            try {
+                super.close();
+            } catch (IOException e) {
+                // refused anyway
+            }
         }
 
         @Override

@@ -99,6 +99,11 @@ final class PeerLink {
                 raw = remote.call(frame.bytes);
             } catch (RemoteException e) {
                 drop();
+                if (attempt == 0 && refusedAsUnproven(e)) {
+                    // The host restarted and forgot that this host proved the key: it reads only
+                    // small calls from it until it authenticates again (HostEndpoint.UNPROVEN_MAX_BYTES).
+                    continue;
+                }
                 throw failure(op, e);
             }
             if (Session.isUnknownSession(raw) && attempt == 0) {
@@ -117,6 +122,16 @@ final class PeerLink {
                 throw new PeerException("host " + address + " sent a bad reply to " + op + ": " + e.getMessage(), true, e);
             }
         }
+    }
+
+    /** @return whether the host's deserialization filter refused the call's arguments (too large before authentication) */
+    private static boolean refusedAsUnproven(Throwable e) {
+        for (Throwable t = e; t != null; t = t.getCause()) {
+            if (t instanceof java.io.InvalidClassException && String.valueOf(t.getMessage()).contains("REJECTED")) {
+                return true;
+            }
+        }
+        return false;
     }
 
     /** Forgets the stub and session; the next call connects again. */

@@ -1,6 +1,9 @@
 package io.robomw.agents.messaging;
 
-/** Why an incoming frame was dropped. Each reason has its own counter in {@link MessagingStats}. */
+/**
+ * Why an incoming frame (or a whole connection) was dropped. Each reason has its own counter in
+ * {@link MessagingStats}.
+ */
 public enum DropReason {
     /** The frame ended before its declared length (a datagram cut short, a connection closed mid-frame). */
     TRUNCATED,
@@ -23,5 +26,15 @@ public enum DropReason {
     /** A message or publication on a topic nobody here listens to. */
     NO_LISTENER,
     /** A reply to no request this node sent (or one forgotten long ago). */
-    UNSOLICITED_REPLY
+    UNSOLICITED_REPLY,
+    /**
+     * A peer passed one of the node's {@link PeerLimits}: a connection beyond the maximum (refused),
+     * a subscription beyond the per-peer or total maximum, or to a topic longer than allowed.
+     */
+    LIMIT,
+    /**
+     * A connection delivered no whole frame within the first-frame or idle timeout (it stopped in the
+     * middle of a frame, trickled bytes, or never spoke); it was closed.
+     */
+    TIMED_OUT
 }

@@ -42,6 +42,7 @@ final class Inbound {
     private final FrameMac mac;
     private final PayloadCodec payloads;
     private final int maxFrameSize;
+    private final int maxTopicBytes;
     private final long maxSkewMicros;
 
     Inbound(MessagingNode node, NodeCounters counters, FrameMac mac, PayloadCodec payloads, MessagingSettings settings) {
@@ -51,6 +52,7 @@ final class Inbound {
         this.mac = mac;
         this.payloads = payloads;
         this.maxFrameSize = settings.maxFrameSize();
+        this.maxTopicBytes = settings.limits().maxTopicBytes();
         this.maxSkewMicros = settings.maxClockSkew().toNanos() / 1000;
     }
 
@@ -64,10 +66,13 @@ final class Inbound {
                 losses.observe(from.peer(), f.source(), f.streamSequence());
             }
             switch (f.kind()) {
-                case SUBSCRIBE -> node.remoteSubscribers().subscribe(f.topic(), from);
+                case SUBSCRIBE -> subscribe(f, from);
                 case UNSUBSCRIBE -> node.remoteSubscribers().unsubscribe(f.topic(), from);
                 case MESSAGE, PUBLISH -> onMessage(f, buf, offset, length, from);
                 case REPLY, ERROR -> onReply(f, buf, offset, length, from);
+                case KEEPALIVE -> {
+                    // its arrival is all it says (the transport has seen a whole frame)
+                }
                 default -> throw new IllegalStateException("unhandled kind " + f.kind());
             }
         } catch (FrameException e) {
@@ -75,6 +80,23 @@ final class Inbound {
         } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
             counters.drop(DropReason.MALFORMED, from.peer(), "frame could not be handled: " + e);
         }
+    }
+
+    private void subscribe(Frame f, Channel from) {
+        int topicBytes = f.topic().getBytes(java.nio.charset.StandardCharsets.UTF_8).length;
+        if (topicBytes > maxTopicBytes) {
+            counters.drop(DropReason.LIMIT, from.peer(), "subscription to a topic of " + topicBytes + " bytes, above the "
+                    + maxTopicBytes + " allowed (maxTopicBytes)");
+            return;
+        }
+        String refused = node.remoteSubscribers().subscribe(f.topic(), from, System.nanoTime());
+        if (refused != null) {
+            counters.drop(DropReason.LIMIT, from.peer(), "subscription to '" + shorten(f.topic()) + "' refused: " + refused);
+        }
+    }
+
+    private static String shorten(String topic) {
+        return topic.length() <= 80 ? topic : topic.substring(0, 80) + "... (" + topic.length() + " characters)";
     }
 
     private void onMessage(Frame f, byte[] buf, int offset, int length, Channel from) throws FrameException {
@@ -136,6 +158,17 @@ final class Inbound {
     }
 
     private void onReply(Frame f, byte[] buf, int offset, int length, Channel from) throws FrameException {
+        if (f.kind() == FrameKind.ERROR && f.correlationId().getMostSignificantBits() == 0 && f.correlationId().getLeastSignificantBits() == 0
+                && from.isConnection()) {
+            Serializable why;
+            try {
+                why = payloads.decode(f.payloadType(), f.payload());
+            } catch (PayloadRejectedException e) {
+                why = "(an unreadable reason)";
+            }
+            node.refusedBy(from, String.valueOf(why));
+            return;
+        }
         MessagingNode.Sent sent = node.sentRequests().get(f.correlationId());
         if (sent == null) {
             counters.drop(DropReason.UNSOLICITED_REPLY, from.peer(), "reply " + f.correlationId() + " to no request sent from here");

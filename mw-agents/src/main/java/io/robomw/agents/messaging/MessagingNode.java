@@ -70,6 +70,8 @@ public final class MessagingNode implements Messaging, AutoCloseable {
 
     private static final Logger LOG = LoggerFactory.getLogger(MessagingNode.class);
     private static final int REMEMBERED_REQUESTS = 65_536;
+    /** The correlation id of a refusal of a whole connection (an ERROR that answers no request). */
+    private static final UUID REFUSAL = new UUID(0, 0);
 
     /** Where a received request came from, for its reply. */
     record Origin(Channel channel, SecretKey key) {
@@ -88,7 +90,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     private final TopicKeys keys = new TopicKeys();
     private final FrameFactory frames;
     private final LocalTopics topics;
-    private final RemoteSubscribers remoteSubscribers = new RemoteSubscribers();
+    private final RemoteSubscribers remoteSubscribers;
     /** The topics this node published on, for discovery (at most {@link #MAX_ANNOUNCED_TOPICS}). */
     private final java.util.Set<String> published = new java.util.concurrent.ConcurrentSkipListSet<>();
     /** How many published topics a node remembers for {@link #publishedTopics()}. */
@@ -121,6 +123,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         FrameMac mac = new FrameMac();
         this.frames = new FrameFactory(name, id, payloads, mac, settings.maxFrameSize());
         this.topics = new LocalTopics(name);
+        this.remoteSubscribers = new RemoteSubscribers(settings.limits());
         this.inbound = new Inbound(this, counters, mac, payloads, settings);
         this.links = new Links(name, this::transport, this::linkOpened);
         this.presence = new Presence(name, this::boundAddresses);
@@ -130,6 +133,8 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         this.housekeeping = Executors.newSingleThreadScheduledExecutor(context.threads("housekeeping"));
         long period = settings.subscriptionRefresh().toMillis();
         housekeeping.scheduleWithFixedDelay(this::keepHouse, period, period, TimeUnit.MILLISECONDS);
+        long keepAlive = Math.max(1, settings.limits().keepAliveInterval().toMillis() / 2);
+        housekeeping.scheduleWithFixedDelay(this::keepAlive, keepAlive, keepAlive, TimeUnit.MILLISECONDS);
     }
 
     /**
@@ -536,6 +541,15 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         return receivedRequests;
     }
 
+    /** A peer refused the connection to it (it serves its maximum): fails what waited on it, with its reason. */
+    void refusedBy(Channel channel, String why) {
+        LOG.warn("node '{}': {} refused the connection: {}", name, channel.peer(), why);
+        for (String host : links.forget(channel)) {
+            replies.linkClosed(host, "it refused the connection: " + why);
+        }
+        channel.close();
+    }
+
     void sendError(Frame request, Channel to, String why) {
         trySend(to, frames.answer(FrameKind.ERROR, request.correlationId(), request.sender(), request.topic(), why, "error", null));
     }
@@ -678,6 +692,26 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         }
     }
 
+    /**
+     * Sends a keep-alive on every connection silent for a third of the idle timeout (run twice
+     * as often as that), so the peer's idle timeout never cuts a quiet healthy link.
+     */
+    private void keepAlive() {
+        try {
+            long now = System.nanoTime();
+            long silent = settings.limits().keepAliveInterval().toNanos();
+            byte[] frame = null;
+            for (Channel c : connections) {
+                if (frame == null) {
+                    frame = frames.control(FrameKind.KEEPALIVE, "");
+                }
+                c.keepAlive(frame, now, silent);
+            }
+        } catch (RuntimeException e) {
+            LOG.warn("node '{}': sending keep-alives failed: {}", name, e.toString(), e);
+        }
+    }
+
     private void keepHouse() {
         try {
             long now = System.nanoTime();
@@ -744,9 +778,22 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         @Override
         public void opened(Channel channel) {
             connections.add(channel);
+            if (!channel.isOpen()) {
+                // it closed before it was added: closed() found nothing to forget
+                connections.remove(channel);
+                return;
+            }
+            // The peer closes a connection that delivers no whole frame within its first-frame
+            // timeout; a link with nothing else to say yet says this.
+            channel.keepAlive(frames.control(FrameKind.KEEPALIVE, ""), System.nanoTime(), 0);
             for (String topic : topics.subscribed()) {
                 trySend(channel, frames.control(FrameKind.SUBSCRIBE, topic));
             }
+        }
+
+        @Override
+        public byte[] refusal(String why) {
+            return frames.answer(FrameKind.ERROR, REFUSAL, "", "", why, "refused", null);
         }
 
         @Override

@@ -25,10 +25,13 @@ import java.util.Optional;
  * @param allowList           the classes payload objects may contain
  * @param replySpin           how long a thread waiting for a reply spins before it parks (a reply on loopback or a LAN
  *                            often comes sooner, and waking a parked thread can cost tens of microseconds); zero never spins
+ * @param limits              what peers may make the node hold: connections, subscriptions, topic length, and the
+ *                            first-frame and idle timeouts of connections ({@link PeerLimits})
  */
 public record MessagingSettings(Duration replyTimeout, Duration connectTimeout, Duration sendTimeout, int maxFrameSize,
                                 int outboundBufferBytes, String multicastInterface, int multicastTtl, Duration maxClockSkew,
-                                Duration subscriptionRefresh, TlsSettings tls, PayloadAllowList allowList, Duration replySpin) {
+                                Duration subscriptionRefresh, TlsSettings tls, PayloadAllowList allowList, Duration replySpin,
+                                PeerLimits limits) {
 
     /** Largest payload of one UDP datagram over IPv4. */
     public static final int MAX_DATAGRAM = 65_507;
@@ -42,6 +45,7 @@ public record MessagingSettings(Duration replyTimeout, Duration connectTimeout, 
         positive("subscriptionRefresh", subscriptionRefresh);
         Objects.requireNonNull(allowList, "allowList");
         Objects.requireNonNull(replySpin, "replySpin");
+        Objects.requireNonNull(limits, "limits");
         if (replySpin.isNegative()) {
             throw new IllegalArgumentException("replySpin must be >= 0, got " + replySpin);
         }
@@ -60,11 +64,12 @@ public record MessagingSettings(Duration replyTimeout, Duration connectTimeout, 
      * @return reply timeout 5 s, connect timeout 5 s, send timeout 10 s, frames up to 1 MiB, 4 MiB
      *         buffered per peer, multicast on loopback with TTL 0, clock skew 5 min, UDP
      *         subscriptions refreshed every second, no TLS, JDK value types only, replies awaited
-     *         with a 50 µs spin
+     *         with a 50 µs spin, and the peer limits of {@link PeerLimits#defaults()}
      */
     public static MessagingSettings defaults() {
         return new MessagingSettings(Duration.ofSeconds(5), Duration.ofSeconds(5), Duration.ofSeconds(10), 1 << 20, 4 << 20,
-                null, 0, Duration.ofMinutes(5), Duration.ofSeconds(1), null, PayloadAllowList.jdkDefaults(), Duration.ofNanos(50_000));
+                null, 0, Duration.ofMinutes(5), Duration.ofSeconds(1), null, PayloadAllowList.jdkDefaults(), Duration.ofNanos(50_000),
+                PeerLimits.defaults());
     }
 
     /** @return the TLS settings, if TLS is on */
@@ -74,52 +79,57 @@ public record MessagingSettings(Duration replyTimeout, Duration connectTimeout, 
 
     /** @param v the reply timeout @return a copy with it */
     public MessagingSettings withReplyTimeout(Duration v) {
-        return new MessagingSettings(v, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin);
+        return new MessagingSettings(v, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, limits);
     }
 
     /** @param v the connect timeout @return a copy with it */
     public MessagingSettings withConnectTimeout(Duration v) {
-        return new MessagingSettings(replyTimeout, v, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin);
+        return new MessagingSettings(replyTimeout, v, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, limits);
     }
 
     /** @param v the send timeout @return a copy with it */
     public MessagingSettings withSendTimeout(Duration v) {
-        return new MessagingSettings(replyTimeout, connectTimeout, v, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin);
+        return new MessagingSettings(replyTimeout, connectTimeout, v, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, limits);
     }
 
     /** @param v the maximum frame size in bytes @return a copy with it (and a buffer of at least that) */
     public MessagingSettings withMaxFrameSize(int v) {
-        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, v, Math.max(v, outboundBufferBytes), multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin);
+        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, v, Math.max(v, outboundBufferBytes), multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, limits);
     }
 
     /** @param name the multicast interface's name or address @param ttl the multicast TTL @return a copy with them */
     public MessagingSettings withMulticast(String name, int ttl) {
-        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, name, ttl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin);
+        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, name, ttl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, limits);
     }
 
     /** @param v the maximum clock skew @return a copy with it */
     public MessagingSettings withMaxClockSkew(Duration v) {
-        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, v, subscriptionRefresh, tls, allowList, replySpin);
+        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, v, subscriptionRefresh, tls, allowList, replySpin, limits);
     }
 
     /** @param v how often UDP subscriptions are refreshed @return a copy with it */
     public MessagingSettings withSubscriptionRefresh(Duration v) {
-        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, v, tls, allowList, replySpin);
+        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, v, tls, allowList, replySpin, limits);
     }
 
     /** @param v TLS settings, or {@code null} for none @return a copy with them */
     public MessagingSettings withTls(TlsSettings v) {
-        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, v, allowList, replySpin);
+        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, v, allowList, replySpin, limits);
     }
 
     /** @param v the allow-list @return a copy with it */
     public MessagingSettings withAllowList(PayloadAllowList v) {
-        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, v, replySpin);
+        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, v, replySpin, limits);
     }
 
     /** @param v how long a waiting thread spins before parking; zero never spins @return a copy with it */
     public MessagingSettings withReplySpin(Duration v) {
-        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, v);
+        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, v, limits);
+    }
+
+    /** @param v what peers may make the node hold @return a copy with it */
+    public MessagingSettings withLimits(PeerLimits v) {
+        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, v);
     }
 
     /** @param types application payload types to allow @return a copy whose allow-list has them too */

@@ -58,4 +58,38 @@ class HostSocketsTest {
             }
         }
     }
+
+    /** A plain endpoint keeps at most MAX_CONNECTIONS; one more is closed when accepted, and a slot comes back when one closes. */
+    @Test
+    void aServerSocketBeyondItsConnectionLimitClosesTheNextOneAtOnce() throws Exception {
+        HostSockets.Counters counters = new HostSockets.Counters();
+        java.util.List<Socket> held = new java.util.ArrayList<>();
+        try (ServerSocket server = new HostSockets.Server(InetAddress.getLoopbackAddress(), null, counters).createServerSocket(0)) {
+            for (int i = 0; i < HostSockets.MAX_CONNECTIONS; i++) {
+                held.add(new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort()));
+                held.add(server.accept());
+            }
+            java.util.concurrent.CompletableFuture<Socket> accepting = java.util.concurrent.CompletableFuture.supplyAsync(() -> {
+                try {
+                    return server.accept(); // closes the one beyond the limit, then waits for a slot's connection
+                } catch (java.io.IOException e) {
+                    throw new java.io.UncheckedIOException(e);
+                }
+            });
+            try (Socket extra = new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort())) {
+                extra.setSoTimeout(10_000);
+                assertEquals(-1, extra.getInputStream().read(), "the connection beyond the limit was closed");
+                assertEquals(1, counters.refused.sum());
+            }
+            held.get(1).close(); // the server side of the first connection: a slot again
+            try (Socket next = new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort())) {
+                held.add(accepting.get(10, java.util.concurrent.TimeUnit.SECONDS));
+                assertEquals(HostSockets.MAX_CONNECTIONS, counters.open.get());
+            }
+        } finally {
+            for (Socket s : held) {
+                s.close();
+            }
+        }
+    }
 }

@@ -62,7 +62,7 @@ public final class RobotDescriptionLoader {
         String platform = root.requireText("platform");
         Map<String, Object> connection = root.plainMap("connection");
         double cycleHz = root.number("cycle_hz", DEFAULT_CYCLE_HZ, "between 1 and 1000", v -> v >= 1 && v <= 1000);
-        double watchdog = root.number("watchdog", DEFAULT_WATCHDOG_SECONDS, ">= 0 seconds (0 turns it off)", v -> v >= 0 && v <= 3600);
+        double watchdog = root.number("watchdog", DEFAULT_WATCHDOG_SECONDS, "between 0 and 3600 seconds (0 turns it off)", v -> v >= 0 && v <= 3600);
         Set<Capability> capabilities = new LinkedHashSet<>(root.enumList("capabilities", Capability.class));
         if (!root.has("capabilities")) {
             capabilities.add(Capability.GROUND);
@@ -95,21 +95,18 @@ public final class RobotDescriptionLoader {
             m.problem("type", "must be 'differential' (two driven wheels on one axle) or 'legged' (walks by its firmware's own commands), got '"
                     + type + "'");
         }
-        double wheel = m.requireNumber("wheel_diameter", "> 0 metres", v -> v > 0 && v < 10);
-        double track = m.requireNumber("track_width", "> 0 metres", v -> v > 0 && v < 100);
-        double gear = m.number("gear_ratio", 1, "> 0", v -> v > 0);
-        double max = m.requireNumber("max_speed", "> 0 metres per second", v -> v > 0 && v < 1000);
-        int ticks = m.integer("encoder_ticks_per_revolution", 360);
-        if (ticks < 0) {
-            m.problem("encoder_ticks_per_revolution", "must be >= 0 (0 = no encoders), got " + ticks);
-        }
+        double wheel = m.requireNumber("wheel_diameter", "> 0 metres (0.001 to 10)", v -> v >= 0.001 && v <= 10);
+        double track = m.requireNumber("track_width", "> 0 metres (0.001 to 100)", v -> v >= 0.001 && v <= 100);
+        double gear = m.number("gear_ratio", 1, "> 0 (0.001 to 10000)", v -> v >= 0.001 && v <= 10_000);
+        double max = m.requireNumber("max_speed", "> 0 metres per second (at most 100)", v -> v > 0 && v <= 100);
+        int ticks = m.integer("encoder_ticks_per_revolution", 360, 0, 1_000_000);
         Optional<DifferentialDrive.Wheel> left = m.requireMapping("left").map(this::wheel);
         Optional<DifferentialDrive.Wheel> right = m.requireMapping("right").map(this::wheel);
         if (left.isPresent() && right.isPresent() && left.get().port().equals(right.get().port())) {
             m.problem("right", "port " + right.get().port() + " is already used by the left wheel; each wheel needs its own motor port");
         }
         m.finish();
-        if (left.isEmpty() || right.isEmpty() || Double.isNaN(wheel) || Double.isNaN(track) || Double.isNaN(max) || ticks < 0) {
+        if (left.isEmpty() || right.isEmpty() || Double.isNaN(wheel) || Double.isNaN(track) || Double.isNaN(max)) {
             return Optional.empty();
         }
         if (left.get().port().equals(right.get().port())) {
@@ -231,10 +228,10 @@ public final class RobotDescriptionLoader {
 
     private Body body(MappingReader m) {
         Body b = new Body(
-                m.number("length", Body.DEFAULT.length(), "> 0 metres", v -> v > 0),
-                m.number("width", Body.DEFAULT.width(), "> 0 metres", v -> v > 0),
-                m.number("mass", Body.DEFAULT.mass(), "> 0 kilograms", v -> v > 0),
-                m.number("friction", Body.DEFAULT.friction(), ">= 0", v -> v >= 0));
+                m.number("length", Body.DEFAULT.length(), "> 0 metres (0.001 to 100)", v -> v >= 0.001 && v <= 100),
+                m.number("width", Body.DEFAULT.width(), "> 0 metres (0.001 to 100)", v -> v >= 0.001 && v <= 100),
+                m.number("mass", Body.DEFAULT.mass(), "> 0 kilograms (0.001 to 100000)", v -> v >= 0.001 && v <= 100_000),
+                m.number("friction", Body.DEFAULT.friction(), "between 0 and 10", v -> v >= 0 && v <= 10));
         m.finish();
         return b;
     }
@@ -272,7 +269,7 @@ public final class RobotDescriptionLoader {
         }
         OptionalDouble threshold = m.optionalNumber("threshold", "a finite number", Double::isFinite);
         boolean below = m.bool("true_below", false);
-        OptionalDouble lux = m.optionalNumber("lux_at_full_scale", "> 0", v -> v > 0);
+        OptionalDouble lux = m.optionalNumber("lux_at_full_scale", "> 0 (at most 1000000)", v -> v > 0 && v <= 1_000_000);
         m.finish();
         return new Conversion(scale, offset, table, threshold, below, lux);
     }
@@ -286,12 +283,13 @@ public final class RobotDescriptionLoader {
                 a.mapping(actionName).ifPresent(spec -> {
                     OptionalDouble degrees = OptionalDouble.empty();
                     if (!spec.text("degrees").map("argument"::equals).orElse(false)) {
-                        degrees = spec.optionalNumber("degrees", "motor degrees, or 'argument'", Double::isFinite);
+                        degrees = spec.optionalNumber("degrees", "motor degrees (-1000000 to 1000000), or 'argument'",
+                                v -> Math.abs(v) <= 1_000_000);
                         if (degrees.isEmpty() && !spec.has("degrees")) {
                             spec.problem("degrees", "missing: give motor degrees, or 'argument' to take the angle when performed");
                         }
                     }
-                    double speed = spec.requireNumber("speed", "> 0 motor degrees per second", v -> v > 0);
+                    double speed = spec.requireNumber("speed", "> 0 motor degrees per second (at most 100000)", v -> v > 0 && v <= 100_000);
                     spec.finish();
                     actions.put(actionName, new ActuatorSpec.Action(degrees, speed));
                 });

@@ -40,13 +40,10 @@ public final class MappingReader {
         this.node = node;
         this.path = path;
         this.problems = problems;
+        // Keys that are not plain names, and keys given twice, are reported once for the whole file by YamlDocument.
         for (NodeTuple tuple : node.getValue()) {
             if (tuple.getKeyNode() instanceof ScalarNode key) {
-                if (entries.putIfAbsent(key.getValue(), tuple) != null) {
-                    problems.add(key.getStartMark(), "key '" + where(key.getValue()) + "' appears twice");
-                }
-            } else {
-                problems.add(tuple.getKeyNode().getStartMark(), "keys must be plain names" + (path.isEmpty() ? "" : " in '" + path + "'"));
+                entries.putIfAbsent(key.getValue(), tuple);
             }
         }
     }
@@ -99,7 +96,7 @@ public final class MappingReader {
      * @return its text, or "" after recording that it is missing
      */
     public String requireText(String key) {
-        Optional<String> text = text(key);
+        Optional<String> text = text(key, true);
         if (text.isPresent() && text.get().isBlank()) {
             problem(key, "must not be empty");
             return "";
@@ -117,7 +114,11 @@ public final class MappingReader {
      * @return its scalar text, if present
      */
     public Optional<String> text(String key) {
-        Node value = value(key);
+        return text(key, false);
+    }
+
+    private Optional<String> text(String key, boolean required) {
+        Node value = value(key, "a text value", required);
         if (value == null) {
             return Optional.empty();
         }
@@ -152,7 +153,8 @@ public final class MappingReader {
             asked.add(key);
             return Double.NaN;
         }
-        return number(key, Double.NaN, rule, valid);
+        OptionalDouble v = number(key, rule, valid, true);
+        return v.isPresent() ? v.getAsDouble() : Double.NaN;
     }
 
     /**
@@ -162,13 +164,22 @@ public final class MappingReader {
      * @return its number, if present and valid
      */
     public OptionalDouble optionalNumber(String key, String rule, DoublePredicate valid) {
-        Node value = value(key);
+        return number(key, rule, valid, false);
+    }
+
+    private OptionalDouble number(String key, String rule, DoublePredicate valid, boolean required) {
+        Node value = value(key, "a number " + rule, required);
         if (value == null) {
             return OptionalDouble.empty();
         }
         Double d = toNumber(value);
         if (d == null) {
             wrongType(key, value, "a number " + rule);
+            return OptionalDouble.empty();
+        }
+        if (!Double.isFinite(d)) {
+            problems.add(value.getStartMark(), "'" + where(key) + "' must be " + rule + ", got " + scalarText(value)
+                    + ", a number too large to use");
             return OptionalDouble.empty();
         }
         if (!valid.test(d)) {
@@ -184,18 +195,33 @@ public final class MappingReader {
      * @return its integer value
      */
     public int integer(String key, int fallback) {
-        Node value = value(key);
+        return integer(key, fallback, Integer.MIN_VALUE, Integer.MAX_VALUE);
+    }
+
+    /**
+     * @param key      a key
+     * @param fallback the value when absent or invalid
+     * @param min      the smallest valid value
+     * @param max      the largest valid value
+     * @return its integer value, checked against the range
+     */
+    public int integer(String key, int fallback, int min, int max) {
+        String expected = min == Integer.MIN_VALUE && max == Integer.MAX_VALUE ? "an integer" : "an integer from " + min + " to " + max;
+        Node value = value(key, expected, false);
         if (value == null) {
             return fallback;
         }
         if (value instanceof ScalarNode s && s.getTag().equals(Tag.INT)) {
             try {
-                return Integer.parseInt(s.getValue().replace("_", ""));
+                int v = Integer.parseInt(s.getValue().replace("_", ""));
+                if (v >= min && v <= max) {
+                    return v;
+                }
             } catch (NumberFormatException e) {
                 // falls through to the type error
             }
         }
-        wrongType(key, value, "an integer");
+        wrongType(key, value, expected);
         return fallback;
     }
 
@@ -205,7 +231,7 @@ public final class MappingReader {
      * @return its boolean value
      */
     public boolean bool(String key, boolean fallback) {
-        Node value = value(key);
+        Node value = value(key, "true or false", false);
         if (value == null) {
             return fallback;
         }
@@ -226,7 +252,7 @@ public final class MappingReader {
      * @return the constant
      */
     public <E extends Enum<E>> E enumValue(String key, Class<E> type, E fallback) {
-        Optional<String> text = text(key);
+        Optional<String> text = text(key, fallback == null);
         if (text.isEmpty()) {
             if (fallback == null && !entries.containsKey(key)) {
                 missing(key, "one of " + choices(type));
@@ -245,7 +271,7 @@ public final class MappingReader {
     public <E extends Enum<E>> List<E> enumList(String key, Class<E> type) {
         List<E> out = new ArrayList<>();
         for (Node item : sequence(key)) {
-            if (item instanceof ScalarNode s) {
+            if (item instanceof ScalarNode s && !s.getTag().equals(Tag.NULL)) {
                 parseEnum(type, s.getValue(), s.getStartMark(), where(key)).ifPresent(out::add);
             } else {
                 problems.add(item.getStartMark(), "'" + where(key) + "' items must be one of " + choices(type));
@@ -259,7 +285,11 @@ public final class MappingReader {
      * @return a reader on it, if present
      */
     public Optional<MappingReader> mapping(String key) {
-        Node value = value(key);
+        return mapping(key, false);
+    }
+
+    private Optional<MappingReader> mapping(String key, boolean required) {
+        Node value = value(key, "a mapping of keys to values", required);
         if (value == null) {
             return Optional.empty();
         }
@@ -280,7 +310,7 @@ public final class MappingReader {
             asked.add(key);
             return Optional.empty();
         }
-        return mapping(key);
+        return mapping(key, true);
     }
 
     /**
@@ -308,8 +338,9 @@ public final class MappingReader {
         List<Double> out = new ArrayList<>();
         for (Node item : sequence(key)) {
             Double d = toNumber(item);
-            if (d == null) {
-                problems.add(item.getStartMark(), "'" + where(key) + "' items must be numbers, got " + scalarText(item));
+            if (d == null || !Double.isFinite(d)) {
+                problems.add(item.getStartMark(), "'" + where(key) + "' items must be numbers" + (d == null ? "" : " of a usable size")
+                        + ", got " + scalarText(item));
             } else {
                 out.add(d);
             }
@@ -323,7 +354,7 @@ public final class MappingReader {
      * @return the texts, empty when absent; items that are not texts are reported
      */
     public List<String> textList(String key) {
-        Node value = value(key);
+        Node value = value(key, "a text value or a list of them", false);
         if (value instanceof ScalarNode scalar && !scalar.getTag().equals(Tag.NULL)) {
             if (scalar.getValue().isBlank()) {
                 problem(key, "must not be empty");
@@ -357,8 +388,9 @@ public final class MappingReader {
             boolean ok = true;
             for (int i = 0; i < values.length; i++) {
                 Double d = toNumber(row.getValue().get(i));
-                if (d == null) {
-                    problems.add(row.getValue().get(i).getStartMark(), "'" + where(key) + "' items must be numbers, got " + scalarText(row.getValue().get(i)));
+                if (d == null || !Double.isFinite(d)) {
+                    problems.add(row.getValue().get(i).getStartMark(), "'" + where(key) + "' items must be numbers"
+                            + (d == null ? "" : " of a usable size") + ", got " + scalarText(row.getValue().get(i)));
                     ok = false;
                 } else {
                     values[i] = d;
@@ -388,7 +420,7 @@ public final class MappingReader {
      * @return the plain map, empty when absent
      */
     public Map<String, Object> plainMap(String key) {
-        Node value = value(key);
+        Node value = value(key, "a mapping of keys to values", false);
         if (value == null) {
             return Map.of();
         }
@@ -397,7 +429,7 @@ public final class MappingReader {
             return Map.of();
         }
         @SuppressWarnings("unchecked")
-        Map<String, Object> map = (Map<String, Object>) plainChecked(value, key);
+        Map<String, Object> map = (Map<String, Object>) plainChecked(value, where(key));
         return map;
     }
 
@@ -421,18 +453,30 @@ public final class MappingReader {
         }
     }
 
-    private Node value(String key) {
+    /**
+     * @param key      a key
+     * @param expected what its value should be, for the message when it has none
+     * @param required whether the key must be given (then "leave it out" is no advice)
+     * @return its value, or {@code null} when absent or empty (an empty value is reported: {@code port:} or
+     *         {@code port: ~} is a mistake, never a way to ask for the default)
+     */
+    private Node value(String key, String expected, boolean required) {
         asked.add(key);
         NodeTuple t = entries.get(key);
         if (t == null) {
             return null;
         }
         Node v = t.getValueNode();
-        return v instanceof ScalarNode s && s.getTag().equals(Tag.NULL) ? null : v;
+        if (v instanceof ScalarNode s && s.getTag().equals(Tag.NULL)) {
+            problems.add(t.getKeyNode().getStartMark(), "'" + where(key) + "' has no value; write " + expected
+                    + (required ? "" : ", or leave the key out"));
+            return null;
+        }
+        return v;
     }
 
     private List<Node> sequence(String key) {
-        Node value = value(key);
+        Node value = value(key, "a list", false);
         if (value == null) {
             return List.of();
         }
@@ -452,12 +496,12 @@ public final class MappingReader {
     }
 
     private String where(String key) {
-        return path.isEmpty() ? key : path + "." + key;
+        return Problems.quote(path.isEmpty() ? key : path + "." + key);
     }
 
     private static String scalarText(Node n) {
         if (n instanceof ScalarNode s) {
-            return "'" + s.getValue() + "'";
+            return "'" + Problems.quote(s.getValue()) + "'";
         }
         return n instanceof SequenceNode ? "a list" : "a mapping";
     }
@@ -493,11 +537,11 @@ public final class MappingReader {
         return t.equals("true") || t.equals("yes") || t.equals("on");
     }
 
-    private Object plainChecked(Node n, String key) {
+    private Object plainChecked(Node n, String where) {
         try {
-            return plain(n);
+            return plain(n, where);
         } catch (BudgetSpent e) {
-            problems.add(n.getStartMark(), "'" + where(key) + "' expands to more than " + Problems.MAX_PLAIN_VALUES
+            problems.add(n.getStartMark(), "'" + where + "' expands to more than " + Problems.MAX_PLAIN_VALUES
                     + " values (an alias bomb?); refused");
             return Map.of();
         }
@@ -512,37 +556,66 @@ public final class MappingReader {
         }
     }
 
-    private Object plain(Node n) {
+    /** Plain data of a block; empty values and numbers too large to use are reported with their path. */
+    private Object plain(Node n, String where) {
         if (!problems.spendValue()) {
             throw new BudgetSpent();
         }
         if (n instanceof MappingNode m) {
             Map<String, Object> map = new LinkedHashMap<>();
             for (NodeTuple t : m.getValue()) {
-                Object v = plain(t.getValueNode());
-                if (t.getKeyNode() instanceof ScalarNode k && v != null) {
-                    map.put(k.getValue(), v);
+                if (t.getKeyNode() instanceof ScalarNode k) {
+                    String inner = where + "." + Problems.quote(k.getValue());
+                    Node valueNode = t.getValueNode();
+                    if (valueNode instanceof ScalarNode s && s.getTag().equals(Tag.NULL)) {
+                        problems.add(k.getStartMark(), "'" + inner + "' has no value; write one, or leave the key out");
+                        continue;
+                    }
+                    Object v = plain(valueNode, inner);
+                    if (v != null) {
+                        map.putIfAbsent(k.getValue(), v);
+                    }
                 }
             }
             return Map.copyOf(map);
         }
         if (n instanceof SequenceNode s) {
-            return s.getValue().stream().map(this::plain).filter(java.util.Objects::nonNull).toList();
+            List<Object> items = new ArrayList<>();
+            for (int i = 0; i < s.getValue().size(); i++) {
+                Node item = s.getValue().get(i);
+                if (item instanceof ScalarNode sc && sc.getTag().equals(Tag.NULL)) {
+                    problems.add(item.getStartMark(), "'" + where + "[" + i + "]' has no value; write one, or leave the item out");
+                    continue;
+                }
+                Object v = plain(item, where + "[" + i + "]");
+                if (v != null) {
+                    items.add(v);
+                }
+            }
+            return List.copyOf(items);
         }
         ScalarNode s = (ScalarNode) n;
         Tag tag = s.getTag();
         if (tag.equals(Tag.NULL)) {
             return null;
         }
-        if (tag.equals(Tag.INT)) {
-            try {
-                return Long.valueOf(s.getValue().replace("_", ""));
-            } catch (NumberFormatException e) {
+        if (tag.equals(Tag.INT) || tag.equals(Tag.FLOAT)) {
+            if (tag.equals(Tag.INT)) {
+                try {
+                    return Long.valueOf(s.getValue().replace("_", ""));
+                } catch (NumberFormatException e) {
+                    // too large for a long, or not decimal: as a floating-point number below
+                }
+            }
+            Double d = toNumber(s);
+            if (d == null) {
                 return s.getValue();
             }
-        }
-        if (tag.equals(Tag.FLOAT)) {
-            return toNumber(s);
+            if (!Double.isFinite(d)) {
+                problems.add(s.getStartMark(), "'" + where + "' is " + scalarText(s) + ", a number too large to use");
+                return null;
+            }
+            return d;
         }
         if (tag.equals(Tag.BOOL)) {
             return yamlTrue(s.getValue());

@@ -44,6 +44,8 @@ final class UrbiConnection implements AutoCloseable {
     private static final Logger LOG = LoggerFactory.getLogger(UrbiConnection.class);
     /** The link's time (reopen pacing): the wall clock, as {@code BrickChannel}'s, from the Clock rather than System.nanoTime. */
     private static final io.robomw.api.Clock LINK_TIME = io.robomw.api.Clock.system();
+    /** One line a second at most about malformed lines: a flood of garbage must not flood the log. */
+    private final io.robomw.platform.ThrottledWarnings malformedWarnings = new io.robomw.platform.ThrottledWarnings(LOG, java.time.Duration.ofSeconds(1));
 
     /** Commands that may wait in the queue. */
     static final int OUTBOX = 1024;
@@ -282,7 +284,7 @@ final class UrbiConnection implements AutoCloseable {
             @Override
             public void malformed(String why, String excerpt) {
                 long n = malformed.incrementAndGet();
-                LOG.warn("robot '{}': {} sent a line that is not an URBI message ({} so far): {}: \"{}\"", robot, describe(), n, why, excerpt);
+                malformedWarnings.warn("robot '{}': {} sent a line that is not an URBI message ({} so far): {}: \"{}\"", robot, describe(), n, why, excerpt);
             }
         };
         try {

@@ -71,6 +71,7 @@ public final class ExecutionActionThread implements AutoCloseable {
     private final long periodNanos;
     private final Queue<Container> incoming = new ConcurrentLinkedQueue<>();
     private final AtomicReference<RobotLinkException> linkFailure = new AtomicReference<>();
+    private final AtomicReference<RuntimeException> driverFailure = new AtomicReference<>();
     private final List<Runnable> cycleListeners = new CopyOnWriteArrayList<>();
     private final List<java.util.function.Consumer<RobotException>> failureListeners = new CopyOnWriteArrayList<>();
     /** Why the cycling thread died, once it has. */
@@ -147,6 +148,17 @@ public final class ExecutionActionThread implements AutoCloseable {
     }
 
     /**
+     * Reports that the hardware refused what the driver sent (a brick's error status): at the next
+     * cycle every running container ends with that exception, at once, and its end action stops
+     * its motors. The link stays up: later commands are tried again.
+     *
+     * @param cause the refusal, as the user should read it (a {@code RobotException} naming the brick's status)
+     */
+    public void driverFailed(RuntimeException cause) {
+        driverFailure.compareAndSet(null, cause);
+    }
+
+    /**
      * @param listener run at the end of every cycle, on the cycling thread (a motor platform
      *                 hands its new outputs to its link there)
      */
@@ -190,7 +202,8 @@ public final class ExecutionActionThread implements AutoCloseable {
     /**
      * Runs one cycle, in this order:
      * <ol>
-     *   <li>If the link failed, end every container with {@link RobotLinkException}.</li>
+     *   <li>If the link failed, end every container with {@link RobotLinkException}; if the hardware
+ *   refused a command ({@link #driverFailed}), end every container with that refusal.</li>
      *   <li>Admit queued containers in the order they were submitted, applying the clash rules,
      *   and start each admitted one (its action objects run).</li>
      *   <li>End containers whose watchdog expired.</li>
@@ -206,6 +219,12 @@ public final class ExecutionActionThread implements AutoCloseable {
         if (failure != null) {
             for (Container c : snapshot()) {
                 finish(c, true, failure);
+            }
+        }
+        RuntimeException refused = driverFailure.get() == null ? null : driverFailure.getAndSet(null);
+        if (refused != null) {
+            for (Container c : snapshot()) {
+                finish(c, true, refused);
             }
         }
         for (Container c; (c = incoming.poll()) != null; ) {

@@ -433,6 +433,7 @@ public abstract class GenericMotorPlatform {
      * thread each cycle, or inline by a simulator.
      *
      * @throws IOException if the link failed; unsent states are kept and sent on the next call
+     * @throws RuntimeException if the hardware refused them (a brick's error status); they are not sent again
      */
     public final void serviceLink() throws IOException {
         Map<String, MotorState> drained = new LinkedHashMap<>();
@@ -482,8 +483,10 @@ public abstract class GenericMotorPlatform {
                         sentStates.put(port, s);
                     }
                 });
+                // A refusal (RuntimeException: the brick answered with an error status) is not sent
+                // again: it would be refused again, every cycle; the commands that wanted it fail with it.
                 synchronized (published) {
-                    for (MotorState s : batch) {
+                    for (MotorState s : e instanceof IOException ? batch : List.<MotorState>of()) {
                         published.putIfAbsent(s.port(), s);
                     }
                 }

@@ -72,7 +72,7 @@ public final class NxtBrick {
         byte[] reply = requestAllowing(telegram, replyLength, port);
         int status = reply[NxtTelegram.STATUS_OFFSET] & 0xFF;
         if (status != NxtStatus.SUCCESS) {
-            throw new NxtException(robot, telegram[1] & 0xFF, port, status);
+            throw new NxtException(robot, telegram[1] & 0xFF, port, status, telegram);
         }
         return reply;
     }
@@ -160,7 +160,7 @@ public final class NxtBrick {
         for (int i = 0; i < replies.size(); i++) {
             int status = replies.get(i)[NxtTelegram.STATUS_OFFSET] & 0xFF;
             if (status != NxtStatus.SUCCESS) {
-                throw new NxtException(robot, requests.get(i).telegram()[1] & 0xFF, requests.get(i).port(), status);
+                throw new NxtException(robot, requests.get(i).telegram()[1] & 0xFF, requests.get(i).port(), status, requests.get(i).telegram());
             }
         }
         return replies;

@@ -164,7 +164,7 @@ public final class NxtMotorPlatform extends GenericMotorPlatform {
         for (int i = 0; i < motorTelegrams; i++) {
             int status = replies.get(i)[NxtTelegram.STATUS_OFFSET] & 0xFF;
             if (status != NxtStatus.SUCCESS) {
-                throw new NxtException(brick.robot(), batch.get(i).telegram()[1] & 0xFF, batch.get(i).port(), status);
+                throw new NxtException(brick.robot(), batch.get(i).telegram()[1] & 0xFF, batch.get(i).port(), status, batch.get(i).telegram());
             }
         }
     }
@@ -229,7 +229,7 @@ public final class NxtMotorPlatform extends GenericMotorPlatform {
             byte[] reply = replies.get(i);
             int status = reply[NxtTelegram.STATUS_OFFSET] & 0xFF;
             if (status != NxtStatus.SUCCESS) {
-                throw new NxtException(brick.robot(), NxtTelegram.GETOUTPUTSTATE, requests.get(i).port(), status);
+                throw new NxtException(brick.robot(), NxtTelegram.GETOUTPUTSTATE, requests.get(i).port(), status, requests.get(i).telegram());
             }
             String port = ports.get(i);
             polledAt.put(port, now);
@@ -269,7 +269,7 @@ public final class NxtMotorPlatform extends GenericMotorPlatform {
                 }
                 resetCountCommand = false;
             } else if (status != NxtStatus.SUCCESS) {
-                throw new NxtException(brick.robot(), requests.get(i).telegram()[1] & 0xFF, requests.get(i).port(), status);
+                throw new NxtException(brick.robot(), requests.get(i).telegram()[1] & 0xFF, requests.get(i).port(), status, requests.get(i).telegram());
             }
         }
     }

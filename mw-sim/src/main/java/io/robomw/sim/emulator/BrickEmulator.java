@@ -1,5 +1,6 @@
 package io.robomw.sim.emulator;
 
+import io.robomw.platform.ThrottledWarnings;
 import io.robomw.platform.link.Link;
 import io.robomw.platform.link.LinkLostException;
 import io.robomw.platform.link.PseudoTerminal;
@@ -40,6 +41,8 @@ public abstract class BrickEmulator implements Emulator {
     private final Framing framing;
     private final AtomicLong served = new AtomicLong();
     private final AtomicLong dropped = new AtomicLong();
+    /** One line a second at most about dropped input: a flood of garbage must not flood the log. */
+    private final ThrottledWarnings dropWarnings = new ThrottledWarnings(LOG, Duration.ofSeconds(1));
     private final Runnable stepListener = this::onStep;
     private volatile boolean closed;
     private final java.util.List<Runnable> closeActions = new java.util.concurrent.CopyOnWriteArrayList<>();
@@ -326,7 +329,7 @@ public abstract class BrickEmulator implements Emulator {
 
     private void drop(String why) {
         long n = dropped.incrementAndGet();
-        LOG.warn("{} emulator for '{}': dropped input ({} so far): {}", kind, robot.robot().name(), n, why);
+        dropWarnings.warn("{} emulator for '{}': dropped input ({} so far): {}", kind, robot.robot().name(), n, why);
     }
 
     /** @return telegrams answered */

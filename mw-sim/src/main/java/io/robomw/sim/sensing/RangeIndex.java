@@ -14,6 +14,9 @@ import java.util.Arrays;
  */
 public final class RangeIndex {
 
+    /** The most grid cells an index may have (a world of 1000 m × 1000 m has about 260,000 of at least 2 m). */
+    public static final int MAX_CELLS = 16 << 20;
+
     private final double originX;
     private final double originY;
     private final double cell;
@@ -50,6 +53,22 @@ public final class RangeIndex {
      */
     public RangeIndex(double minX, double minY, double width, double height, double cellSize,
                       double[][] segments, double[][] discs) {
+        if (!Double.isFinite(minX) || !Double.isFinite(minY) || !(width > 0) || !(height > 0) || !(cellSize > 0)
+                || !Double.isFinite(width) || !Double.isFinite(height) || !Double.isFinite(cellSize)) {
+            throw new IllegalArgumentException("a range index needs a finite area and cell size, got " + width + " × " + height
+                    + " m at (" + minX + ", " + minY + ") in cells of " + cellSize + " m");
+        }
+        double cellCount = Math.ceil(width / cellSize) * Math.ceil(height / cellSize);
+        if (cellCount > MAX_CELLS) {
+            throw new IllegalArgumentException("a range index of " + width + " × " + height + " m in cells of " + cellSize + " m would need "
+                    + (long) cellCount + " cells, more than " + MAX_CELLS + "; use larger cells or a smaller world");
+        }
+        for (double[] s : segments) {
+            requireFinite(s, "segment");
+        }
+        for (double[] d : discs) {
+            requireFinite(d, "disc");
+        }
         this.originX = minX;
         this.originY = minY;
         this.cell = cellSize;
@@ -83,6 +102,14 @@ public final class RangeIndex {
         staticStart = count;
         staticItems = items;
         robotStart = new int[cells + 1];
+    }
+
+    private static void requireFinite(double[] values, String what) {
+        for (double v : values) {
+            if (!Double.isFinite(v)) {
+                throw new IllegalArgumentException("a range index " + what + " needs finite coordinates, got " + Arrays.toString(values));
+            }
+        }
     }
 
     private void indexStatic(int[] count, int[] fill, int[] items) {

@@ -35,6 +35,31 @@ import java.util.Set;
  */
 public final class WorldLoader {
 
+    /** The largest arena side, obstacle, patch or radius, metres; also the farthest coordinate from the origin. */
+    public static final double MAX_SIZE = 1000;
+    /** The smallest size, metres (1 mm). */
+    public static final double MIN_SIZE = 0.001;
+    /** The thickest wall, metres. */
+    public static final double MAX_WALL = 10;
+    /** The most points of one polygon. */
+    public static final int MAX_POLYGON_POINTS = 1000;
+
+    private static final String SIZE = "> 0 metres (0.001 to 1000)";
+    private static final String COORDINATE = "between -1000 and 1000 metres";
+    private static final String ANGLE = "between -2π and 2π radians (-6.2832 to 6.2832)";
+
+    private static boolean size(double v) {
+        return v >= MIN_SIZE && v <= MAX_SIZE;
+    }
+
+    private static boolean coordinate(double v) {
+        return Math.abs(v) <= MAX_SIZE;
+    }
+
+    private static boolean angle(double v) {
+        return Math.abs(v) <= 2 * Math.PI + 1e-9;
+    }
+
     /**
      * @param file a world YAML file
      * @return its description
@@ -51,10 +76,10 @@ public final class WorldLoader {
         Optional<MappingReader> arena = root.requireMapping("arena");
         if (arena.isPresent()) {
             MappingReader a = arena.get();
-            width = a.requireNumber("width", "> 0 metres", v -> v > 0 && v <= 100_000);
-            height = a.requireNumber("height", "> 0 metres", v -> v > 0 && v <= 100_000);
+            width = a.requireNumber("width", SIZE, WorldLoader::size);
+            height = a.requireNumber("height", SIZE, WorldLoader::size);
             walls = a.bool("walls", true);
-            thickness = a.number("wall_thickness", 0.1, "> 0 metres", v -> v > 0);
+            thickness = a.number("wall_thickness", 0.1, "> 0 metres (0.001 to 10)", v -> v >= MIN_SIZE && v <= MAX_WALL);
             floor = a.number("floor", 0.8, "between 0 and 1", v -> v >= 0 && v <= 1);
             a.finish();
         }
@@ -67,9 +92,9 @@ public final class WorldLoader {
         List<WorldDescription.FloorPatch> patches = new ArrayList<>();
         for (MappingReader p : root.mappingList("floor")) {
             patches.add(new WorldDescription.FloorPatch(
-                    p.requireNumber("x", "a number", Double::isFinite), p.requireNumber("y", "a number", Double::isFinite),
-                    p.requireNumber("width", "> 0", v -> v > 0), p.requireNumber("height", "> 0", v -> v > 0),
-                    p.number("brightness", 0.1, "between 0 and 1", v -> v >= 0 && v <= 1), p.integer("color", 0)));
+                    p.requireNumber("x", COORDINATE, WorldLoader::coordinate), p.requireNumber("y", COORDINATE, WorldLoader::coordinate),
+                    p.requireNumber("width", SIZE, WorldLoader::size), p.requireNumber("height", SIZE, WorldLoader::size),
+                    p.number("brightness", 0.1, "between 0 and 1", v -> v >= 0 && v <= 1), p.integer("color", 0, 0, 255)));
             p.finish();
         }
         List<WorldDescription.RobotPlacement> robots = new ArrayList<>();
@@ -85,10 +110,10 @@ public final class WorldLoader {
             if (!names.add(robotName)) {
                 r.problem("name", "two robots are named '" + robotName + "'; give each a unique name");
             }
-            double x = r.requireNumber("x", "a number of metres", Double::isFinite);
-            double y = r.requireNumber("y", "a number of metres", Double::isFinite);
-            double heading = r.number("heading", 0, "a number of radians", Double::isFinite);
-            if (Double.isFinite(width) && Double.isFinite(height) && (x < 0 || y < 0 || x > width || y > height)) {
+            double x = r.requireNumber("x", COORDINATE, WorldLoader::coordinate);
+            double y = r.requireNumber("y", COORDINATE, WorldLoader::coordinate);
+            double heading = r.number("heading", 0, ANGLE, WorldLoader::angle);
+            if (width > 0 && height > 0 && (x < 0 || y < 0 || x > width || y > height)) {
                 r.problem("x", "the robot starts outside the " + width + " × " + height + " m arena, at (" + x + ", " + y + ")");
             }
             r.finish();
@@ -107,9 +132,9 @@ public final class WorldLoader {
         if (o.has("box")) {
             kinds++;
             result = o.mapping("box").map(b -> {
-                WorldDescription.Box box = new WorldDescription.Box(b.requireNumber("x", "a number", Double::isFinite),
-                        b.requireNumber("y", "a number", Double::isFinite), b.requireNumber("width", "> 0", v -> v > 0),
-                        b.requireNumber("height", "> 0", v -> v > 0), b.number("angle", 0, "a number of radians", Double::isFinite));
+                WorldDescription.Box box = new WorldDescription.Box(b.requireNumber("x", COORDINATE, WorldLoader::coordinate),
+                        b.requireNumber("y", COORDINATE, WorldLoader::coordinate), b.requireNumber("width", SIZE, WorldLoader::size),
+                        b.requireNumber("height", SIZE, WorldLoader::size), b.number("angle", 0, ANGLE, WorldLoader::angle));
                 b.finish();
                 return box;
             });
@@ -117,8 +142,8 @@ public final class WorldLoader {
         if (o.has("circle")) {
             kinds++;
             result = o.mapping("circle").map(c -> {
-                WorldDescription.Circle circle = new WorldDescription.Circle(c.requireNumber("x", "a number", Double::isFinite),
-                        c.requireNumber("y", "a number", Double::isFinite), c.requireNumber("radius", "> 0", v -> v > 0));
+                WorldDescription.Circle circle = new WorldDescription.Circle(c.requireNumber("x", COORDINATE, WorldLoader::coordinate),
+                        c.requireNumber("y", COORDINATE, WorldLoader::coordinate), c.requireNumber("radius", SIZE, WorldLoader::size));
                 c.finish();
                 return circle;
             });
@@ -126,17 +151,33 @@ public final class WorldLoader {
         if (o.has("polygon")) {
             kinds++;
             List<double[]> points = new ArrayList<>();
-            for (MappingReader.NumberRow row : o.numberRows("polygon")) {
+            int problemsBefore = o.problems().count();
+            List<MappingReader.NumberRow> rows = o.numberRows("polygon");
+            boolean valid = o.problems().count() == problemsBefore;
+            for (MappingReader.NumberRow row : rows) {
                 if (row.values().length != 2) {
                     o.problems().add(row.mark(), "'" + o.path() + ".polygon' points must be [x, y] pairs");
+                    valid = false;
+                } else if (!coordinate(row.values()[0]) || !coordinate(row.values()[1])) {
+                    o.problems().add(row.mark(), "'" + o.path() + ".polygon' points must have coordinates " + COORDINATE + ", got ["
+                            + row.values()[0] + ", " + row.values()[1] + "]");
+                    valid = false;
                 } else {
                     points.add(row.values());
                 }
             }
-            if (points.size() < 3) {
+            if (!valid) {
+                // the points' own problems are reported
+            } else if (points.size() > MAX_POLYGON_POINTS) {
+                o.problem("polygon", "has " + points.size() + " points; at most " + MAX_POLYGON_POINTS + " are allowed");
+            } else if (points.size() < 3) {
                 o.problem("polygon", "needs at least 3 points, got " + points.size());
+            } else if (shortestEdge(points) < MIN_SIZE) {
+                o.problem("polygon", "has two neighbouring points closer than 1 mm; give points at least 0.001 m apart");
             } else if (!convexCounterClockwise(points)) {
                 o.problem("polygon", "must be convex with its points anti-clockwise");
+            } else if (area(points) < MIN_SIZE * MIN_SIZE) {
+                o.problem("polygon", "encloses less than 1 mm² (its points lie almost on a line); give it some area");
             } else {
                 result = Optional.of(new WorldDescription.Polygon(points));
             }
@@ -146,6 +187,27 @@ public final class WorldLoader {
         }
         o.finish();
         return kinds == 1 ? result : Optional.empty();
+    }
+
+    private static double shortestEdge(List<double[]> p) {
+        double shortest = Double.POSITIVE_INFINITY;
+        for (int i = 0; i < p.size(); i++) {
+            double[] a = p.get(i);
+            double[] b = p.get((i + 1) % p.size());
+            shortest = Math.min(shortest, Math.hypot(b[0] - a[0], b[1] - a[1]));
+        }
+        return shortest;
+    }
+
+    /** Shoelace formula: the area of a simple polygon, positive when anti-clockwise. */
+    private static double area(List<double[]> p) {
+        double twice = 0;
+        for (int i = 0; i < p.size(); i++) {
+            double[] a = p.get(i);
+            double[] b = p.get((i + 1) % p.size());
+            twice += a[0] * b[1] - b[0] * a[1];
+        }
+        return twice / 2;
     }
 
     private static boolean convexCounterClockwise(List<double[]> p) {

@@ -4,6 +4,7 @@ import io.robomw.agents.messaging.DropReason;
 import io.robomw.agents.messaging.MessagingNode;
 import io.robomw.agents.messaging.MessagingSettings;
 import io.robomw.agents.messaging.MessagingStats;
+import io.robomw.agents.messaging.PeerLimits;
 import io.robomw.agents.messaging.robot.RobotProtocol;
 import io.robomw.agents.messaging.robot.RobotServer;
 import io.robomw.agents.messaging.security.TlsSettings;
@@ -49,6 +50,7 @@ public final class Peer {
     public static void main(String[] args) throws Exception {
         PrintStream out = new PrintStream(System.out, true, StandardCharsets.UTF_8);
         MessagingSettings settings = RobotProtocol.forServer(MessagingSettings.defaults());
+        settings = settings.withLimits(limitsFromProperties(settings.limits()));
         if (args.length >= 5 && args[1].equals("--tls")) {
             settings = settings.withTls(new TlsSettings(Path.of(args[2]), args[4], Path.of(args[3]), args[4]));
         }
@@ -72,6 +74,40 @@ public final class Peer {
             }
         }
         out.println("BYE");
+    }
+
+    /** {@code -Dpeer.maxConnections=N -Dpeer.firstFrameMillis=T -Dpeer.idleMillis=T}: the limits under test. */
+    private static PeerLimits limitsFromProperties(PeerLimits limits) {
+        PeerLimits l = limits;
+        if (System.getProperty("peer.maxConnections") != null) {
+            l = l.withMaxConnections(Integer.getInteger("peer.maxConnections"));
+        }
+        if (System.getProperty("peer.idleMillis") != null) {
+            l = l.withTimeouts(Duration.ofMillis(Long.getLong("peer.firstFrameMillis", l.firstFrameTimeout().toMillis())),
+                    Duration.ofMillis(Long.getLong("peer.idleMillis")));
+        }
+        return l;
+    }
+
+    /**
+     * What this JVM holds, as the leak tests measure it: the heap used after full collections
+     * (serial GC: {@code System.gc()} is a full collection), live threads, and the resident set.
+     */
+    static String resources() throws java.io.IOException {
+        java.lang.management.MemoryMXBean memory = java.lang.management.ManagementFactory.getMemoryMXBean();
+        long used = Long.MAX_VALUE;
+        for (int i = 0; i < 3; i++) {
+            System.gc();
+            used = Math.min(used, memory.getHeapMemoryUsage().getUsed());
+        }
+        int threads = java.lang.management.ManagementFactory.getThreadMXBean().getThreadCount();
+        long rssKb = -1;
+        for (String line : java.nio.file.Files.readAllLines(Path.of("/proc/self/status"))) {
+            if (line.startsWith("VmRSS:")) {
+                rssKb = Long.parseLong(line.replaceAll("[^0-9]", ""));
+            }
+        }
+        return "RESOURCES heap=" + used + " threads=" + threads + " rss=" + rssKb * 1024;
     }
 
     private static String pw(String s) {
@@ -140,6 +176,7 @@ public final class Peer {
                 }
             }
             case "stats" -> out.println(stats(node.stats()));
+            case "resources" -> out.println(resources());
             case "robot" -> {
                 Robot robot = Robots.open(Path.of(c[1]));
                 closeables.add(RobotServer.serve(node, robot, null));

@@ -54,7 +54,12 @@ import java.util.UUID;
  * <tr><td>4</td><td>PUBLISH</td></tr>
  * <tr><td>5</td><td>SUBSCRIBE</td></tr>
  * <tr><td>6</td><td>UNSUBSCRIBE</td></tr>
+ * <tr><td>7</td><td>KEEPALIVE (connections only; empty names and payload)</td></tr>
  * </table>
+ *
+ * <p>An ERROR whose CORRELATION ID is all zeros answers no request: the node refuses the whole
+ * connection (it serves its maximum number already); the payload says why, and the node closes
+ * the connection after it.
  *
  * <p>FLAGS: bit 0 is {@link #FLAG_MAC}; the other bits are reserved, written 0 and ignored on
  * reading. PAYLOAD TYPE codes are those of

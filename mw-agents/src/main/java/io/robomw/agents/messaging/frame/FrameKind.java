@@ -18,7 +18,12 @@ public enum FrameKind {
     /** The sending peer wants the publications of the frame's topic. */
     SUBSCRIBE(5),
     /** The sending peer no longer wants the publications of the frame's topic. */
-    UNSUBSCRIBE(6);
+    UNSUBSCRIBE(6),
+    /**
+     * Nothing but "this link is alive": sent on a connection that has been silent for a third of
+     * the idle timeout, so the peer does not close a quiet healthy link. Empty names and payload.
+     */
+    KEEPALIVE(7);
 
     private final int code;
 
@@ -44,7 +49,8 @@ public enum FrameKind {
             case 4 -> PUBLISH;
             case 5 -> SUBSCRIBE;
             case 6 -> UNSUBSCRIBE;
-            default -> throw new FrameException(DropReason.MALFORMED, "unknown frame kind code " + code + " (known: 1-6)");
+            case 7 -> KEEPALIVE;
+            default -> throw new FrameException(DropReason.MALFORMED, "unknown frame kind code " + code + " (known: 1-7)");
         };
     }
 }

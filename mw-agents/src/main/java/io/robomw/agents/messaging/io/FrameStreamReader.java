@@ -6,6 +6,9 @@ import io.robomw.agents.messaging.frame.FrameException;
 
 import java.io.IOException;
 import java.io.InputStream;
+import java.net.SocketTimeoutException;
+import java.util.Arrays;
+import java.util.concurrent.TimeUnit;
 
 /**
  * Cuts a byte stream into frames by their declared lengths, reading in large chunks. After
@@ -14,34 +17,104 @@ import java.io.InputStream;
  *
  * <p>A stream cannot be resynchronised after garbage or an oversized length, so those end it
  * ({@link FrameException}); the caller drops the connection and keeps serving the others.
- * Not thread-safe: one reader thread per connection.
+ *
+ * <p>What a peer can make it hold is bounded by what the peer sent, not by what it announced: the
+ * buffer starts at {@value #INITIAL} bytes and grows (doubling) only as bytes arrive: to
+ * {@value #STREAMING} while reads keep filling it, beyond that only for a frame that needs it, so
+ * a header announcing a 1 MiB frame costs nothing until the megabyte comes; after a large frame
+ * the buffer shrinks back to {@value #STREAMING}. With {@link Timeouts}, a stream that delivers
+ * no whole frame within the first-frame timeout (from the start) or the idle timeout (from each
+ * call of {@link #next()}) ends with {@link DropReason#TIMED_OUT}: a peer that stops in the
+ * middle of a frame, or sends a byte now and then, cannot hold the connection.
+ *
+ * <p>Not thread-safe: one reader thread per connection.
  */
 public final class FrameStreamReader {
 
+    /** The buffer's size at first: what a connection that has sent nothing much costs. */
+    public static final int INITIAL = 8 * 1024;
+    /**
+     * The size it grows to while bytes stream in (each read filling it), for reading in large
+     * chunks; and the size it shrinks back to after a frame larger than that.
+     */
+    public static final int STREAMING = 64 * 1024;
+
+    /** How a reader bounds the time a read may block: a socket's {@code SO_TIMEOUT}. */
+    @FunctionalInterface
+    public interface ReadTimeout {
+        /**
+         * @param millis the longest a read may block from now, > 0
+         * @throws IOException if it cannot be set (the socket closed)
+         */
+        void set(int millis) throws IOException;
+    }
+
+    /**
+     * The time limits of a stream.
+     *
+     * @param readTimeout      sets how long one read may block
+     * @param firstFrameNanos  the longest wait for the first whole frame
+     * @param idleNanos        the longest wait for each further whole frame
+     */
+    public record Timeouts(ReadTimeout readTimeout, long firstFrameNanos, long idleNanos) {
+    }
+
     private final InputStream in;
     private final int maxFrameSize;
-    private byte[] buf = new byte[64 * 1024];
+    private final Timeouts timeouts;
+    private byte[] buf = new byte[INITIAL];
     private int start;
     private int end;
     private int pending;
+    private long deadline;
+    private boolean first = true;
+    private int timeoutSet = -1;
 
     /**
+     * A reader without time limits (for streams whose other end is trusted, and tests).
+     *
      * @param in           the stream
      * @param maxFrameSize the largest frame accepted
      */
     public FrameStreamReader(InputStream in, int maxFrameSize) {
+        this(in, maxFrameSize, null);
+    }
+
+    /**
+     * @param in           the stream
+     * @param maxFrameSize the largest frame accepted
+     * @param timeouts     the time limits, or {@code null} for none
+     */
+    public FrameStreamReader(InputStream in, int maxFrameSize, Timeouts timeouts) {
         this.in = in;
         this.maxFrameSize = maxFrameSize;
+        this.timeouts = timeouts;
+        if (timeouts != null) {
+            deadline = System.nanoTime() + timeouts.firstFrameNanos();
+        }
     }
 
     /**
      * @return the next frame's length, or -1 at a clean end of stream (between frames)
-     * @throws FrameException if the stream holds garbage, a frame above the maximum, or ends inside a frame
+     * @throws FrameException if the stream holds garbage, a frame above the maximum, ends inside a
+     *                        frame, or a time limit passed
      * @throws IOException    if reading fails
      */
     public int next() throws IOException, FrameException {
         start += pending;
         pending = 0;
+        if (timeouts != null && !first) {
+            // counted from when the caller is done with the last frame (a listener may take long)
+            deadline = System.nanoTime() + timeouts.idleNanos();
+        }
+        if (buf.length > STREAMING && end - start <= STREAMING) {
+            // a large frame is done: give its memory back
+            byte[] small = new byte[STREAMING];
+            System.arraycopy(buf, start, small, 0, end - start);
+            end -= start;
+            start = 0;
+            buf = small;
+        }
         if (!fill(FrameCodec.PREFIX_LENGTH)) {
             if (end == start) {
                 return -1;
@@ -53,6 +126,7 @@ public final class FrameStreamReader {
             throw new FrameException(DropReason.TRUNCATED, "stream ended after " + (end - start) + " of a frame's " + length + " bytes");
         }
         pending = length;
+        first = false;
         return length;
     }
 
@@ -66,24 +140,64 @@ public final class FrameStreamReader {
         return start;
     }
 
-    private boolean fill(int needed) throws IOException {
+    /** @return the buffer's size now: what the stream holds of this connection's memory */
+    public int capacity() {
+        return buf.length;
+    }
+
+    private boolean fill(int needed) throws IOException, FrameException {
         if (end - start >= needed) {
             return true;
         }
-        if (buf.length - start < needed) {
-            byte[] target = buf.length < needed ? new byte[Math.max(needed, buf.length * 2)] : buf;
-            System.arraycopy(buf, start, target, 0, end - start);
+        if (buf.length - start < needed && start > 0) {
+            System.arraycopy(buf, start, buf, 0, end - start);
             end -= start;
             start = 0;
-            buf = target;
         }
         while (end - start < needed) {
-            int n = in.read(buf, end, buf.length - end);
+            if (end == buf.length) {
+                // full and the frame goes on: grow with what arrives, never beyond the frame
+                buf = Arrays.copyOf(buf, (int) Math.min(needed, 2L * buf.length));
+            }
+            int space = buf.length - end;
+            int n = read(needed);
             if (n < 0) {
                 return false;
             }
             end += n;
+            if (n == space && buf.length < STREAMING) {
+                // the peer sends faster than one buffer a read: read in larger chunks
+                buf = Arrays.copyOf(buf, buf.length * 2);
+            }
         }
         return true;
+    }
+
+    private int read(int needed) throws IOException, FrameException {
+        if (timeouts == null) {
+            return in.read(buf, end, buf.length - end);
+        }
+        long left = deadline - System.nanoTime();
+        if (left <= 0) {
+            throw timedOut(needed);
+        }
+        int millis = (int) Math.max(1, Math.min(Integer.MAX_VALUE, TimeUnit.NANOSECONDS.toMillis(left) + 1));
+        if (timeoutSet < 0 || Math.abs(millis - timeoutSet) > 20) {
+            timeouts.readTimeout().set(millis);
+            timeoutSet = millis;
+        }
+        try {
+            return in.read(buf, end, buf.length - end);
+        } catch (SocketTimeoutException e) {
+            throw timedOut(needed);
+        }
+    }
+
+    private FrameException timedOut(int needed) {
+        long limit = TimeUnit.NANOSECONDS.toMillis(first ? timeouts.firstFrameNanos() : timeouts.idleNanos());
+        String since = first ? "since it opened" : "since its last whole frame";
+        String got = end == start ? "nothing of a frame arrived"
+                : (end - start) + " bytes arrived" + (needed > FrameCodec.PREFIX_LENGTH ? " of a frame's " + needed : " of a frame prefix");
+        return new FrameException(DropReason.TIMED_OUT, "no whole frame within " + limit + " ms " + since + " (" + got + ")");
     }
 }

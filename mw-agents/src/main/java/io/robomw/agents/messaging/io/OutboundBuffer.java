@@ -47,7 +47,9 @@ public final class OutboundBuffer {
         void write(byte[] buf, int offset, int length) throws IOException;
     }
 
-    private static final int INITIAL = 64 * 1024;
+    /** Each of the two buffers starts this small and doubles as frames wait: an idle link holds 8 KiB. */
+    private static final int INITIAL = 4 * 1024;
+    private static final byte[] EMPTY = new byte[0];
     private static final int LINGER_BYTES = 32 * 1024;
     private static final long LINGER_NANOS = 50_000;
     /** Naps of {@link #LINGER_NANOS} the writer takes on an empty buffer before it waits to be signalled (about 1 ms). */
@@ -108,6 +110,12 @@ public final class OutboundBuffer {
                 writeLoop(out);
             } catch (IOException e) {
                 close();
+                lock.lock();
+                try {
+                    release();
+                } finally {
+                    lock.unlock();
+                }
                 onError.accept(e);
             }
         });
@@ -193,6 +201,33 @@ public final class OutboundBuffer {
     }
 
     /**
+     * Queues a frame for the writer thread if nothing has been sent for {@code silentNanos} and
+     * nothing waits or is being written; never blocks (a keep-alive from a housekeeping thread
+     * must not wait for a peer that does not read).
+     *
+     * @param frame       an encoded frame (copied)
+     * @param nowNanos    now
+     * @param silentNanos how long the link must have been silent
+     * @return whether it was queued
+     */
+    public boolean sendIfSilent(byte[] frame, long nowNanos, long silentNanos) {
+        if (!lock.tryLock()) {
+            return false;
+        }
+        try {
+            if (closed || used > 0 || batchTaken || writing || nowNanos - lastSendNanos < silentNanos) {
+                return false;
+            }
+            append(frame); // re-entrant; never waits: the buffer is empty and holds at least one frame
+            return true;
+        } catch (IOException e) {
+            return false;
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    /**
      * Takes everything waiting, for a transport whose peer fetches frames (no writer thread).
      *
      * @param waitNanos how long to wait for something to arrive
@@ -210,6 +245,9 @@ public final class OutboundBuffer {
             writerWaiting = false;
             byte[] out = java.util.Arrays.copyOf(fill, used);
             used = 0;
+            if (closed) {
+                release();
+            }
             hasRoom.signalAll();
             return out;
         } finally {
@@ -217,11 +255,18 @@ public final class OutboundBuffer {
         }
     }
 
-    /** Stops accepting frames; the writer thread ends after what is waiting. Idempotent. */
+    /**
+     * Stops accepting frames; the writer thread ends after what is waiting, and the buffers are
+     * given back (a closed link may stay referenced for a while, by a request it sent that
+     * waits for its reply: it must not keep its memory). Idempotent.
+     */
     public void close() {
         lock.lock();
         try {
             closed = true;
+            if (writer == null && used == 0) {
+                release();
+            }
             if (lingering) {
                 LockSupport.unpark(writerThread);
             }
@@ -278,6 +323,12 @@ public final class OutboundBuffer {
         return writing && nowNanos - writingSinceNanos > limitNanos;
     }
 
+    /** Gives the buffers back once closed and empty (called with the lock held). */
+    private void release() {
+        fill = EMPTY;
+        spare = EMPTY;
+    }
+
     private void writeLoop(Writer out) throws IOException {
         int idlePolls = 0;
         while (true) {
@@ -304,6 +355,7 @@ public final class OutboundBuffer {
                 idlePolls = IDLE_POLLS;
                 writerWaiting = false;
                 if (used == 0) {
+                    release();
                     return;
                 }
                 if (used < LINGER_BYTES && !closed) {

@@ -1,6 +1,7 @@
 package io.robomw.agents.messaging.rmi;
 
 import io.robomw.agents.messaging.Address;
+import io.robomw.agents.messaging.DropReason;
 import io.robomw.agents.messaging.io.OutboundBuffer;
 import io.robomw.agents.messaging.spi.Endpoint;
 import io.robomw.agents.messaging.spi.TransportContext;
@@ -23,7 +24,10 @@ import java.util.concurrent.TimeUnit;
 /**
  * The server side of the RMI transport: the exported {@link FrameEndpoint} and its sessions.
  * Frames a client delivers are handed to the node on RMI's call thread (listeners run there).
- * A session that has not polled for {@value #SESSION_TIMEOUT_SECONDS} s is closed.
+ * A session that has not polled for {@value #SESSION_TIMEOUT_SECONDS} s is closed; at most
+ * {@link io.robomw.agents.messaging.PeerLimits#maxConnections()} sessions are open at once (one more
+ * is refused with a {@link RemoteException} naming the limit), and a call's byte array may not be
+ * larger than one outbound buffer (RMI's deserialization filter refuses it before it is read).
  */
 final class RmiEndpoint implements Endpoint, FrameEndpoint {
 
@@ -54,7 +58,17 @@ final class RmiEndpoint implements Endpoint, FrameEndpoint {
     }
 
     @Override
-    public long open(String peerName) {
+    public long open(String peerName) throws RemoteException {
+        int max = context.settings().limits().maxConnections();
+        if (peerName == null || peerName.length() > 256) {
+            peerName = peerName == null ? "?" : peerName.substring(0, 256) + "...";
+        }
+        if (sessions.size() >= max) {
+            String why = "node '" + context.nodeName() + "' at " + address + " serves at most " + max
+                    + " sessions (maxConnections) and has that many; try again later";
+            context.dropped(DropReason.LIMIT, "rmi-session:" + peerName, "session refused: " + max + " sessions are open (maxConnections)");
+            throw new RemoteException(why);
+        }
         long id = random.nextLong();
         String host;
         try {

@@ -27,8 +27,17 @@ import java.util.concurrent.CopyOnWriteArrayList;
  */
 final class RmiTransport implements Transport {
 
-    /** What may be deserialized in calls to a {@link FrameEndpoint}: its arguments are a long and a byte array. */
-    static final ObjectInputFilter CALL_FILTER = ObjectInputFilter.Config.createFilter("maxdepth=3;[B;!*");
+    /**
+     * What may be deserialized in calls to a {@link FrameEndpoint}: its arguments are a long and a
+     * byte array of at most one outbound buffer's bytes (a client never delivers more at once).
+     *
+     * @param settings the node's settings
+     * @return the filter
+     */
+    static ObjectInputFilter callFilter(io.robomw.agents.messaging.MessagingSettings settings) {
+        return ObjectInputFilter.Config.createFilter("maxdepth=3;maxarray=" + Math.max(settings.outboundBufferBytes(), settings.maxFrameSize())
+                + ";[B;!*");
+    }
 
     private final TransportContext context;
     private final List<AutoCloseable> open = new CopyOnWriteArrayList<>();
@@ -64,7 +73,7 @@ final class RmiTransport implements Transport {
         Address bound = address.withPort(port);
         RmiEndpoint endpoint = new RmiEndpoint(bound, context, registry, own);
         try {
-            FrameEndpoint stub = (FrameEndpoint) UnicastRemoteObject.exportObject(endpoint, own ? address.port() : 0, csf, ssf, CALL_FILTER);
+            FrameEndpoint stub = (FrameEndpoint) UnicastRemoteObject.exportObject(endpoint, own ? address.port() : 0, csf, ssf, callFilter(context.settings()));
             registry.rebind(address.path(), stub);
         } catch (RemoteException e) {
             endpoint.close();

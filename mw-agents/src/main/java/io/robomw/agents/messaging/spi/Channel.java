@@ -51,6 +51,20 @@ public interface Channel {
     }
 
     /**
+     * Sends a keep-alive frame if the channel has sent nothing for {@code silentNanos} and nothing
+     * waits to be sent; never blocks (the node calls it from its housekeeping thread). Channels
+     * whose peer does not time out idle links (datagrams, RMI sessions, brokers) ignore it.
+     *
+     * @param frame       an encoded {@code KEEPALIVE} frame
+     * @param nowNanos    now, from {@link System#nanoTime()}
+     * @param silentNanos how long the channel must have been silent
+     * @return whether it was queued
+     */
+    default boolean keepAlive(byte[] frame, long nowNanos, long silentNanos) {
+        return false;
+    }
+
+    /**
      * @return whether frames from it were sent to a group (multicast): a message there reaches
      *         every member, so one not meant for this node is ignored quietly rather than refused
      */

@@ -42,6 +42,12 @@ public interface TransportContext {
     void dropped(DropReason reason, String where, String detail);
 
     /**
+     * @param why why the node refuses a connection (it serves its maximum already)
+     * @return an encoded frame saying so (an ERROR with correlation id zero), to write before closing it
+     */
+    byte[] refusal(String why);
+
+    /**
      * A connection (accepted or opened) is ready: the node sends it its subscriptions.
      *
      * @param channel the connection

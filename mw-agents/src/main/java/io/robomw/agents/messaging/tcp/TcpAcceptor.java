@@ -10,8 +10,15 @@ import java.io.IOException;
 import java.net.ServerSocket;
 import java.net.Socket;
 import java.util.List;
+import java.util.concurrent.atomic.AtomicInteger;
+import javax.net.ssl.SSLSocket;
+import io.robomw.agents.messaging.DropReason;
 
-/** A listening TCP socket: accepts connections on its own thread and starts a {@link TcpConnection} for each. */
+/**
+ * A listening TCP socket: accepts connections on its own thread and starts a {@link TcpConnection}
+ * for each, up to {@link io.robomw.agents.messaging.PeerLimits#maxConnections()} at once; a peer
+ * beyond it gets a refusal frame naming the limit and is closed.
+ */
 final class TcpAcceptor implements Endpoint {
 
     private static final Logger LOG = LoggerFactory.getLogger(TcpAcceptor.class);
@@ -20,6 +27,15 @@ final class TcpAcceptor implements Endpoint {
     private final Address address;
     private final TransportContext context;
     private final List<AutoCloseable> open;
+    private final AtomicInteger accepted = new AtomicInteger();
+    /** Refused sockets waiting to be closed; touched by the accepting thread only (and by close, after it). */
+    private final java.util.ArrayDeque<Refused> refused = new java.util.ArrayDeque<>();
+
+    private static final int MAX_REFUSED_WAITING = 64;
+    private static final long REFUSED_GRACE_NANOS = 1_000_000_000L;
+
+    private record Refused(Socket socket, long sinceNanos) {
+    }
 
     TcpAcceptor(ServerSocket server, Address address, TransportContext context, List<AutoCloseable> open) {
         this.server = server;
@@ -47,10 +63,21 @@ final class TcpAcceptor implements Endpoint {
     }
 
     private void acceptLoop() {
+        try {
+            serve();
+        } finally {
+            for (Refused r; (r = refused.pollFirst()) != null; ) {
+                closeQuietly(r.socket());
+            }
+        }
+    }
+
+    private void serve() {
         while (!server.isClosed()) {
             Socket s;
             try {
                 s = server.accept();
+                closeRefused();
             } catch (IOException e) {
                 if (!server.isClosed()) {
                     LOG.warn("node '{}': accepting on {} failed: {}", context.nodeName(), address, e.toString());
@@ -58,15 +85,65 @@ final class TcpAcceptor implements Endpoint {
                 continue;
             }
             String peer = "tcp://" + s.getInetAddress().getHostAddress() + ":" + s.getPort();
+            int max = context.settings().limits().maxConnections();
+            if (accepted.incrementAndGet() > max) {
+                accepted.decrementAndGet();
+                refuse(s, peer, max);
+                continue;
+            }
             TcpConnection c;
             try {
-                c = new TcpConnection(s, address, peer, context, open);
+                c = new TcpConnection(s, address, peer, context, open, accepted::decrementAndGet);
             } catch (IOException | RuntimeException | LinkageError e) {
+                accepted.decrementAndGet();
                 LOG.warn("node '{}': connection from {} failed: {}", context.nodeName(), peer, e.toString());
                 closeQuietly(s);
                 continue;
             }
             c.start();
+        }
+    }
+
+    /**
+     * Tells a peer beyond the limit why it is refused (one small frame, which a fresh socket's
+     * send buffer takes without blocking), then closes. The refusal is counted and logged as
+     * {@link DropReason#LIMIT}, at most one line a second.
+     */
+    private void refuse(Socket s, String peer, int max) {
+        String why = "node '" + context.nodeName() + "' at " + address + " serves at most " + max
+                + " connections (maxConnections) and has that many; try again later";
+        context.dropped(DropReason.LIMIT, peer, "connection refused: " + max + " connections are open (maxConnections)");
+        try {
+            if (!(s instanceof SSLSocket)) {
+                // no TLS handshake for a peer that is refused anyway: a plain refusal frame, or nothing
+                s.getOutputStream().write(context.refusal(why));
+                s.shutdownOutput();
+                // Closed a little later: closing a socket with unread input resets the connection,
+                // and a reset can overtake the refusal at the peer (which sends its first frames
+                // at once). The peer closes its side when it reads the refusal.
+                refused.addLast(new Refused(s, System.nanoTime()));
+                return;
+            }
+        } catch (IOException e) {
+            LOG.debug("node '{}': refusing {}: {}", context.nodeName(), peer, e.toString());
+        }
+        closeQuietly(s);
+    }
+
+    /** Closes refused sockets after their grace, and the oldest beyond {@value #MAX_REFUSED_WAITING}. */
+    private void closeRefused() {
+        long now = System.nanoTime();
+        for (Refused r; (r = refused.peekFirst()) != null; ) {
+            if (refused.size() <= MAX_REFUSED_WAITING && now - r.sinceNanos() < REFUSED_GRACE_NANOS) {
+                break;
+            }
+            refused.pollFirst();
+            try {
+                r.socket().getInputStream().skip(r.socket().getInputStream().available());
+            } catch (IOException e) {
+                // closing anyway
+            }
+            closeQuietly(r.socket());
         }
     }
 

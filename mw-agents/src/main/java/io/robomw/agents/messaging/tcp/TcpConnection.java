@@ -1,6 +1,8 @@
 package io.robomw.agents.messaging.tcp;
 
 import io.robomw.agents.messaging.Address;
+import io.robomw.agents.messaging.DropReason;
+import io.robomw.agents.messaging.PeerLimits;
 import io.robomw.agents.messaging.frame.FrameException;
 import io.robomw.agents.messaging.io.FrameStreamReader;
 import io.robomw.agents.messaging.io.OutboundBuffer;
@@ -15,13 +17,15 @@ import java.io.InputStream;
 import java.io.OutputStream;
 import java.net.Socket;
 import java.net.SocketException;
+import java.net.SocketTimeoutException;
 import java.util.concurrent.atomic.AtomicBoolean;
 
 /**
  * One TCP connection, accepted or opened: a reader thread that frames the stream and hands each
  * frame to the node (listeners run on it), and an {@link OutboundBuffer} with its writer thread.
- * Garbage, an oversized length or a cut-off frame end this connection only (counted and logged
- * by the node); the endpoint keeps accepting others.
+ * Garbage, an oversized length, a cut-off frame, or no whole frame within the first-frame or
+ * idle timeout ({@link PeerLimits}) end this connection only (counted and logged by the node); the
+ * endpoint keeps accepting others. Its read buffer grows only with the bytes that arrive.
  */
 final class TcpConnection implements Link {
 
@@ -37,9 +41,17 @@ final class TcpConnection implements Link {
     private final OutputStream out;
     private final AtomicBoolean closed = new AtomicBoolean();
     private final java.util.List<AutoCloseable> registry;
+    private final Runnable onClose;
     private volatile Thread reader;
 
     TcpConnection(Socket socket, Address address, String peer, TransportContext context, java.util.List<AutoCloseable> registry) throws IOException {
+        this(socket, address, peer, context, registry, () -> { });
+    }
+
+    /** @param onClose run once when it closes (an acceptor counts its connections) */
+    TcpConnection(Socket socket, Address address, String peer, TransportContext context, java.util.List<AutoCloseable> registry,
+                  Runnable onClose) throws IOException {
+        this.onClose = onClose;
         this.registry = registry;
         this.socket = socket;
         this.address = address;
@@ -54,6 +66,9 @@ final class TcpConnection implements Link {
 
     void start() {
         registry.add(this);
+        // Known to the node before any thread runs: a peer that connects and drops at once makes
+        // the reader close this connection, and the node must already know it to forget it.
+        context.opened(this);
         String role = "tcp-" + (socket.getLocalPort()) + "-" + socket.getPort();
         outbound.startWriter((b, o, l) -> {
             out.write(b, o, l);
@@ -62,7 +77,6 @@ final class TcpConnection implements Link {
         Thread t = context.threads(role + "-read").newThread(this::readLoop);
         reader = t;
         t.start();
-        context.opened(this);
     }
 
     @Override
@@ -96,6 +110,11 @@ final class TcpConnection implements Link {
     }
 
     @Override
+    public boolean keepAlive(byte[] frame, long nowNanos, long silentNanos) {
+        return outbound.sendIfSilent(frame, nowNanos, silentNanos);
+    }
+
+    @Override
     public boolean stuck(long nowNanos, long limitNanos) {
         return outbound.stuck(nowNanos, limitNanos);
     }
@@ -114,6 +133,7 @@ final class TcpConnection implements Link {
                 LOG.debug("closing {}: {}", peer, e.toString());
             }
             registry.remove(this);
+            onClose.run();
             context.closed(this);
         }
     }
@@ -124,9 +144,12 @@ final class TcpConnection implements Link {
     }
 
     private void readLoop() {
-        FrameStreamReader frames = new FrameStreamReader(in, context.settings().maxFrameSize());
+        PeerLimits limits = context.settings().limits();
+        FrameStreamReader frames = new FrameStreamReader(in, context.settings().maxFrameSize(),
+                new FrameStreamReader.Timeouts(socket::setSoTimeout, limits.firstFrameTimeout().toNanos(), limits.idleTimeout().toNanos()));
         try {
             if (socket instanceof SSLSocket ssl) {
+                socket.setSoTimeout((int) limits.firstFrameTimeout().toMillis());
                 ssl.startHandshake();
             }
             int length;
@@ -135,6 +158,11 @@ final class TcpConnection implements Link {
             }
         } catch (FrameException e) {
             context.dropped(e.reason(), peer, e.getMessage() + "; closing this connection");
+        } catch (SocketTimeoutException e) {
+            if (!closed.get()) {
+                context.dropped(DropReason.TIMED_OUT, peer, "no TLS handshake within " + limits.firstFrameTimeout().toMillis()
+                        + " ms; closing this connection");
+            }
         } catch (SocketException e) {
             if (!closed.get()) {
                 LOG.debug("node '{}': connection {} ended: {}", context.nodeName(), peer, e.toString());

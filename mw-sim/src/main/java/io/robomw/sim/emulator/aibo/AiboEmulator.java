@@ -44,6 +44,8 @@ import java.util.concurrent.atomic.AtomicLong;
 public final class AiboEmulator implements Emulator {
 
     private static final Logger LOG = LoggerFactory.getLogger(AiboEmulator.class);
+    /** One line a second at most about refused clients: a flood of connections must not flood the log. */
+    private final io.robomw.platform.ThrottledWarnings refusedWarnings = new io.robomw.platform.ThrottledWarnings(LOG, java.time.Duration.ofSeconds(1));
 
     /** Clients served at once. */
     public static final int MAX_CLIENTS = 8;
@@ -154,7 +156,7 @@ public final class AiboEmulator implements Emulator {
                 continue;
             }
             if (clients.size() >= MAX_CLIENTS) {
-                LOG.warn("aibo emulator for '{}': refused {}: {} clients already", robot.name(), socket.getRemoteSocketAddress(), MAX_CLIENTS);
+                refusedWarnings.warn("aibo emulator for '{}': refused {}: {} clients already", robot.name(), socket.getRemoteSocketAddress(), MAX_CLIENTS);
                 quietly(socket);
                 continue;
             }

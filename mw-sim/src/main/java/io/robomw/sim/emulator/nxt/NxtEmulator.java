@@ -61,6 +61,8 @@ public final class NxtEmulator extends BrickEmulator {
         }
     }
 
+    private volatile int refuseWith;
+
     /**
      * An NXT with firmware 1.29 or later (which has UPDATE_RESET_COUNT).
      *
@@ -186,6 +188,17 @@ public final class NxtEmulator extends BrickEmulator {
 
     // ---- I/O thread ----
 
+    /**
+     * A faulty brick, for tests of what users see then: from now on every telegram that wants a
+     * reply is answered with this status and nothing is done (as a brick whose firmware refuses
+     * everything would); 0 makes it behave again.
+     *
+     * @param status an NXT status byte ({@link NxtStatus}), or 0
+     */
+    public void refuseEverythingWith(int status) {
+        refuseWith = status;
+    }
+
     @Override
     protected byte[] handle(byte[] frame) {
         if (frame.length < 2) {
@@ -195,6 +208,10 @@ public final class NxtEmulator extends BrickEmulator {
         int op = frame[1] & 0xFF;
         served.computeIfAbsent(op << 8 | (frame.length > 2 ? frame[2] & 0xFF : 0xFF), k -> new java.util.concurrent.atomic.AtomicLong()).incrementAndGet();
         boolean wantsReply = (type & 0x80) == 0;
+        int refusal = refuseWith;
+        if (refusal != 0) {
+            return wantsReply ? status(op, refusal) : null;
+        }
         byte[] reply;
         if ((type & 0x7F) == NxtTelegram.SYSTEM) {
             reply = system(op);

@@ -4,6 +4,7 @@ import io.robomw.api.Pose;
 import io.robomw.api.Position;
 import io.robomw.api.ReturnType;
 import io.robomw.api.Robot;
+import io.robomw.api.RobotException;
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.SensorType;
 import io.robomw.platform.nxt.NxtTelegram;
@@ -12,6 +13,8 @@ import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.BeforeEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
+import org.junit.jupiter.params.ParameterizedTest;
+import org.junit.jupiter.params.provider.ValueSource;
 
 import java.io.IOException;
 import java.nio.file.Path;
@@ -22,6 +25,7 @@ import java.util.concurrent.TimeUnit;
 import java.util.concurrent.locks.LockSupport;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertInstanceOf;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
@@ -199,6 +203,26 @@ public class NxtEmulatorTest {
     void shouldReadLightFromFloor() throws Exception {
         start(1.0);
         assertEquals(80.0, robot.getValue(Position.BOTTOM, SensorType.LIGHT, ReturnType.PERCENT), 0.2);
+    }
+
+    @ParameterizedTest(name = "status 0x{0}")
+    @ValueSource(strings = {"BE", "C0", "DD", "FF"})
+    void brickThatRefusesEveryCommandFailsTheMoveAtOnceWithItsStatusAndTelegram(String hex) throws Exception {
+        int status = Integer.parseInt(hex, 16);
+        start(0.5);
+        stack.emulator().refuseEverythingWith(status);
+        long asked = System.nanoTime();
+
+        RobotException e = assertThrows(RobotException.class, () -> robot.move(0.5, 0.2));
+
+        long millis = (System.nanoTime() - asked) / 1_000_000;
+        assertTrue(millis < 3000, "the refusal took " + millis + " ms to reach the caller (it waited for the motor, 11 s, before)");
+        assertTrue(e.getMessage().contains("NXT refused") && e.getMessage().contains("status 0x" + hex)
+                && e.getMessage().contains("telegram "), e.getMessage());
+        assertFalse(e.getMessage().contains("blocked"), "the brick's refusal is not the motor's fault: " + e.getMessage());
+
+        stack.emulator().refuseEverythingWith(0);
+        robot.move(0.1, 0.2);
     }
 
     @Test

@@ -1,0 +1,50 @@
+package io.robomw.agents.host;
+
+import io.robomw.agents.host.code.CodeArchive;
+import org.junit.jupiter.api.Test;
+
+import java.io.InvalidClassException;
+import java.rmi.RemoteException;
+import java.rmi.registry.LocateRegistry;
+
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+/**
+ * Before a peer has proved the cluster key, its calls may carry only small arrays: a large one is
+ * refused by the deserialization filter before it is read (issue 15: 8 parallel 60 MiB calls
+ * without the key grew a host's RSS by 140 MB). Once a peer at that address has proved the key,
+ * large calls are read again.
+ */
+class UnprovenCallsTest {
+
+    private static final ClusterKey KEY = ClusterKey.fromPassphrase("unproven calls");
+
+    @Test
+    void largeCallsAreReadOnlyFromHostsWhosePeerProvedTheKey() throws Exception {
+        try (AgentHost host = AgentHost.builder("guarded").clusterKey(KEY).start()) {
+            HostAddress a = HostAddress.parse(host.address());
+            AgentHostRemote stranger = (AgentHostRemote) LocateRegistry.getRegistry(a.host(), a.port(), new HostSockets.Client(a.host(), false, 10_000))
+                    .lookup(a.name());
+
+            RemoteException tooLarge = assertThrows(RemoteException.class, () -> stranger.call(new byte[1 << 20]));
+            assertTrue(refusedByTheFilter(tooLarge), "refused before it was read: " + tooLarge);
+            assertThrows(RemoteException.class, () -> stranger.authenticate(new byte[HostEndpoint.UNPROVEN_MAX_BYTES + 1]));
+            assertTrue(Session.isUnknownSession(stranger.call(new byte[1000])), "a small call is read, and answered: no such session");
+
+            HostProbe peer = new HostProbe(host.address(), KEY);
+            byte[] large = new byte[200_000];
+            String answer = peer.putArchive(CodeArchive.Digest.of(new byte[] {1}), large);
+            assertTrue(answer.startsWith("REFUSED"), "the proved peer's large call was read and answered: " + answer);
+        }
+    }
+
+    private static boolean refusedByTheFilter(Throwable e) {
+        for (Throwable t = e; t != null; t = t.getCause()) {
+            if (t instanceof InvalidClassException && String.valueOf(t.getMessage()).contains("REJECTED")) {
+                return true;
+            }
+        }
+        return false;
+    }
+}
