@@ -1,6 +1,7 @@
 package io.robomw.platform;
 
 import io.robomw.api.Clock;
+import io.robomw.api.RobotException;
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.spi.MotorCommand;
 import io.robomw.api.spi.PlatformConfig;
