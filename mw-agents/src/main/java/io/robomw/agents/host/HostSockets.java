@@ -58,16 +58,21 @@ final class HostSockets {
 
         @Override
         public ServerSocket createServerSocket(int port) throws IOException {
-            return RmiSocketSetup.listen(() -> new CountingServerSocket(counters), tls, bindAddress, port);
+            // Plain and TLS endpoints alike accept through the counting socket, so the connection
+            // limit holds for both; a TLS connection is layered over the counted one once accepted
+            // (its handshake runs on RMI's connection thread, at the first read).
+            return RmiSocketSetup.listen(() -> new CountingServerSocket(counters, tls), null, bindAddress, port);
         }
     }
 
-    /** A server socket whose connections count their bytes. */
+    /** A server socket whose connections count their bytes, at most {@link #MAX_CONNECTIONS} at a time, TLS ones too. */
     private static final class CountingServerSocket extends ServerSocket {
         private final Counters counters;
+        private final SSLContext tls;
 
-        CountingServerSocket(Counters counters) throws IOException {
+        CountingServerSocket(Counters counters, SSLContext tls) throws IOException {
             this.counters = counters;
+            this.tls = tls;
         }
 
         @Override
@@ -82,7 +87,20 @@ final class HostSockets {
                     continue;
                 }
                 s.setTcpNoDelay(true);
-                return s;
+                if (tls == null) {
+                    return s;
+                }
+                try {
+                    // closing the TLS socket closes the counted one (autoClose), which gives the slot back
+                    javax.net.ssl.SSLSocket ssl = (javax.net.ssl.SSLSocket) tls.getSocketFactory()
+                            .createSocket(s, s.getInetAddress().getHostAddress(), s.getPort(), true);
+                    ssl.setUseClientMode(false);
+                    ssl.setNeedClientAuth(true);
+                    return ssl;
+                } catch (IOException e) {
+                    s.close();
+                    throw e;
+                }
             }
         }
     }

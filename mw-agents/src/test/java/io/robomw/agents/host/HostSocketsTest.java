@@ -11,6 +11,7 @@ import java.net.ServerSocket;
 import java.net.Socket;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
 
 class HostSocketsTest {
 
@@ -82,6 +83,44 @@ class HostSocketsTest {
                 assertEquals(1, counters.refused.sum());
             }
             held.get(1).close(); // the server side of the first connection: a slot again
+            try (Socket next = new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort())) {
+                held.add(accepting.get(10, java.util.concurrent.TimeUnit.SECONDS));
+                assertEquals(HostSockets.MAX_CONNECTIONS, counters.open.get());
+            }
+        } finally {
+            for (Socket s : held) {
+                s.close();
+            }
+        }
+    }
+
+    /** A TLS endpoint keeps the same limit: connections are counted before their handshake, and one more is closed at once. */
+    @Test
+    void aTlsServerSocketBeyondItsConnectionLimitClosesTheNextOneAtOnce(@org.junit.jupiter.api.io.TempDir java.nio.file.Path dir) throws Exception {
+        javax.net.ssl.SSLContext tls = io.robomw.agents.messaging.TestKeys.create(dir).node().context();
+        HostSockets.Counters counters = new HostSockets.Counters();
+        java.util.List<Socket> held = new java.util.ArrayList<>();
+        try (ServerSocket server = new HostSockets.Server(InetAddress.getLoopbackAddress(), tls, counters).createServerSocket(0)) {
+            for (int i = 0; i < HostSockets.MAX_CONNECTIONS; i++) {
+                held.add(new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort()));
+                Socket accepted = server.accept();
+                assertTrue(accepted instanceof javax.net.ssl.SSLSocket, "a TLS endpoint hands RMI TLS sockets");
+                held.add(accepted);
+            }
+            assertEquals(HostSockets.MAX_CONNECTIONS, counters.open.get());
+            java.util.concurrent.CompletableFuture<Socket> accepting = java.util.concurrent.CompletableFuture.supplyAsync(() -> {
+                try {
+                    return server.accept();
+                } catch (java.io.IOException e) {
+                    throw new java.io.UncheckedIOException(e);
+                }
+            });
+            try (Socket extra = new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort())) {
+                extra.setSoTimeout(10_000);
+                assertEquals(-1, extra.getInputStream().read(), "the connection beyond the limit was closed before any handshake");
+                assertEquals(1, counters.refused.sum());
+            }
+            held.get(1).close(); // the TLS socket closes the counted one under it: a slot again
             try (Socket next = new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort())) {
                 held.add(accepting.get(10, java.util.concurrent.TimeUnit.SECONDS));
                 assertEquals(HostSockets.MAX_CONNECTIONS, counters.open.get());
