@@ -65,7 +65,7 @@ final class Calls implements HostEndpoint.Handler {
     /** What a watcher sees: body = the last event number it saw (u64), or nothing for all. */
     private Reply onWatch(byte[] body) {
         long since = body.length >= 8 ? java.nio.ByteBuffer.wrap(body).getLong() : 0;
-        return Reply.ok(host.activity.watchReply(host.name, host.robot == null ? "" : host.robot.name(), host.hosted.values(), since));
+        return Reply.ok(host.activity.watchReply(host.name, host.robot == null ? "" : host.robot.name(), host.hosted.values(), since, owed.owed()));
     }
 
     private Reply onDropOwed(String peer, byte[] body) {

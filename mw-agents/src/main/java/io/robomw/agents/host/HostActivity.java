@@ -83,6 +83,16 @@ final class HostActivity {
      * @return the body
      */
     byte[] watchReply(String hostName, String robotName, Collection<HostedAgent> agents, long since) {
+        return watchReply(hostName, robotName, agents, since, null);
+    }
+
+    /**
+     * The answer to {@link Op#WATCH}, with the deliveries the host owes agents' homes (tag 4: per
+     * home, how many and since when the oldest is owed).
+     *
+     * @param owed what the host owes, or {@code null} to leave the section out
+     */
+    byte[] watchReply(String hostName, String robotName, Collection<HostedAgent> agents, long since, List<OwedDelivery> owed) {
         try {
             ByteArrayOutputStream bytes = new ByteArrayOutputStream();
             DataOutputStream out = new DataOutputStream(bytes);
@@ -124,6 +134,22 @@ final class HostActivity {
                     s.writeUTF(e.detail());
                 }
             });
+            if (owed != null) {
+                java.util.Map<String, long[]> byHome = new java.util.TreeMap<>(); // home -> {count, oldest millis}
+                for (OwedDelivery o : owed) {
+                    long[] c = byHome.computeIfAbsent(o.home(), k -> new long[] {0, Long.MAX_VALUE});
+                    c[0]++;
+                    c[1] = Math.min(c[1], o.owedSince().toEpochMilli());
+                }
+                section(out, HostWatch.SECTION_OWED, s -> {
+                    s.writeInt(byHome.size());
+                    for (java.util.Map.Entry<String, long[]> e : byHome.entrySet()) {
+                        s.writeUTF(e.getKey());
+                        s.writeInt((int) Math.min(Integer.MAX_VALUE, e.getValue()[0]));
+                        s.writeLong(e.getValue()[1]);
+                    }
+                });
+            }
             out.flush();
             return bytes.toByteArray();
         } catch (IOException e) {

@@ -26,7 +26,8 @@ import java.util.UUID;
  *   tag 2 agents:  n:u32, n x { id:u64 u64, class:utf, status:utf (AgentStatus name), hop:u64, home:utf,
  *                  known:bool, [stops:u32 x { host:utf outcome:utf ("" = ahead) detail:utf round:u32 }, current:i32] }
  *   tag 3 events:  next:u64, n:u32, n x { seq:u64 timeMillis:u64 id:u64 u64 class:utf kind:utf host:utf detail:utf }
- *   tag 4 owed:    reserved for deliveries owed to homes (reported from the agents' delivery issue on)
+ *   tag 4 owed:    n:u32, n x { home:utf count:u32 oldestMillis:u64 } (deliveries owed to agents' homes, per home;
+ *                  absent from hosts that do not report them)
  * </pre>
  * A watcher skips sections whose tag it does not know, so hosts can say more without breaking older
  * watchers; an unknown version, a section running past the end, or a malformed string is an
@@ -39,7 +40,7 @@ public final class HostWatch {
     static final int SECTION_HOST = 1;
     static final int SECTION_AGENTS = 2;
     static final int SECTION_EVENTS = 3;
-    /** Reserved: deliveries owed to agents' homes. */
+    /** Deliveries owed to agents' homes, per home. */
     static final int SECTION_OWED = 4;
 
     /**
@@ -172,6 +173,19 @@ public final class HostWatch {
                         events = list;
                         long first = list.isEmpty() ? next : list.get(0).seq();
                         missed = Math.max(0, first - since - 1);
+                    }
+                    case SECTION_OWED -> {
+                        int n = count(host, s, "homes owed");
+                        List<Owed> list = new ArrayList<>(n);
+                        for (int i = 0; i < n; i++) {
+                            String home = s.readUTF();
+                            int c = s.readInt();
+                            if (c < 0) {
+                                throw new IOException(host + " answered WATCH with " + c + " deliveries owed to " + home);
+                            }
+                            list.add(new Owed(home, c, s.readLong()));
+                        }
+                        owed = list;
                     }
                     default -> {
                         // a section a newer host sends: skipped

@@ -15,7 +15,6 @@ import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.atomic.AtomicReference;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
-import static org.junit.jupiter.api.Assertions.assertNull;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
@@ -60,7 +59,7 @@ class HostWatchTest {
         HostWatch.Snapshot s = last.get();
         assertEquals("a", s.name());
         assertEquals("", s.robot());
-        assertNull(s.owed(), "hosts do not report owed deliveries yet");
+        assertTrue(s.owed() != null, "a host reports what it owes (the report on its way home may be listed)");
         HostWatch.Agent seen = s.agents().get(0);
         assertEquals(ref.id(), seen.id());
         assertEquals(VisitorAgent.class.getName(), seen.className());

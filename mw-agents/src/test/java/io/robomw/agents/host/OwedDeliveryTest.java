@@ -57,6 +57,27 @@ class OwedDeliveryTest {
         return AgentImage.decode(image).id();
     }
 
+    /** What the console shows on a host's card: WATCH carries the deliveries owed, per home, with the oldest's time. */
+    @Test
+    void aWatcherSeesTheDeliveriesOwedPerHome() throws Exception {
+        AgentHost a = started(AgentHost.builder("a"));
+        HostWatch watch = HostWatch.of(a.address(), KEY, false, "test-console");
+        assertEquals(List.of(), watch.poll().owed(), "nothing owed yet, and the host says so");
+        Instant before = Instant.now();
+        sendAgentWithAGoneHome(a);
+        try (HostClient operator = new HostClient(KEY, false, 10_000)) {
+            Await.until("the report, the visits and the result are owed", Duration.ofSeconds(10), () -> owedAt(operator, a).size() == 3);
+            List<HostWatch.Owed> owed = watch.poll().owed();
+            assertEquals(1, owed.size(), "one home: " + owed);
+            assertEquals("rmi://127.0.0.1:1/probe-home", owed.get(0).home());
+            assertEquals(3, owed.get(0).count());
+            assertTrue(owed.get(0).oldestMillis() >= before.minusSeconds(1).toEpochMilli() && owed.get(0).oldestMillis() <= System.currentTimeMillis(),
+                    "owed since " + owed.get(0).oldestMillis());
+            operator.dropOwed(a.address(), OwedSelector.all());
+            assertEquals(List.of(), watch.poll().owed(), "dropped: nothing owed");
+        }
+    }
+
     @Test
     void deliveriesOwedToAGoneHomeAreListedWithTheirAgeAndTriesAndDroppedByTheOperator() throws Exception {
         AgentHost a = started(AgentHost.builder("a").store(dir.resolve("a")));
