@@ -19,7 +19,7 @@ import java.util.stream.Stream;
  * @param threadGroups the most numerous kinds of thread (names without their numbers), for when a bound is broken
  * @param topClasses   the classes holding the most heap after the full GC ({@code jcmd PID GC.class_histogram})
  */
-record HostFigures(int threads, int files, long heapKiB, String threadGroups, String topClasses) {
+public record HostFigures(int threads, int files, long heapKiB, String threadGroups, String topClasses) {
 
 
     /**
@@ -56,7 +56,7 @@ record HostFigures(int threads, int files, long heapKiB, String threadGroups, St
     }
 
     /** @return a JVM's live threads, from /proc */
-    static int threadsOf(long pid) throws IOException {
+    public static int threadsOf(long pid) throws IOException {
         for (String line : Files.readAllLines(Path.of("/proc", Long.toString(pid), "status"), StandardCharsets.UTF_8)) {
             if (line.startsWith("Threads:")) {
                 return Integer.parseInt(line.substring("Threads:".length()).strip());
