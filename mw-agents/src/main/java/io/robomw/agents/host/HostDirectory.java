@@ -35,15 +35,15 @@ final class HostDirectory {
         HostDescription describe(String hostAddress) throws PeerException;
     }
 
-    private record Entry(String name, String address, List<String> messaging) {
+    private record KnownHost(String name, String address, List<String> messaging) {
     }
 
     private final String self;
-    private final Map<String, Entry> byAddress = new LinkedHashMap<>(16, 0.75f, false) {
+    private final Map<String, KnownHost> byAddress = new LinkedHashMap<>(16, 0.75f, false) {
         private static final long serialVersionUID = 1L;
 
         @Override
-        protected boolean removeEldestEntry(Map.Entry<String, Entry> eldest) {
+        protected boolean removeEldestEntry(Map.Entry<String, KnownHost> eldest) {
             return size() > HostDescription.MAX_LIST;
         }
     };
@@ -65,7 +65,7 @@ final class HostDirectory {
             return;
         }
         synchronized (byAddress) {
-            byAddress.putIfAbsent(a.toString(), new Entry(a.name(), a.toString(), List.of()));
+            byAddress.putIfAbsent(a.toString(), new KnownHost(a.name(), a.toString(), List.of()));
         }
     }
 
@@ -73,7 +73,7 @@ final class HostDirectory {
     void learn(HostDescription d) {
         synchronized (byAddress) {
             if (!d.address().equals(self)) {
-                byAddress.put(d.address(), new Entry(d.name(), d.address(), d.messaging()));
+                byAddress.put(d.address(), new KnownHost(d.name(), d.address(), d.messaging()));
             }
         }
         d.known().forEach(k -> learn(k.address()));
@@ -107,7 +107,7 @@ final class HostDirectory {
             } catch (IllegalArgumentException e) {
                 return host; // an RMI messaging address with a longer path, or a transport added through the SPI
             }
-            Entry known;
+            KnownHost known;
             synchronized (byAddress) {
                 known = byAddress.get(a.toString());
             }
@@ -146,7 +146,7 @@ final class HostDirectory {
     private Optional<String> byName(String name, Describer describe) {
         List<String> matching;
         synchronized (byAddress) {
-            matching = byAddress.values().stream().filter(e -> e.name().equals(name)).map(Entry::address).toList();
+            matching = byAddress.values().stream().filter(e -> e.name().equals(name)).map(KnownHost::address).toList();
         }
         if (matching.size() > 1) {
             throw new MessagingException("more than one agent host is named '" + name + "': " + matching + "; give the address of the one you mean");
@@ -156,7 +156,7 @@ final class HostDirectory {
 
     /** The messaging address of a known or new agent host, describing it if its messaging is not known yet. */
     private Optional<String> messagingOf(String hostAddress, Describer describe) {
-        Entry e;
+        KnownHost e;
         synchronized (byAddress) {
             e = byAddress.get(hostAddress);
         }
