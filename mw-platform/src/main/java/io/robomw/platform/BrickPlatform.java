@@ -57,7 +57,7 @@ public final class BrickPlatform implements RobotPlatform {
     private Thread linkThread;
     /** Why the link thread died, once it has. */
     private volatile RobotLinkException linkThreadFailure;
-    private final ThrottledWarnings refusals = new ThrottledWarnings(LOG, java.time.Duration.ofSeconds(1));
+    private final ThrottledWarnings refusals;
 
     /**
      * Creates every sensor of the description.
@@ -72,6 +72,7 @@ public final class BrickPlatform implements RobotPlatform {
     public BrickPlatform(PlatformConfig config, GenericMotorPlatform motors, SensorPlatform sensorPlatform,
                          LinkThreading threading, AutoCloseable link) throws IOException {
         this.config = config;
+        this.refusals = new ThrottledWarnings(LOG, java.time.Duration.ofSeconds(1), config.clock());
         this.motors = motors;
         this.threading = threading;
         this.link = link;

@@ -1,5 +1,6 @@
 package io.robomw.platform;
 
+import io.robomw.api.Clock;
 import org.slf4j.Logger;
 
 import java.time.Duration;
@@ -16,6 +17,7 @@ import java.util.concurrent.atomic.LongAdder;
 public final class ThrottledWarnings {
 
     private final Logger log;
+    private final Clock clock;
     private final long intervalNanos;
     private final AtomicLong lastLogged;
     private final LongAdder unlogged = new LongAdder();
@@ -23,11 +25,13 @@ public final class ThrottledWarnings {
     /**
      * @param log      where the lines go
      * @param interval the least time between two warning lines
+     * @param clock    the time the interval is measured in (the platform's injected clock)
      */
-    public ThrottledWarnings(Logger log, Duration interval) {
+    public ThrottledWarnings(Logger log, Duration interval, Clock clock) {
         this.log = log;
+        this.clock = clock;
         this.intervalNanos = interval.toNanos();
-        this.lastLogged = new AtomicLong(System.nanoTime() - 2 * intervalNanos);
+        this.lastLogged = new AtomicLong(clock.nanoTime() - 2 * intervalNanos);
     }
 
     /**
@@ -35,7 +39,7 @@ public final class ThrottledWarnings {
      * @param args   its arguments
      */
     public void warn(String format, Object... args) {
-        long now = System.nanoTime();
+        long now = clock.nanoTime();
         long before = lastLogged.get();
         if (now - before >= intervalNanos && lastLogged.compareAndSet(before, now)) {
             long more = unlogged.sumThenReset();

@@ -45,7 +45,7 @@ final class UrbiConnection implements AutoCloseable {
     /** The link's time (reopen pacing): the wall clock, as {@code BrickChannel}'s, from the Clock rather than System.nanoTime. */
     private static final io.robomw.api.Clock LINK_TIME = io.robomw.api.Clock.system();
     /** One line a second at most about malformed lines: a flood of garbage must not flood the log. */
-    private final io.robomw.platform.ThrottledWarnings malformedWarnings = new io.robomw.platform.ThrottledWarnings(LOG, java.time.Duration.ofSeconds(1));
+    private final io.robomw.platform.ThrottledWarnings malformedWarnings = new io.robomw.platform.ThrottledWarnings(LOG, java.time.Duration.ofSeconds(1), LINK_TIME);
 
     /** Commands that may wait in the queue. */
     static final int OUTBOX = 1024;

@@ -42,7 +42,7 @@ public abstract class BrickEmulator implements Emulator {
     private final AtomicLong served = new AtomicLong();
     private final AtomicLong dropped = new AtomicLong();
     /** One line a second at most about dropped input: a flood of garbage must not flood the log. */
-    private final ThrottledWarnings dropWarnings = new ThrottledWarnings(LOG, Duration.ofSeconds(1));
+    private final ThrottledWarnings dropWarnings = new ThrottledWarnings(LOG, Duration.ofSeconds(1), io.robomw.api.Clock.system());
     private final Runnable stepListener = this::onStep;
     private volatile boolean closed;
     private final java.util.List<Runnable> closeActions = new java.util.concurrent.CopyOnWriteArrayList<>();

@@ -4,9 +4,7 @@ import io.robomw.platform.link.Link;
 import org.junit.jupiter.api.Test;
 
 import java.time.Duration;
-import java.util.ArrayDeque;
 import java.util.ArrayList;
-import java.util.Deque;
 import java.util.List;
 
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
@@ -22,7 +20,7 @@ class DelayedLinkTest {
 
     /** What the driver wrote, all at once; what the emulator wrote back, with when. */
     static final class MemoryLink implements Link {
-        final Deque<byte[]> fromDriver = new ArrayDeque<>();
+        final java.util.concurrent.LinkedBlockingDeque<byte[]> fromDriver = new java.util.concurrent.LinkedBlockingDeque<>();
         final List<Long> writtenAt = new ArrayList<>();
 
         @Override
@@ -37,20 +35,18 @@ class DelayedLinkTest {
         @Override
         public synchronized void write(byte[] data, int off, int len) {
             writtenAt.add(System.nanoTime());
+            notifyAll();
         }
 
         @Override
         public int read(byte[] buf, int off, int len, Duration timeout) throws java.io.IOException {
             byte[] next;
-            synchronized (this) {
-                next = fromDriver.poll();
+            try {
+                next = fromDriver.pollFirst(timeout.toNanos(), java.util.concurrent.TimeUnit.NANOSECONDS); // a read that waits as a link's does
+            } catch (InterruptedException e) {
+                throw new java.io.IOException(e);
             }
             if (next == null) {
-                try {
-                    Thread.sleep(Math.min(5, timeout.toMillis()));
-                } catch (InterruptedException e) {
-                    throw new java.io.IOException(e);
-                }
                 return 0;
             }
             int n = Math.min(len, next.length);
@@ -135,15 +131,10 @@ class DelayedLinkTest {
             link.write(new byte[3], 0, 3);
             link.write(new byte[3], 0, 3);
             long deadline = System.nanoTime() + 2_000_000_000L;
-            while (System.nanoTime() < deadline) {
-                synchronized (memory) {
-                    if (memory.writtenAt.size() == 2) {
-                        break;
-                    }
-                }
-                Thread.sleep(1);
-            }
             synchronized (memory) {
+                for (long left = deadline - System.nanoTime(); memory.writtenAt.size() < 2 && left > 0; left = deadline - System.nanoTime()) {
+                    java.util.concurrent.TimeUnit.NANOSECONDS.timedWait(memory, left);
+                }
                 assertEquals(2, memory.writtenAt.size());
                 long first = memory.writtenAt.get(0) - start;
                 long second = memory.writtenAt.get(1) - start;

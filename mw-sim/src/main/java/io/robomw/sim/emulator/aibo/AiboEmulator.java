@@ -45,7 +45,7 @@ public final class AiboEmulator implements Emulator {
 
     private static final Logger LOG = LoggerFactory.getLogger(AiboEmulator.class);
     /** One line a second at most about refused clients: a flood of connections must not flood the log. */
-    private final io.robomw.platform.ThrottledWarnings refusedWarnings = new io.robomw.platform.ThrottledWarnings(LOG, java.time.Duration.ofSeconds(1));
+    private final io.robomw.platform.ThrottledWarnings refusedWarnings = new io.robomw.platform.ThrottledWarnings(LOG, java.time.Duration.ofSeconds(1), io.robomw.api.Clock.system());
 
     /** Clients served at once. */
     public static final int MAX_CLIENTS = 8;
