@@ -38,7 +38,8 @@ final class Inbound {
     private final NodeCounters counters;
     private final LossDetector losses;
     private final ReplayGuard replays = new ReplayGuard();
-    private final ThreadLocal<NameCache> names = ThreadLocal.withInitial(NameCache::new);
+    /** Per reading thread; a topic's name decoded from a frame is the very String the topic is registered under, when it is. */
+    private final ThreadLocal<NameCache> names;
     private final FrameMac mac;
     private final PayloadCodec payloads;
     private final int maxFrameSize;
@@ -54,6 +55,13 @@ final class Inbound {
         this.maxFrameSize = settings.maxFrameSize();
         this.maxTopicBytes = settings.limits().maxTopicBytes();
         this.maxSkewMicros = settings.maxClockSkew().toNanos() / 1000;
+        this.names = ThreadLocal.withInitial(() -> new NameCache(this::canonical));
+    }
+
+    /** @return the String a topic of that name is registered under here, else the name */
+    private String canonical(String name) {
+        LocalTopics.Topic t = node.topics().get(name);
+        return t == null ? name : t.name;
     }
 
     void onFrame(byte[] buf, int offset, int length, Channel from) {
