@@ -131,13 +131,15 @@ final class Inbound {
         try {
             authenticate(topic.key, f, buf, offset, length, from);
         } catch (FrameException e) {
+            // counted before the sender is told: whoever reads the answer finds the drop counted
+            counters.drop(e.reason(), from.peer(), e.getMessage());
             if (request && !from.isGroup() && (e.reason() == DropReason.MISSING_MAC || e.reason() == DropReason.BAD_MAC)) {
                 // The sender is told its password was refused (as HTTP's 401 would), never why in more detail:
                 // a wrong password learns nothing it could not learn from the missing reply.
                 refuse(f, from, "refused by node '" + node.name() + "': topic '" + f.topic() + "' is password-protected and the message "
                         + (e.reason() == DropReason.MISSING_MAC ? "had no password" : "had a wrong password"));
             }
-            throw e;
+            return;
         }
         Serializable payload;
         try {
