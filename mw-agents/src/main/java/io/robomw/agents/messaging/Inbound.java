@@ -38,7 +38,8 @@ final class Inbound {
     private final NodeCounters counters;
     private final LossDetector losses;
     private final ReplayGuard replays = new ReplayGuard();
-    private final ThreadLocal<NameCache> names = ThreadLocal.withInitial(NameCache::new);
+    /** Per reading thread; a topic's name decoded from a frame is the very String the topic is registered under, when it is. */
+    private final ThreadLocal<NameCache> names;
     private final FrameMac mac;
     private final PayloadCodec payloads;
     private final int maxFrameSize;
@@ -54,6 +55,13 @@ final class Inbound {
         this.maxFrameSize = settings.maxFrameSize();
         this.maxTopicBytes = settings.limits().maxTopicBytes();
         this.maxSkewMicros = settings.maxClockSkew().toNanos() / 1000;
+        this.names = ThreadLocal.withInitial(() -> new NameCache(this::canonical));
+    }
+
+    /** @return the String a topic of that name is registered under here, else the name */
+    private String canonical(String name) {
+        LocalTopics.Topic t = node.topics().get(name);
+        return t == null ? name : t.name;
     }
 
     void onFrame(byte[] buf, int offset, int length, Channel from) {
@@ -123,13 +131,15 @@ final class Inbound {
         try {
             authenticate(topic.key, f, buf, offset, length, from);
         } catch (FrameException e) {
+            // counted before the sender is told: whoever reads the answer finds the drop counted
+            counters.drop(e.reason(), from.peer(), e.getMessage());
             if (request && !from.isGroup() && (e.reason() == DropReason.MISSING_MAC || e.reason() == DropReason.BAD_MAC)) {
                 // The sender is told its password was refused (as HTTP's 401 would), never why in more detail:
                 // a wrong password learns nothing it could not learn from the missing reply.
                 refuse(f, from, "refused by node '" + node.name() + "': topic '" + f.topic() + "' is password-protected and the message "
                         + (e.reason() == DropReason.MISSING_MAC ? "had no password" : "had a wrong password"));
             }
-            throw e;
+            return;
         }
         Serializable payload;
         try {

@@ -93,6 +93,8 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     private final RemoteSubscribers remoteSubscribers;
     /** The topics this node published on, for discovery (at most {@link #MAX_ANNOUNCED_TOPICS}). */
     private final java.util.Set<String> published = new java.util.concurrent.ConcurrentSkipListSet<>();
+    /** The topic published on last: a stream of publications on one topic skips the set. */
+    private volatile String lastPublished;
     /** How many published topics a node remembers for {@link #publishedTopics()}. */
     static final int MAX_ANNOUNCED_TOPICS = 256;
     private final Replies replies = new Replies();
@@ -103,6 +105,8 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     private final Map<String, Transport> transports = new ConcurrentHashMap<>();
     private final Links links;
     private final List<Endpoint> endpoints = new CopyOnWriteArrayList<>();
+    /** The endpoints publications are broadcast to (a multicast group), as an array read by every publication. */
+    private volatile Endpoint[] broadcasters = new Endpoint[0];
     private final Set<Channel> connections = ConcurrentHashMap.newKeySet();
     /** Channels to brokers (MQTT): every publication goes to each of them once. */
     private final Set<Channel> brokers = ConcurrentHashMap.newKeySet();
@@ -218,6 +222,11 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         try {
             Endpoint e = transport(a.scheme()).bind(a);
             endpoints.add(e);
+            if (e.broadcasts()) {
+                synchronized (endpoints) {
+                    broadcasters = endpoints.stream().filter(Endpoint::broadcasts).toArray(Endpoint[]::new);
+                }
+            }
             if (e instanceof Channel c && c.isBroker()) {
                 brokers.add(c);
             }
@@ -313,6 +322,13 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         }
     }
 
+    private void remember(String topic) {
+        if (!published.contains(topic) && published.size() < MAX_ANNOUNCED_TOPICS) {
+            published.add(topic);
+        }
+        lastPublished = topic;
+    }
+
     /** @return the topics this node has published on or advertised, sorted (at most 256; what a discovery beacon announces) */
     public List<String> publishedTopics() {
         return List.copyOf(published);
@@ -400,18 +416,21 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     @Override
     public void publishMessage(String topic, Serializable object, String function, String password) {
         SecretKey key = keys.key(requireTopic(topic), password);
-        if (published.size() < MAX_ANNOUNCED_TOPICS) {
-            published.add(topic);
+        if (topic != lastPublished) {
+            remember(topic);
         }
         topics.checkIfRegistered(topic, key);
         byte[] frame = frames.message(FrameKind.PUBLISH, "", topic, object, function, key).bytes();
         List<Channel> subscribers = remoteSubscribers.of(topic);
         int limit = settings.maxFrameSize();
-        for (Channel c : subscribers) {
-            limit = Math.min(limit, c.maxFrameBytes());
+        for (int i = 0; i < subscribers.size(); i++) {
+            limit = Math.min(limit, subscribers.get(i).maxFrameBytes());
         }
-        for (Channel c : brokers) {
-            limit = Math.min(limit, c.maxFrameBytes());
+        boolean viaBrokers = !brokers.isEmpty(); // iterating an empty concurrent set still walks its table
+        if (viaBrokers) {
+            for (Channel c : brokers) {
+                limit = Math.min(limit, c.maxFrameBytes());
+            }
         }
         if (joinedGroup) {
             limit = Math.min(limit, MessagingSettings.MAX_DATAGRAM);
@@ -420,7 +439,8 @@ public final class MessagingNode implements Messaging, AutoCloseable {
             throw new MessagingException("node '" + name + "': a publication of " + frame.length + " bytes on '" + topic
                     + "' does not fit one datagram (limit " + limit + " bytes) for a UDP or multicast subscriber; nothing was sent");
         }
-        for (Channel c : subscribers) {
+        for (int i = 0; i < subscribers.size(); i++) {
+            Channel c = subscribers.get(i);
             try {
                 c.send(frame);
                 counters.out();
@@ -430,7 +450,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
                 c.close();
             }
         }
-        for (Channel b : brokers) {
+        for (Channel b : viaBrokers ? brokers : Set.<Channel>of()) {
             try {
                 b.send(frame);
                 counters.out();
@@ -439,7 +459,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
                 brokers.remove(b);
             }
         }
-        for (Endpoint e : endpoints) {
+        for (Endpoint e : broadcasters) {
             try {
                 if (e.broadcast(frame)) {
                     counters.out();
@@ -491,6 +511,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         });
         links.close();
         endpoints.clear();
+        broadcasters = new Endpoint[0];
         // Accepted connections too: their reader threads must not go on serving a closed node.
         for (Channel c : List.copyOf(connections)) {
             try {

@@ -31,6 +31,13 @@ final class RemoteSubscribers {
     /** The subscribers of each topic as a list, remade when they change: publishing reads it for every message. */
     private final Map<String, List<Channel>> lists = new ConcurrentHashMap<>();
     private int total;
+    /** Bumped after every change of {@link #lists}: a remembered list of an older version is not used. */
+    private volatile int version;
+    /** The list {@link #of} found last, for a stream of publications on one topic (the same String each time). */
+    private volatile Recent recent;
+
+    private record Recent(String topic, List<Channel> list, int version) {
+    }
 
     RemoteSubscribers(PeerLimits limits) {
         this.maxPerPeer = limits.maxSubscriptionsPerPeer();
@@ -101,8 +108,17 @@ final class RemoteSubscribers {
     }
 
     List<Channel> of(String topic) {
+        Recent r = recent;
+        int v = version;
+        if (r != null && r.topic == topic && r.version == v) {
+            return r.list; // no hashing and comparing of the topic's text
+        }
         List<Channel> l = lists.get(topic);
-        return l == null ? List.of() : l;
+        if (l == null) {
+            l = List.of();
+        }
+        recent = new Recent(topic, l, v);
+        return l;
     }
 
     synchronized int count(String topic) {
@@ -138,5 +154,6 @@ final class RemoteSubscribers {
         } else {
             lists.put(topic, List.copyOf(channels.keySet()));
         }
+        version++; // guarded by this; volatile, so a reader that sees the new version sees the new list
     }
 }

@@ -218,6 +218,22 @@ class PeerLimitsTest {
     }
 
     @Test
+    void aListenerSlowerThanTheIdleTimeoutIsNotThePeersSilence() throws Exception {
+        MessagingNode server = node("server", PeerLimits.defaults().withTimeouts(Duration.ofMillis(600), Duration.ofMillis(600)), true);
+        server.addMessageListener("slow", null, m -> LockSupport.parkNanos(Duration.ofMillis(1500).toNanos())); // slow work, not a wait
+        Socket peer = connect(server);
+        Frame request = new Frame(FrameKind.MESSAGE, 0, 7, 1, new UUID(7, 1), MessagingNode.nowMicros(), "raw", "server", "slow", "",
+                PayloadCodec.NULL, new byte[0], false);
+        long start = System.nanoTime();
+        peer.getOutputStream().write(FrameCodec.encode(request, false));
+        untilClosed(peer);
+        long millis = (System.nanoTime() - start) / 1_000_000;
+        // silent after its one frame: closed one idle timeout after the listener was done, not during it
+        assertTrue(millis >= 1500 + 500, "closed after " + millis + " ms, while its frame was still being handled");
+        Await.until("the silent peer timed out", WAIT, () -> server.stats().dropped(DropReason.TIMED_OUT) == 1);
+    }
+
+    @Test
     void quietHealthyLinksAreKeptOpenByKeepAlives() {
         PeerLimits quick = PeerLimits.defaults().withTimeouts(Duration.ofMillis(1500), Duration.ofMillis(1500));
         MessagingNode server = node("server", quick, true);

@@ -256,14 +256,34 @@ public final class FrameCodec {
             throw new FrameException(DropReason.MALFORMED, "frame parts add up to " + expected + " bytes but the frame declares " + declared);
         }
         int at = offset + HEADER_LENGTH;
-        String sender = name(names, buf, at, senderLength);
-        at += senderLength;
-        String receiver = name(names, buf, at, receiverLength);
-        at += receiverLength;
-        String topic = name(names, buf, at, topicLength);
-        at += topicLength;
-        String function = name(names, buf, at, functionLength);
-        at += functionLength;
+        int namesLength = senderLength + receiverLength + topicLength + functionLength;
+        long lengths = (long) senderLength << 48 | (long) receiverLength << 32 | (long) topicLength << 16 | functionLength;
+        String[] last = names == null ? null : names.lastBlock(buf, at, lengths, namesLength);
+        String sender;
+        String receiver;
+        String topic;
+        String function;
+        if (last != null) {
+            // the same four names as the frame before (a stream from one sender on one topic)
+            sender = last[0];
+            receiver = last[1];
+            topic = last[2];
+            function = last[3];
+            at += namesLength;
+        } else {
+            int namesAt = at;
+            sender = name(names, buf, at, senderLength);
+            at += senderLength;
+            receiver = name(names, buf, at, receiverLength);
+            at += receiverLength;
+            topic = name(names, buf, at, topicLength);
+            at += topicLength;
+            function = name(names, buf, at, functionLength);
+            at += functionLength;
+            if (names != null) {
+                names.rememberBlock(buf, namesAt, lengths, namesLength, sender, receiver, topic, function);
+            }
+        }
         byte[] payload = new byte[(int) payloadLength];
         System.arraycopy(buf, at, payload, 0, payload.length);
         return new Frame(kind, (long) LONG.get(buf, offset + STREAM_SEQUENCE_OFFSET), (long) LONG.get(buf, offset + SOURCE_OFFSET),

@@ -196,8 +196,35 @@ public final class FrameStreamReader {
     private FrameException timedOut(int needed) {
         long limit = TimeUnit.NANOSECONDS.toMillis(first ? timeouts.firstFrameNanos() : timeouts.idleNanos());
         String since = first ? "since it opened" : "since its last whole frame";
-        String got = end == start ? "nothing of a frame arrived"
+        return new FrameException(DropReason.TIMED_OUT, "no whole frame within " + limit + " ms " + since + " (" + arrived(needed) + ")");
+    }
+
+    /**
+     * For a timeout enforced from outside (a timer that closes the connection): what arrived of
+     * the frame the reader was waiting for. Call it on the reading thread, after a read failed.
+     *
+     * @return for example "nothing of a frame arrived" or "40 bytes arrived of a frame's 300"
+     */
+    public String arrived() {
+        int needed = end - start >= FrameCodec.PREFIX_LENGTH ? safeLength() : FrameCodec.PREFIX_LENGTH;
+        return arrived(needed);
+    }
+
+    /** @return whether no whole frame has been returned yet */
+    public boolean beforeFirstFrame() {
+        return first;
+    }
+
+    private int safeLength() {
+        try {
+            return FrameCodec.declaredLength(buf, start, maxFrameSize);
+        } catch (FrameException e) {
+            return FrameCodec.PREFIX_LENGTH;
+        }
+    }
+
+    private String arrived(int needed) {
+        return end == start ? "nothing of a frame arrived"
                 : (end - start) + " bytes arrived" + (needed > FrameCodec.PREFIX_LENGTH ? " of a frame's " + needed : " of a frame prefix");
-        return new FrameException(DropReason.TIMED_OUT, "no whole frame within " + limit + " ms " + since + " (" + got + ")");
     }
 }

@@ -85,6 +85,11 @@ final class MulticastTransport implements Transport {
             }
 
             @Override
+            public boolean broadcasts() {
+                return true;
+            }
+
+            @Override
             public void close() {
                 receiver.close();
             }

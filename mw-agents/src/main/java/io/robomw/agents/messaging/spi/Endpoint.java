@@ -20,6 +20,15 @@ public interface Endpoint extends AutoCloseable {
         return false;
     }
 
+    /**
+     * @return whether {@link #broadcast} sends anything here; the node hands publications only to
+     *         endpoints that say so (it publishes millions a second: a call per endpoint and
+     *         publication is measurable)
+     */
+    default boolean broadcasts() {
+        return false;
+    }
+
     /** Stops receiving there. Idempotent. */
     @Override
     void close();

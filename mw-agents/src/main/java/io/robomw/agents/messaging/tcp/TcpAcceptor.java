@@ -27,6 +27,7 @@ final class TcpAcceptor implements Endpoint {
     private final Address address;
     private final TransportContext context;
     private final List<AutoCloseable> open;
+    private final ConnectionTimeouts timeouts;
     private final AtomicInteger accepted = new AtomicInteger();
     /** Refused sockets waiting to be closed; touched by the accepting thread only (and by close, after it). */
     private final java.util.ArrayDeque<Refused> refused = new java.util.ArrayDeque<>();
@@ -37,7 +38,8 @@ final class TcpAcceptor implements Endpoint {
     private record Refused(Socket socket, long sinceNanos) {
     }
 
-    TcpAcceptor(ServerSocket server, Address address, TransportContext context, List<AutoCloseable> open) {
+    TcpAcceptor(ServerSocket server, Address address, TransportContext context, List<AutoCloseable> open, ConnectionTimeouts timeouts) {
+        this.timeouts = timeouts;
         this.server = server;
         this.address = address;
         this.context = context;
@@ -93,7 +95,7 @@ final class TcpAcceptor implements Endpoint {
             }
             TcpConnection c;
             try {
-                c = new TcpConnection(s, address, peer, context, open, accepted::decrementAndGet);
+                c = new TcpConnection(s, address, peer, context, open, timeouts, accepted::decrementAndGet);
             } catch (IOException | RuntimeException | LinkageError e) {
                 accepted.decrementAndGet();
                 LOG.warn("node '{}': connection from {} failed: {}", context.nodeName(), peer, e.toString());

@@ -18,16 +18,21 @@ import java.io.OutputStream;
 import java.net.Socket;
 import java.net.SocketException;
 import java.net.SocketTimeoutException;
+import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicBoolean;
+import java.util.concurrent.atomic.AtomicLong;
 
 /**
  * One TCP connection, accepted or opened: a reader thread that frames the stream and hands each
  * frame to the node (listeners run on it), and an {@link OutboundBuffer} with its writer thread.
  * Garbage, an oversized length, a cut-off frame, or no whole frame within the first-frame or
  * idle timeout ({@link PeerLimits}) end this connection only (counted and logged by the node); the
- * endpoint keeps accepting others. Its read buffer grows only with the bytes that arrive.
+ * endpoint keeps accepting others. Its read buffer grows only with the bytes that arrive. The
+ * timeouts of a plain connection are kept by its transport's {@link ConnectionTimeouts} (the
+ * reader blocks in {@code read} without a socket timeout); a TLS connection's by its socket's read
+ * timeout.
  */
-final class TcpConnection implements Link {
+final class TcpConnection implements Link, ConnectionTimeouts.Watched {
 
     private static final Logger LOG = LoggerFactory.getLogger(TcpConnection.class);
     private static final long DRAIN_NANOS = 1_000_000_000L;
@@ -42,16 +47,27 @@ final class TcpConnection implements Link {
     private final AtomicBoolean closed = new AtomicBoolean();
     private final java.util.List<AutoCloseable> registry;
     private final Runnable onClose;
+    /** Enforces a plain connection's timeouts; {@code null} for TLS, whose reads time out themselves. */
+    private final ConnectionTimeouts timeouts;
+    /** Twice the whole frames read, plus one while the node handles the last; written by the reader only. */
+    private final AtomicLong progress = new AtomicLong();
+    /** Why the timer closed it, or {@code null}. */
+    private volatile String timedOut;
     private volatile Thread reader;
 
-    TcpConnection(Socket socket, Address address, String peer, TransportContext context, java.util.List<AutoCloseable> registry) throws IOException {
-        this(socket, address, peer, context, registry, () -> { });
+    TcpConnection(Socket socket, Address address, String peer, TransportContext context, java.util.List<AutoCloseable> registry,
+                  ConnectionTimeouts timeouts) throws IOException {
+        this(socket, address, peer, context, registry, timeouts, () -> { });
     }
 
-    /** @param onClose run once when it closes (an acceptor counts its connections) */
+    /**
+     * @param timeouts the transport's timer for plain connections' timeouts (not used for TLS)
+     * @param onClose  run once when it closes (an acceptor counts its connections)
+     */
     TcpConnection(Socket socket, Address address, String peer, TransportContext context, java.util.List<AutoCloseable> registry,
-                  Runnable onClose) throws IOException {
+                  ConnectionTimeouts timeouts, Runnable onClose) throws IOException {
         this.onClose = onClose;
+        this.timeouts = socket instanceof SSLSocket ? null : timeouts;
         this.registry = registry;
         this.socket = socket;
         this.address = address;
@@ -69,6 +85,9 @@ final class TcpConnection implements Link {
         // Known to the node before any thread runs: a peer that connects and drops at once makes
         // the reader close this connection, and the node must already know it to forget it.
         context.opened(this);
+        if (timeouts != null) {
+            timeouts.watch(this);
+        }
         String role = "tcp-" + (socket.getLocalPort()) + "-" + socket.getPort();
         outbound.startWriter((b, o, l) -> {
             out.write(b, o, l);
@@ -133,8 +152,28 @@ final class TcpConnection implements Link {
                 LOG.debug("closing {}: {}", peer, e.toString());
             }
             registry.remove(this);
+            if (timeouts != null) {
+                timeouts.forget(this);
+            }
             onClose.run();
             context.closed(this);
+        }
+    }
+
+    @Override
+    public long progress() {
+        return progress.get();
+    }
+
+    /** Called by the timer: records why and closes the socket, which ends the reader's blocked read. */
+    @Override
+    public void timedOut(boolean firstFrame, long limitNanos) {
+        timedOut = "no whole frame within " + TimeUnit.NANOSECONDS.toMillis(limitNanos) + " ms "
+                + (firstFrame ? "since it opened" : "since its last whole frame");
+        try {
+            socket.close();
+        } catch (IOException e) {
+            LOG.debug("closing {}: {}", peer, e.toString());
         }
     }
 
@@ -145,7 +184,8 @@ final class TcpConnection implements Link {
 
     private void readLoop() {
         PeerLimits limits = context.settings().limits();
-        FrameStreamReader frames = new FrameStreamReader(in, context.settings().maxFrameSize(),
+        FrameStreamReader frames = timeouts != null ? new FrameStreamReader(in, context.settings().maxFrameSize())
+                : new FrameStreamReader(in, context.settings().maxFrameSize(),
                 new FrameStreamReader.Timeouts(socket::setSoTimeout, limits.firstFrameTimeout().toNanos(), limits.idleTimeout().toNanos()));
         try {
             if (socket instanceof SSLSocket ssl) {
@@ -153,8 +193,11 @@ final class TcpConnection implements Link {
                 ssl.startHandshake();
             }
             int length;
+            long p = 0;
             while ((length = frames.next()) >= 0) {
+                progress.lazySet(++p); // odd: the node has the frame (plain stores: the timer reads them a few times per timeout)
                 context.onFrame(frames.buffer(), frames.offset(), length, this);
+                progress.lazySet(++p);
             }
         } catch (FrameException e) {
             context.dropped(e.reason(), peer, e.getMessage() + "; closing this connection");
@@ -164,7 +207,10 @@ final class TcpConnection implements Link {
                         + " ms; closing this connection");
             }
         } catch (SocketException e) {
-            if (!closed.get()) {
+            String why = timedOut;
+            if (why != null) {
+                context.dropped(DropReason.TIMED_OUT, peer, why + " (" + frames.arrived() + "); closing this connection");
+            } else if (!closed.get()) {
                 LOG.debug("node '{}': connection {} ended: {}", context.nodeName(), peer, e.toString());
             }
         } catch (IOException e) {

@@ -26,10 +26,12 @@ final class TcpTransport implements Transport {
 
     private final TransportContext context;
     private final List<AutoCloseable> open = new CopyOnWriteArrayList<>();
+    private final ConnectionTimeouts timeouts;
     private SSLContext tls;
 
     TcpTransport(TransportContext context) {
         this.context = context;
+        this.timeouts = new ConnectionTimeouts(context.settings().limits(), context.threads("tcp-timeouts"));
     }
 
     @Override
@@ -40,7 +42,7 @@ final class TcpTransport implements Transport {
         }
         server.setReuseAddress(true);
         server.bind(new InetSocketAddress(InetAddress.getByName(address.host()), address.port()), 128);
-        TcpAcceptor acceptor = new TcpAcceptor(server, address.withPort(server.getLocalPort()), context, open);
+        TcpAcceptor acceptor = new TcpAcceptor(server, address.withPort(server.getLocalPort()), context, open, timeouts);
         open.add(acceptor);
         acceptor.start();
         return acceptor;
@@ -60,7 +62,7 @@ final class TcpTransport implements Transport {
             socket.close();
             throw e;
         }
-        TcpConnection c = new TcpConnection(socket, address, address.toString(), context, open);
+        TcpConnection c = new TcpConnection(socket, address, address.toString(), context, open, timeouts);
         c.start();
         return c;
     }
@@ -75,6 +77,7 @@ final class TcpTransport implements Transport {
             }
         }
         open.clear();
+        timeouts.close();
     }
 
     private synchronized SSLContext tls() throws IOException {

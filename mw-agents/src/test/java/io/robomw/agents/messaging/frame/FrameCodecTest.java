@@ -6,6 +6,7 @@ import org.junit.jupiter.api.Test;
 import java.nio.charset.StandardCharsets;
 import java.util.Arrays;
 import java.util.HexFormat;
+import java.util.List;
 import java.util.UUID;
 
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
@@ -40,6 +41,21 @@ class FrameCodecTest {
         assertEquals(f.correlationId(), back.correlationId());
         assertEquals("t", back.topic());
         assertArrayEquals(f.payload(), back.payload());
+    }
+
+    @Test
+    void aReadingThreadsNameCacheGivesEachFrameItsOwnNames() throws FrameException {
+        NameCache names = new NameCache(n -> n.equals("left") ? "left" : n); // "left" as the node registered it
+        String[][] sent = {{"a", "left", "fn"}, {"a", "left", "fn"}, {"b", "righ", "fn"}, {"a", "left", "gn"}, {"a", "left", "fn"}, {"", "", ""}};
+        for (String[] n : sent) {
+            Frame f = new Frame(FrameKind.PUBLISH, 1, 2, 3, new UUID(2, 3), 4, n[0], "", n[1], n[2], 1, new byte[] {9}, false);
+            byte[] bytes = FrameCodec.encode(f, false);
+            Frame back = FrameCodec.decode(bytes, 0, bytes.length, MAX, names);
+            assertEquals(List.of(n[0], n[1], n[2]), List.of(back.sender(), back.topic(), back.function()));
+            if (n[1].equals("left")) {
+                assertTrue(back.topic() == "left", "the topic decoded is the String it is registered under");
+            }
+        }
     }
 
     @Test
