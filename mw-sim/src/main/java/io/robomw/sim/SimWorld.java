@@ -38,8 +38,8 @@ import java.util.Map;
  *   <li>set each robot's body velocities from its commanded wheel speeds, for the next step;</li>
  *   <li>(end of step) hand the completions that wake programs over, in one go.</li>
  * </ol>
- * Steps 2 and 4–6 work robot by robot on the stepping thread and the world's worker threads
- * ({@link Parallel}); each robot's work touches only that robot (sensing reads the others' bodies
+ * Steps 2 and 4–6 work robot by robot on the world's worker threads ({@link Parallel}); each
+ * robot's work touches only that robot (sensing reads the others' bodies
  * as placed in the range index after the motion), so the outcome does not depend on the threads.
  * The same seed and the same commands give the same trajectory, bit for bit. The per-robot work
  * is done in as few passes over the robots as the order allows, each pass a hand-over to the
@@ -82,7 +82,7 @@ public final class SimWorld implements AutoCloseable {
         /** dyn4j's step: broadphase, contacts, integration (on the stepping thread). */
         PHYSICS,
         /**
-         * Per robot, after the motion (all threads): encoders, contacts, pose; when sensors are due,
+         * Per robot, after the motion (worker threads): encoders, contacts, pose; when sensors are due,
          * its body's place in the range index; in a step where no sensor and no cycle is due, also
          * its pending reads and its body's velocities (the whole step in one pass).
          */
@@ -90,7 +90,7 @@ public final class SimWorld implements AutoCloseable {
         /** The robots' cells in the range index, when sensors are due (stepping thread). */
         INDEX,
         /**
-         * Per robot, in a step where sensors or cycles are due (all threads): its range sensors that
+         * Per robot, in a step where sensors or cycles are due (worker threads): its range sensors that
          * are due, its execution action thread if due and its pending reads, its body's velocities.
          */
         ROBOTS

@@ -155,6 +155,7 @@ public final class SwarmBenchmark {
             ThreadPlacement placement = watchThreads ? ThreadPlacement.start() : null;
             long cpu0 = processCpuNanos();
             long steppingCpu0 = threadCpuNanos();
+            long[] machine0 = machineTicks();
             w.profile(io.robomw.api.Clock.system());
             double sim0 = w.time();
             long t0 = System.nanoTime();
@@ -176,6 +177,7 @@ public final class SwarmBenchmark {
             double wall = (now - t0) / 1e9;
             long cpu = processCpuNanos() - cpu0;
             long steppingCpu = threadCpuNanos() - steppingCpu0;
+            long[] machine1 = machineTicks();
             long[] phases = w.phaseNanos();
             w.profile(null);
             String placed = placement == null ? "(not watched; --placement)" : placement.stop();
@@ -193,6 +195,14 @@ public final class SwarmBenchmark {
             System.out.println("  per step: " + p);
             System.out.printf(Locale.ROOT, "  CPU per step: %.1f µs for the process (%.2f processors busy on average), %.1f µs on the stepping thread; %d threads%n",
                     cpu / 1e3 / stepsTaken, cpu / 1e9 / wall, steppingCpu / 1e3 / stepsTaken, threads);
+            if (machine0 != null && machine1 != null) {
+                double busy = (machine1[0] - machine0[0]) / 100.0 / wall;
+                double others = Math.max(0, busy - cpu / 1e9 / wall);
+                double steal = (machine1[1] - machine0[1]) / 100.0 / wall;
+                System.out.printf(Locale.ROOT, "  the machine in the window: %.2f of %d processors busy, %.2f of them with other processes%s; steal %.2f%n",
+                        busy, Runtime.getRuntime().availableProcessors(), others,
+                        others > 0.1 ? " (NOT QUIET: this sample shared the processors)" : "", steal);
+            }
             long jitInWindow = jitMillis() - jit0;
             System.out.printf(Locale.ROOT, "  warm-up %.1f s; GC in the window: %d collections, %d ms; JIT compilation in the window: %d ms%s; live heap per robot %d bytes%n",
                     warmedFor, gcCount() - gcCount0, gcMillis() - gcMillis0, jitInWindow,
@@ -228,6 +238,28 @@ public final class SwarmBenchmark {
     private static long processCpuNanos() {
         return java.lang.management.ManagementFactory.getOperatingSystemMXBean() instanceof com.sun.management.OperatingSystemMXBean os
                 ? os.getProcessCpuTime() : -1;
+    }
+
+    /**
+     * The machine's busy time from {@code /proc/stat} (Linux): every processor's user, nice,
+     * system, irq and softirq ticks (1/100 s), and the ticks the hypervisor stole. Other processes
+     * compete with a sample at equal weight whatever their nice value when they run in another
+     * session (the kernel's autogroups: a campaign started at nice 10 from its own shell is not
+     * "in the background"), so a sample says how much of the machine they took.
+     *
+     * @return {busy, steal} ticks, or {@code null} where there is no {@code /proc/stat}
+     */
+    private static long[] machineTicks() {
+        try {
+            String[] f = Files.readAllLines(Path.of("/proc/stat")).get(0).trim().split("\\s+");
+            long busy = 0;
+            for (int i : new int[] {1, 2, 3, 6, 7}) {
+                busy += Long.parseLong(f[i]);
+            }
+            return new long[] {busy, f.length > 8 ? Long.parseLong(f[8]) : 0};
+        } catch (IOException | RuntimeException e) {
+            return null;
+        }
     }
 
     /** @return CPU time of the calling thread, nanoseconds */
