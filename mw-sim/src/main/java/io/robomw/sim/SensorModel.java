@@ -88,7 +88,8 @@ public final class SensorModel {
         this.maxRange = number(o, "max_range", sonar ? 2.55 : 0.80, 0, MAX_RANGE);
         this.noise = number(o, "noise", 0, 0, MAX_NOISE);
         this.rateHz = number(o, "rate_hz", 10, 0.001, MAX_RATE_HZ);
-        this.random = new SplittableRandom(seed);
+        // Only a noisy sensor draws from a generator (48 bytes a sensor, eight sensors a robot in a swarm).
+        this.random = noise > 0 ? new SplittableRandom(seed) : null;
         Object mountOption = o.getOrDefault("mount", "body");
         if (!mountOption.equals("body") && !mountOption.equals("head")) {
             throw new IllegalArgumentException("sensor '" + spec.name() + "': option 'mount' must be body or head, got '" + mountOption + "'");

@@ -39,8 +39,13 @@ import java.util.Map;
  *   <li>(end of step) hand the completions that wake programs over, in one go.</li>
  * </ol>
  * Steps 2 and 4–6 work robot by robot on the world's worker threads ({@link Parallel}); each
- * robot's work touches only that robot, so the outcome does not depend on the threads.
- * The same seed and the same commands give the same trajectory, bit for bit.
+ * robot's work touches only that robot (sensing reads the others' bodies
+ * as placed in the range index after the motion), so the outcome does not depend on the threads.
+ * The same seed and the same commands give the same trajectory, bit for bit. The per-robot work
+ * is done in as few passes over the robots as the order allows, each pass a hand-over to the
+ * worker threads: a step in which no sensor and no cycle is due is one pass (step 2, pending
+ * reads, step 6: none of it reads the clock or another robot); otherwise two, step 2 (and each
+ * body's place in the range index) before the clock moves, then 4–6 robot by robot.
  *
  * <p>Not thread-safe: one thread steps it (a {@link Simulation} does). Poses and trajectories may
  * be read from other threads.
@@ -59,14 +64,11 @@ public final class SimWorld implements AutoCloseable {
     private final double stepSeconds;
     private final int trajectoryEvery;
     private final Parallel parallel;
-    private final List<SimRobot> cycledRobots = new ArrayList<>();
-    private final List<Cycled> cycledThreads = new ArrayList<>();
+    /** Per robot (by index): the execution action threads the world cycles, or {@code null}. */
+    private Cycled[] cycled = new Cycled[0];
+    /** The earliest time a cycle is due. */
+    private long nextCycle = Long.MAX_VALUE;
     private long steps;
-    private double[] px = new double[0];
-    private double[] py = new double[0];
-    private double[] ph = new double[0];
-    private double[] pl = new double[0];
-    private double[] pw = new double[0];
     private boolean initialSampleDue;
     private long[] sensingPeriods;
     private final RayCaster rayCaster;
@@ -79,14 +81,19 @@ public final class SimWorld implements AutoCloseable {
     public enum Phase {
         /** dyn4j's step: broadphase, contacts, integration (on the stepping thread). */
         PHYSICS,
-        /** Encoders, contacts and poses from the motion, per robot (worker threads). */
+        /**
+         * Per robot, after the motion (worker threads): encoders, contacts, pose; when sensors are due,
+         * its body's place in the range index; in a step where no sensor and no cycle is due, also
+         * its pending reads and its body's velocities (the whole step in one pass).
+         */
         AFTER_STEP,
-        /** Re-indexing the robots and casting the range sensors' rays that are due (worker threads). */
-        SENSING,
-        /** The robots' execution action threads that are due, and their pending reads (worker threads). */
-        CYCLE,
-        /** Body velocities from the commanded wheel speeds (worker threads). */
-        DRIVE
+        /** The robots' cells in the range index, when sensors are due (stepping thread). */
+        INDEX,
+        /**
+         * Per robot, in a step where sensors or cycles are due (worker threads): its range sensors that
+         * are due, its execution action thread if due and its pending reads, its body's velocities.
+         */
+        ROBOTS
     }
 
     /** Casts one ray for a range sensor. */
@@ -114,11 +121,12 @@ public final class SimWorld implements AutoCloseable {
         return best;
     }
 
-    /** A robot's execution action thread and when it is due. */
+    /** A robot's execution action thread and when it is due; {@code more}: the robot's next one, if it has more. */
     private static final class Cycled {
         private final ExecutionActionThread thread;
         private final long period;
         private long next;
+        private Cycled more;
 
         Cycled(ExecutionActionThread thread, long now) {
             this.thread = thread;
@@ -247,6 +255,7 @@ public final class SimWorld implements AutoCloseable {
         physics.addBody(body);
         SimRobot robot = new SimRobot(robots.size(), name, description, body, this.description.seed(), clock::nanoTime);
         robots.add(robot);
+        cycled = java.util.Arrays.copyOf(cycled, robots.size());
         byName.put(name, robot);
         initialSampleDue = true;
         sensingPeriods = null;
@@ -260,8 +269,18 @@ public final class SimWorld implements AutoCloseable {
      * @param thread its execution action thread
      */
     public void attach(SimRobot robot, ExecutionActionThread thread) {
-        cycledRobots.add(robot);
-        cycledThreads.add(new Cycled(thread, clock.nanoTime()));
+        Cycled c = new Cycled(thread, clock.nanoTime());
+        int i = robot.index();
+        if (cycled[i] == null) {
+            cycled[i] = c;
+        } else {
+            Cycled last = cycled[i];
+            while (last.more != null) {
+                last = last.more;
+            }
+            last.more = c;
+        }
+        nextCycle = Math.min(nextCycle, c.next);
     }
 
     /** @return the world's description */
@@ -363,37 +382,119 @@ public final class SimWorld implements AutoCloseable {
     }
 
     private void advance() {
+        int n = robots.size();
         if (initialSampleDue) {
-            sampleRangeSensors();
+            boolean grid = rangeMethod == RangeMethod.GRID;
+            if (grid) {
+                rangeIndex.robots(n);
+            }
+            parallel.forEach(n, i -> {
+                if (grid) {
+                    place(robots.get(i));
+                }
+            });
+            if (grid) {
+                rangeIndex.indexPlacedRobots();
+            }
+            parallel.forEach(n, i -> sense(robots.get(i), -1));
             initialSampleDue = false;
         }
         long t = tick(0, null);
         physics.step(1, stepSeconds);
         t = tick(t, Phase.PHYSICS);
-        steps++;
-        boolean record = steps % trajectoryEvery == 0;
-        parallel.forEach(robots.size(), i -> robots.get(i).afterStep(physics, stepSeconds, record));
+        long step = ++steps;
+        boolean record = step % trajectoryEvery == 0;
+        long now = clock.nanoTime() + stepNanos;
+        boolean sensing = sensingDue(step);
+        boolean cycling = now >= nextCycle;
+        if (!sensing && !cycling) {
+            // No robot's work after the motion reads the clock or another robot: one pass.
+            parallel.forEach(n, i -> {
+                SimRobot r = robots.get(i);
+                r.afterStep(physics, stepSeconds, record);
+                if (cycled[i] != null) {
+                    r.completeReads(this);
+                }
+                r.applyDrive();
+            });
+            t = tick(t, Phase.AFTER_STEP);
+            clock.advanceNanos(stepNanos);
+            t = tick(t, Phase.INDEX);
+            tick(t, Phase.ROBOTS);
+            return;
+        }
+        boolean grid = sensing && rangeMethod == RangeMethod.GRID;
+        if (grid) {
+            rangeIndex.robots(n);
+        }
+        parallel.forEach(n, i -> {
+            SimRobot r = robots.get(i);
+            r.afterStep(physics, stepSeconds, record);
+            if (grid) {
+                place(r);
+            }
+        });
         t = tick(t, Phase.AFTER_STEP);
         clock.advanceNanos(stepNanos);
-        sampleRangeSensors();
-        t = tick(t, Phase.SENSING);
-        long now = clock.nanoTime();
-        parallel.forEach(cycledRobots.size(), i -> {
-            SimRobot robot = cycledRobots.get(i);
-            Cycled c = cycledThreads.get(i);
-            while (c.next <= now) {
-                c.thread.cycle();
-                c.next += c.period;
+        if (grid) {
+            rangeIndex.indexPlacedRobots();
+        }
+        t = tick(t, Phase.INDEX);
+        long senseStep = sensing ? step : 0;
+        parallel.forEach(n, i -> {
+            SimRobot r = robots.get(i);
+            if (senseStep != 0) {
+                sense(r, senseStep);
             }
-            robot.completeReads(this);
+            Cycled c = cycled[i];
+            if (c != null) {
+                for (; c != null; c = c.more) {
+                    while (c.next <= now) {
+                        c.thread.cycle();
+                        c.next += c.period;
+                    }
+                }
+                r.completeReads(this);
+            }
+            r.applyDrive();
         });
-        t = tick(t, Phase.CYCLE);
-        parallel.forEach(robots.size(), i -> robots.get(i).applyDrive());
-        tick(t, Phase.DRIVE);
+        if (cycling) {
+            long earliest = Long.MAX_VALUE;
+            for (Cycled c : cycled) {
+                for (; c != null; c = c.more) {
+                    earliest = Math.min(earliest, c.next);
+                }
+            }
+            nextCycle = earliest;
+        }
+        tick(t, Phase.ROBOTS);
     }
 
-    /** Samples every range sensor that is due at this step. */
-    private void sampleRangeSensors() {
+    /** Places a robot's body in the range index, from its pose after the step. */
+    private void place(SimRobot r) {
+        Pose p = r.pose();
+        Body b = r.description().body();
+        rangeIndex.placeRobot(r.index(), p.x(), p.y(), p.heading(), b.length(), b.width());
+    }
+
+    /**
+     * Samples a robot's range sensors that are due.
+     *
+     * @param step the step number, or -1 for every sensor
+     */
+    private void sense(SimRobot r, long step) {
+        Pose p = r.pose();
+        List<SensorModel> sensors = r.rangeSensors();
+        for (int k = 0; k < sensors.size(); k++) {
+            SensorModel s = sensors.get(k);
+            if (step < 0 || step % s.everySteps(description.physicsHz()) == 0) {
+                s.sampleRange(rayCaster, r.index(), p.x(), p.y(), p.heading(), r.headPan(), r.headTilt());
+            }
+        }
+    }
+
+    /** @return whether any range sensor samples at this step */
+    private boolean sensingDue(long step) {
         if (sensingPeriods == null) {
             java.util.TreeSet<Long> periods = new java.util.TreeSet<>();
             for (SimRobot r : robots) {
@@ -403,46 +504,12 @@ public final class SimWorld implements AutoCloseable {
             }
             sensingPeriods = periods.stream().mapToLong(Long::longValue).toArray();
         }
-        boolean any = false;
         for (long p : sensingPeriods) {
-            any |= steps % p == 0;
-        }
-        if (!any) {
-            return;
-        }
-        if (rangeMethod == RangeMethod.GRID) {
-            indexRobots();
-        }
-        parallel.forEach(robots.size(), i -> {
-            SimRobot r = robots.get(i);
-            Pose p = r.pose();
-            for (SensorModel s : r.rangeSensors()) {
-                if (steps % s.everySteps(description.physicsHz()) == 0) {
-                    s.sampleRange(rayCaster, r.index(), p.x(), p.y(), p.heading(), r.headPan(), r.headTilt());
-                }
+            if (step % p == 0) {
+                return true;
             }
-        });
-    }
-
-    private void indexRobots() {
-        int n = robots.size();
-        if (px.length != n) {
-            px = new double[n];
-            py = new double[n];
-            ph = new double[n];
-            pl = new double[n];
-            pw = new double[n];
         }
-        for (int i = 0; i < n; i++) {
-            SimRobot r = robots.get(i);
-            Pose p = r.pose();
-            px[i] = p.x();
-            py[i] = p.y();
-            ph[i] = p.heading();
-            pl[i] = r.description().body().length();
-            pw[i] = r.description().body().width();
-        }
-        rangeIndex.indexRobots(n, px, py, ph, pl, pw);
+        return false;
     }
 
     /**

@@ -10,7 +10,7 @@ public final class Trajectory {
 
     private static final int MAX_POINTS = 1 << 20;
 
-    private volatile double[] points = new double[64];
+    private volatile double[] points = new double[16];
     private volatile int size;
 
     void add(double x, double y) {

@@ -428,6 +428,11 @@ public final class ConfiguredRobot implements Robot {
         if (!platform.hasEncoder(drive.left().port()) || !platform.hasEncoder(drive.right().port())) {
             throw new UnsupportedActionException(d.name(), "pose()", "its wheel motors have no encoders");
         }
+        return integrateOdometry(drive);
+    }
+
+    /** Moves the odometry on to the encoders' readings now, for a drive known to have encoders. */
+    private Pose integrateOdometry(DifferentialDrive drive) {
         synchronized (odometryLock) {
             double left = platform.motorDegrees(drive.left().port());
             double right = platform.motorDegrees(drive.right().port());
@@ -447,8 +452,11 @@ public final class ConfiguredRobot implements Robot {
      */
     private void trackOdometry() {
         RobotDescription d = description.get();
-        if (d.drive().isPresent() && platform.hasEncoder(d.drive().get().left().port()) && platform.hasEncoder(d.drive().get().right().port())) {
-            updateOdometry();
+        if (d.drive().isPresent()) {
+            DifferentialDrive drive = d.drive().get();
+            if (platform.hasEncoder(drive.left().port()) && platform.hasEncoder(drive.right().port())) {
+                integrateOdometry(drive);
+            }
         }
     }
 

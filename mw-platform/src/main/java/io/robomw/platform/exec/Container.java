@@ -35,7 +35,7 @@ public final class Container {
 
     private Container(Builder b) {
         this.name = b.name;
-        this.requirements = Set.copyOf(b.requirements);
+        this.requirements = immutable(b.requirements);
         this.priority = b.priority;
         this.interruptionBehavior = b.interruptionBehavior;
         this.actions = List.copyOf(b.actions);
@@ -43,6 +43,18 @@ public final class Container {
         this.endAction = b.endAction;
         this.watchdogNanos = b.watchdog.toNanos();
         this.refreshKey = b.refreshKey;
+    }
+
+    /** {@link Set#copyOf}, without the intermediate hash set it makes, for the one or two actuators most containers need. */
+    private static Set<String> immutable(java.util.LinkedHashSet<String> s) {
+        if (s.size() == 1) {
+            return Set.of(s.iterator().next());
+        }
+        if (s.size() == 2) {
+            java.util.Iterator<String> i = s.iterator();
+            return Set.of(i.next(), i.next());
+        }
+        return Set.copyOf(s);
     }
 
     /**
@@ -144,7 +156,7 @@ public final class Container {
     /** Builds a container. */
     public static final class Builder {
         private final String name;
-        private final java.util.Set<String> requirements = new java.util.LinkedHashSet<>();
+        private final java.util.LinkedHashSet<String> requirements = new java.util.LinkedHashSet<>();
         private CommandPriority priority = CommandPriority.NORMAL;
         private InterruptionBehavior interruptionBehavior = InterruptionBehavior.CANCEL_SELF;
         private final List<ActionObject> actions = new ArrayList<>();

@@ -274,20 +274,35 @@ public final class ExecutionActionThread implements AutoCloseable {
     /** The running containers, copied into a reused list so the loops may end them as they go. */
     private List<Container> snapshot() {
         scratch.clear();
-        scratch.addAll(active);
+        for (int i = 0; i < active.size(); i++) {
+            scratch.add(active.get(i)); // not addAll: it copies through a new array every time
+        }
         return scratch;
     }
 
     private void admit(Container c, long now) {
-        Set<Container> clashing = new LinkedHashSet<>();
+        // The holders of its actuators, in the order of its requirements, each once; no set is made
+        // when one container holds them all (a refresh of a continuous command, ten times a second).
+        Container only = null;
+        Set<Container> clashing = Set.of();
         for (String actuator : c.requirements()) {
             Container holder = holders.get(actuator);
-            if (holder != null) {
+            if (holder == null || holder == only || clashing.contains(holder)) {
+                continue;
+            }
+            if (only == null && clashing.isEmpty()) {
+                only = holder;
+            } else {
+                if (clashing.isEmpty()) {
+                    clashing = new LinkedHashSet<>();
+                    clashing.add(only);
+                }
                 clashing.add(holder);
             }
         }
-        if (clashing.size() == 1) {
-            Container holder = clashing.iterator().next();
+        if (only != null && clashing.isEmpty()) {
+            clashing = Set.of(only);
+            Container holder = only;
             if (holder.refreshedBy(c)) {
                 try {
                     holder.refresh(now, c);

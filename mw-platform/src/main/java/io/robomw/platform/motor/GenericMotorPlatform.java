@@ -295,7 +295,11 @@ public abstract class GenericMotorPlatform {
                 return false;
             });
         }
-        if (targets.stream().allMatch(MotorTarget::continuous)) {
+        boolean continuous = true;
+        for (MotorTarget t : targets) {
+            continuous &= t.continuous();
+        }
+        if (continuous) {
             b.logic(now -> false);
             b.refreshes("continuous");
         }

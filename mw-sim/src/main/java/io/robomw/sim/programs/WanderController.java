@@ -30,6 +30,10 @@ public final class WanderController implements Runnable {
     private final double[] speed;
     private final double[] turnBias;
     private final SplittableRandom[] random;
+    /** Per robot: its wheels' top speed and half its track (NaN if it has no differential drive), a legged robot's top turn rate (else NaN). */
+    private final double[] maxWheelSpeed;
+    private final double[] halfTrack;
+    private final double[] maxTurnRate;
     /** Per robot, per range sensor: bit 1 ahead, bit 2 left, bit 4 right, from its mounting angle. */
     private final int[][] sectors;
 
@@ -40,19 +44,29 @@ public final class WanderController implements Runnable {
      */
     public WanderController(Simulation simulation, double rateHz, long seed) {
         this.simulation = simulation;
-        this.bodies = simulation.world().robots().stream().filter(b -> simulation.robots().stream().anyMatch(r -> r.name().equals(b.name()))).toList();
+        java.util.Set<String> opened = new java.util.HashSet<>();
+        for (Robot r : simulation.robots()) {
+            opened.add(r.name());
+        }
+        this.bodies = simulation.world().robots().stream().filter(b -> opened.contains(b.name())).toList();
         this.robots = bodies.stream().map(b -> simulation.robot(b.name())).toList();
         this.everySteps = Math.max(1, Math.round(1 / (rateHz * simulation.world().stepSeconds())));
         this.speed = new double[bodies.size()];
         this.turnBias = new double[bodies.size()];
         this.random = new SplittableRandom[bodies.size()];
         this.sectors = new int[bodies.size()][];
+        this.maxWheelSpeed = new double[bodies.size()];
+        this.halfTrack = new double[bodies.size()];
+        this.maxTurnRate = new double[bodies.size()];
         SplittableRandom root = new SplittableRandom(seed);
         for (int i = 0; i < bodies.size(); i++) {
             random[i] = root.split();
             var d = bodies.get(i).description();
             speed[i] = d.drive().map(dd -> dd.maxSpeed() * 0.6).or(() -> d.leggedDrive().map(l -> l.maxSpeed() * 0.6)).orElse(0.0);
             turnBias[i] = random[i].nextDouble(-0.3, 0.3);
+            maxWheelSpeed[i] = d.drive().map(dd -> dd.maxSpeed()).orElse(Double.NaN);
+            halfTrack[i] = d.drive().map(dd -> dd.trackWidth() / 2).orElse(Double.NaN);
+            maxTurnRate[i] = d.leggedDrive().map(l -> l.maxTurnRate()).orElse(Double.NaN);
             List<SensorModel> range = bodies.get(i).rangeSensors();
             sectors[i] = new int[range.size()];
             for (int k = 0; k < range.size(); k++) {
@@ -123,7 +137,7 @@ public final class WanderController implements Runnable {
                 w = near < 0.25 ? (side >= 0 ? 1.5 : -1.5) : 2.0 * side + turnBias[i] * 0.3;
             }
             try {
-                robots.get(i).drive(v, clampTurn(body, v, w));
+                robots.get(i).drive(v, clampTurn(i, v, w));
             } catch (UnsupportedActionException e) {
                 speed[i] = 0;
             }
@@ -131,10 +145,14 @@ public final class WanderController implements Runnable {
     }
 
     /** Keeps both wheels within the robot's maximum speed, or a legged robot within its turn rate. */
-    private static double clampTurn(SimRobot body, double v, double w) {
-        return body.description().drive().map(d -> {
-            double max = (d.maxSpeed() - Math.abs(v)) / (d.trackWidth() / 2);
+    private double clampTurn(int i, double v, double w) {
+        if (!Double.isNaN(maxWheelSpeed[i])) {
+            double max = (maxWheelSpeed[i] - Math.abs(v)) / halfTrack[i];
             return Math.max(-max, Math.min(max, w));
-        }).or(() -> body.description().leggedDrive().map(l -> Math.max(-l.maxTurnRate(), Math.min(l.maxTurnRate(), w)))).orElse(0.0);
+        }
+        if (!Double.isNaN(maxTurnRate[i])) {
+            return Math.max(-maxTurnRate[i], Math.min(maxTurnRate[i], w));
+        }
+        return 0.0;
     }
 }

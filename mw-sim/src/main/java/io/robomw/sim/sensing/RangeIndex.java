@@ -39,7 +39,11 @@ public final class RangeIndex {
     private double[] ry1 = new double[0];
     private double[] rx2 = new double[0];
     private double[] ry2 = new double[0];
-    private int[] robotStart;
+    private int robotCount;
+    /** Per robot: first and last column, first and last row its body covers. */
+    private int[] robotCells = new int[0];
+    private final int[] robotStart;
+    private int[] robotFill = new int[0];
     private int[] robotItems = new int[0];
 
     /**
@@ -154,7 +158,8 @@ public final class RangeIndex {
     }
 
     /**
-     * Re-indexes the robots' bodies as oriented rectangles.
+     * Re-indexes the robots' bodies as oriented rectangles: {@link #robots}, {@link #placeRobot}
+     * for each, then {@link #indexPlacedRobots}.
      *
      * @param count   number of robots
      * @param x       centre x per robot
@@ -164,63 +169,123 @@ public final class RangeIndex {
      * @param width   body width per robot
      */
     public void indexRobots(int count, double[] x, double[] y, double[] heading, double[] length, double[] width) {
+        robots(count);
+        for (int i = 0; i < count; i++) {
+            placeRobot(i, x[i], y[i], heading[i], length[i], width[i]);
+        }
+        indexPlacedRobots();
+    }
+
+    /**
+     * Sets how many robots the next {@link #indexPlacedRobots} indexes (their arrays are kept from
+     * one pass to the next). One thread, while no ray is cast and no robot is placed.
+     *
+     * @param count the number of robots, indexed 0 to count - 1
+     */
+    public void robots(int count) {
+        if (robotCount == count) {
+            return;
+        }
         int edges = count * 4;
-        if (rx1.length != edges) {
-            rx1 = new double[edges];
-            ry1 = new double[edges];
-            rx2 = new double[edges];
-            ry2 = new double[edges];
-        }
-        double[] minX = new double[count];
-        double[] minY = new double[count];
-        double[] maxX = new double[count];
-        double[] maxY = new double[count];
-        for (int i = 0; i < count; i++) {
-            double c = Math.cos(heading[i]);
-            double s = Math.sin(heading[i]);
-            double hl = length[i] / 2;
-            double hw = width[i] / 2;
-            double[] px = {hl, -hl, -hl, hl};
-            double[] py = {hw, hw, -hw, -hw};
-            double lox = Double.MAX_VALUE;
-            double loy = Double.MAX_VALUE;
-            double hix = -Double.MAX_VALUE;
-            double hiy = -Double.MAX_VALUE;
-            double[] wx = new double[4];
-            double[] wy = new double[4];
-            for (int k = 0; k < 4; k++) {
-                wx[k] = x[i] + px[k] * c - py[k] * s;
-                wy[k] = y[i] + px[k] * s + py[k] * c;
-                lox = Math.min(lox, wx[k]);
-                loy = Math.min(loy, wy[k]);
-                hix = Math.max(hix, wx[k]);
-                hiy = Math.max(hiy, wy[k]);
-            }
-            for (int k = 0; k < 4; k++) {
-                int e = i * 4 + k;
-                rx1[e] = wx[k];
-                ry1[e] = wy[k];
-                rx2[e] = wx[(k + 1) % 4];
-                ry2[e] = wy[(k + 1) % 4];
-            }
-            minX[i] = lox;
-            minY[i] = loy;
-            maxX[i] = hix;
-            maxY[i] = hiy;
-        }
+        rx1 = new double[edges];
+        ry1 = new double[edges];
+        rx2 = new double[edges];
+        ry2 = new double[edges];
+        robotCells = new int[count * 4];
+        robotCount = count;
+        robotItems = new int[0];
+        Arrays.fill(robotStart, 0);
+    }
+
+    /**
+     * Places one robot's body for the next {@link #indexPlacedRobots}: its four edges and the
+     * cells they cover. Robots may be placed from several threads at once, each robot by one thread,
+     * while no ray is cast.
+     *
+     * @param i       the robot's index
+     * @param x       its centre x
+     * @param y       its centre y
+     * @param heading its heading, radians
+     * @param length  its body length
+     * @param width   its body width
+     */
+    public void placeRobot(int i, double x, double y, double heading, double length, double width) {
+        double c = Math.cos(heading);
+        double s = Math.sin(heading);
+        double hl = length / 2;
+        double hw = width / 2;
+        // corners in the order front-left, back-left, back-right, front-right; edge k joins corner k and k + 1
+        double x0 = x + hl * c - hw * s;
+        double y0 = y + hl * s + hw * c;
+        double x1 = x - hl * c - hw * s;
+        double y1 = y - hl * s + hw * c;
+        double x2 = x - hl * c + hw * s;
+        double y2 = y - hl * s - hw * c;
+        double x3 = x + hl * c + hw * s;
+        double y3 = y + hl * s - hw * c;
+        int e = i * 4;
+        rx1[e] = x0;
+        ry1[e] = y0;
+        rx2[e] = x1;
+        ry2[e] = y1;
+        rx1[e + 1] = x1;
+        ry1[e + 1] = y1;
+        rx2[e + 1] = x2;
+        ry2[e + 1] = y2;
+        rx1[e + 2] = x2;
+        ry1[e + 2] = y2;
+        rx2[e + 2] = x3;
+        ry2[e + 2] = y3;
+        rx1[e + 3] = x3;
+        ry1[e + 3] = y3;
+        rx2[e + 3] = x0;
+        ry2[e + 3] = y0;
+        robotCells[e] = clampCol(Math.min(Math.min(x0, x1), Math.min(x2, x3)));
+        robotCells[e + 1] = clampCol(Math.max(Math.max(x0, x1), Math.max(x2, x3)));
+        robotCells[e + 2] = clampRow(Math.min(Math.min(y0, y1), Math.min(y2, y3)));
+        robotCells[e + 3] = clampRow(Math.max(Math.max(y0, y1), Math.max(y2, y3)));
+    }
+
+    /**
+     * Indexes the robots placed since {@link #robots}: each in every cell its bounding box covers,
+     * in robot order. One thread, while no ray is cast; it allocates only when the index needs more
+     * room than before.
+     */
+    public void indexPlacedRobots() {
         int cells = cols * rows;
-        int[] start = new int[cells + 1];
-        for (int i = 0; i < count; i++) {
-            forCells(minX[i], minY[i], maxX[i], maxY[i], start, null, null, i);
+        int[] start = robotStart;
+        Arrays.fill(start, 0);
+        int[] rc = robotCells;
+        for (int i = 0; i < robotCount; i++) {
+            int e = i * 4;
+            int spanC = rc[e + 1] - rc[e] + 1;
+            for (int r = rc[e + 2]; r <= rc[e + 3]; r++) {
+                int k = r * cols + rc[e];
+                for (int j = 0; j < spanC; j++) {
+                    start[k + j + 1]++;
+                }
+            }
         }
         prefixSum(start);
-        int[] items = new int[start[cells]];
-        int[] fill = Arrays.copyOf(start, cells);
-        for (int i = 0; i < count; i++) {
-            forCells(minX[i], minY[i], maxX[i], maxY[i], start, fill, items, i);
+        if (robotItems.length < start[cells]) {
+            robotItems = new int[start[cells] + start[cells] / 4];
         }
-        robotStart = start;
-        robotItems = items;
+        if (robotFill.length != cells) {
+            robotFill = new int[cells];
+        }
+        int[] fill = robotFill;
+        System.arraycopy(start, 0, fill, 0, cells);
+        int[] items = robotItems;
+        for (int i = 0; i < robotCount; i++) {
+            int e = i * 4;
+            int spanC = rc[e + 1] - rc[e] + 1;
+            for (int r = rc[e + 2]; r <= rc[e + 3]; r++) {
+                int k = r * cols + rc[e];
+                for (int j = 0; j < spanC; j++) {
+                    items[fill[k + j]++] = i;
+                }
+            }
+        }
     }
 
     /**

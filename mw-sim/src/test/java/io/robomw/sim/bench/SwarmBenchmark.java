@@ -91,11 +91,13 @@ public final class SwarmBenchmark {
 
     /**
      * One sample for {@code bench/all}, in a JVM of its own: {@code --sample N CONFIG [--warmup S]
-     * [--measure S] [--placement]} (CONFIG: grid50, grid20, naive50, naive50s50, naive10; S: wall-clock seconds,
-     * default 4 and 8). The world runs for the warm-up (JIT, heap sizing; longer while the JIT
+     * [--measure S] [--placement] [--threads T]} (CONFIG: grid50, grid20, naive50, naive50s50, naive10; S: wall-clock seconds,
+     * default 4 and 8; T: threads stepping the world, default the processors). The world runs for the warm-up (JIT, heap sizing; longer while the JIT
      * still compiles more than 50 ms a second, up to twice plus 10 s), then for the measured
      * window in whole steps; prints the real-time factor of the window and of each of its seconds,
-     * where the step's time went (phases, on the world's profile clock), GC and JIT time in the
+     * where the step's time went (phases, on the world's profile clock), the CPU time a step took
+     * (the process's, which does not count time the threads waited for a processor, and the
+     * stepping thread's), GC and JIT time in the
      * window, with {@code --placement} each thread's CPU, processor and migrations
      * ({@link ThreadPlacement}, which costs some CPU itself), then
      * {@code BENCH} lines: the real-time factor; for the grid configurations also dyn4j's step
@@ -112,8 +114,10 @@ public final class SwarmBenchmark {
         double warmup = 4;
         double measure = 8;
         boolean watchThreads = false;
+        int threads = Runtime.getRuntime().availableProcessors();
         for (int i = 3; i < args.length; i++) {
             switch (args[i]) {
+                case "--threads" -> threads = Integer.parseInt(args[++i]);
                 case "--warmup" -> warmup = Double.parseDouble(args[++i]);
                 case "--measure" -> measure = Double.parseDouble(args[++i]);
                 case "--placement" -> watchThreads = true;
@@ -122,7 +126,7 @@ public final class SwarmBenchmark {
         }
         long heapBefore = liveHeap();
         Path dir = Files.createTempDirectory("robomw-swarm");
-        try (Simulation sim = Simulation.create(world(n, config, dir), Runtime.getRuntime().availableProcessors(), config.method())) {
+        try (Simulation sim = Simulation.create(world(n, config, dir), threads, config.method())) {
             WanderController.install(sim, 10, 1);
             long heapPerRobot = (liveHeap() - heapBefore) / n;
             SimWorld w = sim.world();
@@ -149,6 +153,9 @@ public final class SwarmBenchmark {
             long gcMillis0 = gcMillis();
             long jit0 = jitMillis();
             ThreadPlacement placement = watchThreads ? ThreadPlacement.start() : null;
+            long cpu0 = processCpuNanos();
+            long steppingCpu0 = threadCpuNanos();
+            long[] machine0 = machineTicks();
             w.profile(io.robomw.api.Clock.system());
             double sim0 = w.time();
             long t0 = System.nanoTime();
@@ -168,9 +175,12 @@ public final class SwarmBenchmark {
             } while (now < end);
             double simSeconds = w.time() - sim0;
             double wall = (now - t0) / 1e9;
+            long cpu = processCpuNanos() - cpu0;
+            long steppingCpu = threadCpuNanos() - steppingCpu0;
+            long[] machine1 = machineTicks();
             long[] phases = w.phaseNanos();
             w.profile(null);
-            String threads = placement == null ? "(not watched; --placement)" : placement.stop();
+            String placed = placement == null ? "(not watched; --placement)" : placement.stop();
             double rtf = simSeconds / wall;
             long stepsTaken = Math.round(simSeconds / w.stepSeconds());
             StringBuilder p = new StringBuilder();
@@ -183,11 +193,21 @@ public final class SwarmBenchmark {
             p.append(String.format(Locale.ROOT, "controller and rest %.1f µs", ((now - t0) - inWorld) / 1e3 / stepsTaken));
             System.out.printf(Locale.ROOT, "SAMPLE N=%d %s: %.2f× real time over %.1f s wall (%d steps); per second: %s%n", n, key, rtf, wall, stepsTaken, perSecond);
             System.out.println("  per step: " + p);
+            System.out.printf(Locale.ROOT, "  CPU per step: %.1f µs for the process (%.2f processors busy on average), %.1f µs on the stepping thread; %d threads%n",
+                    cpu / 1e3 / stepsTaken, cpu / 1e9 / wall, steppingCpu / 1e3 / stepsTaken, threads);
+            if (machine0 != null && machine1 != null) {
+                double busy = (machine1[0] - machine0[0]) / 100.0 / wall;
+                double others = Math.max(0, busy - cpu / 1e9 / wall);
+                double steal = (machine1[1] - machine0[1]) / 100.0 / wall;
+                System.out.printf(Locale.ROOT, "  the machine in the window: %.2f of %d processors busy, %.2f of them with other processes%s; steal %.2f%n",
+                        busy, Runtime.getRuntime().availableProcessors(), others,
+                        others > 0.1 ? " (NOT QUIET: this sample shared the processors)" : "", steal);
+            }
             long jitInWindow = jitMillis() - jit0;
             System.out.printf(Locale.ROOT, "  warm-up %.1f s; GC in the window: %d collections, %d ms; JIT compilation in the window: %d ms%s; live heap per robot %d bytes%n",
                     warmedFor, gcCount() - gcCount0, gcMillis() - gcMillis0, jitInWindow,
                     jitInWindow > wall * 100 ? " (UNSTEADY: the JIT compiled for more than a tenth of the window)" : "", heapPerRobot);
-            System.out.println("  threads: " + threads);
+            System.out.println("  threads: " + placed);
             String id = "sim.n" + n + "." + key;
             System.out.println(io.robomw.sim.bench.SwarmBenchmark.line(id, rtf, "×"));
             if (config.method() == SimWorld.RangeMethod.GRID && key.equals("grid50")) {
@@ -212,6 +232,39 @@ public final class SwarmBenchmark {
             System.gc();
         }
         return m.getHeapMemoryUsage().getUsed();
+    }
+
+    /** @return CPU time of this process (every thread, the JIT and GC included), nanoseconds; -1 if unknown */
+    private static long processCpuNanos() {
+        return java.lang.management.ManagementFactory.getOperatingSystemMXBean() instanceof com.sun.management.OperatingSystemMXBean os
+                ? os.getProcessCpuTime() : -1;
+    }
+
+    /**
+     * The machine's busy time from {@code /proc/stat} (Linux): every processor's user, nice,
+     * system, irq and softirq ticks (1/100 s), and the ticks the hypervisor stole. Other processes
+     * compete with a sample at equal weight whatever their nice value when they run in another
+     * session (the kernel's autogroups: a campaign started at nice 10 from its own shell is not
+     * "in the background"), so a sample says how much of the machine they took.
+     *
+     * @return {busy, steal} ticks, or {@code null} where there is no {@code /proc/stat}
+     */
+    private static long[] machineTicks() {
+        try {
+            String[] f = Files.readAllLines(Path.of("/proc/stat")).get(0).trim().split("\\s+");
+            long busy = 0;
+            for (int i : new int[] {1, 2, 3, 6, 7}) {
+                busy += Long.parseLong(f[i]);
+            }
+            return new long[] {busy, f.length > 8 ? Long.parseLong(f[8]) : 0};
+        } catch (IOException | RuntimeException e) {
+            return null;
+        }
+    }
+
+    /** @return CPU time of the calling thread, nanoseconds */
+    private static long threadCpuNanos() {
+        return java.lang.management.ManagementFactory.getThreadMXBean().getCurrentThreadCpuTime();
     }
 
     private static long gcCount() {

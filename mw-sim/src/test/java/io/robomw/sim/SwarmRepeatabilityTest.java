@@ -1,0 +1,91 @@
+package io.robomw.sim;
+
+import io.robomw.api.Pose;
+import io.robomw.sim.programs.WanderController;
+import io.robomw.sim.world.WorldDescription;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import java.io.IOException;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Locale;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+/**
+ * A crowded swarm, large enough that every per-robot pass of a step is split between threads,
+ * gives the same trajectories bit for bit whatever the number of threads stepping it: robots
+ * that see each other with noisy range sensors (every sensor its own seeded stream), bump into
+ * each other and the walls, and are driven through all three layers by the wander controller.
+ */
+class SwarmRepeatabilityTest {
+
+    private static final int ROBOTS = 160;
+
+    @TempDir
+    Path dir;
+
+    @Test
+    void shouldGiveTheSameTrajectoriesBitForBitWhateverTheNumberOfThreads() throws IOException {
+        WorldDescription world = crowdedWorld();
+        List<Pose> oneThread = run(world, 1);
+        List<Pose> twoThreads = run(world, 2);
+        List<Pose> threeThreads = run(world, 3);
+        assertEquals(oneThread, twoThreads, "2 threads against the stepping thread alone");
+        assertEquals(oneThread, threeThreads, "3 threads against the stepping thread alone");
+        long moved = 0;
+        for (int i = 0; i < ROBOTS; i++) {
+            Pose start = world.robots().get(i).start();
+            if (oneThread.get(i).distanceTo(start) > 0.2) {
+                moved++;
+            }
+        }
+        assertTrue(moved > ROBOTS / 4, "many robots wandered off (else the test proves little): " + moved + " of " + ROBOTS);
+    }
+
+    /** The poses of every robot after 4 simulated seconds. */
+    private static List<Pose> run(WorldDescription world, int threads) {
+        try (Simulation sim = Simulation.create(world, threads)) {
+            WanderController.install(sim, 10, 3);
+            sim.runFor(Duration.ofSeconds(4));
+            List<Pose> poses = new ArrayList<>();
+            for (SimRobot r : sim.world().robots()) {
+                poses.add(r.pose());
+            }
+            return poses;
+        }
+    }
+
+    /** 160 robots 0.35 m apart (their 0.5 m sensors see their neighbours), noisy sensors, 50 Hz physics. */
+    private WorldDescription crowdedWorld() throws IOException {
+        Path robot = dir.resolve("bot.yaml");
+        StringBuilder sensors = new StringBuilder();
+        for (int i = 0; i < 8; i++) {
+            sensors.append(String.format(Locale.ROOT,
+                    "  - { name: ir%d, type: infrared, position: center, port: S%d, options: { angle: %.6f, x: %.4f, y: %.4f, max_range: 0.5, "
+                            + "noise: 0.01, rate_hz: %s } }%n",
+                    i, i, i * Math.PI / 4, 0.06 * Math.cos(i * Math.PI / 4), 0.06 * Math.sin(i * Math.PI / 4), i % 2 == 0 ? "10" : "25"));
+        }
+        Files.writeString(robot, """
+                name: bot
+                platform: sim
+                cycle_hz: 10
+                drive: { wheel_diameter: 0.056, track_width: 0.112, max_speed: 0.3, left: { port: B }, right: { port: C } }
+                body: { length: 0.12, width: 0.12, mass: 0.3 }
+                sensors:
+                """ + sensors);
+        int cols = 16;
+        List<WorldDescription.RobotPlacement> placements = new ArrayList<>();
+        for (int i = 0; i < ROBOTS; i++) {
+            placements.add(new WorldDescription.RobotPlacement(robot, "r" + i,
+                    new Pose(0.3 + 0.35 * (i % cols), 0.3 + 0.35 * (i / cols), (i * 2.399963) % (2 * Math.PI))));
+        }
+        return new WorldDescription("crowd", 0.3 + 0.35 * cols, 0.3 + 0.35 * (ROBOTS / cols), true, 0.1, 0.8, List.of(), List.of(),
+                placements, 11, 50, "test");
+    }
+}
