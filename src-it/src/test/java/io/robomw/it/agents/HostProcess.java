@@ -82,8 +82,13 @@ public final class HostProcess implements AutoCloseable {
         boolean readyLine = false;
         messaging = null;
         served = null;
+        // MarkSweepDeadRatio=0: every full collection compacts the whole heap. By default the serial
+        // collector's full collection leaves up to 5% of the old generation's capacity of dead space in
+        // place as filler arrays, which a class histogram counts as live int[] (JDK 17; from JDK 19
+        // jdk.internal.vm.FillerArray / FillerElement[]): the soak's heap figures (jcmd GC.class_histogram)
+        // would count up to 12 MiB of garbage as held (docs/reliability.md).
         List<String> command = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-cp", middlewareOnlyClassPath(), "io.robomw.cli.Mw", "host",
+                "-XX:+UseSerialGC", "-XX:MarkSweepDeadRatio=0", "-XX:TieredStopAtLevel=1", "-cp", middlewareOnlyClassPath(), "io.robomw.cli.Mw", "host",
                 "--name", name, "--port", String.valueOf(port)));
         command.addAll(hostArgs);
         process = new ProcessBuilder(command).redirectError(ProcessBuilder.Redirect.appendTo(log.toFile())).start();

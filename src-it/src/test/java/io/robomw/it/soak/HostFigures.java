@@ -4,6 +4,7 @@ import java.io.IOException;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.util.List;
 import java.util.concurrent.TimeUnit;
 import java.util.regex.Matcher;
 import java.util.regex.Pattern;
@@ -48,6 +49,19 @@ public record HostFigures(int threads, int files, long heapKiB, String threadGro
         return new HostFigures(threads, files, liveBytes / 1024, top, classes);
     }
 
+    /**
+     * Writes a heap dump of a JVM's live objects ({@code jcmd PID GC.heap_dump}, which collects
+     * first), for finding what holds what the figures show.
+     *
+     * @param pid  a JVM's process id
+     * @param file where the dump goes (an .hprof file; it must not exist)
+     * @throws IOException if jcmd cannot
+     */
+    static void heapDump(long pid, Path file) throws IOException {
+        Files.createDirectories(file.toAbsolutePath().getParent());
+        jcmd(pid, "GC.heap_dump " + file.toAbsolutePath());
+    }
+
     /** @return a JVM's open file descriptors, from /proc */
     static int filesOf(long pid) throws IOException {
         try (Stream<Path> fds = Files.list(Path.of("/proc", Long.toString(pid), "fd"))) {
@@ -67,7 +81,9 @@ public record HostFigures(int threads, int files, long heapKiB, String threadGro
 
     private static String jcmd(long pid, String command) throws IOException {
         Path jcmd = Path.of(System.getProperty("java.home"), "bin", "jcmd");
-        Process p = new ProcessBuilder(jcmd.toString(), Long.toString(pid), command).redirectErrorStream(true).start();
+        List<String> argv = new java.util.ArrayList<>(List.of(jcmd.toString(), Long.toString(pid)));
+        argv.addAll(List.of(command.split(" ")));
+        Process p = new ProcessBuilder(argv).redirectErrorStream(true).start();
         try {
             String out = new String(p.getInputStream().readAllBytes(), StandardCharsets.UTF_8);
             if (!p.waitFor(60, TimeUnit.SECONDS) || p.exitValue() != 0) {

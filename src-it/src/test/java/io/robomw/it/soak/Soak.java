@@ -73,6 +73,12 @@ final class Soak implements AutoCloseable {
     static final int FILE_BOUND = 16;
     /** The most heap (after a full GC, KiB) a host may hold after a run beyond what it held before. */
     static final long HEAP_BOUND_KIB = 32 * 1024;
+    /**
+     * A directory: when set ({@code -Dsoak.heapDumps=DIR}), every host's heap is dumped there before
+     * and after the run, {@code <host>-before.hprof} and {@code <host>-after.hprof}, for finding
+     * what holds what the figures show (docs/reliability.md).
+     */
+    static final String HEAP_DUMPS = "soak.heapDumps";
 
     private final Plan plan;
     private final Path dir;
@@ -127,6 +133,7 @@ final class Soak implements AutoCloseable {
         Map<HostProcess, HostFigures> before = new LinkedHashMap<>();
         for (HostProcess h : hosts) {
             before.put(h, HostFigures.of(h.pid()));
+            heapDump(h, "before");
         }
         long started = System.nanoTime();
         long endAt = System.currentTimeMillis() + plan.duration().toMillis();
@@ -209,6 +216,7 @@ final class Soak implements AutoCloseable {
         List<HostRow> rows = new ArrayList<>();
         for (HostProcess h : hosts) {
             rows.add(new HostRow(h.address(), before.get(h), HostFigures.of(h.pid()), restarts.get(h)));
+            heapDump(h, "after");
         }
         return new Figures(plan, refs.size(), home, stopsRun, twice, lost, duplicates.get(), interrupted, unreachable, kills, seconds, rows);
     }
@@ -227,6 +235,14 @@ final class Soak implements AutoCloseable {
                     && (HostFigures.threadsOf(h.pid()) > b.threads() + THREAD_BOUND || HostFigures.filesOf(h.pid()) > b.files() + FILE_BOUND)) {
                 java.util.concurrent.locks.LockSupport.parkNanos(TimeUnit.MILLISECONDS.toNanos(200));
             }
+        }
+    }
+
+    private static void heapDump(HostProcess h, String when) throws IOException {
+        String dir = System.getProperty(HEAP_DUMPS);
+        if (dir != null && !dir.isBlank()) {
+            String host = h.address().substring(h.address().lastIndexOf('/') + 1);
+            HostFigures.heapDump(h.pid(), Path.of(dir, host + "-" + when + "-" + h.pid() + ".hprof"));
         }
     }
 
