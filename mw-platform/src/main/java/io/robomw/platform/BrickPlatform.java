@@ -1,5 +1,6 @@
 package io.robomw.platform;
 
+import io.robomw.platform.brick.BrickChannel;
 import io.robomw.api.Clock;
 import io.robomw.api.RobotException;
 import io.robomw.api.RobotLinkException;
@@ -167,9 +168,9 @@ public final class BrickPlatform implements RobotPlatform {
     private void serviceLoop() {
         long period = config.cyclePeriod().toNanos();
         while (running) {
-            long started = System.nanoTime();
+            long started = BrickChannel.LINK_TIME.nanoTime(); // the link is paced in real time, whatever clock the robot runs on
             serviceLink();
-            long rest = (linkDown ? period * 10 : period) - (System.nanoTime() - started);
+            long rest = (linkDown ? period * 10 : period) - (BrickChannel.LINK_TIME.nanoTime() - started);
             if (rest > 0) {
                 LockSupport.parkNanos(this, rest);
             }

@@ -33,8 +33,11 @@ public final class BrickChannel implements AutoCloseable {
     /** Shortest time between two attempts to reopen a lost link. */
     public static final Duration REOPEN_INTERVAL = Duration.ofMillis(500);
 
-    /** Reopening a link paces itself on the wall clock: a link's real time, whatever clock the robot runs on. */
-    private static final io.robomw.api.Clock LINK_TIME = io.robomw.api.Clock.system();
+    /**
+     * The link's time: exchanges are timed and a lost link's reopening paced on the wall clock (a
+     * link's real time, whatever clock the robot runs on), always read through this {@link io.robomw.api.Clock}.
+     */
+    public static final io.robomw.api.Clock LINK_TIME = io.robomw.api.Clock.system();
 
     private final String robot;
     private final Communicator communicator;
@@ -123,7 +126,7 @@ public final class BrickChannel implements AutoCloseable {
         if (!exchanging) {
             return 0;
         }
-        return Math.max(0, exchangeStartedAt + exchangeTime.nanos() - System.nanoTime());
+        return Math.max(0, exchangeStartedAt + exchangeTime.nanos() - LINK_TIME.nanoTime());
     }
 
     /** @return how long each reply is awaited */
@@ -143,14 +146,14 @@ public final class BrickChannel implements AutoCloseable {
         lock.lock();
         try {
             ensureOpen();
-            long started = System.nanoTime();
+            long started = LINK_TIME.nanoTime();
             exchangeStartedAt = started;
             exchanging = true;
             try {
                 Duration timeout = answered ? replyTimeout : max(replyTimeout, FIRST_REPLY_TIMEOUT);
                 T result = exchange.run(communicator, timeout);
                 answered = true;
-                exchangeTime.sample(System.nanoTime() - started);
+                exchangeTime.sample(LINK_TIME.nanoTime() - started);
                 return result;
             } catch (IOException e) {
                 markDown(e);

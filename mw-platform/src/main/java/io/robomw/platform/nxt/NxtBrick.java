@@ -111,12 +111,12 @@ public final class NxtBrick {
                     out.writeBytes(NxtTelegram.withLengthPrefix(requests.get(next).telegram()));
                     next++;
                 }
-                long sent = System.nanoTime();
+                long sent = BrickChannel.LINK_TIME.nanoTime();
                 c.send(out.toByteArray());
                 for (int i = first; i < next; i++) {
                     replies.add(readReply(c, timeout, requests.get(i)));
                     if (i == first) {
-                        roundTrip.sample(System.nanoTime() - sent);
+                        roundTrip.sample(BrickChannel.LINK_TIME.nanoTime() - sent);
                     }
                 }
             }
@@ -179,10 +179,10 @@ public final class NxtBrick {
     public byte[] requestAllowing(byte[] telegram, int replyLength, int port) throws IOException {
         Request request = new Request(telegram, replyLength, port);
         return channel.exchange((c, timeout) -> {
-            long sent = System.nanoTime();
+            long sent = BrickChannel.LINK_TIME.nanoTime();
             c.send(NxtTelegram.withLengthPrefix(telegram));
             byte[] reply = readReply(c, timeout, request);
-            roundTrip.sample(System.nanoTime() - sent);
+            roundTrip.sample(BrickChannel.LINK_TIME.nanoTime() - sent);
             return reply;
         });
     }

@@ -83,11 +83,11 @@ public final class RcxBrick {
             byte[] packet = RcxPacket.encode(op, data);
             LinkTimeoutException silence = null;
             for (int attempt = 0; attempt < ATTEMPTS; attempt++) {
-                long sent = System.nanoTime();
+                long sent = BrickChannel.LINK_TIME.nanoTime();
                 c.send(packet);
                 try {
                     RcxPacket.Decoded reply = receive(c, timeout, packet, op);
-                    roundTrip.sample(System.nanoTime() - sent);
+                    roundTrip.sample(BrickChannel.LINK_TIME.nanoTime() - sent);
                     return reply;
                 } catch (LinkTimeoutException e) {
                     silence = e;
@@ -99,7 +99,7 @@ public final class RcxBrick {
     }
 
     private RcxPacket.Decoded receive(Communicator c, Duration timeout, byte[] packet, int op) throws IOException {
-        long deadline = System.nanoTime() + timeout.toNanos();
+        long deadline = BrickChannel.LINK_TIME.nanoTime() + timeout.toNanos();
         if (echo) {
             byte[] heard = c.receiveExactly(packet.length, remaining(deadline));
             if (!Arrays.equals(heard, packet)) {
@@ -123,7 +123,7 @@ public final class RcxBrick {
     }
 
     private static Duration remaining(long deadline) {
-        return Duration.ofNanos(Math.max(0, deadline - System.nanoTime()));
+        return Duration.ofNanos(Math.max(0, deadline - BrickChannel.LINK_TIME.nanoTime()));
     }
 
     /**
