@@ -171,7 +171,8 @@ public final class JournalStore implements AgentStore {
     private final FileChannel lockChannel;
     private final FileLock lock;
     private final Object writeLock = new Object();
-    private final Map<UUID, StoredAgent> live = new LinkedHashMap<>();
+    /** The agents held here: where each one's image is in the journal (not a copy of it). */
+    private final Map<UUID, Held> live = new LinkedHashMap<>();
     /** The highest hop of each agent seen, for the last {@value #SEEN_CAPACITY} agents; read without the write lock. */
     private final Map<UUID, Long> seen = new ConcurrentHashMap<>();
     /** The agents of {@link #seen} in the order they were first seen, for forgetting the oldest; guarded by the write lock. */
@@ -189,6 +190,8 @@ public final class JournalStore implements AgentStore {
     /** The file's size, zero-filled from {@link #end} on. */
     private long allocated;
     private long liveBytes;
+    /** How many times the journal was forced to the disk since it was opened (for tests); guarded by the write lock. */
+    private long forces;
     /** The format version of the journal as it was read (its records are rewritten in {@link #FORMAT_VERSION}). */
     private int readVersion = FORMAT_VERSION;
     /** When the journal was opened: the owed-since of events a version 1 journal holds. */
@@ -214,7 +217,7 @@ public final class JournalStore implements AgentStore {
         this.lock = l;
         try {
             replay();
-            recoveredAgents = List.copyOf(live.values());
+            recoveredAgents = live.values().stream().map(a -> new StoredAgent(a.id(), a.hop(), a.phase(), a.image())).toList();
             recoveredEvents = List.copyOf(events.values());
             compact();
         } catch (IOException | RuntimeException e) {
@@ -261,12 +264,32 @@ public final class JournalStore implements AgentStore {
         return journal.toString();
     }
 
+    /** The image is written from the caller's array (no copy of it is made or kept: {@link #live} notes where it is in the journal). */
     @Override
     public void accepted(UUID id, long hop, byte[] from, int offset, int length) throws IOException {
-        byte[] image = java.util.Arrays.copyOfRange(from, offset, offset + length);
+        checkRange(from, offset, length);
         synchronized (writeLock) {
-            append(RecordType.ACCEPTED, id, hop, image, true);
-            put(new StoredAgent(id, hop, Phase.ACCEPTED, image));
+            long at = append(true, encode(RecordType.ACCEPTED, id, hop, from, offset, length));
+            put(new Held(id, hop, Phase.ACCEPTED, at + DATA_OFFSET, length, null));
+            see(id, hop);
+        }
+    }
+
+    /**
+     * One write and one {@code fdatasync} for both records (an ACCEPTED, then a STARTED record),
+     * where {@link #accepted} and {@link #started} would take two of each; replayed, the agent is
+     * in phase STARTED. The image is written from the caller's array.
+     */
+    @Override
+    public void acceptedStarting(UUID id, long hop, byte[] from, int offset, int length) throws IOException {
+        checkRange(from, offset, length);
+        synchronized (writeLock) {
+            ByteBuffer[] accepted = encode(RecordType.ACCEPTED, id, hop, from, offset, length);
+            ByteBuffer[] started = encode(RecordType.STARTED, id, hop, null, 0, 0);
+            ByteBuffer[] both = java.util.Arrays.copyOf(accepted, accepted.length + started.length);
+            System.arraycopy(started, 0, both, accepted.length, started.length);
+            long at = append(true, both);
+            put(new Held(id, hop, Phase.STARTED, at + DATA_OFFSET, length, null));
             see(id, hop);
         }
     }
@@ -274,27 +297,35 @@ public final class JournalStore implements AgentStore {
     @Override
     public void started(UUID id, long hop) throws IOException {
         synchronized (writeLock) {
-            append(RecordType.STARTED, id, hop, null, true);
-            StoredAgent a = live.get(id);
+            append(true, encode(RecordType.STARTED, id, hop, null, 0, 0));
+            Held a = live.get(id);
             if (a != null) {
-                live.put(id, new StoredAgent(id, hop, Phase.STARTED, a.image()));
+                live.put(id, a.in(hop, Phase.STARTED));
             }
         }
     }
 
+    /** The image is written from the caller's array (no copy of it is made or kept). */
     @Override
     public void departing(UUID id, long hop, byte[] from, int offset, int length) throws IOException {
-        byte[] image = java.util.Arrays.copyOfRange(from, offset, offset + length);
+        checkRange(from, offset, length);
         synchronized (writeLock) {
-            append(RecordType.DEPARTING, id, hop, image, false);
-            put(new StoredAgent(id, hop, Phase.DEPARTING, image));
+            long at = append(false, encode(RecordType.DEPARTING, id, hop, from, offset, length));
+            put(new Held(id, hop, Phase.DEPARTING, at + DATA_OFFSET, length, null));
+        }
+    }
+
+    private static void checkRange(byte[] from, int offset, int length) {
+        java.util.Objects.checkFromIndexSize(offset, length, from.length);
+        if (length > MAX_RECORD - MIN_PAYLOAD - 4) {
+            throw new IllegalArgumentException("an image of " + length + " bytes is too large for a journal record");
         }
     }
 
     @Override
     public void departed(UUID id, long hop) throws IOException {
         synchronized (writeLock) {
-            append(RecordType.DEPARTED, id, hop, null, false);
+            append(false, encode(RecordType.DEPARTED, id, hop, null, 0, 0));
             forget(id, hop);
             maybeCompact();
         }
@@ -306,7 +337,7 @@ public final class JournalStore implements AgentStore {
      * ACCEPTED record is written before the sender records the old copy departed.
      */
     private void forget(UUID id, long hop) {
-        StoredAgent held = live.get(id);
+        Held held = live.get(id);
         if (held == null || held.hop() < hop || held.hop() == hop && held.phase() == Phase.DEPARTING) {
             remove(id);
             eventSeqs.remove(id);
@@ -326,7 +357,8 @@ public final class JournalStore implements AgentStore {
     @Override
     public void eventPending(PendingEvent event) throws IOException {
         synchronized (writeLock) {
-            append(RecordType.EVENT_PENDING, event.id(), event.seq(), pendingData(event), true);
+            byte[] data = pendingData(event);
+            append(true, encode(RecordType.EVENT_PENDING, event.id(), event.seq(), data, 0, data.length));
             if (live.containsKey(event.id())) {
                 eventSeqs.merge(event.id(), event.seq() + 1, Math::max);
             }
@@ -338,7 +370,7 @@ public final class JournalStore implements AgentStore {
     @Override
     public void eventDelivered(UUID id, long seq) throws IOException {
         synchronized (writeLock) {
-            append(RecordType.EVENT_DELIVERED, id, seq, null, false);
+            append(false, encode(RecordType.EVENT_DELIVERED, id, seq, null, 0, 0));
             PendingEvent e = events.remove(key(id, seq));
             if (e != null) {
                 liveBytes -= e.event().length;
@@ -385,6 +417,13 @@ public final class JournalStore implements AgentStore {
         } catch (IOException e) {
             LOG.warn("cannot read archive {}: {}", file, e.toString());
             return Optional.empty();
+        }
+    }
+
+    /** @return how many times records were forced to the disk since the store was opened (not counting its own growth and compaction) */
+    long forces() {
+        synchronized (writeLock) {
+            return forces;
         }
     }
 
@@ -435,7 +474,7 @@ public final class JournalStore implements AgentStore {
                 io.run();
             } catch (ClosedByInterruptException e) {
                 interrupted |= Thread.interrupted();
-                channel = FileChannel.open(journal, StandardOpenOption.WRITE);
+                channel = FileChannel.open(journal, StandardOpenOption.READ, StandardOpenOption.WRITE);
                 io.run();
             }
         } finally {
@@ -447,19 +486,47 @@ public final class JournalStore implements AgentStore {
 
     // ---- journal ----
 
-    private void put(StoredAgent a) {
-        StoredAgent old = live.put(a.id(), a);
+    private void put(Held a) {
+        Held old = live.put(a.id(), a);
         if (old != null) {
-            liveBytes -= old.image().length;
+            liveBytes -= old.length();
         }
-        liveBytes += a.image().length;
+        liveBytes += a.length();
     }
 
     private void remove(UUID id) {
-        StoredAgent old = live.remove(id);
+        Held old = live.remove(id);
         if (old != null) {
-            liveBytes -= old.image().length;
+            liveBytes -= old.length();
         }
+    }
+
+    /**
+     * An agent held here, as the journal has it: its image is {@code length} bytes at
+     * {@code dataAt} in the journal file, and also in {@code image} while the replay's copy is
+     * kept (from a journal's opening to its first compaction), else {@code null}.
+     */
+    private record Held(UUID id, long hop, Phase phase, long dataAt, int length, byte[] image) {
+        Held in(long newHop, Phase newPhase) {
+            return new Held(id, newHop, newPhase, dataAt, length, image);
+        }
+    }
+
+    /** @return a held agent's image, read back from the journal unless the replay's copy is kept */
+    private byte[] imageOf(Held a) throws IOException {
+        if (a.image() != null) {
+            return a.image();
+        }
+        ByteBuffer b = ByteBuffer.allocate(a.length());
+        long at = a.dataAt();
+        while (b.hasRemaining()) {
+            int n = channel.read(b, at);
+            if (n < 0) {
+                throw new IOException("agent store journal " + journal + " ends inside the image of agent " + a.id() + " (at byte " + a.dataAt() + ")");
+            }
+            at += n;
+        }
+        return b.array();
     }
 
     /** @return an EVENT_PENDING record's data: when it was first owed, then the event */
@@ -492,26 +559,43 @@ public final class JournalStore implements AgentStore {
         return id + "/" + seq;
     }
 
-    private void append(RecordType type, UUID id, long number, byte[] data, boolean force) throws IOException {
-        ByteBuffer record = encode(type, id, number, data);
-        int length = record.remaining();
+    /**
+     * Writes records (one write of all their parts, at the end of the records) and, if
+     * {@code force}, makes them durable with one {@code fdatasync}.
+     *
+     * @return where the first record starts in the journal
+     */
+    private long append(boolean force, ByteBuffer... parts) throws IOException {
+        long total = 0;
+        for (ByteBuffer p : parts) {
+            total += p.remaining();
+        }
+        long length = total;
         if (length <= PREALLOCATE_MAX_RECORD && end + length > allocated) {
             long size = end + length + PREALLOCATE_BYTES;
             uninterrupted(() -> preallocate(size));
         }
         long start = end;
         uninterrupted(() -> {
-            ByteBuffer b = record.duplicate();
-            long at = start;
-            while (b.hasRemaining()) {
-                at += channel.write(b, at);
+            ByteBuffer[] b = new ByteBuffer[parts.length];
+            for (int i = 0; i < parts.length; i++) {
+                b[i] = parts[i].duplicate();
+            }
+            channel.position(start);
+            long written = 0;
+            while (written < length) {
+                written += channel.write(b);
             }
             if (force) {
                 channel.force(false);
             }
         });
+        if (force) {
+            forces++;
+        }
         end = start + length;
         allocated = Math.max(allocated, end);
+        return start;
     }
 
     /** Zero-fills the file up to {@code size} and makes that durable (size and blocks), once per step. */
@@ -528,17 +612,30 @@ public final class JournalStore implements AgentStore {
         allocated = at;
     }
 
-    private static ByteBuffer encode(RecordType type, UUID id, long number, byte[] data) {
-        int payload = MIN_PAYLOAD + (data == null ? 0 : 4 + data.length);
-        ByteBuffer b = ByteBuffer.allocate(4 + payload + 4);
-        b.putInt(payload).put((byte) type.code()).putLong(id.getMostSignificantBits()).putLong(id.getLeastSignificantBits()).putLong(number);
+    /** Where a record's data starts, from the record's start: length, type, id, number, data length. */
+    private static final int DATA_OFFSET = 4 + MIN_PAYLOAD + 4;
+
+    /**
+     * A record as the parts to write: its head, its data (the caller's array, not copied) and its
+     * checksum, computed over the head's payload part and the data in place.
+     *
+     * @param data the data, or {@code null} for a record without
+     */
+    private static ByteBuffer[] encode(RecordType type, UUID id, long number, byte[] data, int off, int len) {
+        int payload = MIN_PAYLOAD + (data == null ? 0 : 4 + len);
+        ByteBuffer head = ByteBuffer.allocate(data == null ? 4 + MIN_PAYLOAD : DATA_OFFSET);
+        head.putInt(payload).put((byte) type.code()).putLong(id.getMostSignificantBits()).putLong(id.getLeastSignificantBits()).putLong(number);
         if (data != null) {
-            b.putInt(data.length).put(data);
+            head.putInt(len);
         }
         CRC32C crc = new CRC32C();
-        crc.update(b.array(), 4, payload);
-        b.putInt((int) crc.getValue());
-        return b.flip();
+        crc.update(head.array(), 4, head.position() - 4);
+        if (data != null) {
+            crc.update(data, off, len);
+        }
+        ByteBuffer tail = ByteBuffer.allocate(4).putInt((int) crc.getValue()).flip();
+        head.flip();
+        return data == null ? new ByteBuffer[] {head, tail} : new ByteBuffer[] {head, ByteBuffer.wrap(data, off, len), tail};
     }
 
     /**
@@ -590,7 +687,7 @@ public final class JournalStore implements AgentStore {
                 }
             }
         }
-        channel = FileChannel.open(journal, StandardOpenOption.CREATE, StandardOpenOption.WRITE);
+        channel = FileChannel.open(journal, StandardOpenOption.CREATE, StandardOpenOption.READ, StandardOpenOption.WRITE);
         channel.truncate(good);
         end = good;
         allocated = good;
@@ -696,16 +793,16 @@ public final class JournalStore implements AgentStore {
         }
         switch (type) {
             case ACCEPTED -> {
-                put(new StoredAgent(id, number, Phase.ACCEPTED, data));
+                put(new Held(id, number, Phase.ACCEPTED, at + DATA_OFFSET, data.length, data));
                 see(id, number);
             }
             case STARTED -> {
-                StoredAgent a = live.get(id);
+                Held a = live.get(id);
                 if (a != null) {
-                    live.put(id, new StoredAgent(id, number, Phase.STARTED, a.image()));
+                    live.put(id, a.in(number, Phase.STARTED));
                 }
             }
-            case DEPARTING -> put(new StoredAgent(id, number, Phase.DEPARTING, data));
+            case DEPARTING -> put(new Held(id, number, Phase.DEPARTING, at + DATA_OFFSET, data.length, data));
             case DEPARTED -> {
                 if (readVersion >= DEPARTED_HOP_VERSION) {
                     forget(id, number);
@@ -748,31 +845,43 @@ public final class JournalStore implements AgentStore {
         }
     }
 
-    /** Rewrites the journal with only what is live; atomically replaces the old one. */
+    /**
+     * Rewrites the journal with only what is live; atomically replaces the old one. The images of
+     * the agents held are read back from the old journal (or taken from the replay's copies), and
+     * {@link #live} then notes where they are in the new one.
+     */
     private void compact() throws IOException {
         synchronized (writeLock) {
             Path fresh = dir.resolve("journal.new");
+            Map<UUID, Held> moved = new LinkedHashMap<>();
             try (FileChannel out = FileChannel.open(fresh, StandardOpenOption.CREATE, StandardOpenOption.WRITE, StandardOpenOption.TRUNCATE_EXISTING)) {
                 List<ByteBuffer> records = new ArrayList<>();
                 records.add(ByteBuffer.allocate(HEADER_LENGTH).put(MAGIC).putInt(FORMAT_VERSION).flip());
-                seen.forEach((id, hop) -> records.add(encode(RecordType.SEEN, id, hop, null)));
-                for (StoredAgent a : live.values()) {
-                    switch (a.phase()) {
-                        case ACCEPTED -> records.add(encode(RecordType.ACCEPTED, a.id(), a.hop(), a.image()));
-                        case STARTED -> {
-                            records.add(encode(RecordType.ACCEPTED, a.id(), a.hop(), a.image()));
-                            records.add(encode(RecordType.STARTED, a.id(), a.hop(), null));
-                        }
-                        case DEPARTING -> records.add(encode(RecordType.DEPARTING, a.id(), a.hop(), a.image()));
+                long[] at = {HEADER_LENGTH};
+                java.util.function.Consumer<ByteBuffer[]> add = parts -> {
+                    for (ByteBuffer b : parts) {
+                        records.add(b);
+                        at[0] += b.remaining();
+                    }
+                };
+                seen.forEach((id, hop) -> add.accept(encode(RecordType.SEEN, id, hop, null, 0, 0)));
+                for (Held a : live.values()) {
+                    byte[] image = imageOf(a);
+                    RecordType type = a.phase() == Phase.DEPARTING ? RecordType.DEPARTING : RecordType.ACCEPTED;
+                    moved.put(a.id(), new Held(a.id(), a.hop(), a.phase(), at[0] + DATA_OFFSET, image.length, null));
+                    add.accept(encode(type, a.id(), a.hop(), image, 0, image.length));
+                    if (a.phase() == Phase.STARTED) {
+                        add.accept(encode(RecordType.STARTED, a.id(), a.hop(), null, 0, 0));
                     }
                 }
                 eventSeqs.forEach((id, next) -> {
                     if (live.containsKey(id)) {
-                        records.add(encode(RecordType.EVENT_SEQ, id, next, null));
+                        add.accept(encode(RecordType.EVENT_SEQ, id, next, null, 0, 0));
                     }
                 });
                 for (PendingEvent e : events.values()) {
-                    records.add(encode(RecordType.EVENT_PENDING, e.id(), e.seq(), pendingData(e)));
+                    byte[] data = pendingData(e);
+                    add.accept(encode(RecordType.EVENT_PENDING, e.id(), e.seq(), data, 0, data.length));
                 }
                 for (ByteBuffer r : records) {
                     while (r.hasRemaining()) {
@@ -785,9 +894,10 @@ public final class JournalStore implements AgentStore {
                 channel.close();
             }
             Files.move(fresh, journal, StandardCopyOption.ATOMIC_MOVE, StandardCopyOption.REPLACE_EXISTING);
-            channel = FileChannel.open(journal, StandardOpenOption.WRITE);
+            channel = FileChannel.open(journal, StandardOpenOption.READ, StandardOpenOption.WRITE);
             end = channel.size();
             allocated = end;
+            live.putAll(moved);
         }
     }
 }

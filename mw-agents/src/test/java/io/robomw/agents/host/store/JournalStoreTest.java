@@ -50,6 +50,70 @@ class JournalStoreTest {
         reopened.close();
     }
 
+    @Test
+    void anAgentStoredAndMarkedStartedAtOnceTakesOneForcedWriteAndResumesAsStarted() throws Exception {
+        UUID id = UUID.randomUUID();
+        JournalStore store = JournalStore.open(dir.resolve("s"));
+        long before = store.forces();
+        store.acceptedStarting(id, 4, new byte[] {0, 7, 8, 9}, 1, 3);
+        assertEquals(before + 1, store.forces(), "the agent and its started mark are forced together, once");
+        store.accepted(UUID.randomUUID(), 1, new byte[] {1}, 0, 1);
+        store.started(id, 4);
+        assertEquals(before + 3, store.forces(), "accepted and started apart force once each");
+        store.close();
+        try (JournalStore reopened = JournalStore.open(dir.resolve("s"))) {
+            AgentStore.StoredAgent a = reopened.recoveredAgents().stream().filter(x -> x.id().equals(id)).findFirst().orElseThrow();
+            assertEquals(AgentStore.Phase.STARTED, a.phase(), "its stop counts as begun: not run again after a restart");
+            assertEquals(4, a.hop());
+            assertArrayEquals(new byte[] {7, 8, 9}, a.image());
+            assertEquals(4, reopened.highestHop(id));
+        }
+    }
+
+    @Test
+    void aHopsStateIsInTheJournalOnceWrittenFromTheCallersArrayAndSurvivesCompaction() throws Exception {
+        // Random bytes: a pattern that occurs in the journal only where the store wrote it.
+        byte[] state = new byte[64 * 1024];
+        new java.util.Random(21).nextBytes(state);
+        byte[] frame = new byte[state.length + 40];
+        System.arraycopy(state, 0, frame, 17, state.length);
+        UUID held = UUID.randomUUID();
+        Path d = dir.resolve("once");
+        JournalStore store = JournalStore.open(d);
+        store.acceptedStarting(held, 1, frame, 17, state.length);
+        java.util.Arrays.fill(frame, (byte) 0); // the caller reuses its array: the store kept no reference to it
+        assertEquals(1, occurrences(Files.readAllBytes(d.resolve("journal")), state), "the state is written to the journal once");
+        // Grow the journal past the compaction threshold with agents that come and go: the held
+        // agent's image is read back from the journal into the compacted one (the store keeps no copy).
+        byte[] big = new byte[1 << 20];
+        for (int i = 0; i < 36; i++) {
+            UUID other = UUID.randomUUID();
+            store.departing(other, 1, big, 0, big.length);
+            store.departed(other, 1);
+        }
+        assertTrue(Files.size(d.resolve("journal")) < 20 << 20, "the journal was compacted (36 MiB went through it): " + Files.size(d.resolve("journal")));
+        assertEquals(1, occurrences(Files.readAllBytes(d.resolve("journal")), state), "compaction kept the held agent's state, once");
+        store.close();
+        try (JournalStore reopened = JournalStore.open(d)) {
+            assertEquals(1, reopened.recoveredAgents().size());
+            AgentStore.StoredAgent a = reopened.recoveredAgents().get(0);
+            assertEquals(held, a.id());
+            assertEquals(AgentStore.Phase.STARTED, a.phase());
+            assertArrayEquals(state, a.image());
+        }
+    }
+
+    /** @return how many times {@code pattern} occurs in {@code in} (a naive scan on its first 16 bytes, then a full compare) */
+    private static int occurrences(byte[] in, byte[] pattern) {
+        int n = 0;
+        for (int i = 0; i + pattern.length <= in.length; i++) {
+            if (java.util.Arrays.equals(in, i, i + 16, pattern, 0, 16) && java.util.Arrays.equals(in, i, i + pattern.length, pattern, 0, pattern.length)) {
+                n++;
+            }
+        }
+        return n;
+    }
+
     private static void accept(AgentStore s, UUID id, long hop, byte[] image) throws Exception {
         byte[] framed = new byte[image.length + 3];
         System.arraycopy(image, 0, framed, 2, image.length);
