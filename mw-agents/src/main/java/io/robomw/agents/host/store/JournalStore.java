@@ -55,7 +55,21 @@ import java.util.zip.CRC32C;
  * <tr><td>7</td><td>SEEN</td><td>hop</td><td>none</td><td>no</td><td>the highest hop seen of the agent (compaction writes these)</td></tr>
  * <tr><td>8</td><td>EVENT_SEQ</td><td>next event seq</td><td>none</td><td>no</td><td>the number the held agent's next report or result takes
  *     (compaction writes these; version 2)</td></tr>
+ * <tr><td>9</td><td>DEPARTING_SPOOLED</td><td>the next hop</td><td>[image length 4][CRC32C of the image 4]</td><td>no</td><td>as DEPARTING,
+ *     with the image in the spool file {@code departing/<agent id>-<hop>}; if that file is missing, of another length or
+ *     checksum (it is never forced: a power cut may lose it), the record is ignored and the agent resumes in its phase before
+ *     (its stop begun: it goes on from the state it arrived with, its stop recorded as interrupted); version 4</td></tr>
  * </table>
+ *
+ * <p><b>A hop's state goes to the disk once.</b> An agent's image is written from the caller's
+ * array (the transfer's own), and the store keeps no copy of it: it notes where the image is and
+ * reads it back only to compact. The image an agent arrives with is in its ACCEPTED record,
+ * forced. The image it leaves with is needed only if the host is killed before the next host
+ * acknowledges it; images of {@value #SPOOL_MIN_BYTES} bytes or more are written to a spool file of
+ * their own rather than into the journal, and the file is deleted once the next host has the
+ * agent: the journal's {@code fdatasync}s never write it, and the page cache usually drops it
+ * unwritten (a kill keeps it: the page cache survives the process). Smaller ones stay in the
+ * journal, where they cost a few blocks.
  *
  * <p><b>Event numbers.</b> An agent's reports and results are numbered, and its home drops a number
  * it has seen. An agent held here carries in its image the next number as it was when it arrived;
@@ -103,13 +117,18 @@ public final class JournalStore implements AgentStore {
     static final byte[] MAGIC = {(byte) 0x89, 'R', 'M', 'J'};
     /**
      * The format this store writes; version 2 added the EVENT_SEQ record, version 3 the hop in
-     * DEPARTED records (before, a DEPARTED record forgot whatever copy of the agent was held).
+     * DEPARTED records (before, a DEPARTED record forgot whatever copy of the agent was held),
+     * version 4 the DEPARTING_SPOOLED record.
      */
-    static final int FORMAT_VERSION = 3;
+    static final int FORMAT_VERSION = 4;
     /** The first version whose DEPARTED records carry the hop the agent left with. */
     static final int DEPARTED_HOP_VERSION = 3;
     /** The oldest format this store reads (its records are a subset of the current version's). */
     static final int OLDEST_READABLE_VERSION = 1;
+    /** The first version with DEPARTING_SPOOLED records. */
+    static final int SPOOL_VERSION = 4;
+    /** Departing images of at least this many bytes go to a spool file rather than into the journal. */
+    static final int SPOOL_MIN_BYTES = 64 * 1024;
     /** The header's length: magic and version. */
     static final int HEADER_LENGTH = 8;
     /** The shortest record payload: type, id, number. */
@@ -132,7 +151,9 @@ public final class JournalStore implements AgentStore {
         /** The highest hop of it ever accepted. */
         SEEN(7),
         /** The next event number of an agent held here (from version 2). */
-        EVENT_SEQ(8);
+        EVENT_SEQ(8),
+        /** It is being sent on; its image after the stop is in a spool file (from version 4). */
+        DEPARTING_SPOOLED(9);
 
         private final int code;
 
@@ -160,7 +181,8 @@ public final class JournalStore implements AgentStore {
                 case 6 -> EVENT_DELIVERED;
                 case 7 -> SEEN;
                 case 8 -> EVENT_SEQ;
-                default -> throw new IllegalArgumentException("unknown record type code " + code + " (known: 1-8)");
+                case 9 -> DEPARTING_SPOOLED;
+                default -> throw new IllegalArgumentException("unknown record type code " + code + " (known: 1-9)");
             };
         }
     }
@@ -168,6 +190,7 @@ public final class JournalStore implements AgentStore {
     private final Path dir;
     private final Path journal;
     private final Path archives;
+    private final Path spool;
     private final FileChannel lockChannel;
     private final FileLock lock;
     private final Object writeLock = new Object();
@@ -202,7 +225,9 @@ public final class JournalStore implements AgentStore {
         this.seenCapacity = seenCapacity;
         this.journal = dir.resolve("journal");
         this.archives = dir.resolve("archives");
+        this.spool = dir.resolve("departing");
         Files.createDirectories(archives);
+        Files.createDirectories(spool);
         lockChannel = FileChannel.open(dir.resolve("lock"), StandardOpenOption.CREATE, StandardOpenOption.WRITE);
         FileLock l;
         try {
@@ -220,6 +245,7 @@ public final class JournalStore implements AgentStore {
             recoveredAgents = live.values().stream().map(a -> new StoredAgent(a.id(), a.hop(), a.phase(), a.image())).toList();
             recoveredEvents = List.copyOf(events.values());
             compact();
+            deleteUnheldSpoolFiles();
         } catch (IOException | RuntimeException e) {
             // A journal this store refuses must not keep the directory locked (a host retrying, or another, could not open it).
             try {
@@ -270,7 +296,7 @@ public final class JournalStore implements AgentStore {
         checkRange(from, offset, length);
         synchronized (writeLock) {
             long at = append(true, encode(RecordType.ACCEPTED, id, hop, from, offset, length));
-            put(new Held(id, hop, Phase.ACCEPTED, at + DATA_OFFSET, length, null));
+            put(new Held(id, hop, Phase.ACCEPTED, at + DATA_OFFSET, length, null, null));
             see(id, hop);
         }
     }
@@ -289,7 +315,7 @@ public final class JournalStore implements AgentStore {
             ByteBuffer[] both = java.util.Arrays.copyOf(accepted, accepted.length + started.length);
             System.arraycopy(started, 0, both, accepted.length, started.length);
             long at = append(true, both);
-            put(new Held(id, hop, Phase.STARTED, at + DATA_OFFSET, length, null));
+            put(new Held(id, hop, Phase.STARTED, at + DATA_OFFSET, length, null, null));
             see(id, hop);
         }
     }
@@ -305,14 +331,38 @@ public final class JournalStore implements AgentStore {
         }
     }
 
-    /** The image is written from the caller's array (no copy of it is made or kept). */
+    /**
+     * The image is written from the caller's array (no copy of it is made or kept); one of
+     * {@value #SPOOL_MIN_BYTES} bytes or more to a spool file, with a DEPARTING_SPOOLED record.
+     */
     @Override
     public void departing(UUID id, long hop, byte[] from, int offset, int length) throws IOException {
         checkRange(from, offset, length);
+        if (length >= SPOOL_MIN_BYTES) {
+            Path file = spoolFile(id, hop);
+            try (FileChannel c = FileChannel.open(file, StandardOpenOption.CREATE, StandardOpenOption.WRITE, StandardOpenOption.TRUNCATE_EXISTING)) {
+                ByteBuffer b = ByteBuffer.wrap(from, offset, length);
+                while (b.hasRemaining()) {
+                    c.write(b);
+                }
+            }
+            CRC32C crc = new CRC32C();
+            crc.update(from, offset, length);
+            byte[] data = ByteBuffer.allocate(8).putInt(length).putInt((int) crc.getValue()).array();
+            synchronized (writeLock) {
+                append(false, encode(RecordType.DEPARTING_SPOOLED, id, hop, data, 0, data.length));
+                put(new Held(id, hop, Phase.DEPARTING, -1, length, null, file));
+            }
+            return;
+        }
         synchronized (writeLock) {
             long at = append(false, encode(RecordType.DEPARTING, id, hop, from, offset, length));
-            put(new Held(id, hop, Phase.DEPARTING, at + DATA_OFFSET, length, null));
+            put(new Held(id, hop, Phase.DEPARTING, at + DATA_OFFSET, length, null, null));
         }
+    }
+
+    private Path spoolFile(UUID id, long hop) {
+        return spool.resolve(id + "-" + hop);
     }
 
     private static void checkRange(byte[] from, int offset, int length) {
@@ -490,6 +540,7 @@ public final class JournalStore implements AgentStore {
         Held old = live.put(a.id(), a);
         if (old != null) {
             liveBytes -= old.length();
+            unspool(old, a);
         }
         liveBytes += a.length();
     }
@@ -498,17 +549,47 @@ public final class JournalStore implements AgentStore {
         Held old = live.remove(id);
         if (old != null) {
             liveBytes -= old.length();
+            unspool(old, null);
+        }
+    }
+
+    /** Deletes the spool file of a copy no longer held (unless the copy that replaces it is in that same file). */
+    private void unspool(Held old, Held now) {
+        if (old.spooled() != null && (now == null || !old.spooled().equals(now.spooled()))) {
+            try {
+                Files.deleteIfExists(old.spooled());
+            } catch (IOException e) {
+                LOG.warn("agent store {}: cannot delete the spool file {} of an agent no longer held: {}", dir, old.spooled(), e.toString());
+            }
+        }
+    }
+
+    /** After opening: deletes spool files of copies no longer held (a kill between a departure and the deletion leaves them). */
+    private void deleteUnheldSpoolFiles() throws IOException {
+        java.util.Set<Path> held = new java.util.HashSet<>();
+        live.values().forEach(a -> {
+            if (a.spooled() != null) {
+                held.add(a.spooled());
+            }
+        });
+        try (java.util.stream.Stream<Path> files = Files.list(spool)) {
+            for (Path f : (Iterable<Path>) files::iterator) {
+                if (!held.contains(f)) {
+                    Files.deleteIfExists(f);
+                }
+            }
         }
     }
 
     /**
      * An agent held here, as the journal has it: its image is {@code length} bytes at
      * {@code dataAt} in the journal file, and also in {@code image} while the replay's copy is
-     * kept (from a journal's opening to its first compaction), else {@code null}.
+     * kept (from a journal's opening to its first compaction), else {@code null}; or, spooled,
+     * in the file {@code spooled} ({@code dataAt} -1).
      */
-    private record Held(UUID id, long hop, Phase phase, long dataAt, int length, byte[] image) {
+    private record Held(UUID id, long hop, Phase phase, long dataAt, int length, byte[] image, Path spooled) {
         Held in(long newHop, Phase newPhase) {
-            return new Held(id, newHop, newPhase, dataAt, length, image);
+            return new Held(id, newHop, newPhase, dataAt, length, image, spooled);
         }
     }
 
@@ -516,6 +597,14 @@ public final class JournalStore implements AgentStore {
     private byte[] imageOf(Held a) throws IOException {
         if (a.image() != null) {
             return a.image();
+        }
+        if (a.spooled() != null) {
+            byte[] b = Files.readAllBytes(a.spooled());
+            if (b.length != a.length()) {
+                throw new IOException("agent store spool file " + a.spooled() + " holds " + b.length + " bytes, not the " + a.length() + " of agent "
+                        + a.id() + "'s image");
+            }
+            return b;
         }
         ByteBuffer b = ByteBuffer.allocate(a.length());
         long at = a.dataAt();
@@ -787,13 +876,14 @@ public final class JournalStore implements AgentStore {
             data = new byte[length];
             b.get(data);
         }
-        boolean needsData = type == RecordType.ACCEPTED || type == RecordType.DEPARTING || type == RecordType.EVENT_PENDING;
+        boolean needsData = type == RecordType.ACCEPTED || type == RecordType.DEPARTING || type == RecordType.EVENT_PENDING
+                || type == RecordType.DEPARTING_SPOOLED;
         if (needsData != (data != null)) {
             throw new IOException("agent store journal " + journal + ": the " + type + " record at byte " + at + (needsData ? " has no data" : " has data it should not have"));
         }
         switch (type) {
             case ACCEPTED -> {
-                put(new Held(id, number, Phase.ACCEPTED, at + DATA_OFFSET, data.length, data));
+                put(new Held(id, number, Phase.ACCEPTED, at + DATA_OFFSET, data.length, data, null));
                 see(id, number);
             }
             case STARTED -> {
@@ -802,7 +892,8 @@ public final class JournalStore implements AgentStore {
                     live.put(id, a.in(number, Phase.STARTED));
                 }
             }
-            case DEPARTING -> put(new Held(id, number, Phase.DEPARTING, at + DATA_OFFSET, data.length, data));
+            case DEPARTING -> put(new Held(id, number, Phase.DEPARTING, at + DATA_OFFSET, data.length, data, null));
+            case DEPARTING_SPOOLED -> replaySpooled(id, number, data, at);
             case DEPARTED -> {
                 if (readVersion >= DEPARTED_HOP_VERSION) {
                     forget(id, number);
@@ -838,6 +929,36 @@ public final class JournalStore implements AgentStore {
         }
     }
 
+    /**
+     * A DEPARTING_SPOOLED record: the agent is departing with the image in its spool file, if the
+     * file is there, whole and right; else the record is ignored (the file is never forced).
+     */
+    private void replaySpooled(UUID id, long hop, byte[] data, long at) throws IOException {
+        if (data.length != 8) {
+            throw new IOException("agent store journal " + journal + ": the DEPARTING_SPOOLED record at byte " + at + " holds " + data.length
+                    + " bytes of data, not 8 (length and checksum)");
+        }
+        ByteBuffer d = ByteBuffer.wrap(data);
+        int length = d.getInt();
+        int crcValue = d.getInt();
+        Path file = spoolFile(id, hop);
+        byte[] image = null;
+        if (Files.exists(file) && Files.size(file) == length) {
+            image = Files.readAllBytes(file);
+            CRC32C crc = new CRC32C();
+            crc.update(image);
+            if ((int) crc.getValue() != crcValue) {
+                image = null;
+            }
+        }
+        if (image == null) {
+            LOG.warn("agent store {}: agent {} was departing with hop {}, but its spool file {} is missing or damaged (it is not forced: a power cut"
+                    + " loses it); it resumes from the state it arrived with", dir, id, hop, file);
+            return;
+        }
+        put(new Held(id, hop, Phase.DEPARTING, -1, length, image, file));
+    }
+
     private void maybeCompact() throws IOException {
         long size = end;
         if (size > COMPACT_BYTES && size > 4 * Math.max(liveBytes, 1)) {
@@ -868,7 +989,7 @@ public final class JournalStore implements AgentStore {
                 for (Held a : live.values()) {
                     byte[] image = imageOf(a);
                     RecordType type = a.phase() == Phase.DEPARTING ? RecordType.DEPARTING : RecordType.ACCEPTED;
-                    moved.put(a.id(), new Held(a.id(), a.hop(), a.phase(), at[0] + DATA_OFFSET, image.length, null));
+                    moved.put(a.id(), new Held(a.id(), a.hop(), a.phase(), at[0] + DATA_OFFSET, image.length, null, null));
                     add.accept(encode(type, a.id(), a.hop(), image, 0, image.length));
                     if (a.phase() == Phase.STARTED) {
                         add.accept(encode(RecordType.STARTED, a.id(), a.hop(), null, 0, 0));
@@ -897,6 +1018,10 @@ public final class JournalStore implements AgentStore {
             channel = FileChannel.open(journal, StandardOpenOption.READ, StandardOpenOption.WRITE);
             end = channel.size();
             allocated = end;
+            // Spooled images are in the compacted journal now (DEPARTING records): their files go.
+            for (Held a : live.values()) {
+                unspool(a, null);
+            }
             live.putAll(moved);
         }
     }
