@@ -246,9 +246,10 @@ final class HostSockets {
             return n;
         }
 
+        /** The bytes read ahead, or if none, the socket's (a system call; RMI's buffered stream asks after every short read). */
         @Override
         public int available() throws IOException {
-            return limit - pos + socket.available();
+            return limit > pos ? limit - pos : socket.available();
         }
 
         @Override

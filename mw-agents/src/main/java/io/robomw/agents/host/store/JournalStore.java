@@ -90,7 +90,9 @@ import java.util.zip.CRC32C;
  * <p>A record cut short by a kill, or with a bad checksum, ends the replay there and is cut off.
  * Records that must survive a power cut (an accepted agent, a started stop, an owed result, an
  * archive) are forced to the disk ({@code fdatasync}) before the call returns; the others only
- * need to survive the process being killed, which the page cache does. The journal is rewritten with only what is live when it
+ * need to survive the process being killed, which the page cache does. A transferred agent's
+ * ACCEPTED and STARTED records go in one write with one {@code fdatasync} ({@link #acceptedStarting}):
+ * one per hop. The journal is rewritten with only what is live when it
  * grows past {@value #COMPACT_BYTES} bytes and four times what is live. One host per directory
  * (a file lock says so). Thread-safe.
  *
