@@ -13,14 +13,17 @@ import io.robomw.platform.link.Communicator;
 import io.robomw.platform.link.Link;
 import io.robomw.platform.nxt.NxtBrick;
 import io.robomw.platform.nxt.NxtTelegram;
+import io.robomw.platform.rcx.RcxBrick;
+import io.robomw.platform.rcx.RcxPacket;
 
 import java.io.IOException;
 import java.time.Duration;
+import java.util.Arrays;
 import java.util.List;
 
 /**
  * Fuzz tests of what the drivers read from a brick (docs/fuzzing.md): any bytes as everything an
- * NXT, EV3, TXT or Intelligent Interface sends back, read by the driver's own brick class over a
+ * NXT, EV3, TXT, Intelligent Interface or RCX (its IR tower) sends back, read by the driver's own brick class over a
  * link that serves them. A driver may refuse what it reads only with an {@link IOException} (the
  * link failed, lost its framing, or the reply did not come) or a {@link RobotException} (the brick
  * answered an error), both naming what was wrong; anything else (an index out of bounds, a
@@ -141,6 +144,38 @@ class BrickRepliesFuzzTest {
             if (value < 0 || value > 1023) {
                 throw new AssertionError("an analog reading outside 0..1023: " + value);
             }
+        }
+    }
+
+    /**
+     * What an RCX's IR tower delivers: the echo of each packet (a tower that echoes) and the
+     * brick's reply, read by {@link RcxBrick} as the driver's exchanges do (the battery, a
+     * sensor's value, the firmware's versions, alive), behind a tower that echoes and one that
+     * does not; and the bytes as one packet, which must survive its own encoding when accepted.
+     */
+    @FuzzTest
+    void rcxReply(byte[] bytes) throws IOException {
+        for (boolean echo : new boolean[] {true, false}) {
+            RcxBrick brick = new RcxBrick("fuzzbot", channel(bytes), echo);
+            try {
+                brick.batteryMillivolts();
+                brick.request(RcxPacket.GET_VALUE, RcxPacket.getValue(RcxPacket.SOURCE_SENSOR_VALUE, 0)).s16();
+                RcxPacket.Decoded versions = brick.request(RcxPacket.GET_VERSIONS, RcxPacket.VERSIONS_KEY);
+                if (versions.data().length != RcxPacket.replyDataLength(RcxPacket.GET_VERSIONS)) {
+                    throw new AssertionError("a reply to Get versions with " + versions.data().length + " data bytes");
+                }
+                brick.alive();
+            } catch (IOException | RobotException refused) {
+                // the documented refusal
+            }
+        }
+        try {
+            RcxPacket.Decoded p = RcxPacket.decode(bytes);
+            if (!Arrays.equals(RcxPacket.encode(p.opcode(), p.data()), bytes)) {
+                throw new AssertionError("an RCX packet does not survive its own encoding: " + RcxPacket.hex(bytes));
+            }
+        } catch (IllegalArgumentException refused) {
+            // the documented refusal
         }
     }
 }

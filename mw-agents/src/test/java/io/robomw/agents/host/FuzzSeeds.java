@@ -104,6 +104,17 @@ public final class FuzzSeeds {
         frames.write("presence", "host", new io.robomw.agents.messaging.PresenceRecord("a", true, Instant.parse("2026-11-24T10:15:30.123Z"), "mw-a-1",
                 86_400, List.of("tcp://127.0.0.1:7000"), "a", "rmi://127.0.0.1:1100/a", List.of("nxt"),
                 List.of(id + " io.robomw.examples.Patrol ACTIVE")).encode());
+        frames.write("beacon", "node-with-host", new io.robomw.agents.messaging.discovery.BeaconRecord("nxt", true, 1000, "nxt",
+                "rmi://127.0.0.1:1099/nxt", List.of("tcp://127.0.0.1:7000", "udp://127.0.0.1:7001"), List.of("cmd"), List.of("news", "pose"),
+                List.of("nxt"), false).encode());
+        frames.write("beacon", "offline", new io.robomw.agents.messaging.discovery.BeaconRecord("mw-cli-42", false, 1000, null, null,
+                List.of("tcp://127.0.0.1:7002"), List.of(), List.of(), List.of(), false).encode());
+        List<String> topics = new ArrayList<>();
+        for (int i = 0; i < 400; i++) {
+            topics.add("a/rather/long/topic/name/number/" + i);
+        }
+        frames.write("beacon", "truncated", new io.robomw.agents.messaging.discovery.BeaconRecord("busy", true, 1000, null, null, List.of(), topics,
+                List.of(), List.of(), false).encode());
 
         HostActivity activity = new HostActivity();
         activity.record(id, "io.robomw.examples.Patrol", HostActivity.ARRIVED, "rmi://127.0.0.1:1100/a", "hop 2 from b");

@@ -30,6 +30,8 @@ public final class UrbiReplyDecoder {
     public static final int DEFAULT_MAX_LINE_BYTES = 64 * 1024;
     /** Default longest binary value: 16 MiB (an ERS-7 camera image is about 150 KiB). */
     public static final int DEFAULT_MAX_BINARY_BYTES = 16 * 1024 * 1024;
+    /** The most memory a binary value's header claims before its bytes come. */
+    private static final int BINARY_CHUNK = 64 * 1024;
     /** The most digits a timestamp may have (milliseconds, so about 3 million years). */
     static final int MAX_TIMESTAMP_DIGITS = 18;
 
@@ -201,7 +203,7 @@ public final class UrbiReplyDecoder {
             listener.malformed("a binary value of " + length + " bytes is longer than " + maxBinaryBytes + "; its bytes are skipped", excerpt(text));
             binary = null;
         } else {
-            binary = new ByteArrayOutputStream((int) length);
+            binary = new ByteArrayOutputStream((int) Math.min(length, BINARY_CHUNK)); // grows as the bytes come: a header alone claims at most 64 KiB
         }
         if (length == 0) {
             if (binary != null) {

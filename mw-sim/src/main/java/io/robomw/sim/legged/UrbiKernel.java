@@ -62,8 +62,12 @@ import java.util.function.LongSupplier;
  * <h2>Bad input</h2>
  * A statement that cannot be parsed, or that fails, is answered with {@code !!!} and its tag (when
  * it could be read), and the session goes on. A session may have at most {@value #MAX_PENDING}
- * statements waiting and {@value #MAX_JOBS} running; a client that sends more between two steps
- * than the queue holds loses the excess, told by one error at the next step.
+ * statements waiting and {@value #MAX_JOBS} running, counting those inside blocks, loops and
+ * {@code every}s: a statement beyond that is refused with an error (but {@code stop} and the
+ * keywords, which end as they begin), and a loop or an {@code every} skips its turns until some
+ * end (so nested loops cannot multiply without bound); a client that
+ * sends more between two steps than the queue holds loses the excess, told by one error at the
+ * next step.
  *
  * <h2>Threads</h2>
  * {@link Session#submit} may be called from any thread (a client's reader); it only parses and
@@ -75,7 +79,7 @@ public final class UrbiKernel {
 
     /** Statements a session may have waiting. */
     public static final int MAX_PENDING = 1024;
-    /** Jobs a session may have running. */
+    /** Jobs a session may have running, nested ones included. */
     public static final int MAX_JOBS = 256;
     /** How long {@code robot.sit()} takes, seconds. */
     public static final double SIT_SECONDS = 1.5;
@@ -211,6 +215,8 @@ public final class UrbiKernel {
         private final Deque<Object> pending = new ArrayDeque<>();
         private final List<Job> running = new ArrayList<>();
         private Job blocking;
+        /** Jobs of this session begun and not ended, nested ones included; on the stepping thread. */
+        private int jobs;
         private volatile boolean closed;
         private boolean stopped;
 
@@ -272,6 +278,30 @@ public final class UrbiKernel {
             submit(b, 0, b.length);
         }
 
+        /** @return whether a sequential statement still runs and holds the statements after it (the client's own doing); on the stepping thread */
+        boolean holding() {
+            return blocking != null;
+        }
+
+        /** @return whether what the client sent so far ends inside a statement, a comment or a binary value's bytes */
+        boolean midStatement() {
+            return splitter.midStatement();
+        }
+
+        /** @return the session's jobs begun and not ended, nested ones included; on the stepping thread */
+        int jobs() {
+            return jobs;
+        }
+
+        /**
+         * @param st a statement about to begin
+         * @return whether it may: fewer than {@value UrbiKernel#MAX_JOBS} jobs run, or it ends as it
+         *         begins ({@code stop}, so a client can always end what runs, and the keywords)
+         */
+        private boolean roomFor(Statement st) {
+            return jobs < MAX_JOBS || st.command() instanceof Stop || st.command() instanceof Keyword;
+        }
+
         /** Ends the session: its jobs stop at the next step, and it is forgotten. */
         public void close() {
             closed = true;
@@ -327,8 +357,8 @@ public final class UrbiKernel {
                         continue;
                     }
                     Statement st = (Statement) next;
-                    if (running.size() >= MAX_JOBS) {
-                        emit(st.tag(), Kind.ERROR, "too many commands running (" + MAX_JOBS + "); stop some first");
+                    if (!roomFor(st)) {
+                        emit(st.tag(), Kind.ERROR, TOO_MANY_JOBS);
                         continue;
                     }
                     Job job = start(this, st, "");
@@ -361,6 +391,9 @@ public final class UrbiKernel {
         }
     }
 
+    /** The error of a statement refused because its session runs {@value #MAX_JOBS} jobs. */
+    static final String TOO_MANY_JOBS = "too many commands running (" + MAX_JOBS + "); stop some first";
+
     /** A statement that could not be parsed, with its tag if it was read. */
     private record Refused(String tag, String message) {
     }
@@ -392,6 +425,7 @@ public final class UrbiKernel {
             this.session = session;
             this.statement = statement;
             this.tag = tag;
+            session.jobs++;
         }
 
         void begin() {
@@ -460,6 +494,10 @@ public final class UrbiKernel {
                     return;
                 }
                 Statement st = list.get(next++);
+                if (!session.roomFor(st)) {
+                    session.emit(st.tag().isEmpty() ? tag : st.tag(), Kind.ERROR, TOO_MANY_JOBS);
+                    continue;
+                }
                 Job child = start(session, st, tag);
                 if (!child.done) {
                     children.add(child);
@@ -478,7 +516,7 @@ public final class UrbiKernel {
                 return c.done;
             });
             long now = nanos.getAsLong();
-            if (now >= nextAt && children.size() < MAX_JOBS) {
+            if (now >= nextAt && session.roomFor(body)) {
                 nextAt = period <= 0 ? now + 1 : Math.max(nextAt + Math.round(period * 1e9), now);
                 Job child = start(session, body, tag);
                 if (!child.done) {
@@ -726,6 +764,7 @@ public final class UrbiKernel {
                 return;
             }
             done = true;
+            session.jobs--;
             if (statement.flags().contains("end")) {
                 session.emit(tag, Kind.SYSTEM, "end");
             }

@@ -204,9 +204,9 @@ public final class UrbiStatementSplitter {
         blockComment = false;
     }
 
-    /** @return whether a statement has begun and not yet ended */
+    /** @return whether a statement has begun and not yet ended, or a comment, or a binary value's bytes */
     public boolean midStatement() {
-        return !text.toString().isBlank() || binaryRemaining > 0 || skipToNewline;
+        return !text.toString().isBlank() || binaryRemaining > 0 || skipToNewline || lineComment || blockComment;
     }
 
     static String excerpt(CharSequence s) {

@@ -7,6 +7,7 @@ import io.robomw.sim.emulator.ev3.Ev3Emulator;
 import io.robomw.sim.emulator.ft.intelligent.IntelligentInterfaceEmulator;
 import io.robomw.sim.emulator.ft.txt.TxtEmulator;
 import io.robomw.sim.emulator.nxt.NxtEmulator;
+import io.robomw.sim.emulator.rcx.RcxEmulator;
 
 import java.io.IOException;
 import java.io.UncheckedIOException;
@@ -16,7 +17,7 @@ import java.util.Set;
 
 /**
  * Fuzz tests of what a brick emulator takes from its port (docs/fuzzing.md): any bytes as what
- * arrives on the port of the NXT, EV3, TXT and Intelligent Interface emulators, each bound to a
+ * arrives on the port of the NXT, EV3, TXT, Intelligent Interface and RCX emulators, each bound to a
  * robot of a simulated world, cut into telegrams by the emulator's own framing as its serving
  * loop does. The framing may refuse bytes as malformed, and an emulator may refuse a telegram
  * with an {@link IllegalArgumentException} naming what is wrong (its loop drops it and goes on);
@@ -28,6 +29,7 @@ class EmulatorRequestsFuzzTest {
     private static final BrickEmulator EV3;
     private static final BrickEmulator TXT;
     private static final BrickEmulator INTELLIGENT_INTERFACE;
+    private static final BrickEmulator RCX;
 
     static {
         try {
@@ -35,18 +37,20 @@ class EmulatorRequestsFuzzTest {
             Path robots = Path.of("..", "examples", "robots").toAbsolutePath().normalize();
             Files.writeString(dir.resolve("world.yaml"), """
                     name: fuzz
-                    arena: { width: 8, height: 3 }
+                    arena: { width: 10, height: 3 }
                     robots:
                       - { robot: %1$s/nxt-two-wheeled.yaml, name: nxt, x: 1, y: 1.5, heading: 0 }
                       - { robot: %1$s/ev3-two-wheeled.yaml, name: ev3, x: 3, y: 1.5, heading: 0 }
                       - { robot: %1$s/ft-txt.yaml, name: txt, x: 5, y: 1.5, heading: 0 }
                       - { robot: %1$s/ft-intelligent.yaml, name: ii, x: 7, y: 1.5, heading: 0 }
+                      - { robot: %1$s/rcx-two-wheeled.yaml, name: rcx, x: 9, y: 1.5, heading: 0 }
                     """.formatted(robots));
-            Simulation sim = Simulation.load(dir.resolve("world.yaml"), Set.of("nxt", "ev3", "txt", "ii"));
+            Simulation sim = Simulation.load(dir.resolve("world.yaml"), Set.of("nxt", "ev3", "txt", "ii", "rcx"));
             NXT = new NxtEmulator(motors(sim, "nxt"), sim.world().stepSeconds());
             EV3 = new Ev3Emulator(motors(sim, "ev3"), 0.01);
             TXT = new TxtEmulator(motors(sim, "txt"));
             INTELLIGENT_INTERFACE = new IntelligentInterfaceEmulator(motors(sim, "ii"), sim.world().stepSeconds());
+            RCX = new RcxEmulator(motors(sim, "rcx"), sim.world().stepSeconds(), true);
         } catch (IOException e) {
             throw new UncheckedIOException(e);
         }
@@ -66,6 +70,10 @@ class EmulatorRequestsFuzzTest {
 
     static BrickEmulator intelligentInterface() {
         return INTELLIGENT_INTERFACE;
+    }
+
+    static BrickEmulator rcx() {
+        return RCX;
     }
 
     private static SimMotors motors(Simulation sim, String name) {
@@ -141,5 +149,11 @@ class EmulatorRequestsFuzzTest {
     @FuzzTest
     void intelligentInterfaceRequest(byte[] bytes) {
         serve(INTELLIGENT_INTERFACE, bytes);
+    }
+
+    /** What an RCX hears through its serial IR tower (which echoes every packet before the brick's reply). */
+    @FuzzTest
+    void rcxRequest(byte[] bytes) {
+        serve(RCX, bytes);
     }
 }

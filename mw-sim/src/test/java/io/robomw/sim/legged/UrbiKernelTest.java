@@ -182,6 +182,35 @@ class UrbiKernelTest {
     }
 
     /**
+     * Nested loops start a new inner loop at every turn of each outer one: without a bound on the
+     * session's jobs, eight of them multiply to tens of thousands of jobs (and pongs) within a
+     * tenth of a second, and thirty to billions. The session keeps to {@value UrbiKernel#MAX_JOBS}
+     * jobs, refuses what would exceed them, and a stop ends them all.
+     */
+    @Test
+    void shouldKeepNestedLoopsWithinTheSessionsJobsAndStopThemOnRequest() {
+        session.submit("l1: " + "loop ".repeat(8) + "ping,");
+        step(0.1);
+        assertTrue(session.jobs() <= UrbiKernel.MAX_JOBS, () -> session.jobs() + " jobs");
+        out.clear();
+
+        step(0.01);
+        assertTrue(out.size() <= UrbiKernel.MAX_JOBS, () -> out.size() + " messages in one step");
+        session.submit("r1: 1 + 2,");
+        step(0.01);
+        assertTrue(out.stream().anyMatch(line -> line.endsWith(":r1] !!! too many commands running (" + UrbiKernel.MAX_JOBS + "); stop some first")),
+                () -> out.subList(Math.max(0, out.size() - 5), out.size()).toString());
+
+        session.submit("stop l1,");
+        step(0.01);
+        assertEquals(0, session.jobs());
+        out.clear();
+        session.submit("r2: 1 + 2,");
+        step(0.01);
+        assertEquals(List.of("[140:r2] 3.000000"), out);
+    }
+
+    /**
      * Mutation fuzzing from valid input: every statement the driver sends and a person at a terminal
      * types, each mutated 200 times (bytes changed, inserted from URBI's punctuation, deleted,
      * pieces repeated, cut short), is sent to a session of its own. The server core must answer each

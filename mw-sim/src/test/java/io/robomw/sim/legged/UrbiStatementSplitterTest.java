@@ -56,6 +56,20 @@ class UrbiStatementSplitterTest {
     }
 
     @Test
+    void shouldBeMidStatementInsideAnOpenCommentWhichSwallowsWhatFollows() {
+        UrbiStatementSplitter s = new UrbiStatementSplitter();
+
+        feed(s, "p1: ping; /* not ended");
+        assertTrue(s.midStatement(), "a block comment is open");
+        feed(s, " p2: ping; */ // a line comment");
+        assertTrue(s.midStatement(), "a line comment is open");
+        feed(s, "\n");
+
+        assertFalse(s.midStatement());
+        assertEquals(List.of("p1: ping;"), out);
+    }
+
+    @Test
     void shouldSkipCommentsAndEmptyStatements() {
         UrbiStatementSplitter s = new UrbiStatementSplitter();
 

@@ -1,5 +1,8 @@
 package io.robomw.agents.messaging.discovery;
 
+import java.nio.ByteBuffer;
+import java.nio.charset.CharacterCodingException;
+import java.nio.charset.CodingErrorAction;
 import java.nio.charset.StandardCharsets;
 import java.util.ArrayList;
 import java.util.List;
@@ -11,8 +14,9 @@ import java.util.List;
  *
  * <p>Wire format, version {@value #VERSION}: the payload (text) of a publication on topic
  * {@value #TOPIC}: UTF-8, one field a line, {@code KEY VALUE}, in this order; at most
- * {@value #MAX_BYTES} bytes (lists are cut to fit, and {@code truncated yes} says so). Values never
- * contain a line break.
+ * {@value #MAX_BYTES} bytes (lists are cut to fit, and {@code truncated yes} says so). Every line,
+ * the last one too, ends with a line break ({@code \n}); values are never empty and never contain
+ * a line break or a carriage return.
  * <pre>
  * robomw-beacon 1
  * node NAME
@@ -25,8 +29,11 @@ import java.util.List;
  * robot NAME                       (zero or more: robots it serves, Robots.remote)
  * truncated yes                    (zero or one: lists were cut to fit)
  * </pre>
- * Decoding refuses another version, an unknown key, a missing field and an oversized record,
- * naming the sender and what is wrong (a decoder of outside bytes: fuzzed).
+ * Decoding refuses another version, bytes that are not UTF-8, a record cut short (its last line
+ * without its line break), an unknown key, an empty value, a missing field and an oversized record,
+ * naming the sender and what is wrong (a decoder of outside bytes: fuzzed). What it accepts is
+ * written back as it was read: a record read from at most {@value #MAX_BYTES} bytes is encoded
+ * whole, without cutting its lists.
  *
  * @param node      the node's name
  * @param online    whether it is up (false in its last beacon)
@@ -50,6 +57,7 @@ public record BeaconRecord(String node, boolean online, long periodMillis, Strin
     public static final String TOPIC = "robomw/beacon";
     /** The largest record: one datagram, well inside any link's MTU chain. */
     public static final int MAX_BYTES = 8192;
+    private static final String TRUNCATED_LINE = "truncated yes\n";
 
     /** Checks and copies. */
     public BeaconRecord {
@@ -82,8 +90,15 @@ public record BeaconRecord(String node, boolean online, long periodMillis, Strin
         boolean cut = truncated;
         String[] keys = {"messaging", "listens", "publishes", "robot"};
         List<List<String>> lists = List.of(messaging, listens, publishes, robots);
-        int budget = MAX_BYTES - "truncated yes\n".length();
         int size = utf8(b);
+        int whole = size + (truncated ? TRUNCATED_LINE.length() : 0);
+        for (int k = 0; k < keys.length; k++) {
+            for (String v : lists.get(k)) {
+                whole += utf8(keys[k] + " " + v + "\n");
+            }
+        }
+        // only a record that does not fit is cut, leaving room to say so
+        int budget = whole <= MAX_BYTES ? Integer.MAX_VALUE : MAX_BYTES - TRUNCATED_LINE.length();
         for (int k = 0; k < keys.length; k++) {
             for (String v : lists.get(k)) {
                 String line = keys[k] + " " + v + "\n";
@@ -97,7 +112,7 @@ public record BeaconRecord(String node, boolean online, long periodMillis, Strin
             }
         }
         if (cut) {
-            b.append("truncated yes\n");
+            b.append(TRUNCATED_LINE);
         }
         return b.toString().getBytes(StandardCharsets.UTF_8);
     }
@@ -116,10 +131,20 @@ public record BeaconRecord(String node, boolean online, long periodMillis, Strin
         if (bytes.length > MAX_BYTES) {
             throw new IllegalArgumentException(from + ": beacon of " + bytes.length + " bytes, above " + MAX_BYTES);
         }
-        String[] lines = new String(bytes, StandardCharsets.UTF_8).split("\n", -1);
+        String text;
+        try {
+            text = StandardCharsets.UTF_8.newDecoder().onMalformedInput(CodingErrorAction.REPORT).onUnmappableCharacter(CodingErrorAction.REPORT)
+                    .decode(ByteBuffer.wrap(bytes)).toString();
+        } catch (CharacterCodingException e) {
+            throw new IllegalArgumentException(from + ": not a RoboMW beacon (its bytes are not UTF-8 text)");
+        }
+        String[] lines = text.split("\n", -1);
         if (!lines[0].equals(MAGIC + " " + VERSION)) {
             String first = lines[0].length() > 40 ? lines[0].substring(0, 40) + "..." : lines[0];
             throw new IllegalArgumentException(from + ": not a RoboMW beacon of version " + VERSION + " (first line '" + first + "')");
+        }
+        if (!text.endsWith("\n")) {
+            throw new IllegalArgumentException(from + ": beacon cut short: its last line, " + lines.length + ", does not end with a line break");
         }
         String node = null;
         Boolean online = null;
@@ -142,19 +167,24 @@ public record BeaconRecord(String node, boolean online, long periodMillis, Strin
             }
             String key = line.substring(0, space);
             String value = line.substring(space + 1);
+            if (value.isEmpty() || value.indexOf('\r') >= 0) {
+                throw new IllegalArgumentException(from + ": beacon line " + (i + 1) + " ('" + (key.length() > 40 ? key.substring(0, 40) + "..." : key)
+                        + "') has " + (value.isEmpty() ? "no value" : "a carriage return in its value"));
+            }
             switch (key) {
                 case "node" -> node = value;
                 case "status" -> online = switch (value) {
                     case "online" -> true;
                     case "offline" -> false;
-                    default -> throw new IllegalArgumentException(from + ": beacon status '" + value + "' is neither online nor offline");
+                    default -> throw new IllegalArgumentException(from + ": beacon status '" + (value.length() > 40 ? value.substring(0, 40) + "..." : value)
+                            + "' is neither online nor offline");
                 };
                 case "period-ms" -> {
-                    try {
-                        period = Long.parseLong(value);
-                    } catch (NumberFormatException e) {
-                        throw new IllegalArgumentException(from + ": beacon period-ms '" + value + "' is not a number");
+                    if (!value.matches("-?[0-9]{1,18}")) {
+                        String shown = value.length() > 40 ? value.substring(0, 40) + "..." : value;
+                        throw new IllegalArgumentException(from + ": beacon period-ms '" + shown + "' is not a number");
                     }
+                    period = Long.parseLong(value);
                     if (period <= 0 || period > 3_600_000) {
                         throw new IllegalArgumentException(from + ": beacon period-ms " + period + " is not 1 to 3600000");
                     }
@@ -178,7 +208,11 @@ public record BeaconRecord(String node, boolean online, long periodMillis, Strin
         if (node == null || online == null || period == null) {
             throw new IllegalArgumentException(from + ": beacon without " + (node == null ? "node" : online == null ? "status" : "period-ms"));
         }
-        return new BeaconRecord(node, online, period, host, hostAddress, messaging, listens, publishes, robots, truncated);
+        try {
+            return new BeaconRecord(node, online, period, host, hostAddress, messaging, listens, publishes, robots, truncated);
+        } catch (IllegalArgumentException e) {
+            throw new IllegalArgumentException(from + ": " + e.getMessage(), e);
+        }
     }
 
     private static void oneLine(String what, String value) {

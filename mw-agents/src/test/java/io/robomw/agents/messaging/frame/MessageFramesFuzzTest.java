@@ -3,6 +3,7 @@ package io.robomw.agents.messaging.frame;
 import com.code_intelligence.jazzer.api.FuzzedDataProvider;
 import com.code_intelligence.jazzer.junit.FuzzTest;
 import io.robomw.agents.messaging.PresenceRecord;
+import io.robomw.agents.messaging.discovery.BeaconRecord;
 import io.robomw.agents.messaging.io.FrameStreamReader;
 import io.robomw.agents.messaging.security.PayloadAllowList;
 import io.robomw.agents.messaging.security.PayloadCodec;
@@ -14,9 +15,10 @@ import java.io.IOException;
 
 /**
  * Fuzz tests of what a messaging node decodes from the network (docs/fuzzing.md): a datagram or
- * framed stream as one frame, a byte stream cut into frames, and a frame's payload. The only
- * refusals allowed are {@link FrameException} (with its drop reason), {@link IOException} at the
- * end of a stream, and {@link PayloadRejectedException}.
+ * framed stream as one frame, a byte stream cut into frames, a frame's payload, a node's presence
+ * and its discovery beacon. The only refusals allowed are {@link FrameException} (with its drop
+ * reason), {@link IOException} at the end of a stream, {@link PayloadRejectedException}, and an
+ * {@link IllegalArgumentException} from the presence and beacon records.
  */
 class MessageFramesFuzzTest {
 
@@ -61,6 +63,28 @@ class MessageFramesFuzzTest {
         }
         if (!PresenceRecord.decode(p.encode(), "fuzz").equals(p)) {
             throw new AssertionError("a presence does not survive its own encoding: " + p);
+        }
+    }
+
+    /**
+     * What a node's discovery beacon says, as {@code Discovery} ({@code mw nodes}, {@code mw topics})
+     * reads it from a multicast group: refused naming its sender, or accepted and then written back
+     * by its own encoder to the same record, whole (what fitted one datagram fits again).
+     */
+    @FuzzTest
+    void beacon(byte[] input) {
+        BeaconRecord b;
+        try {
+            b = BeaconRecord.decode(input, "fuzz");
+        } catch (IllegalArgumentException refused) {
+            if (!refused.getMessage().startsWith("fuzz: ")) {
+                throw new AssertionError("a refused beacon's error does not name its sender: " + refused.getMessage(), refused);
+            }
+            return;
+        }
+        byte[] again = b.encode();
+        if (again.length > BeaconRecord.MAX_BYTES || !BeaconRecord.decode(again, "fuzz").equals(b)) {
+            throw new AssertionError("a beacon does not survive its own encoding: " + b);
         }
     }
 

@@ -315,9 +315,10 @@ public final class AiboEmulator implements Emulator {
      * @param tag    the tag, or ""
      * @param kind   what it is
      * @param text   the payload
-     * @return the message as the server writes it: {@code [00001234:tag] payload} and a newline
+     * @return the message as the server writes it: {@code [00001234:tag] payload} and a newline (a
+     *         line break in the payload becomes a space)
      */
-    static byte[] line(long millis, String tag, UrbiKernel.Kind kind, String text) {
+    public static byte[] line(long millis, String tag, UrbiKernel.Kind kind, String text) {
         String payload = switch (kind) {
             case SYSTEM -> "*** " + text;
             case ERROR -> "!!! " + text;
