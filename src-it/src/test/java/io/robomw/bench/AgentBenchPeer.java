@@ -21,6 +21,24 @@ import java.nio.file.Path;
 public final class AgentBenchPeer {
 
     static final ClusterKey KEY = ClusterKey.fromPassphrase("robomw agent benchmark");
+    /** The system property that sets both hosts' runner spin in µs ({@code AgentHost.Builder.runnerSpin}); unset: the default. */
+    static final String RUNNER_SPIN = "agent.bench.runnerSpinMicros";
+
+    /** The system property that sets both hosts' endpoint spin in µs ({@code AgentHost.Builder.endpointSpin}); unset: the default. */
+    static final String ENDPOINT_SPIN = "agent.bench.endpointSpinMicros";
+
+    /** @return the builder with the spins of {@value #RUNNER_SPIN} and {@value #ENDPOINT_SPIN}, where set */
+    static AgentHost.Builder spin(AgentHost.Builder b) {
+        String micros = System.getProperty(RUNNER_SPIN);
+        if (micros != null) {
+            b.runnerSpin(java.time.Duration.ofNanos(Long.parseLong(micros.trim()) * 1000));
+        }
+        String endpoint = System.getProperty(ENDPOINT_SPIN);
+        if (endpoint != null) {
+            b.endpointSpin(java.time.Duration.ofNanos(Long.parseLong(endpoint.trim()) * 1000));
+        }
+        return b;
+    }
 
     private AgentBenchPeer() {
     }
@@ -31,7 +49,7 @@ public final class AgentBenchPeer {
      */
     public static void main(String[] args) throws Exception {
         PrintStream out = new PrintStream(System.out, true, StandardCharsets.UTF_8);
-        AgentHost.Builder b = AgentHost.builder("bench-b").bind("127.0.0.1").clusterKey(KEY);
+        AgentHost.Builder b = spin(AgentHost.builder("bench-b").bind("127.0.0.1").clusterKey(KEY));
         if (args.length > 1 && args[0].equals("durable")) {
             b.store(Path.of(args[1]));
         }

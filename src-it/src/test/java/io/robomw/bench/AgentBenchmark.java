@@ -271,10 +271,20 @@ public final class AgentBenchmark {
         Path dirA = work.resolve(name + "-a");
         Path dirB = work.resolve(name + "-b");
         List<String> peerArgs = durable ? List.of("durable", dirB.toString()) : List.of("memory");
-        try (PeerProcess b = PeerProcess.start("agent-bench-b-" + name, AgentBenchPeer.class.getName(),
-                List.of("-Xmx2g", "-Dorg.slf4j.simpleLogger.defaultLogLevel=warn"), peerArgs)) {
+        List<String> peerJvm = new ArrayList<>(List.of("-Xmx2g", "-Dorg.slf4j.simpleLogger.defaultLogLevel=warn"));
+        for (String spinProperty : List.of(AgentBenchPeer.RUNNER_SPIN, AgentBenchPeer.ENDPOINT_SPIN)) {
+            String spin = System.getProperty(spinProperty);
+            if (spin != null) {
+                peerJvm.add("-D" + spinProperty + "=" + spin);
+            }
+        }
+        String extra = System.getProperty("agent.bench.peerJvmArgs", "").trim();
+        if (!extra.isEmpty()) {
+            peerJvm.addAll(Arrays.asList(extra.split("\\s+")));
+        }
+        try (PeerProcess b = PeerProcess.start("agent-bench-b-" + name, AgentBenchPeer.class.getName(), peerJvm, peerArgs)) {
             String far = b.expect("ADDRESS", PeerProcess.COMMAND).substring("ADDRESS ".length());
-            AgentHost.Builder builder = AgentHost.builder("bench-a").bind("127.0.0.1").clusterKey(AgentBenchPeer.KEY);
+            AgentHost.Builder builder = AgentBenchPeer.spin(AgentHost.builder("bench-a").bind("127.0.0.1").clusterKey(AgentBenchPeer.KEY));
             if (durable) {
                 builder.store(dirA);
             }

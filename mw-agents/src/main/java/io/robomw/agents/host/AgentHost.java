@@ -79,6 +79,7 @@ public final class AgentHost implements Agency, AutoCloseable {
     private final TlsSettings tls;
     private final Path storeDir;
     private final Duration stopGrace;
+    private final Duration endpointSpin;
     private final HostState state;
     private final RobotTurns robot;
     private final CodeLoaders code;
@@ -98,7 +99,9 @@ public final class AgentHost implements Agency, AutoCloseable {
         this.tls = b.tls;
         this.storeDir = b.storeDir;
         this.stopGrace = b.stopGrace;
-        this.state = new HostState(this, b.name, b.robot, new StateCodec(b.allowed, b.maxStateBytes), (int) b.callTimeout.toMillis());
+        this.endpointSpin = b.endpointSpin;
+        this.state = new HostState(this, b.name, b.robot, new StateCodec(b.allowed, b.maxStateBytes), (int) b.callTimeout.toMillis(),
+                b.runnerSpin);
         this.robot = new RobotTurns(b.name, b.robot);
         this.code = new CodeLoaders(state);
         Peers peers = new Peers(state, key, tls != null, this::serveSelf);
@@ -137,6 +140,8 @@ public final class AgentHost implements Agency, AutoCloseable {
         private long maxStateBytes = 64L << 20;
         private Duration callTimeout = Duration.ofSeconds(30);
         private Duration stopGrace = Duration.ofSeconds(5);
+        private Duration runnerSpin = SpinHandoff.defaultSpin();
+        private Duration endpointSpin = Duration.ZERO;
         private DeliveryPolicy delivery = DeliveryPolicy.defaults();
 
         private Builder(String name) {
@@ -270,6 +275,35 @@ public final class AgentHost implements Agency, AutoCloseable {
         }
 
         /**
+         * @param spin how long a runner thread with nothing to do spins for the next agent before it
+         *             parks (default 50 µs; zero, the default on a machine with one processor, never
+         *             spins): an agent handed to a spinning runner starts at once, where waking a parked
+         *             thread takes tens of microseconds on a virtual machine. Bounded: a runner spins at
+         *             most this long after each stop, then parks
+         * @return this
+         */
+        public Builder runnerSpin(Duration spin) {
+            if (spin.isNegative() || spin.compareTo(Duration.ofMillis(10)) > 0) {
+                throw new IllegalArgumentException("runner spin " + spin + " must be between 0 and 10 ms: a spinning runner holds a processor");
+            }
+            this.runnerSpin = spin;
+            return this;
+        }
+
+        /**
+         * @param spin how long a connection thread of the host's endpoint spins for the next call
+         *             before it blocks reading (default 0: never; plain sockets only)
+         * @return this
+         */
+        public Builder endpointSpin(Duration spin) {
+            if (spin.isNegative() || spin.compareTo(Duration.ofMillis(10)) > 0) {
+                throw new IllegalArgumentException("endpoint spin " + spin + " must be between 0 and 10 ms: a spinning connection thread holds a processor");
+            }
+            this.endpointSpin = spin;
+            return this;
+        }
+
+        /**
          * Starts the host: opens its store, resumes the agents it holds, and binds its RMI endpoint.
          *
          * @return the running host
@@ -329,7 +363,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         state.store = storeDir == null ? new MemoryStore() : JournalStore.open(storeDir);
         InetAddress bindAddress = InetAddress.getByName(bind);
         SSLContext ssl = tls == null ? null : tls.context();
-        HostSockets.Server serverSockets = new HostSockets.Server(bindAddress, ssl, counters);
+        HostSockets.Server serverSockets = new HostSockets.Server(bindAddress, ssl, counters, endpointSpin.toNanos());
         HostSockets.Client clientSockets = new HostSockets.Client(bind, tls != null, state.timeoutMillis);
         endpoint = new HostEndpoint(name, key, calls);
         long maxCall = state.codec.maxBytes() + (1 << 20);

@@ -49,11 +49,20 @@ final class HostSockets {
         private final InetAddress bindAddress;
         private final SSLContext tls;
         private final Counters counters;
+        private final long readSpinNanos;
 
         Server(InetAddress bindAddress, SSLContext tls, Counters counters) {
+            this(bindAddress, tls, counters, 0);
+        }
+
+        /**
+         * @param readSpinNanos how long a connection thread spins for the next call before it blocks in a read (0: never)
+         */
+        Server(InetAddress bindAddress, SSLContext tls, Counters counters, long readSpinNanos) {
             this.bindAddress = bindAddress;
             this.tls = tls;
             this.counters = counters;
+            this.readSpinNanos = readSpinNanos;
         }
 
         @Override
@@ -61,7 +70,7 @@ final class HostSockets {
             // Plain and TLS endpoints alike accept through the counting socket, so the connection
             // limit holds for both; a TLS connection is layered over the counted one once accepted
             // (its handshake runs on RMI's connection thread, at the first read).
-            return RmiSocketSetup.listen(() -> new CountingServerSocket(counters, tls), null, bindAddress, port);
+            return RmiSocketSetup.listen(() -> new CountingServerSocket(counters, tls, readSpinNanos), null, bindAddress, port);
         }
     }
 
@@ -69,16 +78,18 @@ final class HostSockets {
     private static final class CountingServerSocket extends ServerSocket {
         private final Counters counters;
         private final SSLContext tls;
+        private final long readSpinNanos;
 
-        CountingServerSocket(Counters counters, SSLContext tls) throws IOException {
+        CountingServerSocket(Counters counters, SSLContext tls, long readSpinNanos) throws IOException {
             this.counters = counters;
             this.tls = tls;
+            this.readSpinNanos = readSpinNanos;
         }
 
         @Override
         public Socket accept() throws IOException {
             while (true) {
-                CountingSocket s = new CountingSocket(counters);
+                CountingSocket s = new CountingSocket(counters, tls == null ? readSpinNanos : 0);
                 implAccept(s);
                 if (counters.open.incrementAndGet() > MAX_CONNECTIONS) {
                     counters.open.decrementAndGet();
@@ -107,10 +118,13 @@ final class HostSockets {
 
     private static final class CountingSocket extends Socket {
         private final Counters counters;
+        private final long readSpinNanos;
         private final java.util.concurrent.atomic.AtomicBoolean closed = new java.util.concurrent.atomic.AtomicBoolean();
+        private InputStream in;
 
-        CountingSocket(Counters counters) {
+        CountingSocket(Counters counters, long readSpinNanos) {
             this.counters = counters;
+            this.readSpinNanos = readSpinNanos;
         }
 
         @Override
@@ -131,26 +145,11 @@ final class HostSockets {
         }
 
         @Override
-        public InputStream getInputStream() throws IOException {
-            return new FilterInputStream(super.getInputStream()) {
-                @Override
-                public int read() throws IOException {
-                    int b = super.read();
-                    if (b >= 0) {
-                        counters.in.increment();
-                    }
-                    return b;
-                }
-
-                @Override
-                public int read(byte[] buf, int off, int len) throws IOException {
-                    int n = super.read(buf, off, len);
-                    if (n > 0) {
-                        counters.in.add(n);
-                    }
-                    return n;
-                }
-            };
+        public synchronized InputStream getInputStream() throws IOException {
+            if (in == null) {
+                in = new ReadAhead(super.getInputStream(), counters, readSpinNanos);
+            }
+            return in;
         }
 
         @Override
@@ -171,11 +170,106 @@ final class HostSockets {
         }
     }
 
+    /**
+     * Spins (yielding the processor to any other runnable thread) until the stream has bytes to
+     * read or {@code nanos} have passed: a call that comes within the spin is read without the
+     * tens of microseconds a blocked thread takes to wake.
+     */
+    static void spinUntilReadable(InputStream in, long nanos) throws IOException {
+        if (in.available() > 0) {
+            return;
+        }
+        long until = System.nanoTime() + nanos;
+        while (in.available() == 0 && System.nanoTime() - until < 0) {
+            Thread.yield();
+        }
+    }
+
+    /** How much an accepted connection reads from its socket at once. */
+    static final int READ_AHEAD_BYTES = 64 * 1024;
+
+    /**
+     * An accepted connection's input: reads from the socket up to {@value #READ_AHEAD_BYTES} bytes
+     * at a time, where RMI's buffered stream asks for 8 KiB (a large call took a system call per
+     * 8 KiB), counts the bytes, and, with a read spin, spins for the next call before it blocks.
+     * One per connection; RMI reads it from one thread at a time.
+     */
+    private static final class ReadAhead extends InputStream {
+        private final InputStream socket;
+        private final Counters counters;
+        private final long readSpinNanos;
+        private final byte[] ahead = new byte[READ_AHEAD_BYTES];
+        private int pos;
+        private int limit;
+
+        ReadAhead(InputStream socket, Counters counters, long readSpinNanos) {
+            this.socket = socket;
+            this.counters = counters;
+            this.readSpinNanos = readSpinNanos;
+        }
+
+        /** @return whether there are bytes to serve (false: the end of the stream) */
+        private boolean fill() throws IOException {
+            if (pos < limit) {
+                return true;
+            }
+            if (readSpinNanos > 0) {
+                spinUntilReadable(socket, readSpinNanos);
+            }
+            int n = socket.read(ahead, 0, ahead.length);
+            if (n <= 0) {
+                return false;
+            }
+            counters.in.add(n);
+            pos = 0;
+            limit = n;
+            return true;
+        }
+
+        @Override
+        public int read() throws IOException {
+            return fill() ? ahead[pos++] & 0xFF : -1;
+        }
+
+        @Override
+        public int read(byte[] buf, int off, int len) throws IOException {
+            java.util.Objects.checkFromIndexSize(off, len, buf.length);
+            if (len == 0) {
+                return 0;
+            }
+            if (!fill()) {
+                return -1;
+            }
+            int n = Math.min(len, limit - pos);
+            System.arraycopy(ahead, pos, buf, off, n);
+            pos += n;
+            return n;
+        }
+
+        /** The bytes read ahead, or if none, the socket's (a system call; RMI's buffered stream asks after every short read). */
+        @Override
+        public int available() throws IOException {
+            return limit > pos ? limit - pos : socket.available();
+        }
+
+        @Override
+        public void close() throws IOException {
+            socket.close();
+        }
+    }
+
     /** RMI's transport: the byte a client sends to ask whether a reused connection is alive, and the answer. */
     static final int RMI_PING = 0x52;
     static final int RMI_PING_ACK = 0x53;
     /** A connection that carried an answer this recently is taken to be alive without asking. */
     static final long WARM_NANOS = 100_000_000L;
+    /**
+     * The most a client connection collects of a call before writing it to the socket: RMI writes
+     * a call in 8 KiB pieces (its buffered stream's size), each a system call and a TCP segment of
+     * its own on loopback; collected until RMI flushes, a call of up to this size goes out in one
+     * write. Larger calls are written through in pieces of this size.
+     */
+    static final int COALESCE_MAX_BYTES = 2 << 20;
 
     /**
      * A client socket that answers RMI's liveness ping itself when the connection carried an
@@ -245,6 +339,10 @@ final class HostSockets {
         public synchronized OutputStream getOutputStream() throws IOException {
             if (out == null) {
                 out = new FilterOutputStream(super.getOutputStream()) {
+                    /** What RMI wrote since its last flush, up to {@link #COALESCE_MAX_BYTES}: sent in one write at the flush. */
+                    private byte[] pending = new byte[8192];
+                    private int n;
+
                     @Override
                     public void write(int b) throws IOException {
                         write(new byte[] {(byte) b}, 0, 1);
@@ -252,14 +350,36 @@ final class HostSockets {
 
                     @Override
                     public void write(byte[] buf, int off, int len) throws IOException {
-                        if (len == 1 && buf[off] == RMI_PING && answeredSinceWrite && System.nanoTime() - lastAnswer < WARM_NANOS) {
+                        if (n == 0 && len == 1 && buf[off] == RMI_PING && answeredSinceWrite && System.nanoTime() - lastAnswer < WARM_NANOS) {
                             answeredSinceWrite = false;
                             ackPending = true;
                             pingsAnswered.increment();
                             return;
                         }
                         answeredSinceWrite = false;
-                        out.write(buf, off, len);
+                        if (n + len > pending.length) {
+                            if (n + len > COALESCE_MAX_BYTES) {
+                                sendPending();
+                                out.write(buf, off, len);
+                                return;
+                            }
+                            pending = java.util.Arrays.copyOf(pending, Math.min(COALESCE_MAX_BYTES, Math.max(n + len, 2 * pending.length)));
+                        }
+                        System.arraycopy(buf, off, pending, n, len);
+                        n += len;
+                    }
+
+                    private void sendPending() throws IOException {
+                        if (n > 0) {
+                            out.write(pending, 0, n);
+                            n = 0;
+                        }
+                    }
+
+                    @Override
+                    public void flush() throws IOException {
+                        sendPending();
+                        out.flush();
                     }
                 };
             }

@@ -41,8 +41,10 @@ final class HostState {
     final Map<UUID, AgentHandle> handles = new ConcurrentHashMap<>();
     /** What happened here lately, for watchers (a console): {@link Op#WATCH}. */
     final HostActivity activity = new HostActivity();
-    /** Runs agents' stops, one pooled thread per agent at a time. */
+    /** Runs agents' stops, one pooled thread per agent at a time; its idle threads spin {@link #runnerSpinNanos} before they park. */
     final ExecutorService runners;
+    /** How long a runner waits for work by spinning before it parks, ns (0: never spins). */
+    final long runnerSpinNanos;
     /** Runs the home's calls to its agents (messages, retract and dispose requests) and clone launches. */
     final ExecutorService requests;
     private final AgentHost facade;
@@ -61,14 +63,18 @@ final class HostState {
     HostMessaging messaging;
     volatile boolean closed;
 
-    HostState(AgentHost facade, String name, Robot robot, StateCodec codec, int timeoutMillis) {
+    /**
+     * @param runnerSpin how long an idle runner thread spins for the next agent before it parks ({@link SpinHandoff})
+     */
+    HostState(AgentHost facade, String name, Robot robot, StateCodec codec, int timeoutMillis, java.time.Duration runnerSpin) {
         this.facade = facade;
         this.name = name;
         this.robot = robot;
         this.codec = codec;
         this.timeoutMillis = timeoutMillis;
-        this.runners = pool(named("agent-runner-" + name));
-        this.requests = pool(named("agent-requests-" + name));
+        this.runnerSpinNanos = runnerSpin.toNanos();
+        this.runners = pool(named("agent-runner-" + name), new SpinHandoff<>(runnerSpin, System::nanoTime));
+        this.requests = pool(named("agent-requests-" + name), new java.util.concurrent.SynchronousQueue<>());
     }
 
     /** @return a new context for an agent here, to attach to it before one of its callbacks */
@@ -107,9 +113,9 @@ final class HostState {
      * back after {@value #IDLE_THREAD_SECONDS} s idle, so a burst of agents leaves no threads behind
      * on a host that runs for days.
      */
-    private static ExecutorService pool(ThreadFactory threads) {
+    private static ExecutorService pool(ThreadFactory threads, java.util.concurrent.BlockingQueue<Runnable> handoff) {
         return new java.util.concurrent.ThreadPoolExecutor(0, Integer.MAX_VALUE, IDLE_THREAD_SECONDS, java.util.concurrent.TimeUnit.SECONDS,
-                new java.util.concurrent.SynchronousQueue<>(), threads);
+                handoff, threads);
     }
 
     private static ThreadFactory named(String prefix) {

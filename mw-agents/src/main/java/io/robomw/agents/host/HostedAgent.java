@@ -28,6 +28,8 @@ final class HostedAgent {
     volatile boolean retractRequested;
     volatile boolean disposeRequested;
     volatile Serializable result;
+    /** Whether the store has its stop marked started already ({@code AgentStore.acceptedStarting}): the runner does not mark it again. */
+    volatile boolean startStored;
     /** The length of its image when it last travelled, to size the frame it is written into next. */
     volatile int imageSize;
     /** Its view of the host's messaging, once it asked for it; guarded by this object. */

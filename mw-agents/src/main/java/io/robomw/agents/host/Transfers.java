@@ -52,6 +52,12 @@ final class Transfers {
     Reply acceptWithRunner(String peer, byte[] raw, int offset, int length) {
         CompletableFuture<HostedAgent> accepted = new CompletableFuture<>();
         host.runners.execute(() -> {
+            // The runner usually starts before the agent is stored: spin for it as an idle runner
+            // would (bounded), rather than park and be woken again.
+            long until = System.nanoTime() + host.runnerSpinNanos;
+            while (!accepted.isDone() && System.nanoTime() - until < 0) {
+                Thread.yield();
+            }
             HostedAgent h = accepted.join();
             if (h != null) {
                 trips.runStop(h, false);
@@ -109,7 +115,10 @@ final class Transfers {
                 return new Reply(Reply.Status.DUPLICATE, new byte[0]);
             }
             try {
-                host.store.accepted(image.id(), image.hop(), raw, offset, length);
+                // Its stop begins as soon as it is stored (its runner is waiting, or is started just below):
+                // stored and marked started in one durable write.
+                host.store.acceptedStarting(image.id(), image.hop(), raw, offset, length);
+                h.startStored = true;
             } catch (IOException e) {
                 LOG.error("host {}: cannot store agent {}: {}; refusing it (the sender keeps it)", host.name, image.id(), e.toString());
                 return Reply.of(Reply.Status.REFUSED, "host " + host.name + " cannot store the agent: " + e.getMessage());

@@ -74,7 +74,9 @@ final class Trips {
             } else {
                 boolean marked = false;
                 try {
-                    host.store.started(h.id, h.hop);
+                    if (!h.startStored) {
+                        host.store.started(h.id, h.hop);
+                    }
                     marked = true;
                 } catch (IOException e) {
                     LOG.error("host {}: cannot mark agent {}'s stop as started ({}); not running it", host.name, h.id, e.toString());

@@ -131,4 +131,43 @@ class HostSocketsTest {
             }
         }
     }
+
+    /**
+     * Calls as RMI writes them (8 KiB pieces through its buffered stream, then a flush), one
+     * smaller and one larger than what a client connection collects before writing, arrive whole
+     * and in order through an endpoint connection that reads ahead, and are counted once.
+     */
+    @Test
+    void callsCollectedUntilTheFlushAndReadAheadArriveWholeInOrderAndCountedOnce() throws Exception {
+        HostSockets.Counters counters = new HostSockets.Counters();
+        HostSockets.Server factory = new HostSockets.Server(InetAddress.getLoopbackAddress(), null, counters);
+        byte[] small = new byte[100_000];
+        byte[] large = new byte[HostSockets.COALESCE_MAX_BYTES * 2 + 12_345];
+        java.util.Random random = new java.util.Random(7);
+        random.nextBytes(small);
+        random.nextBytes(large);
+        try (ServerSocket server = factory.createServerSocket(0)) {
+            HostSockets.Client client = new HostSockets.Client("127.0.0.1", false, 5_000);
+            try (Socket c = client.createSocket("ignored", server.getLocalPort()); Socket accepted = server.accept()) {
+                java.util.concurrent.CompletableFuture<byte[]> received = java.util.concurrent.CompletableFuture.supplyAsync(() -> {
+                    try {
+                        InputStream in = new BufferedInputStream(accepted.getInputStream());
+                        return in.readNBytes(small.length + large.length);
+                    } catch (java.io.IOException e) {
+                        throw new java.io.UncheckedIOException(e);
+                    }
+                });
+                OutputStream out = new BufferedOutputStream(c.getOutputStream());
+                out.write(small);
+                out.flush();
+                out.write(large);
+                out.flush();
+                byte[] got = received.get(30, java.util.concurrent.TimeUnit.SECONDS);
+                assertEquals(small.length + large.length, got.length);
+                assertTrue(java.util.Arrays.equals(got, 0, small.length, small, 0, small.length), "the smaller call arrives whole");
+                assertTrue(java.util.Arrays.equals(got, small.length, got.length, large, 0, large.length), "the larger call arrives whole, after it");
+                assertEquals(small.length + large.length, counters.in.sum(), "every byte read is counted once");
+            }
+        }
+    }
 }

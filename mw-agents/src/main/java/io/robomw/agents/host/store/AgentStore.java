@@ -15,7 +15,9 @@ import java.util.UUID;
  * <p>The order of one hop at the receiving host: {@link #accepted} (durable before the sender is
  * acknowledged), {@link #started} (durable before the stop's work begins, so the work never runs
  * twice), {@link #departing} with the state after the work, {@link #departed} once the next host
- * has acknowledged (only that copy: a hop to this same host has stored the next one already). Thread-safe.
+ * has acknowledged (only that copy: a hop to this same host has stored the next one already).
+ * A transfer's agent, whose runner waits for it, is stored with {@link #acceptedStarting}: the
+ * first two in one durable write. Thread-safe.
  */
 public interface AgentStore extends AutoCloseable {
 
@@ -67,6 +69,26 @@ public interface AgentStore extends AutoCloseable {
      * @throws IOException if it cannot be stored (the hop must then be refused)
      */
     void accepted(UUID id, long hop, byte[] image, int offset, int length) throws IOException;
+
+    /**
+     * {@link #accepted} and {@link #started} at once, for an agent whose stop begins as soon as it
+     * is stored (a transfer's: its runner is waiting): durable before return, in one write and one
+     * {@code fdatasync} in a store that forces them, where the two calls take two. From then on
+     * the stop counts as begun: a host that dies before its work actually begins (the
+     * microseconds between this call and the stop's first line) does not run it after a restart,
+     * as for a host that dies during the work. Stops run at most once either way.
+     *
+     * @param id     the agent
+     * @param hop    the hop that brought it
+     * @param image  holds its travelling form
+     * @param offset where the travelling form starts in {@code image}
+     * @param length its length
+     * @throws IOException if it cannot be stored (the hop must then be refused)
+     */
+    default void acceptedStarting(UUID id, long hop, byte[] image, int offset, int length) throws IOException {
+        accepted(id, hop, image, offset, length);
+        started(id, hop);
+    }
 
     /**
      * @param id  the agent

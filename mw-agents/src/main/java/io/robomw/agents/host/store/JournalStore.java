@@ -55,7 +55,21 @@ import java.util.zip.CRC32C;
  * <tr><td>7</td><td>SEEN</td><td>hop</td><td>none</td><td>no</td><td>the highest hop seen of the agent (compaction writes these)</td></tr>
  * <tr><td>8</td><td>EVENT_SEQ</td><td>next event seq</td><td>none</td><td>no</td><td>the number the held agent's next report or result takes
  *     (compaction writes these; version 2)</td></tr>
+ * <tr><td>9</td><td>DEPARTING_SPOOLED</td><td>the next hop</td><td>[image length 4][CRC32C of the image 4]</td><td>no</td><td>as DEPARTING,
+ *     with the image in the spool file {@code departing/<agent id>-<hop>}; if that file is missing, of another length or
+ *     checksum (it is never forced: a power cut may lose it), the record is ignored and the agent resumes in its phase before
+ *     (its stop begun: it goes on from the state it arrived with, its stop recorded as interrupted); version 4</td></tr>
  * </table>
+ *
+ * <p><b>A hop's state goes to the disk once.</b> An agent's image is written from the caller's
+ * array (the transfer's own), and the store keeps no copy of it: it notes where the image is and
+ * reads it back only to compact. The image an agent arrives with is in its ACCEPTED record,
+ * forced. The image it leaves with is needed only if the host is killed before the next host
+ * acknowledges it; images of {@value #SPOOL_MIN_BYTES} bytes or more are written to a spool file of
+ * their own rather than into the journal, and the file is deleted once the next host has the
+ * agent: the journal's {@code fdatasync}s never write it, and the page cache usually drops it
+ * unwritten (a kill keeps it: the page cache survives the process). Smaller ones stay in the
+ * journal, where they cost a few blocks.
  *
  * <p><b>Event numbers.</b> An agent's reports and results are numbered, and its home drops a number
  * it has seen. An agent held here carries in its image the next number as it was when it arrived;
@@ -76,7 +90,9 @@ import java.util.zip.CRC32C;
  * <p>A record cut short by a kill, or with a bad checksum, ends the replay there and is cut off.
  * Records that must survive a power cut (an accepted agent, a started stop, an owed result, an
  * archive) are forced to the disk ({@code fdatasync}) before the call returns; the others only
- * need to survive the process being killed, which the page cache does. The journal is rewritten with only what is live when it
+ * need to survive the process being killed, which the page cache does. A transferred agent's
+ * ACCEPTED and STARTED records go in one write with one {@code fdatasync} ({@link #acceptedStarting}):
+ * one per hop. The journal is rewritten with only what is live when it
  * grows past {@value #COMPACT_BYTES} bytes and four times what is live. One host per directory
  * (a file lock says so). Thread-safe.
  *
@@ -103,13 +119,18 @@ public final class JournalStore implements AgentStore {
     static final byte[] MAGIC = {(byte) 0x89, 'R', 'M', 'J'};
     /**
      * The format this store writes; version 2 added the EVENT_SEQ record, version 3 the hop in
-     * DEPARTED records (before, a DEPARTED record forgot whatever copy of the agent was held).
+     * DEPARTED records (before, a DEPARTED record forgot whatever copy of the agent was held),
+     * version 4 the DEPARTING_SPOOLED record.
      */
-    static final int FORMAT_VERSION = 3;
+    static final int FORMAT_VERSION = 4;
     /** The first version whose DEPARTED records carry the hop the agent left with. */
     static final int DEPARTED_HOP_VERSION = 3;
     /** The oldest format this store reads (its records are a subset of the current version's). */
     static final int OLDEST_READABLE_VERSION = 1;
+    /** The first version with DEPARTING_SPOOLED records. */
+    static final int SPOOL_VERSION = 4;
+    /** Departing images of at least this many bytes go to a spool file rather than into the journal. */
+    static final int SPOOL_MIN_BYTES = 64 * 1024;
     /** The header's length: magic and version. */
     static final int HEADER_LENGTH = 8;
     /** The shortest record payload: type, id, number. */
@@ -132,7 +153,9 @@ public final class JournalStore implements AgentStore {
         /** The highest hop of it ever accepted. */
         SEEN(7),
         /** The next event number of an agent held here (from version 2). */
-        EVENT_SEQ(8);
+        EVENT_SEQ(8),
+        /** It is being sent on; its image after the stop is in a spool file (from version 4). */
+        DEPARTING_SPOOLED(9);
 
         private final int code;
 
@@ -160,7 +183,8 @@ public final class JournalStore implements AgentStore {
                 case 6 -> EVENT_DELIVERED;
                 case 7 -> SEEN;
                 case 8 -> EVENT_SEQ;
-                default -> throw new IllegalArgumentException("unknown record type code " + code + " (known: 1-8)");
+                case 9 -> DEPARTING_SPOOLED;
+                default -> throw new IllegalArgumentException("unknown record type code " + code + " (known: 1-9)");
             };
         }
     }
@@ -168,10 +192,12 @@ public final class JournalStore implements AgentStore {
     private final Path dir;
     private final Path journal;
     private final Path archives;
+    private final Path spool;
     private final FileChannel lockChannel;
     private final FileLock lock;
     private final Object writeLock = new Object();
-    private final Map<UUID, StoredAgent> live = new LinkedHashMap<>();
+    /** The agents held here: where each one's image is in the journal (not a copy of it). */
+    private final Map<UUID, Held> live = new LinkedHashMap<>();
     /** The highest hop of each agent seen, for the last {@value #SEEN_CAPACITY} agents; read without the write lock. */
     private final Map<UUID, Long> seen = new ConcurrentHashMap<>();
     /** The agents of {@link #seen} in the order they were first seen, for forgetting the oldest; guarded by the write lock. */
@@ -189,6 +215,8 @@ public final class JournalStore implements AgentStore {
     /** The file's size, zero-filled from {@link #end} on. */
     private long allocated;
     private long liveBytes;
+    /** How many times the journal was forced to the disk since it was opened (for tests); guarded by the write lock. */
+    private long forces;
     /** The format version of the journal as it was read (its records are rewritten in {@link #FORMAT_VERSION}). */
     private int readVersion = FORMAT_VERSION;
     /** When the journal was opened: the owed-since of events a version 1 journal holds. */
@@ -199,7 +227,9 @@ public final class JournalStore implements AgentStore {
         this.seenCapacity = seenCapacity;
         this.journal = dir.resolve("journal");
         this.archives = dir.resolve("archives");
+        this.spool = dir.resolve("departing");
         Files.createDirectories(archives);
+        Files.createDirectories(spool);
         lockChannel = FileChannel.open(dir.resolve("lock"), StandardOpenOption.CREATE, StandardOpenOption.WRITE);
         FileLock l;
         try {
@@ -214,9 +244,10 @@ public final class JournalStore implements AgentStore {
         this.lock = l;
         try {
             replay();
-            recoveredAgents = List.copyOf(live.values());
+            recoveredAgents = live.values().stream().map(a -> new StoredAgent(a.id(), a.hop(), a.phase(), a.image())).toList();
             recoveredEvents = List.copyOf(events.values());
             compact();
+            deleteUnheldSpoolFiles();
         } catch (IOException | RuntimeException e) {
             // A journal this store refuses must not keep the directory locked (a host retrying, or another, could not open it).
             try {
@@ -261,12 +292,32 @@ public final class JournalStore implements AgentStore {
         return journal.toString();
     }
 
+    /** The image is written from the caller's array (no copy of it is made or kept: {@link #live} notes where it is in the journal). */
     @Override
     public void accepted(UUID id, long hop, byte[] from, int offset, int length) throws IOException {
-        byte[] image = java.util.Arrays.copyOfRange(from, offset, offset + length);
+        checkRange(from, offset, length);
         synchronized (writeLock) {
-            append(RecordType.ACCEPTED, id, hop, image, true);
-            put(new StoredAgent(id, hop, Phase.ACCEPTED, image));
+            long at = append(true, encode(RecordType.ACCEPTED, id, hop, from, offset, length));
+            put(new Held(id, hop, Phase.ACCEPTED, at + DATA_OFFSET, length, null, null));
+            see(id, hop);
+        }
+    }
+
+    /**
+     * One write and one {@code fdatasync} for both records (an ACCEPTED, then a STARTED record),
+     * where {@link #accepted} and {@link #started} would take two of each; replayed, the agent is
+     * in phase STARTED. The image is written from the caller's array.
+     */
+    @Override
+    public void acceptedStarting(UUID id, long hop, byte[] from, int offset, int length) throws IOException {
+        checkRange(from, offset, length);
+        synchronized (writeLock) {
+            ByteBuffer[] accepted = encode(RecordType.ACCEPTED, id, hop, from, offset, length);
+            ByteBuffer[] started = encode(RecordType.STARTED, id, hop, null, 0, 0);
+            ByteBuffer[] both = java.util.Arrays.copyOf(accepted, accepted.length + started.length);
+            System.arraycopy(started, 0, both, accepted.length, started.length);
+            long at = append(true, both);
+            put(new Held(id, hop, Phase.STARTED, at + DATA_OFFSET, length, null, null));
             see(id, hop);
         }
     }
@@ -274,27 +325,59 @@ public final class JournalStore implements AgentStore {
     @Override
     public void started(UUID id, long hop) throws IOException {
         synchronized (writeLock) {
-            append(RecordType.STARTED, id, hop, null, true);
-            StoredAgent a = live.get(id);
+            append(true, encode(RecordType.STARTED, id, hop, null, 0, 0));
+            Held a = live.get(id);
             if (a != null) {
-                live.put(id, new StoredAgent(id, hop, Phase.STARTED, a.image()));
+                live.put(id, a.in(hop, Phase.STARTED));
             }
         }
     }
 
+    /**
+     * The image is written from the caller's array (no copy of it is made or kept); one of
+     * {@value #SPOOL_MIN_BYTES} bytes or more to a spool file, with a DEPARTING_SPOOLED record.
+     */
     @Override
     public void departing(UUID id, long hop, byte[] from, int offset, int length) throws IOException {
-        byte[] image = java.util.Arrays.copyOfRange(from, offset, offset + length);
+        checkRange(from, offset, length);
+        if (length >= SPOOL_MIN_BYTES) {
+            Path file = spoolFile(id, hop);
+            try (FileChannel c = FileChannel.open(file, StandardOpenOption.CREATE, StandardOpenOption.WRITE, StandardOpenOption.TRUNCATE_EXISTING)) {
+                ByteBuffer b = ByteBuffer.wrap(from, offset, length);
+                while (b.hasRemaining()) {
+                    c.write(b);
+                }
+            }
+            CRC32C crc = new CRC32C();
+            crc.update(from, offset, length);
+            byte[] data = ByteBuffer.allocate(8).putInt(length).putInt((int) crc.getValue()).array();
+            synchronized (writeLock) {
+                append(false, encode(RecordType.DEPARTING_SPOOLED, id, hop, data, 0, data.length));
+                put(new Held(id, hop, Phase.DEPARTING, -1, length, null, file));
+            }
+            return;
+        }
         synchronized (writeLock) {
-            append(RecordType.DEPARTING, id, hop, image, false);
-            put(new StoredAgent(id, hop, Phase.DEPARTING, image));
+            long at = append(false, encode(RecordType.DEPARTING, id, hop, from, offset, length));
+            put(new Held(id, hop, Phase.DEPARTING, at + DATA_OFFSET, length, null, null));
+        }
+    }
+
+    private Path spoolFile(UUID id, long hop) {
+        return spool.resolve(id + "-" + hop);
+    }
+
+    private static void checkRange(byte[] from, int offset, int length) {
+        java.util.Objects.checkFromIndexSize(offset, length, from.length);
+        if (length > MAX_RECORD - MIN_PAYLOAD - 4) {
+            throw new IllegalArgumentException("an image of " + length + " bytes is too large for a journal record");
         }
     }
 
     @Override
     public void departed(UUID id, long hop) throws IOException {
         synchronized (writeLock) {
-            append(RecordType.DEPARTED, id, hop, null, false);
+            append(false, encode(RecordType.DEPARTED, id, hop, null, 0, 0));
             forget(id, hop);
             maybeCompact();
         }
@@ -306,7 +389,7 @@ public final class JournalStore implements AgentStore {
      * ACCEPTED record is written before the sender records the old copy departed.
      */
     private void forget(UUID id, long hop) {
-        StoredAgent held = live.get(id);
+        Held held = live.get(id);
         if (held == null || held.hop() < hop || held.hop() == hop && held.phase() == Phase.DEPARTING) {
             remove(id);
             eventSeqs.remove(id);
@@ -326,7 +409,8 @@ public final class JournalStore implements AgentStore {
     @Override
     public void eventPending(PendingEvent event) throws IOException {
         synchronized (writeLock) {
-            append(RecordType.EVENT_PENDING, event.id(), event.seq(), pendingData(event), true);
+            byte[] data = pendingData(event);
+            append(true, encode(RecordType.EVENT_PENDING, event.id(), event.seq(), data, 0, data.length));
             if (live.containsKey(event.id())) {
                 eventSeqs.merge(event.id(), event.seq() + 1, Math::max);
             }
@@ -338,7 +422,7 @@ public final class JournalStore implements AgentStore {
     @Override
     public void eventDelivered(UUID id, long seq) throws IOException {
         synchronized (writeLock) {
-            append(RecordType.EVENT_DELIVERED, id, seq, null, false);
+            append(false, encode(RecordType.EVENT_DELIVERED, id, seq, null, 0, 0));
             PendingEvent e = events.remove(key(id, seq));
             if (e != null) {
                 liveBytes -= e.event().length;
@@ -385,6 +469,13 @@ public final class JournalStore implements AgentStore {
         } catch (IOException e) {
             LOG.warn("cannot read archive {}: {}", file, e.toString());
             return Optional.empty();
+        }
+    }
+
+    /** @return how many times records were forced to the disk since the store was opened (not counting its own growth and compaction) */
+    long forces() {
+        synchronized (writeLock) {
+            return forces;
         }
     }
 
@@ -435,7 +526,7 @@ public final class JournalStore implements AgentStore {
                 io.run();
             } catch (ClosedByInterruptException e) {
                 interrupted |= Thread.interrupted();
-                channel = FileChannel.open(journal, StandardOpenOption.WRITE);
+                channel = FileChannel.open(journal, StandardOpenOption.READ, StandardOpenOption.WRITE);
                 io.run();
             }
         } finally {
@@ -447,19 +538,86 @@ public final class JournalStore implements AgentStore {
 
     // ---- journal ----
 
-    private void put(StoredAgent a) {
-        StoredAgent old = live.put(a.id(), a);
+    private void put(Held a) {
+        Held old = live.put(a.id(), a);
         if (old != null) {
-            liveBytes -= old.image().length;
+            liveBytes -= old.length();
+            unspool(old, a);
         }
-        liveBytes += a.image().length;
+        liveBytes += a.length();
     }
 
     private void remove(UUID id) {
-        StoredAgent old = live.remove(id);
+        Held old = live.remove(id);
         if (old != null) {
-            liveBytes -= old.image().length;
+            liveBytes -= old.length();
+            unspool(old, null);
         }
+    }
+
+    /** Deletes the spool file of a copy no longer held (unless the copy that replaces it is in that same file). */
+    private void unspool(Held old, Held now) {
+        if (old.spooled() != null && (now == null || !old.spooled().equals(now.spooled()))) {
+            try {
+                Files.deleteIfExists(old.spooled());
+            } catch (IOException e) {
+                LOG.warn("agent store {}: cannot delete the spool file {} of an agent no longer held: {}", dir, old.spooled(), e.toString());
+            }
+        }
+    }
+
+    /** After opening: deletes spool files of copies no longer held (a kill between a departure and the deletion leaves them). */
+    private void deleteUnheldSpoolFiles() throws IOException {
+        java.util.Set<Path> held = new java.util.HashSet<>();
+        live.values().forEach(a -> {
+            if (a.spooled() != null) {
+                held.add(a.spooled());
+            }
+        });
+        try (java.util.stream.Stream<Path> files = Files.list(spool)) {
+            for (Path f : (Iterable<Path>) files::iterator) {
+                if (!held.contains(f)) {
+                    Files.deleteIfExists(f);
+                }
+            }
+        }
+    }
+
+    /**
+     * An agent held here, as the journal has it: its image is {@code length} bytes at
+     * {@code dataAt} in the journal file, and also in {@code image} while the replay's copy is
+     * kept (from a journal's opening to its first compaction), else {@code null}; or, spooled,
+     * in the file {@code spooled} ({@code dataAt} -1).
+     */
+    private record Held(UUID id, long hop, Phase phase, long dataAt, int length, byte[] image, Path spooled) {
+        Held in(long newHop, Phase newPhase) {
+            return new Held(id, newHop, newPhase, dataAt, length, image, spooled);
+        }
+    }
+
+    /** @return a held agent's image, read back from the journal unless the replay's copy is kept */
+    private byte[] imageOf(Held a) throws IOException {
+        if (a.image() != null) {
+            return a.image();
+        }
+        if (a.spooled() != null) {
+            byte[] b = Files.readAllBytes(a.spooled());
+            if (b.length != a.length()) {
+                throw new IOException("agent store spool file " + a.spooled() + " holds " + b.length + " bytes, not the " + a.length() + " of agent "
+                        + a.id() + "'s image");
+            }
+            return b;
+        }
+        ByteBuffer b = ByteBuffer.allocate(a.length());
+        long at = a.dataAt();
+        while (b.hasRemaining()) {
+            int n = channel.read(b, at);
+            if (n < 0) {
+                throw new IOException("agent store journal " + journal + " ends inside the image of agent " + a.id() + " (at byte " + a.dataAt() + ")");
+            }
+            at += n;
+        }
+        return b.array();
     }
 
     /** @return an EVENT_PENDING record's data: when it was first owed, then the event */
@@ -492,26 +650,43 @@ public final class JournalStore implements AgentStore {
         return id + "/" + seq;
     }
 
-    private void append(RecordType type, UUID id, long number, byte[] data, boolean force) throws IOException {
-        ByteBuffer record = encode(type, id, number, data);
-        int length = record.remaining();
+    /**
+     * Writes records (one write of all their parts, at the end of the records) and, if
+     * {@code force}, makes them durable with one {@code fdatasync}.
+     *
+     * @return where the first record starts in the journal
+     */
+    private long append(boolean force, ByteBuffer... parts) throws IOException {
+        long total = 0;
+        for (ByteBuffer p : parts) {
+            total += p.remaining();
+        }
+        long length = total;
         if (length <= PREALLOCATE_MAX_RECORD && end + length > allocated) {
             long size = end + length + PREALLOCATE_BYTES;
             uninterrupted(() -> preallocate(size));
         }
         long start = end;
         uninterrupted(() -> {
-            ByteBuffer b = record.duplicate();
-            long at = start;
-            while (b.hasRemaining()) {
-                at += channel.write(b, at);
+            ByteBuffer[] b = new ByteBuffer[parts.length];
+            for (int i = 0; i < parts.length; i++) {
+                b[i] = parts[i].duplicate();
+            }
+            channel.position(start);
+            long written = 0;
+            while (written < length) {
+                written += channel.write(b);
             }
             if (force) {
                 channel.force(false);
             }
         });
+        if (force) {
+            forces++;
+        }
         end = start + length;
         allocated = Math.max(allocated, end);
+        return start;
     }
 
     /** Zero-fills the file up to {@code size} and makes that durable (size and blocks), once per step. */
@@ -528,17 +703,30 @@ public final class JournalStore implements AgentStore {
         allocated = at;
     }
 
-    private static ByteBuffer encode(RecordType type, UUID id, long number, byte[] data) {
-        int payload = MIN_PAYLOAD + (data == null ? 0 : 4 + data.length);
-        ByteBuffer b = ByteBuffer.allocate(4 + payload + 4);
-        b.putInt(payload).put((byte) type.code()).putLong(id.getMostSignificantBits()).putLong(id.getLeastSignificantBits()).putLong(number);
+    /** Where a record's data starts, from the record's start: length, type, id, number, data length. */
+    private static final int DATA_OFFSET = 4 + MIN_PAYLOAD + 4;
+
+    /**
+     * A record as the parts to write: its head, its data (the caller's array, not copied) and its
+     * checksum, computed over the head's payload part and the data in place.
+     *
+     * @param data the data, or {@code null} for a record without
+     */
+    private static ByteBuffer[] encode(RecordType type, UUID id, long number, byte[] data, int off, int len) {
+        int payload = MIN_PAYLOAD + (data == null ? 0 : 4 + len);
+        ByteBuffer head = ByteBuffer.allocate(data == null ? 4 + MIN_PAYLOAD : DATA_OFFSET);
+        head.putInt(payload).put((byte) type.code()).putLong(id.getMostSignificantBits()).putLong(id.getLeastSignificantBits()).putLong(number);
         if (data != null) {
-            b.putInt(data.length).put(data);
+            head.putInt(len);
         }
         CRC32C crc = new CRC32C();
-        crc.update(b.array(), 4, payload);
-        b.putInt((int) crc.getValue());
-        return b.flip();
+        crc.update(head.array(), 4, head.position() - 4);
+        if (data != null) {
+            crc.update(data, off, len);
+        }
+        ByteBuffer tail = ByteBuffer.allocate(4).putInt((int) crc.getValue()).flip();
+        head.flip();
+        return data == null ? new ByteBuffer[] {head, tail} : new ByteBuffer[] {head, ByteBuffer.wrap(data, off, len), tail};
     }
 
     /**
@@ -590,7 +778,7 @@ public final class JournalStore implements AgentStore {
                 }
             }
         }
-        channel = FileChannel.open(journal, StandardOpenOption.CREATE, StandardOpenOption.WRITE);
+        channel = FileChannel.open(journal, StandardOpenOption.CREATE, StandardOpenOption.READ, StandardOpenOption.WRITE);
         channel.truncate(good);
         end = good;
         allocated = good;
@@ -690,22 +878,24 @@ public final class JournalStore implements AgentStore {
             data = new byte[length];
             b.get(data);
         }
-        boolean needsData = type == RecordType.ACCEPTED || type == RecordType.DEPARTING || type == RecordType.EVENT_PENDING;
+        boolean needsData = type == RecordType.ACCEPTED || type == RecordType.DEPARTING || type == RecordType.EVENT_PENDING
+                || type == RecordType.DEPARTING_SPOOLED;
         if (needsData != (data != null)) {
             throw new IOException("agent store journal " + journal + ": the " + type + " record at byte " + at + (needsData ? " has no data" : " has data it should not have"));
         }
         switch (type) {
             case ACCEPTED -> {
-                put(new StoredAgent(id, number, Phase.ACCEPTED, data));
+                put(new Held(id, number, Phase.ACCEPTED, at + DATA_OFFSET, data.length, data, null));
                 see(id, number);
             }
             case STARTED -> {
-                StoredAgent a = live.get(id);
+                Held a = live.get(id);
                 if (a != null) {
-                    live.put(id, new StoredAgent(id, number, Phase.STARTED, a.image()));
+                    live.put(id, a.in(number, Phase.STARTED));
                 }
             }
-            case DEPARTING -> put(new StoredAgent(id, number, Phase.DEPARTING, data));
+            case DEPARTING -> put(new Held(id, number, Phase.DEPARTING, at + DATA_OFFSET, data.length, data, null));
+            case DEPARTING_SPOOLED -> replaySpooled(id, number, data, at);
             case DEPARTED -> {
                 if (readVersion >= DEPARTED_HOP_VERSION) {
                     forget(id, number);
@@ -741,6 +931,36 @@ public final class JournalStore implements AgentStore {
         }
     }
 
+    /**
+     * A DEPARTING_SPOOLED record: the agent is departing with the image in its spool file, if the
+     * file is there, whole and right; else the record is ignored (the file is never forced).
+     */
+    private void replaySpooled(UUID id, long hop, byte[] data, long at) throws IOException {
+        if (data.length != 8) {
+            throw new IOException("agent store journal " + journal + ": the DEPARTING_SPOOLED record at byte " + at + " holds " + data.length
+                    + " bytes of data, not 8 (length and checksum)");
+        }
+        ByteBuffer d = ByteBuffer.wrap(data);
+        int length = d.getInt();
+        int crcValue = d.getInt();
+        Path file = spoolFile(id, hop);
+        byte[] image = null;
+        if (Files.exists(file) && Files.size(file) == length) {
+            image = Files.readAllBytes(file);
+            CRC32C crc = new CRC32C();
+            crc.update(image);
+            if ((int) crc.getValue() != crcValue) {
+                image = null;
+            }
+        }
+        if (image == null) {
+            LOG.warn("agent store {}: agent {} was departing with hop {}, but its spool file {} is missing or damaged (it is not forced: a power cut"
+                    + " loses it); it resumes from the state it arrived with", dir, id, hop, file);
+            return;
+        }
+        put(new Held(id, hop, Phase.DEPARTING, -1, length, image, file));
+    }
+
     private void maybeCompact() throws IOException {
         long size = end;
         if (size > COMPACT_BYTES && size > 4 * Math.max(liveBytes, 1)) {
@@ -748,31 +968,43 @@ public final class JournalStore implements AgentStore {
         }
     }
 
-    /** Rewrites the journal with only what is live; atomically replaces the old one. */
+    /**
+     * Rewrites the journal with only what is live; atomically replaces the old one. The images of
+     * the agents held are read back from the old journal (or taken from the replay's copies), and
+     * {@link #live} then notes where they are in the new one.
+     */
     private void compact() throws IOException {
         synchronized (writeLock) {
             Path fresh = dir.resolve("journal.new");
+            Map<UUID, Held> moved = new LinkedHashMap<>();
             try (FileChannel out = FileChannel.open(fresh, StandardOpenOption.CREATE, StandardOpenOption.WRITE, StandardOpenOption.TRUNCATE_EXISTING)) {
                 List<ByteBuffer> records = new ArrayList<>();
                 records.add(ByteBuffer.allocate(HEADER_LENGTH).put(MAGIC).putInt(FORMAT_VERSION).flip());
-                seen.forEach((id, hop) -> records.add(encode(RecordType.SEEN, id, hop, null)));
-                for (StoredAgent a : live.values()) {
-                    switch (a.phase()) {
-                        case ACCEPTED -> records.add(encode(RecordType.ACCEPTED, a.id(), a.hop(), a.image()));
-                        case STARTED -> {
-                            records.add(encode(RecordType.ACCEPTED, a.id(), a.hop(), a.image()));
-                            records.add(encode(RecordType.STARTED, a.id(), a.hop(), null));
-                        }
-                        case DEPARTING -> records.add(encode(RecordType.DEPARTING, a.id(), a.hop(), a.image()));
+                long[] at = {HEADER_LENGTH};
+                java.util.function.Consumer<ByteBuffer[]> add = parts -> {
+                    for (ByteBuffer b : parts) {
+                        records.add(b);
+                        at[0] += b.remaining();
+                    }
+                };
+                seen.forEach((id, hop) -> add.accept(encode(RecordType.SEEN, id, hop, null, 0, 0)));
+                for (Held a : live.values()) {
+                    byte[] image = imageOf(a);
+                    RecordType type = a.phase() == Phase.DEPARTING ? RecordType.DEPARTING : RecordType.ACCEPTED;
+                    moved.put(a.id(), new Held(a.id(), a.hop(), a.phase(), at[0] + DATA_OFFSET, image.length, null, null));
+                    add.accept(encode(type, a.id(), a.hop(), image, 0, image.length));
+                    if (a.phase() == Phase.STARTED) {
+                        add.accept(encode(RecordType.STARTED, a.id(), a.hop(), null, 0, 0));
                     }
                 }
                 eventSeqs.forEach((id, next) -> {
                     if (live.containsKey(id)) {
-                        records.add(encode(RecordType.EVENT_SEQ, id, next, null));
+                        add.accept(encode(RecordType.EVENT_SEQ, id, next, null, 0, 0));
                     }
                 });
                 for (PendingEvent e : events.values()) {
-                    records.add(encode(RecordType.EVENT_PENDING, e.id(), e.seq(), pendingData(e)));
+                    byte[] data = pendingData(e);
+                    add.accept(encode(RecordType.EVENT_PENDING, e.id(), e.seq(), data, 0, data.length));
                 }
                 for (ByteBuffer r : records) {
                     while (r.hasRemaining()) {
@@ -785,9 +1017,14 @@ public final class JournalStore implements AgentStore {
                 channel.close();
             }
             Files.move(fresh, journal, StandardCopyOption.ATOMIC_MOVE, StandardCopyOption.REPLACE_EXISTING);
-            channel = FileChannel.open(journal, StandardOpenOption.WRITE);
+            channel = FileChannel.open(journal, StandardOpenOption.READ, StandardOpenOption.WRITE);
             end = channel.size();
             allocated = end;
+            // Spooled images are in the compacted journal now (DEPARTING records): their files go.
+            for (Held a : live.values()) {
+                unspool(a, null);
+            }
+            live.putAll(moved);
         }
     }
 }

@@ -31,7 +31,7 @@ class JournalFormatTest {
     private static final byte[] HEADER_V1 = {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 1};
     private static final byte[] HEADER_V2 = {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 2};
     /** The header of the version written now. */
-    private static final byte[] HEADER = {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 3};
+    private static final byte[] HEADER = {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 4};
     private static final UUID ID = UUID.fromString("00000000-0000-0001-0000-000000000002");
 
     @TempDir
@@ -47,9 +47,13 @@ class JournalFormatTest {
         s.departed(ID, 4);
         s.eventPending(new AgentStore.PendingEvent(ID, 1, 1_700_000_000_000L, new byte[] {9}));
         s.eventDelivered(ID, 1);
+        UUID large = new UUID(9, 9);
+        s.departing(large, 1, new byte[JournalStore.SPOOL_MIN_BYTES], 0, JournalStore.SPOOL_MIN_BYTES);
+        s.departed(large, 1);
         byte[] file = Files.readAllBytes(store.resolve("journal"));
         assertArrayEquals(HEADER, java.util.Arrays.copyOf(file, 8));
-        assertEquals(List.of(1, 2, 3, 4, 5, 6), typesOf(file, 8), "ACCEPTED, STARTED, DEPARTING, DEPARTED, EVENT_PENDING, EVENT_DELIVERED");
+        assertEquals(List.of(1, 2, 3, 4, 5, 6, 9, 4), typesOf(file, 8),
+                "ACCEPTED, STARTED, DEPARTING, DEPARTED, EVENT_PENDING, EVENT_DELIVERED, DEPARTING_SPOOLED, DEPARTED");
         s.close();
 
         JournalStore compacted = JournalStore.open(store); // rewrites what is live: the hop seen
@@ -64,9 +68,9 @@ class JournalFormatTest {
 
     @Test
     void aJournalOfAnotherFormatVersionIsRefusedNamingTheFileAndTheVersion() throws Exception {
-        Path journal = journal(new byte[] {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 4}, record(1, ID, 1, new byte[] {1}));
+        Path journal = journal(new byte[] {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 5}, record(1, ID, 1, new byte[] {1}));
         IOException e = assertThrows(IOException.class, () -> JournalStore.open(journal.getParent()));
-        assertTrue(e.getMessage().contains(journal.toString()) && e.getMessage().contains("format version 4"), e.getMessage());
+        assertTrue(e.getMessage().contains(journal.toString()) && e.getMessage().contains("format version 5"), e.getMessage());
         assertEquals(8 + record(1, ID, 1, new byte[] {1}).length, Files.size(journal), "left as it was");
     }
 
@@ -81,10 +85,10 @@ class JournalFormatTest {
 
     @Test
     void aRefusedJournalLeavesItsDirectoryFreeForTheNextOpen() throws Exception {
-        Path journal = journal(new byte[] {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 4});
+        Path journal = journal(new byte[] {(byte) 0x89, 'R', 'M', 'J', 0, 0, 0, 5});
         assertThrows(IOException.class, () -> JournalStore.open(journal.getParent()));
         IOException again = assertThrows(IOException.class, () -> JournalStore.open(journal.getParent()));
-        assertTrue(again.getMessage().contains("format version 4"), "refused for its version again, not for a lock it left held: " + again.getMessage());
+        assertTrue(again.getMessage().contains("format version 5"), "refused for its version again, not for a lock it left held: " + again.getMessage());
         Files.write(journal, HEADER);
         JournalStore.open(journal.getParent()).close();
     }

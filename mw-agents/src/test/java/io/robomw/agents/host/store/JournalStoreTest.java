@@ -10,6 +10,7 @@ import java.util.UUID;
 
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 class JournalStoreTest {
@@ -48,6 +49,125 @@ class JournalStoreTest {
         assertRecovered(reopened, started, departing, gone);
         accept(reopened, UUID.randomUUID(), 1, new byte[] {7}); // appends after the recovered records
         reopened.close();
+    }
+
+    @Test
+    void anAgentStoredAndMarkedStartedAtOnceTakesOneForcedWriteAndResumesAsStarted() throws Exception {
+        UUID id = UUID.randomUUID();
+        JournalStore store = JournalStore.open(dir.resolve("s"));
+        long before = store.forces();
+        store.acceptedStarting(id, 4, new byte[] {0, 7, 8, 9}, 1, 3);
+        assertEquals(before + 1, store.forces(), "the agent and its started mark are forced together, once");
+        store.accepted(UUID.randomUUID(), 1, new byte[] {1}, 0, 1);
+        store.started(id, 4);
+        assertEquals(before + 3, store.forces(), "accepted and started apart force once each");
+        store.close();
+        try (JournalStore reopened = JournalStore.open(dir.resolve("s"))) {
+            AgentStore.StoredAgent a = reopened.recoveredAgents().stream().filter(x -> x.id().equals(id)).findFirst().orElseThrow();
+            assertEquals(AgentStore.Phase.STARTED, a.phase(), "its stop counts as begun: not run again after a restart");
+            assertEquals(4, a.hop());
+            assertArrayEquals(new byte[] {7, 8, 9}, a.image());
+            assertEquals(4, reopened.highestHop(id));
+        }
+    }
+
+    @Test
+    void aHopsStateIsInTheJournalOnceWrittenFromTheCallersArrayAndSurvivesCompaction() throws Exception {
+        // Random bytes: a pattern that occurs in the journal only where the store wrote it.
+        byte[] state = new byte[64 * 1024];
+        new java.util.Random(21).nextBytes(state);
+        byte[] frame = new byte[state.length + 40];
+        System.arraycopy(state, 0, frame, 17, state.length);
+        UUID held = UUID.randomUUID();
+        Path d = dir.resolve("once");
+        JournalStore store = JournalStore.open(d);
+        store.acceptedStarting(held, 1, frame, 17, state.length);
+        java.util.Arrays.fill(frame, (byte) 0); // the caller reuses its array: the store kept no reference to it
+        assertEquals(1, occurrences(Files.readAllBytes(d.resolve("journal")), state), "the state is written to the journal once");
+        // Grow the journal past the compaction threshold with agents that come and go: the held
+        // agent's image is read back from the journal into the compacted one (the store keeps no copy).
+        byte[] big = new byte[JournalStore.SPOOL_MIN_BYTES - 1]; // in the journal, not spooled
+        for (int i = 0; i < (36 << 20) / big.length; i++) {
+            UUID other = UUID.randomUUID();
+            store.departing(other, 1, big, 0, big.length);
+            store.departed(other, 1);
+        }
+        assertTrue(Files.size(d.resolve("journal")) < 20 << 20, "the journal was compacted (36 MiB went through it): " + Files.size(d.resolve("journal")));
+        assertEquals(1, occurrences(Files.readAllBytes(d.resolve("journal")), state), "compaction kept the held agent's state, once");
+        store.close();
+        try (JournalStore reopened = JournalStore.open(d)) {
+            assertEquals(1, reopened.recoveredAgents().size());
+            AgentStore.StoredAgent a = reopened.recoveredAgents().get(0);
+            assertEquals(held, a.id());
+            assertEquals(AgentStore.Phase.STARTED, a.phase());
+            assertArrayEquals(state, a.image());
+        }
+    }
+
+    @Test
+    void aLargeDepartingImageGoesToASpoolFileThatAKillKeepsAndThatIsDeletedOnceTheAgentHasLeft() throws Exception {
+        byte[] arrived = new byte[JournalStore.SPOOL_MIN_BYTES];
+        byte[] leaving = new byte[JournalStore.SPOOL_MIN_BYTES + 100];
+        java.util.Random random = new java.util.Random(5);
+        random.nextBytes(arrived);
+        random.nextBytes(leaving);
+        UUID id = UUID.randomUUID();
+        Path d = dir.resolve("spool");
+        JournalStore store = JournalStore.open(d);
+        store.acceptedStarting(id, 1, arrived, 0, arrived.length);
+        store.departing(id, 2, leaving, 0, leaving.length);
+        Path spooled = d.resolve("departing").resolve(id + "-2");
+        assertEquals(0, occurrences(Files.readAllBytes(d.resolve("journal")), leaving), "the image it leaves with is not in the journal");
+        assertArrayEquals(leaving, Files.readAllBytes(spooled), "it is in its spool file");
+
+        // A kill before the next host acknowledged: the files as they are.
+        Path killed = copy(d, "killed");
+        try (JournalStore afterKill = JournalStore.open(killed)) {
+            AgentStore.StoredAgent a = afterKill.recoveredAgents().get(0);
+            assertEquals(AgentStore.Phase.DEPARTING, a.phase(), "sent again, as it left");
+            assertEquals(2, a.hop());
+            assertArrayEquals(leaving, a.image());
+        }
+        // A power cut that lost the spool file (it is never forced): the agent resumes from the state it arrived with.
+        Path cut = copy(d, "cut");
+        Files.delete(cut.resolve("departing").resolve(id + "-2"));
+        try (JournalStore afterCut = JournalStore.open(cut)) {
+            AgentStore.StoredAgent a = afterCut.recoveredAgents().get(0);
+            assertEquals(AgentStore.Phase.STARTED, a.phase(), "its stop counts as begun: it goes on, the stop recorded as interrupted");
+            assertEquals(1, a.hop());
+            assertArrayEquals(arrived, a.image());
+        }
+
+        store.departed(id, 2);
+        assertFalse(Files.exists(spooled), "the next host has it: its spool file is deleted");
+        store.close();
+        try (JournalStore reopened = JournalStore.open(d)) {
+            assertTrue(reopened.recoveredAgents().isEmpty());
+        }
+    }
+
+    /** @return a copy of a store's directory, as a kill leaves it (this JVM holds the original's lock) */
+    private Path copy(Path from, String name) throws Exception {
+        Path to = dir.resolve(name);
+        Files.createDirectories(to.resolve("departing"));
+        Files.copy(from.resolve("journal"), to.resolve("journal"));
+        try (java.util.stream.Stream<Path> files = Files.list(from.resolve("departing"))) {
+            for (Path f : (Iterable<Path>) files::iterator) {
+                Files.copy(f, to.resolve("departing").resolve(f.getFileName().toString()));
+            }
+        }
+        return to;
+    }
+
+    /** @return how many times {@code pattern} occurs in {@code in} (a naive scan on its first 16 bytes, then a full compare) */
+    private static int occurrences(byte[] in, byte[] pattern) {
+        int n = 0;
+        for (int i = 0; i + pattern.length <= in.length; i++) {
+            if (java.util.Arrays.equals(in, i, i + 16, pattern, 0, 16) && java.util.Arrays.equals(in, i, i + pattern.length, pattern, 0, pattern.length)) {
+                n++;
+            }
+        }
+        return n;
     }
 
     private static void accept(AgentStore s, UUID id, long hop, byte[] image) throws Exception {

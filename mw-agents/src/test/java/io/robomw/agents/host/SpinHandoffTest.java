@@ -1,0 +1,92 @@
+package io.robomw.agents.host;
+
+import io.robomw.agents.messaging.Await;
+import org.junit.jupiter.api.Test;
+
+import java.time.Duration;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.ThreadPoolExecutor;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicInteger;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+class SpinHandoffTest {
+
+    @Test
+    void anIdleThreadSpinsNoLongerThanItsBoundThenParksAndStillGetsTheNextTask() throws Exception {
+        SpinHandoff<String> q = new SpinHandoff<>(Duration.ofMillis(2), System::nanoTime);
+        CompletableFuture<String> got = CompletableFuture.supplyAsync(() -> {
+            try {
+                return q.poll(30, TimeUnit.SECONDS);
+            } catch (InterruptedException e) {
+                throw new IllegalStateException(e);
+            }
+        });
+        Await.until("the idle thread spins", Duration.ofSeconds(10), () -> q.spinning() == 1 || got.isDone());
+        Await.until("the idle thread stops spinning after its bound and parks", Duration.ofSeconds(10), () -> q.spinning() == 0);
+        assertFalse(got.isDone(), "it waits on, parked");
+        Await.until("the parked thread takes the task", Duration.ofSeconds(10), () -> q.offer("task"));
+        assertEquals("task", got.get(10, TimeUnit.SECONDS));
+    }
+
+    @Test
+    void aSpinOfZeroNeverSpinsAndAnOfferWithNobodyWaitingIsRefused() throws Exception {
+        SpinHandoff<String> q = new SpinHandoff<>(Duration.ZERO, System::nanoTime);
+        assertFalse(q.offer("nobody"), "no idle thread: the pool starts one");
+        CompletableFuture<String> got = CompletableFuture.supplyAsync(() -> {
+            try {
+                return q.poll(30, TimeUnit.SECONDS);
+            } catch (InterruptedException e) {
+                throw new IllegalStateException(e);
+            }
+        });
+        Await.until("the parked thread takes the task", Duration.ofSeconds(10), () -> {
+            assertEquals(0, q.spinning(), "a spin of zero never spins");
+            return q.offer("task");
+        });
+        assertEquals("task", got.get(10, TimeUnit.SECONDS));
+        assertThrows(IllegalArgumentException.class, () -> new SpinHandoff<String>(Duration.ofNanos(-1), System::nanoTime));
+    }
+
+    @Test
+    void aPoolOnItRunsEveryTaskWhileThreadsSpinPartAndComeAndGo() throws Exception {
+        // Spins shorter than the gaps between bursts and longer than the tasks: tasks meet spinning,
+        // parked and no idle threads, and threads that give up their spin as a task comes.
+        ThreadPoolExecutor pool = new ThreadPoolExecutor(0, Integer.MAX_VALUE, 50, TimeUnit.MILLISECONDS,
+                new SpinHandoff<>(Duration.ofNanos(20_000), System::nanoTime));
+        int producers = 4;
+        int each = 5_000;
+        AtomicInteger ran = new AtomicInteger();
+        CountDownLatch done = new CountDownLatch(producers * each);
+        try {
+            Thread[] threads = new Thread[producers];
+            for (int p = 0; p < producers; p++) {
+                threads[p] = new Thread(() -> {
+                    for (int i = 0; i < each; i++) {
+                        pool.execute(() -> {
+                            ran.incrementAndGet();
+                            done.countDown();
+                        });
+                        if (i % 100 == 0) {
+                            java.util.concurrent.locks.LockSupport.parkNanos(30_000);
+                        }
+                    }
+                }, "spin-handoff-producer-" + p);
+                threads[p].start();
+            }
+            for (Thread t : threads) {
+                t.join(TimeUnit.SECONDS.toMillis(60));
+            }
+            assertTrue(done.await(60, TimeUnit.SECONDS), "every task ran; ran " + ran.get() + " of " + producers * each);
+        } finally {
+            pool.shutdown();
+            assertTrue(pool.awaitTermination(10, TimeUnit.SECONDS), "the pool ends: no thread is left spinning or waiting on a task");
+        }
+        assertEquals(producers * each, ran.get());
+    }
+}
