@@ -104,21 +104,26 @@ public class NxtEmulatorTest {
     @Test
     void shouldEndAMovePreemptedByATurnAndThenAMoveWhereTheyShould() throws Exception {
         start(0.5);
-        preemptedMoveTurnMove();
+        preemptedMoveTurnMove(0.01);
     }
 
     /**
      * On firmware without UPDATE_RESET_COUNT the platform stops rotations by the encoder, as late as
      * its link and cycle: this world runs in real time, so those delays are what a real robot sees.
+     * On a busy host (a CI machine running the suite on two processors) a wheel's stop can come
+     * 70-150 ms late, 1-2 cm at 0.15 m/s, so the second move is held to 2.5 cm here (1 cm with
+     * UPDATE_RESET_COUNT, where the brick stops itself); a driver that sent only tacho limits would
+     * miss by tens of centimetres (the forward wheel running on to the first move's target).
      */
     @Test
     void shouldEndAPreemptedMoveTurnAndMoveWhereTheyShouldOnFirmwareWithoutUpdateResetCount() throws Exception {
         stack = new EmulatorStack<>(dir, ROBOT, "nxt-1", NxtEmulator::bindLegacyFirmware);
         robot = stack.openOnPseudoTerminal(0.5, 1);
-        preemptedMoveTurnMove();
+        preemptedMoveTurnMove(0.025);
     }
 
-    private void preemptedMoveTurnMove() throws Exception {
+    /** @param within how far the second move may end from its line and its 30 cm, metres */
+    private void preemptedMoveTurnMove(double within) throws Exception {
         CompletableFuture<Void> longMove = robot.moveAsync(1.0, 0.15);
         stack.awaitStep(() -> truePose().x() > 0.7, Duration.ofSeconds(20), "the robot drove 20 cm");
         robot.turn(Math.PI / 2, 1.0);
@@ -131,8 +136,8 @@ public class NxtEmulatorTest {
         robot.move(0.3, 0.15);
 
         Pose end = truePose();
-        assertEquals(afterTurn.x(), end.x(), 0.01, "the second move went straight along the new heading: " + end);
-        assertEquals(afterTurn.y() + 0.3, end.y(), 0.01, "and 30 cm: " + end);
+        assertEquals(afterTurn.x(), end.x(), within, "the second move went straight along the new heading: " + end);
+        assertEquals(afterTurn.y() + 0.3, end.y(), within, "and 30 cm: " + end);
         assertEquals(90, Math.toDegrees(end.heading()), 2.0);
     }
 
