@@ -118,8 +118,11 @@ final class ConnectionTimeouts implements AutoCloseable {
                     }
                 }
             });
-        } catch (RuntimeException e) {
-            LOG.warn("checking connection timeouts failed: {}", e.toString(), e);
+        } catch (Throwable e) {
+            // A throw out of a fixed-delay task cancels it without a word, and the node's timeouts
+            // would stop being enforced: log any failure and let the next period check again.
+            LOG.error("checking connection timeouts failed (checked again in {} ms): {}",
+                    TimeUnit.NANOSECONDS.toMillis(periodNanos), e.toString(), e);
         }
     }
 }
