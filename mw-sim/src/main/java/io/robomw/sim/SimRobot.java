@@ -60,7 +60,7 @@ public final class SimRobot {
     private final Map<String, SensorModel> sensors = new LinkedHashMap<>();
     private final List<SensorModel> rangeSensors = new ArrayList<>();
     private final Queue<PendingRead> reads = new ConcurrentLinkedQueue<>();
-    private final Trajectory trajectory = new Trajectory();
+    private final Trajectory trajectory;
     private final boolean hasTouch;
     private final boolean hasAccel;
     private final Quadruped quadruped;
@@ -81,8 +81,9 @@ public final class SimRobot {
     }
 
     SimRobot(int index, String name, RobotDescription description, org.dyn4j.dynamics.Body body, long seed,
-             java.util.function.LongSupplier nanos) {
+             java.util.function.LongSupplier nanos, io.robomw.sim.world.WorldDescription.TrajectorySettings trajectorySettings) {
         this.index = index;
+        this.trajectory = new Trajectory(trajectorySettings);
         this.name = name;
         this.description = description;
         this.body = body;
@@ -139,7 +140,7 @@ public final class SimRobot {
         return pose;
     }
 
-    /** @return the path it has driven, sampled */
+    /** @return the path it has driven, sampled as the world's {@code trajectory} settings say (bounded) */
     public Trajectory trajectory() {
         return trajectory;
     }

@@ -167,7 +167,7 @@ public final class SimWorld implements AutoCloseable {
         this.description = description;
         this.stepSeconds = 1.0 / description.physicsHz();
         this.stepNanos = Math.round(1e9 / description.physicsHz());
-        this.trajectoryEvery = Math.max(1, (int) Math.round(description.physicsHz() / 10));
+        this.trajectoryEvery = (int) Math.max(1, Math.min(Integer.MAX_VALUE, Math.round(description.trajectories().everySeconds() * description.physicsHz())));
         physics.setGravity(World.ZERO_GRAVITY);
         Settings settings = physics.getSettings();
         settings.setStepFrequency(stepSeconds);
@@ -253,7 +253,8 @@ public final class SimWorld implements AutoCloseable {
         body.translate(start.x(), start.y());
         body.setAtRestDetectionEnabled(true);
         physics.addBody(body);
-        SimRobot robot = new SimRobot(robots.size(), name, description, body, this.description.seed(), clock::nanoTime);
+        SimRobot robot = new SimRobot(robots.size(), name, description, body, this.description.seed(), clock::nanoTime,
+                this.description.trajectories());
         robots.add(robot);
         cycled = java.util.Arrays.copyOf(cycled, robots.size());
         byName.put(name, robot);
