@@ -15,7 +15,6 @@ import org.dyn4j.dynamics.contact.SolvedContact;
 import org.dyn4j.geometry.Vector2;
 
 import java.util.ArrayList;
-import java.util.HashMap;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
@@ -51,7 +50,8 @@ public final class SimRobot {
     private final RobotDescription description;
     private final org.dyn4j.dynamics.Body body;
     private final DifferentialKinematics kinematics;
-    private final Map<String, Integer> portIndex = new HashMap<>();
+    /** The motor ports, in the description's order: a robot has a few, and a scan is cheaper than a map. */
+    private final String[] ports;
     private final double[] commanded;
     private final double[] motorDegrees;
     private final int leftIndex;
@@ -89,14 +89,12 @@ public final class SimRobot {
         this.body = body;
         this.kinematics = description.drive().map(DifferentialKinematics::new).orElse(null);
         List<String> ports = description.motorPorts();
-        for (int p = 0; p < ports.size(); p++) {
-            portIndex.put(ports.get(p), p);
-        }
+        this.ports = ports.toArray(String[]::new);
         commanded = new double[ports.size()];
         motorDegrees = new double[ports.size()];
-        leftIndex = description.drive().map(d -> portIndex.get(d.left().port())).orElse(-1);
-        rightIndex = description.drive().map(d -> portIndex.get(d.right().port())).orElse(-1);
-        actuatorIndex = description.actuators().stream().mapToInt(a -> portIndex.get(a.port())).toArray();
+        leftIndex = description.drive().map(d -> portIndex(d.left().port())).orElse(-1);
+        rightIndex = description.drive().map(d -> portIndex(d.right().port())).orElse(-1);
+        actuatorIndex = description.actuators().stream().mapToInt(a -> portIndex(a.port())).toArray();
         int i = 0;
         boolean touch = false;
         boolean acc = false;
@@ -176,8 +174,8 @@ public final class SimRobot {
      * @param degreesPerSecond the commanded motor speed
      */
     void command(String port, double degreesPerSecond) {
-        Integer i = portIndex.get(port);
-        if (i == null) {
+        int i = portIndex(port);
+        if (i < 0) {
             throw new IllegalArgumentException("simulated robot '" + name + "' has no motor on port " + port);
         }
         commanded[i] = degreesPerSecond;
@@ -188,8 +186,18 @@ public final class SimRobot {
      * @return its encoder, degrees
      */
     double motorDegrees(String port) {
-        Integer i = portIndex.get(port);
-        return i == null ? 0.0 : motorDegrees[i];
+        int i = portIndex(port);
+        return i < 0 ? 0.0 : motorDegrees[i];
+    }
+
+    /** @return a motor port's index, or -1 */
+    private int portIndex(String port) {
+        for (int i = 0; i < ports.length; i++) {
+            if (ports[i].equals(port)) {
+                return i;
+            }
+        }
+        return -1;
     }
 
     /** Sets the body's velocities from the commanded wheel speeds. */
