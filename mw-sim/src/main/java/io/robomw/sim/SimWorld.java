@@ -62,6 +62,7 @@ public final class SimWorld implements AutoCloseable {
     private final RangeIndex rangeIndex;
     private final long stepNanos;
     private final double stepSeconds;
+    private final double physicsHz;
     private final int trajectoryEvery;
     private final Parallel parallel;
     /** Per robot (by index): the execution action threads the world cycles, or {@code null}. */
@@ -174,6 +175,7 @@ public final class SimWorld implements AutoCloseable {
      */
     public SimWorld(WorldDescription description, int sensingThreads, RangeMethod rangeMethod) {
         this.description = description;
+        this.physicsHz = description.physicsHz();
         this.stepSeconds = 1.0 / description.physicsHz();
         this.stepNanos = Math.round(1e9 / description.physicsHz());
         this.trajectoryEvery = (int) Math.max(1, Math.min(Integer.MAX_VALUE, Math.round(description.trajectories().everySeconds() * description.physicsHz())));
@@ -547,10 +549,18 @@ public final class SimWorld implements AutoCloseable {
     private void sense(SimRobot r, long step) {
         Pose p = r.pose();
         List<SensorModel> sensors = r.rangeSensors();
+        if (sensors.isEmpty()) {
+            return;
+        }
+        double heading = p.heading();
+        double c = Math.cos(heading);
+        double s = Math.sin(heading);
+        double pan = r.headPan();
+        double tilt = r.headTilt();
         for (int k = 0; k < sensors.size(); k++) {
-            SensorModel s = sensors.get(k);
-            if (step < 0 || step % s.everySteps(description.physicsHz()) == 0) {
-                s.sampleRange(rayCaster, r.index(), p.x(), p.y(), p.heading(), r.headPan(), r.headTilt());
+            SensorModel m = sensors.get(k);
+            if (step < 0 || step % m.everySteps(physicsHz) == 0) {
+                m.sampleRange(rayCaster, r.index(), p.x(), p.y(), heading, c, s, pan, tilt);
             }
         }
     }
