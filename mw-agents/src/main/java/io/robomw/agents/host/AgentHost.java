@@ -434,7 +434,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         HostSockets.Server serverSockets = new HostSockets.Server(bindAddress, ssl, counters, endpointSpin.toNanos());
         HostSockets.Client clientSockets = new HostSockets.Client(bind, tls != null, state.timeoutMillis);
         endpoint = new HostEndpoint(name, key, calls, version2Only ? Session.PROTOCOL_VERSION : Session.WIRE_VERSION);
-        peers.wire(ssl, wireSpin, version2Only);
+        peers.wire(ssl, wireSpin, version2Only, !wire);
         if (wire) {
             wireServer = new WireServer(endpoint, bindAddress, wirePort, ssl, wireLimits);
             endpoint.wirePort(wireServer.port());

@@ -84,6 +84,13 @@ final class PeerLink {
         this.timeoutMillis = timeoutMillis;
     }
 
+    private volatile boolean wireOff;
+
+    /** Sends every call over RMI, even to hosts that offer a wire (a host whose own wire is off). */
+    void wireOff() {
+        this.wireOff = true;
+    }
+
     /** @param spin how long a transfer waits for its reply by spinning before it blocks (0: never) */
     void wireSpin(java.time.Duration spin) {
         this.wireSpinNanos = spin.toNanos();
@@ -160,7 +167,7 @@ final class PeerLink {
                 remote = stub;
                 port = wirePort;
             }
-            if (opCode == Op.TRANSFER.code() && port > 0 && (wireDownUntil == 0 || System.nanoTime() - wireDownUntil > 0)) {
+            if (opCode == Op.TRANSFER.code() && port > 0 && !wireOff && (wireDownUntil == 0 || System.nanoTime() - wireDownUntil > 0)) {
                 Reply r = callOnWire(s, port, opCode, op, frame);
                 if (r == WireChannel.UNKNOWN_SESSION && attempt == 0) {
                     forget(s);

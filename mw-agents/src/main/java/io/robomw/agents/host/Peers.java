@@ -22,6 +22,7 @@ final class Peers {
     private volatile javax.net.ssl.SSLContext wireTls;
     private volatile java.time.Duration wireSpin = java.time.Duration.ZERO;
     private volatile boolean version2Only;
+    private volatile boolean wireOff;
 
     /**
      * @param host the host calling
@@ -89,11 +90,13 @@ final class Peers {
      * @param tls          the TLS context of wire connections (the host's own), or {@code null} for plain ones
      * @param spin         how long a transfer spins for its reply before it blocks
      * @param version2Only propose agent protocol version 2 only, as builds before the wire (tests of mixed versions)
+     * @param off          send every call over RMI, even to hosts that offer a wire
      */
-    void wire(javax.net.ssl.SSLContext tls, java.time.Duration spin, boolean version2Only) {
+    void wire(javax.net.ssl.SSLContext tls, java.time.Duration spin, boolean version2Only, boolean off) {
         this.wireTls = tls;
         this.wireSpin = spin;
         this.version2Only = version2Only;
+        this.wireOff = off;
     }
 
     /** Closes the links' idle wire connections. */
@@ -108,6 +111,9 @@ final class Peers {
             l.wireSpin(wireSpin);
             if (version2Only) {
                 l.proposeVersion2Only();
+            }
+            if (wireOff) {
+                l.wireOff();
             }
             return l;
         });
