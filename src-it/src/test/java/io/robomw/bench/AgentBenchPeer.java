@@ -33,14 +33,21 @@ public final class AgentBenchPeer {
     /** The system property that sets both hosts' wire reply spin in µs ({@code AgentHost.Builder.wireSpin}); unset: the default. */
     static final String WIRE_SPIN = "agent.bench.wireSpinMicros";
 
+    /** The system property that sets both hosts' wire read spin in µs ({@code AgentHost.Builder.wireReadSpin}); unset: the default. */
+    static final String WIRE_READ_SPIN = "agent.bench.wireReadSpinMicros";
+
     /** The properties above, passed on to host B's JVM. */
-    static final java.util.List<String> PROPERTIES = java.util.List.of(RUNNER_SPIN, ENDPOINT_SPIN, WIRE, WIRE_SPIN);
+    static final java.util.List<String> PROPERTIES = java.util.List.of(RUNNER_SPIN, ENDPOINT_SPIN, WIRE, WIRE_SPIN, WIRE_READ_SPIN);
 
     /** @return the builder with the spins of {@value #RUNNER_SPIN}, {@value #ENDPOINT_SPIN} and {@value #WIRE_SPIN} and the wire of {@value #WIRE}, where set */
     static AgentHost.Builder spin(AgentHost.Builder b) {
         String wire = System.getProperty(WIRE);
         if (wire != null) {
             b.wire(Boolean.parseBoolean(wire.trim()));
+        }
+        String wireReadSpin = System.getProperty(WIRE_READ_SPIN);
+        if (wireReadSpin != null) {
+            b.wireReadSpin(java.time.Duration.ofNanos(Long.parseLong(wireReadSpin.trim()) * 1000));
         }
         String wireSpin = System.getProperty(WIRE_SPIN);
         if (wireSpin != null) {

@@ -92,6 +92,7 @@ public final class AgentHost implements Agency, AutoCloseable {
     private final boolean wire;
     private final int wirePort;
     private final Duration wireSpin;
+    private final Duration wireReadSpin;
     private final boolean version2Only;
     private final WireServer.Limits wireLimits;
     private HostEndpoint endpoint;
@@ -114,6 +115,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         this.wire = b.wire && !b.version2Only;
         this.wirePort = b.wirePort;
         this.wireSpin = b.wireSpin;
+        this.wireReadSpin = b.wireReadSpin;
         this.version2Only = b.version2Only;
         this.wireLimits = b.wireLimits != null ? b.wireLimits : WireServer.Limits.of(b.maxStateBytes, b.callTimeout);
         Peers peers = new Peers(state, key, tls != null, this::serveSelf);
@@ -159,6 +161,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         private boolean wire = true;
         private int wirePort;
         private Duration wireSpin = Duration.ZERO;
+        private Duration wireReadSpin = Duration.ZERO;
         private boolean version2Only;
         private WireServer.Limits wireLimits;
 
@@ -359,6 +362,20 @@ public final class AgentHost implements Agency, AutoCloseable {
             return this;
         }
 
+        /**
+         * @param spin how long a connection thread of the host's agent wire spins (yielding the
+         *             processor) for the next transfer before it blocks reading (default 0: never;
+         *             plain connections only)
+         * @return this
+         */
+        public Builder wireReadSpin(Duration spin) {
+            if (spin.isNegative() || spin.compareTo(Duration.ofMillis(10)) > 0) {
+                throw new IllegalArgumentException("wire read spin " + spin + " must be between 0 and 10 ms: a spinning connection thread holds a processor");
+            }
+            this.wireReadSpin = spin;
+            return this;
+        }
+
         /** For tests of mixed versions: the host acts as one of a build before the agent wire (protocol version 2 only, no wire). */
         Builder version2Only() {
             this.version2Only = true;
@@ -437,6 +454,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         peers.wire(ssl, wireSpin, version2Only, !wire);
         if (wire) {
             wireServer = new WireServer(endpoint, bindAddress, wirePort, ssl, wireLimits);
+            wireServer.readSpin(wireReadSpin);
             endpoint.wirePort(wireServer.port());
         }
         long maxCall = state.codec.maxBytes() + (1 << 20);

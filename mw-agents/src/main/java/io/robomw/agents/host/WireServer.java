@@ -82,6 +82,8 @@ final class WireServer implements AutoCloseable {
     private final LongAdder served = new LongAdder();
     private final ThrottledWarnings refusals = new ThrottledWarnings(LOG, Duration.ofSeconds(1));
     private volatile boolean closing;
+    /** How long a connection thread spins for the next frame before it blocks reading (0: never; plain connections only). */
+    private volatile long readSpinNanos;
 
     /**
      * Binds and starts accepting.
@@ -109,6 +111,11 @@ final class WireServer implements AutoCloseable {
         this.acceptor = new Thread(this::accept, "agent-wire-accept-" + hostName);
         acceptor.setDaemon(true);
         acceptor.start();
+    }
+
+    /** @param spin how long a connection thread spins (yielding) for the next frame before it blocks reading; zero never */
+    void readSpin(Duration spin) {
+        this.readSpinNanos = spin.toNanos();
     }
 
     /** @return the port it listens on */
@@ -260,7 +267,7 @@ final class WireServer implements AutoCloseable {
                     writer = new WireWriter(WireWriter.of(channel));
                 }
                 WireReader reader = new WireReader(in, socket);
-                loop(reader, writer, socket);
+                loop(reader, writer, socket, in);
             } catch (WireFrames.FrameRefused e) {
                 refuse(writer, e.getMessage());
             } catch (SocketTimeoutException e) {
@@ -319,7 +326,7 @@ final class WireServer implements AutoCloseable {
             }
         }
 
-        private void loop(WireReader reader, WireWriter writer, Socket socket) throws IOException {
+        private void loop(WireReader reader, WireWriter writer, Socket socket, InputStream in) throws IOException {
             long firstDeadline = acceptedAt + limits.firstFrame().toNanos();
             while (!closing) {
                 if (peer == null) {
@@ -328,6 +335,10 @@ final class WireServer implements AutoCloseable {
                     reader.deadline(0, null);
                     if (!reader.buffered()) {
                         socket.setSoTimeout((int) Math.min(Integer.MAX_VALUE, limits.idle().toMillis()));
+                        long spin = readSpinNanos;
+                        if (spin > 0 && tls == null) {
+                            HostSockets.spinUntilReadable(in, spin);
+                        }
                     }
                 }
                 WireFrames.Header h;

@@ -110,4 +110,21 @@ class AgentWireTest {
         assertEquals(Session.WIRE_VERSION, toNew.version());
         assertEquals(a.wirePort(), toNew.wirePort(), "the answer names the host's wire port");
     }
+
+    @Test
+    void aHostWithItsWireOffTakesAndSendsAgentsOverRmi() throws Exception {
+        AgentHost home = start(AgentHost.builder("home").clusterKey(KEY).noMessaging());
+        AgentHost off = start(AgentHost.builder("off").clusterKey(KEY).noMessaging().wire(false));
+        AgentHost a = start(AgentHost.builder("a").clusterKey(KEY).noMessaging());
+        assertEquals(0, off.wirePort());
+        VisitorAgent agent = new VisitorAgent().payload(100_000);
+        agent.itinerary().addStop(off.address()).addStop(a.address()).addStop(home.address());
+        assertEquals(List.of("off", "a", "home"), home.startTrip(agent).result().get(20, TimeUnit.SECONDS));
+        assertEquals(0, a.wireFramesServed(), "the host with its wire off sent the agent to a over RMI");
+        assertEquals(1, home.wireFramesServed(), "a sent it home on home's wire");
+        PeerLink toOff = new PeerLink(HostAddress.parse(off.address()), "probe", KEY, new HostSockets.Client("127.0.0.1", false, 10_000), new SecureRandom());
+        assertEquals(Reply.Status.OK, toOff.call(Op.LIST, new byte[0]).status());
+        assertEquals(Session.WIRE_VERSION, toOff.version(), "it speaks version 3");
+        assertEquals(0, toOff.wirePort(), "and offers no wire");
+    }
 }
