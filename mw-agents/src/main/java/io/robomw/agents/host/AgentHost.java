@@ -455,6 +455,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         if (wire) {
             wireServer = new WireServer(endpoint, bindAddress, wirePort, ssl, wireLimits);
             wireServer.readSpin(wireReadSpin);
+            wireServer.countBytesIn(counters);
             endpoint.wirePort(wireServer.port());
         }
         long maxCall = state.codec.maxBytes() + (1 << 20);
@@ -637,12 +638,12 @@ public final class AgentHost implements Agency, AutoCloseable {
         return owed.deliveryThreads();
     }
 
-    /** @return bytes received by this host's RMI endpoint so far (without TLS) */
+    /** @return bytes received by this host's RMI endpoint (without TLS) and agent wire (its frames) so far */
     public long wireBytesIn() {
         return counters.in.sum();
     }
 
-    /** @return bytes sent by this host's RMI endpoint so far (without TLS) */
+    /** @return bytes sent by this host's RMI endpoint (without TLS) and agent wire (its frames) so far */
     public long wireBytesOut() {
         return counters.out.sum();
     }

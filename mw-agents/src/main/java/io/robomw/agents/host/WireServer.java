@@ -80,6 +80,7 @@ final class WireServer implements AutoCloseable {
     private final AtomicInteger threads = new AtomicInteger();
     private final LongAdder refusedConnections = new LongAdder();
     private final LongAdder served = new LongAdder();
+    private volatile HostSockets.Counters counters = new HostSockets.Counters();
     private final ThrottledWarnings refusals = new ThrottledWarnings(LOG, Duration.ofSeconds(1));
     private volatile boolean closing;
     /** How long a connection thread spins for the next frame before it blocks reading (0: never; plain connections only). */
@@ -111,6 +112,11 @@ final class WireServer implements AutoCloseable {
         this.acceptor = new Thread(this::accept, "agent-wire-accept-" + hostName);
         acceptor.setDaemon(true);
         acceptor.start();
+    }
+
+    /** @param c where the frames' bytes are counted (the host's, with its RMI endpoint's) */
+    void countBytesIn(HostSockets.Counters c) {
+        this.counters = c;
     }
 
     /** @param spin how long a connection thread spins (yielding) for the next frame before it blocks reading; zero never */
@@ -416,6 +422,9 @@ final class WireServer implements AutoCloseable {
                 r = endpoint.serve(p, h.code(), f, WireFrames.HEADER, (int) h.length(), address);
             }
             writer.write(p.session().frameKey, WireFrames.DIRECTION_REPLY, r.status().code(), h.session(), h.seq(), r.body(), 0, r.body().length);
+            HostSockets.Counters c = counters;
+            c.in.add(f.length);
+            c.out.add(WireFrames.HEADER + r.body().length + WireFrames.TAG);
         }
     }
 }
