@@ -160,7 +160,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         private DeliveryPolicy delivery = DeliveryPolicy.defaults();
         private boolean wire = true;
         private int wirePort;
-        private Duration wireSpin = Duration.ZERO;
+        private Duration wireSpin = SpinHandoff.defaultWireSpin();
         private Duration wireReadSpin = Duration.ZERO;
         private boolean version2Only;
         private WireServer.Limits wireLimits;
@@ -297,7 +297,7 @@ public final class AgentHost implements Agency, AutoCloseable {
 
         /**
          * @param spin how long a runner thread with nothing to do spins for the next agent before it
-         *             parks (default 50 µs; zero, the default on a machine with one processor, never
+         *             parks (default 150 µs; zero, the default on a machine with one processor, never
          *             spins): an agent handed to a spinning runner starts at once, where waking a parked
          *             thread takes tens of microseconds on a virtual machine. Bounded: a runner spins at
          *             most this long after each stop, then parks
@@ -351,7 +351,8 @@ public final class AgentHost implements Agency, AutoCloseable {
 
         /**
          * @param spin how long a transfer this host sends on the agent wire spins (yielding the
-         *             processor) for the acknowledgement before it blocks reading it (default 0: never)
+         *             processor) for the acknowledgement before it blocks reading it (default 50 µs;
+         *             zero, the default on a machine with one processor, never spins; plain connections only)
          * @return this
          */
         public Builder wireSpin(Duration spin) {

@@ -103,7 +103,8 @@ final class WireChannel implements AutoCloseable {
      */
     Reply call(long seq, int opCode, byte[] body, int off, int len, long spinNanos) throws IOException {
         writer.write(session.frameKey, WireFrames.DIRECTION_REQUEST, opCode, session.id, seq, body, off, len);
-        if (spinNanos > 0 && !reader.buffered()) {
+        if (spinNanos > 0 && !reader.buffered() && !(socket instanceof SSLSocket)) {
+            // (a TLS stream cannot tell whether bytes wait on the socket: it blocks at once)
             HostSockets.spinUntilReadable(in, spinNanos);
         }
         WireFrames.Header h = reader.header();
