@@ -383,15 +383,7 @@ final class SimCommand implements Callable<Integer> {
 
     /** @return the length of the robot's sampled path, up to its pose now, metres */
     static double driven(SimRobot robot) {
-        double[] p = robot.trajectory().snapshot();
-        double sum = 0;
-        for (int i = 2; i + 1 < p.length; i += 2) {
-            sum += Math.hypot(p[i] - p[i - 2], p[i + 1] - p[i - 1]);
-        }
-        if (p.length >= 2) {
-            Pose now = robot.pose();
-            sum += Math.hypot(now.x() - p[p.length - 2], now.y() - p[p.length - 1]);
-        }
-        return sum;
+        Pose now = robot.pose();
+        return robot.trajectory().lengthTo(now.x(), now.y());
     }
 }

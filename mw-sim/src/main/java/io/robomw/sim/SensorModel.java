@@ -281,8 +281,24 @@ public final class SensorModel {
      *                at {@code height / tan(-tilt)}
      */
     void sampleRange(SimWorld.RayCaster caster, int self, double x, double y, double heading, double pan, double tilt) {
-        double c = Math.cos(heading);
-        double s = Math.sin(heading);
+        sampleRange(caster, self, x, y, heading, Math.cos(heading), Math.sin(heading), pan, tilt);
+    }
+
+    /**
+     * Samples a range sensor, the heading's cosine and sine given (the same for every sensor of a
+     * robot, so its sensors compute them once).
+     *
+     * @param caster  casts one ray
+     * @param self    the robot's index
+     * @param x       robot centre x
+     * @param y       robot centre y
+     * @param heading robot heading
+     * @param c       {@code Math.cos(heading)}
+     * @param s       {@code Math.sin(heading)}
+     * @param pan     the head's pan, radians
+     * @param tilt    the head's tilt, radians
+     */
+    void sampleRange(SimWorld.RayCaster caster, int self, double x, double y, double heading, double c, double s, double pan, double tilt) {
         double ox = x + mountX * c - mountY * s;
         double oy = y + mountX * s + mountY * c;
         double centre = heading + mountAngle + (headMounted ? pan : 0);

@@ -15,7 +15,6 @@ import org.dyn4j.dynamics.contact.SolvedContact;
 import org.dyn4j.geometry.Vector2;
 
 import java.util.ArrayList;
-import java.util.HashMap;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
@@ -51,7 +50,8 @@ public final class SimRobot {
     private final RobotDescription description;
     private final org.dyn4j.dynamics.Body body;
     private final DifferentialKinematics kinematics;
-    private final Map<String, Integer> portIndex = new HashMap<>();
+    /** The motor ports, in the description's order: a robot has a few, and a scan is cheaper than a map. */
+    private final String[] ports;
     private final double[] commanded;
     private final double[] motorDegrees;
     private final int leftIndex;
@@ -60,7 +60,7 @@ public final class SimRobot {
     private final Map<String, SensorModel> sensors = new LinkedHashMap<>();
     private final List<SensorModel> rangeSensors = new ArrayList<>();
     private final Queue<PendingRead> reads = new ConcurrentLinkedQueue<>();
-    private final Trajectory trajectory = new Trajectory();
+    private final Trajectory trajectory;
     private final boolean hasTouch;
     private final boolean hasAccel;
     private final Quadruped quadruped;
@@ -81,21 +81,20 @@ public final class SimRobot {
     }
 
     SimRobot(int index, String name, RobotDescription description, org.dyn4j.dynamics.Body body, long seed,
-             java.util.function.LongSupplier nanos) {
+             java.util.function.LongSupplier nanos, io.robomw.sim.world.WorldDescription.TrajectorySettings trajectorySettings) {
         this.index = index;
+        this.trajectory = new Trajectory(trajectorySettings);
         this.name = name;
         this.description = description;
         this.body = body;
         this.kinematics = description.drive().map(DifferentialKinematics::new).orElse(null);
         List<String> ports = description.motorPorts();
-        for (int p = 0; p < ports.size(); p++) {
-            portIndex.put(ports.get(p), p);
-        }
+        this.ports = ports.toArray(String[]::new);
         commanded = new double[ports.size()];
         motorDegrees = new double[ports.size()];
-        leftIndex = description.drive().map(d -> portIndex.get(d.left().port())).orElse(-1);
-        rightIndex = description.drive().map(d -> portIndex.get(d.right().port())).orElse(-1);
-        actuatorIndex = description.actuators().stream().mapToInt(a -> portIndex.get(a.port())).toArray();
+        leftIndex = description.drive().map(d -> portIndex(d.left().port())).orElse(-1);
+        rightIndex = description.drive().map(d -> portIndex(d.right().port())).orElse(-1);
+        actuatorIndex = description.actuators().stream().mapToInt(a -> portIndex(a.port())).toArray();
         int i = 0;
         boolean touch = false;
         boolean acc = false;
@@ -139,7 +138,7 @@ public final class SimRobot {
         return pose;
     }
 
-    /** @return the path it has driven, sampled */
+    /** @return the path it has driven, sampled as the world's {@code trajectory} settings say (bounded) */
     public Trajectory trajectory() {
         return trajectory;
     }
@@ -175,8 +174,8 @@ public final class SimRobot {
      * @param degreesPerSecond the commanded motor speed
      */
     void command(String port, double degreesPerSecond) {
-        Integer i = portIndex.get(port);
-        if (i == null) {
+        int i = portIndex(port);
+        if (i < 0) {
             throw new IllegalArgumentException("simulated robot '" + name + "' has no motor on port " + port);
         }
         commanded[i] = degreesPerSecond;
@@ -187,8 +186,18 @@ public final class SimRobot {
      * @return its encoder, degrees
      */
     double motorDegrees(String port) {
-        Integer i = portIndex.get(port);
-        return i == null ? 0.0 : motorDegrees[i];
+        int i = portIndex(port);
+        return i < 0 ? 0.0 : motorDegrees[i];
+    }
+
+    /** @return a motor port's index, or -1 */
+    private int portIndex(String port) {
+        for (int i = 0; i < ports.length; i++) {
+            if (ports[i].equals(port)) {
+                return i;
+            }
+        }
+        return -1;
     }
 
     /** Sets the body's velocities from the commanded wheel speeds. */

@@ -34,7 +34,7 @@ import java.util.Map;
  *   <li>sample every range sensor that is due (each sensor has its own seeded noise, so results
  *   do not depend on threads);</li>
  *   <li>cycle every robot's execution action thread that is due, then complete its pending sensor
- *   reads;</li>
+ *   reads, then run the {@linkplain #addRobotController robot controllers} that are due on it;</li>
  *   <li>set each robot's body velocities from its commanded wheel speeds, for the next step;</li>
  *   <li>(end of step) hand the completions that wake programs over, in one go.</li>
  * </ol>
@@ -43,9 +43,9 @@ import java.util.Map;
  * as placed in the range index after the motion), so the outcome does not depend on the threads.
  * The same seed and the same commands give the same trajectory, bit for bit. The per-robot work
  * is done in as few passes over the robots as the order allows, each pass a hand-over to the
- * worker threads: a step in which no sensor and no cycle is due is one pass (step 2, pending
- * reads, step 6: none of it reads the clock or another robot); otherwise two, step 2 (and each
- * body's place in the range index) before the clock moves, then 4–6 robot by robot.
+ * worker threads: a step in which no sensor, no cycle and no controller is due is one pass (step
+ * 2, pending reads, step 6: none of it reads the clock or another robot); otherwise two, step 2
+ * (and each body's place in the range index) before the clock moves, then 4–6 robot by robot.
  *
  * <p>Not thread-safe: one thread steps it (a {@link Simulation} does). Poses and trajectories may
  * be read from other threads.
@@ -62,6 +62,7 @@ public final class SimWorld implements AutoCloseable {
     private final RangeIndex rangeIndex;
     private final long stepNanos;
     private final double stepSeconds;
+    private final double physicsHz;
     private final int trajectoryEvery;
     private final Parallel parallel;
     /** Per robot (by index): the execution action threads the world cycles, or {@code null}. */
@@ -76,6 +77,15 @@ public final class SimWorld implements AutoCloseable {
     /** The wall clock phases are timed with, when profiling ({@link #profile}); {@code null} otherwise. */
     private Clock profileClock;
     private final long[] phaseNanos = new long[Phase.values().length];
+    /** Controllers run robot by robot in the world's own pass ({@link #addRobotController}). */
+    private volatile RobotController[] controllers = new RobotController[0];
+    /** The controllers due at the step being taken (touched by the stepping thread, read by the pass). */
+    private RobotController[] dueControllers = new RobotController[0];
+    private int dueCount;
+
+    /** A controller's work on one robot, and how often it is due. */
+    private record RobotController(long everySteps, java.util.function.IntConsumer control) {
+    }
 
     /** The phases of a step that {@link #profile} times, in the order a step runs them. */
     public enum Phase {
@@ -165,9 +175,10 @@ public final class SimWorld implements AutoCloseable {
      */
     public SimWorld(WorldDescription description, int sensingThreads, RangeMethod rangeMethod) {
         this.description = description;
+        this.physicsHz = description.physicsHz();
         this.stepSeconds = 1.0 / description.physicsHz();
         this.stepNanos = Math.round(1e9 / description.physicsHz());
-        this.trajectoryEvery = Math.max(1, (int) Math.round(description.physicsHz() / 10));
+        this.trajectoryEvery = (int) Math.max(1, Math.min(Integer.MAX_VALUE, Math.round(description.trajectories().everySeconds() * description.physicsHz())));
         physics.setGravity(World.ZERO_GRAVITY);
         Settings settings = physics.getSettings();
         settings.setStepFrequency(stepSeconds);
@@ -253,7 +264,8 @@ public final class SimWorld implements AutoCloseable {
         body.translate(start.x(), start.y());
         body.setAtRestDetectionEnabled(true);
         physics.addBody(body);
-        SimRobot robot = new SimRobot(robots.size(), name, description, body, this.description.seed(), clock::nanoTime);
+        SimRobot robot = new SimRobot(robots.size(), name, description, body, this.description.seed(), clock::nanoTime,
+                this.description.trajectories());
         robots.add(robot);
         cycled = java.util.Arrays.copyOf(cycled, robots.size());
         byName.put(name, robot);
@@ -354,6 +366,52 @@ public final class SimWorld implements AutoCloseable {
     }
 
     /**
+     * Runs a controller robot by robot inside the world's own pass over the robots, at every step
+     * whose number is a multiple of {@code everySteps}: for each robot, after its range sensors,
+     * its execution action thread's cycle and its pending reads, before its body's velocities are
+     * set, on whichever worker thread handles that robot (while its state is in that processor's
+     * cache, and without a hand-over of its own). Equivalent to a step listener that calls
+     * {@code control} for every robot on the worker threads (the world's clock and the robots'
+     * sensors are the same), since what it commands reaches the motors at the next cycle either
+     * way. {@code control} must touch only robot {@code i} and the controller's own state for it;
+     * what it throws ends the step with it.
+     *
+     * @param everySteps the controller's period, in steps (at least 1)
+     * @param control    its work on the robot of the given {@linkplain SimRobot#index() index}
+     */
+    public synchronized void addRobotController(long everySteps, java.util.function.IntConsumer control) {
+        if (everySteps < 1) {
+            throw new IllegalArgumentException("a controller runs every 1 or more steps, got " + everySteps);
+        }
+        RobotController[] more = java.util.Arrays.copyOf(controllers, controllers.length + 1);
+        more[controllers.length] = new RobotController(everySteps, control);
+        controllers = more;
+    }
+
+    /**
+     * @param control a controller added with {@link #addRobotController}; it does not run after the current step
+     */
+    public synchronized void removeRobotController(java.util.function.IntConsumer control) {
+        controllers = java.util.Arrays.stream(controllers).filter(c -> c.control() != control).toArray(RobotController[]::new);
+    }
+
+    /** @return whether a controller is due at this step, with the due ones in {@link #dueControllers} */
+    private boolean controllersDue(long step) {
+        RobotController[] all = controllers;
+        if (dueControllers.length < all.length) {
+            dueControllers = new RobotController[all.length];
+        }
+        int n = 0;
+        for (RobotController c : all) {
+            if (step % c.everySteps() == 0) {
+                dueControllers[n++] = c;
+            }
+        }
+        dueCount = n;
+        return n > 0;
+    }
+
+    /**
      * Times every phase of the following steps on a wall clock (for benchmarks and diagnosis:
      * where a step's time goes); {@code null} stops. The totals are in {@link #phaseNanos()}.
      *
@@ -407,7 +465,8 @@ public final class SimWorld implements AutoCloseable {
         long now = clock.nanoTime() + stepNanos;
         boolean sensing = sensingDue(step);
         boolean cycling = now >= nextCycle;
-        if (!sensing && !cycling) {
+        boolean controlling = controllersDue(step);
+        if (!sensing && !cycling && !controlling) {
             // No robot's work after the motion reads the clock or another robot: one pass.
             parallel.forEach(n, i -> {
                 SimRobot r = robots.get(i);
@@ -441,6 +500,8 @@ public final class SimWorld implements AutoCloseable {
         }
         t = tick(t, Phase.INDEX);
         long senseStep = sensing ? step : 0;
+        RobotController[] due = dueControllers;
+        int dueNow = dueCount;
         parallel.forEach(n, i -> {
             SimRobot r = robots.get(i);
             if (senseStep != 0) {
@@ -455,6 +516,9 @@ public final class SimWorld implements AutoCloseable {
                     }
                 }
                 r.completeReads(this);
+            }
+            for (int k = 0; k < dueNow; k++) {
+                due[k].control().accept(i);
             }
             r.applyDrive();
         });
@@ -485,10 +549,18 @@ public final class SimWorld implements AutoCloseable {
     private void sense(SimRobot r, long step) {
         Pose p = r.pose();
         List<SensorModel> sensors = r.rangeSensors();
+        if (sensors.isEmpty()) {
+            return;
+        }
+        double heading = p.heading();
+        double c = Math.cos(heading);
+        double s = Math.sin(heading);
+        double pan = r.headPan();
+        double tilt = r.headTilt();
         for (int k = 0; k < sensors.size(); k++) {
-            SensorModel s = sensors.get(k);
-            if (step < 0 || step % s.everySteps(description.physicsHz()) == 0) {
-                s.sampleRange(rayCaster, r.index(), p.x(), p.y(), p.heading(), r.headPan(), r.headTilt());
+            SensorModel m = sensors.get(k);
+            if (step < 0 || step % m.everySteps(physicsHz) == 0) {
+                m.sampleRange(rayCaster, r.index(), p.x(), p.y(), heading, c, s, pan, tilt);
             }
         }
     }

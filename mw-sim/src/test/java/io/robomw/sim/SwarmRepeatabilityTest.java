@@ -48,10 +48,27 @@ class SwarmRepeatabilityTest {
         assertTrue(moved > ROBOTS / 4, "many robots wandered off (else the test proves little): " + moved + " of " + ROBOTS);
     }
 
+    @Test
+    void shouldWanderExactlyAsAStepListenerWhenTheControllerRunsInTheWorldsPass() throws IOException {
+        WorldDescription world = crowdedWorld();
+        List<Pose> inPass = run(world, 2);
+        List<Pose> asListener = run(world, 2, false);
+        assertEquals(asListener, inPass, "the controller's ticks inside the world's pass against the same controller as a step listener");
+    }
+
     /** The poses of every robot after 4 simulated seconds. */
     private static List<Pose> run(WorldDescription world, int threads) {
+        return run(world, threads, true);
+    }
+
+    /** The poses of every robot after 4 simulated seconds, the controller in the world's pass or as a step listener. */
+    private static List<Pose> run(WorldDescription world, int threads, boolean inPass) {
         try (Simulation sim = Simulation.create(world, threads)) {
-            WanderController.install(sim, 10, 3);
+            if (inPass) {
+                WanderController.install(sim, 10, 3);
+            } else {
+                sim.addStepListener(new WanderController(sim, 10, 3));
+            }
             sim.runFor(Duration.ofSeconds(4));
             List<Pose> poses = new ArrayList<>();
             for (SimRobot r : sim.world().robots()) {

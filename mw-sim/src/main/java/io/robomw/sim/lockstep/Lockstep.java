@@ -2,7 +2,6 @@ package io.robomw.sim.lockstep;
 
 import io.robomw.api.RobotException;
 
-import java.util.List;
 import java.util.Map;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ConcurrentHashMap;
@@ -24,7 +23,8 @@ import java.util.concurrent.locks.LockSupport;
 public final class Lockstep {
 
     private final Map<Thread, ProgramState> programs = new ConcurrentHashMap<>();
-    private final java.util.List<Runnable> deferred = new java.util.ArrayList<>();
+    /** Completions deferred to the end of the step; the worker threads add to it at once (lock-free). */
+    private final java.util.Queue<Runnable> deferred = new java.util.concurrent.ConcurrentLinkedQueue<>();
     private volatile Thread driver;
     private volatile boolean stepping;
 
@@ -75,12 +75,7 @@ public final class Lockstep {
     /** Ends a step: runs the deferred completions, in the order they were deferred. */
     public void endStep() {
         stepping = false;
-        List<Runnable> now;
-        synchronized (deferred) {
-            now = List.copyOf(deferred);
-            deferred.clear();
-        }
-        for (Runnable r : now) {
+        for (Runnable r; (r = deferred.poll()) != null; ) {
             r.run();
         }
     }
@@ -93,9 +88,7 @@ public final class Lockstep {
      */
     public void defer(Runnable completion) {
         if (stepping) {
-            synchronized (deferred) {
-                deferred.add(completion);
-            }
+            deferred.add(completion);
         } else {
             completion.run();
         }

@@ -10,8 +10,8 @@ import java.util.List;
 import java.util.SplittableRandom;
 
 /**
- * Wanders every robot of a simulation at once: a Braitenberg-style reactive controller, run on the
- * stepping thread at a fixed rate (default 10 Hz), that reads each robot's range sensors and
+ * Wanders every robot of a simulation at once: a Braitenberg-style reactive controller, run at a
+ * fixed rate (default 10 Hz) robot by robot in the world's pass over its robots, that reads each robot's range sensors and
  * sets its velocities with the continuous {@link Robot#drive} command (through all three layers,
  * refreshed at every tick, so the watchdog never fires while it runs). Robots without range
  * sensors drive in gentle random curves. Deterministic: each robot has its own seeded random
@@ -36,6 +36,8 @@ public final class WanderController implements Runnable {
     private final double[] maxTurnRate;
     /** Per robot, per range sensor: bit 1 ahead, bit 2 left, bit 4 right, from its mounting angle. */
     private final int[][] sectors;
+    /** By a robot's index in the world: its index here, or -1 if it is not controlled (a brick emulator drives it). */
+    private final int[] byWorldIndex;
 
     /**
      * @param simulation the simulation whose robots wander
@@ -58,6 +60,11 @@ public final class WanderController implements Runnable {
         this.maxWheelSpeed = new double[bodies.size()];
         this.halfTrack = new double[bodies.size()];
         this.maxTurnRate = new double[bodies.size()];
+        this.byWorldIndex = new int[simulation.world().robots().size()];
+        java.util.Arrays.fill(byWorldIndex, -1);
+        for (int i = 0; i < bodies.size(); i++) {
+            byWorldIndex[bodies.get(i).index()] = i;
+        }
         SplittableRandom root = new SplittableRandom(seed);
         for (int i = 0; i < bodies.size(); i++) {
             random[i] = root.split();
@@ -77,7 +84,10 @@ public final class WanderController implements Runnable {
     }
 
     /**
-     * Installs it as a step listener.
+     * Installs it in the world's own pass over the robots ({@link io.robomw.sim.SimWorld#addRobotController}):
+     * each robot's tick runs right after its sensors and its cycle, on the worker thread that
+     * handles that robot. The robots wander exactly as with the controller as a step listener
+     * ({@link #run()}), with one hand-over to the worker threads less per tick.
      *
      * @param simulation the simulation
      * @param rateHz     control rate
@@ -86,10 +96,22 @@ public final class WanderController implements Runnable {
      */
     public static WanderController install(Simulation simulation, double rateHz, long seed) {
         WanderController c = new WanderController(simulation, rateHz, seed);
-        simulation.addStepListener(c);
+        simulation.world().addRobotController(c.everySteps, c::controlRobot);
         return c;
     }
 
+    /** One robot's tick, by its index in the world (nothing for a robot it does not control). */
+    private void controlRobot(int worldIndex) {
+        int i = byWorldIndex[worldIndex];
+        if (i >= 0) {
+            control(i);
+        }
+    }
+
+    /**
+     * One tick for every robot when due, as a step listener (on the world's worker threads); what
+     * {@link #install} runs inside the world's pass instead.
+     */
     @Override
     public void run() {
         if (simulation.world().steps() % everySteps != 0) {

@@ -21,17 +21,84 @@ import java.util.List;
  * @param robots          the robots and where they start
  * @param seed            seed of every random number in the run (sensor noise)
  * @param physicsHz       physics steps per simulated second
+ * @param trajectories    how the robots' paths are sampled and how many points each keeps
  * @param source          the file, for messages
  */
 public record WorldDescription(String name, double width, double height, boolean walls, double wallThickness,
                                double floorBrightness, List<Obstacle> obstacles, List<FloorPatch> patches,
-                               List<RobotPlacement> robots, long seed, double physicsHz, String source) {
+                               List<RobotPlacement> robots, long seed, double physicsHz, TrajectorySettings trajectories,
+                               String source) {
 
     /** Copies the lists. */
     public WorldDescription {
         obstacles = List.copyOf(obstacles);
         patches = List.copyOf(patches);
         robots = List.copyOf(robots);
+        java.util.Objects.requireNonNull(trajectories, "trajectories");
+    }
+
+    /**
+     * A world whose trajectories are kept as {@link TrajectorySettings#DEFAULT} says.
+     *
+     * @param name            the world's name
+     * @param width           arena width (x), metres
+     * @param height          arena height (y), metres
+     * @param walls           whether the arena is closed by walls
+     * @param wallThickness   thickness of those walls, metres
+     * @param floorBrightness brightness of the bare floor, 0 (black) to 1 (white)
+     * @param obstacles       static obstacles
+     * @param patches         floor patches seen by light and colour sensors
+     * @param robots          the robots and where they start
+     * @param seed            seed of every random number in the run (sensor noise)
+     * @param physicsHz       physics steps per simulated second
+     * @param source          the file, for messages
+     */
+    public WorldDescription(String name, double width, double height, boolean walls, double wallThickness,
+                            double floorBrightness, List<Obstacle> obstacles, List<FloorPatch> patches,
+                            List<RobotPlacement> robots, long seed, double physicsHz, String source) {
+        this(name, width, height, walls, wallThickness, floorBrightness, obstacles, patches, robots, seed, physicsHz,
+                TrajectorySettings.DEFAULT, source);
+    }
+
+    /**
+     * How each robot's path is recorded (the {@code trajectory:} key of a world file): a point every
+     * {@code everySeconds} of simulated time, at most {@code maxPoints} of them per robot, so a long
+     * run's memory stays bounded.
+     *
+     * @param everySeconds simulated seconds between two samples (rounded to whole physics steps, at least one)
+     * @param maxPoints    the most points kept per robot; 0 keeps none
+     * @param keep         what a full trajectory gives up to make room
+     */
+    public record TrajectorySettings(double everySeconds, int maxPoints, Keep keep) {
+
+        /** The most points a world file may ask for per robot. */
+        public static final int MAX_POINTS = 1 << 20;
+
+        /** A point every 0.1 s, at most 1000 points per robot (8 KB), the whole path thinned when full. */
+        public static final TrajectorySettings DEFAULT = new TrajectorySettings(0.1, 1000, Keep.WHOLE);
+
+        /** Checks the ranges. */
+        public TrajectorySettings {
+            if (!(everySeconds > 0) || everySeconds > 3600) {
+                throw new IllegalArgumentException("trajectory sampling interval must be > 0 and at most 3600 s, got " + everySeconds);
+            }
+            if (maxPoints < 0 || maxPoints > MAX_POINTS) {
+                throw new IllegalArgumentException("trajectory points must be 0 to " + MAX_POINTS + ", got " + maxPoints);
+            }
+            java.util.Objects.requireNonNull(keep, "keep");
+        }
+    }
+
+    /** What a trajectory that holds its most points gives up for the next one. */
+    public enum Keep {
+        /**
+         * The whole path, ever coarser: every other point is dropped and from then on the path is
+         * sampled half as often, so it always spans the whole run with between half and all of the
+         * points allowed.
+         */
+        WHOLE,
+        /** Only the most recent points: the oldest point is dropped for each new one. */
+        RECENT
     }
 
     /** A static obstacle. */

@@ -21,6 +21,7 @@ import java.util.Set;
  * arena: { width: 4, height: 3, walls: true, wall_thickness: 0.1, floor: 0.8 }
  * seed: 42
  * physics_hz: 100
+ * trajectory: { every: 0.1, max_points: 1000, keep: whole }
  * obstacles:
  *   - { box: { x: 2, y: 1.5, width: 0.4, height: 0.4, angle: 0 } }
  *   - { circle: { x: 1, y: 2, radius: 0.2 } }
@@ -85,6 +86,18 @@ public final class WorldLoader {
         }
         long seed = root.integer("seed", 1);
         double physicsHz = root.number("physics_hz", 100, "between 1 and 10000", v -> v >= 1 && v <= 10_000);
+        WorldDescription.TrajectorySettings trajectories = WorldDescription.TrajectorySettings.DEFAULT;
+        Optional<MappingReader> trajectory = root.mapping("trajectory");
+        if (trajectory.isPresent()) {
+            MappingReader t = trajectory.get();
+            WorldDescription.TrajectorySettings d = WorldDescription.TrajectorySettings.DEFAULT;
+            double every = t.number("every", d.everySeconds(), "> 0 and at most 3600 seconds", v -> v > 0 && v <= 3600);
+            int maxPoints = t.integer("max_points", d.maxPoints(), 0, WorldDescription.TrajectorySettings.MAX_POINTS);
+            WorldDescription.Keep keep = t.enumValue("keep", WorldDescription.Keep.class, d.keep());
+            t.finish();
+            // An invalid value is a problem reported below, and reads as its default here.
+            trajectories = new WorldDescription.TrajectorySettings(every, maxPoints, keep);
+        }
         List<WorldDescription.Obstacle> obstacles = new ArrayList<>();
         for (MappingReader o : root.mappingList("obstacles")) {
             obstacle(o).ifPresent(obstacles::add);
@@ -123,7 +136,8 @@ public final class WorldLoader {
         }
         root.finish();
         root.problems().throwIfAny();
-        return new WorldDescription(name, width, height, walls, thickness, floor, obstacles, patches, robots, seed, physicsHz, file.toString());
+        return new WorldDescription(name, width, height, walls, thickness, floor, obstacles, patches, robots, seed, physicsHz, trajectories,
+                file.toString());
     }
 
     private Optional<WorldDescription.Obstacle> obstacle(MappingReader o) {
