@@ -27,8 +27,32 @@ public final class AgentBenchPeer {
     /** The system property that sets both hosts' endpoint spin in µs ({@code AgentHost.Builder.endpointSpin}); unset: the default. */
     static final String ENDPOINT_SPIN = "agent.bench.endpointSpinMicros";
 
-    /** @return the builder with the spins of {@value #RUNNER_SPIN} and {@value #ENDPOINT_SPIN}, where set */
+    /** The system property that turns both hosts' agent wire off ({@code false}: protocol version 2, every call over RMI); unset: on. */
+    static final String WIRE = "agent.bench.wire";
+
+    /** The system property that sets both hosts' wire reply spin in µs ({@code AgentHost.Builder.wireSpin}); unset: the default. */
+    static final String WIRE_SPIN = "agent.bench.wireSpinMicros";
+
+    /** The system property that sets both hosts' wire read spin in µs ({@code AgentHost.Builder.wireReadSpin}); unset: the default. */
+    static final String WIRE_READ_SPIN = "agent.bench.wireReadSpinMicros";
+
+    /** The properties above, passed on to host B's JVM. */
+    static final java.util.List<String> PROPERTIES = java.util.List.of(RUNNER_SPIN, ENDPOINT_SPIN, WIRE, WIRE_SPIN, WIRE_READ_SPIN);
+
+    /** @return the builder with the spins of {@value #RUNNER_SPIN}, {@value #ENDPOINT_SPIN} and {@value #WIRE_SPIN} and the wire of {@value #WIRE}, where set */
     static AgentHost.Builder spin(AgentHost.Builder b) {
+        String wire = System.getProperty(WIRE);
+        if (wire != null) {
+            b.wire(Boolean.parseBoolean(wire.trim()));
+        }
+        String wireReadSpin = System.getProperty(WIRE_READ_SPIN);
+        if (wireReadSpin != null) {
+            b.wireReadSpin(java.time.Duration.ofNanos(Long.parseLong(wireReadSpin.trim()) * 1000));
+        }
+        String wireSpin = System.getProperty(WIRE_SPIN);
+        if (wireSpin != null) {
+            b.wireSpin(java.time.Duration.ofNanos(Long.parseLong(wireSpin.trim()) * 1000));
+        }
         String micros = System.getProperty(RUNNER_SPIN);
         if (micros != null) {
             b.runnerSpin(java.time.Duration.ofNanos(Long.parseLong(micros.trim()) * 1000));

@@ -272,7 +272,7 @@ public final class AgentBenchmark {
         Path dirB = work.resolve(name + "-b");
         List<String> peerArgs = durable ? List.of("durable", dirB.toString()) : List.of("memory");
         List<String> peerJvm = new ArrayList<>(List.of("-Xmx2g", "-Dorg.slf4j.simpleLogger.defaultLogLevel=warn"));
-        for (String spinProperty : List.of(AgentBenchPeer.RUNNER_SPIN, AgentBenchPeer.ENDPOINT_SPIN)) {
+        for (String spinProperty : AgentBenchPeer.PROPERTIES) {
             String spin = System.getProperty(spinProperty);
             if (spin != null) {
                 peerJvm.add("-D" + spinProperty + "=" + spin);

@@ -88,7 +88,15 @@ public final class AgentHost implements Agency, AutoCloseable {
     private final Home home;
     private final Calls calls;
     private final HostSockets.Counters counters = new HostSockets.Counters();
+    private final Peers peers;
+    private final boolean wire;
+    private final int wirePort;
+    private final Duration wireSpin;
+    private final Duration wireReadSpin;
+    private final boolean version2Only;
+    private final WireServer.Limits wireLimits;
     private HostEndpoint endpoint;
+    private WireServer wireServer;
     private Registry registry;
 
     private AgentHost(Builder b) {
@@ -104,7 +112,14 @@ public final class AgentHost implements Agency, AutoCloseable {
                 b.runnerSpin);
         this.robot = new RobotTurns(b.name, b.robot);
         this.code = new CodeLoaders(state);
+        this.wire = b.wire && !b.version2Only;
+        this.wirePort = b.wirePort;
+        this.wireSpin = b.wireSpin;
+        this.wireReadSpin = b.wireReadSpin;
+        this.version2Only = b.version2Only;
+        this.wireLimits = b.wireLimits != null ? b.wireLimits : WireServer.Limits.of(b.maxStateBytes, b.callTimeout);
         Peers peers = new Peers(state, key, tls != null, this::serveSelf);
+        this.peers = peers;
         this.messaging = new HostMessaging(state, peers, b.node, b.node != null && b.ownsNode);
         state.messaging = messaging;
         this.owed = new OwedEvents(state, peers, b.delivery);
@@ -143,6 +158,12 @@ public final class AgentHost implements Agency, AutoCloseable {
         private Duration runnerSpin = SpinHandoff.defaultSpin();
         private Duration endpointSpin = Duration.ZERO;
         private DeliveryPolicy delivery = DeliveryPolicy.defaults();
+        private boolean wire = true;
+        private int wirePort;
+        private Duration wireSpin = SpinHandoff.defaultWireSpin();
+        private Duration wireReadSpin = Duration.ZERO;
+        private boolean version2Only;
+        private WireServer.Limits wireLimits;
 
         private Builder(String name) {
             if (name == null || !name.matches("[A-Za-z0-9._-]+")) {
@@ -276,7 +297,7 @@ public final class AgentHost implements Agency, AutoCloseable {
 
         /**
          * @param spin how long a runner thread with nothing to do spins for the next agent before it
-         *             parks (default 50 µs; zero, the default on a machine with one processor, never
+         *             parks (default 150 µs; zero, the default on a machine with one processor, never
          *             spins): an agent handed to a spinning runner starts at once, where waking a parked
          *             thread takes tens of microseconds on a virtual machine. Bounded: a runner spins at
          *             most this long after each stop, then parks
@@ -300,6 +321,71 @@ public final class AgentHost implements Agency, AutoCloseable {
                 throw new IllegalArgumentException("endpoint spin " + spin + " must be between 0 and 10 ms: a spinning connection thread holds a processor");
             }
             this.endpointSpin = spin;
+            return this;
+        }
+
+        /**
+         * @param on whether the host takes transfers on its agent wire (agent protocol version 3,
+         *           docs/agents.md "Wire and store formats"; the default) and sends them on other
+         *           hosts' wires; off, every call goes over RMI (version 2) and no wire port is opened
+         * @return this
+         */
+        public Builder wire(boolean on) {
+            this.wire = on;
+            return this;
+        }
+
+        /**
+         * @param port the port of the host's agent wire, on its bind address; 0 (the default) picks a
+         *             free one. The host names it to each peer when the peer authenticates, so only a
+         *             firewall needs to know it (a peer that cannot reach it sends over RMI)
+         * @return this
+         */
+        public Builder wirePort(int port) {
+            if (port < 0 || port > 65535) {
+                throw new IllegalArgumentException("wire port " + port + " is not a TCP port");
+            }
+            this.wirePort = port;
+            return this;
+        }
+
+        /**
+         * @param spin how long a transfer this host sends on the agent wire spins (yielding the
+         *             processor) for the acknowledgement before it blocks reading it (default 50 µs;
+         *             zero, the default on a machine with one processor, never spins; plain connections only)
+         * @return this
+         */
+        public Builder wireSpin(Duration spin) {
+            if (spin.isNegative() || spin.compareTo(Duration.ofMillis(10)) > 0) {
+                throw new IllegalArgumentException("wire spin " + spin + " must be between 0 and 10 ms: a spinning sender holds a processor");
+            }
+            this.wireSpin = spin;
+            return this;
+        }
+
+        /**
+         * @param spin how long a connection thread of the host's agent wire spins (yielding the
+         *             processor) for the next transfer before it blocks reading (default 0: never;
+         *             plain connections only)
+         * @return this
+         */
+        public Builder wireReadSpin(Duration spin) {
+            if (spin.isNegative() || spin.compareTo(Duration.ofMillis(10)) > 0) {
+                throw new IllegalArgumentException("wire read spin " + spin + " must be between 0 and 10 ms: a spinning connection thread holds a processor");
+            }
+            this.wireReadSpin = spin;
+            return this;
+        }
+
+        /** For tests of mixed versions: the host acts as one of a build before the agent wire (protocol version 2 only, no wire). */
+        Builder version2Only() {
+            this.version2Only = true;
+            return this;
+        }
+
+        /** For tests: the agent wire's limits. */
+        Builder wireLimits(WireServer.Limits limits) {
+            this.wireLimits = limits;
             return this;
         }
 
@@ -365,7 +451,14 @@ public final class AgentHost implements Agency, AutoCloseable {
         SSLContext ssl = tls == null ? null : tls.context();
         HostSockets.Server serverSockets = new HostSockets.Server(bindAddress, ssl, counters, endpointSpin.toNanos());
         HostSockets.Client clientSockets = new HostSockets.Client(bind, tls != null, state.timeoutMillis);
-        endpoint = new HostEndpoint(name, key, calls);
+        endpoint = new HostEndpoint(name, key, calls, version2Only ? Session.PROTOCOL_VERSION : Session.WIRE_VERSION);
+        peers.wire(ssl, wireSpin, version2Only, !wire);
+        if (wire) {
+            wireServer = new WireServer(endpoint, bindAddress, wirePort, ssl, wireLimits);
+            wireServer.readSpin(wireReadSpin);
+            wireServer.countBytesIn(counters);
+            endpoint.wirePort(wireServer.port());
+        }
         long maxCall = state.codec.maxBytes() + (1 << 20);
         ObjectInputFilter onlyBytes = info -> {
             if (info.arrayLength() > maxCall || info.depth() > 2) {
@@ -396,8 +489,9 @@ public final class AgentHost implements Agency, AutoCloseable {
         state.address = new HostAddress(bind, port, name).toString();
         messaging.started();
         new Recovery(state, code, trips, owed).resume();
-        LOG.info("agent host {} listening at {} ({} store{}, robot: {}, messaging: {})", name, state.address,
+        LOG.info("agent host {} listening at {} ({} store{}, {}, robot: {}, messaging: {})", name, state.address,
                 state.store.durable() ? "durable " + storeDir : "memory-only", tls != null ? ", mutual TLS" : "",
+                wireServer != null ? "agent wire on port " + wireServer.port() : "no agent wire (protocol version 2)",
                 state.robot == null ? "none" : state.robot.name(), messaging.addresses().isEmpty() ? "none" : messaging.addresses());
     }
 
@@ -415,9 +509,13 @@ public final class AgentHost implements Agency, AutoCloseable {
             return;
         }
         state.closed = true;
+        if (wireServer != null) {
+            wireServer.close(Duration.ofMillis(Math.max(stopGrace.toMillis(), 1000)));
+        }
         if (endpoint != null) {
             unexportAfterCallsInProgress(endpoint);
         }
+        peers.close();
         try {
             if (registry != null) {
                 UnicastRemoteObject.unexportObject(registry, true);
@@ -541,14 +639,29 @@ public final class AgentHost implements Agency, AutoCloseable {
         return owed.deliveryThreads();
     }
 
-    /** @return bytes received by this host's RMI endpoint so far (without TLS) */
+    /** @return bytes received by this host's RMI endpoint (without TLS) and agent wire (its frames) so far */
     public long wireBytesIn() {
         return counters.in.sum();
     }
 
-    /** @return bytes sent by this host's RMI endpoint so far (without TLS) */
+    /** @return bytes sent by this host's RMI endpoint (without TLS) and agent wire (its frames) so far */
     public long wireBytesOut() {
         return counters.out.sum();
+    }
+
+    /** @return the port of the host's agent wire, or 0 if it has none */
+    public int wirePort() {
+        return wireServer == null ? 0 : wireServer.port();
+    }
+
+    /** @return the frames (calls) this host's agent wire has served (for tests) */
+    long wireFramesServed() {
+        return wireServer == null ? 0 : wireServer.served();
+    }
+
+    /** @return the agent wire connections open now (for tests) */
+    int wireConnections() {
+        return wireServer == null ? 0 : wireServer.open();
     }
 
     /** @return how many peers, calls, archives and agents this host has refused */

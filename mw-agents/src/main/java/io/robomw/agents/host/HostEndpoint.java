@@ -47,7 +47,8 @@ final class HostEndpoint implements AgentHostRemote {
         Reply handle(String peer, Op op, byte[] message, int offset, int length);
     }
 
-    private record Peer(String name, Session session, String clientHost) {
+    /** An authenticated peer: its name, its session, and the address it authenticated from. */
+    record Peer(String name, Session session, String clientHost) {
     }
 
     /** The largest byte array a call may carry from a client host none of whose peers has proved the cluster key. */
@@ -63,10 +64,44 @@ final class HostEndpoint implements AgentHostRemote {
     private final ThrottledWarnings refusedPeers = new ThrottledWarnings(LOG, Duration.ofSeconds(1));
     private final ThrottledWarnings droppedCalls = new ThrottledWarnings(LOG, Duration.ofSeconds(1));
 
+    /** The highest protocol version this endpoint takes: {@link Session#WIRE_VERSION}, or 2 to act as a host of a build before it. */
+    private final int highestVersion;
+    /** The port of the host's agent wire ({@link WireServer}), 0 while it has none. */
+    private volatile int wirePort;
+
     HostEndpoint(String hostName, ClusterKey key, Handler handler) {
+        this(hostName, key, handler, Session.WIRE_VERSION);
+    }
+
+    /**
+     * @param highestVersion {@link Session#WIRE_VERSION}, or {@link Session#PROTOCOL_VERSION} for an
+     *                       endpoint that refuses version 3 as builds before the agent wire do (tests of mixed versions)
+     */
+    HostEndpoint(String hostName, ClusterKey key, Handler handler, int highestVersion) {
         this.hostName = hostName;
         this.key = key;
         this.handler = handler;
+        this.highestVersion = highestVersion;
+    }
+
+    /** @param port where the host's agent wire listens, offered to version-3 peers in their authentication answer */
+    void wirePort(int port) {
+        this.wirePort = port;
+    }
+
+    /** @return the host's name */
+    String hostName() {
+        return hostName;
+    }
+
+    /** Counts one refused frame or call (the agent wire's refusals count with the endpoint's). */
+    void countRefused() {
+        refused.increment();
+    }
+
+    /** @return the peer of a session, or {@code null} if this host does not know the session */
+    Peer peer(long sessionId) {
+        return sessions.get(sessionId);
     }
 
     /** @return how many authentications and calls were refused */
@@ -95,9 +130,10 @@ final class HostEndpoint implements AgentHostRemote {
         try {
             DataInputStream in = new DataInputStream(new ByteArrayInputStream(request));
             int version = in.readUnsignedByte();
-            if (version != Session.PROTOCOL_VERSION) {
+            if (version != Session.PROTOCOL_VERSION && (version != Session.WIRE_VERSION || highestVersion < Session.WIRE_VERSION)) {
                 return refuse(peer, "it speaks agent protocol version " + version + (version == 0 ? " or 1 (a build before 2026-11-24)" : "")
-                        + "; this host speaks version " + Session.PROTOCOL_VERSION + ": run the same RoboMW on both");
+                        + "; this host speaks " + (highestVersion < Session.WIRE_VERSION ? "version " + Session.PROTOCOL_VERSION
+                                : "versions " + Session.PROTOCOL_VERSION + " and " + Session.WIRE_VERSION) + ": run the same RoboMW on both");
             }
             int authenticator = in.readUnsignedByte();
             peer = in.readUTF();
@@ -128,7 +164,14 @@ final class HostEndpoint implements AgentHostRemote {
                 sessions.remove(sessions.keySet().iterator().next());
             }
             sessions.put(id, new Peer(peer, new Session(id, Session.sessionKey(key, terms, hostNonce, clientNonce), authenticator), clientHost()));
-            LOG.debug("host {}: peer {} ({}) authenticated", hostName, peer, clientHost());
+            LOG.debug("host {}: peer {} ({}) authenticated, protocol version {}", hostName, peer, clientHost(), version);
+            if (version == Session.WIRE_VERSION) {
+                // The wire takes frames tagged with AES-GCM only: a session of another authenticator gets port 0 (none).
+                int port = authenticator == CallAuthenticator.AES_256_GCM ? wirePort : 0;
+                byte[] offer = {(byte) (port >>> 8), (byte) port};
+                return ByteBuffer.allocate(1 + 8 + 32 + 2).put(Session.AUTH_ACCEPTED).putLong(id)
+                        .put(Session.hostProof(key, terms, hostNameBytes, peerName, hostNonce, clientNonce, offer)).put(offer).array();
+            }
             return ByteBuffer.allocate(1 + 8 + 32).put(Session.AUTH_ACCEPTED).putLong(id)
                     .put(Session.hostProof(key, terms, hostNameBytes, peerName, hostNonce, clientNonce)).array();
         } catch (IOException | RuntimeException e) {
@@ -178,23 +221,36 @@ final class HostEndpoint implements AgentHostRemote {
             droppedCalls.warn("host {}: dropped a replayed call (sequence {}) from peer '{}' at {}", hostName, seq, peer.name(), clientHost());
             return new byte[0];
         }
+        return peer.session().reply(seq, serve(peer, opCode, request, Session.HEADER, request.length - Session.MAC - Session.HEADER, clientHost()));
+    }
+
+    /**
+     * Serves a verified call (from RMI or the agent wire): an unknown operation code is refused naming it.
+     *
+     * @param peer    the authenticated peer
+     * @param opCode  the call's operation byte
+     * @param message holds the body
+     * @param offset  where the body starts
+     * @param length  its length
+     * @param from    where the call came from, for the log
+     * @return the reply
+     */
+    Reply serve(Peer peer, int opCode, byte[] message, int offset, int length, String from) {
         Op op;
         try {
             op = Op.fromCode(opCode);
         } catch (IllegalArgumentException e) {
             refused.increment();
-            droppedCalls.warn("host {}: refused a call from peer '{}' at {}: {}", hostName, peer.name(), clientHost(), e.getMessage());
-            return peer.session().reply(seq, Reply.of(Reply.Status.REFUSED, "host " + hostName + " refused the call: " + e.getMessage()));
+            droppedCalls.warn("host {}: refused a call from peer '{}' at {}: {}", hostName, peer.name(), from, e.getMessage());
+            return Reply.of(Reply.Status.REFUSED, "host " + hostName + " refused the call: " + e.getMessage());
         }
-        Reply reply;
         try {
-            reply = handler.handle(peer.name(), op, request, Session.HEADER, request.length - Session.MAC - Session.HEADER);
+            return handler.handle(peer.name(), op, message, offset, length);
         } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
             refused.increment();
             LOG.warn("host {}: {} call from peer '{}' failed: {}", hostName, op, peer.name(), e.toString());
-            reply = Reply.of(Reply.Status.REFUSED, "the host could not handle the call: " + e.getMessage());
+            return Reply.of(Reply.Status.REFUSED, "the host could not handle the call: " + e.getMessage());
         }
-        return peer.session().reply(seq, reply);
     }
 
     /**

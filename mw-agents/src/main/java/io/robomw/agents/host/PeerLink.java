@@ -25,6 +25,14 @@ import java.util.concurrent.atomic.AtomicLong;
  * checks the host's proof in turn, and makes MAC'd calls on the session. A lost session (the host
  * restarted) is made again once per call; a failed call drops the stub so the next call looks it
  * up afresh. Thread-safe: calls from several threads share the session.
+ *
+ * <p><b>Versions.</b> It proposes agent protocol version 3 ({@link Session#WIRE_VERSION}); a host
+ * that takes it names its agent wire's port, and transfers then go there ({@link WireChannel},
+ * a few connections kept per link, one call at a time each), every other call over RMI. A host of
+ * a build before the wire refuses version 3: the link authenticates again with version 2 and makes
+ * every call over RMI until it loses the connection (then it proposes 3 again). A wire it cannot
+ * connect to (a firewall that lets only the RMI port through) sends that transfer over RMI, and the
+ * next ones for {@value #WIRE_RETRY_MILLIS} ms.
  */
 final class PeerLink {
 
@@ -36,15 +44,80 @@ final class PeerLink {
     private final HostSockets.Client sockets;
     private final SecureRandom random;
     private final AtomicLong seq = new AtomicLong();
+    private final javax.net.ssl.SSLContext wireTls;
+    private final int timeoutMillis;
+    private final java.util.ArrayDeque<WireChannel> idleWires = new java.util.ArrayDeque<>();
     private AgentHostRemote stub;
     private Session session;
+    /** The host's agent wire port for the session, 0 when it offered none. */
+    private int wirePort;
+    /** The protocol version to propose: 3, or 2 after a host refused 3 (until the link is dropped). */
+    private int proposeVersion = Session.WIRE_VERSION;
+    /** Until when (System.nanoTime) transfers go over RMI because the wire could not be reached; 0: not. */
+    private volatile long wireDownUntil;
+    /** How long a reply may spin before it blocks, ns. */
+    private volatile long wireSpinNanos;
+
+    /** How long transfers go over RMI after the host's agent wire could not be reached. */
+    static final long WIRE_RETRY_MILLIS = 30_000;
+    /** The most idle wire connections a link keeps. */
+    static final int MAX_IDLE_WIRES = 4;
+    /** An idle wire connection older than this is closed rather than used (the host closes idle ones after 2 minutes). */
+    static final long WIRE_STALE_NANOS = 60_000_000_000L;
 
     PeerLink(HostAddress address, String selfName, ClusterKey key, HostSockets.Client sockets, SecureRandom random) {
+        this(address, selfName, key, sockets, random, null, 10_000);
+    }
+
+    /**
+     * @param wireTls       the TLS context of agent wire connections (the host's own), or {@code null} for plain ones
+     * @param timeoutMillis how long a wire connection may take to connect, and a reply on it to come
+     */
+    PeerLink(HostAddress address, String selfName, ClusterKey key, HostSockets.Client sockets, SecureRandom random, javax.net.ssl.SSLContext wireTls,
+            int timeoutMillis) {
         this.address = address;
         this.selfName = selfName;
         this.key = key;
         this.sockets = sockets;
         this.random = random;
+        this.wireTls = wireTls;
+        this.timeoutMillis = timeoutMillis;
+    }
+
+    private volatile boolean wireOff;
+
+    /** Sends every call over RMI, even to hosts that offer a wire (a host whose own wire is off). */
+    void wireOff() {
+        this.wireOff = true;
+    }
+
+    /** @param spin how long a transfer waits for its reply by spinning before it blocks (0: never) */
+    void wireSpin(java.time.Duration spin) {
+        this.wireSpinNanos = spin.toNanos();
+    }
+
+    /** For tests: proposes only version 2, as peers of builds before the agent wire do. */
+    synchronized void proposeVersion2Only() {
+        proposeVersion = Session.PROTOCOL_VERSION;
+        version2Only = true;
+        session = null;
+    }
+
+    /** @return the agent protocol version of the link's session (for tests), 0 before it has one */
+    synchronized int version() {
+        return session == null ? 0 : usedVersion;
+    }
+
+    /** @return the host's agent wire port the session uses, 0 for none (for tests) */
+    synchronized int wirePort() {
+        return wirePort;
+    }
+
+    private int usedVersion;
+
+    /** @return the link's session, authenticating first if it has none (for tests) */
+    synchronized Session sessionForTests() throws PeerException {
+        return session(0);
     }
 
     HostAddress address() {
@@ -88,9 +161,25 @@ final class PeerLink {
         for (int attempt = 0; ; attempt++) {
             Session s;
             AgentHostRemote remote;
+            int port;
             synchronized (this) {
                 s = session(attempt);
                 remote = stub;
+                port = wirePort;
+            }
+            if (opCode == Op.TRANSFER.code() && port > 0 && !wireOff && (wireDownUntil == 0 || System.nanoTime() - wireDownUntil > 0)) {
+                Reply r = callOnWire(s, port, opCode, op, frame);
+                if (r == WireChannel.UNKNOWN_SESSION && attempt == 0) {
+                    forget(s);
+                    continue;
+                }
+                if (r == WireChannel.UNKNOWN_SESSION) {
+                    throw new PeerException("host " + address + " does not know the session it just made: the TRANSFER was not served", false, null);
+                }
+                if (r != null) {
+                    return r;
+                }
+                // the wire could not be reached: this call goes over RMI
             }
             long n = seq.incrementAndGet();
             byte[] raw;
@@ -108,11 +197,7 @@ final class PeerLink {
             }
             if (Session.isUnknownSession(raw) && attempt == 0) {
                 // The host forgot the session (it keeps a bounded number): it did not serve the call.
-                synchronized (this) {
-                    if (session == s) {
-                        session = null;
-                    }
-                }
+                forget(s);
                 continue;
             }
             try {
@@ -134,10 +219,113 @@ final class PeerLink {
         return false;
     }
 
-    /** Forgets the stub and session; the next call connects again. */
+    private synchronized void forget(Session s) {
+        if (session == s) {
+            session = null;
+            closeIdleWires();
+        }
+    }
+
+    /**
+     * A call on the agent wire.
+     *
+     * @return the verified reply; {@link WireChannel#UNKNOWN_SESSION} if the host does not know the
+     *         session (the call was not served); {@code null} if the wire could not be reached (nothing sent)
+     * @throws PeerException if the connection failed once the call was sent (it may have been served)
+     *                       or the host refused the frame
+     */
+    private Reply callOnWire(Session s, int port, int opCode, String op, Frame frame) throws PeerException {
+        WireChannel ch = idleWire(s);
+        if (ch == null) {
+            try {
+                ch = WireChannel.connect(s, address.host(), port, wireTls, timeoutMillis);
+            } catch (IOException e) {
+                wireUnreachable(port, e);
+                return null;
+            }
+            try {
+                Reply hello = ch.call(seq.incrementAndGet(), WireFrames.OP_HELLO, new byte[0], 0, 0, 0);
+                if (hello == WireChannel.UNKNOWN_SESSION) {
+                    ch.close();
+                    return hello;
+                }
+                if (hello.status() != Reply.Status.OK) {
+                    throw new IOException("it answered HELLO with " + hello.status() + ": " + hello.text());
+                }
+            } catch (IOException e) {
+                ch.close();
+                wireUnreachable(port, e);
+                return null;
+            }
+        }
+        Reply r;
+        try {
+            r = ch.call(seq.incrementAndGet(), opCode, frame.bytes, frame.bodyOffset(), frame.bodyLength(), wireSpinNanos);
+        } catch (IOException e) {
+            ch.close();
+            throw new PeerException("cannot reach agent host " + address + " on its agent wire (port " + port + "; the " + op + " may have reached it): "
+                    + e.getMessage(), true, e);
+        }
+        if (r == WireChannel.UNKNOWN_SESSION) {
+            ch.close();
+            return r;
+        }
+        giveBack(ch);
+        return r;
+    }
+
+    private void wireUnreachable(int port, IOException e) {
+        wireDownUntil = System.nanoTime() + WIRE_RETRY_MILLIS * 1_000_000L;
+        if (wireDownUntil == 0) {
+            wireDownUntil = 1;
+        }
+        LOG.warn("{}: host {}'s agent wire on port {} cannot be reached ({}); its transfers go over RMI for the next {} s", selfName, address, port,
+                e.getMessage(), WIRE_RETRY_MILLIS / 1000);
+    }
+
+    /** @return an idle wire connection of the session, or {@code null} */
+    private synchronized WireChannel idleWire(Session s) {
+        WireChannel ch;
+        while ((ch = idleWires.pollLast()) != null) {
+            if (ch.session == s && ch.idleNanos() < WIRE_STALE_NANOS) {
+                return ch;
+            }
+            ch.close();
+        }
+        return null;
+    }
+
+    private synchronized void giveBack(WireChannel ch) {
+        if (ch.session == session && idleWires.size() < MAX_IDLE_WIRES) {
+            idleWires.addLast(ch);
+        } else {
+            ch.close();
+        }
+    }
+
+    private void closeIdleWires() {
+        WireChannel ch;
+        while ((ch = idleWires.pollFirst()) != null) {
+            ch.close();
+        }
+    }
+
+    /** Forgets the stub and session (and proposes version 3 again: the host may have been upgraded); the next call connects again. */
     synchronized void drop() {
         stub = null;
         session = null;
+        closeIdleWires();
+        if (proposeVersion == Session.PROTOCOL_VERSION && !version2Only) {
+            proposeVersion = Session.WIRE_VERSION;
+        }
+    }
+
+    private boolean version2Only;
+
+    /** Closes the link's wire connections. */
+    synchronized void close() {
+        session = null;
+        closeIdleWires();
     }
 
     private Session session(int attempt) throws PeerException {
@@ -149,37 +337,18 @@ final class PeerLink {
                 Registry registry = LocateRegistry.getRegistry(address.host(), address.port(), sockets);
                 stub = (AgentHostRemote) registry.lookup(address.name());
             }
-            byte[] hostNonce = stub.challenge();
-            byte[] clientNonce = new byte[32];
-            random.nextBytes(clientNonce);
-            byte[] hostName = address.name().getBytes(StandardCharsets.UTF_8);
-            byte[] peerName = selfName.getBytes(StandardCharsets.UTF_8);
-            ByteArrayOutputStream req = new ByteArrayOutputStream();
-            DataOutputStream out = new DataOutputStream(req);
-            int authenticator = CallAuthenticator.DEFAULT;
-            byte[] terms = Session.terms(Session.PROTOCOL_VERSION, authenticator);
-            out.writeByte(Session.PROTOCOL_VERSION);
-            out.writeByte(authenticator);
-            out.writeUTF(selfName);
-            out.write(hostNonce);
-            out.write(clientNonce);
-            out.write(Session.clientProof(key, terms, hostName, peerName, hostNonce, clientNonce));
-            byte[] answer = stub.authenticate(req.toByteArray());
-            if (answer.length == 0 || answer[0] != Session.AUTH_ACCEPTED) {
-                String why = answer.length > 1 ? new String(answer, 1, answer.length - 1, StandardCharsets.UTF_8) : "no reason given";
-                stub = null;
-                throw new PeerException("host " + address + " refused this peer (" + selfName + "): " + why, false, null);
+            String refusal = authenticate(proposeVersion, attempt);
+            if (refusal != null && proposeVersion == Session.WIRE_VERSION && refusal.contains("protocol version " + Session.WIRE_VERSION)) {
+                // A host of a build before the agent wire: version 2, every call over RMI.
+                LOG.info("{}: host {} does not speak agent protocol version {} ({}); using version {} over RMI", selfName, address, Session.WIRE_VERSION,
+                        refusal, Session.PROTOCOL_VERSION);
+                proposeVersion = Session.PROTOCOL_VERSION;
+                refusal = authenticate(proposeVersion, attempt);
             }
-            ByteBuffer b = ByteBuffer.wrap(answer, 1, answer.length - 1);
-            long id = b.getLong();
-            byte[] proof = new byte[32];
-            b.get(proof);
-            if (!MessageDigest.isEqual(proof, Session.hostProof(key, terms, hostName, peerName, hostNonce, clientNonce))) {
+            if (refusal != null) {
                 stub = null;
-                throw new PeerException("host " + address + " could not prove it knows the cluster key: not sending it anything", false, null);
+                throw new PeerException("host " + address + " refused this peer (" + selfName + "): " + refusal, false, null);
             }
-            session = new Session(id, Session.sessionKey(key, terms, hostNonce, clientNonce), authenticator);
-            LOG.debug("authenticated to {} (session {}, attempt {})", address, Long.toHexString(id), attempt);
             return session;
         } catch (RemoteException | NotBoundException e) {
             stub = null;
@@ -192,6 +361,60 @@ final class PeerLink {
             stub = null;
             throw new PeerException(address + " is not an agent host", false, e);
         }
+    }
+
+    /**
+     * One challenge and authentication; sets {@link #session} (and {@link #wirePort}) when accepted.
+     *
+     * @return {@code null} when accepted, else the host's reason
+     * @throws PeerException if the host cannot prove the cluster key, or answers nonsense
+     */
+    private String authenticate(int version, int attempt) throws IOException, PeerException {
+        byte[] hostNonce = stub.challenge();
+        byte[] clientNonce = new byte[32];
+        random.nextBytes(clientNonce);
+        byte[] hostName = address.name().getBytes(StandardCharsets.UTF_8);
+        byte[] peerName = selfName.getBytes(StandardCharsets.UTF_8);
+        ByteArrayOutputStream req = new ByteArrayOutputStream();
+        DataOutputStream out = new DataOutputStream(req);
+        int authenticator = CallAuthenticator.DEFAULT;
+        byte[] terms = Session.terms(version, authenticator);
+        out.writeByte(version);
+        out.writeByte(authenticator);
+        out.writeUTF(selfName);
+        out.write(hostNonce);
+        out.write(clientNonce);
+        out.write(Session.clientProof(key, terms, hostName, peerName, hostNonce, clientNonce));
+        byte[] answer = stub.authenticate(req.toByteArray());
+        if (answer.length == 0 || answer[0] != Session.AUTH_ACCEPTED) {
+            return answer.length > 1 ? new String(answer, 1, answer.length - 1, StandardCharsets.UTF_8) : "no reason given";
+        }
+        int expected = 1 + 8 + 32 + (version == Session.WIRE_VERSION ? 2 : 0);
+        if (answer.length != expected) {
+            stub = null;
+            throw new PeerException("host " + address + " answered the authentication with " + answer.length + " bytes; version " + version
+                    + " answers have " + expected, false, null);
+        }
+        ByteBuffer b = ByteBuffer.wrap(answer, 1, answer.length - 1);
+        long id = b.getLong();
+        byte[] proof = new byte[32];
+        b.get(proof);
+        byte[] offer = new byte[version == Session.WIRE_VERSION ? 2 : 0];
+        b.get(offer);
+        byte[] expectedProof = version == Session.WIRE_VERSION
+                ? Session.hostProof(key, terms, hostName, peerName, hostNonce, clientNonce, offer)
+                : Session.hostProof(key, terms, hostName, peerName, hostNonce, clientNonce);
+        if (!MessageDigest.isEqual(proof, expectedProof)) {
+            stub = null;
+            throw new PeerException("host " + address + " could not prove it knows the cluster key: not sending it anything", false, null);
+        }
+        closeIdleWires();
+        session = new Session(id, Session.sessionKey(key, terms, hostNonce, clientNonce), authenticator);
+        usedVersion = version;
+        wirePort = offer.length == 2 ? ((offer[0] & 0xFF) << 8) | (offer[1] & 0xFF) : 0;
+        LOG.debug("authenticated to {} (session {}, protocol version {}, wire port {}, attempt {})", address, Long.toHexString(id), version, wirePort,
+                attempt);
+        return null;
     }
 
     private PeerException failure(String op, Exception e) {

@@ -18,6 +18,11 @@ final class Peers {
     private final HostEndpoint.Handler self;
     private final SecureRandom random = new SecureRandom();
     private final Map<String, PeerLink> links = new ConcurrentHashMap<>();
+    /** The TLS context of agent wire connections (the host's own), or {@code null}; set before the host calls anyone. */
+    private volatile javax.net.ssl.SSLContext wireTls;
+    private volatile java.time.Duration wireSpin = java.time.Duration.ZERO;
+    private volatile boolean version2Only;
+    private volatile boolean wireOff;
 
     /**
      * @param host the host calling
@@ -79,10 +84,38 @@ final class Peers {
         }
     }
 
+    /**
+     * How this host's links use the agent wire.
+     *
+     * @param tls          the TLS context of wire connections (the host's own), or {@code null} for plain ones
+     * @param spin         how long a transfer spins for its reply before it blocks
+     * @param version2Only propose agent protocol version 2 only, as builds before the wire (tests of mixed versions)
+     * @param off          send every call over RMI, even to hosts that offer a wire
+     */
+    void wire(javax.net.ssl.SSLContext tls, java.time.Duration spin, boolean version2Only, boolean off) {
+        this.wireTls = tls;
+        this.wireSpin = spin;
+        this.version2Only = version2Only;
+        this.wireOff = off;
+    }
+
+    /** Closes the links' idle wire connections. */
+    void close() {
+        links.values().forEach(PeerLink::close);
+    }
+
     private PeerLink link(String target) {
         return links.computeIfAbsent(target, t -> {
             HostAddress a = HostAddress.parse(t);
-            return new PeerLink(a, host.name, key, new HostSockets.Client(a.host(), tls, host.timeoutMillis), random);
+            PeerLink l = new PeerLink(a, host.name, key, new HostSockets.Client(a.host(), tls, host.timeoutMillis), random, wireTls, host.timeoutMillis);
+            l.wireSpin(wireSpin);
+            if (version2Only) {
+                l.proposeVersion2Only();
+            }
+            if (wireOff) {
+                l.wireOff();
+            }
+            return l;
         });
     }
 }

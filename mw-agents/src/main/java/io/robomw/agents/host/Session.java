@@ -13,6 +13,7 @@ import java.util.Arrays;
  * <pre>
  * authentication request [version 1][authenticator 1][peer name: u16 length, UTF-8][host nonce 32][client nonce 32][client proof 32]
  * authentication answer  [0][session id 8][host proof 32]  or  [1][reason, UTF-8]
+ *                        version 3: [0][session id 8][host proof 32][wire port 2]   (port 0: the host takes no transfers on the wire)
  * request  [session id 8][seq 8][op 1][body][mac 16]      mac over everything before it
  * reply    [status 1][body][mac 16]                       mac also covers the request's seq
  * unknown session reply  [status 7]                       alone, without a MAC (the host lost the session)
@@ -20,15 +21,22 @@ import java.util.Arrays;
  * terms        = [version 1][authenticator 1]
  * client proof = HMAC-SHA256(cluster key, "robomw-agent-client", terms, host name, peer name, host nonce, client nonce)
  * host proof   = HMAC-SHA256(cluster key, "robomw-agent-host", terms, host name, peer name, host nonce, client nonce)
+ *                version 3: HMAC-SHA256(cluster key, "robomw-agent-host", terms, host name, peer name, host nonce, client nonce, wire port 2)
  * session key  = HMAC-SHA256(cluster key, "robomw-agent-session", terms, host nonce, client nonce)
  *                (ClusterKey.mac: every part prefixed with its length, a u32)
  * </pre>
  *
- * <p><b>Protocol version</b> ({@value #PROTOCOL_VERSION}): the first byte of an authentication
- * request. Version 1 (builds before 2026-11-24) had neither that byte nor the authenticator's,
- * and its proofs and session key did not cover them; a host refuses any other version than its
- * own with a reason naming both (a version-1 request reads as version 0: its name's length comes
- * first), and the authenticator codes of {@link CallAuthenticator} it does not know. The terms are
+ * <p><b>Protocol version</b>: the first byte of an authentication request. Version 1 (builds
+ * before 2026-11-24) had neither that byte nor the authenticator's, and its proofs and session key
+ * did not cover them. Version {@value #PROTOCOL_VERSION} makes every call over RMI; version
+ * {@value #WIRE_VERSION} also carries transfers on the agent wire ({@link WireFrames}), whose port
+ * the host's answer names. Peers of this build propose 3; a host of this build takes 2 and 3 (a
+ * peer of version 2 is served over RMI as before); a host of a build before the wire refuses 3,
+ * naming its version, and a peer of this build then authenticates again with 2 and makes every
+ * call over RMI (and proposes 3 again after it loses the connection: the host may have been
+ * upgraded). Any other version is refused with a reason naming both (a version-1 request reads as
+ * version 0: its name's length comes first), and so are the authenticator codes of
+ * {@link CallAuthenticator} a host does not know. The terms are
  * inside both proofs and the session key, so neither side can be talked into other terms than the
  * peer proposed.
  *
@@ -75,8 +83,17 @@ final class Session {
     private static final byte[] CLIENT = "robomw-agent-client".getBytes();
     private static final byte[] HOST = "robomw-agent-host".getBytes();
     private static final byte[] SESSION = "robomw-agent-session".getBytes();
-    /** The agent-host protocol version this build speaks: the first byte of an authentication request. */
+    /**
+     * Agent protocol version 2: every call over RMI. The first byte of an authentication request;
+     * hosts of this build take it (from peers of builds before the agent wire) and answer as before.
+     */
     static final int PROTOCOL_VERSION = 2;
+    /**
+     * Agent protocol version 3: version 2, and transfers on the agent wire ({@link WireFrames}).
+     * What peers of this build propose; the authentication answer then ends with the host's wire
+     * port, which the host's proof covers.
+     */
+    static final int WIRE_VERSION = 3;
     static final int HEADER = 8 + 8 + 1;
     /** The first byte of an authentication answer that accepts the peer. */
     static final byte AUTH_ACCEPTED = 0;
@@ -86,6 +103,8 @@ final class Session {
 
     final long id;
     private final CallAuthenticator authenticator;
+    /** The key of the session's agent wire frame tags (AES-256), or {@code null} when its authenticator is not AES-GCM. */
+    final javax.crypto.spec.SecretKeySpec frameKey;
     private final ReplayGuard served = new ReplayGuard();
 
     /** A session with the authenticator peers of this build propose. */
@@ -102,6 +121,7 @@ final class Session {
     Session(long id, byte[] key, int authenticatorCode) {
         this.id = id;
         this.authenticator = CallAuthenticator.of(authenticatorCode, key);
+        this.frameKey = authenticatorCode == CallAuthenticator.AES_256_GCM ? new javax.crypto.spec.SecretKeySpec(key, "AES") : null;
     }
 
     /** @return the code of the session's authenticator */
@@ -120,6 +140,14 @@ final class Session {
 
     static byte[] hostProof(ClusterKey k, byte[] terms, byte[] hostName, byte[] peerName, byte[] hostNonce, byte[] clientNonce) {
         return k.mac(HOST, terms, hostName, peerName, hostNonce, clientNonce);
+    }
+
+    /**
+     * The host's proof in a version-3 answer: it also covers the offer (the host's wire port, u16), so
+     * nobody can send the peer's transfers elsewhere.
+     */
+    static byte[] hostProof(ClusterKey k, byte[] terms, byte[] hostName, byte[] peerName, byte[] hostNonce, byte[] clientNonce, byte[] offer) {
+        return k.mac(HOST, terms, hostName, peerName, hostNonce, clientNonce, offer);
     }
 
     static byte[] sessionKey(ClusterKey k, byte[] terms, byte[] hostNonce, byte[] clientNonce) {

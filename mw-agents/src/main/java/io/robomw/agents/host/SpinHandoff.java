@@ -54,8 +54,23 @@ final class SpinHandoff<E> extends AbstractQueue<E> implements BlockingQueue<E> 
         this.nanoTime = nanoTime;
     }
 
-    /** @return the spin a host's runners use unless told: 50 µs, none on a machine with one processor */
+    /**
+     * @return the spin a host's runners use unless told: 150 µs, none on a machine with one processor.
+     *         Long enough to outlast a warm A→B→A round trip on the agent wire (about 45-110 µs on the
+     *         project's machine), so the runner that sent an agent on is still spinning when it comes
+     *         back (docs/benchmarks.md, "Agent hops on the agent wire")
+     */
     static Duration defaultSpin() {
+        return Runtime.getRuntime().availableProcessors() > 1 ? Duration.ofNanos(150_000) : Duration.ZERO;
+    }
+
+    /**
+     * @return how long a transfer on the agent wire spins for its acknowledgement unless told: 50 µs,
+     *         none on a machine with one processor. The acknowledgement comes within tens of
+     *         microseconds (the receiver stores the agent and answers), and a sender that spun for it
+     *         goes back to the runner pool at once rather than after a wake-up
+     */
+    static Duration defaultWireSpin() {
         return Runtime.getRuntime().availableProcessors() > 1 ? Duration.ofNanos(50_000) : Duration.ZERO;
     }
 

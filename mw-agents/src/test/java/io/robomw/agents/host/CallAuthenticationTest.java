@@ -65,7 +65,16 @@ class CallAuthenticationTest {
         long id = b.getLong();
         byte[] proof = new byte[32];
         b.get(proof);
-        assertArrayEquals(Session.hostProof(key, terms, hostName, peerName, hostNonce, clientNonce), proof, "the host proves the key in turn");
+        if (version == Session.WIRE_VERSION) {
+            byte[] offer = new byte[2];
+            b.get(offer);
+            assertEquals(0, b.remaining(), "a version-3 answer ends with the wire port");
+            assertArrayEquals(Session.hostProof(key, terms, hostName, peerName, hostNonce, clientNonce, offer), proof,
+                    "the host proves the key in turn, and its proof covers the wire port it offers");
+        } else {
+            assertEquals(0, b.remaining(), "a version-2 answer is as builds before the wire read it");
+            assertArrayEquals(Session.hostProof(key, terms, hostName, peerName, hostNonce, clientNonce), proof, "the host proves the key in turn");
+        }
         return new Handshake(answer, new Session(id, Session.sessionKey(key, terms, hostNonce, clientNonce), authenticator));
     }
 
@@ -171,10 +180,23 @@ class CallAuthenticationTest {
     }
 
     @Test
+    void versionThreeIsTakenAndItsAnswerNamesTheWirePortUnderTheProof() throws IOException {
+        host.wirePort(4242);
+        Handshake h = authenticate(KEY, Session.WIRE_VERSION, CallAuthenticator.AES_256_GCM, CallAuthenticator.AES_256_GCM);
+        assertEquals(Session.AUTH_ACCEPTED, h.answer()[0], () -> refusal(h.answer()));
+        assertEquals(4242, ((h.answer()[41] & 0xFF) << 8) | (h.answer()[42] & 0xFF));
+        Handshake hmac = authenticate(KEY, Session.WIRE_VERSION, CallAuthenticator.HMAC_SHA256_128, CallAuthenticator.HMAC_SHA256_128);
+        assertEquals(0, ((hmac.answer()[41] & 0xFF) << 8) | (hmac.answer()[42] & 0xFF), "no wire for a session not tagged with AES-GCM");
+        HostEndpoint old = new HostEndpoint("host-h", KEY, (peer, op, m, off, len) -> Reply.ok(), Session.PROTOCOL_VERSION);
+        byte[] refused = old.authenticate(new byte[] {(byte) Session.WIRE_VERSION, (byte) CallAuthenticator.AES_256_GCM, 0, 0});
+        assertTrue(refusal(refused).contains("version 3; this host speaks version 2"), "as a build before the wire refuses it: " + refusal(refused));
+    }
+
+    @Test
     void aPeerOfAnotherProtocolVersionIsRefusedNamingBoth() throws IOException {
-        Handshake h = authenticate(KEY, 3, CallAuthenticator.AES_256_GCM, CallAuthenticator.AES_256_GCM);
+        Handshake h = authenticate(KEY, 4, CallAuthenticator.AES_256_GCM, CallAuthenticator.AES_256_GCM);
         assertEquals(Session.AUTH_REFUSED, h.answer()[0]);
-        assertTrue(refusal(h.answer()).contains("version 3; this host speaks version 2"), refusal(h.answer()));
+        assertTrue(refusal(h.answer()).contains("version 4; this host speaks versions 2 and 3"), refusal(h.answer()));
         // A protocol-1 request (no version byte: the peer name's u16 length first) reads as version 0.
         ByteArrayOutputStream old = new ByteArrayOutputStream();
         DataOutputStream out = new DataOutputStream(old);

@@ -69,6 +69,18 @@ public final class FuzzSeeds {
         host.write("hostCalls", "drop-owed", withTrailingByte(Bodies.dropOwed(OwedSelector.all()), Op.DROP_OWED.code()));
         host.write("hostCalls", "transfer", withTrailingByte(new AgentImage(id, 1, AgentImage.Kind.TRIP, false, home, digest, 1, state).encode(),
                 Op.TRANSFER.code()));
+        byte[] transfer = new AgentImage(id, 1, AgentImage.Kind.TRIP, false, home, digest, 1, state).encode();
+        host.write("wireFrames", "hello-transfer", new WireScript.Builder().frame(3, WireFrames.OP_HELLO, true, 1, 0, 0, new byte[0])
+                .frame(3, Op.TRANSFER.code(), true, 2, 0, 0, transfer).build());
+        host.write("wireFrames", "hello-list-unknown-op", new WireScript.Builder().frame(3, WireFrames.OP_HELLO, true, 1, 0, 0, new byte[0])
+                .frame(3, Op.LIST.code(), true, 2, 0, 0, new byte[0]).frame(3, 99, true, 3, 0, 0, new byte[0]).build());
+        host.write("wireFrames", "replay", new WireScript.Builder().frame(3, WireFrames.OP_HELLO, true, 5, 0, 0, new byte[0])
+                .frame(3, WireFrames.OP_HELLO, true, 5, 0, 0, new byte[0]).build());
+        host.write("wireFrames", "wrong-tag", new WireScript.Builder().frame(3, WireFrames.OP_HELLO, true, 1, 1, 0, new byte[0]).build());
+        host.write("wireFrames", "lying-length", new WireScript.Builder().frame(3, WireFrames.OP_HELLO, true, 1, 0, 0, new byte[0])
+                .frame(3, Op.TRANSFER.code(), true, 2, 2, 3, new byte[] {1, 2, 3}).build());
+        host.write("wireFrames", "unknown-session", new WireScript.Builder().frame(3, WireFrames.OP_HELLO, false, 1, 0, 0, new byte[0]).build());
+        host.write("wireFrames", "raw-header", new WireScript.Builder().raw(new byte[] {3, 64, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0}).build());
         host.write("endpoint", "auth", withTrailingByte(ByteBuffer.allocate(2 + 4 + 96).putShort((short) 4).put("peer".getBytes()).array(), 102));
 
         new Seeds(resources, "io.robomw.agents.host.code.AgentStateFuzzTest").write("state", "visitor", state);

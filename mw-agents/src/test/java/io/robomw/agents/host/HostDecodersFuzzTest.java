@@ -20,11 +20,18 @@ class HostDecodersFuzzTest {
 
     private static final ClusterKey KEY = ClusterKey.fromPassphrase("fuzz");
     private static AgentHost host;
+    private static AgentHost wireHost;
+    private static Session wireSession;
+    /** Each input's frames are numbered from its own base: no input replays another's numbers. */
+    private static long wireSeqBase = 1L << 20;
 
     @AfterAll
     static void closeHost() {
         if (host != null) {
             host.close();
+        }
+        if (wireHost != null) {
+            wireHost.close();
         }
     }
 
@@ -113,6 +120,66 @@ class HostDecodersFuzzTest {
         byte[] call = endpoint.call(data.consumeRemainingAsBytes());
         if (call.length > 1) {
             throw new AssertionError("an unauthenticated call got a reply of " + call.length + " bytes");
+        }
+    }
+
+    /**
+     * The agent wire of a running host (protocol version 3, {@link WireFrames}): the input is a
+     * {@link WireScript} of raw bytes and frames (sealed here with a real session, so the fuzzer
+     * reaches past the tag check), written on a real loopback connection, which is then half-closed.
+     * The host may answer only with frames a peer can read (version 3, a known status, an untagged
+     * answer of at most {@value WireFrames#MAX_REASON_BYTES} bytes), must close the connection
+     * (never hang), and must serve a new connection's HELLO afterwards.
+     */
+    @FuzzTest
+    void wireFrames(byte[] input) throws Exception {
+        // The target talks to its own host on loopback, and only there (Jazzer's SSRF detector refuses other connections).
+        try (com.code_intelligence.jazzer.api.SilentCloseable loopbackOnly = com.code_intelligence.jazzer.api.BugDetectors.allowNetworkConnections(
+                (host, port) -> host.equals("127.0.0.1") || host.equals("localhost"))) {
+            wireFramesOnLoopback(input);
+        }
+    }
+
+    private void wireFramesOnLoopback(byte[] input) throws Exception {
+        if (wireHost == null) {
+            wireHost = AgentHost.builder("wire-fuzzed").clusterKey(KEY).noMessaging().stopGrace(java.time.Duration.ZERO).start();
+            wireSession = new PeerLink(HostAddress.parse(wireHost.address()), "fuzz", KEY, new HostSockets.Client("127.0.0.1", false, 10_000),
+                    new java.security.SecureRandom()).sessionForTests();
+        }
+        long base = wireSeqBase;
+        wireSeqBase += 1 << 17;
+        try (java.net.Socket s = new java.net.Socket("127.0.0.1", wireHost.wirePort())) {
+            s.setSoTimeout(20_000);
+            try {
+                WireScript.play(input, wireSession, base, s.getOutputStream());
+                s.shutdownOutput();
+            } catch (java.net.SocketException closedEarly) {
+                // the host refused what came first and closed: what it answered is read below
+            }
+            WireReader answers = new WireReader(s.getInputStream(), null);
+            try {
+                WireFrames.Header h;
+                while ((h = answers.header()) != null) {
+                    boolean untagged = h.code() == Reply.Status.UNKNOWN_SESSION.code() || h.code() == WireFrames.STATUS_FRAME_REFUSED;
+                    if (h.version() != WireFrames.VERSION || (!untagged && h.code() > Reply.Status.UNKNOWN_SESSION.code())
+                            || (untagged && h.length() > WireFrames.MAX_REASON_BYTES) || h.length() > 1 << 20) {
+                        throw new AssertionError("the host answered a frame a peer cannot read: " + h);
+                    }
+                    answers.frame(h, null);
+                }
+            } catch (java.net.SocketException reset) {
+                // a refusing host may reset the connection after its answer
+            }
+        }
+        try (java.net.Socket s = new java.net.Socket("127.0.0.1", wireHost.wirePort())) {
+            s.setSoTimeout(20_000);
+            long n = base + (1 << 17) - 1;
+            WireWriter w = new WireWriter(WireWriter.of(s.getOutputStream()));
+            w.write(wireSession.frameKey, WireFrames.DIRECTION_REQUEST, WireFrames.OP_HELLO, wireSession.id, n, new byte[0], 0, 0);
+            WireFrames.Header h = new WireReader(s.getInputStream(), null).header();
+            if (h == null || h.code() != Reply.Status.OK.code()) {
+                throw new AssertionError("the host stopped serving its wire after a script of " + input.length + " bytes: " + h);
+            }
         }
     }
 

@@ -1,0 +1,100 @@
+package io.robomw.agents.host;
+
+import javax.crypto.spec.SecretKeySpec;
+import java.io.IOException;
+import java.io.OutputStream;
+import java.nio.ByteBuffer;
+import java.nio.channels.SocketChannel;
+
+/**
+ * Writes agent wire frames ({@link WireFrames}) to one connection, straight from the arrays that
+ * hold them: on a plain connection a frame of up to {@value #ONE_WRITE} bytes of body goes in one
+ * gathering write (header, the body where it lies, tag) after its tag is computed; a larger one is
+ * written in pieces of that size, each put through the tag just before it is written, so the tag
+ * overlaps the copies to the socket and each piece is still in the cache for the second pass. On
+ * TLS the pieces go through the TLS socket's stream, which writes them as TLS records. Not
+ * thread-safe: one writer per connection, one frame at a time.
+ */
+final class WireWriter {
+
+    /** The largest body written in one write; larger ones go in pieces of this size. */
+    static final int ONE_WRITE = 256 * 1024;
+
+    /** Where a writer's bytes go. */
+    interface Out {
+        /** Writes every remaining byte of the buffers, in order. */
+        void write(ByteBuffer... parts) throws IOException;
+    }
+
+    /** @return the gathering writes of a blocking channel */
+    static Out of(SocketChannel channel) {
+        return parts -> {
+            long left = 0;
+            for (ByteBuffer p : parts) {
+                left += p.remaining();
+            }
+            while (left > 0) {
+                left -= channel.write(parts);
+            }
+        };
+    }
+
+    /** @return writes to a stream (TLS: a buffered one over the TLS socket's, so a small frame is one TLS record), then a flush */
+    static Out of(OutputStream stream) {
+        return parts -> {
+            for (ByteBuffer p : parts) {
+                stream.write(p.array(), p.arrayOffset() + p.position(), p.remaining());
+                p.position(p.limit());
+            }
+            stream.flush();
+        };
+    }
+
+    private final Out out;
+    private final FrameTag tag = new FrameTag();
+
+    WireWriter(Out out) {
+        this.out = out;
+    }
+
+    /**
+     * Writes a tagged frame.
+     *
+     * @param key       the session's frame key
+     * @param direction {@link WireFrames#DIRECTION_REQUEST} or {@link WireFrames#DIRECTION_REPLY}
+     * @param code      the operation or status
+     * @param session   the session id
+     * @param seq       the request's sequence number
+     * @param body      holds the body
+     * @param off       where it starts
+     * @param len       its length
+     */
+    void write(SecretKeySpec key, int direction, int code, long session, long seq, byte[] body, int off, int len) throws IOException {
+        byte[] header = WireFrames.header(code, session, seq, len);
+        tag.start(key, direction, seq, false);
+        tag.update(header, 0, header.length);
+        if (len <= ONE_WRITE) {
+            tag.update(body, off, len);
+            out.write(ByteBuffer.wrap(header), ByteBuffer.wrap(body, off, len), ByteBuffer.wrap(tag.finish()));
+            return;
+        }
+        int end = off + len;
+        for (int at = off; at < end; at += ONE_WRITE) {
+            int n = Math.min(ONE_WRITE, end - at);
+            tag.update(body, at, n);
+            ByteBuffer piece = ByteBuffer.wrap(body, at, n);
+            if (at == off) {
+                out.write(ByteBuffer.wrap(header), piece);
+            } else if (at + n == end) {
+                out.write(piece, ByteBuffer.wrap(tag.finish()));
+            } else {
+                out.write(piece);
+            }
+        }
+    }
+
+    /** Writes an untagged reply (UNKNOWN_SESSION, FRAME_REFUSED): information for the peer, not proof. */
+    void writeUntagged(int status, long session, long seq, byte[] body) throws IOException {
+        out.write(ByteBuffer.wrap(WireFrames.header(status, session, seq, body.length)), ByteBuffer.wrap(body), ByteBuffer.wrap(new byte[WireFrames.TAG]));
+    }
+}

@@ -1,0 +1,130 @@
+package io.robomw.agents.host;
+
+import io.robomw.agents.host.trip.VisitorAgent;
+import io.robomw.agents.messaging.TestKeys;
+import org.junit.jupiter.api.AfterEach;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import javax.net.ssl.SSLContext;
+import java.nio.file.Path;
+import java.security.SecureRandom;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.concurrent.TimeUnit;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+/**
+ * Agent protocol version 3 (docs/agents.md, "Wire and store formats"): hops go on the hosts' agent
+ * wire, plain and TLS, with every other call still over RMI; a host of a build before the wire
+ * (version 2 only) still takes agents from hosts of this build and sends them to them, over RMI.
+ */
+class AgentWireTest {
+
+    private static final ClusterKey KEY = ClusterKey.fromPassphrase("agent wire test");
+    private final List<AgentHost> hosts = new ArrayList<>();
+
+    private AgentHost start(AgentHost.Builder b) throws Exception {
+        AgentHost h = b.start();
+        hosts.add(h);
+        return h;
+    }
+
+    @AfterEach
+    void closeHosts() {
+        hosts.forEach(AgentHost::close);
+    }
+
+    @Test
+    void hopsGoOnTheWireAndTheStateArrivesWhole() throws Exception {
+        AgentHost home = start(AgentHost.builder("home").clusterKey(KEY).noMessaging());
+        AgentHost a = start(AgentHost.builder("a").clusterKey(KEY).noMessaging());
+        AgentHost b = start(AgentHost.builder("b").clusterKey(KEY).noMessaging());
+        assertTrue(a.wirePort() > 0 && b.wirePort() > 0 && a.wirePort() != b.wirePort(), a.wirePort() + " " + b.wirePort());
+        // 600 kB: more than the unproven limit, and written in several pieces (WireWriter.ONE_WRITE)
+        VisitorAgent agent = new VisitorAgent().payload(600_000);
+        agent.itinerary().addStop(a.address()).addStop(b.address()).addStop(a.address()).addStop(home.address());
+        assertEquals(List.of("a", "b", "a", "home"), home.startTrip(agent).result().get(20, TimeUnit.SECONDS));
+        // A first arrival is answered NEED_ARCHIVE, the archive goes over RMI, and the transfer comes again: 2 + 1 at a.
+        assertEquals(3, a.wireFramesServed(), "both arrivals at a came on its wire");
+        assertEquals(2, b.wireFramesServed());
+        assertEquals(1, home.wireFramesServed());
+    }
+
+    @Test
+    void durableHostsHopOnTheWireAndKeepNothingOnceTheAgentIsHome(@TempDir Path dir) throws Exception {
+        AgentHost home = start(AgentHost.builder("home").clusterKey(KEY).noMessaging().store(dir.resolve("home")));
+        AgentHost a = start(AgentHost.builder("a").clusterKey(KEY).noMessaging().store(dir.resolve("a")));
+        VisitorAgent agent = new VisitorAgent().payload(300_000);
+        agent.itinerary().addStop(a.address()).addStop(home.address()).addStop(a.address()).addStop(home.address());
+        assertEquals(List.of("a", "home", "a", "home"), home.startTrip(agent).result().get(20, TimeUnit.SECONDS));
+        assertEquals(3, a.wireFramesServed(), "both arrivals at a (the first asked for the archive) came on its wire");
+        AgentHostTest.await(() -> a.agents().isEmpty());
+    }
+
+    @Test
+    void hopsGoOnTheWireOverTlsBetweenHostsWithCertificatesAlone(@TempDir Path dir) throws Exception {
+        TestKeys keys = TestKeys.create(dir);
+        SSLContext before = SSLContext.getDefault();
+        // RMI's client sockets use the JVM's default context (a factory in a stub cannot carry keys); the wire uses the host's own.
+        SSLContext.setDefault(keys.node().context());
+        try {
+            AgentHost home = start(AgentHost.builder("home").tls(keys.node()).noMessaging());
+            AgentHost a = start(AgentHost.builder("a").tls(keys.node()).noMessaging());
+            VisitorAgent agent = new VisitorAgent().payload(300_000);
+            agent.itinerary().addStop(a.address()).addStop(home.address()).addStop(a.address());
+            assertEquals(List.of("a", "home", "a"), home.startTrip(agent).result().get(30, TimeUnit.SECONDS));
+            assertEquals(3, a.wireFramesServed(), "both arrivals at a (the first asked for the archive) came on its TLS wire");
+            assertEquals(1, home.wireFramesServed());
+        } finally {
+            SSLContext.setDefault(before);
+        }
+    }
+
+    @Test
+    void aHostOfABuildBeforeTheWireTakesAndSendsAgentsOverRmi() throws Exception {
+        AgentHost home = start(AgentHost.builder("home").clusterKey(KEY).noMessaging());
+        AgentHost old = start(AgentHost.builder("old").clusterKey(KEY).noMessaging().version2Only());
+        AgentHost a = start(AgentHost.builder("a").clusterKey(KEY).noMessaging());
+        assertEquals(0, old.wirePort(), "a version-2 host offers no wire");
+        VisitorAgent agent = new VisitorAgent().payload(100_000);
+        agent.itinerary().addStop(old.address()).addStop(a.address()).addStop(home.address());
+        assertEquals(List.of("old", "a", "home"), home.startTrip(agent).result().get(20, TimeUnit.SECONDS));
+        assertEquals(0, a.wireFramesServed(), "the version-2 host sent the agent to a over RMI");
+        assertEquals(1, home.wireFramesServed(), "a sent it home on home's wire");
+        assertTrue(old.refused() >= 1, "the old host refused home's version-3 authentication, naming its version, once");
+
+        PeerLink toOld = new PeerLink(HostAddress.parse(old.address()), "probe", KEY, new HostSockets.Client("127.0.0.1", false, 10_000), new SecureRandom());
+        assertEquals(Reply.Status.OK, toOld.call(Op.LIST, new byte[0]).status());
+        assertEquals(Session.PROTOCOL_VERSION, toOld.version(), "the link fell back to version 2");
+        assertEquals(0, toOld.wirePort());
+        PeerLink oldPeer = new PeerLink(HostAddress.parse(a.address()), "old-peer", KEY, new HostSockets.Client("127.0.0.1", false, 10_000),
+                new SecureRandom());
+        oldPeer.proposeVersion2Only();
+        assertEquals(Reply.Status.OK, oldPeer.call(Op.LIST, new byte[0]).status());
+        assertEquals(Session.PROTOCOL_VERSION, oldPeer.version(), "a host of this build takes version 2 from an old peer");
+        PeerLink toNew = new PeerLink(HostAddress.parse(a.address()), "probe", KEY, new HostSockets.Client("127.0.0.1", false, 10_000), new SecureRandom());
+        assertEquals(Reply.Status.OK, toNew.call(Op.LIST, new byte[0]).status());
+        assertEquals(Session.WIRE_VERSION, toNew.version());
+        assertEquals(a.wirePort(), toNew.wirePort(), "the answer names the host's wire port");
+    }
+
+    @Test
+    void aHostWithItsWireOffTakesAndSendsAgentsOverRmi() throws Exception {
+        AgentHost home = start(AgentHost.builder("home").clusterKey(KEY).noMessaging());
+        AgentHost off = start(AgentHost.builder("off").clusterKey(KEY).noMessaging().wire(false));
+        AgentHost a = start(AgentHost.builder("a").clusterKey(KEY).noMessaging());
+        assertEquals(0, off.wirePort());
+        VisitorAgent agent = new VisitorAgent().payload(100_000);
+        agent.itinerary().addStop(off.address()).addStop(a.address()).addStop(home.address());
+        assertEquals(List.of("off", "a", "home"), home.startTrip(agent).result().get(20, TimeUnit.SECONDS));
+        assertEquals(0, a.wireFramesServed(), "the host with its wire off sent the agent to a over RMI");
+        assertEquals(1, home.wireFramesServed(), "a sent it home on home's wire");
+        PeerLink toOff = new PeerLink(HostAddress.parse(off.address()), "probe", KEY, new HostSockets.Client("127.0.0.1", false, 10_000), new SecureRandom());
+        assertEquals(Reply.Status.OK, toOff.call(Op.LIST, new byte[0]).status());
+        assertEquals(Session.WIRE_VERSION, toOff.version(), "it speaks version 3");
+        assertEquals(0, toOff.wirePort(), "and offers no wire");
+    }
+}
