@@ -78,8 +78,11 @@ final class ReadLeadership {
     }
 
     /**
-     * A waiting thread no longer asks to lead (it got its reply, or stopped waiting). If it was
-     * woken to lead and nobody leads, the next one is woken instead.
+     * A waiting thread no longer asks to lead (it got its reply, or stopped waiting). If it may
+     * have been woken to lead and nobody leads, the next follower is woken instead (or the reader
+     * thread, if it must lead next); with no follower left the reader thread takes over when it
+     * next looks, as after {@link #release}: waking it now would mostly put it back in a read just
+     * before this thread, which waited for replies, sends and waits again.
      *
      * @param t the thread
      */
@@ -90,7 +93,7 @@ final class ReadLeadership {
                 following = followers.size();
             }
             if (leader == null && !closed) {
-                next = nextLocked();
+                next = readerNext ? reader : followers.peekFirst();
             }
         }
         LockSupport.unpark(next);
@@ -137,8 +140,4 @@ final class ReadLeadership {
         LockSupport.unpark(r);
     }
 
-    private Thread nextLocked() {
-        Thread f = readerNext ? null : followers.peekFirst();
-        return f != null ? f : reader;
-    }
 }
