@@ -212,10 +212,13 @@ public class IntelligentInterfaceEmulatorTest {
             int bothForward = IntelligentInterfaceTelegram.withMotor(IntelligentInterfaceTelegram.withMotor(0, 0, IntelligentInterfaceTelegram.CW),
                     1, IntelligentInterfaceTelegram.CW);
             byte[] request = IntelligentInterfaceTelegram.request(IntelligentInterfaceTelegram.DIGITAL, bothForward);
+            // Timed from before the write: the interface's 300 ms count from the command's arrival,
+            // which is after it; a time taken after reading the answer would start late by however
+            // long a busy machine kept this thread from waking.
+            long sent = System.nanoTime();
             link.write(request, 0, request.length);
             byte[] reply = new byte[1];
             assertEquals(1, link.read(reply, 0, 1, Duration.ofSeconds(2)));
-            long sent = System.nanoTime();
             long deadline = sent + Duration.ofSeconds(2).toNanos();
             while (!stack.emulator().motorsOn()) {
                 assertTrue(System.nanoTime() < deadline, "the motors should have started");
