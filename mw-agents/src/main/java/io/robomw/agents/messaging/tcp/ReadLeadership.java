@@ -9,11 +9,14 @@ import java.util.concurrent.locks.LockSupport;
  * each leader sees everything its predecessor read (the connection's frame buffer and counters).
  *
  * <p>A waiting thread leads when nobody does; one that finds a leader <em>follows</em> (asks to
- * lead next). Whoever releases wakes the next leader: the first follower, else the reader thread,
- * which takes leadership only when no follower asks for it, and gives it up (between frames, when
- * it would have to block) as soon as one does. {@link #releaseToReader} hands it to the reader
- * thread whatever follows: a waiting thread never runs listeners, so it leaves a frame for one,
- * and all that comes after it, to the reader thread.
+ * lead next). Whoever releases wakes the first follower; with none, the reader thread takes
+ * leadership back: woken at once if bytes are known to wait, else when it next looks (it looks
+ * every millisecond while it does not lead; {@code TcpConnection.READER_LOOKS_NANOS}), so that a
+ * thread that sends and waits over and over finds leadership free rather than the reader thread
+ * blocked in a read. The reader thread takes leadership only when no follower asks for it, and
+ * gives it up (between frames, when it would have to block) as soon as one does.
+ * {@link #releaseToReader} hands it to the reader thread whatever follows: a waiting thread never
+ * runs listeners, so it leaves a frame for one, and all that comes after it, to the reader thread.
  *
  * <p>Thread-safe.
  */
@@ -101,8 +104,7 @@ final class ReadLeadership {
 
     /**
      * The leader stops leading: the first follower is woken to lead; if none, the reader thread is
-     * woken if frames wait, else it takes over when it next looks (it looks every
-     * {@code readerLooksNanos} while it does not lead), so that a thread that waits for replies
+     * woken if frames wait, else it takes over when it next looks, so that a thread that waits for replies
      * one after the other finds leadership free again instead of the reader thread blocked in a read.
      *
      * @param framesWait whether bytes of the stream are known to wait (buffered or in the socket)
