@@ -24,7 +24,9 @@ import java.util.Optional;
  * @param tls                 mutual TLS for TCP and RMI, or {@code null} for plain connections
  * @param allowList           the classes payload objects may contain
  * @param replySpin           how long a thread waiting for a reply spins before it parks (a reply on loopback or a LAN
- *                            often comes sooner, and waking a parked thread can cost tens of microseconds); zero never spins
+ *                            often comes sooner, and waking a parked thread can cost tens of microseconds); zero never
+ *                            spins: over plain TCP the waiting thread then reads the link itself while no other thread
+ *                            does, so the reply wakes it directly (docs/messaging.md, "Performance")
  * @param limits              what peers may make the node hold: connections, subscriptions, topic length, and the
  *                            first-frame and idle timeouts of connections ({@link PeerLimits})
  */

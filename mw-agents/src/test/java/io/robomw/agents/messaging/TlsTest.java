@@ -53,6 +53,19 @@ class TlsTest {
     }
 
     @Test
+    void aCallerWithoutReplySpinGetsItsRepliesOverTls() {
+        // Without a reply spin a caller reads a plain link itself; a TLS link stays with its reader thread (and its read timeout).
+        MessagingSettings noSpin = MessagingSettings.defaults().withTls(keys.node()).withReplySpin(Duration.ZERO);
+        MessagingNode server = node("server", noSpin, "tcp://127.0.0.1:0");
+        server.addMessageListener("echo", null, m -> server.replyMessage(m, m.payload(), "ok"));
+        MessagingNode client = node("client", noSpin, null);
+        for (int i = 0; i < 200; i++) {
+            UUID id = client.sendMessage("server", server.address("tcp"), null, "echo", "over tls " + i, "say");
+            assertEquals("over tls " + i, client.waitForReply(id, Duration.ofSeconds(10)).payload());
+        }
+    }
+
+    @Test
     void clientWithAnUntrustedKeyIsTurnedAway() {
         MessagingNode server = node("server", MessagingSettings.defaults().withTls(keys.node()), "tcp://127.0.0.1:0");
         List<Object> got = new CopyOnWriteArrayList<>();

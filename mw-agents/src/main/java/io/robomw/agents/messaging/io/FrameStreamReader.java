@@ -140,6 +140,28 @@ public final class FrameStreamReader {
         return start;
     }
 
+    /** @return how many bytes after the current frame are buffered */
+    public int buffered() {
+        return end - start - pending;
+    }
+
+    /**
+     * @return whether the frame after the current one is already whole in the buffer (or its
+     *         prefix is bad), so that {@link #next()} returns without reading the stream
+     */
+    public boolean hasWholeFrame() {
+        int at = start + pending;
+        int have = end - at;
+        if (have < FrameCodec.PREFIX_LENGTH) {
+            return false;
+        }
+        try {
+            return have >= FrameCodec.declaredLength(buf, at, maxFrameSize);
+        } catch (FrameException e) {
+            return true;
+        }
+    }
+
     /** @return the buffer's size now: what the stream holds of this connection's memory */
     public int capacity() {
         return buf.length;

@@ -3,7 +3,9 @@ package io.robomw.agents.messaging.tcp;
 import io.robomw.agents.messaging.Address;
 import io.robomw.agents.messaging.DropReason;
 import io.robomw.agents.messaging.PeerLimits;
+import io.robomw.agents.messaging.frame.FrameCodec;
 import io.robomw.agents.messaging.frame.FrameException;
+import io.robomw.agents.messaging.frame.FrameKind;
 import io.robomw.agents.messaging.io.FrameStreamReader;
 import io.robomw.agents.messaging.io.OutboundBuffer;
 import io.robomw.agents.messaging.spi.Link;
@@ -18,9 +20,11 @@ import java.io.OutputStream;
 import java.net.Socket;
 import java.net.SocketException;
 import java.net.SocketTimeoutException;
+import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicBoolean;
 import java.util.concurrent.atomic.AtomicLong;
+import java.util.concurrent.locks.LockSupport;
 
 /**
  * One TCP connection, accepted or opened: a reader thread that frames the stream and hands each
@@ -31,11 +35,29 @@ import java.util.concurrent.atomic.AtomicLong;
  * timeouts of a plain connection are kept by its transport's {@link ConnectionTimeouts} (the
  * reader blocks in {@code read} without a socket timeout); a TLS connection's by its socket's read
  * timeout.
+ *
+ * <p>A plain connection is read by one thread at a time, its <em>leader</em> ({@link ReadLeadership}):
+ * the reader thread, or a thread waiting in {@code waitForReply} for a reply on it, which then reads
+ * the socket itself (with a read timeout bounded by its deadline) and handles replies, keep-alives
+ * and subscriptions as the reader thread would, so its reply reaches it without a thread hand-off.
+ * A waiting thread never runs listeners: the first message or publication it reads it leaves, not
+ * handled, to the reader thread, which handles it and everything after it in the order they came.
+ * TLS connections are read by their reader thread only.
  */
 final class TcpConnection implements Link, ConnectionTimeouts.Watched {
 
     private static final Logger LOG = LoggerFactory.getLogger(TcpConnection.class);
     private static final long DRAIN_NANOS = 1_000_000_000L;
+    /**
+     * The longest one read of a waiting thread blocks: then it looks at its interrupt status (a
+     * socket read does not end on {@code interrupt}) and reads again.
+     */
+    private static final int WAIT_SLICE_MILLIS = 20;
+    /**
+     * How often the reader thread looks whether leadership is free while it does not lead: the
+     * longest a frame that arrives just after a waiting thread stopped reading waits to be read.
+     */
+    static final long READER_LOOKS_NANOS = 1_000_000;
 
     private final Socket socket;
     private final Address address;
@@ -54,6 +76,15 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
     /** Why the timer closed it, or {@code null}. */
     private volatile String timedOut;
     private volatile Thread reader;
+    private final FrameStreamReader frames;
+    /** Whether threads waiting for a reply may read it (plain TCP; TLS keeps its reader thread). */
+    private final boolean leadable;
+    private final ReadLeadership leadership = new ReadLeadership();
+    // The leader's state (handed over with leadership):
+    /** The length of the current frame if it was read and left to the reader thread, else -1. */
+    private int undispatched = -1;
+    /** The socket's read timeout as last set, in ms (0: none). */
+    private int readTimeoutMillis;
 
     TcpConnection(Socket socket, Address address, String peer, TransportContext context, java.util.List<AutoCloseable> registry,
                   ConnectionTimeouts timeouts) throws IOException {
@@ -78,6 +109,11 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
         this.in = socket.getInputStream();
         this.out = socket.getOutputStream();
         this.outbound = new OutboundBuffer(peer, context.settings().outboundBufferBytes(), context.settings().sendTimeout().toNanos());
+        this.leadable = this.timeouts != null;
+        PeerLimits limits = context.settings().limits();
+        this.frames = leadable ? new FrameStreamReader(in, context.settings().maxFrameSize())
+                : new FrameStreamReader(in, context.settings().maxFrameSize(),
+                new FrameStreamReader.Timeouts(socket::setSoTimeout, limits.firstFrameTimeout().toNanos(), limits.idleTimeout().toNanos()));
     }
 
     void start() {
@@ -95,6 +131,7 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
         }, context.threads(role + "-write"), e -> fail("write failed: " + e.getMessage()));
         Thread t = context.threads(role + "-read").newThread(this::readLoop);
         reader = t;
+        leadership.reader(t);
         t.start();
     }
 
@@ -143,7 +180,8 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
     public void close() {
         if (closed.compareAndSet(false, true)) {
             outbound.close();
-            if (Thread.currentThread() != reader) {
+            Thread me = Thread.currentThread();
+            if (me != reader && !leadership.leads(me)) {
                 outbound.awaitDrained(DRAIN_NANOS);
             }
             try {
@@ -157,6 +195,7 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
             }
             onClose.run();
             context.closed(this);
+            leadership.close();
         }
     }
 
@@ -184,43 +223,195 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
 
     private void readLoop() {
         PeerLimits limits = context.settings().limits();
-        FrameStreamReader frames = timeouts != null ? new FrameStreamReader(in, context.settings().maxFrameSize())
-                : new FrameStreamReader(in, context.settings().maxFrameSize(),
-                new FrameStreamReader.Timeouts(socket::setSoTimeout, limits.firstFrameTimeout().toNanos(), limits.idleTimeout().toNanos()));
+        Thread me = Thread.currentThread();
         try {
             if (socket instanceof SSLSocket ssl) {
                 socket.setSoTimeout((int) limits.firstFrameTimeout().toMillis());
                 ssl.startHandshake();
             }
-            int length;
-            long p = 0;
-            while ((length = frames.next()) >= 0) {
-                progress.lazySet(++p); // odd: the node has the frame (plain stores: the timer reads them a few times per timeout)
-                context.onFrame(frames.buffer(), frames.offset(), length, this);
-                progress.lazySet(++p);
+            while (!closed.get()) {
+                if (!leadership.tryLead(me)) {
+                    LockSupport.parkNanos(this, READER_LOOKS_NANOS);
+                    continue;
+                }
+                if (!leadAsReader()) {
+                    return;
+                }
             }
-        } catch (FrameException e) {
-            context.dropped(e.reason(), peer, e.getMessage() + "; closing this connection");
         } catch (SocketTimeoutException e) {
             if (!closed.get()) {
                 context.dropped(DropReason.TIMED_OUT, peer, "no TLS handshake within " + limits.firstFrameTimeout().toMillis()
                         + " ms; closing this connection");
             }
-        } catch (SocketException e) {
+        } catch (FrameException | IOException | RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+            ended(e);
+        } finally {
+            close();
+        }
+    }
+
+    /**
+     * Reads and handles frames as the leader on the reader thread, until the stream ends or a
+     * waiting thread asks to lead at a moment this one would block.
+     *
+     * @return {@code false} at the end of the stream
+     */
+    private boolean leadAsReader() throws IOException, FrameException {
+        if (leadable) {
+            readTimeout(0);
+        }
+        long p = progress.get();
+        if (undispatched >= 0) {
+            int length = undispatched;
+            undispatched = -1;
+            context.onFrame(frames.buffer(), frames.offset(), length, this);
+            progress.lazySet(++p);
+        }
+        int length;
+        while (true) {
+            if (leadable && leadership.followersWaiting() && !frames.hasWholeFrame()) {
+                leadership.release(false);
+                return true;
+            }
+            if ((length = frames.next()) < 0) {
+                return false;
+            }
+            progress.lazySet(++p); // odd: the node has the frame (plain stores: the timer reads them a few times per timeout)
+            context.onFrame(frames.buffer(), frames.offset(), length, this);
+            progress.lazySet(++p);
+        }
+    }
+
+    @Override
+    public void receiveUntil(CompletableFuture<?> reply, long deadlineNanos) {
+        if (!leadable) {
+            return;
+        }
+        Thread me = Thread.currentThread();
+        boolean following = false;
+        boolean told = false;
+        try {
+            while (!reply.isDone() && !closed.get() && !me.isInterrupted()) {
+                long left = deadlineNanos - System.nanoTime();
+                if (left <= 0) {
+                    return;
+                }
+                if (leadership.tryLead(me)) {
+                    following = false;
+                    if (!leadAsCaller(reply, deadlineNanos)) {
+                        return;
+                    }
+                } else if (!following) {
+                    // asks to lead next, then looks again (the leader may have released meanwhile)
+                    leadership.follow(me);
+                    following = true;
+                    if (!told) {
+                        reply.whenComplete((r, e) -> LockSupport.unpark(me));
+                        told = true;
+                    }
+                } else {
+                    LockSupport.parkNanos(this, left);
+                }
+            }
+        } finally {
+            if (following) {
+                leadership.unfollow(me);
+            }
+        }
+    }
+
+    /**
+     * Reads and handles frames as the leader on a thread waiting for {@code reply}, until it is
+     * done, the deadline passes or the thread is interrupted; then hands leadership on.
+     *
+     * @return {@code false} if the thread must stop reading for this wait (a frame for a listener
+     *         came, or the connection ended), {@code true} to look at the reply and the deadline
+     */
+    private boolean leadAsCaller(CompletableFuture<?> reply, long deadlineNanos) {
+        boolean toReader = false;
+        long p = progress.get();
+        try {
+            while (!reply.isDone()) {
+                long left = deadlineNanos - System.nanoTime();
+                if (left <= 0 || closed.get() || Thread.currentThread().isInterrupted()) {
+                    return true;
+                }
+                readTimeout((int) Math.min(WAIT_SLICE_MILLIS, TimeUnit.NANOSECONDS.toMillis(left) + 1));
+                int length;
+                try {
+                    length = frames.next();
+                } catch (SocketTimeoutException e) {
+                    continue; // no whole frame within the slice; what arrived of one stays buffered
+                }
+                if (length < 0) {
+                    close();
+                    return false;
+                }
+                progress.lazySet(++p);
+                byte kind = frames.buffer()[frames.offset() + FrameCodec.KIND_OFFSET];
+                if (kind == FrameKind.MESSAGE.code() || kind == FrameKind.PUBLISH.code()) {
+                    // listeners run on the reader thread, this frame first, in order
+                    undispatched = length;
+                    toReader = true;
+                    return false;
+                }
+                context.onFrame(frames.buffer(), frames.offset(), length, this);
+                progress.lazySet(++p);
+            }
+            return true;
+        } catch (FrameException | IOException | RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+            ended(e);
+            close();
+            return false;
+        } finally {
+            if ((p & 1) == 1 && !toReader) {
+                progress.lazySet(++p); // a frame whose handling failed still counts as handled
+            }
+            if (toReader) {
+                leadership.releaseToReader();
+            } else {
+                leadership.release(framesWait());
+            }
+        }
+    }
+
+    /** @return whether bytes of the stream wait to be read (buffered, or in the socket); on the leader */
+    private boolean framesWait() {
+        if (closed.get() || frames.buffered() > 0) {
+            return true;
+        }
+        try {
+            return in.available() > 0;
+        } catch (IOException e) {
+            return true;
+        }
+    }
+
+    /** Sets the socket's read timeout if it changed (plain sockets: a field of the socket, no system call). */
+    private void readTimeout(int millis) throws SocketException {
+        if (millis != readTimeoutMillis) {
+            socket.setSoTimeout(millis);
+            readTimeoutMillis = millis;
+        }
+    }
+
+    /** Counts and logs why reading this connection ended (the caller closes it). */
+    private void ended(Throwable e) {
+        if (e instanceof FrameException f) {
+            context.dropped(f.reason(), peer, f.getMessage() + "; closing this connection");
+        } else if (e instanceof SocketException) {
             String why = timedOut;
             if (why != null) {
                 context.dropped(DropReason.TIMED_OUT, peer, why + " (" + frames.arrived() + "); closing this connection");
             } else if (!closed.get()) {
                 LOG.debug("node '{}': connection {} ended: {}", context.nodeName(), peer, e.toString());
             }
-        } catch (IOException e) {
+        } else if (e instanceof IOException) {
             if (!closed.get()) {
                 LOG.warn("node '{}': connection {} failed: {}", context.nodeName(), peer, e.toString());
             }
-        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+        } else {
             LOG.error("node '{}': reading from {} failed ({}); closing this connection, the node goes on", context.nodeName(), peer, e.toString(), e);
-        } finally {
-            close();
         }
     }
 
