@@ -41,6 +41,13 @@ final class HostCommand implements Callable<Integer> {
     @Option(names = "--port", defaultValue = "1099", description = "RMI registry port (default ${DEFAULT-VALUE}; 0 picks a free one)")
     int port;
 
+    @Option(names = "--wire-port", paramLabel = "PORT", defaultValue = "0",
+            description = "port of the host's agent wire, where agents hop to it (default ${DEFAULT-VALUE}: a free one; peers learn it when they authenticate, so only a firewall needs it)")
+    int wirePort;
+
+    @Option(names = "--no-wire", description = "no agent wire: agents hop to and from this host over RMI (protocol version 2 calls)")
+    boolean noWire;
+
     @Option(names = "--bind", defaultValue = "127.0.0.1", description = "address to listen on and be known by (default ${DEFAULT-VALUE})")
     String bind;
 
@@ -134,6 +141,14 @@ final class HostCommand implements Callable<Integer> {
                 err.println("--serve needs a robot (--robot or --world)");
                 return 2;
             }
+            if (noWire && wirePort != 0) {
+                err.println("--wire-port and --no-wire contradict each other; give one");
+                return 2;
+            }
+            if (wirePort < 0 || wirePort > 65535) {
+                err.println("--wire-port " + wirePort + " is not a TCP port (0-65535)");
+                return 2;
+            }
             if (noMessaging && messaging != null) {
                 err.println("--messaging and --no-messaging contradict each other; give one");
                 return 2;
@@ -151,6 +166,7 @@ final class HostCommand implements Callable<Integer> {
             AgentHost.Builder builder = AgentHost.builder(name).bind(bind).port(port).robot(robot).clusterKey(cluster.key()).tls(cluster.tls())
                     .store(store).allow(allow).messagingSettings(settings)
                     .deliveryPolicy(io.robomw.agents.host.DeliveryPolicy.defaults().withExpiry(owedExpiry).withMaxBackoff(owedMaxBackoff));
+            builder.wire(!noWire).wirePort(wirePort);
             if (noMessaging) {
                 builder.noMessaging();
             } else if (messaging != null) {
@@ -185,6 +201,7 @@ final class HostCommand implements Callable<Integer> {
             }
             out.printf("agent host %s ready at %s (robot: %s, store: %s)%n", name, host.address(), robot == null ? "none" : robot.name(),
                     store == null ? "memory" : store);
+            out.printf("agent wire at %s%n", host.wirePort() == 0 ? "none (--no-wire; agents hop over RMI)" : bind + ":" + host.wirePort());
             out.printf("messaging at %s%n", host.messagingAddresses().isEmpty() ? "none (--no-messaging)" : String.join(" ", host.messagingAddresses()));
             if (served != null) {
                 out.printf("robot %s served at %s%n", robot.name(), served);

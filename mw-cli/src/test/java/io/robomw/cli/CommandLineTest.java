@@ -86,6 +86,11 @@ class CommandLineTest {
         assertEquals(2, typo.status());
         assertTrue(typo.err().contains("did you mean describe"), typo.err());
 
+        CliRun wire = CliRun.mw("host", "--name", "h", "--port", "0", "--no-messaging", "--no-wire", "--wire-port", "7001");
+        assertEquals(2, wire.status());
+        assertEquals(1, wire.errLines().size(), wire.err());
+        assertTrue(wire.err().contains("--wire-port and --no-wire contradict each other"), wire.err());
+
         CliRun verbose = CliRun.mw("describe", "--verbose");
         assertEquals(2, verbose.status());
         assertTrue(verbose.err().contains("\tat picocli."), "--verbose adds the trace: " + verbose.err());

@@ -43,8 +43,14 @@ class AgentTripIT {
     static void startHosts() throws Exception {
         assertFalse(HostProcess.middlewareOnlyClassPath().contains("examples"), "the hosts must not have the example agents");
         Path keyFile = keyFile(dir);
+        // h1 and h2 take agents on their agent wire (protocol 3); h3 has none (--no-wire), so the
+        // trip's last hop, and every hop to and from it, goes over RMI: both paths between processes.
         for (String name : List.of("h1", "h2", "h3")) {
-            hosts.add(HostProcess.start(name, "--world", world().toString(), "--world-robot", "sim-1", "--speed", "4", "--key-file", keyFile.toString()));
+            List<String> args = new ArrayList<>(List.of("--world", world().toString(), "--world-robot", "sim-1", "--speed", "4", "--key-file", keyFile.toString()));
+            if (name.equals("h3")) {
+                args.add("--no-wire");
+            }
+            hosts.add(HostProcess.start(name, args.toArray(String[]::new)));
         }
         home = AgentHost.builder("it-home").clusterKey(KEY).start();
     }
@@ -84,6 +90,8 @@ class AgentTripIT {
             assertEquals(1.7, v.range(), 0.15, "front range at " + v.host());
         }
         assertTrue(hosts.get(1).log().contains("received archive"), "h2 was sent the agent's code");
+        assertTrue(hosts.get(0).wire().matches("127\\.0\\.0\\.1:[1-9][0-9]*"), "h1 has an agent wire: " + hosts.get(0).wire());
+        assertTrue(hosts.get(2).wire().startsWith("none"), "h3 has none: " + hosts.get(2).wire());
     }
 
     @Test

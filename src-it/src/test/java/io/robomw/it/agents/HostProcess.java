@@ -34,6 +34,7 @@ public final class HostProcess implements AutoCloseable {
     private final Path log;
     private Process process;
     private String messaging;
+    private String wire;
     private String served;
 
     private HostProcess(String name, int port, List<String> hostArgs) throws IOException {
@@ -61,6 +62,11 @@ public final class HostProcess implements AutoCloseable {
 
     public String address() {
         return "rmi://127.0.0.1:" + port + "/" + name;
+    }
+
+    /** @return where its agent wire listens, as it printed it (HOST:PORT, or "none (--no-wire; ...)") */
+    String wire() {
+        return wire;
     }
 
     /** @return the address its messaging node receives at, as it printed it ("none (--no-messaging)" without one) */
@@ -105,6 +111,9 @@ public final class HostProcess implements AutoCloseable {
             if (line == null || StdoutLines.ended(line)) {
                 close();
                 fail("agent host " + name + " did not start within " + START + " (log: " + log + ")");
+            }
+            if (line.startsWith("agent wire at ")) {
+                wire = line.substring("agent wire at ".length()).strip();
             }
             if (line.startsWith("messaging at ")) {
                 messaging = line.substring("messaging at ".length()).split(" ")[0];
