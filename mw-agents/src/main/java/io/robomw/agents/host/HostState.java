@@ -43,6 +43,8 @@ final class HostState {
     final HostActivity activity = new HostActivity();
     /** Runs agents' stops, one pooled thread per agent at a time; its idle threads spin {@link #runnerSpinNanos} before they park. */
     final ExecutorService runners;
+    /** The arrays of large outgoing transfers, reused hop after hop. */
+    final FrameBuffers frameBuffers = new FrameBuffers();
     /** How long a runner waits for work by spinning before it parks, ns (0: never spins). */
     final long runnerSpinNanos;
     /** Runs the home's calls to its agents (messages, retract and dispose requests) and clone launches. */

@@ -185,7 +185,7 @@ final class PeerLink {
             byte[] raw;
             try {
                 s.seal(n, opCode, frame);
-                raw = remote.call(frame.bytes);
+                raw = remote.call(frame.exact());
             } catch (RemoteException e) {
                 drop();
                 if (attempt == 0 && refusedAsUnproven(e)) {

@@ -133,7 +133,7 @@ final class WireChannel implements AutoCloseable {
         }
         checking.start(session.frameKey, WireFrames.DIRECTION_REPLY, seq, true);
         byte[] f = reader.frame(h, checking);
-        if (!checking.check(f, f.length - WireFrames.TAG)) {
+        if (!checking.check(f, (int) h.frameLength() - WireFrames.TAG)) {
             throw new WireFrames.FrameRefused("host " + peer + " sent a reply with a wrong tag: not from the host the session was made with");
         }
         Reply.Status status;

@@ -401,7 +401,8 @@ final class WireServer implements AutoCloseable {
             }
             checking.start(p.session().frameKey, WireFrames.DIRECTION_REQUEST, h.seq(), true);
             byte[] f = reader.frame(h, checking);
-            if (!checking.check(f, f.length - WireFrames.TAG)) {
+            int frameLength = (int) h.frameLength();
+            if (!checking.check(f, frameLength - WireFrames.TAG)) {
                 throw new WireFrames.FrameRefused("wrong tag: not sealed with the key of session " + Long.toHexString(h.session())
                         + " (a changed byte, another key, or a forged session id)");
             }
@@ -423,7 +424,7 @@ final class WireServer implements AutoCloseable {
             }
             writer.write(p.session().frameKey, WireFrames.DIRECTION_REPLY, r.status().code(), h.session(), h.seq(), r.body(), 0, r.body().length);
             HostSockets.Counters c = counters;
-            c.in.add(f.length);
+            c.in.add(frameLength);
             c.out.add(WireFrames.HEADER + r.body().length + WireFrames.TAG);
         }
     }
