@@ -456,6 +456,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         if (wire) {
             wireServer = new WireServer(endpoint, bindAddress, wirePort, ssl, wireLimits);
             wireServer.readSpin(wireReadSpin);
+            wireServer.tagger(state.wireTaggers);
             wireServer.countBytesIn(counters);
             endpoint.wirePort(wireServer.port());
         }
@@ -533,6 +534,7 @@ public final class AgentHost implements Agency, AutoCloseable {
             Thread.currentThread().interrupt();
             state.runners.shutdownNow();
         }
+        state.wireTaggers.shutdown();
         owed.close();
         int held = state.hosted.size();
         if (held > 0) {

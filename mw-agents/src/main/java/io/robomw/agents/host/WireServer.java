@@ -85,6 +85,7 @@ final class WireServer implements AutoCloseable {
     private volatile boolean closing;
     /** How long a connection thread spins for the next frame before it blocks reading (0: never; plain connections only). */
     private volatile long readSpinNanos;
+    private volatile java.util.concurrent.Executor tagger;
 
     /**
      * Binds and starts accepting.
@@ -122,6 +123,11 @@ final class WireServer implements AutoCloseable {
     /** @param spin how long a connection thread spins (yielding) for the next frame before it blocks reading; zero never */
     void readSpin(Duration spin) {
         this.readSpinNanos = spin.toNanos();
+    }
+
+    /** @param tagger computes the tags of large replies while they are written ({@link WireWriter}) */
+    void tagger(java.util.concurrent.Executor tagger) {
+        this.tagger = tagger;
     }
 
     /** @return the port it listens on */
@@ -266,11 +272,11 @@ final class WireServer implements AutoCloseable {
                     ssl.setNeedClientAuth(true);
                     socket = ssl;
                     in = ssl.getInputStream();
-                    writer = new WireWriter(WireWriter.of(new BufferedOutputStream(ssl.getOutputStream(), 32 * 1024)));
+                    writer = new WireWriter(WireWriter.of(new BufferedOutputStream(ssl.getOutputStream(), 32 * 1024)), tagger);
                 } else {
                     socket = channel.socket();
                     in = socket.getInputStream();
-                    writer = new WireWriter(WireWriter.of(channel));
+                    writer = new WireWriter(WireWriter.of(channel), tagger);
                 }
                 WireReader reader = new WireReader(in, socket);
                 loop(reader, writer, socket, in);

@@ -122,6 +122,40 @@ class FrameReuseTest {
     }
 
     @Test
+    void aLargeFrameTaggedWhileItIsWrittenIsByteForByteTheOneTaggedInline() throws Exception {
+        java.util.concurrent.ExecutorService tagger = java.util.concurrent.Executors.newSingleThreadExecutor();
+        try {
+            for (int n : new int[] {0, 100, WireWriter.ONE_WRITE, WireWriter.ONE_WRITE + 1, 1 << 20, 3 * WireWriter.ONE_WRITE - 7}) {
+                byte[] body = random(n + 10, n);
+                ByteArrayOutputStream inline = new ByteArrayOutputStream();
+                new WireWriter(WireWriter.of(inline)).write(FRAME_KEY, WireFrames.DIRECTION_REPLY, 0, 9, 42, body, 5, n);
+                ByteArrayOutputStream parallel = new ByteArrayOutputStream();
+                new WireWriter(WireWriter.of(parallel), tagger).write(FRAME_KEY, WireFrames.DIRECTION_REPLY, 0, 9, 42, body, 5, n);
+                assertArrayEquals(inline.toByteArray(), parallel.toByteArray(), n + " bytes");
+            }
+            // A connection that fails mid-frame: the writer returns only once the tagger is done, and its next frame is whole.
+            int[] writes = {0};
+            ByteArrayOutputStream after = new ByteArrayOutputStream();
+            WireWriter.Out stream = WireWriter.of(after);
+            WireWriter w = new WireWriter(parts -> {
+                if (writes[0]++ == 1) {
+                    throw new java.io.IOException("connection reset");
+                }
+                stream.write(parts);
+            }, tagger);
+            byte[] first = random(1 << 20, 8);
+            assertThrows(java.io.IOException.class, () -> w.write(FRAME_KEY, WireFrames.DIRECTION_REQUEST, 0, 7, 1, first, 0, first.length));
+            after.reset();
+            byte[] second = random(700_000, 9);
+            w.write(FRAME_KEY, WireFrames.DIRECTION_REQUEST, 0, 7, 2, second, 0, second.length);
+            WireReader r = new WireReader(new ByteArrayInputStream(after.toByteArray()), null);
+            assertArrayEquals(second, next(r, new FrameTag()));
+        } finally {
+            tagger.shutdownNow();
+        }
+    }
+
+    @Test
     void frameBuffersKeepOnlyLargeArraysAFewAtATimeAndNeverOneTwice() {
         FrameBuffers pool = new FrameBuffers();
         assertNull(pool.take(1 << 20), "nothing kept yet");
