@@ -2,14 +2,14 @@ package io.robomw.agents.host;
 
 import io.robomw.agents.host.trip.VisitorAgent;
 import io.robomw.agents.messaging.TestKeys;
-import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.extension.RegisterExtension;
 import org.junit.jupiter.api.io.TempDir;
 
 import javax.net.ssl.SSLContext;
 import java.nio.file.Path;
 import java.security.SecureRandom;
-import java.util.ArrayList;
+
 import java.util.List;
 import java.util.concurrent.TimeUnit;
 
@@ -24,18 +24,13 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 class AgentWireTest {
 
     private static final ClusterKey KEY = ClusterKey.fromPassphrase("agent wire test");
-    private final List<AgentHost> hosts = new ArrayList<>();
+    @RegisterExtension
+    final StartedHosts hosts = new StartedHosts();
 
     private AgentHost start(AgentHost.Builder b) throws Exception {
-        AgentHost h = b.start();
-        hosts.add(h);
-        return h;
+        return hosts.start(b);
     }
 
-    @AfterEach
-    void closeHosts() {
-        hosts.forEach(AgentHost::close);
-    }
 
     @Test
     void hopsGoOnTheWireAndTheStateArrivesWhole() throws Exception {
