@@ -1,8 +1,8 @@
 package io.robomw.agents.host;
 
 import io.robomw.agents.host.trip.ResizingAgent;
-import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.extension.RegisterExtension;
 
 import javax.crypto.spec.SecretKeySpec;
 import java.io.ByteArrayInputStream;
@@ -33,12 +33,8 @@ class FrameReuseTest {
 
     private static final ClusterKey KEY = ClusterKey.fromPassphrase("frame reuse test");
     private static final SecretKeySpec FRAME_KEY = new SecretKeySpec(new byte[32], "AES");
-    private final List<AgentHost> hosts = new ArrayList<>();
-
-    @AfterEach
-    void closeHosts() {
-        hosts.forEach(AgentHost::close);
-    }
+    @RegisterExtension
+    final StartedHosts hosts = new StartedHosts();
 
     private static byte[] random(int n, long seed) {
         byte[] b = new byte[n];
@@ -210,8 +206,6 @@ class FrameReuseTest {
     }
 
     private AgentHost start(AgentHost.Builder builder) throws Exception {
-        AgentHost h = builder.start();
-        hosts.add(h);
-        return h;
+        return hosts.start(builder);
     }
 }
