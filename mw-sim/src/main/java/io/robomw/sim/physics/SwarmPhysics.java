@@ -834,23 +834,82 @@ public final class SwarmPhysics implements Physics {
                     vbx += imB * fx;
                     vby += imB * fy;
                     wb += iiB * (rbx * fy - rby * fx);
-                    // normal
-                    dvx = vbx - wb * rby - vax + wa * ray;
-                    dvy = vby + wb * rbx - vay - wa * rax;
-                    double vn = dvx * nx + dvy * ny;
-                    double ln = (-vn + c.bias[q]) * c.normalMass[q];
-                    double oldN = c.normalImpulse[q];
-                    double newN = Math.max(0, oldN + ln);
-                    ln = newN - oldN;
-                    c.normalImpulse[q] = newN;
-                    double jx = ln * nx;
-                    double jy = ln * ny;
-                    vax -= imA * jx;
-                    vay -= imA * jy;
-                    wa -= iiA * (rax * jy - ray * jx);
-                    vbx += imB * jx;
-                    vby += imB * jy;
-                    wb += iiB * (rbx * jy - rby * jx);
+                }
+                // normal: both points at once when there are two (a face on a face), so that the
+                // impulse is shared between them as the lever arms say rather than in solve order
+                if (c.points[k] == 2 && c.block[k]) {
+                    int q = 2 * k;
+                    double r1ax = c.rAx[q];
+                    double r1ay = c.rAy[q];
+                    double r1bx = c.rBx[q];
+                    double r1by = c.rBy[q];
+                    double r2ax = c.rAx[q + 1];
+                    double r2ay = c.rAy[q + 1];
+                    double r2bx = c.rBx[q + 1];
+                    double r2by = c.rBy[q + 1];
+                    double vn1 = (vbx - wb * r1by - vax + wa * r1ay) * nx + (vby + wb * r1bx - vay - wa * r1ax) * ny;
+                    double vn2 = (vbx - wb * r2by - vax + wa * r2ay) * nx + (vby + wb * r2bx - vay - wa * r2ax) * ny;
+                    double a1 = c.normalImpulse[q];
+                    double a2 = c.normalImpulse[q + 1];
+                    double k11 = c.k11[k];
+                    double k22 = c.k22[k];
+                    double k12 = c.k12[k];
+                    // the velocities (less the bias) were there no impulse yet: find impulses x >= 0 with K x + b >= 0, complementary
+                    double b1 = vn1 - c.bias[q] - (k11 * a1 + k12 * a2);
+                    double b2 = vn2 - c.bias[q + 1] - (k12 * a1 + k22 * a2);
+                    double det = k11 * k22 - k12 * k12;
+                    double x1 = -(k22 * b1 - k12 * b2) / det;
+                    double x2 = -(k11 * b2 - k12 * b1) / det;
+                    if (!(x1 >= 0 && x2 >= 0)) {
+                        x1 = -b1 / k11;
+                        x2 = 0;
+                        if (!(x1 >= 0 && k12 * x1 + b2 >= 0)) {
+                            x1 = 0;
+                            x2 = -b2 / k22;
+                            if (!(x2 >= 0 && k12 * x2 + b1 >= 0)) {
+                                x1 = 0;
+                                x2 = 0;
+                            }
+                        }
+                    }
+                    double d1 = x1 - a1;
+                    double d2 = x2 - a2;
+                    c.normalImpulse[q] = x1;
+                    c.normalImpulse[q + 1] = x2;
+                    double p1x = d1 * nx;
+                    double p1y = d1 * ny;
+                    double p2x = d2 * nx;
+                    double p2y = d2 * ny;
+                    vax -= imA * (p1x + p2x);
+                    vay -= imA * (p1y + p2y);
+                    wa -= iiA * (r1ax * p1y - r1ay * p1x + r2ax * p2y - r2ay * p2x);
+                    vbx += imB * (p1x + p2x);
+                    vby += imB * (p1y + p2y);
+                    wb += iiB * (r1bx * p1y - r1by * p1x + r2bx * p2y - r2by * p2x);
+                } else {
+                    for (int p = 0; p < c.points[k]; p++) {
+                        int q = 2 * k + p;
+                        double rax = c.rAx[q];
+                        double ray = c.rAy[q];
+                        double rbx = c.rBx[q];
+                        double rby = c.rBy[q];
+                        double dvx = vbx - wb * rby - vax + wa * ray;
+                        double dvy = vby + wb * rbx - vay - wa * rax;
+                        double vn = dvx * nx + dvy * ny;
+                        double ln = (-vn + c.bias[q]) * c.normalMass[q];
+                        double oldN = c.normalImpulse[q];
+                        double newN = Math.max(0, oldN + ln);
+                        ln = newN - oldN;
+                        c.normalImpulse[q] = newN;
+                        double jx = ln * nx;
+                        double jy = ln * ny;
+                        vax -= imA * jx;
+                        vay -= imA * jy;
+                        wa -= iiA * (rax * jy - ray * jx);
+                        vbx += imB * jx;
+                        vby += imB * jy;
+                        wb += iiB * (rbx * jy - rby * jx);
+                    }
                 }
                 vx[a] = vax;
                 vy[a] = vay;
@@ -940,6 +999,11 @@ public final class SwarmPhysics implements Physics {
         double[] bias = new double[32];
         double[] normalImpulse = new double[32];
         double[] tangentImpulse = new double[32];
+        /** Of a two-point contact: the normal's 2 × 2 effective mass matrix, and whether it is well conditioned. */
+        double[] k11 = new double[16];
+        double[] k22 = new double[16];
+        double[] k12 = new double[16];
+        boolean[] block = new boolean[16];
         /** Scratch of the detecting thread. */
         final double[] scratchA = new double[8];
         final double[] scratchB = new double[8];
@@ -961,6 +1025,10 @@ public final class SwarmPhysics implements Physics {
             normalX = Arrays.copyOf(normalX, c);
             normalY = Arrays.copyOf(normalY, c);
             mu = Arrays.copyOf(mu, c);
+            k11 = Arrays.copyOf(k11, c);
+            k22 = Arrays.copyOf(k22, c);
+            k12 = Arrays.copyOf(k12, c);
+            block = Arrays.copyOf(block, c);
             pointX = Arrays.copyOf(pointX, 2 * c);
             pointY = Arrays.copyOf(pointY, 2 * c);
             depth = Arrays.copyOf(depth, 2 * c);
@@ -1027,6 +1095,22 @@ public final class SwarmPhysics implements Physics {
                     normalImpulse[q] = 0;
                     tangentImpulse[q] = 0;
                 }
+                block[k] = false;
+                if (points[k] == 2) {
+                    int q = 2 * k;
+                    double rn1A = rAx[q] * ny - rAy[q] * nx;
+                    double rn1B = rBx[q] * ny - rBy[q] * nx;
+                    double rn2A = rAx[q + 1] * ny - rAy[q + 1] * nx;
+                    double rn2B = rBx[q + 1] * ny - rBy[q + 1] * nx;
+                    double a11 = imA + imB + iiA * rn1A * rn1A + iiB * rn1B * rn1B;
+                    double a22 = imA + imB + iiA * rn2A * rn2A + iiB * rn2B * rn2B;
+                    double a12 = imA + imB + iiA * rn1A * rn2A + iiB * rn1B * rn2B;
+                    k11[k] = a11;
+                    k22[k] = a22;
+                    k12[k] = a12;
+                    // two points too close together make the matrix singular: then one at a time
+                    block[k] = a11 * a11 < 1000 * (a11 * a22 - a12 * a12);
+                }
             }
         }
 
@@ -1043,6 +1127,10 @@ public final class SwarmPhysics implements Physics {
             System.arraycopy(o.normalX, 0, normalX, size, m);
             System.arraycopy(o.normalY, 0, normalY, size, m);
             System.arraycopy(o.mu, 0, mu, size, m);
+            System.arraycopy(o.k11, 0, k11, size, m);
+            System.arraycopy(o.k22, 0, k22, size, m);
+            System.arraycopy(o.k12, 0, k12, size, m);
+            System.arraycopy(o.block, 0, block, size, m);
             int s2 = 2 * size;
             int m2 = 2 * m;
             System.arraycopy(o.pointX, 0, pointX, s2, m2);
