@@ -305,11 +305,10 @@ public final class SimWorld implements AutoCloseable {
         double own = Math.min(robot.body().length(), robot.body().width()) / 4;
         if (perStep > Math.min(own, thinnestStatic)) {
             throw new IllegalArgumentException(String.format(java.util.Locale.ROOT,
-                    "world '%s' (%s): robot '%s' (%s) moves up to %.4f m per physics step (max_speed %.3f m/s at physics_hz %.0f); "
-                            + "the swarm engine has no continuous collision detection and allows at most %.4f m (a quarter of the "
-                            + "robot's width, half the thinnest wall or obstacle): raise physics_hz or use physics engine dyn4j",
-                    description.name(), description.source(), name, robot.source(), perStep, perStep / stepSeconds, physicsHz,
-                    Math.min(own, thinnestStatic)));
+                    "robot '%s' moves up to %.4f m per physics step (max_speed %.3f m/s at physics_hz %.0f); the swarm engine "
+                            + "has no continuous collision detection and allows at most %.4f m (a quarter of the robot's width, half "
+                            + "the thinnest wall or obstacle): raise physics_hz or use physics engine dyn4j",
+                    name, perStep, perStep / stepSeconds, physicsHz, Math.min(own, thinnestStatic)));
         }
     }
 
