@@ -14,8 +14,8 @@ import java.util.Arrays;
  * bodies do not sink into each other.
  *
  * <h2>Threads and repeatability</h2>
- * Contact detection and integration run on the world's worker threads ({@link Parallel});
- * detection works through the bodies in fixed batches of {@value #BATCH}, each writing its contacts
+ * Contact detection runs on the world's worker threads ({@link Parallel}) from {@value #PARALLEL_BODIES}
+ * bodies on; it works through the bodies in fixed batches of {@value #BATCH}, each writing its contacts
  * to a buffer of its own, and the buffers are joined in batch order, so the contacts and therefore
  * the sequential solve (on the stepping thread) come in the same order whatever the number of
  * threads: the same commands give the same trajectories bit for bit on 1, 2 or 3 threads. Angles
@@ -46,10 +46,16 @@ public final class SwarmPhysics implements Physics {
     public static final double STATIC_FRICTION = 0.2;
     /** Bodies per detection batch: fixed, so the order of contacts does not depend on the threads. */
     static final int BATCH = 32;
+    /**
+     * Bodies from which detection is split between the worker threads: below, a hand-over (30-80 µs
+     * on the loaded 2-core machine) costs more than detection itself (about 50 ns a body).
+     */
+    public static final int PARALLEL_BODIES = 2048;
     /** Largest correction speed from penetration, m/s. */
     private static final double MAX_CORRECTION_SPEED = 2.0;
 
     private final Parallel parallel;
+    private final int parallelBodies;
     private final double minX;
     private final double minY;
     private final double maxX;
@@ -116,7 +122,20 @@ public final class SwarmPhysics implements Physics {
      * @param maxY     its upper edge
      */
     public SwarmPhysics(Parallel parallel, double minX, double minY, double maxX, double maxY) {
+        this(parallel, minX, minY, maxX, maxY, PARALLEL_BODIES);
+    }
+
+    /**
+     * @param parallel       the world's worker threads
+     * @param minX           the region where bodies are expected
+     * @param minY           its lower edge
+     * @param maxX           its right edge
+     * @param maxY           its upper edge
+     * @param parallelBodies the fewest bodies whose detection is split between the workers (tests split small worlds)
+     */
+    public SwarmPhysics(Parallel parallel, double minX, double minY, double maxX, double maxY, int parallelBodies) {
         this.parallel = parallel;
+        this.parallelBodies = parallelBodies;
         this.minX = minX;
         this.minY = minY;
         this.maxX = maxX;
@@ -341,13 +360,22 @@ public final class SwarmPhysics implements Physics {
             }
             batches = more;
         }
-        parallel.forEachBatch(batchCount, this::detect);
+        if (n >= parallelBodies) {
+            parallel.forEachBatch(batchCount, this::detect);
+        } else {
+            for (int b = 0; b < batchCount; b++) {
+                detect(b);
+            }
+        }
         contacts.clear();
         for (int b = 0; b < batchCount; b++) {
             contacts.append(batches[b]);
         }
         solve();
-        parallel.forEachBatch(batchCount, this::integrate);
+        // a few nanoseconds a body: cheaper than a hand-over to the workers
+        for (int b = 0; b < batchCount; b++) {
+            integrate(b);
+        }
         indexContacts();
     }
 
@@ -398,13 +426,16 @@ public final class SwarmPhysics implements Physics {
         gridStale = false;
     }
 
+    // (int) rounds towards zero: a coordinate up to a cell before the region's edge also lands in the
+    // first cell, where the clamp would put it anyway
+
     private int col(double x) {
-        int c = (int) Math.floor((x - minX) * inv);
+        int c = (int) ((x - minX) * inv);
         return c < 0 ? 0 : Math.min(c, cols - 1);
     }
 
     private int row(double y) {
-        int r = (int) Math.floor((y - minY) * inv);
+        int r = (int) ((y - minY) * inv);
         return r < 0 ? 0 : Math.min(r, rows - 1);
     }
 
@@ -435,7 +466,11 @@ public final class SwarmPhysics implements Physics {
         }
     }
 
-    /** Finds the contacts of the bodies of one batch, each with the bodies after it and with the statics. */
+    /**
+     * Finds the contacts of the bodies of one batch: each with the bodies after it in its own cell and
+     * with every body of the four cells after its own (east, and the three to the north), so that each
+     * pair of neighbouring bodies is tested once; and with the statics of its cells.
+     */
     private void detect(int batch) {
         ContactBuffer out = batches[batch];
         out.clear();
@@ -443,44 +478,53 @@ public final class SwarmPhysics implements Physics {
         int to = Math.min(n, from + BATCH);
         double[] a = out.scratchA;
         double[] b = out.scratchB;
+        int[] start = cellStart;
+        int[] members = cellBodies;
         for (int i = from; i < to; i++) {
-            int cx = bodyCell[i] % cols;
-            int cy = bodyCell[i] / cols;
+            int own = bodyCell[i];
+            int cx = own % cols;
+            int cy = own / cols;
             boolean cornersDone = false;
-            for (int yy = Math.max(0, cy - 1); yy <= Math.min(rows - 1, cy + 1); yy++) {
-                for (int xx = Math.max(0, cx - 1); xx <= Math.min(cols - 1, cx + 1); xx++) {
-                    int c = yy * cols + xx;
-                    for (int k = cellStart[c]; k < cellStart[c + 1]; k++) {
-                        int j = cellBodies[k];
-                        if (j <= i) {
-                            continue;
-                        }
-                        double dx = px[j] - px[i];
-                        double dy = py[j] - py[i];
-                        double r = radius[i] + radius[j];
-                        if (dx * dx + dy * dy >= r * r) {
-                            continue;
-                        }
-                        if (!cornersDone) {
-                            corners(i, a);
-                            cornersDone = true;
-                        }
-                        corners(j, b);
-                        collidePolygons(out, i, j, a, 4, b, 4, j);
+            for (int d = 0; d < 5; d++) {
+                int xx = cx + (d == 0 ? 0 : d == 1 ? 1 : d - 3);
+                int yy = cy + (d < 2 ? 0 : 1);
+                if (xx < 0 || xx >= cols || yy >= rows) {
+                    continue;
+                }
+                int c = yy * cols + xx;
+                int k = start[c];
+                int end = start[c + 1];
+                if (d == 0) {
+                    // the bodies after i in its own cell (a cell lists its bodies in ascending order)
+                    while (members[k] != i) {
+                        k++;
                     }
+                    k++;
+                }
+                for (; k < end; k++) {
+                    int j = members[k];
+                    double dx = px[j] - px[i];
+                    double dy = py[j] - py[i];
+                    double r = radius[i] + radius[j];
+                    if (dx * dx + dy * dy >= r * r) {
+                        continue;
+                    }
+                    if (!cornersDone) {
+                        corners(i, a);
+                        cornersDone = true;
+                    }
+                    corners(j, b);
+                    collidePolygons(out, i, j, a, 4, b, 4, j);
                 }
             }
             if (statics > 0) {
-                if (!cornersDone) {
-                    corners(i, a);
-                }
-                detectStatics(out, i, a);
+                detectStatics(out, i, a, cornersDone);
             }
         }
         out.prepare(this);
     }
 
-    private void detectStatics(ContactBuffer out, int i, double[] a) {
+    private void detectStatics(ContactBuffer out, int i, double[] a, boolean cornersDone) {
         double r = radius[i];
         double bx0 = px[i] - r;
         double by0 = py[i] - r;
@@ -493,7 +537,7 @@ public final class SwarmPhysics implements Physics {
         for (int cy = y0; cy <= y1; cy++) {
             for (int cx = x0; cx <= x1; cx++) {
                 int c = cy * cols + cx;
-                for (int k = staticCellStart[c]; k < staticCellStart[c + 1]; k++) {
+                for (int k = staticCellStart[c], end = staticCellStart[c + 1]; k < end; k++) {
                     int s = staticCells[k];
                     // each static once: from the first of the body's cells that it covers
                     if (cx != Math.max(x0, staticCellRange[4 * s]) || cy != Math.max(y0, staticCellRange[4 * s + 1])) {
@@ -507,6 +551,10 @@ public final class SwarmPhysics implements Physics {
                     if (count == 0) {
                         collideDisc(out, i, s);
                     } else {
+                        if (!cornersDone) {
+                            corners(i, a);
+                            cornersDone = true;
+                        }
                         collidePolygons(out, i, -1 - s, a, 4, null, count, staticStart[s]);
                     }
                 }
