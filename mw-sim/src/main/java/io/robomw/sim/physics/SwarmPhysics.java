@@ -323,6 +323,9 @@ public final class SwarmPhysics implements Physics {
 
     @Override
     public void contacts(int body, ContactSink sink) {
+        if (body + 1 >= bodyContactStart.length) {
+            return; // added since the last step: it has touched nothing yet
+        }
         ContactBuffer c = contacts;
         double x = px[body];
         double y = py[body];
