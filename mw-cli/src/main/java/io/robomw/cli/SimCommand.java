@@ -44,7 +44,7 @@ import java.util.concurrent.CountDownLatch;
  * other failure (a program failed or ran over {@code --duration}, a file could not be written).
  */
 @Command(name = "sim", sortOptions = false, mixinStandardHelpOptions = true,
-        description = {"Run a simulated world: its robots (from their own YAML files) in a dyn4j arena.",
+        description = {"Run a simulated world: its robots (from their own YAML files) in an arena with rigid-body physics (dyn4j, or the swarm engine when the world file says physics: { engine: swarm }).",
                 "Prints each robot's final pose and distance driven; --png draws the world and the robots' paths."})
 final class SimCommand implements Callable<Integer> {
 

@@ -10,9 +10,7 @@ import io.robomw.sim.legged.AiboDevices;
 import io.robomw.sim.legged.Quadruped;
 import io.robomw.sim.legged.UrbiKernel;
 import io.robomw.sim.lockstep.SimFuture;
-import org.dyn4j.dynamics.contact.ContactConstraint;
-import org.dyn4j.dynamics.contact.SolvedContact;
-import org.dyn4j.geometry.Vector2;
+import io.robomw.sim.physics.Physics;
 
 import java.util.ArrayList;
 import java.util.LinkedHashMap;
@@ -23,12 +21,12 @@ import java.util.Queue;
 import java.util.concurrent.ConcurrentLinkedQueue;
 
 /**
- * One robot's body in the simulated world: a dyn4j rigid body driven as a differential drive, its
+ * One robot's body in the simulated world: a rigid body of the world's {@link Physics} driven as a differential drive, its
  * motors' encoders computed from how the body actually moved, and its sensors.
  *
  * <p>Driving: the two wheel speeds commanded through the Platform Layer, limited to the
  * description's {@code max_speed}, set the body's forward and angular velocity before each step;
- * dyn4j then resolves collisions (with the description's mass and friction), so a robot that
+ * the physics then resolves collisions (with the description's mass and friction), so a robot that
  * drives into a wall stops at it. Encoders follow the body's real motion (wheels do not slip), so
  * a blocked robot's encoders stand still, as a stalled motor's do.
  *
@@ -48,7 +46,12 @@ public final class SimRobot {
     private final int index;
     private final String name;
     private final RobotDescription description;
-    private final org.dyn4j.dynamics.Body body;
+    private final Physics physics;
+    /** Its body's number in {@link #physics}. */
+    private final int body;
+    private final Physics.ContactSink touchPoint = this::touchPoint;
+    private int touchedSides;
+    private int touchedQuadrants;
     private final DifferentialKinematics kinematics;
     /** The motor ports, in the description's order: a robot has a few, and a scan is cheaper than a map. */
     private final String[] ports;
@@ -80,12 +83,13 @@ public final class SimRobot {
     private record PendingRead(SensorModel sensor, SimFuture<Double> future) {
     }
 
-    SimRobot(int index, String name, RobotDescription description, org.dyn4j.dynamics.Body body, long seed,
+    SimRobot(int index, String name, RobotDescription description, Physics physics, int body, long seed,
              java.util.function.LongSupplier nanos, io.robomw.sim.world.WorldDescription.TrajectorySettings trajectorySettings) {
         this.index = index;
         this.trajectory = new Trajectory(trajectorySettings);
         this.name = name;
         this.description = description;
+        this.physics = physics;
         this.body = body;
         this.kinematics = description.drive().map(DifferentialKinematics::new).orElse(null);
         List<String> ports = description.motorPorts();
@@ -112,8 +116,8 @@ public final class SimRobot {
         this.quadruped = description.leggedDrive().map(d -> new Quadruped(d, seed * 0x9E3779B97F4A7C15L + index * 7_919L + 17)).orElse(null);
         this.kernel = quadruped == null ? null : new UrbiKernel(name, quadruped, this::urbiSensor, nanos);
         readPose();
-        lastX = body.getTransform().getTranslationX();
-        lastY = body.getTransform().getTranslationY();
+        lastX = physics.x(body);
+        lastY = physics.y(body);
         lastHeading = pose.heading();
         trajectory.add(lastX, lastY);
     }
@@ -153,7 +157,8 @@ public final class SimRobot {
         return rangeSensors;
     }
 
-    org.dyn4j.dynamics.Body body() {
+    /** @return its body's number in the world's physics */
+    int body() {
         return body;
     }
 
@@ -217,15 +222,7 @@ public final class SimRobot {
         } else {
             return;
         }
-        if (v == 0 && w == 0 && body.isAtRest()) {
-            return;
-        }
-        org.dyn4j.geometry.Transform t = body.getTransform();
-        body.setLinearVelocity(v * t.getCost(), v * t.getSint());
-        body.setAngularVelocity(w);
-        if (v != 0 || w != 0) {
-            body.setAtRest(false);
-        }
+        physics.drive(body, v, w);
     }
 
     private static double clamp(double v, double max) {
@@ -235,20 +232,19 @@ public final class SimRobot {
     /**
      * After a physics step: encoders from the actual motion, contacts, trajectory.
      *
-     * @param world the physics world (for contacts)
      * @param dt    the step, seconds
      * @param recordTrajectory whether to add the pose to the trajectory this step
      */
-    void afterStep(org.dyn4j.world.World<org.dyn4j.dynamics.Body> world, double dt, boolean recordTrajectory) {
+    void afterStep(double dt, boolean recordTrajectory) {
         if (hasAccel || quadruped != null) {
             accelerate(dt);
         }
         if (quadruped != null) {
             quadruped.advance(dt);
-            contacts(world);
+            contacts();
             kernel.step();
         }
-        if (body.isAtRest() && !hasTouch) {
+        if (physics.atRest(body) && !hasTouch) {
             if (recordTrajectory) {
                 trajectory.add(lastX, lastY);
             }
@@ -277,7 +273,7 @@ public final class SimRobot {
         lastY = y;
         lastHeading = heading;
         if (hasTouch) {
-            contactSides = contacts(world);
+            contactSides = contacts();
         }
         if (recordTrajectory) {
             trajectory.add(x, y);
@@ -286,12 +282,13 @@ public final class SimRobot {
 
     /** The body's acceleration in its own frame since the last step, gravity and gait included. */
     private void accelerate(double dt) {
-        Vector2 v = body.getLinearVelocity();
-        double h = Math.atan2(body.getTransform().getSint(), body.getTransform().getCost());
-        double ax = (v.x - lastVx) / dt;
-        double ay = (v.y - lastVy) / dt;
-        lastVx = v.x;
-        lastVy = v.y;
+        double vx = physics.vx(body);
+        double vy = physics.vy(body);
+        double h = Math.atan2(physics.sin(body), physics.cos(body));
+        double ax = (vx - lastVx) / dt;
+        double ay = (vy - lastVy) / dt;
+        lastVx = vx;
+        lastVy = vy;
         double pitch = quadruped == null ? 0 : quadruped.pitch();
         double bounce = quadruped == null ? 0 : quadruped.bounce();
         accel[0] = ax * Math.cos(h) + ay * Math.sin(h) + Quadruped.GRAVITY * Math.sin(pitch);
@@ -358,8 +355,7 @@ public final class SimRobot {
     }
 
     private void readPose() {
-        org.dyn4j.geometry.Transform t = body.getTransform();
-        pose = new Pose(t.getTranslationX(), t.getTranslationY(), Math.atan2(t.getSint(), t.getCost()));
+        pose = new Pose(physics.x(body), physics.y(body), Math.atan2(physics.sin(body), physics.cos(body)));
     }
 
     private static final int FRONT = 1;
@@ -372,26 +368,23 @@ public final class SimRobot {
     private static final int BACK_RIGHT_QUADRANT = 8;
 
     /** @return a bit set of the sides of the body touching something */
-    private int contacts(org.dyn4j.world.World<org.dyn4j.dynamics.Body> world) {
-        int sides = 0;
-        int quadrants = 0;
+    private int contacts() {
+        touchedSides = 0;
+        touchedQuadrants = 0;
+        physics.contacts(body, touchPoint);
+        contactQuadrants = touchedQuadrants;
+        return touchedSides;
+    }
+
+    /** One contact point, in the body's frame: which sides and quadrant it is on. */
+    private void touchPoint(double x, double y) {
         Body b = description.body();
-        for (ContactConstraint<org.dyn4j.dynamics.Body> c : world.getContacts(body)) {
-            if (!c.isEnabled() || c.isSensor()) {
-                continue;
-            }
-            for (SolvedContact contact : c.getContacts()) {
-                Vector2 local = body.getTransform().getInverseTransformed(contact.getPoint());
-                sides |= local.x >= b.length() / 4 ? FRONT : 0;
-                sides |= local.x <= -b.length() / 4 ? BACK : 0;
-                sides |= local.y >= b.width() / 4 ? LEFT : 0;
-                sides |= local.y <= -b.width() / 4 ? RIGHT : 0;
-                quadrants |= local.x >= 0 ? (local.y >= 0 ? FRONT_LEFT_QUADRANT : FRONT_RIGHT_QUADRANT)
-                        : (local.y >= 0 ? BACK_LEFT_QUADRANT : BACK_RIGHT_QUADRANT);
-            }
-        }
-        contactQuadrants = quadrants;
-        return sides;
+        touchedSides |= x >= b.length() / 4 ? FRONT : 0;
+        touchedSides |= x <= -b.length() / 4 ? BACK : 0;
+        touchedSides |= y >= b.width() / 4 ? LEFT : 0;
+        touchedSides |= y <= -b.width() / 4 ? RIGHT : 0;
+        touchedQuadrants |= x >= 0 ? (y >= 0 ? FRONT_LEFT_QUADRANT : FRONT_RIGHT_QUADRANT)
+                : (y >= 0 ? BACK_LEFT_QUADRANT : BACK_RIGHT_QUADRANT);
     }
 
     // ---- sensors ----

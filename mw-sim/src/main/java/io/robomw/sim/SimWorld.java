@@ -7,13 +7,12 @@ import io.robomw.config.description.Body;
 import io.robomw.config.description.RobotDescription;
 import io.robomw.platform.exec.ExecutionActionThread;
 import io.robomw.sim.lockstep.Lockstep;
+import io.robomw.sim.physics.Dyn4jPhysics;
+import io.robomw.sim.physics.Physics;
+import io.robomw.sim.physics.SwarmPhysics;
 import io.robomw.sim.sensing.RangeIndex;
 import io.robomw.sim.world.WorldDescription;
-import org.dyn4j.dynamics.Settings;
-import org.dyn4j.geometry.Geometry;
-import org.dyn4j.geometry.MassType;
 import org.dyn4j.geometry.Vector2;
-import org.dyn4j.world.World;
 
 import java.util.ArrayList;
 import java.util.Collections;
@@ -22,7 +21,8 @@ import java.util.List;
 import java.util.Map;
 
 /**
- * A simulated world: dyn4j bodies for the arena's walls, its obstacles and its robots, a
+ * A simulated world: rigid bodies ({@link Physics}: dyn4j's or the {@linkplain SwarmPhysics swarm
+ * engine}, as the world file's {@code physics:} key says) for the arena's walls, its obstacles and its robots, a
  * {@link ManualClock} that only the world moves, and the robots' execution action threads, which
  * the world cycles on that clock.
  *
@@ -56,7 +56,11 @@ public final class SimWorld implements AutoCloseable {
     private final WorldDescription description;
     private final ManualClock clock = new ManualClock();
     private final Lockstep lockstep = new Lockstep();
-    private final World<org.dyn4j.dynamics.Body> physics = new World<>();
+    private final Physics physics;
+    /** The same physics when it is dyn4j's (for the naive ray casts); else {@code null}. */
+    private final Dyn4jPhysics dyn4j;
+    /** The farthest a robot may move in a step with the swarm engine (half the thinnest static), metres. */
+    private final double thinnestStatic;
     private final List<SimRobot> robots = new ArrayList<>();
     private final Map<String, SimRobot> byName = new LinkedHashMap<>();
     private final RangeIndex rangeIndex;
@@ -89,7 +93,7 @@ public final class SimWorld implements AutoCloseable {
 
     /** The phases of a step that {@link #profile} times, in the order a step runs them. */
     public enum Phase {
-        /** dyn4j's step: broadphase, contacts, integration (on the stepping thread). */
+        /** The physics step: broadphase, contacts, integration (dyn4j: on the stepping thread; swarm: split between the workers). */
         PHYSICS,
         /**
          * Per robot, after the motion (worker threads): encoders, contacts, pose; when sensors are due,
@@ -116,7 +120,7 @@ public final class SimWorld implements AutoCloseable {
     }
 
     private double dyn4jRay(double ox, double oy, double angle, double maxRange, int self) {
-        org.dyn4j.dynamics.Body own = robots.get(self).body();
+        org.dyn4j.dynamics.Body own = dyn4j.body(robots.get(self).body());
         org.dyn4j.world.DetectFilter<org.dyn4j.dynamics.Body, org.dyn4j.dynamics.BodyFixture> filter =
                 new org.dyn4j.world.DetectFilter<>(true, true, null) {
                     @Override
@@ -125,7 +129,7 @@ public final class SimWorld implements AutoCloseable {
                     }
                 };
         double best = Double.POSITIVE_INFINITY;
-        for (var hit : physics.raycast(new org.dyn4j.geometry.Ray(new Vector2(ox, oy), angle), maxRange, filter)) {
+        for (var hit : dyn4j.world().raycast(new org.dyn4j.geometry.Ray(new Vector2(ox, oy), angle), maxRange, filter)) {
             best = Math.min(best, hit.getRaycast().getDistance());
         }
         return best;
@@ -179,13 +183,21 @@ public final class SimWorld implements AutoCloseable {
         this.stepSeconds = 1.0 / description.physicsHz();
         this.stepNanos = Math.round(1e9 / description.physicsHz());
         this.trajectoryEvery = (int) Math.max(1, Math.min(Integer.MAX_VALUE, Math.round(description.trajectories().everySeconds() * description.physicsHz())));
-        physics.setGravity(World.ZERO_GRAVITY);
-        Settings settings = physics.getSettings();
-        settings.setStepFrequency(stepSeconds);
-        settings.setAtRestDetectionEnabled(true);
-        // Robots move at most a few centimetres per step and walls are thick: continuous collision
-        // detection (tunnelling prevention) buys nothing and costs a pass over every moving body.
-        settings.setContinuousDetectionMode(org.dyn4j.dynamics.ContinuousDetectionMode.NONE);
+        this.parallel = new Parallel(sensingThreads);
+        double margin = description.wallThickness() + 1;
+        if (description.engine() == WorldDescription.PhysicsEngine.SWARM) {
+            if (rangeMethod == RangeMethod.DYN4J_RAYCAST) {
+                parallel.close();
+                throw new IllegalArgumentException("world '" + description.name() + "' (" + description.source()
+                        + "): dyn4j ray casts need the dyn4j engine, not physics engine swarm");
+            }
+            this.dyn4j = null;
+            this.physics = new SwarmPhysics(parallel, -margin, -margin, description.width() + margin, description.height() + margin);
+        } else {
+            this.dyn4j = new Dyn4jPhysics(stepSeconds);
+            this.physics = dyn4j;
+        }
+        this.thinnestStatic = thinnestStatic(description);
         List<double[]> segments = new ArrayList<>();
         List<double[]> discs = new ArrayList<>();
         if (description.walls()) {
@@ -201,39 +213,51 @@ public final class SimWorld implements AutoCloseable {
             if (o instanceof WorldDescription.Box b) {
                 addStaticBox(b.x(), b.y(), b.width(), b.height(), b.angle(), segments);
             } else if (o instanceof WorldDescription.Circle c) {
-                org.dyn4j.dynamics.Body body = new org.dyn4j.dynamics.Body();
-                body.addFixture(Geometry.createCircle(c.radius()));
-                body.translate(c.x(), c.y());
-                body.setMass(MassType.INFINITE);
-                physics.addBody(body);
+                physics.addStaticCircle(c.x(), c.y(), c.radius());
                 discs.add(new double[]{c.x(), c.y(), c.radius()});
             } else if (o instanceof WorldDescription.Polygon p) {
-                Vector2[] v = p.points().stream().map(xy -> new Vector2(xy[0], xy[1])).toArray(Vector2[]::new);
-                org.dyn4j.dynamics.Body body = new org.dyn4j.dynamics.Body();
-                body.addFixture(Geometry.createPolygon(v));
-                body.setMass(MassType.INFINITE);
-                physics.addBody(body);
+                double[][] v = p.points().toArray(double[][]::new);
+                physics.addStaticPolygon(v);
                 for (int i = 0; i < v.length; i++) {
-                    segments.add(new double[]{v[i].x, v[i].y, v[(i + 1) % v.length].x, v[(i + 1) % v.length].y});
+                    segments.add(new double[]{v[i][0], v[i][1], v[(i + 1) % v.length][0], v[(i + 1) % v.length][1]});
                 }
             }
         }
-        double margin = description.wallThickness() + 1;
         double cell = Math.max(0.25, Math.min(2.0, Math.sqrt(description.width() * description.height() / 4096)));
         this.rangeIndex = new RangeIndex(-margin, -margin, description.width() + 2 * margin, description.height() + 2 * margin, cell,
                 segments.toArray(double[][]::new), discs.toArray(double[][]::new));
-        this.parallel = new Parallel(sensingThreads);
         this.rangeMethod = rangeMethod;
         this.rayCaster = rangeMethod == RangeMethod.GRID ? rangeIndex::castRay : this::dyn4jRay;
     }
 
+    /** @return half the thickness of the thinnest wall or obstacle (+∞ without any) */
+    private static double thinnestStatic(WorldDescription d) {
+        double thinnest = d.walls() ? d.wallThickness() : Double.POSITIVE_INFINITY;
+        for (WorldDescription.Obstacle o : d.obstacles()) {
+            if (o instanceof WorldDescription.Box b) {
+                thinnest = Math.min(thinnest, Math.min(b.width(), b.height()));
+            } else if (o instanceof WorldDescription.Circle c) {
+                thinnest = Math.min(thinnest, 2 * c.radius());
+            } else if (o instanceof WorldDescription.Polygon p) {
+                // a convex polygon's width: the least, over its edges, of the farthest vertex from the edge's line
+                List<double[]> v = p.points();
+                for (int i = 0; i < v.size(); i++) {
+                    double[] a = v.get(i);
+                    double[] b = v.get((i + 1) % v.size());
+                    double len = Math.hypot(b[0] - a[0], b[1] - a[1]);
+                    double far = 0;
+                    for (double[] q : v) {
+                        far = Math.max(far, Math.abs((b[0] - a[0]) * (q[1] - a[1]) - (b[1] - a[1]) * (q[0] - a[0])) / len);
+                    }
+                    thinnest = Math.min(thinnest, far);
+                }
+            }
+        }
+        return thinnest / 2;
+    }
+
     private void addStaticBox(double x, double y, double w, double h, double angle, List<double[]> segments) {
-        org.dyn4j.dynamics.Body body = new org.dyn4j.dynamics.Body();
-        body.addFixture(Geometry.createRectangle(w, h));
-        body.rotate(angle);
-        body.translate(x, y);
-        body.setMass(MassType.INFINITE);
-        physics.addBody(body);
+        physics.addStaticBox(x, y, w, h, angle);
         double c = Math.cos(angle);
         double s = Math.sin(angle);
         double[][] corners = {{w / 2, h / 2}, {-w / 2, h / 2}, {-w / 2, -h / 2}, {w / 2, -h / 2}};
@@ -257,14 +281,11 @@ public final class SimWorld implements AutoCloseable {
             throw new IllegalArgumentException("world '" + this.description.name() + "' already has a robot named '" + name + "'");
         }
         Body b = description.body();
-        org.dyn4j.dynamics.Body body = new org.dyn4j.dynamics.Body();
-        body.addFixture(Geometry.createRectangle(b.length(), b.width()), b.mass() / (b.length() * b.width()), b.friction(), 0);
-        body.setMass(MassType.NORMAL);
-        body.rotate(start.heading());
-        body.translate(start.x(), start.y());
-        body.setAtRestDetectionEnabled(true);
-        physics.addBody(body);
-        SimRobot robot = new SimRobot(robots.size(), name, description, body, this.description.seed(), clock::nanoTime,
+        if (physics instanceof SwarmPhysics) {
+            checkSwarmBody(name, description);
+        }
+        int body = physics.addBody(b.length(), b.width(), b.mass(), b.friction(), start.x(), start.y(), start.heading());
+        SimRobot robot = new SimRobot(robots.size(), name, description, physics, body, this.description.seed(), clock::nanoTime,
                 this.description.trajectories());
         robots.add(robot);
         cycled = java.util.Arrays.copyOf(cycled, robots.size());
@@ -272,6 +293,23 @@ public final class SimWorld implements AutoCloseable {
         initialSampleDue = true;
         sensingPeriods = null;
         return robot;
+    }
+
+    /**
+     * The swarm engine has no continuous collision detection: a robot must not move, in one step,
+     * more than half its own width (against another robot coming the other way) or half the thinnest
+     * wall or obstacle, or it could pass through.
+     */
+    private void checkSwarmBody(String name, RobotDescription robot) {
+        double perStep = robot.drive().map(d -> d.maxSpeed()).orElse(0.0) * stepSeconds;
+        double own = Math.min(robot.body().length(), robot.body().width()) / 4;
+        if (perStep > Math.min(own, thinnestStatic)) {
+            throw new IllegalArgumentException(String.format(java.util.Locale.ROOT,
+                    "robot '%s' moves up to %.4f m per physics step (max_speed %.3f m/s at physics_hz %.0f); the swarm engine "
+                            + "has no continuous collision detection and allows at most %.4f m (a quarter of the robot's width, half "
+                            + "the thinnest wall or obstacle): raise physics_hz or use physics engine dyn4j",
+                    name, perStep, perStep / stepSeconds, physicsHz, Math.min(own, thinnestStatic)));
+        }
     }
 
     /**
@@ -323,8 +361,8 @@ public final class SimWorld implements AutoCloseable {
         return byName.get(name);
     }
 
-    /** @return the physics world, for tools that need it (the naive baseline of the benchmark) */
-    public World<org.dyn4j.dynamics.Body> physics() {
+    /** @return the world's rigid-body physics */
+    public Physics physics() {
         return physics;
     }
 
@@ -458,7 +496,7 @@ public final class SimWorld implements AutoCloseable {
             initialSampleDue = false;
         }
         long t = tick(0, null);
-        physics.step(1, stepSeconds);
+        physics.step(stepSeconds);
         t = tick(t, Phase.PHYSICS);
         long step = ++steps;
         boolean record = step % trajectoryEvery == 0;
@@ -470,7 +508,7 @@ public final class SimWorld implements AutoCloseable {
             // No robot's work after the motion reads the clock or another robot: one pass.
             parallel.forEach(n, i -> {
                 SimRobot r = robots.get(i);
-                r.afterStep(physics, stepSeconds, record);
+                r.afterStep(stepSeconds, record);
                 if (cycled[i] != null) {
                     r.completeReads(this);
                 }
@@ -488,7 +526,7 @@ public final class SimWorld implements AutoCloseable {
         }
         parallel.forEach(n, i -> {
             SimRobot r = robots.get(i);
-            r.afterStep(physics, stepSeconds, record);
+            r.afterStep(stepSeconds, record);
             if (grid) {
                 place(r);
             }

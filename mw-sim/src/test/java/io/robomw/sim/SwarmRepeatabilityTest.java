@@ -49,6 +49,31 @@ class SwarmRepeatabilityTest {
     }
 
     @Test
+    void shouldGiveTheSameTrajectoriesBitForBitWhateverTheNumberOfThreadsOnTheSwarmEngine() throws IOException {
+        // 160 robots in 5 batches of the engine's contact detection (split between threads from 2 on),
+        // 0.13 m apart: they start touching and push and turn against each other
+        WorldDescription world = crowdedWorld(0.13).withEngine(WorldDescription.PhysicsEngine.SWARM);
+        List<Pose> oneThread = run(world, 1);
+        List<Pose> twoThreads = run(world, 2);
+        List<Pose> threeThreads = run(world, 3);
+        assertEquals(oneThread, twoThreads, "2 threads against the stepping thread alone");
+        assertEquals(oneThread, threeThreads, "3 threads against the stepping thread alone");
+        long moved = 0;
+        for (int i = 0; i < ROBOTS; i++) {
+            Pose start = world.robots().get(i).start();
+            Pose end = oneThread.get(i);
+            if (end.distanceTo(start) > 0.05 || Math.abs(Pose.normalize(end.heading() - start.heading())) > 0.3) {
+                moved++;
+            }
+        }
+        assertTrue(moved > ROBOTS / 2, "most robots moved or turned (else the test proves little): " + moved + " of " + ROBOTS);
+        assertTrue(contactsSeen > 1000, "robots touched each other or the walls (else the solve's order proves nothing): " + contactsSeen);
+    }
+
+    /** Contacts counted after each step of the last swarm-engine run. */
+    private long contactsSeen;
+
+    @Test
     void shouldWanderExactlyAsAStepListenerWhenTheControllerRunsInTheWorldsPass() throws IOException {
         WorldDescription world = crowdedWorld();
         List<Pose> inPass = run(world, 2);
@@ -57,17 +82,21 @@ class SwarmRepeatabilityTest {
     }
 
     /** The poses of every robot after 4 simulated seconds. */
-    private static List<Pose> run(WorldDescription world, int threads) {
+    private List<Pose> run(WorldDescription world, int threads) {
         return run(world, threads, true);
     }
 
     /** The poses of every robot after 4 simulated seconds, the controller in the world's pass or as a step listener. */
-    private static List<Pose> run(WorldDescription world, int threads, boolean inPass) {
+    private List<Pose> run(WorldDescription world, int threads, boolean inPass) {
         try (Simulation sim = Simulation.create(world, threads)) {
             if (inPass) {
                 WanderController.install(sim, 10, 3);
             } else {
                 sim.addStepListener(new WanderController(sim, 10, 3));
+            }
+            if (sim.world().physics() instanceof io.robomw.sim.physics.SwarmPhysics swarm) {
+                contactsSeen = 0;
+                sim.addStepListener(() -> contactsSeen += swarm.contactCount());
             }
             sim.runFor(Duration.ofSeconds(4));
             List<Pose> poses = new ArrayList<>();
@@ -80,6 +109,11 @@ class SwarmRepeatabilityTest {
 
     /** 160 robots 0.35 m apart (their 0.5 m sensors see their neighbours), noisy sensors, 50 Hz physics. */
     private WorldDescription crowdedWorld() throws IOException {
+        return crowdedWorld(0.35);
+    }
+
+    /** 160 robots the given distance apart, noisy sensors, 50 Hz physics. */
+    private WorldDescription crowdedWorld(double spacing) throws IOException {
         Path robot = dir.resolve("bot.yaml");
         StringBuilder sensors = new StringBuilder();
         for (int i = 0; i < 8; i++) {
@@ -100,9 +134,9 @@ class SwarmRepeatabilityTest {
         List<WorldDescription.RobotPlacement> placements = new ArrayList<>();
         for (int i = 0; i < ROBOTS; i++) {
             placements.add(new WorldDescription.RobotPlacement(robot, "r" + i,
-                    new Pose(0.3 + 0.35 * (i % cols), 0.3 + 0.35 * (i / cols), (i * 2.399963) % (2 * Math.PI))));
+                    new Pose(0.3 + spacing * (i % cols), 0.3 + spacing * (i / cols), (i * 2.399963) % (2 * Math.PI))));
         }
-        return new WorldDescription("crowd", 0.3 + 0.35 * cols, 0.3 + 0.35 * (ROBOTS / cols), true, 0.1, 0.8, List.of(), List.of(),
+        return new WorldDescription("crowd", 0.3 + spacing * cols, 0.3 + spacing * (ROBOTS / cols), true, 0.1, 0.8, List.of(), List.of(),
                 placements, 11, 50, "test");
     }
 }

@@ -22,12 +22,13 @@ import java.util.List;
  * @param seed            seed of every random number in the run (sensor noise)
  * @param physicsHz       physics steps per simulated second
  * @param trajectories    how the robots' paths are sampled and how many points each keeps
+ * @param engine          the physics engine that steps the world
  * @param source          the file, for messages
  */
 public record WorldDescription(String name, double width, double height, boolean walls, double wallThickness,
                                double floorBrightness, List<Obstacle> obstacles, List<FloorPatch> patches,
                                List<RobotPlacement> robots, long seed, double physicsHz, TrajectorySettings trajectories,
-                               String source) {
+                               PhysicsEngine engine, String source) {
 
     /** Copies the lists. */
     public WorldDescription {
@@ -35,6 +36,52 @@ public record WorldDescription(String name, double width, double height, boolean
         patches = List.copyOf(patches);
         robots = List.copyOf(robots);
         java.util.Objects.requireNonNull(trajectories, "trajectories");
+        java.util.Objects.requireNonNull(engine, "engine");
+    }
+
+    /**
+     * A world stepped by the default engine ({@link PhysicsEngine#DYN4J}).
+     *
+     * @param name            the world's name
+     * @param width           arena width (x), metres
+     * @param height          arena height (y), metres
+     * @param walls           whether the arena is closed by walls
+     * @param wallThickness   thickness of those walls, metres
+     * @param floorBrightness brightness of the bare floor, 0 (black) to 1 (white)
+     * @param obstacles       static obstacles
+     * @param patches         floor patches seen by light and colour sensors
+     * @param robots          the robots and where they start
+     * @param seed            seed of every random number in the run (sensor noise)
+     * @param physicsHz       physics steps per simulated second
+     * @param trajectories    how the robots' paths are sampled and how many points each keeps
+     * @param source          the file, for messages
+     */
+    public WorldDescription(String name, double width, double height, boolean walls, double wallThickness,
+                            double floorBrightness, List<Obstacle> obstacles, List<FloorPatch> patches,
+                            List<RobotPlacement> robots, long seed, double physicsHz, TrajectorySettings trajectories,
+                            String source) {
+        this(name, width, height, walls, wallThickness, floorBrightness, obstacles, patches, robots, seed, physicsHz,
+                trajectories, PhysicsEngine.DYN4J, source);
+    }
+
+    /**
+     * @param other another engine
+     * @return this world stepped by that engine
+     */
+    public WorldDescription withEngine(PhysicsEngine other) {
+        return new WorldDescription(name, width, height, walls, wallThickness, floorBrightness, obstacles, patches, robots, seed,
+                physicsHz, trajectories, other, source);
+    }
+
+    /** The physics engine that steps a world (the {@code physics: { engine: ... }} key of a world file). */
+    public enum PhysicsEngine {
+        /** The dyn4j library's general rigid-body world, on the stepping thread (the default). */
+        DYN4J,
+        /**
+         * The simulator's own step for boxes on a flat floor, split between the world's worker
+         * threads ({@link io.robomw.sim.physics.SwarmPhysics}).
+         */
+        SWARM
     }
 
     /**

@@ -22,6 +22,7 @@ import java.util.Set;
  * seed: 42
  * physics_hz: 100
  * trajectory: { every: 0.1, max_points: 1000, keep: whole }
+ * physics: { engine: dyn4j }    # or swarm
  * obstacles:
  *   - { box: { x: 2, y: 1.5, width: 0.4, height: 0.4, angle: 0 } }
  *   - { circle: { x: 1, y: 2, radius: 0.2 } }
@@ -98,6 +99,13 @@ public final class WorldLoader {
             // An invalid value is a problem reported below, and reads as its default here.
             trajectories = new WorldDescription.TrajectorySettings(every, maxPoints, keep);
         }
+        WorldDescription.PhysicsEngine engine = WorldDescription.PhysicsEngine.DYN4J;
+        Optional<MappingReader> physics = root.mapping("physics");
+        if (physics.isPresent()) {
+            MappingReader p = physics.get();
+            engine = p.enumValue("engine", WorldDescription.PhysicsEngine.class, WorldDescription.PhysicsEngine.DYN4J);
+            p.finish();
+        }
         List<WorldDescription.Obstacle> obstacles = new ArrayList<>();
         for (MappingReader o : root.mappingList("obstacles")) {
             obstacle(o).ifPresent(obstacles::add);
@@ -137,7 +145,7 @@ public final class WorldLoader {
         root.finish();
         root.problems().throwIfAny();
         return new WorldDescription(name, width, height, walls, thickness, floor, obstacles, patches, robots, seed, physicsHz, trajectories,
-                file.toString());
+                engine, file.toString());
     }
 
     private Optional<WorldDescription.Obstacle> obstacle(MappingReader o) {

@@ -26,7 +26,10 @@ import java.util.Locale;
 public final class SwarmBenchmark {
 
     /** One configuration. */
-    record Config(String label, double physicsHz, double sensorHz, SimWorld.RangeMethod method) {
+    record Config(String label, double physicsHz, double sensorHz, SimWorld.RangeMethod method, WorldDescription.PhysicsEngine engine) {
+        Config(String label, double physicsHz, double sensorHz, SimWorld.RangeMethod method) {
+            this(label, physicsHz, sensorHz, method, WorldDescription.PhysicsEngine.DYN4J);
+        }
     }
 
     private SwarmBenchmark() {
@@ -87,11 +90,14 @@ public final class SwarmBenchmark {
             "grid20", new Config("grid, physics 20 Hz, sensors 10 Hz", 20, 10, SimWorld.RangeMethod.GRID),
             "naive50", new Config("naive dyn4j ray casts, physics 50 Hz, sensors 10 Hz", 50, 10, SimWorld.RangeMethod.DYN4J_RAYCAST),
             "naive50s50", new Config("naive dyn4j ray casts, physics 50 Hz, sensors 50 Hz", 50, 50, SimWorld.RangeMethod.DYN4J_RAYCAST),
-            "naive10", new Config("naive dyn4j ray casts, everything at 10 Hz", 10, 10, SimWorld.RangeMethod.DYN4J_RAYCAST));
+            "naive10", new Config("naive dyn4j ray casts, everything at 10 Hz", 10, 10, SimWorld.RangeMethod.DYN4J_RAYCAST),
+            "swarm50", new Config("grid, swarm physics engine, physics 50 Hz, sensors 10 Hz", 50, 10, SimWorld.RangeMethod.GRID,
+                    WorldDescription.PhysicsEngine.SWARM));
 
     /**
      * One sample for {@code bench/all}, in a JVM of its own: {@code --sample N CONFIG [--warmup S]
-     * [--measure S] [--placement] [--threads T]} (CONFIG: grid50, grid20, naive50, naive50s50, naive10; S: wall-clock seconds,
+     * [--measure S] [--placement] [--threads T]} (CONFIG: grid50, grid20, naive50, naive50s50, naive10, swarm50 (grid50 on the
+     * swarm physics engine); S: wall-clock seconds,
      * default 4 and 8; T: threads stepping the world, default the processors). The world runs for the warm-up (JIT, heap sizing; longer while the JIT
      * still compiles more than 50 ms a second, up to twice plus 10 s), then for the measured
      * window in whole steps; prints the real-time factor of the window and of each of its seconds,
@@ -100,7 +106,7 @@ public final class SwarmBenchmark {
      * stepping thread's), GC and JIT time in the
      * window, with {@code --placement} each thread's CPU, processor and migrations
      * ({@link ThreadPlacement}, which costs some CPU itself), then
-     * {@code BENCH} lines: the real-time factor; for the grid configurations also dyn4j's step
+     * {@code BENCH} lines: the real-time factor; for grid50 and swarm50 also the physics step
      * alone as a ceiling (simulated seconds per wall second spent in it), its cost per robot, and
      * the live heap per robot.
      */
@@ -210,11 +216,13 @@ public final class SwarmBenchmark {
             System.out.println("  threads: " + placed);
             String id = "sim.n" + n + "." + key;
             System.out.println(io.robomw.sim.bench.SwarmBenchmark.line(id, rtf, "×"));
-            if (config.method() == SimWorld.RangeMethod.GRID && key.equals("grid50")) {
+            if (key.equals("grid50") || key.equals("swarm50")) {
+                // grid50 (dyn4j) keeps its historical ids; swarm50's carry the engine's name
+                String prefix = "sim.n" + n + (key.equals("swarm50") ? ".swarm-" : ".");
                 double physicsSeconds = phases[SimWorld.Phase.PHYSICS.ordinal()] / 1e9;
-                System.out.println(line("sim.n" + n + ".physics", simSeconds / physicsSeconds, "×"));
-                System.out.println(line("sim.n" + n + ".step-per-robot", physicsSeconds * 1e6 / stepsTaken / n, "µs"));
-                System.out.println(line("sim.n" + n + ".heap-per-robot", heapPerRobot / 1024.0, "KiB"));
+                System.out.println(line(prefix + "physics", simSeconds / physicsSeconds, "×"));
+                System.out.println(line(prefix + "step-per-robot", physicsSeconds * 1e6 / stepsTaken / n, "µs"));
+                System.out.println(line(prefix + "heap-per-robot", heapPerRobot / 1024.0, "KiB"));
             }
         } finally {
             deleteTree(dir);
@@ -327,6 +335,6 @@ public final class SwarmBenchmark {
                     new Pose(0.5 + (i % cols), 0.5 + (double) (i / cols), (i * 2.399963) % (2 * Math.PI))));
         }
         return new WorldDescription("swarm-" + n, side, side, true, 0.1, 0.8, List.of(), List.of(), placements, 1,
-                config.physicsHz(), "benchmark");
+                config.physicsHz(), WorldDescription.TrajectorySettings.DEFAULT, config.engine(), "benchmark");
     }
 }
