@@ -190,6 +190,19 @@ public final class SimRobot {
         return i < 0 ? 0.0 : motorDegrees[i];
     }
 
+    /**
+     * @param portIndex a motor's index ({@link #motorPortIndex})
+     * @return its encoder, degrees
+     */
+    double motorDegrees(int portIndex) {
+        return motorDegrees[portIndex];
+    }
+
+    /** @return a motor port's index, or -1 */
+    int motorPortIndex(String port) {
+        return portIndex(port);
+    }
+
     /** @return a motor port's index, or -1 */
     private int portIndex(String port) {
         for (int i = 0; i < ports.length; i++) {

@@ -35,11 +35,11 @@ public final class Container {
 
     private Container(Builder b) {
         this.name = b.name;
-        this.requirements = immutable(b.requirements);
+        this.requirements = b.requirementSet != null ? b.requirementSet : immutable(b.requirements);
         this.priority = b.priority;
         this.interruptionBehavior = b.interruptionBehavior;
-        this.actions = List.copyOf(b.actions);
-        this.logic = List.copyOf(b.logic);
+        this.actions = b.actions.size() == 1 ? List.of(b.actions.get(0)) : List.copyOf(b.actions);
+        this.logic = b.logic.size() == 1 ? List.of(b.logic.get(0)) : List.copyOf(b.logic);
         this.endAction = b.endAction;
         this.watchdogNanos = b.watchdog.toNanos();
         this.refreshKey = b.refreshKey;
@@ -96,22 +96,24 @@ public final class Container {
      *         actuators and priority
      */
     boolean refreshedBy(Container newer) {
-        return refreshKey != null && refreshKey.equals(newer.refreshKey) && requirements.equals(newer.requirements) && priority == newer.priority;
+        return refreshKey != null && refreshKey.equals(newer.refreshKey)
+                && (requirements == newer.requirements || requirements.equals(newer.requirements)) && priority == newer.priority;
     }
 
     /** Takes over a newer container's actions and restarts the watchdog. */
     void refresh(long now, Container newer) {
         startedAt = now;
-        for (ActionObject a : newer.actions) {
-            a.start(now);
+        List<ActionObject> a = newer.actions;
+        for (int i = 0; i < a.size(); i++) {
+            a.get(i).start(now);
         }
     }
 
     void start(long now) {
         startedAt = now;
         satisfied = new boolean[logic.size()];
-        for (ActionObject a : actions) {
-            a.start(now);
+        for (int i = 0; i < actions.size(); i++) {
+            actions.get(i).start(now);
         }
     }
 
@@ -157,6 +159,8 @@ public final class Container {
     public static final class Builder {
         private final String name;
         private final java.util.LinkedHashSet<String> requirements = new java.util.LinkedHashSet<>();
+        /** The requirements as one unmodifiable set given whole (a motor platform's cached set), while nothing else was required. */
+        private Set<String> requirementSet;
         private CommandPriority priority = CommandPriority.NORMAL;
         private InterruptionBehavior interruptionBehavior = InterruptionBehavior.CANCEL_SELF;
         private final List<ActionObject> actions = new ArrayList<>();
@@ -174,6 +178,7 @@ public final class Container {
          * @return this
          */
         public Builder requires(String... actuators) {
+            spreadRequirementSet();
             requirements.addAll(List.of(actuators));
             return this;
         }
@@ -183,8 +188,23 @@ public final class Container {
          * @return this
          */
         public Builder requires(java.util.Collection<String> actuators) {
+            if (requirements.isEmpty() && requirementSet == null && actuators instanceof Set<String> set && !set.isEmpty()) {
+                // Kept as it is when it is already unmodifiable (Set.copyOf returns it): a motor
+                // platform gives the same set to every refresh of a drive, ten a second per robot.
+                requirementSet = Set.copyOf(set);
+                return this;
+            }
+            spreadRequirementSet();
             requirements.addAll(actuators);
             return this;
+        }
+
+        /** Moves a set given whole into the ordered requirements, before more are added. */
+        private void spreadRequirementSet() {
+            if (requirementSet != null) {
+                requirements.addAll(requirementSet);
+                requirementSet = null;
+            }
         }
 
         /**
@@ -263,7 +283,7 @@ public final class Container {
          * @throws IllegalArgumentException if it requires no actuator
          */
         public Container build() {
-            if (requirements.isEmpty()) {
+            if (requirements.isEmpty() && requirementSet == null) {
                 throw new IllegalArgumentException("container '" + name + "' requires no actuator; every container must name the actuators it drives");
             }
             return new Container(this);

@@ -240,23 +240,18 @@ public final class ExecutionActionThread implements AutoCloseable {
         for (Container c; (c = incoming.poll()) != null; ) {
             admit(c, start);
         }
-        for (Container c : snapshot()) {
-            if (c.watchdogExpired(start)) {
-                LOG.warn("robot '{}': watchdog stopped '{}': not refreshed within {} ms", robot, c.name(), c.watchdog().toMillis());
-                finish(c, true, new RobotException("robot '" + robot + "': watchdog stopped '" + c.name() + "': it was not refreshed within "
-                        + c.watchdog().toMillis() + " ms"));
+        if (active.size() == 1) {
+            // One container (a robot's running drive): nothing to copy, as ending it ends the loop.
+            Container c = active.get(0);
+            if (!watchdog(c, start)) {
+                evaluate(c, start);
             }
-        }
-        for (Container c : snapshot()) {
-            boolean done;
-            try {
-                done = c.evaluate(start);
-            } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
-                fail(c, e);
-                continue;
+        } else {
+            for (Container c : snapshot()) {
+                watchdog(c, start);
             }
-            if (done) {
-                finish(c, false, null);
+            for (Container c : snapshot()) {
+                evaluate(c, start);
             }
         }
         for (Runnable listener : cycleListeners) {
@@ -272,13 +267,42 @@ public final class ExecutionActionThread implements AutoCloseable {
             holdersChanged = false;
         }
         CYCLES.setRelease(this, cycles + 1);
-        if (clock.nanoTime() - start > periodNanos && clock == Clock.system()) {
+        if (clock == Clock.system() && clock.nanoTime() - start > periodNanos) {
             long n = overruns.incrementAndGet();
             if (Long.bitCount(n) == 1) {
                 LOG.warn("robot '{}': execution action thread overran its {} µs period ({} overruns so far)", robot, periodNanos / 1000, n);
             }
         }
         return active.size();
+    }
+
+    /**
+     * Ends a container whose watchdog expired.
+     *
+     * @return whether it did
+     */
+    private boolean watchdog(Container c, long now) {
+        if (!c.watchdogExpired(now)) {
+            return false;
+        }
+        LOG.warn("robot '{}': watchdog stopped '{}': not refreshed within {} ms", robot, c.name(), c.watchdog().toMillis());
+        finish(c, true, new RobotException("robot '" + robot + "': watchdog stopped '" + c.name() + "': it was not refreshed within "
+                + c.watchdog().toMillis() + " ms"));
+        return true;
+    }
+
+    /** Evaluates a running container's logic objects and ends it when they all hold (or one throws). */
+    private void evaluate(Container c, long now) {
+        boolean done;
+        try {
+            done = c.evaluate(now);
+        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+            fail(c, e);
+            return;
+        }
+        if (done) {
+            finish(c, false, null);
+        }
     }
 
     /** The running containers, copied into a reused list so the loops may end them as they go. */
@@ -311,7 +335,6 @@ public final class ExecutionActionThread implements AutoCloseable {
             }
         }
         if (only != null && clashing.isEmpty()) {
-            clashing = Set.of(only);
             Container holder = only;
             if (holder.refreshedBy(c)) {
                 try {
@@ -323,6 +346,7 @@ public final class ExecutionActionThread implements AutoCloseable {
                 }
                 return;
             }
+            clashing = Set.of(only);
         }
         for (Container holder : clashing) {
             boolean holderWins = holder.priority().compareTo(c.priority()) > 0
