@@ -23,14 +23,21 @@ public final class Container {
     private final Set<String> requirements;
     private final CommandPriority priority;
     private final InterruptionBehavior interruptionBehavior;
-    private final List<ActionObject> actions;
-    private final List<LogicObject> logic;
+    // The first action and logic object in fields of their own, the rest (rarely any) in arrays: a
+    // cycle of a robot's running drive reads its one logic object without another object to fetch.
+    private final ActionObject firstAction;
+    private final ActionObject[] moreActions;
+    private final LogicObject firstLogic;
+    private final LogicObject[] moreLogic;
     private final EndAction endAction;
     private final long watchdogNanos;
     private final String refreshKey;
     private final CompletableFuture<Void> completion = new CompletableFuture<>();
 
-    private boolean[] satisfied;
+    /** Which logic objects have held, bit i for the i-th (the first 64). */
+    private long satisfiedBits;
+    /** The same for logic objects past the 64th, if there are any. */
+    private boolean[] satisfiedMore;
     private long startedAt;
 
     private Container(Builder b) {
@@ -38,12 +45,17 @@ public final class Container {
         this.requirements = b.requirementSet != null ? b.requirementSet : immutable(b.requirements);
         this.priority = b.priority;
         this.interruptionBehavior = b.interruptionBehavior;
-        this.actions = b.actions.size() == 1 ? List.of(b.actions.get(0)) : List.copyOf(b.actions);
-        this.logic = b.logic.size() == 1 ? List.of(b.logic.get(0)) : List.copyOf(b.logic);
+        this.firstAction = b.actions.isEmpty() ? null : b.actions.get(0);
+        this.moreActions = b.actions.size() <= 1 ? NO_ACTIONS : b.actions.subList(1, b.actions.size()).toArray(NO_ACTIONS);
+        this.firstLogic = b.logic.isEmpty() ? null : b.logic.get(0);
+        this.moreLogic = b.logic.size() <= 1 ? NO_LOGIC : b.logic.subList(1, b.logic.size()).toArray(NO_LOGIC);
         this.endAction = b.endAction;
         this.watchdogNanos = b.watchdog.toNanos();
         this.refreshKey = b.refreshKey;
     }
+
+    private static final ActionObject[] NO_ACTIONS = new ActionObject[0];
+    private static final LogicObject[] NO_LOGIC = new LogicObject[0];
 
     /** {@link Set#copyOf}, without the intermediate hash set it makes, for the one or two actuators most containers need. */
     private static Set<String> immutable(java.util.LinkedHashSet<String> s) {
@@ -103,30 +115,57 @@ public final class Container {
     /** Takes over a newer container's actions and restarts the watchdog. */
     void refresh(long now, Container newer) {
         startedAt = now;
-        List<ActionObject> a = newer.actions;
-        for (int i = 0; i < a.size(); i++) {
-            a.get(i).start(now);
-        }
+        newer.runActions(now);
     }
 
     void start(long now) {
         startedAt = now;
-        satisfied = new boolean[logic.size()];
-        for (int i = 0; i < actions.size(); i++) {
-            actions.get(i).start(now);
+        satisfiedBits = 0;
+        if (moreLogic.length >= 64) {
+            satisfiedMore = new boolean[moreLogic.length + 1];
+        }
+        runActions(now);
+    }
+
+    /** Runs its action objects, in the order they were added. */
+    private void runActions(long now) {
+        if (firstAction != null) {
+            firstAction.start(now);
+            for (ActionObject a : moreActions) {
+                a.start(now);
+            }
         }
     }
 
     /** @return whether every logic object now holds */
     boolean evaluate(long now) {
+        if (firstLogic == null) {
+            return true;
+        }
         boolean all = true;
-        for (int i = 0; i < satisfied.length; i++) {
-            if (!satisfied[i]) {
-                satisfied[i] = logic.get(i).evaluate(now);
-                all &= satisfied[i];
+        int count = moreLogic.length + 1;
+        for (int i = 0; i < count; i++) {
+            if (!satisfied(i)) {
+                boolean holds = (i == 0 ? firstLogic : moreLogic[i - 1]).evaluate(now);
+                if (holds) {
+                    setSatisfied(i);
+                }
+                all &= holds;
             }
         }
         return all;
+    }
+
+    private boolean satisfied(int i) {
+        return i < 64 ? (satisfiedBits & (1L << i)) != 0 : satisfiedMore[i];
+    }
+
+    private void setSatisfied(int i) {
+        if (i < 64) {
+            satisfiedBits |= 1L << i;
+        } else {
+            satisfiedMore[i] = true;
+        }
     }
 
     boolean watchdogExpired(long now) {

@@ -10,10 +10,8 @@ import org.slf4j.LoggerFactory;
 
 import java.time.Duration;
 import java.util.ArrayList;
-import java.util.HashMap;
 import java.util.LinkedHashSet;
 import java.util.List;
-import java.util.Map;
 import java.util.Queue;
 import java.util.Set;
 import java.util.concurrent.CompletableFuture;
@@ -91,7 +89,7 @@ public final class ExecutionActionThread implements AutoCloseable {
     private volatile Set<String> inUse = Set.of();
 
     // Touched only by the cycling thread:
-    private final Map<String, Container> holders = new HashMap<>();
+    private final Holders holders = new Holders();
     private final List<Container> active = new ArrayList<>();
     private final List<Container> scratch = new ArrayList<>();
     private boolean holdersChanged;
@@ -263,7 +261,7 @@ public final class ExecutionActionThread implements AutoCloseable {
             }
         }
         if (holdersChanged) {
-            inUse = Set.copyOf(holders.keySet());
+            inUse = holders.actuators();
             holdersChanged = false;
         }
         CYCLES.setRelease(this, cycles + 1);
@@ -538,6 +536,68 @@ public final class ExecutionActionThread implements AutoCloseable {
         }
         if (interrupted) {
             Thread.currentThread().interrupt();
+        }
+    }
+
+    /**
+     * Which container holds each actuator in use: a robot has a handful, so two arrays scanned
+     * (an actuator's name is most often the very string the last command used) cost less than a
+     * hash map's table and entries. Cycling thread only.
+     */
+    private static final class Holders {
+        private String[] actuators = new String[4];
+        private Container[] containers = new Container[4];
+        private int size;
+
+        private int indexOf(String actuator) {
+            for (int i = 0; i < size; i++) {
+                if (actuators[i] == actuator) {
+                    return i;
+                }
+            }
+            int hash = actuator.hashCode();
+            for (int i = 0; i < size; i++) {
+                if (actuators[i].hashCode() == hash && actuators[i].equals(actuator)) {
+                    return i;
+                }
+            }
+            return -1;
+        }
+
+        Container get(String actuator) {
+            int i = indexOf(actuator);
+            return i < 0 ? null : containers[i];
+        }
+
+        void put(String actuator, Container c) {
+            int i = indexOf(actuator);
+            if (i >= 0) {
+                containers[i] = c;
+                return;
+            }
+            if (size == actuators.length) {
+                actuators = java.util.Arrays.copyOf(actuators, size * 2);
+                containers = java.util.Arrays.copyOf(containers, size * 2);
+            }
+            actuators[size] = actuator;
+            containers[size] = c;
+            size++;
+        }
+
+        /** Removes the actuator if that container holds it. */
+        void remove(String actuator, Container c) {
+            int i = indexOf(actuator);
+            if (i >= 0 && containers[i] == c) {
+                size--;
+                actuators[i] = actuators[size];
+                containers[i] = containers[size];
+                actuators[size] = null;
+                containers[size] = null;
+            }
+        }
+
+        Set<String> actuators() {
+            return Set.of(java.util.Arrays.copyOf(actuators, size));
         }
     }
 

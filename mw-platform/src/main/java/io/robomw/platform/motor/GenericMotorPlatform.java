@@ -317,6 +317,34 @@ public abstract class GenericMotorPlatform {
                 .requires(required.set())
                 .priority(command.priority())
                 .watchdog(command.watchdogTimeout());
+        boolean continuous = true;
+        for (MotorTarget t : targets) {
+            continuous &= t.continuous();
+        }
+        if (continuous) {
+            // A drive: its speeds taken now, so the action thread reads one small array, not the command.
+            double[] speeds = new double[targets.size()];
+            for (int i = 0; i < speeds.length; i++) {
+                speeds[i] = targets.get(i).degreesPerSecond();
+            }
+            b.action(now -> {
+                for (int i = 0; i < speeds.length; i++) {
+                    Port p = used[i];
+                    // A refreshed drive most often asks for what is wanted already: nothing to change.
+                    if (!same(p.wanted, speeds[i], Double.POSITIVE_INFINITY, MotorState.StopMode.BRAKE)) {
+                        setWanted(p, new MotorState(p.name, speeds[i], Double.POSITIVE_INFINITY, MotorState.StopMode.BRAKE), false);
+                    }
+                }
+            });
+            b.logic(NEVER);
+            b.refreshes("continuous");
+            b.onEnd(interrupted -> {
+                for (Port p : used) {
+                    stop(p, MotorState.StopMode.BRAKE);
+                }
+            });
+            return b.build();
+        }
         long[] startedAt = new long[1];
         MotorState[] started = new MotorState[targets.size()];
         b.action(now -> {
@@ -325,7 +353,6 @@ public abstract class GenericMotorPlatform {
                 MotorTarget t = targets.get(i);
                 double speed = t.degrees() == 0 ? 0 : t.degreesPerSecond();
                 if (t.continuous()) {
-                    // A refreshed drive most often asks for what is wanted already: nothing to change.
                     if (!same(used[i].wanted, speed, t.degrees(), MotorState.StopMode.BRAKE)) {
                         setWanted(used[i], new MotorState(t.port(), speed, t.degrees(), MotorState.StopMode.BRAKE), false);
                     }
@@ -355,14 +382,6 @@ public abstract class GenericMotorPlatform {
                 }
                 return false;
             });
-        }
-        boolean continuous = true;
-        for (MotorTarget t : targets) {
-            continuous &= t.continuous();
-        }
-        if (continuous) {
-            b.logic(NEVER);
-            b.refreshes("continuous");
         }
         b.onEnd(interrupted -> {
             for (Port p : used) {
