@@ -43,12 +43,14 @@ public final class Container {
     private Container(Builder b) {
         this.name = b.name;
         this.requirements = b.requirementSet != null ? b.requirementSet : immutable(b.requirements);
+        List<ActionObject> actions = b.actions == null ? List.of() : b.actions;
+        List<LogicObject> logic = b.logic == null ? List.of() : b.logic;
         this.priority = b.priority;
         this.interruptionBehavior = b.interruptionBehavior;
-        this.firstAction = b.actions.isEmpty() ? null : b.actions.get(0);
-        this.moreActions = b.actions.size() <= 1 ? NO_ACTIONS : b.actions.subList(1, b.actions.size()).toArray(NO_ACTIONS);
-        this.firstLogic = b.logic.isEmpty() ? null : b.logic.get(0);
-        this.moreLogic = b.logic.size() <= 1 ? NO_LOGIC : b.logic.subList(1, b.logic.size()).toArray(NO_LOGIC);
+        this.firstAction = actions.isEmpty() ? null : actions.get(0);
+        this.moreActions = actions.size() <= 1 ? NO_ACTIONS : actions.subList(1, actions.size()).toArray(NO_ACTIONS);
+        this.firstLogic = logic.isEmpty() ? null : logic.get(0);
+        this.moreLogic = logic.size() <= 1 ? NO_LOGIC : logic.subList(1, logic.size()).toArray(NO_LOGIC);
         this.endAction = b.endAction;
         this.watchdogNanos = b.watchdog.toNanos();
         this.refreshKey = b.refreshKey;
@@ -59,6 +61,9 @@ public final class Container {
 
     /** {@link Set#copyOf}, without the intermediate hash set it makes, for the one or two actuators most containers need. */
     private static Set<String> immutable(java.util.LinkedHashSet<String> s) {
+        if (s == null || s.isEmpty()) {
+            return Set.of();
+        }
         if (s.size() == 1) {
             return Set.of(s.iterator().next());
         }
@@ -197,13 +202,14 @@ public final class Container {
     /** Builds a container. */
     public static final class Builder {
         private final String name;
-        private final java.util.LinkedHashSet<String> requirements = new java.util.LinkedHashSet<>();
+        // Made when first needed: a motor platform's drive gives one set, one action and one logic object.
+        private java.util.LinkedHashSet<String> requirements;
         /** The requirements as one unmodifiable set given whole (a motor platform's cached set), while nothing else was required. */
         private Set<String> requirementSet;
         private CommandPriority priority = CommandPriority.NORMAL;
         private InterruptionBehavior interruptionBehavior = InterruptionBehavior.CANCEL_SELF;
-        private final List<ActionObject> actions = new ArrayList<>();
-        private final List<LogicObject> logic = new ArrayList<>();
+        private List<ActionObject> actions;
+        private List<LogicObject> logic;
         private EndAction endAction = interrupted -> { };
         private Duration watchdog = Duration.ZERO;
         private String refreshKey;
@@ -218,7 +224,7 @@ public final class Container {
          */
         public Builder requires(String... actuators) {
             spreadRequirementSet();
-            requirements.addAll(List.of(actuators));
+            ordered().addAll(List.of(actuators));
             return this;
         }
 
@@ -227,23 +233,30 @@ public final class Container {
          * @return this
          */
         public Builder requires(java.util.Collection<String> actuators) {
-            if (requirements.isEmpty() && requirementSet == null && actuators instanceof Set<String> set && !set.isEmpty()) {
+            if (requirements == null && requirementSet == null && actuators instanceof Set<String> set && !set.isEmpty()) {
                 // Kept as it is when it is already unmodifiable (Set.copyOf returns it): a motor
                 // platform gives the same set to every refresh of a drive, ten a second per robot.
                 requirementSet = Set.copyOf(set);
                 return this;
             }
             spreadRequirementSet();
-            requirements.addAll(actuators);
+            ordered().addAll(actuators);
             return this;
         }
 
         /** Moves a set given whole into the ordered requirements, before more are added. */
         private void spreadRequirementSet() {
             if (requirementSet != null) {
-                requirements.addAll(requirementSet);
+                ordered().addAll(requirementSet);
                 requirementSet = null;
             }
+        }
+
+        private java.util.LinkedHashSet<String> ordered() {
+            if (requirements == null) {
+                requirements = new java.util.LinkedHashSet<>();
+            }
+            return requirements;
         }
 
         /**
@@ -269,7 +282,11 @@ public final class Container {
          * @return this
          */
         public Builder action(ActionObject action) {
-            actions.add(Objects.requireNonNull(action));
+            Objects.requireNonNull(action);
+            if (actions == null) {
+                actions = new ArrayList<>(2);
+            }
+            actions.add(action);
             return this;
         }
 
@@ -278,7 +295,11 @@ public final class Container {
          * @return this
          */
         public Builder logic(LogicObject condition) {
-            logic.add(Objects.requireNonNull(condition));
+            Objects.requireNonNull(condition);
+            if (logic == null) {
+                logic = new ArrayList<>(2);
+            }
+            logic.add(condition);
             return this;
         }
 
@@ -322,7 +343,7 @@ public final class Container {
          * @throws IllegalArgumentException if it requires no actuator
          */
         public Container build() {
-            if (requirements.isEmpty() && requirementSet == null) {
+            if ((requirements == null || requirements.isEmpty()) && requirementSet == null) {
                 throw new IllegalArgumentException("container '" + name + "' requires no actuator; every container must name the actuators it drives");
             }
             return new Container(this);

@@ -69,8 +69,13 @@ public abstract class GenericMotorPlatform {
     private boolean anyChanged;
     /** Guards the ports' {@code published} states, so a cycle's batch is handed over whole. */
     private final Object publishLock = new Object();
-    /** Whether any port has a published state the link side has not taken; written under {@link #publishLock}. */
-    private volatile boolean anyPublished;
+    /**
+     * Whether any port has a published state the link side has not taken; written under
+     * {@link #publishLock} with a release store, read first without it (acquire).
+     */
+    private boolean anyPublished;
+    /** Whether the link side runs on the action side's thread right after each flush ({@link #linkServicedInline}). */
+    private boolean linkInline;
     /** The link side's batch and what was sent before it, by position in the batch (one link side at a time). */
     private final MotorState[] drained;
     private final Port[] batchPorts;
@@ -93,14 +98,66 @@ public abstract class GenericMotorPlatform {
         MotorState changed;
         /** Guarded by {@link #publishLock}: published for the link side, not yet taken. */
         MotorState published;
+        // Handed between the sides with release stores and acquire loads (plain moves on x86, no
+        // fence per reading): one side writes each, the values are immutable records, and no
+        // decision needs a store ordered before a later load of another field.
         /** The last encoder reading; link side writes. */
-        volatile Reading reading;
+        private Reading reading;
         /** Where the motor was, by prediction, when the brick took the running state last sent for it; link side writes. */
-        volatile Start start;
+        private Start start;
         /** The last state handed to {@code runImpl}; link side writes. */
-        volatile MotorState sent;
+        private MotorState sent;
         /** A limited rotation the brick stopped by itself (or the link side stopped just in time). */
-        volatile MotorState stoppedAtLimit;
+        private MotorState stoppedAtLimit;
+
+        Reading reading() {
+            return (Reading) READING.getAcquire(this);
+        }
+
+        void reading(Reading r) {
+            READING.setRelease(this, r);
+        }
+
+        Start start() {
+            return (Start) START.getAcquire(this);
+        }
+
+        void start(Start st) {
+            START.setRelease(this, st);
+        }
+
+        MotorState sent() {
+            return (MotorState) SENT.getAcquire(this);
+        }
+
+        void sent(MotorState st) {
+            SENT.setRelease(this, st);
+        }
+
+        MotorState stoppedAtLimit() {
+            return (MotorState) STOPPED_AT_LIMIT.getAcquire(this);
+        }
+
+        void stoppedAtLimit(MotorState st) {
+            STOPPED_AT_LIMIT.setRelease(this, st);
+        }
+
+        private static final java.lang.invoke.VarHandle READING;
+        private static final java.lang.invoke.VarHandle START;
+        private static final java.lang.invoke.VarHandle SENT;
+        private static final java.lang.invoke.VarHandle STOPPED_AT_LIMIT;
+
+        static {
+            try {
+                java.lang.invoke.MethodHandles.Lookup l = java.lang.invoke.MethodHandles.lookup();
+                READING = l.findVarHandle(Port.class, "reading", Reading.class);
+                START = l.findVarHandle(Port.class, "start", Start.class);
+                SENT = l.findVarHandle(Port.class, "sent", MotorState.class);
+                STOPPED_AT_LIMIT = l.findVarHandle(Port.class, "stoppedAtLimit", MotorState.class);
+            } catch (ReflectiveOperationException e) {
+                throw new ExceptionInInitializerError(e);
+            }
+        }
 
         Port(String name, int index) {
             this.name = name;
@@ -133,6 +190,17 @@ public abstract class GenericMotorPlatform {
         this.drained = new MotorState[motors.length];
         this.batchPorts = new Port[motors.length];
         this.sentBefore = new MotorState[motors.length];
+    }
+
+    /**
+     * Says that the link side is serviced on the thread that cycles the action side, right after
+     * each {@link #flushOutputs} (a platform without I/O: the simulator's, whose
+     * {@code BrickPlatform} runs it {@code INLINE}), and on the closing thread once cycling has
+     * stopped: one thread at a time, so a cycle's batch is handed over without the lock a link
+     * thread of its own needs. Call before the first cycle.
+     */
+    public void linkServicedInline() {
+        linkInline = true;
     }
 
     /**
@@ -171,9 +239,9 @@ public abstract class GenericMotorPlatform {
      */
     protected final void reportStoppedAtLimit(String port) {
         Port p = port(port);
-        MotorState last = p.sent;
+        MotorState last = p.sent();
         if (last != null && last.running() && !Double.isInfinite(last.limitDegrees())) {
-            p.stoppedAtLimit = last;
+            p.stoppedAtLimit(last);
         }
     }
 
@@ -210,7 +278,7 @@ public abstract class GenericMotorPlatform {
      * @param reading degrees of the motor shaft
      */
     protected final void reportDegrees(String port, double reading) {
-        port(port).reading = new Reading(reading, clock.nanoTime() - linkDelayNanos());
+        port(port).reading(new Reading(reading, clock.nanoTime() - linkDelayNanos()));
     }
 
     /**
@@ -221,7 +289,7 @@ public abstract class GenericMotorPlatform {
      * @param reading   degrees of the motor shaft
      */
     protected final void reportDegrees(int portIndex, double reading) {
-        motors[portIndex].reading = new Reading(reading, clock.nanoTime() - linkDelayNanos());
+        motors[portIndex].reading(new Reading(reading, clock.nanoTime() - linkDelayNanos()));
     }
 
     /**
@@ -296,7 +364,7 @@ public abstract class GenericMotorPlatform {
      * @return the last encoder reading, degrees
      */
     public double motorDegrees(String port) {
-        Reading r = port(port).reading;
+        Reading r = port(port).reading();
         return r == null ? 0.0 : r.degrees();
     }
 
@@ -455,7 +523,7 @@ public abstract class GenericMotorPlatform {
         if (t.degrees() == 0 || speed == 0) {
             return true;
         }
-        if (p.stoppedAtLimit == started) {
+        if (p.stoppedAtLimit() == started) {
             return true;
         }
         if (stopsAtLimit()) {
@@ -464,7 +532,7 @@ public abstract class GenericMotorPlatform {
         if (!hasEncoder(t.port())) {
             return elapsedNanos >= t.degrees() / speed * 1e9;
         }
-        Start start = p.start;
+        Start start = p.start();
         if (start == null || start.state() != started) {
             return false;
         }
@@ -487,7 +555,7 @@ public abstract class GenericMotorPlatform {
     }
 
     private double turned(Port p) {
-        Start start = p.start;
+        Start start = p.start();
         return start == null ? 0 : turned(p, start);
     }
 
@@ -505,7 +573,7 @@ public abstract class GenericMotorPlatform {
      * sent; stopping on the bare reading would overshoot by both.
      */
     private double predictedDegrees(Port port, double degreesPerSecond, long turningSince) {
-        Reading r = port.reading;
+        Reading r = port.reading();
         if (r == null) {
             return 0.0;
         }
@@ -539,17 +607,26 @@ public abstract class GenericMotorPlatform {
         if (!anyChanged) {
             return false;
         }
-        synchronized (publishLock) {
-            for (Port p : motors) {
-                if (p.changed != null) {
-                    p.published = p.changed;
-                    p.changed = null;
-                }
+        if (linkInline) {
+            publishChanged();
+        } else {
+            synchronized (publishLock) {
+                publishChanged();
             }
-            anyPublished = true;
         }
         anyChanged = false;
         return true;
+    }
+
+    /** Moves this cycle's changed states to the published ones (under {@link #publishLock} unless the link side is inline). */
+    private void publishChanged() {
+        for (Port p : motors) {
+            if (p.changed != null) {
+                p.published = p.changed;
+                p.changed = null;
+            }
+        }
+        ANY_PUBLISHED.setRelease(this, true);
     }
 
     /**
@@ -575,13 +652,13 @@ public abstract class GenericMotorPlatform {
      */
     public final void serviceLink() throws IOException {
         MotorState[] batchStates = drained;
-        if (anyPublished) {
-            synchronized (publishLock) {
-                for (Port p : motors) {
-                    batchStates[p.index] = p.published;
-                    p.published = null;
+        if ((boolean) ANY_PUBLISHED.getAcquire(this)) {
+            if (linkInline) {
+                takePublished(batchStates);
+            } else {
+                synchronized (publishLock) {
+                    takePublished(batchStates);
                 }
-                anyPublished = false;
             }
         }
         if (stopsOnLinkSide()) {
@@ -607,15 +684,15 @@ public abstract class GenericMotorPlatform {
             for (int k = 0; k < n; k++) {
                 Port p = batchPorts[k];
                 MotorState s = batch.get(k);
-                MotorState previous = p.sent;
+                MotorState previous = p.sent();
                 if (s.running()) {
-                    Start was = p.start;
+                    Start was = p.start();
                     long since = was != null && was.state() == previous ? was.sinceNanos() : Long.MIN_VALUE;
                     double speed = previous == null ? 0 : actualDegreesPerSecond(previous);
-                    p.start = new Start(s, predictedDegrees(p, speed, since), Long.MAX_VALUE);
+                    p.start(new Start(s, predictedDegrees(p, speed, since), Long.MAX_VALUE));
                 }
                 sentBefore[k] = previous;
-                p.sent = s;
+                p.sent(s);
             }
             try {
                 runImpl(batch);
@@ -623,14 +700,14 @@ public abstract class GenericMotorPlatform {
                 for (int k = 0; k < n; k++) {
                     Port p = batchPorts[k];
                     MotorState s = batch.get(k);
-                    Start start = p.start;
+                    Start start = p.start();
                     if (start != null && start.state() == s) {
-                        p.start = new Start(s, start.degrees(), took);
+                        p.start(new Start(s, start.degrees(), took));
                     }
                 }
             } catch (IOException | RuntimeException e) {
                 for (int k = 0; k < n; k++) {
-                    batchPorts[k].sent = sentBefore[k];
+                    batchPorts[k].sent(sentBefore[k]);
                 }
                 // A refusal (RuntimeException: the brick answered with an error status) is not sent
                 // again: it would be refused again, every cycle; the commands that wanted it fail with it.
@@ -639,7 +716,7 @@ public abstract class GenericMotorPlatform {
                         for (int k = 0; k < n; k++) {
                             if (batchPorts[k].published == null) {
                                 batchPorts[k].published = batch.get(k);
-                                anyPublished = true;
+                                ANY_PUBLISHED.setRelease(this, true);
                             }
                         }
                     }
@@ -651,6 +728,15 @@ public abstract class GenericMotorPlatform {
             }
         }
         pollFeedback();
+    }
+
+    /** Takes every published state into the batch (under {@link #publishLock} unless the link side is inline). */
+    private void takePublished(MotorState[] batchStates) {
+        for (Port p : motors) {
+            batchStates[p.index] = p.published;
+            p.published = null;
+        }
+        ANY_PUBLISHED.setRelease(this, false);
     }
 
     /**
@@ -685,11 +771,11 @@ public abstract class GenericMotorPlatform {
         long next = nextSendNanos();
         long[] due = null;
         for (Port p : motors) {
-            MotorState s = p.sent;
+            MotorState s = p.sent();
             if (batch[p.index] != null || s == null || !s.running() || Double.isInfinite(s.limitDegrees()) || !hasEncoder(p.name)) {
                 continue;
             }
-            Start start = p.start;
+            Start start = p.start();
             if (start == null || start.state() != s) {
                 continue;
             }
@@ -718,7 +804,7 @@ public abstract class GenericMotorPlatform {
         for (Port p : motors) {
             if (due[p.index] >= 0) {
                 batch[p.index] = MotorState.stopped(p.name, MotorState.StopMode.BRAKE);
-                p.stoppedAtLimit = p.sent;
+                p.stoppedAtLimit(p.sent());
             }
         }
     }
@@ -739,5 +825,15 @@ public abstract class GenericMotorPlatform {
     /** @return the clock */
     protected Clock clock() {
         return clock;
+    }
+
+    private static final java.lang.invoke.VarHandle ANY_PUBLISHED;
+
+    static {
+        try {
+            ANY_PUBLISHED = java.lang.invoke.MethodHandles.lookup().findVarHandle(GenericMotorPlatform.class, "anyPublished", boolean.class);
+        } catch (ReflectiveOperationException e) {
+            throw new ExceptionInInitializerError(e);
+        }
     }
 }
