@@ -95,6 +95,7 @@ public final class AgentHost implements Agency, AutoCloseable {
     private final Duration wireReadSpin;
     private final boolean version2Only;
     private final WireServer.Limits wireLimits;
+    private final java.util.concurrent.ThreadFactory wireThreads;
     private HostEndpoint endpoint;
     private WireServer wireServer;
     private Registry registry;
@@ -118,6 +119,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         this.wireReadSpin = b.wireReadSpin;
         this.version2Only = b.version2Only;
         this.wireLimits = b.wireLimits != null ? b.wireLimits : WireServer.Limits.of(b.maxStateBytes, b.callTimeout);
+        this.wireThreads = b.wireThreads;
         Peers peers = new Peers(state, key, tls != null, this::serveSelf);
         this.peers = peers;
         this.messaging = new HostMessaging(state, peers, b.node, b.node != null && b.ownsNode);
@@ -164,6 +166,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         private Duration wireReadSpin = Duration.ZERO;
         private boolean version2Only;
         private WireServer.Limits wireLimits;
+        private java.util.concurrent.ThreadFactory wireThreads;
 
         private Builder(String name) {
             if (name == null || !name.matches("[A-Za-z0-9._-]+")) {
@@ -383,6 +386,12 @@ public final class AgentHost implements Agency, AutoCloseable {
             return this;
         }
 
+        /** For tests: what makes the agent wire's connection threads (one that fails, to see the wire end cleanly). */
+        Builder wireThreads(java.util.concurrent.ThreadFactory factory) {
+            this.wireThreads = factory;
+            return this;
+        }
+
         /** For tests: the agent wire's limits. */
         Builder wireLimits(WireServer.Limits limits) {
             this.wireLimits = limits;
@@ -456,6 +465,9 @@ public final class AgentHost implements Agency, AutoCloseable {
         if (wire) {
             wireServer = new WireServer(endpoint, bindAddress, wirePort, ssl, wireLimits);
             wireServer.readSpin(wireReadSpin);
+            if (wireThreads != null) {
+                wireServer.connectionThreads(wireThreads);
+            }
             wireServer.countBytesIn(counters);
             endpoint.wirePort(wireServer.port());
         }
@@ -652,6 +664,11 @@ public final class AgentHost implements Agency, AutoCloseable {
     /** @return the port of the host's agent wire, or 0 if it has none */
     public int wirePort() {
         return wireServer == null ? 0 : wireServer.port();
+    }
+
+    /** @return what ended the agent wire's accept thread, or {@code null} while it serves (for tests) */
+    Throwable wireFailure() {
+        return wireServer == null ? null : wireServer.failure();
     }
 
     /** @return the frames (calls) this host's agent wire has served (for tests) */

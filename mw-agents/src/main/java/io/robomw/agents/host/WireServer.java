@@ -19,6 +19,7 @@ import java.nio.channels.SocketChannel;
 import java.time.Duration;
 import java.util.Set;
 import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.ThreadFactory;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicInteger;
 import java.util.concurrent.atomic.LongAdder;
@@ -83,6 +84,8 @@ final class WireServer implements AutoCloseable {
     private volatile HostSockets.Counters counters = new HostSockets.Counters();
     private final ThrottledWarnings refusals = new ThrottledWarnings(LOG, Duration.ofSeconds(1));
     private volatile boolean closing;
+    private volatile Throwable failure;
+    private volatile ThreadFactory connectionThreads = Thread::new;
     /** How long a connection thread spins for the next frame before it blocks reading (0: never; plain connections only). */
     private volatile long readSpinNanos;
 
@@ -145,6 +148,19 @@ final class WireServer implements AutoCloseable {
     }
 
     private void accept() {
+        try {
+            acceptUntilClosed();
+        } catch (Throwable t) {
+            failure = t;
+            // Ends cleanly: new peers are offered no wire, and peers that have its port find it
+            // refused at once and send their agents over RMI (docs/agents.md, "Versions").
+            endpoint.wirePort(0);
+            closeQuietly(server);
+            LOG.error("host {}: the agent wire's accept thread failed; the wire stops listening and peers send their agents over RMI", hostName, t);
+        }
+    }
+
+    private void acceptUntilClosed() {
         while (!closing) {
             SocketChannel c;
             try {
@@ -156,9 +172,6 @@ final class WireServer implements AutoCloseable {
                     refusals.warn("host {}: the agent wire failed to accept a connection: {}", hostName, e.toString());
                 }
                 continue;
-            } catch (Throwable t) {
-                LOG.error("host {}: the agent wire's accept thread failed; no more transfers are taken on it", hostName, t);
-                return;
             }
             if (connections.size() >= limits.maxConnections()) {
                 refusedConnections.increment();
@@ -170,11 +183,28 @@ final class WireServer implements AutoCloseable {
             }
             Connection conn = new Connection(c, System.nanoTime());
             connections.add(conn);
-            Thread t = new Thread(conn::serve, "agent-wire-" + hostName + "-" + threads.incrementAndGet());
-            t.setDaemon(true);
-            conn.thread = t;
-            t.start();
+            try {
+                Thread t = connectionThreads.newThread(conn::serve);
+                t.setName("agent-wire-" + hostName + "-" + threads.incrementAndGet());
+                t.setDaemon(true);
+                conn.thread = t;
+                t.start();
+            } catch (Throwable t) {
+                connections.remove(conn);
+                closeQuietly(c);
+                throw t;
+            }
         }
+    }
+
+    /** @return what ended the accept thread other than {@link #close}, or {@code null} */
+    Throwable failure() {
+        return failure;
+    }
+
+    /** @param factory makes the threads that serve connections (for tests: one that fails) */
+    void connectionThreads(ThreadFactory factory) {
+        this.connectionThreads = factory;
     }
 
     private static String remote(SocketChannel c) {

@@ -7,12 +7,12 @@ import io.robomw.api.AgentException;
 import io.robomw.api.AgentRef;
 import io.robomw.api.AgentStatus;
 import io.robomw.api.NotHandledException;
-import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.extension.RegisterExtension;
 
 import java.io.Serializable;
 import java.time.Duration;
-import java.util.ArrayList;
+
 import java.util.List;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.TimeUnit;
@@ -26,18 +26,13 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 class AgentHostTest {
 
     private static final ClusterKey KEY = ClusterKey.fromPassphrase("test cluster");
-    private final List<AgentHost> hosts = new ArrayList<>();
+    @RegisterExtension
+    final StartedHosts hosts = new StartedHosts();
 
     private AgentHost host(String name) throws Exception {
-        AgentHost h = AgentHost.builder(name).clusterKey(KEY).start();
-        hosts.add(h);
-        return h;
+        return hosts.start(AgentHost.builder(name).clusterKey(KEY));
     }
 
-    @AfterEach
-    void closeHosts() {
-        hosts.forEach(AgentHost::close);
-    }
 
     @Test
     void agentVisitsItsStopsInOrderAndBringsItsResultHome() throws Exception {

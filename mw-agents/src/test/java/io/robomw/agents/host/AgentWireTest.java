@@ -2,18 +2,20 @@ package io.robomw.agents.host;
 
 import io.robomw.agents.host.trip.VisitorAgent;
 import io.robomw.agents.messaging.TestKeys;
-import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.extension.RegisterExtension;
 import org.junit.jupiter.api.io.TempDir;
 
 import javax.net.ssl.SSLContext;
 import java.nio.file.Path;
 import java.security.SecureRandom;
-import java.util.ArrayList;
+
 import java.util.List;
 import java.util.concurrent.TimeUnit;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertInstanceOf;
+import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 /**
@@ -24,18 +26,13 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 class AgentWireTest {
 
     private static final ClusterKey KEY = ClusterKey.fromPassphrase("agent wire test");
-    private final List<AgentHost> hosts = new ArrayList<>();
+    @RegisterExtension
+    final StartedHosts hosts = new StartedHosts();
 
     private AgentHost start(AgentHost.Builder b) throws Exception {
-        AgentHost h = b.start();
-        hosts.add(h);
-        return h;
+        return hosts.start(b);
     }
 
-    @AfterEach
-    void closeHosts() {
-        hosts.forEach(AgentHost::close);
-    }
 
     @Test
     void hopsGoOnTheWireAndTheStateArrivesWhole() throws Exception {
@@ -51,6 +48,25 @@ class AgentWireTest {
         assertEquals(3, a.wireFramesServed(), "both arrivals at a came on its wire");
         assertEquals(2, b.wireFramesServed());
         assertEquals(1, home.wireFramesServed());
+    }
+
+    @Test
+    void aWireWhoseAcceptThreadFailsStopsListeningAndAgentsHopOverRmi() throws Exception {
+        AgentHost home = start(AgentHost.builder("home").clusterKey(KEY).noMessaging());
+        AgentHost a = start(AgentHost.builder("a").clusterKey(KEY).noMessaging().wireThreads(r -> {
+            throw new OutOfMemoryError("unable to create native thread (test)");
+        }));
+        int port = a.wirePort();
+        VisitorAgent first = new VisitorAgent().payload(20_000);
+        first.itinerary().addStop(a.address()).addStop(home.address());
+        assertEquals(List.of("a", "home"), home.startTrip(first).result().get(20, TimeUnit.SECONDS), "the agent still reached a, over RMI");
+        assertInstanceOf(OutOfMemoryError.class, a.wireFailure(), "the failure is kept for the host's operator");
+        assertEquals(0, a.wireFramesServed());
+        assertThrows(java.net.ConnectException.class, () -> new java.net.Socket("127.0.0.1", port).close(),
+                "the wire no longer listens, so peers are refused at once rather than left waiting");
+        VisitorAgent second = new VisitorAgent().payload(20_000);
+        second.itinerary().addStop(a.address()).addStop(home.address()).addStop(a.address()).addStop(home.address());
+        assertEquals(List.of("a", "home", "a", "home"), home.startTrip(second).result().get(20, TimeUnit.SECONDS), "and a keeps serving");
     }
 
     @Test

@@ -7,12 +7,12 @@ import io.robomw.api.Agent;
 import io.robomw.api.AgentRef;
 import io.robomw.api.Messaging;
 import io.robomw.api.UnsupportedActionException;
-import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.extension.RegisterExtension;
 
 import java.io.Serializable;
 import java.time.Duration;
-import java.util.ArrayList;
+
 import java.util.List;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.ExecutionException;
@@ -27,22 +27,17 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 class HostMessagingTest {
 
     private static final ClusterKey KEY = ClusterKey.fromPassphrase("host messaging");
-    private final List<AgentHost> hosts = new ArrayList<>();
+    @RegisterExtension
+    final StartedHosts hosts = new StartedHosts();
 
     private AgentHost host(String name) throws Exception {
         return host(AgentHost.builder(name).clusterKey(KEY));
     }
 
     private AgentHost host(AgentHost.Builder b) throws Exception {
-        AgentHost h = b.start();
-        hosts.add(h);
-        return h;
+        return hosts.start(b);
     }
 
-    @AfterEach
-    void closeHosts() {
-        hosts.forEach(AgentHost::close);
-    }
 
     @Test
     void aHostDescribesItsNameItsMessagingAndTheHostsItKnows() throws Exception {

@@ -4,12 +4,12 @@ import io.robomw.agents.host.trip.VisitorAgent;
 import io.robomw.agents.messaging.Await;
 import io.robomw.api.AgentRef;
 import io.robomw.api.AgentStatus;
-import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.extension.RegisterExtension;
 
 import java.io.IOException;
 import java.time.Duration;
-import java.util.ArrayList;
+
 import java.util.List;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.atomic.AtomicReference;
@@ -23,18 +23,13 @@ class HostWatchTest {
 
     private static final ClusterKey KEY = ClusterKey.fromPassphrase("watch cluster");
     private static final Duration WITHIN = Duration.ofSeconds(10);
-    private final List<AgentHost> hosts = new ArrayList<>();
+    @RegisterExtension
+    final StartedHosts hosts = new StartedHosts();
 
     private AgentHost host(String name) throws Exception {
-        AgentHost h = AgentHost.builder(name).clusterKey(KEY).start();
-        hosts.add(h);
-        return h;
+        return hosts.start(AgentHost.builder(name).clusterKey(KEY));
     }
 
-    @AfterEach
-    void closeHosts() {
-        hosts.forEach(AgentHost::close);
-    }
 
     @Test
     void aWatcherSeesTheAgentItsItineraryAndItsReportThenRetractsItHome() throws Exception {

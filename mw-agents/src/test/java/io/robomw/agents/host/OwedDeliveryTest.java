@@ -4,14 +4,14 @@ import io.robomw.agents.host.code.CodeArchive;
 import io.robomw.agents.host.trip.VisitorAgent;
 import io.robomw.agents.messaging.Await;
 import io.robomw.api.AgentRef;
-import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.extension.RegisterExtension;
 import org.junit.jupiter.api.io.TempDir;
 
 import java.nio.file.Path;
 import java.time.Duration;
 import java.time.Instant;
-import java.util.ArrayList;
+
 import java.util.List;
 import java.util.Set;
 import java.util.UUID;
@@ -31,21 +31,16 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 class OwedDeliveryTest {
 
     private static final ClusterKey KEY = ClusterKey.fromPassphrase("owed");
-    private final List<AgentHost> hosts = new ArrayList<>();
+    @RegisterExtension
+    final StartedHosts hosts = new StartedHosts();
 
     @TempDir
     Path dir;
 
     private AgentHost started(AgentHost.Builder b) throws Exception {
-        AgentHost h = b.clusterKey(KEY).start();
-        hosts.add(h);
-        return h;
+        return hosts.start(b.clusterKey(KEY));
     }
 
-    @AfterEach
-    void close() {
-        hosts.forEach(AgentHost::close);
-    }
 
     /** Sends an agent whose home is nowhere (a closed port): its report and result stay owed. @return its id */
     private static UUID sendAgentWithAGoneHome(AgentHost to) throws Exception {

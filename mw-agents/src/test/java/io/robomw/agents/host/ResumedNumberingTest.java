@@ -3,14 +3,14 @@ package io.robomw.agents.host;
 import io.robomw.agents.host.trip.NumberedReporter;
 import io.robomw.agents.messaging.Await;
 import io.robomw.api.AgentRef;
-import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.extension.RegisterExtension;
 import org.junit.jupiter.api.io.TempDir;
 
 import java.io.Serializable;
 import java.nio.file.Path;
 import java.time.Duration;
-import java.util.ArrayList;
+
 import java.util.List;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.TimeUnit;
@@ -24,21 +24,16 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 class ResumedNumberingTest {
 
     private static final ClusterKey KEY = ClusterKey.fromPassphrase("numbering");
-    private final List<AgentHost> hosts = new ArrayList<>();
+    @RegisterExtension
+    final StartedHosts hosts = new StartedHosts();
 
     @TempDir
     Path dir;
 
     private AgentHost started(AgentHost.Builder b) throws Exception {
-        AgentHost h = b.clusterKey(KEY).start();
-        hosts.add(h);
-        return h;
+        return hosts.start(b.clusterKey(KEY));
     }
 
-    @AfterEach
-    void close() {
-        hosts.forEach(AgentHost::close);
-    }
 
     @Test
     void reportsAfterAResumeMidStopReachTheHomeAndNoneIsTakenTwice() throws Exception {

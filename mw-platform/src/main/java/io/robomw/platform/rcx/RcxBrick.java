@@ -20,8 +20,12 @@ import java.util.Arrays;
  * retransmissions; a request whose reply does not come is sent once more, unchanged, as NQC does,
  * which the brick answers without running it twice.
  *
- * <p>A wrong echo, header, complement, checksum or reply opcode means the line lost its framing
- * (IR noise) and is reported as a lost link; the channel reopens it.
+ * <p>A request that timed out may still be answered: the tower's echo and the brick's reply come
+ * late, after the next request was sent (a busy host, a slow IR line). The brick keeps count of
+ * the bytes such late answers can still bring, and while that count is not spent it skips stale
+ * bytes before the echo or the reply it waits for, instead of taking them for it (which would
+ * mark a good link lost). Otherwise a wrong echo, header, complement, checksum or reply opcode
+ * means the line lost its framing (IR noise) and is reported as a lost link; the channel reopens it.
  *
  * <p>Thread-safe: the channel runs one exchange at a time; the toggle state is only touched inside
  * an exchange.
@@ -38,6 +42,11 @@ public final class RcxBrick {
     private final boolean echo;
     private final RoundTripEstimate roundTrip = new RoundTripEstimate();
     private int lastOpcode = -1;
+    /** Bytes that answers to timed-out requests may still bring (echoes and replies), at most {@link #MAX_STALE}. */
+    private int stale;
+
+    /** The most stale bytes counted: the answers to a few timed-out requests. */
+    static final int MAX_STALE = 4 * (RcxPacket.wireLength(5) + RcxPacket.wireLength(8));
 
     /**
      * @param robot   the robot's name, for messages
@@ -91,6 +100,7 @@ public final class RcxBrick {
                     return reply;
                 } catch (LinkTimeoutException e) {
                     silence = e;
+                    stale = Math.min(MAX_STALE, stale + (echo ? packet.length : 0) + RcxPacket.wireLength(RcxPacket.replyDataLength(op)));
                     LOG.debug("robot '{}': no reply to {}; sending it again", robot, RcxPacket.name(op));
                 }
             }
@@ -101,25 +111,51 @@ public final class RcxBrick {
     private RcxPacket.Decoded receive(Communicator c, Duration timeout, byte[] packet, int op) throws IOException {
         long deadline = BrickChannel.LINK_TIME.nanoTime() + timeout.toNanos();
         if (echo) {
-            byte[] heard = c.receiveExactly(packet.length, remaining(deadline));
+            byte[] heard = readPast(c, packet, deadline);
             if (!Arrays.equals(heard, packet)) {
                 throw new LinkLostException(channel.describe(), "the IR tower echoed " + RcxPacket.hex(heard) + " for "
                         + RcxPacket.hex(packet) + "; the line lost its framing");
             }
         }
         int replyData = RcxPacket.replyDataLength(op);
-        byte[] bytes = c.receiveExactly(RcxPacket.wireLength(replyData), remaining(deadline));
+        int replyOpcode = RcxPacket.replyOpcode(op);
+        byte[] start = readPast(c, new byte[]{RcxPacket.HEADER[0], RcxPacket.HEADER[1], RcxPacket.HEADER[2],
+                (byte) replyOpcode, (byte) ~replyOpcode}, deadline);
+        byte[] bytes = Arrays.copyOf(start, RcxPacket.wireLength(replyData));
+        byte[] rest = c.receiveExactly(bytes.length - start.length, remaining(deadline));
+        System.arraycopy(rest, 0, bytes, start.length, rest.length);
         RcxPacket.Decoded reply;
         try {
             reply = RcxPacket.decode(bytes);
         } catch (IllegalArgumentException e) {
             throw new LinkLostException(channel.describe(), "the RCX's reply to " + RcxPacket.name(op) + " is garbled: " + e.getMessage());
         }
-        if (reply.opcode() != RcxPacket.replyOpcode(op)) {
+        if (reply.opcode() != replyOpcode) {
             throw new LinkLostException(channel.describe(), String.format("expected the RCX's reply to %s (%02X), got opcode %02X; the line lost its framing",
-                    RcxPacket.name(op), RcxPacket.replyOpcode(op), reply.opcode()));
+                    RcxPacket.name(op), replyOpcode, reply.opcode()));
         }
         return reply;
+    }
+
+    /**
+     * Reads as many bytes as {@code expected} has; while they differ from it and stale bytes may
+     * still be coming, drops the oldest byte read and reads one more.
+     *
+     * @return the last bytes read: {@code expected}, or what came instead once no stale byte is left to skip
+     */
+    private byte[] readPast(Communicator c, byte[] expected, long deadline) throws IOException {
+        byte[] window = c.receiveExactly(expected.length, remaining(deadline));
+        int skipped = 0;
+        while (!Arrays.equals(window, expected) && skipped < stale) {
+            System.arraycopy(window, 1, window, 0, window.length - 1);
+            window[window.length - 1] = c.receiveExactly(1, remaining(deadline))[0];
+            skipped++;
+        }
+        if (skipped > 0) {
+            stale -= skipped;
+            LOG.debug("robot '{}': skipped {} stale bytes of an earlier request's late answer", robot, skipped);
+        }
+        return window;
     }
 
     private static Duration remaining(long deadline) {

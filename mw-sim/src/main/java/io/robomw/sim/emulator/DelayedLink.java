@@ -58,6 +58,8 @@ final class DelayedLink implements Link {
     private long inboundWireFree;
     private long outboundWireFree;
     private volatile long lastDeliveredAt = System.nanoTime();
+    /** When the last bytes read from the real link were put on the modelled one. */
+    private volatile long lastInboundAt;
     private volatile boolean closed;
 
     /**
@@ -113,6 +115,7 @@ final class DelayedLink implements Link {
         long start = Math.max(now, free);
         long end = start + bytes.length * byteNanos;
         if (in) {
+            lastInboundAt = now;
             inboundWireFree = end;
         } else {
             outboundWireFree = end;
@@ -299,6 +302,11 @@ final class DelayedLink implements Link {
      */
     long lastDeliveredAt() {
         return lastDeliveredAt;
+    }
+
+    /** @return when the last bytes read from the real link were put on the modelled link (its arrivals count from then) */
+    long lastInboundAt() {
+        return lastInboundAt;
     }
 
     @Override
