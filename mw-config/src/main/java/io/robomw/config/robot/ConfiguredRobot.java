@@ -76,6 +76,8 @@ public final class ConfiguredRobot implements Robot {
     private volatile DifferentialKinematics kinematics;
     /** Whether the drive last asked about has encoders on both wheels. */
     private volatile Encoders encoders;
+    /** What {@link #drive} needs of the description last in force. */
+    private volatile DrivePlan drivePlan;
     private final LeggedControl legged;
 
     /**
@@ -201,24 +203,66 @@ public final class ConfiguredRobot implements Robot {
     @Override
     public void drive(double linearSpeed, double angularSpeed) {
         RobotDescription d = description.get();
-        if (d.leggedDrive().isPresent()) {
+        DrivePlan plan = drivePlan;
+        if (plan == null || plan.description() != d) {
+            plan = drivePlan(d);
+            drivePlan = plan;
+        }
+        if (plan.legged()) {
             legged.drive(linearSpeed, angularSpeed);
             return;
         }
         String action = "drive";
-        DifferentialKinematics k = groundDrive(d, action);
+        DifferentialKinematics k = plan.kinematics();
+        if (k == null) {
+            k = groundDrive(d, action); // throws, saying why it cannot drive
+        }
         requireFinite(action, linearSpeed, "linear speed");
         requireFinite(action, angularSpeed, "angular speed");
         WheelMotion m = k.velocity(linearSpeed, angularSpeed);
         double fastest = Math.max(Math.abs(m.leftDegreesPerSecond()), Math.abs(m.rightDegreesPerSecond())) / k.motorDegreesPerMetre();
         requireWithinMaxSpeed(action, fastest, k);
-        DifferentialDrive drive = k.drive();
-        trackOdometry(drive);
+        if (plan.encoders()) {
+            integrateOdometry(k.drive());
+        }
         // Nobody waits for a drive's completion: the platform need not make a future for it.
         platform.runDetached(new MotorCommand(action, List.of(
-                MotorTarget.run(drive.left().port(), m.leftDegreesPerSecond()),
-                MotorTarget.run(drive.right().port(), m.rightDegreesPerSecond())),
-                CommandPriority.NORMAL, d.watchdogTimeout()));
+                MotorTarget.run(plan.left(), m.leftDegreesPerSecond()),
+                MotorTarget.run(plan.right(), m.rightDegreesPerSecond())),
+                CommandPriority.NORMAL, plan.watchdog()));
+    }
+
+    /**
+     * What {@link #drive} needs of a description, worked out once for each description in force
+     * (descriptions are immutable; a reload brings a new one): a controller calls {@code drive}
+     * ten times a second, and reading the description's optional parts, capabilities and the
+     * platform's encoders each time costs more than the command itself.
+     *
+     * @param description the description it was worked out for
+     * @param legged      whether it has a legged drive
+     * @param kinematics  its wheels' kinematics, or {@code null} if it cannot drive on the ground
+     * @param encoders    whether both wheel motors have encoders (odometry is tracked)
+     * @param left        the left wheel's port
+     * @param right       the right wheel's port
+     * @param watchdog    the watchdog timeout of continuous commands
+     */
+    private record DrivePlan(RobotDescription description, boolean legged, DifferentialKinematics kinematics, boolean encoders,
+                             String left, String right, Duration watchdog) {
+    }
+
+    private DrivePlan drivePlan(RobotDescription d) {
+        if (d.leggedDrive().isPresent()) {
+            return new DrivePlan(d, true, null, false, null, null, d.watchdogTimeout());
+        }
+        DifferentialKinematics k;
+        try {
+            k = groundDrive(d, "drive");
+        } catch (UnsupportedActionException e) {
+            return new DrivePlan(d, false, null, false, null, null, d.watchdogTimeout());
+        }
+        DifferentialDrive drive = k.drive();
+        boolean encoders = platform.hasEncoder(drive.left().port()) && platform.hasEncoder(drive.right().port());
+        return new DrivePlan(d, false, k, encoders, drive.left().port(), drive.right().port(), d.watchdogTimeout());
     }
 
     @Override

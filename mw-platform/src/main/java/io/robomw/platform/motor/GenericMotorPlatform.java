@@ -76,10 +76,6 @@ public abstract class GenericMotorPlatform {
     private boolean anyPublished;
     /** Whether the link side runs on the action side's thread right after each flush ({@link #linkServicedInline}). */
     private boolean linkInline;
-    /** The link side's batch and what was sent before it, by position in the batch (one link side at a time). */
-    private final MotorState[] drained;
-    private final Port[] batchPorts;
-    private final MotorState[] sentBefore;
     /** The requirements of the last command's motors, kept so a repeated {@code drive} shares one set. */
     private volatile Requirements lastRequirements;
     private volatile long cyclePeriodNanos = 10_000_000L;
@@ -98,6 +94,9 @@ public abstract class GenericMotorPlatform {
         MotorState changed;
         /** Guarded by {@link #publishLock}: published for the link side, not yet taken. */
         MotorState published;
+        /** Link side only, during a service: the state taken for this batch, and the one sent before it. */
+        MotorState draining;
+        MotorState sentBefore;
         // Handed between the sides with release stores and acquire loads (plain moves on x86, no
         // fence per reading): one side writes each, the values are immutable records, and no
         // decision needs a store ordered before a later load of another field.
@@ -187,9 +186,6 @@ public abstract class GenericMotorPlatform {
         for (int i = 0; i < motors.length; i++) {
             motors[i] = new Port(order.get(i), i);
         }
-        this.drained = new MotorState[motors.length];
-        this.batchPorts = new Port[motors.length];
-        this.sentBefore = new MotorState[motors.length];
     }
 
     /**
@@ -651,39 +647,40 @@ public abstract class GenericMotorPlatform {
      * @throws RuntimeException if the hardware refused them (a brick's error status); they are not sent again
      */
     public final void serviceLink() throws IOException {
-        MotorState[] batchStates = drained;
         if ((boolean) ANY_PUBLISHED.getAcquire(this)) {
             if (linkInline) {
-                takePublished(batchStates);
+                takePublished();
             } else {
                 synchronized (publishLock) {
-                    takePublished(batchStates);
+                    takePublished();
                 }
+            }
+        } else {
+            for (Port p : motors) {
+                p.draining = null; // nothing left from a service a driver's exception cut short
             }
         }
         if (stopsOnLinkSide()) {
-            anticipateStops(batchStates);
+            anticipateStops();
         }
         List<MotorState> batch = null;
         for (Port p : motors) {
-            MotorState s = batchStates[p.index];
-            if (s != null) {
+            if (p.draining != null) {
                 if (batch == null) {
                     batch = new ArrayList<>(motors.length);
                 }
-                batchPorts[batch.size()] = p;
-                batch.add(s);
-                batchStates[p.index] = null;
+                batch.add(p.draining);
             }
         }
         if (batch != null) {
             // The states count as sent from here on, so that a driver that reads the brick in the
             // same exchange (a pipelined poll) reports on these states, not the ones before; a
             // rotation counts from where the motor will be when the brick takes it.
-            int n = batch.size();
-            for (int k = 0; k < n; k++) {
-                Port p = batchPorts[k];
-                MotorState s = batch.get(k);
+            for (Port p : motors) {
+                MotorState s = p.draining;
+                if (s == null) {
+                    continue;
+                }
                 MotorState previous = p.sent();
                 if (s.running()) {
                     Start was = p.start();
@@ -691,31 +688,32 @@ public abstract class GenericMotorPlatform {
                     double speed = previous == null ? 0 : actualDegreesPerSecond(previous);
                     p.start(new Start(s, predictedDegrees(p, speed, since), Long.MAX_VALUE));
                 }
-                sentBefore[k] = previous;
+                p.sentBefore = previous;
                 p.sent(s);
             }
             try {
                 runImpl(batch);
                 long took = clock.nanoTime() - actedNanosAgo();
-                for (int k = 0; k < n; k++) {
-                    Port p = batchPorts[k];
-                    MotorState s = batch.get(k);
-                    Start start = p.start();
+                for (Port p : motors) {
+                    MotorState s = p.draining;
+                    Start start = s == null ? null : p.start();
                     if (start != null && start.state() == s) {
                         p.start(new Start(s, start.degrees(), took));
                     }
                 }
             } catch (IOException | RuntimeException e) {
-                for (int k = 0; k < n; k++) {
-                    batchPorts[k].sent(sentBefore[k]);
+                for (Port p : motors) {
+                    if (p.draining != null) {
+                        p.sent(p.sentBefore);
+                    }
                 }
                 // A refusal (RuntimeException: the brick answered with an error status) is not sent
                 // again: it would be refused again, every cycle; the commands that wanted it fail with it.
                 if (e instanceof IOException) {
                     synchronized (publishLock) {
-                        for (int k = 0; k < n; k++) {
-                            if (batchPorts[k].published == null) {
-                                batchPorts[k].published = batch.get(k);
+                        for (Port p : motors) {
+                            if (p.draining != null && p.published == null) {
+                                p.published = p.draining;
                                 ANY_PUBLISHED.setRelease(this, true);
                             }
                         }
@@ -723,17 +721,19 @@ public abstract class GenericMotorPlatform {
                 }
                 throw e;
             } finally {
-                java.util.Arrays.fill(sentBefore, 0, n, null);
-                java.util.Arrays.fill(batchPorts, 0, n, null);
+                for (Port p : motors) {
+                    p.draining = null;
+                    p.sentBefore = null;
+                }
             }
         }
         pollFeedback();
     }
 
     /** Takes every published state into the batch (under {@link #publishLock} unless the link side is inline). */
-    private void takePublished(MotorState[] batchStates) {
+    private void takePublished() {
         for (Port p : motors) {
-            batchStates[p.index] = p.published;
+            p.draining = p.published;
             p.published = null;
         }
         ANY_PUBLISHED.setRelease(this, false);
@@ -767,12 +767,12 @@ public abstract class GenericMotorPlatform {
      * should stop together. The link thread waits for that moment. Time here is the injected
      * clock's; the wait is a real one only on the wall clock.
      */
-    private void anticipateStops(MotorState[] batch) {
+    private void anticipateStops() {
         long next = nextSendNanos();
         long[] due = null;
         for (Port p : motors) {
             MotorState s = p.sent();
-            if (batch[p.index] != null || s == null || !s.running() || Double.isInfinite(s.limitDegrees()) || !hasEncoder(p.name)) {
+            if (p.draining != null || s == null || !s.running() || Double.isInfinite(s.limitDegrees()) || !hasEncoder(p.name)) {
                 continue;
             }
             Start start = p.start();
@@ -803,7 +803,7 @@ public abstract class GenericMotorPlatform {
         }
         for (Port p : motors) {
             if (due[p.index] >= 0) {
-                batch[p.index] = MotorState.stopped(p.name, MotorState.StopMode.BRAKE);
+                p.draining = MotorState.stopped(p.name, MotorState.StopMode.BRAKE);
                 p.stoppedAtLimit(p.sent());
             }
         }
