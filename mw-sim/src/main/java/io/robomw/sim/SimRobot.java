@@ -60,6 +60,8 @@ public final class SimRobot {
     private final Map<String, SensorModel> sensors = new LinkedHashMap<>();
     private final List<SensorModel> rangeSensors = new ArrayList<>();
     private final Queue<PendingRead> reads = new ConcurrentLinkedQueue<>();
+    /** Set after a read is queued, cleared before the queue is drained: a cycle without reads looks no further. */
+    private volatile boolean readsPending;
     private final Trajectory trajectory;
     private final boolean hasTouch;
     private final boolean hasAccel;
@@ -417,6 +419,7 @@ public final class SimRobot {
      */
     void requestRead(SensorModel sensor, SimFuture<Double> future) {
         reads.add(new PendingRead(sensor, future));
+        readsPending = true;
     }
 
     /**
@@ -425,6 +428,10 @@ public final class SimRobot {
      * @param world the world, for floor patches
      */
     void completeReads(SimWorld world) {
+        if (!readsPending) {
+            return;
+        }
+        readsPending = false;
         for (PendingRead r; (r = reads.poll()) != null; ) {
             SimFuture<Double> f = r.future();
             try {
