@@ -294,11 +294,17 @@ public final class AgentBenchmark {
                 warmups.put(name, w);
                 say("RoboMW " + name + " JVM warm-up passes (p50 µs, discarded): " + format(w));
                 List<RoundTrips> warm = new ArrayList<>();
+                long peerPid = b.process().pid();
                 for (int p : PAYLOADS) {
+                    long cpu0 = cpuNanos(ProcessHandle.current().pid()) + cpuNanos(peerPid);
                     RoundTrips r = warm(a, far, agentClass, p, WARMUP, iterations(p));
+                    long cpu = cpuNanos(ProcessHandle.current().pid()) + cpuNanos(peerPid) - cpu0;
                     warm.add(r);
-                    say(String.format(Locale.ROOT, "RoboMW %-7s A->B->A %8d B  p50 %8.1f µs  p99 %8.1f µs", name, p, r.p50(), r.p99()));
+                    double cpuPerTrip = cpu / 1e3 / (WARMUP + iterations(p) + 1);
+                    say(String.format(Locale.ROOT, "RoboMW %-7s A->B->A %8d B  p50 %8.1f µs  p99 %8.1f µs  CPU (both JVMs) %8.1f µs per round trip",
+                            name, p, r.p50(), r.p99(), cpuPerTrip));
                     System.out.println(BenchReport.line("agents." + name + "." + payloadId(p), r.p50(), "µs"));
+                    System.out.println(BenchReport.line("agents." + name + "." + payloadId(p) + ".cpu", cpuPerTrip, "µs"));
                 }
                 if (!Boolean.parseBoolean(System.getProperty("agent.bench.extras", "true"))) {
                     return new Mode(name, warm, null, List.of());
@@ -310,6 +316,21 @@ public final class AgentBenchmark {
                 Cold cold = cold(a, far);
                 return new Mode(name, warm, cold, wire);
             }
+        }
+    }
+
+    /**
+     * @param pid a process of this machine
+     * @return its processor time so far (user and system, all threads, GC included), ns, from /proc; 0 where there is none
+     */
+    static long cpuNanos(long pid) {
+        try {
+            String stat = java.nio.file.Files.readString(java.nio.file.Path.of("/proc/" + pid + "/stat"));
+            String[] f = stat.substring(stat.lastIndexOf(')') + 2).split(" ");
+            // fields 14 and 15 of proc(5) (utime, stime), here at 11 and 12 after the name; clock ticks of 10 ms
+            return (Long.parseLong(f[11]) + Long.parseLong(f[12])) * 10_000_000L;
+        } catch (IOException | RuntimeException e) {
+            return 0;
         }
     }
 

@@ -465,6 +465,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         if (wire) {
             wireServer = new WireServer(endpoint, bindAddress, wirePort, ssl, wireLimits);
             wireServer.readSpin(wireReadSpin);
+            wireServer.tagger(state.wireTaggers);
             if (wireThreads != null) {
                 wireServer.connectionThreads(wireThreads);
             }
@@ -545,6 +546,7 @@ public final class AgentHost implements Agency, AutoCloseable {
             Thread.currentThread().interrupt();
             state.runners.shutdownNow();
         }
+        state.wireTaggers.shutdown();
         owed.close();
         int held = state.hosted.size();
         if (held > 0) {

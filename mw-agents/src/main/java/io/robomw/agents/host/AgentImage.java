@@ -110,11 +110,12 @@ record AgentImage(UUID id, long hop, Kind kind, boolean fromHome, String home, C
      *
      * @param agent    the agent whose state travels (this image's own state is not used)
      * @param expected about how long the image will be (its length when it last travelled)
+     * @param buffers  where a large frame's array is taken from if one fits (give it back once the transfer is over)
      * @return the frame
      * @throws IOException if the agent is not serializable
      */
-    Frame frame(java.io.Serializable agent, int expected) throws IOException {
-        Frame.Buffer out = new Frame.Buffer(expected);
+    Frame frame(java.io.Serializable agent, int expected, FrameBuffers buffers) throws IOException {
+        Frame.Buffer out = new Frame.Buffer(expected, buffers.take(Session.HEADER + Math.max(64, expected) + Session.MAC));
         ByteBuffer h = header(0);
         out.write(h.array(), 0, h.position());
         StateCodec.write(agent, out);

@@ -43,8 +43,12 @@ final class HostState {
     final HostActivity activity = new HostActivity();
     /** Runs agents' stops, one pooled thread per agent at a time; its idle threads spin {@link #runnerSpinNanos} before they park. */
     final ExecutorService runners;
+    /** The arrays of large outgoing transfers, reused hop after hop. */
+    final FrameBuffers frameBuffers = new FrameBuffers();
     /** How long a runner waits for work by spinning before it parks, ns (0: never spins). */
     final long runnerSpinNanos;
+    /** Compute the tags of large agent wire frames while their bytes are being written ({@link WireWriter}). */
+    final ExecutorService wireTaggers;
     /** Runs the home's calls to its agents (messages, retract and dispose requests) and clone launches. */
     final ExecutorService requests;
     private final AgentHost facade;
@@ -75,6 +79,7 @@ final class HostState {
         this.runnerSpinNanos = runnerSpin.toNanos();
         this.runners = pool(named("agent-runner-" + name), new SpinHandoff<>(runnerSpin, System::nanoTime));
         this.requests = pool(named("agent-requests-" + name), new java.util.concurrent.SynchronousQueue<>());
+        this.wireTaggers = pool(named("agent-wire-tag-" + name), new java.util.concurrent.SynchronousQueue<>());
     }
 
     /** @return a new context for an agent here, to attach to it before one of its callbacks */

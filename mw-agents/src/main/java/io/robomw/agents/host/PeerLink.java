@@ -57,6 +57,7 @@ final class PeerLink {
     private volatile long wireDownUntil;
     /** How long a reply may spin before it blocks, ns. */
     private volatile long wireSpinNanos;
+    private volatile java.util.concurrent.Executor wireTagger;
 
     /** How long transfers go over RMI after the host's agent wire could not be reached. */
     static final long WIRE_RETRY_MILLIS = 30_000;
@@ -92,6 +93,11 @@ final class PeerLink {
     }
 
     /** @param spin how long a transfer waits for its reply by spinning before it blocks (0: never) */
+    /** @param tagger computes the tags of large frames while they are written ({@link WireWriter}); {@code null}: the writing thread does */
+    void wireTagger(java.util.concurrent.Executor tagger) {
+        this.wireTagger = tagger;
+    }
+
     void wireSpin(java.time.Duration spin) {
         this.wireSpinNanos = spin.toNanos();
     }
@@ -185,7 +191,7 @@ final class PeerLink {
             byte[] raw;
             try {
                 s.seal(n, opCode, frame);
-                raw = remote.call(frame.bytes);
+                raw = remote.call(frame.exact());
             } catch (RemoteException e) {
                 drop();
                 if (attempt == 0 && refusedAsUnproven(e)) {
@@ -238,7 +244,7 @@ final class PeerLink {
         WireChannel ch = idleWire(s);
         if (ch == null) {
             try {
-                ch = WireChannel.connect(s, address.host(), port, wireTls, timeoutMillis);
+                ch = WireChannel.connect(s, address.host(), port, wireTls, timeoutMillis, wireTagger);
             } catch (IOException e) {
                 wireUnreachable(port, e);
                 return null;

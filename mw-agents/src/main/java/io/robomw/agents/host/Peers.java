@@ -109,6 +109,7 @@ final class Peers {
             HostAddress a = HostAddress.parse(t);
             PeerLink l = new PeerLink(a, host.name, key, new HostSockets.Client(a.host(), tls, host.timeoutMillis), random, wireTls, host.timeoutMillis);
             l.wireSpin(wireSpin);
+            l.wireTagger(host.wireTaggers);
             if (version2Only) {
                 l.proposeVersion2Only();
             }

@@ -158,7 +158,7 @@ final class Session {
     void seal(long seq, int opCode, Frame frame) {
         byte[] b = frame.bytes;
         ByteBuffer.wrap(b, 0, HEADER).putLong(id).putLong(seq).put((byte) opCode);
-        int n = b.length - MAC;
+        int n = frame.length - MAC;
         authenticator.tag(false, seq, b, 0, n, b, n);
     }
 

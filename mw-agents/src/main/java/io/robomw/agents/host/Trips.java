@@ -171,13 +171,15 @@ final class Trips {
             AgentImage image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.TRIP, h.home.equals(host.address), h.home, h.digest, h.eventSeq, NO_STATE);
             Frame frame;
             try {
-                frame = image.frame(h.agent, h.imageSize);
+                frame = image.frame(h.agent, h.imageSize, host.frameBuffers);
             } catch (IOException e) {
                 h.agent.attach(host.contextOf(h));
                 return new Departure(false, null, "its state is not serializable: " + e.getMessage());
             }
             h.imageSize = frame.bodyLength();
             String why = hops.send(h, image, frame, target, it);
+            // The transfer is over, delivered or not: nothing reads the frame any more.
+            host.frameBuffers.give(frame.bytes);
             if (why == null) {
                 host.activity.record(h.id, h.className, HostActivity.DEPARTED, host.address, target);
                 return new Departure(true, target, null);
@@ -255,12 +257,13 @@ final class Trips {
         AgentImage image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.HOMECOMING, h.home.equals(host.address), h.home, h.digest, h.eventSeq, NO_STATE);
         Frame frame;
         try {
-            frame = image.frame(h.agent, h.imageSize);
+            frame = image.frame(h.agent, h.imageSize, host.frameBuffers);
         } catch (IOException e) {
             finish(h, AgentEvent.Kind.RESULT);
             return;
         }
         String why = hops.send(h, image, frame, h.home, homeward());
+        host.frameBuffers.give(frame.bytes);
         if (why != null && !host.closed) {
             LOG.warn("host {}: retracted agent {} could not be sent home to {} within {} ({}); its trip ends here", host.name, h.id, h.home,
                     homewardFor, why);

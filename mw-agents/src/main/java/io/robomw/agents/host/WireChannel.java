@@ -51,10 +51,12 @@ final class WireChannel implements AutoCloseable {
      * @param port          its wire port
      * @param tls           the TLS context to connect with, or {@code null} for a plain connection
      * @param timeoutMillis the connect timeout, and the longest a reply may take
+     * @param tagger        computes the tags of large frames while they are written, or {@code null} (the calling thread does)
      * @return the connection
      * @throws IOException if it cannot connect, or the TLS handshake fails
      */
-    static WireChannel connect(Session session, String host, int port, SSLContext tls, int timeoutMillis) throws IOException {
+    static WireChannel connect(Session session, String host, int port, SSLContext tls, int timeoutMillis, java.util.concurrent.Executor tagger)
+            throws IOException {
         String peer = host + ":" + port;
         if (tls != null) {
             Socket raw = new Socket();
@@ -65,7 +67,7 @@ final class WireChannel implements AutoCloseable {
                 ssl.setUseClientMode(true);
                 ssl.startHandshake();
                 return new WireChannel(session, peer, ssl, ssl.getInputStream(),
-                        new WireWriter(WireWriter.of(new BufferedOutputStream(ssl.getOutputStream(), 32 * 1024))));
+                        new WireWriter(WireWriter.of(new BufferedOutputStream(ssl.getOutputStream(), 32 * 1024)), tagger));
             } catch (IOException | RuntimeException e) {
                 s.close();
                 throw e;
@@ -76,7 +78,7 @@ final class WireChannel implements AutoCloseable {
             c.socket().setTcpNoDelay(true);
             c.socket().setSoTimeout(timeoutMillis);
             c.socket().connect(new InetSocketAddress(host, port), timeoutMillis);
-            return new WireChannel(session, peer, c.socket(), c.socket().getInputStream(), new WireWriter(WireWriter.of(c)));
+            return new WireChannel(session, peer, c.socket(), c.socket().getInputStream(), new WireWriter(WireWriter.of(c), tagger));
         } catch (IOException | RuntimeException e) {
             c.close();
             throw e;
@@ -133,7 +135,7 @@ final class WireChannel implements AutoCloseable {
         }
         checking.start(session.frameKey, WireFrames.DIRECTION_REPLY, seq, true);
         byte[] f = reader.frame(h, checking);
-        if (!checking.check(f, f.length - WireFrames.TAG)) {
+        if (!checking.check(f, (int) h.frameLength() - WireFrames.TAG)) {
             throw new WireFrames.FrameRefused("host " + peer + " sent a reply with a wrong tag: not from the host the session was made with");
         }
         Reply.Status status;

@@ -7,19 +7,28 @@ import java.net.SocketTimeoutException;
 
 /**
  * Reads agent wire frames ({@link WireFrames}) from one connection: a header, then the whole frame
- * into one array sized from it (header, body, tag: the body is used where it lies), feeding the
- * frame's tag as the bytes arrive. Reads up to {@link #AHEAD} bytes at once, so a small frame
- * comes in one read with its header. Optionally each frame must arrive by a deadline (the socket's
- * read timeout is set to what is left before each read). Not thread-safe: one reader per connection.
+ * into one array (header, body, tag: the body is used where it lies), feeding the frame's tag as
+ * the bytes arrive. The array is the connection's own and is reused by the next frame when it is
+ * large enough and at most {@link #KEEP_MAX} bytes, so a connection that carries large agents
+ * allocates (and G1 zeroes) their megabytes once rather than at every hop; a frame is used only
+ * up to its length, and the array is grown only after the frame's header has passed the caller's
+ * checks. Reads up to {@link #AHEAD} bytes at once, so a small frame comes in one read with its
+ * header. Optionally each frame must arrive by a deadline (the socket's read timeout is set to what
+ * is left before each read). Not thread-safe: one reader per connection, and a frame's array is
+ * valid only until the next {@link #frame} call.
  */
 final class WireReader {
 
     /** How much a read asks the socket for while no frame's body is being read. */
     static final int AHEAD = 64 * 1024;
+    /** The largest frame array a connection keeps for the next frame; a larger frame gets an array of its own, dropped after it. */
+    static final int KEEP_MAX = 4 * 1024 * 1024;
 
     private final InputStream in;
     private final Socket socket;
     private final byte[] ahead = new byte[AHEAD];
+    /** The array the last frame was read into, reused by the next one that fits; {@code null} until a frame of more than {@link #AHEAD} bytes. */
+    private byte[] kept;
     private int pos;
     private int limit;
     private long deadline;
@@ -74,18 +83,21 @@ final class WireReader {
     }
 
     /**
-     * Reads the frame whose header {@link #header()} just returned, into one array.
+     * Reads the frame whose header {@link #header()} just returned, into one array: the
+     * connection's own (reused, possibly longer than the frame) or, for a frame of more than
+     * {@link #KEEP_MAX} bytes, one of its own. Only the first {@link WireFrames.Header#frameLength()}
+     * bytes are the frame; the array holds it until the next call.
      *
      * @param h   its header (its length checked against the limits by the caller)
      * @param tag where the header and body go as they arrive (started by the caller), or {@code null}
-     * @return the frame: header, body, tag
+     * @return the array holding the frame (header, body, tag) from index 0
      * @throws WireFrames.FrameRefused if the stream ends within the frame
      * @throws IOException             if the connection fails or the deadline passes
      */
     byte[] frame(WireFrames.Header h, FrameTag tag) throws IOException {
         int total = Math.toIntExact(h.frameLength());
         int signed = total - WireFrames.TAG;
-        byte[] f = new byte[total];
+        byte[] f = arrayFor(total);
         int at = Math.min(limit - pos, total);
         System.arraycopy(ahead, pos, f, 0, at);
         pos += at;
@@ -105,6 +117,18 @@ final class WireReader {
                 tag.update(f, fed, upto - fed);
                 fed = upto;
             }
+        }
+        return f;
+    }
+
+    /** @return an array of at least {@code total} bytes: the kept one if it is long enough, else a new one (kept if not too large) */
+    private byte[] arrayFor(int total) {
+        if (kept != null && kept.length >= total) {
+            return kept;
+        }
+        byte[] f = new byte[total];
+        if (total <= KEEP_MAX && total > AHEAD) {
+            kept = f;
         }
         return f;
     }

@@ -88,6 +88,7 @@ final class WireServer implements AutoCloseable {
     private volatile ThreadFactory connectionThreads = Thread::new;
     /** How long a connection thread spins for the next frame before it blocks reading (0: never; plain connections only). */
     private volatile long readSpinNanos;
+    private volatile java.util.concurrent.Executor tagger;
 
     /**
      * Binds and starts accepting.
@@ -125,6 +126,11 @@ final class WireServer implements AutoCloseable {
     /** @param spin how long a connection thread spins (yielding) for the next frame before it blocks reading; zero never */
     void readSpin(Duration spin) {
         this.readSpinNanos = spin.toNanos();
+    }
+
+    /** @param tagger computes the tags of large replies while they are written ({@link WireWriter}) */
+    void tagger(java.util.concurrent.Executor tagger) {
+        this.tagger = tagger;
     }
 
     /** @return the port it listens on */
@@ -296,11 +302,11 @@ final class WireServer implements AutoCloseable {
                     ssl.setNeedClientAuth(true);
                     socket = ssl;
                     in = ssl.getInputStream();
-                    writer = new WireWriter(WireWriter.of(new BufferedOutputStream(ssl.getOutputStream(), 32 * 1024)));
+                    writer = new WireWriter(WireWriter.of(new BufferedOutputStream(ssl.getOutputStream(), 32 * 1024)), tagger);
                 } else {
                     socket = channel.socket();
                     in = socket.getInputStream();
-                    writer = new WireWriter(WireWriter.of(channel));
+                    writer = new WireWriter(WireWriter.of(channel), tagger);
                 }
                 WireReader reader = new WireReader(in, socket);
                 loop(reader, writer, socket, in);
@@ -431,7 +437,8 @@ final class WireServer implements AutoCloseable {
             }
             checking.start(p.session().frameKey, WireFrames.DIRECTION_REQUEST, h.seq(), true);
             byte[] f = reader.frame(h, checking);
-            if (!checking.check(f, f.length - WireFrames.TAG)) {
+            int frameLength = (int) h.frameLength();
+            if (!checking.check(f, frameLength - WireFrames.TAG)) {
                 throw new WireFrames.FrameRefused("wrong tag: not sealed with the key of session " + Long.toHexString(h.session())
                         + " (a changed byte, another key, or a forged session id)");
             }
@@ -453,7 +460,7 @@ final class WireServer implements AutoCloseable {
             }
             writer.write(p.session().frameKey, WireFrames.DIRECTION_REPLY, r.status().code(), h.session(), h.seq(), r.body(), 0, r.body().length);
             HostSockets.Counters c = counters;
-            c.in.add(f.length);
+            c.in.add(frameLength);
             c.out.add(WireFrames.HEADER + r.body().length + WireFrames.TAG);
         }
     }

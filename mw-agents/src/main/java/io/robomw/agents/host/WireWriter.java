@@ -5,15 +5,23 @@ import java.io.IOException;
 import java.io.OutputStream;
 import java.nio.ByteBuffer;
 import java.nio.channels.SocketChannel;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.CompletionException;
+import java.util.concurrent.Executor;
+import java.util.concurrent.RejectedExecutionException;
 
 /**
  * Writes agent wire frames ({@link WireFrames}) to one connection, straight from the arrays that
  * hold them: on a plain connection a frame of up to {@value #ONE_WRITE} bytes of body goes in one
- * gathering write (header, the body where it lies, tag) after its tag is computed; a larger one is
- * written in pieces of that size, each put through the tag just before it is written, so the tag
- * overlaps the copies to the socket and each piece is still in the cache for the second pass. On
- * TLS the pieces go through the TLS socket's stream, which writes them as TLS records. Not
- * thread-safe: one writer per connection, one frame at a time.
+ * gathering write (header, the body where it lies, tag) after its tag is computed. A larger one is
+ * written in pieces of that size while a tagger thread ({@link #WireWriter(Out, Executor)}) computes
+ * its tag over the same bytes, and the tag follows the last piece: on two processors the tag (about
+ * 0.2 ms a megabyte) no longer adds to the copies into the socket, and the peer starts reading and
+ * checking the first piece at once. Without a tagger (or when it refuses the work: the host is
+ * closing) each piece is put through the tag just before it is written. The bytes sent are the same
+ * either way. On TLS the pieces go through the TLS socket's stream, which writes them as TLS
+ * records. Not thread-safe: one writer per connection, one frame at a time; {@link #write} returns
+ * only once the tagger is done with the frame, so the caller may reuse the body's array.
  */
 final class WireWriter {
 
@@ -52,9 +60,20 @@ final class WireWriter {
 
     private final Out out;
     private final FrameTag tag = new FrameTag();
+    private final Executor tagger;
 
+    /** A writer that tags every frame on the writing thread. */
     WireWriter(Out out) {
+        this(out, null);
+    }
+
+    /**
+     * @param out    where the bytes go
+     * @param tagger computes the tag of a frame larger than {@value #ONE_WRITE} bytes of body while it is written, or {@code null}
+     */
+    WireWriter(Out out, Executor tagger) {
         this.out = out;
+        this.tagger = tagger;
     }
 
     /**
@@ -78,6 +97,21 @@ final class WireWriter {
             out.write(ByteBuffer.wrap(header), ByteBuffer.wrap(body, off, len), ByteBuffer.wrap(tag.finish()));
             return;
         }
+        CompletableFuture<byte[]> sealed = null;
+        if (tagger != null) {
+            try {
+                sealed = CompletableFuture.supplyAsync(() -> {
+                    tag.update(body, off, len);
+                    return tag.finish();
+                }, tagger);
+            } catch (RejectedExecutionException closing) {
+                // tagged here, piece by piece
+            }
+        }
+        if (sealed != null) {
+            writeWhileTagged(header, body, off, len, sealed);
+            return;
+        }
         int end = off + len;
         for (int at = off; at < end; at += ONE_WRITE) {
             int n = Math.min(ONE_WRITE, end - at);
@@ -89,6 +123,40 @@ final class WireWriter {
                 out.write(piece, ByteBuffer.wrap(tag.finish()));
             } else {
                 out.write(piece);
+            }
+        }
+    }
+
+    /** Writes the pieces of a large frame while {@code sealed} computes its tag, then the tag; returns once the tagger is done. */
+    private void writeWhileTagged(byte[] header, byte[] body, int off, int len, CompletableFuture<byte[]> sealed) throws IOException {
+        boolean written = false;
+        try {
+            int end = off + len;
+            for (int at = off; at < end; at += ONE_WRITE) {
+                ByteBuffer piece = ByteBuffer.wrap(body, at, Math.min(ONE_WRITE, end - at));
+                if (at == off) {
+                    out.write(ByteBuffer.wrap(header), piece);
+                } else {
+                    out.write(piece);
+                }
+            }
+            byte[] t;
+            try {
+                t = sealed.join();
+            } catch (CompletionException e) {
+                Throwable c = e.getCause();
+                throw c instanceof RuntimeException r ? r : new IllegalStateException("the frame's tag failed: " + c, c);
+            }
+            out.write(ByteBuffer.wrap(t));
+            written = true;
+        } finally {
+            if (!written) {
+                // The write failed: wait until the tagger is done with the body and the cipher before both are reused.
+                try {
+                    sealed.join();
+                } catch (RuntimeException ignored) {
+                    // the frame failed anyway
+                }
             }
         }
     }
