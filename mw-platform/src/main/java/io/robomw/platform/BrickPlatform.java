@@ -79,6 +79,9 @@ public final class BrickPlatform implements RobotPlatform {
         this.link = link;
         this.actionThread = new ExecutionActionThread(config.robotName(), config.clock(), config.cyclePeriod());
         motors.cyclePeriod(config.cyclePeriod());
+        if (threading == LinkThreading.INLINE) {
+            motors.linkServicedInline();
+        }
         for (SensorChannel channel : config.sensors()) {
             Sensor sensor = channel.type() == SensorType.TACHO
                     ? sensorPlatform.selectMotorSensor(channel.port(), channel.type(), ReturnType.RAW)

@@ -52,6 +52,22 @@ public final class SimMotors {
     }
 
     /**
+     * @param port a motor port
+     * @return its index for {@link #degrees(int)}, or -1 if the robot has no motor there
+     */
+    public int portIndex(String port) {
+        return robot.motorPortIndex(port);
+    }
+
+    /**
+     * @param portIndex a motor's index ({@link #portIndex})
+     * @return its encoder, degrees
+     */
+    public double degrees(int portIndex) {
+        return robot.motorDegrees(portIndex);
+    }
+
+    /**
      * The true value of a sensor now, in its quantity's SI unit (metres, radians, 0..1, 1/0), for
      * brick emulators, which encode it the way their firmware reports it. Simulation thread only.
      *

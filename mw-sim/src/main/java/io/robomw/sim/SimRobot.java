@@ -63,6 +63,8 @@ public final class SimRobot {
     private final Map<String, SensorModel> sensors = new LinkedHashMap<>();
     private final List<SensorModel> rangeSensors = new ArrayList<>();
     private final Queue<PendingRead> reads = new ConcurrentLinkedQueue<>();
+    /** Set after a read is queued, cleared before the queue is drained: a cycle without reads looks no further. */
+    private volatile boolean readsPending;
     private final Trajectory trajectory;
     private final boolean hasTouch;
     private final boolean hasAccel;
@@ -193,6 +195,19 @@ public final class SimRobot {
     double motorDegrees(String port) {
         int i = portIndex(port);
         return i < 0 ? 0.0 : motorDegrees[i];
+    }
+
+    /**
+     * @param portIndex a motor's index ({@link #motorPortIndex})
+     * @return its encoder, degrees
+     */
+    double motorDegrees(int portIndex) {
+        return motorDegrees[portIndex];
+    }
+
+    /** @return a motor port's index, or -1 */
+    int motorPortIndex(String port) {
+        return portIndex(port);
     }
 
     /** @return a motor port's index, or -1 */
@@ -397,6 +412,7 @@ public final class SimRobot {
      */
     void requestRead(SensorModel sensor, SimFuture<Double> future) {
         reads.add(new PendingRead(sensor, future));
+        readsPending = true;
     }
 
     /**
@@ -405,6 +421,10 @@ public final class SimRobot {
      * @param world the world, for floor patches
      */
     void completeReads(SimWorld world) {
+        if (!readsPending) {
+            return;
+        }
+        readsPending = false;
         for (PendingRead r; (r = reads.poll()) != null; ) {
             SimFuture<Double> f = r.future();
             try {

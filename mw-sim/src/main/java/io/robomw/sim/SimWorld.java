@@ -223,7 +223,10 @@ public final class SimWorld implements AutoCloseable {
                 }
             }
         }
-        double cell = Math.max(0.25, Math.min(2.0, Math.sqrt(description.width() * description.height() / 4096)));
+        // About four cells per robot in a crowded world (at least 4096 cells, 0.25-2 m each): a ray
+        // then tests about one body per cell it crosses; the nearest hit is the same whatever the cells.
+        double cell = Math.max(0.25, Math.min(2.0, Math.sqrt(description.width() * description.height()
+                / Math.max(4096, 4.0 * description.robots().size()))));
         this.rangeIndex = new RangeIndex(-margin, -margin, description.width() + 2 * margin, description.height() + 2 * margin, cell,
                 segments.toArray(double[][]::new), discs.toArray(double[][]::new));
         this.rangeMethod = rangeMethod;

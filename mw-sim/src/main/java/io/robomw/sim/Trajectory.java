@@ -48,7 +48,11 @@ public final class Trajectory {
     synchronized void add(double x, double y) {
         long n = samples++;
         if (n > 0) {
-            length += Math.hypot(x - lastX, y - lastY);
+            // Not Math.hypot: its care against overflow (steps of 1e154 m) costs a StrictMath call per
+            // robot per sample; the sum may differ from hypot's in the last bits, nothing else does.
+            double dx = x - lastX;
+            double dy = y - lastY;
+            length += Math.sqrt(dx * dx + dy * dy);
         }
         lastX = x;
         lastY = y;

@@ -27,7 +27,10 @@ public record MotorCommand(String name, List<MotorTarget> targets, CommandPriori
         }
         for (int i = 0; i < targets.size(); i++) {
             for (int j = i + 1; j < targets.size(); j++) {
-                if (targets.get(i).port().equals(targets.get(j).port())) {
+                String a = targets.get(i).port();
+                String b = targets.get(j).port();
+                if (a.hashCode() == b.hashCode() && a.equals(b)) { // the hash (kept in the string) first: no characters read
+
                     throw new IllegalArgumentException("command '" + name + "' names motor " + targets.get(i).port() + " twice: " + targets);
                 }
             }

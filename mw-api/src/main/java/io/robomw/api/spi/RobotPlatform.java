@@ -20,6 +20,23 @@ public interface RobotPlatform extends AutoCloseable {
      */
     CompletableFuture<Void> run(MotorCommand command);
 
+    /**
+     * Runs a motor command whose completion nobody waits for: a continuous command a controller
+     * repeats at every tick (the Instruction Layer's {@code drive}). It goes through the same
+     * execution action thread, in the same order and under the same clash rules as {@link #run};
+     * only the caller's future is not made, so a platform that wraps futures (a simulator's, which
+     * wake programs at the end of a step) need not build and complete one per tick. How the
+     * command ends is not reported to the caller, as with {@code run} when its future is dropped.
+     * Returns at once.
+     *
+     * <p>The default runs it with {@link #run} and drops the future.
+     *
+     * @param command the motors and their targets
+     */
+    default void runDetached(MotorCommand command) {
+        run(command);
+    }
+
     /** Stops every motor with safety priority. Returns once the stop is scheduled. */
     void stopAll();
 
@@ -42,7 +59,8 @@ public interface RobotPlatform extends AutoCloseable {
 
     /**
      * @param port the motor port
-     * @return whether {@link #motorDegrees} can be asked for this motor
+     * @return whether {@link #motorDegrees} can be asked for this motor; the same for the whole
+     *         life of the platform (the Configuration Layer may remember it)
      */
     boolean hasEncoder(String port);
 

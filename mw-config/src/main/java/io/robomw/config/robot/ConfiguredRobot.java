@@ -74,6 +74,10 @@ public final class ConfiguredRobot implements Robot {
     private DifferentialDrive odometryDrive;
     private volatile boolean closed;
     private volatile DifferentialKinematics kinematics;
+    /** Whether the drive last asked about has encoders on both wheels. */
+    private volatile Encoders encoders;
+    /** What {@link #drive} needs of the description last in force. */
+    private volatile DrivePlan drivePlan;
     private final LeggedControl legged;
 
     /**
@@ -198,23 +202,67 @@ public final class ConfiguredRobot implements Robot {
 
     @Override
     public void drive(double linearSpeed, double angularSpeed) {
-        if (legged()) {
+        RobotDescription d = description.get();
+        DrivePlan plan = drivePlan;
+        if (plan == null || plan.description() != d) {
+            plan = drivePlan(d);
+            drivePlan = plan;
+        }
+        if (plan.legged()) {
             legged.drive(linearSpeed, angularSpeed);
             return;
         }
         String action = "drive";
-        DifferentialKinematics k = groundDrive(action);
+        DifferentialKinematics k = plan.kinematics();
+        if (k == null) {
+            k = groundDrive(d, action); // throws, saying why it cannot drive
+        }
         requireFinite(action, linearSpeed, "linear speed");
         requireFinite(action, angularSpeed, "angular speed");
         WheelMotion m = k.velocity(linearSpeed, angularSpeed);
         double fastest = Math.max(Math.abs(m.leftDegreesPerSecond()), Math.abs(m.rightDegreesPerSecond())) / k.motorDegreesPerMetre();
         requireWithinMaxSpeed(action, fastest, k);
-        trackOdometry();
-        DifferentialDrive d = k.drive();
-        platform.run(new MotorCommand(action, List.of(
-                MotorTarget.run(d.left().port(), m.leftDegreesPerSecond()),
-                MotorTarget.run(d.right().port(), m.rightDegreesPerSecond())),
-                CommandPriority.NORMAL, description.get().watchdogTimeout()));
+        if (plan.encoders()) {
+            integrateOdometry(k.drive());
+        }
+        // Nobody waits for a drive's completion: the platform need not make a future for it.
+        platform.runDetached(new MotorCommand(action, List.of(
+                MotorTarget.run(plan.left(), m.leftDegreesPerSecond()),
+                MotorTarget.run(plan.right(), m.rightDegreesPerSecond())),
+                CommandPriority.NORMAL, plan.watchdog()));
+    }
+
+    /**
+     * What {@link #drive} needs of a description, worked out once for each description in force
+     * (descriptions are immutable; a reload brings a new one): a controller calls {@code drive}
+     * ten times a second, and reading the description's optional parts, capabilities and the
+     * platform's encoders each time costs more than the command itself.
+     *
+     * @param description the description it was worked out for
+     * @param legged      whether it has a legged drive
+     * @param kinematics  its wheels' kinematics, or {@code null} if it cannot drive on the ground
+     * @param encoders    whether both wheel motors have encoders (odometry is tracked)
+     * @param left        the left wheel's port
+     * @param right       the right wheel's port
+     * @param watchdog    the watchdog timeout of continuous commands
+     */
+    private record DrivePlan(RobotDescription description, boolean legged, DifferentialKinematics kinematics, boolean encoders,
+                             String left, String right, Duration watchdog) {
+    }
+
+    private DrivePlan drivePlan(RobotDescription d) {
+        if (d.leggedDrive().isPresent()) {
+            return new DrivePlan(d, true, null, false, null, null, d.watchdogTimeout());
+        }
+        DifferentialKinematics k;
+        try {
+            k = groundDrive(d, "drive");
+        } catch (UnsupportedActionException e) {
+            return new DrivePlan(d, false, null, false, null, null, d.watchdogTimeout());
+        }
+        DifferentialDrive drive = k.drive();
+        boolean encoders = platform.hasEncoder(drive.left().port()) && platform.hasEncoder(drive.right().port());
+        return new DrivePlan(d, false, k, encoders, drive.left().port(), drive.right().port(), d.watchdogTimeout());
     }
 
     @Override
@@ -397,13 +445,16 @@ public final class ConfiguredRobot implements Robot {
     }
 
     private DifferentialKinematics groundDrive(String action) {
-        RobotDescription d = description.get();
+        return groundDrive(description.get(), action);
+    }
+
+    private DifferentialKinematics groundDrive(RobotDescription d, String action) {
         if (!d.capabilities().contains(Capability.GROUND)) {
             throw new UnsupportedActionException(d.name(), action, "it is a " + d.capabilities() + " robot, not a GROUND one");
         }
         DifferentialDrive drive = d.drive().orElseThrow(() -> new UnsupportedActionException(d.name(), action, "its description has no drive"));
         DifferentialKinematics k = kinematics;
-        if (k == null || !k.drive().equals(drive)) {
+        if (k == null || (k.drive() != drive && !k.drive().equals(drive))) {
             k = new DifferentialKinematics(drive);
             kinematics = k;
         }
@@ -438,7 +489,7 @@ public final class ConfiguredRobot implements Robot {
             double right = platform.motorDegrees(drive.right().port());
             if (odometry == null) {
                 odometry = new Odometry(new DifferentialKinematics(drive));
-            } else if (!drive.equals(odometryDrive)) {
+            } else if (drive != odometryDrive && !drive.equals(odometryDrive)) {
                 odometry = odometry.rebased(new DifferentialKinematics(drive));
             }
             odometryDrive = drive;
@@ -453,11 +504,24 @@ public final class ConfiguredRobot implements Robot {
     private void trackOdometry() {
         RobotDescription d = description.get();
         if (d.drive().isPresent()) {
-            DifferentialDrive drive = d.drive().get();
-            if (platform.hasEncoder(drive.left().port()) && platform.hasEncoder(drive.right().port())) {
-                integrateOdometry(drive);
-            }
+            trackOdometry(d.drive().get());
         }
+    }
+
+    /** {@link #trackOdometry()} for the drive in force, whose encoders are asked of the platform once per drive. */
+    private void trackOdometry(DifferentialDrive drive) {
+        Encoders e = encoders;
+        if (e == null || e.drive() != drive) {
+            e = new Encoders(drive, platform.hasEncoder(drive.left().port()) && platform.hasEncoder(drive.right().port()));
+            encoders = e;
+        }
+        if (e.both()) {
+            integrateOdometry(drive);
+        }
+    }
+
+    /** Whether both wheel motors of a drive have encoders (a platform's answer does not change). */
+    private record Encoders(DifferentialDrive drive, boolean both) {
     }
 
     private void requireSpeed(String action, double wheelSpeed, double asked, DifferentialKinematics k) {

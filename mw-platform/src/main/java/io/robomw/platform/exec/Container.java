@@ -23,30 +23,47 @@ public final class Container {
     private final Set<String> requirements;
     private final CommandPriority priority;
     private final InterruptionBehavior interruptionBehavior;
-    private final List<ActionObject> actions;
-    private final List<LogicObject> logic;
+    // The first action and logic object in fields of their own, the rest (rarely any) in arrays: a
+    // cycle of a robot's running drive reads its one logic object without another object to fetch.
+    private final ActionObject firstAction;
+    private final ActionObject[] moreActions;
+    private final LogicObject firstLogic;
+    private final LogicObject[] moreLogic;
     private final EndAction endAction;
     private final long watchdogNanos;
     private final String refreshKey;
     private final CompletableFuture<Void> completion = new CompletableFuture<>();
 
-    private boolean[] satisfied;
+    /** Which logic objects have held, bit i for the i-th (the first 64). */
+    private long satisfiedBits;
+    /** The same for logic objects past the 64th, if there are any. */
+    private boolean[] satisfiedMore;
     private long startedAt;
 
     private Container(Builder b) {
         this.name = b.name;
-        this.requirements = immutable(b.requirements);
+        this.requirements = b.requirementSet != null ? b.requirementSet : immutable(b.requirements);
+        List<ActionObject> actions = b.actions == null ? List.of() : b.actions;
+        List<LogicObject> logic = b.logic == null ? List.of() : b.logic;
         this.priority = b.priority;
         this.interruptionBehavior = b.interruptionBehavior;
-        this.actions = List.copyOf(b.actions);
-        this.logic = List.copyOf(b.logic);
+        this.firstAction = actions.isEmpty() ? null : actions.get(0);
+        this.moreActions = actions.size() <= 1 ? NO_ACTIONS : actions.subList(1, actions.size()).toArray(NO_ACTIONS);
+        this.firstLogic = logic.isEmpty() ? null : logic.get(0);
+        this.moreLogic = logic.size() <= 1 ? NO_LOGIC : logic.subList(1, logic.size()).toArray(NO_LOGIC);
         this.endAction = b.endAction;
         this.watchdogNanos = b.watchdog.toNanos();
         this.refreshKey = b.refreshKey;
     }
 
+    private static final ActionObject[] NO_ACTIONS = new ActionObject[0];
+    private static final LogicObject[] NO_LOGIC = new LogicObject[0];
+
     /** {@link Set#copyOf}, without the intermediate hash set it makes, for the one or two actuators most containers need. */
     private static Set<String> immutable(java.util.LinkedHashSet<String> s) {
+        if (s == null || s.isEmpty()) {
+            return Set.of();
+        }
         if (s.size() == 1) {
             return Set.of(s.iterator().next());
         }
@@ -96,35 +113,64 @@ public final class Container {
      *         actuators and priority
      */
     boolean refreshedBy(Container newer) {
-        return refreshKey != null && refreshKey.equals(newer.refreshKey) && requirements.equals(newer.requirements) && priority == newer.priority;
+        return refreshKey != null && refreshKey.equals(newer.refreshKey)
+                && (requirements == newer.requirements || requirements.equals(newer.requirements)) && priority == newer.priority;
     }
 
     /** Takes over a newer container's actions and restarts the watchdog. */
     void refresh(long now, Container newer) {
         startedAt = now;
-        for (ActionObject a : newer.actions) {
-            a.start(now);
-        }
+        newer.runActions(now);
     }
 
     void start(long now) {
         startedAt = now;
-        satisfied = new boolean[logic.size()];
-        for (ActionObject a : actions) {
-            a.start(now);
+        satisfiedBits = 0;
+        if (moreLogic.length >= 64) {
+            satisfiedMore = new boolean[moreLogic.length + 1];
+        }
+        runActions(now);
+    }
+
+    /** Runs its action objects, in the order they were added. */
+    private void runActions(long now) {
+        if (firstAction != null) {
+            firstAction.start(now);
+            for (ActionObject a : moreActions) {
+                a.start(now);
+            }
         }
     }
 
     /** @return whether every logic object now holds */
     boolean evaluate(long now) {
+        if (firstLogic == null) {
+            return true;
+        }
         boolean all = true;
-        for (int i = 0; i < satisfied.length; i++) {
-            if (!satisfied[i]) {
-                satisfied[i] = logic.get(i).evaluate(now);
-                all &= satisfied[i];
+        int count = moreLogic.length + 1;
+        for (int i = 0; i < count; i++) {
+            if (!satisfied(i)) {
+                boolean holds = (i == 0 ? firstLogic : moreLogic[i - 1]).evaluate(now);
+                if (holds) {
+                    setSatisfied(i);
+                }
+                all &= holds;
             }
         }
         return all;
+    }
+
+    private boolean satisfied(int i) {
+        return i < 64 ? (satisfiedBits & (1L << i)) != 0 : satisfiedMore[i];
+    }
+
+    private void setSatisfied(int i) {
+        if (i < 64) {
+            satisfiedBits |= 1L << i;
+        } else {
+            satisfiedMore[i] = true;
+        }
     }
 
     boolean watchdogExpired(long now) {
@@ -156,11 +202,14 @@ public final class Container {
     /** Builds a container. */
     public static final class Builder {
         private final String name;
-        private final java.util.LinkedHashSet<String> requirements = new java.util.LinkedHashSet<>();
+        // Made when first needed: a motor platform's drive gives one set, one action and one logic object.
+        private java.util.LinkedHashSet<String> requirements;
+        /** The requirements as one unmodifiable set given whole (a motor platform's cached set), while nothing else was required. */
+        private Set<String> requirementSet;
         private CommandPriority priority = CommandPriority.NORMAL;
         private InterruptionBehavior interruptionBehavior = InterruptionBehavior.CANCEL_SELF;
-        private final List<ActionObject> actions = new ArrayList<>();
-        private final List<LogicObject> logic = new ArrayList<>();
+        private List<ActionObject> actions;
+        private List<LogicObject> logic;
         private EndAction endAction = interrupted -> { };
         private Duration watchdog = Duration.ZERO;
         private String refreshKey;
@@ -174,7 +223,8 @@ public final class Container {
          * @return this
          */
         public Builder requires(String... actuators) {
-            requirements.addAll(List.of(actuators));
+            spreadRequirementSet();
+            ordered().addAll(List.of(actuators));
             return this;
         }
 
@@ -183,8 +233,30 @@ public final class Container {
          * @return this
          */
         public Builder requires(java.util.Collection<String> actuators) {
-            requirements.addAll(actuators);
+            if (requirements == null && requirementSet == null && actuators instanceof Set<String> set && !set.isEmpty()) {
+                // Kept as it is when it is already unmodifiable (Set.copyOf returns it): a motor
+                // platform gives the same set to every refresh of a drive, ten a second per robot.
+                requirementSet = Set.copyOf(set);
+                return this;
+            }
+            spreadRequirementSet();
+            ordered().addAll(actuators);
             return this;
+        }
+
+        /** Moves a set given whole into the ordered requirements, before more are added. */
+        private void spreadRequirementSet() {
+            if (requirementSet != null) {
+                ordered().addAll(requirementSet);
+                requirementSet = null;
+            }
+        }
+
+        private java.util.LinkedHashSet<String> ordered() {
+            if (requirements == null) {
+                requirements = new java.util.LinkedHashSet<>();
+            }
+            return requirements;
         }
 
         /**
@@ -210,7 +282,11 @@ public final class Container {
          * @return this
          */
         public Builder action(ActionObject action) {
-            actions.add(Objects.requireNonNull(action));
+            Objects.requireNonNull(action);
+            if (actions == null) {
+                actions = new ArrayList<>(2);
+            }
+            actions.add(action);
             return this;
         }
 
@@ -219,7 +295,11 @@ public final class Container {
          * @return this
          */
         public Builder logic(LogicObject condition) {
-            logic.add(Objects.requireNonNull(condition));
+            Objects.requireNonNull(condition);
+            if (logic == null) {
+                logic = new ArrayList<>(2);
+            }
+            logic.add(condition);
             return this;
         }
 
@@ -263,7 +343,7 @@ public final class Container {
          * @throws IllegalArgumentException if it requires no actuator
          */
         public Container build() {
-            if (requirements.isEmpty()) {
+            if ((requirements == null || requirements.isEmpty()) && requirementSet == null) {
                 throw new IllegalArgumentException("container '" + name + "' requires no actuator; every container must name the actuators it drives");
             }
             return new Container(this);

@@ -10,10 +10,8 @@ import org.slf4j.LoggerFactory;
 
 import java.time.Duration;
 import java.util.ArrayList;
-import java.util.HashMap;
 import java.util.LinkedHashSet;
 import java.util.List;
-import java.util.Map;
 import java.util.Queue;
 import java.util.Set;
 import java.util.concurrent.CompletableFuture;
@@ -91,7 +89,7 @@ public final class ExecutionActionThread implements AutoCloseable {
     private volatile Set<String> inUse = Set.of();
 
     // Touched only by the cycling thread:
-    private final Map<String, Container> holders = new HashMap<>();
+    private final Holders holders = new Holders();
     private final List<Container> active = new ArrayList<>();
     private final List<Container> scratch = new ArrayList<>();
     private boolean holdersChanged;
@@ -240,23 +238,18 @@ public final class ExecutionActionThread implements AutoCloseable {
         for (Container c; (c = incoming.poll()) != null; ) {
             admit(c, start);
         }
-        for (Container c : snapshot()) {
-            if (c.watchdogExpired(start)) {
-                LOG.warn("robot '{}': watchdog stopped '{}': not refreshed within {} ms", robot, c.name(), c.watchdog().toMillis());
-                finish(c, true, new RobotException("robot '" + robot + "': watchdog stopped '" + c.name() + "': it was not refreshed within "
-                        + c.watchdog().toMillis() + " ms"));
+        if (active.size() == 1) {
+            // One container (a robot's running drive): nothing to copy, as ending it ends the loop.
+            Container c = active.get(0);
+            if (!watchdog(c, start)) {
+                evaluate(c, start);
             }
-        }
-        for (Container c : snapshot()) {
-            boolean done;
-            try {
-                done = c.evaluate(start);
-            } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
-                fail(c, e);
-                continue;
+        } else {
+            for (Container c : snapshot()) {
+                watchdog(c, start);
             }
-            if (done) {
-                finish(c, false, null);
+            for (Container c : snapshot()) {
+                evaluate(c, start);
             }
         }
         for (Runnable listener : cycleListeners) {
@@ -268,17 +261,46 @@ public final class ExecutionActionThread implements AutoCloseable {
             }
         }
         if (holdersChanged) {
-            inUse = Set.copyOf(holders.keySet());
+            inUse = holders.actuators();
             holdersChanged = false;
         }
         CYCLES.setRelease(this, cycles + 1);
-        if (clock.nanoTime() - start > periodNanos && clock == Clock.system()) {
+        if (clock == Clock.system() && clock.nanoTime() - start > periodNanos) {
             long n = overruns.incrementAndGet();
             if (Long.bitCount(n) == 1) {
                 LOG.warn("robot '{}': execution action thread overran its {} µs period ({} overruns so far)", robot, periodNanos / 1000, n);
             }
         }
         return active.size();
+    }
+
+    /**
+     * Ends a container whose watchdog expired.
+     *
+     * @return whether it did
+     */
+    private boolean watchdog(Container c, long now) {
+        if (!c.watchdogExpired(now)) {
+            return false;
+        }
+        LOG.warn("robot '{}': watchdog stopped '{}': not refreshed within {} ms", robot, c.name(), c.watchdog().toMillis());
+        finish(c, true, new RobotException("robot '" + robot + "': watchdog stopped '" + c.name() + "': it was not refreshed within "
+                + c.watchdog().toMillis() + " ms"));
+        return true;
+    }
+
+    /** Evaluates a running container's logic objects and ends it when they all hold (or one throws). */
+    private void evaluate(Container c, long now) {
+        boolean done;
+        try {
+            done = c.evaluate(now);
+        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+            fail(c, e);
+            return;
+        }
+        if (done) {
+            finish(c, false, null);
+        }
     }
 
     /** The running containers, copied into a reused list so the loops may end them as they go. */
@@ -311,7 +333,6 @@ public final class ExecutionActionThread implements AutoCloseable {
             }
         }
         if (only != null && clashing.isEmpty()) {
-            clashing = Set.of(only);
             Container holder = only;
             if (holder.refreshedBy(c)) {
                 try {
@@ -323,6 +344,7 @@ public final class ExecutionActionThread implements AutoCloseable {
                 }
                 return;
             }
+            clashing = Set.of(only);
         }
         for (Container holder : clashing) {
             boolean holderWins = holder.priority().compareTo(c.priority()) > 0
@@ -514,6 +536,68 @@ public final class ExecutionActionThread implements AutoCloseable {
         }
         if (interrupted) {
             Thread.currentThread().interrupt();
+        }
+    }
+
+    /**
+     * Which container holds each actuator in use: a robot has a handful, so two arrays scanned
+     * (an actuator's name is most often the very string the last command used) cost less than a
+     * hash map's table and entries. Cycling thread only.
+     */
+    private static final class Holders {
+        private String[] actuators = new String[4];
+        private Container[] containers = new Container[4];
+        private int size;
+
+        private int indexOf(String actuator) {
+            for (int i = 0; i < size; i++) {
+                if (actuators[i] == actuator) {
+                    return i;
+                }
+            }
+            int hash = actuator.hashCode();
+            for (int i = 0; i < size; i++) {
+                if (actuators[i].hashCode() == hash && actuators[i].equals(actuator)) {
+                    return i;
+                }
+            }
+            return -1;
+        }
+
+        Container get(String actuator) {
+            int i = indexOf(actuator);
+            return i < 0 ? null : containers[i];
+        }
+
+        void put(String actuator, Container c) {
+            int i = indexOf(actuator);
+            if (i >= 0) {
+                containers[i] = c;
+                return;
+            }
+            if (size == actuators.length) {
+                actuators = java.util.Arrays.copyOf(actuators, size * 2);
+                containers = java.util.Arrays.copyOf(containers, size * 2);
+            }
+            actuators[size] = actuator;
+            containers[size] = c;
+            size++;
+        }
+
+        /** Removes the actuator if that container holds it. */
+        void remove(String actuator, Container c) {
+            int i = indexOf(actuator);
+            if (i >= 0 && containers[i] == c) {
+                size--;
+                actuators[i] = actuators[size];
+                containers[i] = containers[size];
+                actuators[size] = null;
+                containers[size] = null;
+            }
+        }
+
+        Set<String> actuators() {
+            return Set.of(java.util.Arrays.copyOf(actuators, size));
         }
     }
 

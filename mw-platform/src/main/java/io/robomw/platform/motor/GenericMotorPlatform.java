@@ -9,11 +9,8 @@ import io.robomw.platform.exec.Container;
 
 import java.io.IOException;
 import java.util.ArrayList;
-import java.util.LinkedHashMap;
 import java.util.List;
-import java.util.Map;
 import java.util.Set;
-import java.util.concurrent.ConcurrentHashMap;
 
 /**
  * The paper's motor platform: turns motor commands into containers for the execution action
@@ -31,7 +28,9 @@ import java.util.concurrent.ConcurrentHashMap;
  *   for a simulator without I/O): it calls {@code runImpl} with the published states, then
  *   {@code pollFeedback}, which reports encoder readings with {@link #reportDegrees}.</li>
  * </ul>
- * Encoder readings and published states cross between the sides through concurrent maps.
+ * Encoder readings and published states cross between the sides through each port's own
+ * state object (volatile fields; a cycle's published batch under one lock): the ports are fixed
+ * at construction, so nothing is looked up by name in a map.
  *
  * <p>A command whose targets are all continuous ({@code drive}) refreshes a running continuous
  * command on the same motors in place, so a program repeating it at 10 Hz costs one container,
@@ -64,17 +63,114 @@ public abstract class GenericMotorPlatform {
     private final String robot;
     private final Clock clock;
     private final Set<String> ports;
-    private final List<String> portOrder;
-    private final Map<String, MotorState> wanted = new LinkedHashMap<>();
-    /** States the action side published for the link side; guarded by itself, so a cycle's batch is handed over whole. */
-    private final Map<String, MotorState> published = new LinkedHashMap<>();
-    private final Map<String, MotorState> changed = new LinkedHashMap<>();
-    private final Map<String, Reading> degrees = new ConcurrentHashMap<>();
-    /** Where each motor was, by prediction, when the brick took the running state last sent for it; link side writes. */
-    private final Map<String, Start> starts = new ConcurrentHashMap<>();
-    private final Map<String, MotorState> sentStates = new ConcurrentHashMap<>();
-    private final Map<String, MotorState> stoppedAtLimit = new ConcurrentHashMap<>();
+    /** Every motor's state on both sides, in the description's port order; the ports are fixed at construction. */
+    private final Port[] motors;
+    /** Whether a container set a wanted state this cycle that the next {@link #flushOutputs} publishes; action side. */
+    private boolean anyChanged;
+    /** Guards the ports' {@code published} states, so a cycle's batch is handed over whole. */
+    private final Object publishLock = new Object();
+    /**
+     * Whether any port has a published state the link side has not taken; written under
+     * {@link #publishLock} with a release store, read first without it (acquire).
+     */
+    private boolean anyPublished;
+    /** Whether the link side runs on the action side's thread right after each flush ({@link #linkServicedInline}). */
+    private boolean linkInline;
+    /** The requirements of the last command's motors, kept so a repeated {@code drive} shares one set. */
+    private volatile Requirements lastRequirements;
     private volatile long cyclePeriodNanos = 10_000_000L;
+
+    /**
+     * One motor port: its wanted state (action side), the state published for the link side, and
+     * what the link side sent, read and predicted for it. One object per port instead of a map per
+     * kind keyed by port names: a cycle touches each port's state in one place.
+     */
+    private static final class Port {
+        final String name;
+        final int index;
+        /** Action side only. */
+        MotorState wanted;
+        /** Action side only: set this cycle, published by the next flush, else {@code null}. */
+        MotorState changed;
+        /** Guarded by {@link #publishLock}: published for the link side, not yet taken. */
+        MotorState published;
+        /** Link side only, during a service: the state taken for this batch, and the one sent before it. */
+        MotorState draining;
+        MotorState sentBefore;
+        // Handed between the sides with release stores and acquire loads (plain moves on x86, no
+        // fence per reading): one side writes each, the values are immutable records, and no
+        // decision needs a store ordered before a later load of another field.
+        /** The last encoder reading; link side writes. */
+        private Reading reading;
+        /** Where the motor was, by prediction, when the brick took the running state last sent for it; link side writes. */
+        private Start start;
+        /** The last state handed to {@code runImpl}; link side writes. */
+        private MotorState sent;
+        /** A limited rotation the brick stopped by itself (or the link side stopped just in time). */
+        private MotorState stoppedAtLimit;
+
+        Reading reading() {
+            return (Reading) READING.getAcquire(this);
+        }
+
+        void reading(Reading r) {
+            READING.setRelease(this, r);
+        }
+
+        Start start() {
+            return (Start) START.getAcquire(this);
+        }
+
+        void start(Start st) {
+            START.setRelease(this, st);
+        }
+
+        MotorState sent() {
+            return (MotorState) SENT.getAcquire(this);
+        }
+
+        void sent(MotorState st) {
+            SENT.setRelease(this, st);
+        }
+
+        MotorState stoppedAtLimit() {
+            return (MotorState) STOPPED_AT_LIMIT.getAcquire(this);
+        }
+
+        void stoppedAtLimit(MotorState st) {
+            STOPPED_AT_LIMIT.setRelease(this, st);
+        }
+
+        private static final java.lang.invoke.VarHandle READING;
+        private static final java.lang.invoke.VarHandle START;
+        private static final java.lang.invoke.VarHandle SENT;
+        private static final java.lang.invoke.VarHandle STOPPED_AT_LIMIT;
+
+        static {
+            try {
+                java.lang.invoke.MethodHandles.Lookup l = java.lang.invoke.MethodHandles.lookup();
+                READING = l.findVarHandle(Port.class, "reading", Reading.class);
+                START = l.findVarHandle(Port.class, "start", Start.class);
+                SENT = l.findVarHandle(Port.class, "sent", MotorState.class);
+                STOPPED_AT_LIMIT = l.findVarHandle(Port.class, "stoppedAtLimit", MotorState.class);
+            } catch (ReflectiveOperationException e) {
+                throw new ExceptionInInitializerError(e);
+            }
+        }
+
+        Port(String name, int index) {
+            this.name = name;
+            this.index = index;
+            this.wanted = MotorState.stopped(name, MotorState.StopMode.BRAKE);
+        }
+    }
+
+    /** The motors a command names, in its order, and the set of their ports a container requires. */
+    private record Requirements(Port[] motors, Set<String> set) {
+    }
+
+    /** The logic object of a continuous command: it never holds, so the command runs until replaced, stopped or its watchdog fires. */
+    private static final io.robomw.platform.exec.LogicObject NEVER = now -> false;
 
     /**
      * @param robot the robot's name, for messages
@@ -85,10 +181,22 @@ public abstract class GenericMotorPlatform {
         this.robot = robot;
         this.clock = clock;
         this.ports = Set.copyOf(ports);
-        this.portOrder = List.copyOf(ports);
-        for (String port : ports) {
-            wanted.put(port, MotorState.stopped(port, MotorState.StopMode.BRAKE));
+        List<String> order = List.copyOf(ports);
+        this.motors = new Port[order.size()];
+        for (int i = 0; i < motors.length; i++) {
+            motors[i] = new Port(order.get(i), i);
         }
+    }
+
+    /**
+     * Says that the link side is serviced on the thread that cycles the action side, right after
+     * each {@link #flushOutputs} (a platform without I/O: the simulator's, whose
+     * {@code BrickPlatform} runs it {@code INLINE}), and on the closing thread once cycling has
+     * stopped: one thread at a time, so a cycle's batch is handed over without the lock a link
+     * thread of its own needs. Call before the first cycle.
+     */
+    public void linkServicedInline() {
+        linkInline = true;
     }
 
     /**
@@ -126,9 +234,10 @@ public abstract class GenericMotorPlatform {
      * @param port the motor port
      */
     protected final void reportStoppedAtLimit(String port) {
-        MotorState last = sentStates.get(port);
+        Port p = port(port);
+        MotorState last = p.sent();
         if (last != null && last.running() && !Double.isInfinite(last.limitDegrees())) {
-            stoppedAtLimit.put(port, last);
+            p.stoppedAtLimit(last);
         }
     }
 
@@ -165,7 +274,18 @@ public abstract class GenericMotorPlatform {
      * @param reading degrees of the motor shaft
      */
     protected final void reportDegrees(String port, double reading) {
-        degrees.put(port, new Reading(reading, clock.nanoTime() - linkDelayNanos()));
+        port(port).reading(new Reading(reading, clock.nanoTime() - linkDelayNanos()));
+    }
+
+    /**
+     * {@link #reportDegrees(String, double)} by the port's position in the list the platform was
+     * built with, for drivers that poll every motor in that order (no lookup by name).
+     *
+     * @param portIndex the port's index in the constructor's {@code ports}
+     * @param reading   degrees of the motor shaft
+     */
+    protected final void reportDegrees(int portIndex, double reading) {
+        motors[portIndex].reading(new Reading(reading, clock.nanoTime() - linkDelayNanos()));
     }
 
     /**
@@ -240,8 +360,7 @@ public abstract class GenericMotorPlatform {
      * @return the last encoder reading, degrees
      */
     public double motorDegrees(String port) {
-        requirePort(port);
-        Reading r = degrees.get(port);
+        Reading r = port(port).reading();
         return r == null ? 0.0 : r.degrees();
     }
 
@@ -256,23 +375,55 @@ public abstract class GenericMotorPlatform {
      */
     public Container container(MotorCommand command) {
         List<MotorTarget> targets = command.targets();
-        List<String> names = new ArrayList<>();
-        for (MotorTarget t : targets) {
-            requirePort(t.port());
-            names.add(t.port());
-        }
+        Requirements required = requirements(targets);
+        Port[] used = required.motors();
         Container.Builder b = Container.builder(command.name())
-                .requires(names)
+                .requires(required.set())
                 .priority(command.priority())
                 .watchdog(command.watchdogTimeout());
+        boolean continuous = true;
+        for (MotorTarget t : targets) {
+            continuous &= t.continuous();
+        }
+        if (continuous) {
+            // A drive: its speeds taken now, so the action thread reads one small array, not the command.
+            double[] speeds = new double[targets.size()];
+            for (int i = 0; i < speeds.length; i++) {
+                speeds[i] = targets.get(i).degreesPerSecond();
+            }
+            b.action(now -> {
+                for (int i = 0; i < speeds.length; i++) {
+                    Port p = used[i];
+                    // A refreshed drive most often asks for what is wanted already: nothing to change.
+                    if (!same(p.wanted, speeds[i], Double.POSITIVE_INFINITY, MotorState.StopMode.BRAKE)) {
+                        setWanted(p, new MotorState(p.name, speeds[i], Double.POSITIVE_INFINITY, MotorState.StopMode.BRAKE), false);
+                    }
+                }
+            });
+            b.logic(NEVER);
+            b.refreshes("continuous");
+            b.onEnd(interrupted -> {
+                for (Port p : used) {
+                    stop(p, MotorState.StopMode.BRAKE);
+                }
+            });
+            return b.build();
+        }
         long[] startedAt = new long[1];
         MotorState[] started = new MotorState[targets.size()];
         b.action(now -> {
             startedAt[0] = now;
             for (int i = 0; i < targets.size(); i++) {
                 MotorTarget t = targets.get(i);
-                started[i] = new MotorState(t.port(), t.degrees() == 0 ? 0 : t.degreesPerSecond(), t.degrees(), MotorState.StopMode.BRAKE);
-                setWanted(started[i], !t.continuous());
+                double speed = t.degrees() == 0 ? 0 : t.degreesPerSecond();
+                if (t.continuous()) {
+                    if (!same(used[i].wanted, speed, t.degrees(), MotorState.StopMode.BRAKE)) {
+                        setWanted(used[i], new MotorState(t.port(), speed, t.degrees(), MotorState.StopMode.BRAKE), false);
+                    }
+                } else {
+                    started[i] = new MotorState(t.port(), speed, t.degrees(), MotorState.StopMode.BRAKE);
+                    setWanted(used[i], started[i], true);
+                }
             }
         });
         for (int i = 0; i < targets.size(); i++) {
@@ -281,34 +432,69 @@ public abstract class GenericMotorPlatform {
                 continue;
             }
             int index = i;
+            Port p = used[i];
             b.logic(now -> {
-                if (reached(t, started[index], now - startedAt[0])) {
-                    setWanted(MotorState.stopped(t.port(), MotorState.StopMode.BRAKE), false);
+                if (reached(p, t, started[index], now - startedAt[0])) {
+                    setWanted(p, MotorState.stopped(t.port(), MotorState.StopMode.BRAKE), false);
                     return true;
                 }
                 long deadline = deadlineNanos(t);
                 if (now - startedAt[0] > deadline) {
                     throw new RobotException(String.format(java.util.Locale.ROOT,
                             "robot '%s': motor %s did not finish turning %.0f° at %.0f°/s within %.1f s (turned about %.0f° by its encoder); is it blocked?",
-                            robot, t.port(), t.degrees(), Math.abs(t.degreesPerSecond()), deadline / 1e9, turned(t)));
+                            robot, t.port(), t.degrees(), Math.abs(t.degreesPerSecond()), deadline / 1e9, turned(p)));
                 }
                 return false;
             });
         }
-        boolean continuous = true;
-        for (MotorTarget t : targets) {
-            continuous &= t.continuous();
-        }
-        if (continuous) {
-            b.logic(now -> false);
-            b.refreshes("continuous");
-        }
         b.onEnd(interrupted -> {
-            for (MotorTarget t : targets) {
-                setWanted(MotorState.stopped(t.port(), MotorState.StopMode.BRAKE), false);
+            for (Port p : used) {
+                stop(p, MotorState.StopMode.BRAKE);
             }
         });
         return b.build();
+    }
+
+    /**
+     * The motors a command's targets name, in its order, and the set of their ports: the last
+     * command's when it named the same motors (a {@code drive} repeated at every tick), so its
+     * containers share one set and the action thread compares them at a glance.
+     *
+     * @throws IllegalArgumentException if a target names a port this platform does not drive
+     */
+    private Requirements requirements(List<MotorTarget> targets) {
+        Requirements last = lastRequirements;
+        if (last != null && last.motors().length == targets.size()) {
+            boolean same = true;
+            for (int i = 0; i < targets.size() && same; i++) {
+                same = last.motors()[i].name.equals(targets.get(i).port());
+            }
+            if (same) {
+                return last;
+            }
+        }
+        Port[] used = new Port[targets.size()];
+        List<String> names = new ArrayList<>(targets.size());
+        for (int i = 0; i < used.length; i++) {
+            used[i] = port(targets.get(i).port());
+            names.add(used[i].name);
+        }
+        Requirements r = new Requirements(used, Set.copyOf(names));
+        lastRequirements = r;
+        return r;
+    }
+
+    /** @return whether a wanted state equals the one these values make for its port (as {@link MotorState#equals} compares them) */
+    private static boolean same(MotorState wanted, double degreesPerSecond, double limitDegrees, MotorState.StopMode mode) {
+        return wanted != null && Double.compare(wanted.degreesPerSecond(), degreesPerSecond) == 0
+                && Double.compare(wanted.limitDegrees(), limitDegrees) == 0 && wanted.stopMode() == mode;
+    }
+
+    /** Wants a motor stopped; allocates no state if it is wanted stopped that way already. */
+    private void stop(Port p, MotorState.StopMode mode) {
+        if (!same(p.wanted, 0, 0, mode)) {
+            setWanted(p, MotorState.stopped(p.name, mode), false);
+        }
     }
 
     /**
@@ -319,17 +505,21 @@ public abstract class GenericMotorPlatform {
         return Container.builder("stop")
                 .requires(ports)
                 .priority(CommandPriority.SAFETY)
-                .action(now -> ports.forEach(p -> setWanted(MotorState.stopped(p, MotorState.StopMode.BRAKE), false)))
+                .action(now -> {
+                    for (Port p : motors) {
+                        stop(p, MotorState.StopMode.BRAKE);
+                    }
+                })
                 .logic(now -> true)
                 .build();
     }
 
-    private boolean reached(MotorTarget t, MotorState started, long elapsedNanos) {
+    private boolean reached(Port p, MotorTarget t, MotorState started, long elapsedNanos) {
         double speed = Math.abs(t.degreesPerSecond());
         if (t.degrees() == 0 || speed == 0) {
             return true;
         }
-        if (stoppedAtLimit.get(t.port()) == started) {
+        if (p.stoppedAtLimit() == started) {
             return true;
         }
         if (stopsAtLimit()) {
@@ -338,19 +528,19 @@ public abstract class GenericMotorPlatform {
         if (!hasEncoder(t.port())) {
             return elapsedNanos >= t.degrees() / speed * 1e9;
         }
-        Start start = starts.get(t.port());
+        Start start = p.start();
         if (start == null || start.state() != started) {
             return false;
         }
         double lead = speed * cyclePeriodNanos / 2e9;
-        return turned(t.port(), start) >= t.degrees() - lead;
+        return turned(p, start) >= t.degrees() - lead;
     }
 
     /** How far a rotation has turned by the time a command sent now reaches the brick. */
-    private double turned(String port, Start start) {
+    private double turned(Port port, Start start) {
         double speed = actualDegreesPerSecond(start.state());
         double predicted = predictedDegrees(port, speed, start.sinceNanos());
-        double resolution = encoderResolutionDegrees(port);
+        double resolution = encoderResolutionDegrees(port.name);
         if (resolution > 0 && start.sinceNanos() <= clock.nanoTime()) {
             // A coarse encoder (a reading is the nearest count): believe the motor's own speed since
             // it started, within the half count either side of the reading that the count allows.
@@ -360,9 +550,9 @@ public abstract class GenericMotorPlatform {
         return Math.abs(predicted - start.degrees());
     }
 
-    private double turned(MotorTarget t) {
-        Start start = starts.get(t.port());
-        return start == null ? 0 : turned(t.port(), start);
+    private double turned(Port p) {
+        Start start = p.start();
+        return start == null ? 0 : turned(p, start);
     }
 
     /** How long a rotation may take before it counts as blocked: three times its time at speed, plus 2 s. */
@@ -378,8 +568,8 @@ public abstract class GenericMotorPlatform {
      * Feedback arrives a link delay late and a stop reaches the brick a command delay after it is
      * sent; stopping on the bare reading would overshoot by both.
      */
-    private double predictedDegrees(String port, double degreesPerSecond, long turningSince) {
-        Reading r = degrees.get(port);
+    private double predictedDegrees(Port port, double degreesPerSecond, long turningSince) {
+        Reading r = port.reading();
         if (r == null) {
             return 0.0;
         }
@@ -394,10 +584,12 @@ public abstract class GenericMotorPlatform {
     }
 
     /** @param always publish it even if it equals the wanted state (a new rotation, which the brick must start again) */
-    private void setWanted(MotorState state, boolean always) {
-        MotorState before = wanted.put(state.port(), state);
+    private void setWanted(Port p, MotorState state, boolean always) {
+        MotorState before = p.wanted;
+        p.wanted = state;
         if (always || !state.equals(before)) {
-            changed.put(state.port(), state);
+            p.changed = state;
+            anyChanged = true;
         }
     }
 
@@ -408,14 +600,29 @@ public abstract class GenericMotorPlatform {
      * @return whether anything changed
      */
     public boolean flushOutputs() {
-        if (changed.isEmpty()) {
+        if (!anyChanged) {
             return false;
         }
-        synchronized (published) {
-            published.putAll(changed);
+        if (linkInline) {
+            publishChanged();
+        } else {
+            synchronized (publishLock) {
+                publishChanged();
+            }
         }
-        changed.clear();
+        anyChanged = false;
         return true;
+    }
+
+    /** Moves this cycle's changed states to the published ones (under {@link #publishLock} unless the link side is inline). */
+    private void publishChanged() {
+        for (Port p : motors) {
+            if (p.changed != null) {
+                p.published = p.changed;
+                p.changed = null;
+            }
+        }
+        ANY_PUBLISHED.setRelease(this, true);
     }
 
     /**
@@ -424,8 +631,8 @@ public abstract class GenericMotorPlatform {
      * Called by the closing thread once the execution action thread has stopped.
      */
     public void coastAll() {
-        for (String port : portOrder) {
-            setWanted(MotorState.stopped(port, MotorState.StopMode.COAST), false);
+        for (Port p : motors) {
+            stop(p, MotorState.StopMode.COAST);
         }
         flushOutputs();
     }
@@ -440,64 +647,96 @@ public abstract class GenericMotorPlatform {
      * @throws RuntimeException if the hardware refused them (a brick's error status); they are not sent again
      */
     public final void serviceLink() throws IOException {
-        Map<String, MotorState> drained = new LinkedHashMap<>();
-        synchronized (published) {
-            drained.putAll(published);
-            published.clear();
-        }
-        if (stopsOnLinkSide()) {
-            anticipateStops(drained);
-        }
-        List<MotorState> batch = new ArrayList<>();
-        for (String port : portOrder) {
-            MotorState s = drained.get(port);
-            if (s != null) {
-                batch.add(s);
+        if ((boolean) ANY_PUBLISHED.getAcquire(this)) {
+            if (linkInline) {
+                takePublished();
+            } else {
+                synchronized (publishLock) {
+                    takePublished();
+                }
+            }
+        } else {
+            for (Port p : motors) {
+                p.draining = null; // nothing left from a service a driver's exception cut short
             }
         }
-        if (!batch.isEmpty()) {
+        if (stopsOnLinkSide()) {
+            anticipateStops();
+        }
+        List<MotorState> batch = null;
+        for (Port p : motors) {
+            if (p.draining != null) {
+                if (batch == null) {
+                    batch = new ArrayList<>(motors.length);
+                }
+                batch.add(p.draining);
+            }
+        }
+        if (batch != null) {
             // The states count as sent from here on, so that a driver that reads the brick in the
             // same exchange (a pipelined poll) reports on these states, not the ones before; a
             // rotation counts from where the motor will be when the brick takes it.
-            Map<String, MotorState> before = new LinkedHashMap<>();
-            for (MotorState s : batch) {
-                MotorState previous = sentStates.get(s.port());
+            for (Port p : motors) {
+                MotorState s = p.draining;
+                if (s == null) {
+                    continue;
+                }
+                MotorState previous = p.sent();
                 if (s.running()) {
-                    Start was = starts.get(s.port());
+                    Start was = p.start();
                     long since = was != null && was.state() == previous ? was.sinceNanos() : Long.MIN_VALUE;
                     double speed = previous == null ? 0 : actualDegreesPerSecond(previous);
-                    starts.put(s.port(), new Start(s, predictedDegrees(s.port(), speed, since), Long.MAX_VALUE));
+                    p.start(new Start(s, predictedDegrees(p, speed, since), Long.MAX_VALUE));
                 }
-                before.put(s.port(), sentStates.put(s.port(), s));
+                p.sentBefore = previous;
+                p.sent(s);
             }
             try {
                 runImpl(batch);
                 long took = clock.nanoTime() - actedNanosAgo();
-                for (MotorState s : batch) {
-                    Start start = starts.get(s.port());
+                for (Port p : motors) {
+                    MotorState s = p.draining;
+                    Start start = s == null ? null : p.start();
                     if (start != null && start.state() == s) {
-                        starts.put(s.port(), new Start(s, start.degrees(), took));
+                        p.start(new Start(s, start.degrees(), took));
                     }
                 }
             } catch (IOException | RuntimeException e) {
-                before.forEach((port, s) -> {
-                    if (s == null) {
-                        sentStates.remove(port);
-                    } else {
-                        sentStates.put(port, s);
+                for (Port p : motors) {
+                    if (p.draining != null) {
+                        p.sent(p.sentBefore);
                     }
-                });
+                }
                 // A refusal (RuntimeException: the brick answered with an error status) is not sent
                 // again: it would be refused again, every cycle; the commands that wanted it fail with it.
-                synchronized (published) {
-                    for (MotorState s : e instanceof IOException ? batch : List.<MotorState>of()) {
-                        published.putIfAbsent(s.port(), s);
+                if (e instanceof IOException) {
+                    synchronized (publishLock) {
+                        for (Port p : motors) {
+                            if (p.draining != null && p.published == null) {
+                                p.published = p.draining;
+                                ANY_PUBLISHED.setRelease(this, true);
+                            }
+                        }
                     }
                 }
                 throw e;
+            } finally {
+                for (Port p : motors) {
+                    p.draining = null;
+                    p.sentBefore = null;
+                }
             }
         }
         pollFeedback();
+    }
+
+    /** Takes every published state into the batch (under {@link #publishLock} unless the link side is inline). */
+    private void takePublished() {
+        for (Port p : motors) {
+            p.draining = p.published;
+            p.published = null;
+        }
+        ANY_PUBLISHED.setRelease(this, false);
     }
 
     /**
@@ -528,29 +767,33 @@ public abstract class GenericMotorPlatform {
      * should stop together. The link thread waits for that moment. Time here is the injected
      * clock's; the wait is a real one only on the wall clock.
      */
-    private void anticipateStops(Map<String, MotorState> batch) {
+    private void anticipateStops() {
         long next = nextSendNanos();
-        Map<String, Long> due = new LinkedHashMap<>();
-        for (String port : portOrder) {
-            MotorState s = sentStates.get(port);
-            if (batch.containsKey(port) || s == null || !s.running() || Double.isInfinite(s.limitDegrees()) || !hasEncoder(port)) {
+        long[] due = null;
+        for (Port p : motors) {
+            MotorState s = p.sent();
+            if (p.draining != null || s == null || !s.running() || Double.isInfinite(s.limitDegrees()) || !hasEncoder(p.name)) {
                 continue;
             }
-            Start start = starts.get(port);
+            Start start = p.start();
             if (start == null || start.state() != s) {
                 continue;
             }
-            double remaining = s.limitDegrees() - turned(port, start);
+            double remaining = s.limitDegrees() - turned(p, start);
             double speed = Math.abs(actualDegreesPerSecond(s));
             long eta = speed == 0 ? Long.MAX_VALUE : (long) Math.max(0, remaining / speed * 1e9);
             if (eta < next) {
-                due.put(port, eta);
+                if (due == null) {
+                    due = new long[motors.length];
+                    java.util.Arrays.fill(due, -1);
+                }
+                due[p.index] = eta;
             }
         }
-        if (due.isEmpty()) {
+        if (due == null) {
             return;
         }
-        long wait = (long) due.values().stream().mapToLong(Long::longValue).average().orElse(0);
+        long wait = (long) java.util.Arrays.stream(due).filter(d -> d >= 0).average().orElse(0);
         if (wait > 0 && clock == Clock.system()) {
             // The action side unparks the link thread whenever it publishes: wait out the time.
             long until = clock.nanoTime() + wait;
@@ -558,20 +801,39 @@ public abstract class GenericMotorPlatform {
                 java.util.concurrent.locks.LockSupport.parkNanos(this, left);
             }
         }
-        for (String port : due.keySet()) {
-            batch.put(port, MotorState.stopped(port, MotorState.StopMode.BRAKE));
-            stoppedAtLimit.put(port, sentStates.get(port));
+        for (Port p : motors) {
+            if (due[p.index] >= 0) {
+                p.draining = MotorState.stopped(p.name, MotorState.StopMode.BRAKE);
+                p.stoppedAtLimit(p.sent());
+            }
         }
     }
 
-    private void requirePort(String port) {
-        if (!ports.contains(port)) {
-            throw new IllegalArgumentException("robot '" + robot + "' has no motor on port " + port + "; its motor ports are " + ports);
+    /**
+     * @return the port's state
+     * @throws IllegalArgumentException if this platform drives no motor on that port
+     */
+    private Port port(String port) {
+        for (Port p : motors) {
+            if (p.name.equals(port)) {
+                return p;
+            }
         }
+        throw new IllegalArgumentException("robot '" + robot + "' has no motor on port " + port + "; its motor ports are " + ports);
     }
 
     /** @return the clock */
     protected Clock clock() {
         return clock;
+    }
+
+    private static final java.lang.invoke.VarHandle ANY_PUBLISHED;
+
+    static {
+        try {
+            ANY_PUBLISHED = java.lang.invoke.MethodHandles.lookup().findVarHandle(GenericMotorPlatform.class, "anyPublished", boolean.class);
+        } catch (ReflectiveOperationException e) {
+            throw new ExceptionInInitializerError(e);
+        }
     }
 }

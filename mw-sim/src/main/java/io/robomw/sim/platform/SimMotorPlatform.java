@@ -14,10 +14,17 @@ import java.util.List;
 final class SimMotorPlatform extends GenericMotorPlatform {
 
     private final SimMotors motors;
+    /** The ports in the order the platform was built with, and each one's index in the simulated robot. */
+    private final int[] robotPorts;
 
     SimMotorPlatform(PlatformConfig config, SimMotors motors) {
         super(config.robotName(), config.clock(), config.motorPorts());
         this.motors = motors;
+        List<String> ports = config.motorPorts();
+        this.robotPorts = new int[ports.size()];
+        for (int i = 0; i < robotPorts.length; i++) {
+            robotPorts[i] = motors.portIndex(ports.get(i));
+        }
     }
 
     @Override
@@ -29,8 +36,8 @@ final class SimMotorPlatform extends GenericMotorPlatform {
 
     @Override
     protected void pollFeedback() {
-        for (String port : ports()) {
-            reportDegrees(port, motors.degrees(port));
+        for (int i = 0; i < robotPorts.length; i++) {
+            reportDegrees(i, robotPorts[i] < 0 ? 0.0 : motors.degrees(robotPorts[i]));
         }
     }
 }

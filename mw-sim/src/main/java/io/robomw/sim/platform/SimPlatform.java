@@ -52,6 +52,12 @@ class SimPlatform implements RobotPlatform {
         return wrap(platform.run(command));
     }
 
+    /** No simulated future: nobody waits on it, so nothing is deferred to the end of the step for it. */
+    @Override
+    public void runDetached(MotorCommand command) {
+        platform.runDetached(command);
+    }
+
     @Override
     public void stopAll() {
         platform.stopAll();

@@ -34,11 +34,9 @@ public final class RangeIndex {
     private final int[] staticStart;
     private final int[] staticItems; // >= 0 segment index, < 0: disc -(i+1)
 
-    // robot edges: 4 per robot, rebuilt by indexRobots
-    private double[] rx1 = new double[0];
-    private double[] ry1 = new double[0];
-    private double[] rx2 = new double[0];
-    private double[] ry2 = new double[0];
+    // robot bodies: 4 corners per robot, x and y interleaved (8 doubles, a cache line's worth, per
+    // robot; edge k joins corner k and k + 1), rebuilt by indexRobots
+    private double[] corners = new double[0];
     private int robotCount;
     /** Per robot: first and last column, first and last row its body covers. */
     private int[] robotCells = new int[0];
@@ -186,11 +184,7 @@ public final class RangeIndex {
         if (robotCount == count) {
             return;
         }
-        int edges = count * 4;
-        rx1 = new double[edges];
-        ry1 = new double[edges];
-        rx2 = new double[edges];
-        ry2 = new double[edges];
+        corners = new double[count * 8];
         robotCells = new int[count * 4];
         robotCount = count;
         robotItems = new int[0];
@@ -224,22 +218,16 @@ public final class RangeIndex {
         double x3 = x + hl * c + hw * s;
         double y3 = y + hl * s - hw * c;
         int e = i * 4;
-        rx1[e] = x0;
-        ry1[e] = y0;
-        rx2[e] = x1;
-        ry2[e] = y1;
-        rx1[e + 1] = x1;
-        ry1[e + 1] = y1;
-        rx2[e + 1] = x2;
-        ry2[e + 1] = y2;
-        rx1[e + 2] = x2;
-        ry1[e + 2] = y2;
-        rx2[e + 2] = x3;
-        ry2[e + 2] = y3;
-        rx1[e + 3] = x3;
-        ry1[e + 3] = y3;
-        rx2[e + 3] = x0;
-        ry2[e + 3] = y0;
+        int k = i * 8;
+        double[] q = corners;
+        q[k] = x0;
+        q[k + 1] = y0;
+        q[k + 2] = x1;
+        q[k + 3] = y1;
+        q[k + 4] = x2;
+        q[k + 5] = y2;
+        q[k + 6] = x3;
+        q[k + 7] = y3;
         robotCells[e] = clampCol(Math.min(Math.min(x0, x1), Math.min(x2, x3)));
         robotCells[e + 1] = clampCol(Math.max(Math.max(x0, x1), Math.max(x2, x3)));
         robotCells[e + 2] = clampRow(Math.min(Math.min(y0, y1), Math.min(y2, y3)));
@@ -312,6 +300,11 @@ public final class RangeIndex {
         double tMaxX = dx == 0 ? Double.POSITIVE_INFINITY : ((dx > 0 ? col + 1 - fx : fx - col) * cell) / Math.abs(dx);
         double tMaxY = dy == 0 ? Double.POSITIVE_INFINITY : ((dy > 0 ? row + 1 - fy : fy - row) * cell) / Math.abs(dy);
         double best = Double.POSITIVE_INFINITY;
+        // The last few robots tested (a body can lie in several cells along the ray): tested once.
+        int seen0 = -1;
+        int seen1 = -1;
+        int seen2 = -1;
+        int seen3 = -1;
         double t = 0;
         while (t <= maxRange) {
             if (col >= 0 && col < cols && row >= 0 && row < rows) {
@@ -326,15 +319,27 @@ public final class RangeIndex {
                 }
                 for (int j = robotStart[k]; j < robotStart[k + 1]; j++) {
                     int r = robotItems[j];
-                    if (r == self) {
-                        continue;
+                    if (r == self || r == seen0 || r == seen1 || r == seen2 || r == seen3) {
+                        continue; // its own body, or a body already tested in a cell before (it spans several)
                     }
-                    for (int e = r * 4; e < r * 4 + 4; e++) {
-                        double d = segment(ox, oy, dx, dy, rx1[e], ry1[e], rx2[e], ry2[e]);
-                        if (d < best) {
-                            best = d;
-                        }
-                    }
+                    seen3 = seen2;
+                    seen2 = seen1;
+                    seen1 = seen0;
+                    seen0 = r;
+                    double[] q = corners;
+                    int b = r * 8;
+                    double x0 = q[b];
+                    double y0 = q[b + 1];
+                    double x1 = q[b + 2];
+                    double y1 = q[b + 3];
+                    double x2 = q[b + 4];
+                    double y2 = q[b + 5];
+                    double x3 = q[b + 6];
+                    double y3 = q[b + 7];
+                    best = nearer(best, segment(ox, oy, dx, dy, x0, y0, x1, y1));
+                    best = nearer(best, segment(ox, oy, dx, dy, x1, y1, x2, y2));
+                    best = nearer(best, segment(ox, oy, dx, dy, x2, y2, x3, y3));
+                    best = nearer(best, segment(ox, oy, dx, dy, x3, y3, x0, y0));
                 }
             } else if ((col < 0 && stepC < 0) || (col >= cols && stepC > 0) || (row < 0 && stepR < 0) || (row >= rows && stepR > 0)) {
                 break;
@@ -355,7 +360,18 @@ public final class RangeIndex {
         return best <= maxRange ? best : Double.POSITIVE_INFINITY;
     }
 
-    /** Ray (o + t·d, |d| = 1) against segment ab: t ≥ 0 of the crossing, or +∞. */
+    /** @return {@code d} if it is nearer than {@code best}, else {@code best} (which a NaN never replaces) */
+    private static double nearer(double best, double d) {
+        return d < best ? d : best;
+    }
+
+    /**
+     * Ray (o + t·d, |d| = 1) against segment ab: t ≥ 0 of the crossing, or +∞. A crossing behind the
+     * ray or beside the segment is refused by the signs of the two numerators and the denominator
+     * before any division: their product is negative exactly when the quotient is (the quotients of
+     * coordinates in metres are far from underflowing to -0), so the result is the same as dividing
+     * first, bit for bit.
+     */
     static double segment(double ox, double oy, double dx, double dy, double ax, double ay, double bx, double by) {
         double ex = bx - ax;
         double ey = by - ay;
@@ -365,8 +381,13 @@ public final class RangeIndex {
         }
         double wx = ax - ox;
         double wy = ay - oy;
-        double t = (wx * ey - wy * ex) / denom;
-        double u = (wx * dy - wy * dx) / denom;
+        double tn = wx * ey - wy * ex;
+        double un = wx * dy - wy * dx;
+        if (tn * denom < 0 || un * denom < 0) {
+            return Double.POSITIVE_INFINITY;
+        }
+        double t = tn / denom;
+        double u = un / denom;
         return t >= 0 && u >= 0 && u <= 1 ? t : Double.POSITIVE_INFINITY;
     }
 
