@@ -33,11 +33,7 @@ class SwarmRepeatabilityTest {
     @Test
     void shouldGiveTheSameTrajectoriesBitForBitWhateverTheNumberOfThreads() throws IOException {
         WorldDescription world = crowdedWorld();
-        List<Pose> oneThread = run(world, 1);
-        List<Pose> twoThreads = run(world, 2);
-        List<Pose> threeThreads = run(world, 3);
-        assertEquals(oneThread, twoThreads, "2 threads against the stepping thread alone");
-        assertEquals(oneThread, threeThreads, "3 threads against the stepping thread alone");
+        List<Pose> oneThread = sameOnOneTwoAndThreeThreads(world);
         long moved = 0;
         for (int i = 0; i < ROBOTS; i++) {
             Pose start = world.robots().get(i).start();
@@ -53,11 +49,7 @@ class SwarmRepeatabilityTest {
         // 160 robots in 5 batches of the engine's contact detection (split between threads from 2 on),
         // 0.13 m apart: they start touching and push and turn against each other
         WorldDescription world = crowdedWorld(0.13).withEngine(WorldDescription.PhysicsEngine.SWARM);
-        List<Pose> oneThread = run(world, 1);
-        List<Pose> twoThreads = run(world, 2);
-        List<Pose> threeThreads = run(world, 3);
-        assertEquals(oneThread, twoThreads, "2 threads against the stepping thread alone");
-        assertEquals(oneThread, threeThreads, "3 threads against the stepping thread alone");
+        List<Pose> oneThread = sameOnOneTwoAndThreeThreads(world);
         long moved = 0;
         for (int i = 0; i < ROBOTS; i++) {
             Pose start = world.robots().get(i).start();
@@ -82,6 +74,14 @@ class SwarmRepeatabilityTest {
     }
 
     /** The poses of every robot after 4 simulated seconds. */
+    /** @return the poses after a run on the stepping thread alone, checked equal bit for bit to runs on 2 and 3 threads */
+    private List<Pose> sameOnOneTwoAndThreeThreads(WorldDescription world) {
+        List<Pose> oneThread = run(world, 1);
+        assertEquals(oneThread, run(world, 2), "2 threads against the stepping thread alone");
+        assertEquals(oneThread, run(world, 3), "3 threads against the stepping thread alone");
+        return oneThread;
+    }
+
     private List<Pose> run(WorldDescription world, int threads) {
         return run(world, threads, true);
     }
