@@ -79,7 +79,15 @@ public final class SimRobot {
     private double lastHeading;
     private double turned;
     private int contactSides;
-    private volatile Pose pose;
+    // The true pose, in three fields rather than a new Pose each step: a step stores no reference
+    // into this long-lived object (each such store costs G1 a card to refine, and at 10,000 robots
+    // and 50 Hz those cards cost more processor time than the robots' own work). The world's
+    // threads read the fields directly; other threads read them through poseVersion (a sequence
+    // lock: odd while they are written), in pose().
+    private double poseX;
+    private double poseY;
+    private double poseHeading;
+    private int poseVersion;
 
     /** A read waiting for the robot's next cycle. */
     private record PendingRead(SensorModel sensor, SimFuture<Double> future) {
@@ -120,7 +128,7 @@ public final class SimRobot {
         readPose();
         lastX = physics.x(body);
         lastY = physics.y(body);
-        lastHeading = pose.heading();
+        lastHeading = poseHeading;
         trajectory.add(lastX, lastY);
     }
 
@@ -139,9 +147,39 @@ public final class SimRobot {
         return description;
     }
 
-    /** @return where it is now (true pose, not odometry) */
+    /**
+     * Where it is now. Any thread may call it: a viewer gets the pose after some whole step, never
+     * parts of two.
+     *
+     * @return where it is now (true pose, not odometry)
+     */
     public Pose pose() {
-        return pose;
+        while (true) {
+            int version = (int) POSE_VERSION.getAcquire(this);
+            double x = poseX;
+            double y = poseY;
+            double heading = poseHeading;
+            java.lang.invoke.VarHandle.loadLoadFence();
+            if ((version & 1) == 0 && (int) POSE_VERSION.getOpaque(this) == version) {
+                return new Pose(x, y, heading);
+            }
+            Thread.onSpinWait(); // a step is writing it: three stores
+        }
+    }
+
+    /** @return its true x now; the world's threads only (others: {@link #pose()}) */
+    double x() {
+        return poseX;
+    }
+
+    /** @return its true y now; the world's threads only */
+    double y() {
+        return poseY;
+    }
+
+    /** @return its true heading now, in (-π, π]; the world's threads only */
+    double heading() {
+        return poseHeading;
     }
 
     /** @return the path it has driven, sampled as the world's {@code trajectory} settings say (bounded) */
@@ -266,9 +304,9 @@ public final class SimRobot {
             return;
         }
         readPose();
-        double x = pose.x();
-        double y = pose.y();
-        double heading = pose.heading();
+        double x = poseX;
+        double y = poseY;
+        double heading = poseHeading;
         double dTheta = Pose.normalize(heading - lastHeading);
         turned += dTheta;
         if (kinematics != null) {
@@ -369,8 +407,32 @@ public final class SimRobot {
         return Math.toRadians(quadruped.joint("neck").angle() + quadruped.joint("headTilt").angle());
     }
 
+    /** Takes the body's pose from the physics, as {@code new Pose(x, y, atan2(sin, cos))} would hold it. */
     private void readPose() {
-        pose = new Pose(physics.x(body), physics.y(body), Math.atan2(physics.sin(body), physics.cos(body)));
+        double x = physics.x(body);
+        double y = physics.y(body);
+        double heading = Math.atan2(physics.sin(body), physics.cos(body));
+        if (!Double.isFinite(x) || !Double.isFinite(y) || !Double.isFinite(heading)) {
+            new Pose(x, y, heading); // throws, saying which values are not numbers
+        }
+        heading = Pose.normalize(heading);
+        int version = poseVersion;
+        POSE_VERSION.setOpaque(this, version + 1);
+        java.lang.invoke.VarHandle.storeStoreFence();
+        poseX = x;
+        poseY = y;
+        poseHeading = heading;
+        POSE_VERSION.setRelease(this, version + 2);
+    }
+
+    private static final java.lang.invoke.VarHandle POSE_VERSION;
+
+    static {
+        try {
+            POSE_VERSION = java.lang.invoke.MethodHandles.lookup().findVarHandle(SimRobot.class, "poseVersion", int.class);
+        } catch (ReflectiveOperationException e) {
+            throw new ExceptionInInitializerError(e);
+        }
     }
 
     private static final int FRONT = 1;
@@ -449,7 +511,7 @@ public final class SimRobot {
             case RANGE -> sensor.latest();
             case CONTACT -> touching(sensor) ? 1.0 : 0.0;
             case FLOOR -> world.floorAt(sensorX(sensor), sensorY(sensor), sensor.spec().type() == io.robomw.api.SensorType.COLOR);
-            case HEADING -> pose.heading();
+            case HEADING -> poseHeading;
             case TURNED -> turned;
             case SILENCE -> 0.0;
             case TACHO -> Math.toRadians(motorDegrees(sensor.spec().port()));
@@ -493,10 +555,10 @@ public final class SimRobot {
     }
 
     private double sensorX(SensorModel s) {
-        return pose.x() + s.mountX() * Math.cos(pose.heading()) - s.mountY() * Math.sin(pose.heading());
+        return poseX + s.mountX() * Math.cos(poseHeading) - s.mountY() * Math.sin(poseHeading);
     }
 
     private double sensorY(SensorModel s) {
-        return pose.y() + s.mountX() * Math.sin(pose.heading()) + s.mountY() * Math.cos(pose.heading());
+        return poseY + s.mountX() * Math.sin(poseHeading) + s.mountY() * Math.cos(poseHeading);
     }
 }

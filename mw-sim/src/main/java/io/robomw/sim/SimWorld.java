@@ -577,9 +577,8 @@ public final class SimWorld implements AutoCloseable {
 
     /** Places a robot's body in the range index, from its pose after the step. */
     private void place(SimRobot r) {
-        Pose p = r.pose();
         Body b = r.description().body();
-        rangeIndex.placeRobot(r.index(), p.x(), p.y(), p.heading(), b.length(), b.width());
+        rangeIndex.placeRobot(r.index(), r.x(), r.y(), r.heading(), b.length(), b.width());
     }
 
     /**
@@ -588,12 +587,13 @@ public final class SimWorld implements AutoCloseable {
      * @param step the step number, or -1 for every sensor
      */
     private void sense(SimRobot r, long step) {
-        Pose p = r.pose();
         List<SensorModel> sensors = r.rangeSensors();
         if (sensors.isEmpty()) {
             return;
         }
-        double heading = p.heading();
+        double x = r.x();
+        double y = r.y();
+        double heading = r.heading();
         double c = Math.cos(heading);
         double s = Math.sin(heading);
         double pan = r.headPan();
@@ -601,7 +601,7 @@ public final class SimWorld implements AutoCloseable {
         for (int k = 0; k < sensors.size(); k++) {
             SensorModel m = sensors.get(k);
             if (step < 0 || step % m.everySteps(physicsHz) == 0) {
-                m.sampleRange(rayCaster, r.index(), p.x(), p.y(), heading, c, s, pan, tilt);
+                m.sampleRange(rayCaster, r.index(), x, y, heading, c, s, pan, tilt);
             }
         }
     }

@@ -230,4 +230,40 @@ class SimulationTest {
             assertEquals(1.2, truePose(sim).x(), 0.01);
         }
     }
+
+    @Test
+    void shouldGiveAReaderOnAnotherThreadWholePosesOfOneStepNeverPartsOfTwo() throws Exception {
+        // The true pose is kept in three fields written at every step (no object per step); a viewer
+        // on its own thread must still read x, y and heading of one and the same step.
+        try (Simulation sim = world(2, 1.5, 0, 0, "")) {
+            SimRobot body = sim.world().robot("r1");
+            Robot r = sim.robot("r1");
+            java.util.Set<Pose> stepped = java.util.concurrent.ConcurrentHashMap.newKeySet();
+            stepped.add(body.pose());
+            sim.addStepListener(() -> {
+                stepped.add(body.pose());
+                r.drive(0.2, 1.0); // a circle: x, y and heading all change at every step
+            });
+            java.util.Set<Pose> distinct = java.util.concurrent.ConcurrentHashMap.newKeySet();
+            java.util.concurrent.atomic.AtomicBoolean stop = new java.util.concurrent.atomic.AtomicBoolean();
+            Thread viewer = new Thread(() -> {
+                while (!stop.get()) {
+                    distinct.add(body.pose());
+                }
+            }, "pose-viewer");
+            viewer.start();
+            try {
+                for (int i = 0; i < 200 && distinct.size() < 50; i++) {
+                    sim.runFor(Duration.ofSeconds(1));
+                }
+            } finally {
+                stop.set(true);
+                viewer.join();
+            }
+            assertTrue(distinct.size() >= 50, "the viewer saw the robot move: " + distinct.size() + " distinct poses");
+            for (Pose p : distinct) {
+                assertTrue(stepped.contains(p), "read " + p + ", which no step left the robot in");
+            }
+        }
+    }
 }

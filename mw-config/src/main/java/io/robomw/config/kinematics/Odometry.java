@@ -12,7 +12,11 @@ import io.robomw.api.Pose;
 public final class Odometry {
 
     private final DifferentialKinematics kinematics;
-    private Pose pose = Pose.ORIGIN;
+    // The estimate in three fields, the heading normalised as a Pose holds it: an update (at every
+    // drive, ten a second per robot) makes no object and stores no reference into this long-lived one.
+    private double x;
+    private double y;
+    private double heading;
     private double lastLeft = Double.NaN;
     private double lastRight = Double.NaN;
 
@@ -31,14 +35,26 @@ public final class Odometry {
      * @return the new pose
      */
     public Pose update(double leftMotorDegrees, double rightMotorDegrees) {
+        integrate(leftMotorDegrees, rightMotorDegrees);
+        return pose();
+    }
+
+    /**
+     * {@link #update} without making the pose: integrates to new encoder readings.
+     *
+     * @param leftMotorDegrees  the left motor's rotation, as the motor reports it
+     * @param rightMotorDegrees the right motor's rotation
+     * @throws IllegalArgumentException if the pose would not be finite (as {@link Pose} refuses it);
+     *                                  the estimate is then unchanged
+     */
+    public void integrate(double leftMotorDegrees, double rightMotorDegrees) {
         if (!Double.isNaN(lastLeft)) {
             double dl = kinematics.wheelMetres(leftMotorDegrees - lastLeft, kinematics.drive().left().reversed());
             double dr = kinematics.wheelMetres(rightMotorDegrees - lastRight, kinematics.drive().right().reversed());
-            pose = advance(pose, dl, dr, kinematics.drive().trackWidth());
+            advance(dl, dr, kinematics.drive().trackWidth());
         }
         lastLeft = leftMotorDegrees;
         lastRight = rightMotorDegrees;
-        return pose;
     }
 
     /**
@@ -50,7 +66,9 @@ public final class Odometry {
      */
     public Odometry rebased(DifferentialKinematics next) {
         Odometry o = new Odometry(next);
-        o.pose = pose;
+        o.x = x;
+        o.y = y;
+        o.heading = heading;
         o.lastLeft = lastLeft;
         o.lastRight = lastRight;
         return o;
@@ -58,36 +76,38 @@ public final class Odometry {
 
     /** @return the current estimate */
     public Pose pose() {
-        return pose;
+        return new Pose(x, y, heading);
     }
 
     /**
      * @param pose the robot's pose now; the next update integrates from the last readings
      */
     public void reset(Pose pose) {
-        this.pose = pose;
+        x = pose.x();
+        y = pose.y();
+        heading = pose.heading();
     }
 
-    /**
-     * @param from  the pose before
-     * @param left  metres the left wheel rolled
-     * @param right metres the right wheel rolled
-     * @param track the track width
-     * @return the pose after rolling along the arc those distances define
-     */
-    static Pose advance(Pose from, double left, double right, double track) {
+    /** Moves the estimate along the arc the wheels' distances define (the arithmetic a {@link Pose} per step did). */
+    private void advance(double left, double right, double track) {
         double ds = (left + right) / 2;
         double dTheta = (right - left) / track;
-        double x;
-        double y;
+        double nx;
+        double ny;
         if (Math.abs(dTheta) < 1e-12) {
-            x = from.x() + ds * Math.cos(from.heading());
-            y = from.y() + ds * Math.sin(from.heading());
+            nx = x + ds * Math.cos(heading);
+            ny = y + ds * Math.sin(heading);
         } else {
             double r = ds / dTheta;
-            x = from.x() + r * (Math.sin(from.heading() + dTheta) - Math.sin(from.heading()));
-            y = from.y() - r * (Math.cos(from.heading() + dTheta) - Math.cos(from.heading()));
+            nx = x + r * (Math.sin(heading + dTheta) - Math.sin(heading));
+            ny = y - r * (Math.cos(heading + dTheta) - Math.cos(heading));
         }
-        return new Pose(x, y, from.heading() + dTheta);
+        double nh = heading + dTheta;
+        if (!Double.isFinite(nx) || !Double.isFinite(ny) || !Double.isFinite(nh)) {
+            new Pose(nx, ny, nh); // throws, saying which values are not numbers, as the pose made here did
+        }
+        x = nx;
+        y = ny;
+        heading = Pose.normalize(nh);
     }
 }

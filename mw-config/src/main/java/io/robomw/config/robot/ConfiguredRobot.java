@@ -479,21 +479,31 @@ public final class ConfiguredRobot implements Robot {
         if (!platform.hasEncoder(drive.left().port()) || !platform.hasEncoder(drive.right().port())) {
             throw new UnsupportedActionException(d.name(), "pose()", "its wheel motors have no encoders");
         }
-        return integrateOdometry(drive);
+        synchronized (odometryLock) {
+            integrateOdometry(drive);
+            return odometry.pose();
+        }
     }
 
-    /** Moves the odometry on to the encoders' readings now, for a drive known to have encoders. */
-    private Pose integrateOdometry(DifferentialDrive drive) {
+    /**
+     * Moves the odometry on to the encoders' readings now, for a drive known to have encoders. Makes
+     * no pose and, for the drive last used, stores no reference (a drive's ten calls a second per
+     * robot would otherwise each give the garbage collector a card to refine).
+     */
+    private void integrateOdometry(DifferentialDrive drive) {
         synchronized (odometryLock) {
             double left = platform.motorDegrees(drive.left().port());
             double right = platform.motorDegrees(drive.right().port());
             if (odometry == null) {
                 odometry = new Odometry(new DifferentialKinematics(drive));
-            } else if (drive != odometryDrive && !drive.equals(odometryDrive)) {
-                odometry = odometry.rebased(new DifferentialKinematics(drive));
+                odometryDrive = drive;
+            } else if (drive != odometryDrive) {
+                if (!drive.equals(odometryDrive)) {
+                    odometry = odometry.rebased(new DifferentialKinematics(drive));
+                }
+                odometryDrive = drive;
             }
-            odometryDrive = drive;
-            return odometry.update(left, right);
+            odometry.integrate(left, right);
         }
     }
 

@@ -6,6 +6,8 @@ import io.robomw.config.description.DifferentialDrive.Wheel;
 import org.junit.jupiter.api.Test;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
 
 class OdometryTest {
 
@@ -197,5 +199,37 @@ class OdometryTest {
         odometry.reset(new Pose(2, 3, Math.PI / 2));
 
         assertPose(2, 4, Math.PI / 2, odometry.update(degrees(1), degrees(1)), EPS);
+    }
+
+    @Test
+    void shouldIntegrateWithoutAPoseExactlyAsUpdateDoes() {
+        // integrate() keeps the estimate in fields; update() returns it as a pose: the same bits, and
+        // the heading kept normalised through many turns
+        Odometry byUpdate = new Odometry(kinematics(false, true));
+        Odometry byIntegrate = new Odometry(kinematics(false, true));
+        java.util.SplittableRandom random = new java.util.SplittableRandom(7);
+        double left = 0;
+        double right = 0;
+        for (int i = 0; i < 2000; i++) {
+            left += random.nextDouble(-40, 90);
+            right += random.nextDouble(-90, 40);
+            Pose expected = byUpdate.update(left, right);
+            byIntegrate.integrate(left, right);
+            assertEquals(expected, byIntegrate.pose(), "after " + (i + 1) + " readings");
+            assertTrue(expected.heading() > -Math.PI && expected.heading() <= Math.PI, "heading normalised: " + expected);
+        }
+    }
+
+    @Test
+    void shouldRefuseReadingsThatWouldMakeThePoseNotANumberAndKeepTheEstimate() {
+        Odometry odometry = new Odometry(kinematics(false, false));
+        odometry.update(0, 0);
+        Pose before = odometry.update(degrees(1), degrees(1));
+
+        IllegalArgumentException e = assertThrows(IllegalArgumentException.class, () -> odometry.integrate(Double.POSITIVE_INFINITY, degrees(1)));
+
+        assertTrue(e.getMessage().contains("finite"), e.getMessage());
+        assertEquals(before, odometry.pose(), "the estimate is unchanged");
+        assertPose(2, 0, 0, odometry.update(degrees(2), degrees(2)), EPS);
     }
 }
