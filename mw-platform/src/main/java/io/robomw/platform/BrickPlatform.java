@@ -254,6 +254,21 @@ public final class BrickPlatform implements RobotPlatform {
         return actionThread.submit(motors.container(command));
     }
 
+    /**
+     * Runs a command nobody waits for: a {@code drive} (every target continuous) goes through the
+     * motor platform's refresh slot instead of a container per call ({@link GenericMotorPlatform#submitDetached}),
+     * in its place among the other commands; when the link is down or its thread has failed, it is
+     * refused as {@link #run} refuses it.
+     */
+    @Override
+    public void runDetached(MotorCommand command) {
+        if (linkThreadFailure != null || linkDown) {
+            run(command); // a failed future, dropped: nobody waits for it
+            return;
+        }
+        motors.submitDetached(command, actionThread);
+    }
+
     @Override
     public void stopAll() {
         actionThread.submit(motors.stopContainer());

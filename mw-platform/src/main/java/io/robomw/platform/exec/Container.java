@@ -39,6 +39,8 @@ public final class Container {
     /** The same for logic objects past the 64th, if there are any. */
     private boolean[] satisfiedMore;
     private long startedAt;
+    /** Its place in the action thread's queue (set when submitted, under the queue's lock). */
+    long ticket;
 
     private Container(Builder b) {
         this.name = b.name;
@@ -115,6 +117,20 @@ public final class Container {
     boolean refreshedBy(Container newer) {
         return refreshKey != null && refreshKey.equals(newer.refreshKey)
                 && (requirements == newer.requirements || requirements.equals(newer.requirements)) && priority == newer.priority;
+    }
+
+    /**
+     * @return whether a {@link RefreshSlot} with this key, these actuators and this priority
+     *         refreshes this running container (as {@link #refreshedBy(Container)} decides for a container)
+     */
+    boolean refreshedBy(String key, Set<String> actuators, CommandPriority p) {
+        return refreshKey != null && refreshKey.equals(key)
+                && (requirements == actuators || requirements.equals(actuators)) && priority == p;
+    }
+
+    /** Restarts the watchdog, for a refresh through a slot (whose handler then sets the new values). */
+    void restartWatchdog(long now) {
+        startedAt = now;
     }
 
     /** Takes over a newer container's actions and restarts the watchdog. */

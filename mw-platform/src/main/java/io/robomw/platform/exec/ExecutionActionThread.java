@@ -9,13 +9,12 @@ import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 import java.time.Duration;
+import java.util.ArrayDeque;
 import java.util.ArrayList;
 import java.util.LinkedHashSet;
 import java.util.List;
-import java.util.Queue;
 import java.util.Set;
 import java.util.concurrent.CompletableFuture;
-import java.util.concurrent.ConcurrentLinkedQueue;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.atomic.AtomicLong;
 import java.util.concurrent.atomic.AtomicReference;
@@ -67,7 +66,21 @@ public final class ExecutionActionThread implements AutoCloseable {
     private final String robot;
     private final Clock clock;
     private final long periodNanos;
-    private final Queue<Container> incoming = new ConcurrentLinkedQueue<>();
+    /**
+     * Guards the queue: the containers submitted and not yet admitted ({@link #incoming}, in the
+     * order of their tickets), the refresh slots and their places, and the ticket counter.
+     */
+    private final Object incomingLock = new Object();
+    private final ArrayDeque<Container> incoming = new ArrayDeque<>();
+    /** Every slot refreshed through this thread (replaced as a whole when one is added or forgotten). */
+    private RefreshSlot[] slots = new RefreshSlot[0];
+    /** The ticket of the last container or slot queued (each gets the next). */
+    private long lastTicket;
+    /**
+     * Whether anything may be queued, read without the lock by each cycle first (a primitive:
+     * neither a cycle nor a refresh stores a reference into this long-lived object).
+     */
+    private volatile boolean anyIncoming;
     // Fields rather than atomic objects, read by every cycle: one object less each to bring into
     // the cache for each of the thousands of robots a simulation cycles in one pass.
     /** Set by {@link #linkFailed} (any thread), taken by the next cycle. */
@@ -135,8 +148,69 @@ public final class ExecutionActionThread implements AutoCloseable {
             container.completion().completeExceptionally(new RobotException("robot '" + robot + "' is closed; command '" + container.name() + "' was not run"));
             return container.completion();
         }
-        incoming.add(container);
+        synchronized (incomingLock) {
+            container.ticket = ++lastTicket;
+            incoming.add(container);
+            anyIncoming = true;
+        }
         return container.completion();
+    }
+
+    /**
+     * Refreshes a continuous command through its slot (see {@link RefreshSlot}): at the next cycle,
+     * in its place among the commands submitted before and after, the values refresh the running
+     * container the slot matches, or start a new one by the clash rules. Nobody waits for it: if the
+     * thread has failed or is closed, the values are dropped, as a detached container's failed
+     * future would be.
+     *
+     * @param slot   the slot (it belongs to this thread from its first refresh on)
+     * @param values its new values, copied ({@link RefreshSlot#size()} of them)
+     * @throws IllegalArgumentException if the slot belongs to another thread or the values do not fit it
+     */
+    public void refresh(RefreshSlot slot, double[] values) {
+        if (values.length != slot.size()) {
+            throw new IllegalArgumentException("refresh slot '" + slot.name() + "' takes " + slot.size() + " values, got " + values.length);
+        }
+        if (failure != null || closed) {
+            LOG.debug("robot '{}': '{}' was not run: the robot {}", robot, slot.name(), closed ? "is closed" : "has failed");
+            return;
+        }
+        Container separately = null;
+        synchronized (incomingLock) {
+            if (slot.owner != this) {
+                if (slot.owner != null) {
+                    throw new IllegalArgumentException("refresh slot '" + slot.name() + "' belongs to another robot's execution action thread");
+                }
+                adopt(slot);
+            }
+            if (!slot.queued) {
+                slot.ticket = ++lastTicket;
+                slot.queued = true;
+                slot.put(values);
+                anyIncoming = true;
+            } else if (slot.ticket == lastTicket) {
+                slot.put(values); // the newest refresh replaces the one queued just before it
+            } else {
+                // Something was submitted after its queued values: these go behind that, on their own.
+                separately = slot.handler().container(values.clone());
+            }
+        }
+        if (separately != null) {
+            submit(separately);
+        }
+    }
+
+    /** Makes a slot this thread's, forgetting retired ones that wait no more; under {@link #incomingLock}. */
+    private void adopt(RefreshSlot slot) {
+        List<RefreshSlot> kept = new ArrayList<>(slots.length + 1);
+        for (RefreshSlot s : slots) {
+            if (!s.retired || s.queued) {
+                kept.add(s);
+            }
+        }
+        kept.add(slot);
+        slot.owner = this;
+        slots = kept.toArray(new RefreshSlot[0]);
     }
 
     /**
@@ -235,8 +309,17 @@ public final class ExecutionActionThread implements AutoCloseable {
                 finish(c, true, refused);
             }
         }
-        for (Container c; (c = incoming.poll()) != null; ) {
-            admit(c, start);
+        // One at a time, in the order submitted: an action may submit more, which this cycle admits too.
+        while (anyIncoming) {
+            Object next = takeNext();
+            if (next == null) {
+                break;
+            }
+            if (next instanceof Container c) {
+                admit(c, start);
+            } else {
+                admit((RefreshSlot) next, start);
+            }
         }
         if (active.size() == 1) {
             // One container (a robot's running drive): nothing to copy, as ending it ends the loop.
@@ -310,6 +393,80 @@ public final class ExecutionActionThread implements AutoCloseable {
             scratch.add(active.get(i)); // not addAll: it copies through a new array every time
         }
         return scratch;
+    }
+
+    /**
+     * @return the queued container or slot with the lowest ticket (a slot's values taken for the
+     *         cycle), or {@code null} if nothing is queued
+     */
+    private Object takeNext() {
+        synchronized (incomingLock) {
+            Container first = incoming.peekFirst();
+            RefreshSlot slot = null;
+            int queuedSlots = 0;
+            for (RefreshSlot s : slots) {
+                if (s.queued) {
+                    queuedSlots++;
+                    if (slot == null || s.ticket < slot.ticket) {
+                        slot = s;
+                    }
+                }
+            }
+            Object next;
+            if (slot != null && (first == null || slot.ticket < first.ticket)) {
+                slot.take();
+                queuedSlots--;
+                next = slot;
+            } else {
+                next = incoming.pollFirst();
+            }
+            if (queuedSlots == 0 && incoming.isEmpty()) {
+                anyIncoming = false; // the usual cycle of a driving robot: one lock, not a second to find the queue empty
+            }
+            return next;
+        }
+    }
+
+    /**
+     * Admits a slot's values: a refresh in place of the running container that holds its actuators
+     * if that one is refreshed by it, else a new container by the clash rules.
+     */
+    private void admit(RefreshSlot slot, long now) {
+        Container holder = soleHolder(slot.requirements());
+        if (holder != null && holder.refreshedBy(slot.refreshKey(), slot.requirements(), slot.priority())) {
+            try {
+                holder.restartWatchdog(now);
+                slot.handler().refresh(slot.taken, now);
+            } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+                fail(holder, e);
+            }
+            return;
+        }
+        Container c;
+        try {
+            c = slot.handler().container(slot.taken);
+        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+            errors.incrementAndGet();
+            LOG.error("robot '{}': command '{}' failed", robot, slot.name(), e);
+            return;
+        }
+        admit(c, now);
+    }
+
+    /** @return the one running container that holds any of these actuators, or {@code null} if none or several do */
+    private Container soleHolder(Set<String> requirements) {
+        Container only = null;
+        for (String actuator : requirements) {
+            Container holder = holders.get(actuator);
+            if (holder == null || holder == only) {
+                continue;
+            }
+            if (only != null) {
+                return null;
+            }
+            only = holder;
+        }
+        return only;
     }
 
     private void admit(Container c, long now) {
@@ -399,6 +556,23 @@ public final class ExecutionActionThread implements AutoCloseable {
     }
 
     /**
+     * @return the next queued container, or {@code null} once none is left (queued slots' values
+     *         are dropped: nobody waits for them), for a thread that ends
+     */
+    private Container takeQueued() {
+        synchronized (incomingLock) {
+            for (RefreshSlot s : slots) {
+                s.queued = false;
+            }
+            Container c = incoming.pollFirst();
+            if (c == null) {
+                anyIncoming = false;
+            }
+            return c;
+        }
+    }
+
+    /**
      * Starts the real-time thread that cycles at the period, on the wall clock. Only once.
      *
      * @throws IllegalStateException if the clock is not the wall clock (a simulation cycles
@@ -459,7 +633,7 @@ public final class ExecutionActionThread implements AutoCloseable {
                 c.completion().completeExceptionally(why);
             }
         }
-        for (Container c; (c = incoming.poll()) != null; ) {
+        for (Container c; (c = takeQueued()) != null; ) {
             c.completion().completeExceptionally(why);
         }
         for (Runnable listener : cycleListeners) {
@@ -494,7 +668,7 @@ public final class ExecutionActionThread implements AutoCloseable {
             awaitEnd(t);
         }
         RobotException closing = new RobotException("robot '" + robot + "' was closed");
-        for (Container c; (c = incoming.poll()) != null; ) {
+        for (Container c; (c = takeQueued()) != null; ) {
             c.completion().completeExceptionally(closing);
         }
         for (Container c : List.copyOf(active)) {

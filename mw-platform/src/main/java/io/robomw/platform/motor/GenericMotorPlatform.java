@@ -6,6 +6,7 @@ import io.robomw.api.spi.CommandPriority;
 import io.robomw.api.spi.MotorCommand;
 import io.robomw.api.spi.MotorTarget;
 import io.robomw.platform.exec.Container;
+import io.robomw.platform.exec.RefreshSlot;
 
 import java.io.IOException;
 import java.util.ArrayList;
@@ -168,6 +169,12 @@ public abstract class GenericMotorPlatform {
     /** The motors a command names, in its order, and the set of their ports a container requires. */
     private record Requirements(Port[] motors, Set<String> set) {
     }
+
+    /** The refresh key of all-continuous commands: a newer one on the same motors and priority refreshes the running one. */
+    private static final String CONTINUOUS = "continuous";
+
+    /** The slot detached all-continuous commands go through ({@link #submitDetached}), made for the last such command. */
+    private volatile DriveSlot driveSlot;
 
     /** The logic object of a continuous command: it never holds, so the command runs until replaced, stopped or its watchdog fires. */
     private static final io.robomw.platform.exec.LogicObject NEVER = now -> false;
@@ -387,27 +394,7 @@ public abstract class GenericMotorPlatform {
         }
         if (continuous) {
             // A drive: its speeds taken now, so the action thread reads one small array, not the command.
-            double[] speeds = new double[targets.size()];
-            for (int i = 0; i < speeds.length; i++) {
-                speeds[i] = targets.get(i).degreesPerSecond();
-            }
-            b.action(now -> {
-                for (int i = 0; i < speeds.length; i++) {
-                    Port p = used[i];
-                    // A refreshed drive most often asks for what is wanted already: nothing to change.
-                    if (!same(p.wanted, speeds[i], Double.POSITIVE_INFINITY, MotorState.StopMode.BRAKE)) {
-                        setWanted(p, new MotorState(p.name, speeds[i], Double.POSITIVE_INFINITY, MotorState.StopMode.BRAKE), false);
-                    }
-                }
-            });
-            b.logic(NEVER);
-            b.refreshes("continuous");
-            b.onEnd(interrupted -> {
-                for (Port p : used) {
-                    stop(p, MotorState.StopMode.BRAKE);
-                }
-            });
-            return b.build();
+            return continuousContainer(b, used, speeds(command));
         }
         long[] startedAt = new long[1];
         MotorState[] started = new MotorState[targets.size()];
@@ -453,6 +440,126 @@ public abstract class GenericMotorPlatform {
             }
         });
         return b.build();
+    }
+
+    /** The container of an all-continuous command (a drive) on these motors, from its builder with name, motors, priority and watchdog set. */
+    private Container continuousContainer(Container.Builder b, Port[] used, double[] speeds) {
+        b.action(now -> setSpeeds(used, speeds));
+        b.logic(NEVER);
+        b.refreshes(CONTINUOUS);
+        b.onEnd(interrupted -> {
+            for (Port p : used) {
+                stop(p, MotorState.StopMode.BRAKE);
+            }
+        });
+        return b.build();
+    }
+
+    /** What a drive's action does: wants each motor turning at its speed, without end. */
+    private void setSpeeds(Port[] used, double[] speeds) {
+        for (int i = 0; i < used.length; i++) {
+            Port p = used[i];
+            // A refreshed drive most often asks for what is wanted already: nothing to change.
+            if (!same(p.wanted, speeds[i], Double.POSITIVE_INFINITY, MotorState.StopMode.BRAKE)) {
+                setWanted(p, new MotorState(p.name, speeds[i], Double.POSITIVE_INFINITY, MotorState.StopMode.BRAKE), false);
+            }
+        }
+    }
+
+    /** @return a command's speeds, in its targets' order */
+    private static double[] speeds(MotorCommand command) {
+        List<MotorTarget> targets = command.targets();
+        double[] speeds = new double[targets.size()];
+        for (int i = 0; i < speeds.length; i++) {
+            speeds[i] = targets.get(i).degreesPerSecond();
+        }
+        return speeds;
+    }
+
+    /**
+     * Hands a command nobody waits for to the execution action thread: an all-continuous one (a
+     * {@code drive}) through this platform's {@link RefreshSlot} for its motors, name, priority and
+     * watchdog (no container per refresh: the cycle refreshes the running drive in place, or starts
+     * one from the slot's speeds, in the command's place among the others); anything else as its
+     * {@link #container}.
+     *
+     * @param command the command
+     * @param thread  the robot's execution action thread
+     * @throws IllegalArgumentException if a target names a port this platform does not drive
+     */
+    public void submitDetached(MotorCommand command, io.robomw.platform.exec.ExecutionActionThread thread) {
+        List<MotorTarget> targets = command.targets();
+        for (MotorTarget t : targets) {
+            if (!t.continuous()) {
+                thread.submit(container(command));
+                return;
+            }
+        }
+        thread.refresh(driveSlot(command), speeds(command));
+    }
+
+    /** @return the slot for this all-continuous command: the last one made if it fits, else a new one (the old retired) */
+    private RefreshSlot driveSlot(MotorCommand command) {
+        DriveSlot last = driveSlot;
+        if (last != null && last.fits(command)) {
+            return last.slot;
+        }
+        synchronized (this) {
+            last = driveSlot;
+            if (last != null && last.fits(command)) {
+                return last.slot;
+            }
+            DriveSlot made = new DriveSlot(command.name(), requirements(command.targets()), command.priority(), command.watchdogTimeout());
+            if (last != null) {
+                last.slot.retire();
+            }
+            driveSlot = made;
+            return made.slot;
+        }
+    }
+
+    /** The refresh slot of all-continuous commands on some motors, with one name, priority and watchdog. */
+    private final class DriveSlot implements RefreshSlot.Handler {
+        final String name;
+        final Requirements required;
+        final CommandPriority priority;
+        final java.time.Duration watchdog;
+        final RefreshSlot slot;
+
+        DriveSlot(String name, Requirements required, CommandPriority priority, java.time.Duration watchdog) {
+            this.name = name;
+            this.required = required;
+            this.priority = priority;
+            this.watchdog = watchdog;
+            this.slot = new RefreshSlot(name, required.set(), priority, CONTINUOUS, required.motors().length, this);
+        }
+
+        /** @return whether a command goes through this slot: the same motors in the same order, name, priority and watchdog */
+        boolean fits(MotorCommand command) {
+            List<MotorTarget> targets = command.targets();
+            Port[] motors = required.motors();
+            if (targets.size() != motors.length || command.priority() != priority || !command.name().equals(name)
+                    || !command.watchdogTimeout().equals(watchdog)) {
+                return false;
+            }
+            for (int i = 0; i < motors.length; i++) {
+                if (!motors[i].name.equals(targets.get(i).port())) {
+                    return false;
+                }
+            }
+            return true;
+        }
+
+        @Override
+        public void refresh(double[] values, long nowNanos) {
+            setSpeeds(required.motors(), values);
+        }
+
+        @Override
+        public Container container(double[] values) {
+            Container.Builder b = Container.builder(name).requires(required.set()).priority(priority).watchdog(watchdog);
+            return continuousContainer(b, required.motors(), values.clone());
+        }
     }
 
     /**
