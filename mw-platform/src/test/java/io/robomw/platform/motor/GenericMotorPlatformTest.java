@@ -281,4 +281,77 @@ class GenericMotorPlatformTest {
         assertTrue(e.getMessage().contains("motor B did not finish turning 360°") && e.getMessage().contains("5.0 s"), e.getMessage());
         assertEquals(0.0, motors.speed.get("B"), "stopped");
     }
+
+    private static MotorCommand drive(double left, double right) {
+        return new MotorCommand("drive", List.of(MotorTarget.run("B", left), MotorTarget.run("C", right)),
+                io.robomw.api.spi.CommandPriority.NORMAL, Duration.ofMillis(500));
+    }
+
+    @Test
+    void aDetachedDriveKeepsTheMotorsTurningWhileRefreshedAndStopsWhenItIsNot() throws Exception {
+        open();
+        for (int i = 0; i < 40; i++) {
+            platform.runDetached(drive(100 + i, -100 - i));
+            step();
+            assertEquals(100.0 + i, motors.speed.get("B"));
+            assertEquals(-100.0 - i, motors.speed.get("C"));
+        }
+        for (int i = 0; i < 52; i++) {
+            step();
+        }
+        assertEquals(0.0, motors.speed.get("B"), "the watchdog stopped the motors");
+        assertEquals(0.0, motors.speed.get("C"));
+    }
+
+    @Test
+    void aMoveSubmittedAfterADetachedDriveInTheSameCycleTakesItsMotor() throws Exception {
+        open();
+        platform.runDetached(drive(100, 100));
+        step();
+        platform.runDetached(drive(50, 60));
+        CompletableFuture<Void> move = platform.run(MotorCommand.of("move", List.of(MotorTarget.rotate("B", 90, 90))));
+        step();
+        assertEquals(90.0, motors.speed.get("B"), "the move runs B");
+        assertEquals(0.0, motors.speed.get("C"), "the interrupted drive stopped C");
+        stepUntilDone(move, 1000);
+        move.get(0, TimeUnit.SECONDS);
+    }
+
+    @Test
+    void aDetachedDriveAfterAMoveInterruptsItAndStopsAfterIt() throws Exception {
+        open();
+        CompletableFuture<Void> move = platform.run(MotorCommand.of("move", List.of(MotorTarget.rotate("B", 720, 90))));
+        step();
+        platform.runDetached(drive(30, 40));
+        step();
+        assertInstanceOf(CommandPreemptedException.class, assertThrows(ExecutionException.class, () -> move.get(0, TimeUnit.SECONDS)).getCause());
+        assertEquals(30.0, motors.speed.get("B"));
+        assertEquals(40.0, motors.speed.get("C"));
+
+        platform.runDetached(drive(30, 40));
+        platform.stopAll();
+        platform.runDetached(drive(70, 70)); // after the stop, in its cycle: refused
+        step();
+        assertEquals(0.0, motors.speed.get("B"));
+        assertEquals(0.0, motors.speed.get("C"));
+    }
+
+    @Test
+    void aDetachedDriveIsDroppedWhileTheLinkIsDown() throws Exception {
+        open();
+        motors.failNext = new IOException("brick unplugged");
+        platform.runDetached(drive(100, 100));
+        step();
+        step();
+        int sent = motors.sent.size();
+        platform.runDetached(drive(80, 80));
+        step();
+        assertEquals(sent, motors.sent.size(), "nothing was handed to the link");
+
+        motors.failNext = null;
+        step();
+        platform.runDetached(drive(80, 80));
+        step();
+        assertEquals(80.0, motors.speed.get("B"), "once the link is back, drives run again");
+    }
 }
