@@ -30,12 +30,14 @@ import java.util.Set;
  *   {@code pollFeedback}, which reports encoder readings with {@link #reportDegrees}.</li>
  * </ul>
  * Encoder readings and published states cross between the sides through each port's own
- * state object (volatile fields; a cycle's published batch under one lock): the ports are fixed
- * at construction, so nothing is looked up by name in a map.
+ * state object (a reading's two numbers behind a sequence lock, states as immutable records with
+ * release stores; a cycle's published batch under one lock): the ports are fixed at construction,
+ * so nothing is looked up by name in a map.
  *
  * <p>A command whose targets are all continuous ({@code drive}) refreshes a running continuous
  * command on the same motors in place, so a program repeating it at 10 Hz costs one container,
- * not ten a second.
+ * not ten a second; sent with {@link #submitDetached} (nobody waits for it), it goes through the
+ * platform's {@link RefreshSlot} and costs no container at all after the first.
  *
  * <h2>Reaching a target</h2>
  * A logic object per motor watches its rotation since the container started, and stops the motor
@@ -101,8 +103,13 @@ public abstract class GenericMotorPlatform {
         // Handed between the sides with release stores and acquire loads (plain moves on x86, no
         // fence per reading): one side writes each, the values are immutable records, and no
         // decision needs a store ordered before a later load of another field.
-        /** The last encoder reading; link side writes. */
-        private Reading reading;
+        // The last encoder reading and the clock time the brick sampled it at, in fields rather
+        // than an object per reading (two a cycle per robot: each a reference stored into this
+        // long-lived object, a card for G1 to refine), behind a sequence lock: the link side writes
+        // them (readingVersion odd while it does, 0 before the first), any thread reads them whole.
+        private double readingDegrees;
+        private long readingAtNanos;
+        private int readingVersion;
         /** Where the motor was, by prediction, when the brick took the running state last sent for it; link side writes. */
         private Start start;
         /** The last state handed to {@code runImpl}; link side writes. */
@@ -110,12 +117,41 @@ public abstract class GenericMotorPlatform {
         /** A limited rotation the brick stopped by itself (or the link side stopped just in time). */
         private MotorState stoppedAtLimit;
 
-        Reading reading() {
-            return (Reading) READING.getAcquire(this);
+        /** Records a reading; link side only (one writer). */
+        void reading(double degrees, long atNanos) {
+            int version = readingVersion;
+            READING_VERSION.setOpaque(this, version + 1);
+            java.lang.invoke.VarHandle.storeStoreFence();
+            readingDegrees = degrees;
+            readingAtNanos = atNanos;
+            READING_VERSION.setRelease(this, version + 2);
         }
 
-        void reading(Reading r) {
-            READING.setRelease(this, r);
+        /** @return the reading's version before reading its fields (then {@link #readingWhole}) */
+        int readingBegin() {
+            return (int) READING_VERSION.getAcquire(this);
+        }
+
+        /**
+         * @param version what {@link #readingBegin} returned before the fields were read
+         * @return whether the fields read since were one whole reading (else read again: the link
+         *         side was writing them, two stores)
+         */
+        boolean readingWhole(int version) {
+            java.lang.invoke.VarHandle.loadLoadFence();
+            return (version & 1) == 0 && (int) READING_VERSION.getOpaque(this) == version;
+        }
+
+        /** @return the last reading's degrees, 0 before the first */
+        double readingDegrees() {
+            while (true) {
+                int version = readingBegin();
+                double degrees = readingDegrees;
+                if (readingWhole(version)) {
+                    return degrees;
+                }
+                Thread.onSpinWait();
+            }
         }
 
         Start start() {
@@ -142,7 +178,7 @@ public abstract class GenericMotorPlatform {
             STOPPED_AT_LIMIT.setRelease(this, st);
         }
 
-        private static final java.lang.invoke.VarHandle READING;
+        private static final java.lang.invoke.VarHandle READING_VERSION;
         private static final java.lang.invoke.VarHandle START;
         private static final java.lang.invoke.VarHandle SENT;
         private static final java.lang.invoke.VarHandle STOPPED_AT_LIMIT;
@@ -150,7 +186,7 @@ public abstract class GenericMotorPlatform {
         static {
             try {
                 java.lang.invoke.MethodHandles.Lookup l = java.lang.invoke.MethodHandles.lookup();
-                READING = l.findVarHandle(Port.class, "reading", Reading.class);
+                READING_VERSION = l.findVarHandle(Port.class, "readingVersion", int.class);
                 START = l.findVarHandle(Port.class, "start", Start.class);
                 SENT = l.findVarHandle(Port.class, "sent", MotorState.class);
                 STOPPED_AT_LIMIT = l.findVarHandle(Port.class, "stoppedAtLimit", MotorState.class);
@@ -281,7 +317,7 @@ public abstract class GenericMotorPlatform {
      * @param reading degrees of the motor shaft
      */
     protected final void reportDegrees(String port, double reading) {
-        port(port).reading(new Reading(reading, clock.nanoTime() - linkDelayNanos()));
+        port(port).reading(reading, clock.nanoTime() - linkDelayNanos());
     }
 
     /**
@@ -292,7 +328,7 @@ public abstract class GenericMotorPlatform {
      * @param reading   degrees of the motor shaft
      */
     protected final void reportDegrees(int portIndex, double reading) {
-        motors[portIndex].reading(new Reading(reading, clock.nanoTime() - linkDelayNanos()));
+        motors[portIndex].reading(reading, clock.nanoTime() - linkDelayNanos());
     }
 
     /**
@@ -350,10 +386,6 @@ public abstract class GenericMotorPlatform {
         return linkDelayNanos();
     }
 
-    /** An encoder reading and the clock time the brick sampled it at. */
-    private record Reading(double degrees, long atNanos) {
-    }
-
     /**
      * A rotation's state, where the motor was predicted to be when the brick took it, and when
      * that was ({@link Long#MAX_VALUE} while the driver is still sending it: a brick that takes
@@ -367,8 +399,7 @@ public abstract class GenericMotorPlatform {
      * @return the last encoder reading, degrees
      */
     public double motorDegrees(String port) {
-        Reading r = port(port).reading();
-        return r == null ? 0.0 : r.degrees();
+        return port(port).readingDegrees();
     }
 
     // ---- action side ----
@@ -676,18 +707,31 @@ public abstract class GenericMotorPlatform {
      * sent; stopping on the bare reading would overshoot by both.
      */
     private double predictedDegrees(Port port, double degreesPerSecond, long turningSince) {
-        Reading r = port.reading();
-        if (r == null) {
-            return 0.0;
+        int version;
+        double degrees;
+        long at;
+        do {
+            version = port.readingBegin();
+            degrees = port.readingDegrees;
+            at = port.readingAtNanos;
+        } while (!port.readingWhole(version) && spin());
+        if (version == 0) {
+            return 0.0; // no reading yet
         }
         long now = clock.nanoTime();
         if (turningSince > now) {
-            return r.degrees();
+            return degrees;
         }
         long delay = commandDelayNanos();
-        long from = Math.max(r.atNanos(), turningSince);
+        long from = Math.max(at, turningSince);
         long ahead = Math.min(Math.max(0, now - from) + delay, 3 * cyclePeriodNanos + 4 * linkDelayNanos() + delay);
-        return r.degrees() + degreesPerSecond * ahead / 1e9;
+        return degrees + degreesPerSecond * ahead / 1e9;
+    }
+
+    /** @return true, after a spin-wait hint (while a reading is being written) */
+    private static boolean spin() {
+        Thread.onSpinWait();
+        return true;
     }
 
     /** @param always publish it even if it equals the wanted state (a new rotation, which the brick must start again) */
