@@ -33,7 +33,10 @@ import java.util.concurrent.locks.LockSupport;
  *   <li><b>Refresh:</b> a continuous container built with the same
  *   {@link Container.Builder#refreshes refresh key}, actuators and priority as the one holding its
  *   actuators does not interrupt it: it refreshes it in place (its actions set the new speeds, the
- *   watchdog restarts) and its own future completes at once.</li>
+ *   watchdog restarts) and its own future completes at once. A {@link RefreshSlot} does the same
+ *   without a container per refresh ({@link #refresh}): its values wait in the queue in their
+ *   place among the containers, and refresh the running container or become a new one by these
+ *   rules.</li>
  *   <li><b>Watchdog:</b> a container with a watchdog timeout ends when it has run that long
  *   without being refreshed or replaced.</li>
  *   <li><b>Link failure:</b> after {@link #linkFailed}, every container ends with
@@ -41,7 +44,7 @@ import java.util.concurrent.locks.LockSupport;
  * </ul>
  *
  * <h2>Threads</h2>
- * {@link #submit} and {@link #linkFailed} may be called from any thread. Everything else happens
+ * {@link #submit}, {@link #refresh} and {@link #linkFailed} may be called from any thread. Everything else happens
  * in {@link #cycle()}, called either by the thread {@link #start()} creates (named
  * {@code <robot>-action}, paced by the wall clock) or, with a simulated clock, by the simulation,
  * never by both. Action objects, logic objects, end actions and cycle listeners all run on the
@@ -66,12 +69,12 @@ public final class ExecutionActionThread implements AutoCloseable {
     private final String robot;
     private final Clock clock;
     private final long periodNanos;
-    /**
-     * Guards the queue: the containers submitted and not yet admitted ({@link #incoming}, in the
-     * order of their tickets), the refresh slots and their places, and the ticket counter.
-     */
-    private final Object incomingLock = new Object();
+    // The queue, guarded by this object's own monitor (no lock object of its own: one object less
+    // for each cycle to bring into the cache): the containers submitted and not yet admitted, in the
+    // order of their tickets, the refresh slots and their places, and the ticket counter.
     private final ArrayDeque<Container> incoming = new ArrayDeque<>();
+    /** How many containers {@link #incoming} holds (a robot that only drives never looks at it). */
+    private int queuedContainers;
     /** Every slot refreshed through this thread (replaced as a whole when one is added or forgotten). */
     private RefreshSlot[] slots = new RefreshSlot[0];
     /** The ticket of the last container or slot queued (each gets the next). */
@@ -148,9 +151,10 @@ public final class ExecutionActionThread implements AutoCloseable {
             container.completion().completeExceptionally(new RobotException("robot '" + robot + "' is closed; command '" + container.name() + "' was not run"));
             return container.completion();
         }
-        synchronized (incomingLock) {
+        synchronized (this) {
             container.ticket = ++lastTicket;
             incoming.add(container);
+            queuedContainers++;
             anyIncoming = true;
         }
         return container.completion();
@@ -176,7 +180,7 @@ public final class ExecutionActionThread implements AutoCloseable {
             return;
         }
         Container separately = null;
-        synchronized (incomingLock) {
+        synchronized (this) {
             if (slot.owner != this) {
                 if (slot.owner != null) {
                     throw new IllegalArgumentException("refresh slot '" + slot.name() + "' belongs to another robot's execution action thread");
@@ -200,7 +204,7 @@ public final class ExecutionActionThread implements AutoCloseable {
         }
     }
 
-    /** Makes a slot this thread's, forgetting retired ones that wait no more; under {@link #incomingLock}. */
+    /** Makes a slot this thread's, forgetting retired ones that wait no more; under this object's monitor. */
     private void adopt(RefreshSlot slot) {
         List<RefreshSlot> kept = new ArrayList<>(slots.length + 1);
         for (RefreshSlot s : slots) {
@@ -286,8 +290,9 @@ public final class ExecutionActionThread implements AutoCloseable {
      * <ol>
      *   <li>If the link failed, end every container with {@link RobotLinkException}; if the hardware
  *   refused a command ({@link #driverFailed}), end every container with that refusal.</li>
-     *   <li>Admit queued containers in the order they were submitted, applying the clash rules,
-     *   and start each admitted one (its action objects run).</li>
+     *   <li>Admit queued containers and refresh slots in the order they were submitted, applying
+     *   the clash and refresh rules, and start each admitted one (its action objects run); what an
+     *   action submits meanwhile is admitted in this cycle too.</li>
      *   <li>End containers whose watchdog expired.</li>
      *   <li>Evaluate the logic objects of every running container; end those whose logic all holds.</li>
      *   <li>Run the cycle listeners.</li>
@@ -400,8 +405,8 @@ public final class ExecutionActionThread implements AutoCloseable {
      *         cycle), or {@code null} if nothing is queued
      */
     private Object takeNext() {
-        synchronized (incomingLock) {
-            Container first = incoming.peekFirst();
+        synchronized (this) {
+            Container first = queuedContainers == 0 ? null : incoming.peekFirst();
             RefreshSlot slot = null;
             int queuedSlots = 0;
             for (RefreshSlot s : slots) {
@@ -417,10 +422,13 @@ public final class ExecutionActionThread implements AutoCloseable {
                 slot.take();
                 queuedSlots--;
                 next = slot;
-            } else {
+            } else if (first != null) {
                 next = incoming.pollFirst();
+                queuedContainers--;
+            } else {
+                next = null;
             }
-            if (queuedSlots == 0 && incoming.isEmpty()) {
+            if (queuedSlots == 0 && queuedContainers == 0) {
                 anyIncoming = false; // the usual cycle of a driving robot: one lock, not a second to find the queue empty
             }
             return next;
@@ -560,13 +568,15 @@ public final class ExecutionActionThread implements AutoCloseable {
      *         are dropped: nobody waits for them), for a thread that ends
      */
     private Container takeQueued() {
-        synchronized (incomingLock) {
+        synchronized (this) {
             for (RefreshSlot s : slots) {
                 s.queued = false;
             }
             Container c = incoming.pollFirst();
             if (c == null) {
                 anyIncoming = false;
+            } else {
+                queuedContainers--;
             }
             return c;
         }

@@ -60,7 +60,7 @@ public final class RefreshSlot {
     private final CommandPriority priority;
     private final String refreshKey;
     private final Handler handler;
-    // Guarded by the owner's incoming lock:
+    // Guarded by the owner's monitor (the ExecutionActionThread object):
     private final double[] pending;
     /** Its place in the owner's queue while queued ({@link #queued}). */
     long ticket;
@@ -69,7 +69,7 @@ public final class RefreshSlot {
     volatile boolean retired;
     // Cycling thread only:
     final double[] taken;
-    /** The execution action thread it belongs to, from its first refresh (under that thread's lock). */
+    /** The execution action thread it belongs to, from its first refresh (under that thread's monitor). */
     ExecutionActionThread owner;
 
     /**
