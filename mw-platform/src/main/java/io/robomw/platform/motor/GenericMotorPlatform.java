@@ -91,15 +91,8 @@ public abstract class GenericMotorPlatform {
     private static final class Port {
         final String name;
         final int index;
-        /** Action side only; set with {@link #setWanted}. */
+        /** Action side only. */
         MotorState wanted;
-        // Action side only: the wanted state's numbers, kept beside it so that a refresh asking for
-        // what is wanted already (most of a drive's, ten a second) reads this port and not the
-        // state object too, which by then is out of the processor's cache at 10,000 robots.
-        double wantedSpeed;
-        double wantedLimit;
-        /** The wanted state's {@link MotorState.StopMode}, by its position in the enum (in memory only). */
-        int wantedMode;
         /** Action side only: set this cycle, published by the next flush, else {@code null}. */
         MotorState changed;
         /** Guarded by {@link #publishLock}: published for the link side, not yet taken. */
@@ -205,14 +198,7 @@ public abstract class GenericMotorPlatform {
         Port(String name, int index) {
             this.name = name;
             this.index = index;
-            wanted(MotorState.stopped(name, MotorState.StopMode.BRAKE));
-        }
-
-        void wanted(MotorState state) {
-            wanted = state;
-            wantedSpeed = state.degreesPerSecond();
-            wantedLimit = state.limitDegrees();
-            wantedMode = state.stopMode().ordinal();
+            this.wanted = MotorState.stopped(name, MotorState.StopMode.BRAKE);
         }
     }
 
@@ -449,7 +435,7 @@ public abstract class GenericMotorPlatform {
                 MotorTarget t = targets.get(i);
                 double speed = t.degrees() == 0 ? 0 : t.degreesPerSecond();
                 if (t.continuous()) {
-                    if (!same(used[i], speed, t.degrees(), MotorState.StopMode.BRAKE)) {
+                    if (!same(used[i].wanted, speed, t.degrees(), MotorState.StopMode.BRAKE)) {
                         setWanted(used[i], new MotorState(t.port(), speed, t.degrees(), MotorState.StopMode.BRAKE), false);
                     }
                 } else {
@@ -505,7 +491,7 @@ public abstract class GenericMotorPlatform {
         for (int i = 0; i < used.length; i++) {
             Port p = used[i];
             // A refreshed drive most often asks for what is wanted already: nothing to change.
-            if (!same(p, speeds[i], Double.POSITIVE_INFINITY, MotorState.StopMode.BRAKE)) {
+            if (!same(p.wanted, speeds[i], Double.POSITIVE_INFINITY, MotorState.StopMode.BRAKE)) {
                 setWanted(p, new MotorState(p.name, speeds[i], Double.POSITIVE_INFINITY, MotorState.StopMode.BRAKE), false);
             }
         }
@@ -636,15 +622,15 @@ public abstract class GenericMotorPlatform {
         return r;
     }
 
-    /** @return whether a port's wanted state equals the one these values make for it (as {@link MotorState#equals} compares them) */
-    private static boolean same(Port p, double degreesPerSecond, double limitDegrees, MotorState.StopMode mode) {
-        return Double.compare(p.wantedSpeed, degreesPerSecond) == 0
-                && Double.compare(p.wantedLimit, limitDegrees) == 0 && p.wantedMode == mode.ordinal();
+    /** @return whether a wanted state equals the one these values make for its port (as {@link MotorState#equals} compares them) */
+    private static boolean same(MotorState wanted, double degreesPerSecond, double limitDegrees, MotorState.StopMode mode) {
+        return wanted != null && Double.compare(wanted.degreesPerSecond(), degreesPerSecond) == 0
+                && Double.compare(wanted.limitDegrees(), limitDegrees) == 0 && wanted.stopMode() == mode;
     }
 
     /** Wants a motor stopped; allocates no state if it is wanted stopped that way already. */
     private void stop(Port p, MotorState.StopMode mode) {
-        if (!same(p, 0, 0, mode)) {
+        if (!same(p.wanted, 0, 0, mode)) {
             setWanted(p, MotorState.stopped(p.name, mode), false);
         }
     }
@@ -751,7 +737,7 @@ public abstract class GenericMotorPlatform {
     /** @param always publish it even if it equals the wanted state (a new rotation, which the brick must start again) */
     private void setWanted(Port p, MotorState state, boolean always) {
         MotorState before = p.wanted;
-        p.wanted(state);
+        p.wanted = state;
         if (always || !state.equals(before)) {
             p.changed = state;
             anyChanged = true;
