@@ -49,6 +49,14 @@ public final class Simulation implements AutoCloseable {
 
     private static final Logger LOG = LoggerFactory.getLogger(Simulation.class);
     private static final long STALL_NANOS = Duration.ofSeconds(60).toNanos();
+    /**
+     * How far a real-time run may fall behind the wall clock and still catch up, stepping back to
+     * back: a thread held up by a collection or a loaded machine for less than this loses no
+     * simulated time, so hardware timed by the wall clock (a driver's just-in-time stop, an
+     * emulated brick's motors) sees the motion it commanded. Held up longer (a debugger, a
+     * suspended laptop), the run goes on from now instead of racing through the missed time.
+     */
+    static final long CATCH_UP_NANOS = Duration.ofSeconds(1).toNanos();
 
     private final SimWorld world;
     private final Map<String, ConfiguredRobot> robots = new LinkedHashMap<>();
@@ -310,7 +318,9 @@ public final class Simulation implements AutoCloseable {
 
     /**
      * Starts stepping the world on a thread named {@code sim-<world>}, paced by the wall clock. The
-     * first step is taken before this returns.
+     * first step is taken before this returns. A run whose thread was held up for up to a
+     * second catches up, stepping back to back; held up longer, it goes on from
+     * now.
      *
      * @param speed simulated seconds per wall-clock second (1 = real time)
      */
@@ -349,7 +359,9 @@ public final class Simulation implements AutoCloseable {
                 while (realTime && (now = System.nanoTime()) < next) {
                     LockSupport.parkNanos(this, next - now);
                 }
-                if (System.nanoTime() - next > 10 * period) {
+                long late = System.nanoTime() - next;
+                if (late > CATCH_UP_NANOS) {
+                    LOG.debug("real-time run {} ms behind the wall clock; going on from now", late / 1_000_000);
                     next = System.nanoTime();
                 }
             }

@@ -16,6 +16,10 @@ import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicBoolean;
+import java.util.concurrent.locks.LockSupport;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
@@ -264,6 +268,50 @@ class SimulationTest {
             for (Pose p : distinct) {
                 assertTrue(stepped.contains(p), "read " + p + ", which no step left the robot in");
             }
+        }
+    }
+
+    @Test
+    void shouldCatchUpWithoutLosingSimulatedTimeAfterItsThreadWasHeldUp() throws Exception {
+        assertEquals(0.0, simulatedTimeLostAfterAStallOf(Duration.ofMillis(500)), 1e-6,
+                "every step after half a second held up stood for its own period: the run caught up");
+    }
+
+    @Test
+    void shouldGoOnFromNowRatherThanRaceAfterALongStall() throws Exception {
+        assertTrue(simulatedTimeLostAfterAStallOf(Duration.ofMillis(1500)) >= 1.5 - 0.011,
+                "a run held up for longer than a second does not race through the missed time");
+    }
+
+    /**
+     * Holds the real-time thread up once, in a step listener (as a long collection would), then
+     * returns how much wall-clock time the steps' schedule skipped over the next simulated second:
+     * the wall-clock time the step one simulated second later stands for, minus one second.
+     */
+    private double simulatedTimeLostAfterAStallOf(Duration stall) throws Exception {
+        try (Simulation sim = world(1, 1.5, 0, 0, "")) {
+            sim.startRealTime(1);
+            AtomicBoolean held = new AtomicBoolean();
+            long[] wall0 = new long[1];
+            double[] time0 = new double[1];
+            double[] lost = new double[1];
+            CountDownLatch secondLater = new CountDownLatch(1);
+            sim.addStepListener(() -> {
+                if (!held.getAndSet(true)) {
+                    wall0[0] = sim.stepWallNanos();
+                    time0[0] = sim.world().time();
+                    long end = System.nanoTime() + stall.toNanos();
+                    for (long left = stall.toNanos(); left > 0; left = end - System.nanoTime()) {
+                        LockSupport.parkNanos(left);
+                    }
+                } else if (secondLater.getCount() > 0 && sim.world().time() >= time0[0] + 1.0 - 1e-9) {
+                    lost[0] = (sim.stepWallNanos() - wall0[0]) / 1e9 - (sim.world().time() - time0[0]);
+                    secondLater.countDown();
+                }
+            });
+            assertTrue(secondLater.await(30, TimeUnit.SECONDS), "a simulated second passed after the stall");
+            sim.stopRealTime();
+            return lost[0];
         }
     }
 }

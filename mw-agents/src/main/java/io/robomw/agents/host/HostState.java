@@ -43,6 +43,8 @@ final class HostState {
     final HostActivity activity = new HostActivity();
     /** Runs agents' stops, one pooled thread per agent at a time; its idle threads spin {@link #runnerSpinNanos} before they park. */
     final ExecutorService runners;
+    /** The hand-off queue of {@link #runners}: where a runner that sent a large agent on says it parks at once ({@link SpinHandoff#parkNext}). */
+    final SpinHandoff<Runnable> runnerHandoff;
     /** The arrays of large outgoing transfers, reused hop after hop. */
     final FrameBuffers frameBuffers = new FrameBuffers();
     /** How long a runner waits for work by spinning before it parks, ns (0: never spins). */
@@ -77,7 +79,8 @@ final class HostState {
         this.codec = codec;
         this.timeoutMillis = timeoutMillis;
         this.runnerSpinNanos = runnerSpin.toNanos();
-        this.runners = pool(named("agent-runner-" + name), new SpinHandoff<>(runnerSpin, System::nanoTime));
+        this.runnerHandoff = new SpinHandoff<>(runnerSpin, System::nanoTime);
+        this.runners = pool(named("agent-runner-" + name), runnerHandoff);
         this.requests = pool(named("agent-requests-" + name), new java.util.concurrent.SynchronousQueue<>());
         this.wireTaggers = pool(named("agent-wire-tag-" + name), new java.util.concurrent.SynchronousQueue<>());
     }

@@ -41,6 +41,8 @@ final class SpinHandoff<E> extends AbstractQueue<E> implements BlockingQueue<E> 
     private final AtomicInteger spinning = new AtomicInteger();
     private final long spinNanos;
     private final LongSupplier nanoTime;
+    /** Set by a task on its own thread: that thread's next wait for a task parks without spinning ({@link #parkNext}). */
+    private final ThreadLocal<boolean[]> parkNext = ThreadLocal.withInitial(() -> new boolean[1]);
 
     /**
      * @param spin     how long an idle thread spins before it parks; zero never spins
@@ -74,6 +76,25 @@ final class SpinHandoff<E> extends AbstractQueue<E> implements BlockingQueue<E> 
         return Runtime.getRuntime().availableProcessors() > 1 ? Duration.ofNanos(50_000) : Duration.ZERO;
     }
 
+    /**
+     * Makes the calling thread's next wait for a task (after the task it runs now) park at once,
+     * without spinning: for a task that knows no next task is likely within the spin (a runner that
+     * has just sent a large agent on, whose next stop takes longer than the spin to come back),
+     * so the spin does not take a processor from the threads that have work (on two processors,
+     * those of the host reading the agent). A thread of another pool that calls it is not affected.
+     */
+    void parkNext() {
+        parkNext.get()[0] = true;
+    }
+
+    /** @return whether the calling thread was told to park at once ({@link #parkNext}); the flag is cleared */
+    private boolean parksNow() {
+        boolean[] flag = parkNext.get();
+        boolean park = flag[0];
+        flag[0] = false;
+        return park;
+    }
+
     /** @return how many threads spin now (for tests) */
     int spinning() {
         return spinning.get();
@@ -94,7 +115,7 @@ final class SpinHandoff<E> extends AbstractQueue<E> implements BlockingQueue<E> 
     public E poll(long timeout, TimeUnit unit) throws InterruptedException {
         long start = nanoTime.getAsLong();
         long wait = unit.toNanos(timeout);
-        E e = spin(Math.min(spinNanos, wait));
+        E e = parksNow() ? null : spin(Math.min(spinNanos, wait));
         if (e != null) {
             return e;
         }
@@ -104,7 +125,7 @@ final class SpinHandoff<E> extends AbstractQueue<E> implements BlockingQueue<E> 
 
     @Override
     public E take() throws InterruptedException {
-        E e = spin(spinNanos);
+        E e = parksNow() ? null : spin(spinNanos);
         return e != null ? e : parked.take();
     }
 

@@ -181,6 +181,10 @@ final class Trips {
             // The transfer is over, delivered or not: nothing reads the frame any more.
             host.frameBuffers.give(frame.bytes);
             if (why == null) {
+                if (frame.bodyLength() > WireChannel.SPIN_MAX_BODY) {
+                    // It takes longer than a runner's spin to come back, and the spin would take a processor from the host reading it.
+                    host.runnerHandoff.parkNext();
+                }
                 host.activity.record(h.id, h.className, HostActivity.DEPARTED, host.address, target);
                 return new Departure(true, target, null);
             }

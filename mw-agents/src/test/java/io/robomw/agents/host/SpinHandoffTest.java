@@ -42,6 +42,36 @@ class SpinHandoffTest {
     }
 
     @Test
+    void aThreadToldToParkNextWaitsParkedOnceAndSpinsAgainAfterwards() throws Exception {
+        // The clock never moves: a thread that spins would spin until a task comes.
+        AtomicLong now = new AtomicLong(1_000_000_000L);
+        SpinHandoff<String> q = new SpinHandoff<>(Duration.ofMillis(1), now::get);
+        CompletableFuture<String> first = new CompletableFuture<>();
+        CompletableFuture<String> second = new CompletableFuture<>();
+        Thread runner = new Thread(() -> {
+            try {
+                q.parkNext(); // as a runner does after sending a large agent on
+                first.complete(q.poll(30, TimeUnit.SECONDS));
+                second.complete(q.poll(30, TimeUnit.SECONDS));
+            } catch (Throwable t) {
+                first.completeExceptionally(t);
+                second.completeExceptionally(t);
+            }
+        }, "spin-handoff-park-next");
+        runner.start();
+        q.parkNext(); // another thread's flag: must not keep the runner from spinning later
+        Await.until("the thread told to park takes the first task, parked", Duration.ofSeconds(10), () -> {
+            assertEquals(0, q.spinning(), "a thread told to park next does not spin");
+            return q.offer("first");
+        });
+        assertEquals("first", first.get(10, TimeUnit.SECONDS));
+        Await.until("its next wait spins again", Duration.ofSeconds(10), () -> q.spinning() == 1);
+        assertTrue(q.offer("second"), "the spinning thread takes the task");
+        assertEquals("second", second.get(10, TimeUnit.SECONDS));
+        runner.join(10_000);
+    }
+
+    @Test
     void aSpinOfZeroNeverSpinsAndAnOfferWithNobodyWaitingIsRefused() throws Exception {
         SpinHandoff<String> q = new SpinHandoff<>(Duration.ZERO, System::nanoTime);
         assertFalse(q.offer("nobody"), "no idle thread: the pool starts one");
