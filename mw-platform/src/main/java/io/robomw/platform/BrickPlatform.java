@@ -122,7 +122,8 @@ public final class BrickPlatform implements RobotPlatform {
     }
 
     private void afterCycle() {
-        boolean changed = motors.flushOutputs();
+        // A listener runs before the cycle is counted: this is cycle cycles() + 1.
+        boolean changed = motors.flushOutputs(actionThread.cycles() + 1);
         if (threading == LinkThreading.INLINE) {
             serviceLink();
         } else if (changed && linkThread != null) {
@@ -181,6 +182,8 @@ public final class BrickPlatform implements RobotPlatform {
     }
 
     private void serviceLink() {
+        // Containers admitted in cycles up to this one were running before the service began.
+        long began = actionThread.cycles();
         try {
             motors.serviceLink();
             if (linkDown) {
@@ -199,8 +202,11 @@ public final class BrickPlatform implements RobotPlatform {
             // a second at most about refusals (the stack trace at debug level), and the first failures
             // of the driver itself (an error it can cause) with their stack trace.
             long n = driverErrors.incrementAndGet();
+            // It ends the commands whose states the service took and those running when it began, not
+            // those admitted since (a poll refused just before the brick recovered must not fail them).
             actionThread.driverFailed(e instanceof RuntimeException r ? r
-                    : new RobotException("robot '" + config.robotName() + "': the driver failed: " + e, e));
+                    : new RobotException("robot '" + config.robotName() + "': the driver failed: " + e, e),
+                    Math.max(began, motors.servedCycle()));
             if (e instanceof RuntimeException) {
                 refusals.warn("{}", e.getMessage());
                 LOG.debug("robot '{}': the driver's refusal", config.robotName(), e);

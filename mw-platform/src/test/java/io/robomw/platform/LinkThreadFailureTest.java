@@ -1,6 +1,7 @@
 package io.robomw.platform;
 
 import io.robomw.api.Clock;
+import io.robomw.api.RobotException;
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.spi.ConnectionSettings;
 import io.robomw.api.spi.MotorChannel;
@@ -21,10 +22,12 @@ import java.util.List;
 import java.util.Map;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicReference;
 
+import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertInstanceOf;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
@@ -33,15 +36,22 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
  * A brick platform's link thread, on the wall clock, when its driver throws an error: one it can
  * cause is counted and the thread goes on; one it cannot survive ends the thread, never silently:
  * every command is stopped, the stop reaches the link before the thread exits, and later commands
- * fail saying the robot has failed.
+ * fail saying the robot has failed. A refusal (a brick's error status) ends the commands it
+ * concerns, not one admitted while it was on its way.
  */
 class LinkThreadFailureTest {
 
-    /** A driver whose feedback poll throws what a test puts in {@link #throwOnce}; records what it sends. */
+    /**
+     * A driver whose feedback poll throws what a test puts in {@link #throwOnce}, or holds the
+     * poll until {@link #release} and then refuses it with {@link #refuseHeldPoll}; records what it sends.
+     */
     static final class FailingMotors extends GenericMotorPlatform {
         final List<List<MotorState>> sent = new CopyOnWriteArrayList<>();
         final AtomicReference<Throwable> throwOnce = new AtomicReference<>();
         final CompletableFuture<Void> thrown = new CompletableFuture<>();
+        final AtomicReference<RuntimeException> refuseHeldPoll = new AtomicReference<>();
+        final CompletableFuture<Void> pollHeld = new CompletableFuture<>();
+        final CountDownLatch release = new CountDownLatch(1);
 
         FailingMotors() {
             super("failing", Clock.system(), List.of("B", "C"));
@@ -54,6 +64,18 @@ class LinkThreadFailureTest {
 
         @Override
         protected void pollFeedback() {
+            RuntimeException refusal = refuseHeldPoll.getAndSet(null);
+            if (refusal != null) {
+                pollHeld.complete(null);
+                try {
+                    if (!release.await(30, TimeUnit.SECONDS)) {
+                        throw new IllegalStateException("the test never released the held poll");
+                    }
+                } catch (InterruptedException e) {
+                    Thread.currentThread().interrupt();
+                }
+                throw refusal;
+            }
             Throwable t = throwOnce.getAndSet(null);
             if (t != null) {
                 thrown.complete(null);
@@ -91,6 +113,34 @@ class LinkThreadFailureTest {
 
     private static MotorCommand driveForever() {
         return MotorCommand.of("drive", List.of(MotorTarget.rotate("B", 1e9, 360), MotorTarget.rotate("C", 1e9, 360)));
+    }
+
+    private boolean sentRunning(String port) {
+        return motors.sent.stream().anyMatch(b -> b.stream().anyMatch(s -> s.port().equals(port) && s.degreesPerSecond() != 0));
+    }
+
+    @Test
+    void aRefusalInFlightWhenACommandIsAdmittedEndsTheCommandsRunningBeforeItAndNotThatOne() throws Exception {
+        open();
+        CompletableFuture<Void> before = platform.run(MotorCommand.of("before", List.of(MotorTarget.rotate("B", 1e9, 360))));
+        Await.until("motor B was started", Duration.ofSeconds(10), () -> sentRunning("B"));
+        RobotException refusal = new RobotException("NXT refused GETOUTPUTSTATE on port 1: status 0xC0 (telegram 00 06 01)");
+        motors.refuseHeldPoll.set(refusal);
+        motors.pollHeld.get(10, TimeUnit.SECONDS);
+
+        // While the brick's refusal of that poll is on its way, a command on motor C is admitted.
+        CompletableFuture<Void> after = platform.run(MotorCommand.of("after", List.of(MotorTarget.rotate("C", 1e9, 360))));
+        Await.until("the command on C was admitted", Duration.ofSeconds(10), () -> platform.actionThread().actuatorsInUse().contains("C"));
+        motors.release.countDown();
+
+        ExecutionException ended = assertThrows(ExecutionException.class, () -> before.get(10, TimeUnit.SECONDS));
+        assertTrue(ended.getCause().getMessage().contains("status 0xC0"), ended.getCause().getMessage());
+        long cycles = platform.actionThread().cycles();
+        Await.until("the cycle that ended it is over", Duration.ofSeconds(10), () -> platform.actionThread().cycles() > cycles);
+        assertFalse(after.isDone(), "the command admitted after the refused poll was sent carries on");
+        Await.until("motor C was started after the refusal", Duration.ofSeconds(10), () -> sentRunning("C"));
+        assertFalse(after.isDone());
+        after.cancel(false);
     }
 
     @Test

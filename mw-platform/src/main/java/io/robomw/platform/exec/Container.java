@@ -41,6 +41,8 @@ public final class Container {
     private long startedAt;
     /** Its place in the action thread's queue (set when submitted, under the queue's lock). */
     long ticket;
+    /** The cycle that admitted it (set by the cycling thread): a refusal names the cycles it concerns. */
+    long admittedIn;
 
     private Container(Builder b) {
         this.name = b.name;

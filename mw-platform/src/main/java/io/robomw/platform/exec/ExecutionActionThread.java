@@ -89,7 +89,7 @@ public final class ExecutionActionThread implements AutoCloseable {
     /** Set by {@link #linkFailed} (any thread), taken by the next cycle. */
     private volatile RobotLinkException linkFailure;
     /** Set by {@link #driverFailed} (any thread), taken by the next cycle. */
-    private volatile RuntimeException driverFailure;
+    private volatile Refusal driverFailure;
     /** The cycle listeners, replaced as a whole when one is added. */
     private volatile Runnable[] cycleListeners = new Runnable[0];
     private final List<java.util.function.Consumer<RobotException>> failureListeners = new CopyOnWriteArrayList<>();
@@ -237,7 +237,35 @@ public final class ExecutionActionThread implements AutoCloseable {
      * @param cause the refusal, as the user should read it (a {@code RobotException} naming the brick's status)
      */
     public void driverFailed(RuntimeException cause) {
-        DRIVER_FAILURE.compareAndSet(this, null, cause);
+        driverFailed(cause, Long.MAX_VALUE);
+    }
+
+    /**
+     * Reports a refusal of what the driver sent for the containers admitted up to cycle
+     * {@code throughCycle} (cycles numbered as {@link #cycles()} counts them, the first being 1):
+     * at the next cycle those of them still running end with that exception, at once, and their
+     * end actions stop their motors. A container admitted in a later cycle carries on: the refused
+     * exchange was sent before it existed (a poll in flight when the brick recovered), and what it
+     * wants goes to the hardware next, which ends it if it still refuses. Two refusals before the
+     * next cycle end the containers of both, with the first one's exception.
+     *
+     * @param cause        the refusal, as the user should read it (a {@code RobotException} naming the brick's status)
+     * @param throughCycle the last cycle whose admitted containers the refused exchange concerns
+     */
+    public void driverFailed(RuntimeException cause, long throughCycle) {
+        java.util.Objects.requireNonNull(cause, "cause");
+        while (true) {
+            Refusal was = driverFailure;
+            Refusal now = was == null ? new Refusal(cause, throughCycle)
+                    : new Refusal(was.cause(), Math.max(was.throughCycle(), throughCycle));
+            if (DRIVER_FAILURE.compareAndSet(this, was, now)) {
+                return;
+            }
+        }
+    }
+
+    /** A refusal waiting for the next cycle: the exception, and the last cycle whose admitted containers it ends. */
+    private record Refusal(RuntimeException cause, long throughCycle) {
     }
 
     /**
@@ -289,7 +317,8 @@ public final class ExecutionActionThread implements AutoCloseable {
      * Runs one cycle, in this order:
      * <ol>
      *   <li>If the link failed, end every container with {@link RobotLinkException}; if the hardware
- *   refused a command ({@link #driverFailed}), end every container with that refusal.</li>
+     *   refused a command ({@link #driverFailed}), end every container it concerns (those admitted
+     *   up to the cycle it names) with that refusal.</li>
      *   <li>Admit queued containers and refresh slots in the order they were submitted, applying
      *   the clash and refresh rules, and start each admitted one (its action objects run); what an
      *   action submits meanwhile is admitted in this cycle too.</li>
@@ -308,10 +337,12 @@ public final class ExecutionActionThread implements AutoCloseable {
                 finish(c, true, failure);
             }
         }
-        RuntimeException refused = driverFailure == null ? null : (RuntimeException) DRIVER_FAILURE.getAndSet(this, null);
+        Refusal refused = driverFailure == null ? null : (Refusal) DRIVER_FAILURE.getAndSet(this, null);
         if (refused != null) {
             for (Container c : snapshot()) {
-                finish(c, true, refused);
+                if (c.admittedIn <= refused.throughCycle()) {
+                    finish(c, true, refused.cause());
+                }
             }
         }
         // One at a time, in the order submitted: an action may submit more, which this cycle admits too.
@@ -478,6 +509,7 @@ public final class ExecutionActionThread implements AutoCloseable {
     }
 
     private void admit(Container c, long now) {
+        c.admittedIn = cycles + 1;
         // The holders of its actuators, in the order of its requirements, each once; no set is made
         // when one container holds them all (a refresh of a continuous command, ten times a second).
         Container only = null;
@@ -794,7 +826,7 @@ public final class ExecutionActionThread implements AutoCloseable {
         try {
             java.lang.invoke.MethodHandles.Lookup l = java.lang.invoke.MethodHandles.lookup();
             LINK_FAILURE = l.findVarHandle(ExecutionActionThread.class, "linkFailure", RobotLinkException.class);
-            DRIVER_FAILURE = l.findVarHandle(ExecutionActionThread.class, "driverFailure", RuntimeException.class);
+            DRIVER_FAILURE = l.findVarHandle(ExecutionActionThread.class, "driverFailure", Refusal.class);
             CYCLES = l.findVarHandle(ExecutionActionThread.class, "cycles", long.class);
             FAILURE = l.findVarHandle(ExecutionActionThread.class, "failure", RobotException.class);
         } catch (ReflectiveOperationException e) {

@@ -77,6 +77,10 @@ public abstract class GenericMotorPlatform {
      * {@link #publishLock} with a release store, read first without it (acquire).
      */
     private boolean anyPublished;
+    /** The cycle whose states were published last ({@link #flushOutputs(long)}); under {@link #publishLock}. */
+    private long publishedCycle = Long.MAX_VALUE;
+    /** The cycle whose published states the link side took last; link side. */
+    private long servedCycle = Long.MAX_VALUE;
     /** Whether the link side runs on the action side's thread right after each flush ({@link #linkServicedInline}). */
     private boolean linkInline;
     /** The requirements of the last command's motors, kept so a repeated {@code drive} shares one set. */
@@ -745,20 +749,31 @@ public abstract class GenericMotorPlatform {
     }
 
     /**
-     * Publishes the states changed during this cycle for the link side. Called by the action
-     * thread at the end of each cycle.
+     * Publishes the states changed during this cycle for the link side, without saying which
+     * cycle it is (a refusal of them then concerns every command: {@link #servedCycle()}).
      *
      * @return whether anything changed
      */
     public boolean flushOutputs() {
+        return flushOutputs(Long.MAX_VALUE);
+    }
+
+    /**
+     * Publishes the states changed during this cycle for the link side. Called by the action
+     * thread at the end of each cycle.
+     *
+     * @param cycle the execution action thread's cycle that set them (the one now ending)
+     * @return whether anything changed
+     */
+    public boolean flushOutputs(long cycle) {
         if (!anyChanged) {
             return false;
         }
         if (linkInline) {
-            publishChanged();
+            publishChanged(cycle);
         } else {
             synchronized (publishLock) {
-                publishChanged();
+                publishChanged(cycle);
             }
         }
         anyChanged = false;
@@ -766,7 +781,8 @@ public abstract class GenericMotorPlatform {
     }
 
     /** Moves this cycle's changed states to the published ones (under {@link #publishLock} unless the link side is inline). */
-    private void publishChanged() {
+    private void publishChanged(long cycle) {
+        publishedCycle = cycle;
         for (Port p : motors) {
             if (p.changed != null) {
                 p.published = p.changed;
@@ -881,8 +897,18 @@ public abstract class GenericMotorPlatform {
         pollFeedback();
     }
 
+    /**
+     * @return the execution action thread's cycle whose states the link side took last (link
+     *         side): a refusal during a service concerns the commands admitted up to it, and those
+     *         running when the service began; {@link Long#MAX_VALUE} when a flush did not say
+     */
+    public long servedCycle() {
+        return servedCycle;
+    }
+
     /** Takes every published state into the batch (under {@link #publishLock} unless the link side is inline). */
     private void takePublished() {
+        servedCycle = publishedCycle;
         for (Port p : motors) {
             p.draining = p.published;
             p.published = null;

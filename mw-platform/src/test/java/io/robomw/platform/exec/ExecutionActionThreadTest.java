@@ -79,6 +79,46 @@ class ExecutionActionThreadTest {
     }
 
     @Test
+    void aRefusalEndsTheContainersAdmittedUpToTheCycleItNamesAndNotThoseAdmittedLater() throws Exception {
+        CompletableFuture<Void> early = thread.submit(normal("early", new AtomicBoolean(), "B"));
+        thread.cycle();
+        long refusedThrough = thread.cycles();
+        CompletableFuture<Void> late = thread.submit(normal("late", new AtomicBoolean(), "C"));
+        thread.cycle();
+
+        RobotException refusal = new RobotException("NXT refused GETOUTPUTSTATE on port 1: status 0xC0");
+        thread.driverFailed(refusal, refusedThrough);
+        thread.cycle();
+
+        assertEquals(refusal, failure(early));
+        assertFalse(late.isDone(), "admitted after the refused exchange, it carries on");
+        assertEquals(List.of("early:interrupted"), ended);
+
+        thread.driverFailed(refusal);
+        thread.cycle();
+        assertEquals(refusal, failure(late), "a refusal naming no cycle ends every running container");
+    }
+
+    @Test
+    void twoRefusalsBeforeACycleEndTheContainersOfBothWithTheFirstOnesException() throws Exception {
+        CompletableFuture<Void> first = thread.submit(normal("first", new AtomicBoolean(), "B"));
+        thread.cycle();
+        CompletableFuture<Void> second = thread.submit(normal("second", new AtomicBoolean(), "C"));
+        thread.cycle();
+        CompletableFuture<Void> third = thread.submit(normal("third", new AtomicBoolean(), "A"));
+        thread.cycle();
+
+        RobotException earlier = new RobotException("refused first");
+        thread.driverFailed(earlier, 2);
+        thread.driverFailed(new RobotException("refused second"), 1);
+        thread.cycle();
+
+        assertEquals(earlier, failure(first));
+        assertEquals(earlier, failure(second));
+        assertFalse(third.isDone(), "admitted in cycle 3, after both refused exchanges");
+    }
+
+    @Test
     void shouldInterruptOlderContainerWhenNewerNeedsSameActuator() {
         CompletableFuture<Void> first = thread.submit(normal("first", new AtomicBoolean(), "B", "C"));
         thread.cycle();
