@@ -136,6 +136,7 @@ public final class BenchReport {
     public static void main(String[] args) throws IOException {
         Map<String, List<Double>> values = new LinkedHashMap<>();
         Map<String, String> units = new LinkedHashMap<>();
+        Map<String, Map<String, Double>> byRound = new LinkedHashMap<>();
         for (String l : Files.readAllLines(Path.of(args[0]), StandardCharsets.UTF_8)) {
             String[] f = l.trim().split("\\s+");
             // sample-number BENCH id value unit
@@ -149,6 +150,7 @@ public final class BenchReport {
                 continue;
             }
             values.computeIfAbsent(f[2], k -> new ArrayList<>()).add(v);
+            byRound.computeIfAbsent(f[2], k -> new LinkedHashMap<>()).put(f[0], v);
             units.put(f[2], f[4]);
         }
         StringBuilder md = new StringBuilder();
@@ -167,7 +169,8 @@ public final class BenchReport {
             String ratio = "";
             if (c.baseline() != null && values.containsKey(c.baseline())) {
                 double b = median(values.get(c.baseline()).stream().mapToDouble(Double::doubleValue).sorted().toArray());
-                ratio = String.format(Locale.ROOT, "%.2f× %s", c.higher() ? median / b : b / median, shortName(c.baseline()));
+                ratio = String.format(Locale.ROOT, "%.2f× %s", c.higher() ? median / b : b / median, shortName(c.baseline()))
+                        + roundRatios(byRound.get(id), byRound.get(c.baseline()), c.higher());
             }
             StringBuilder ceiling = new StringBuilder();
             for (String cid : c.ceiling()) {
@@ -195,6 +198,27 @@ public final class BenchReport {
         }
         Files.writeString(out, md.toString(), StandardCharsets.UTF_8);
         System.out.println(md);
+    }
+
+    /**
+     * The spread of the ratio: each round's sample against the baseline's sample of the same round
+     * (both in that round's fresh JVMs, one after the other).
+     *
+     * @return {@code " (per round: median M, min-max A-B)"}, or nothing with fewer than two rounds in common
+     */
+    static String roundRatios(Map<String, Double> samples, Map<String, Double> baseline, boolean higher) {
+        List<Double> r = new ArrayList<>();
+        samples.forEach((round, v) -> {
+            Double b = baseline.get(round);
+            if (b != null && v != 0 && b != 0) {
+                r.add(higher ? v / b : b / v);
+            }
+        });
+        if (r.size() < 2) {
+            return "";
+        }
+        double[] sorted = r.stream().mapToDouble(Double::doubleValue).sorted().toArray();
+        return String.format(Locale.ROOT, " (per round: median %.2f×, %.2f-%.2f)", median(sorted), sorted[0], sorted[sorted.length - 1]);
     }
 
     private static String shortName(String id) {
