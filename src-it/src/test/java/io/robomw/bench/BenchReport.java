@@ -14,7 +14,7 @@ import java.util.Map;
  * The table of {@code bench/all}: reads every sample the benchmarks printed (one {@code BENCH}
  * line per figure per fresh JVM, collected as {@code sample-number TAB line}) and writes, per
  * case, the number of runs, the median, min and max, the ratio of the medians to the case's
- * baseline in the same run, the ceiling that bounds it (measured in the same run by
+ * baseline in the same run with the spread of the per-round ratios ({@link #roundRatios}), the ceiling that bounds it (measured in the same run by
  * {@link Ceilings} or the harness), and the target, under the machine's description.
  *
  * <p>Usage: {@code BenchReport SAMPLES MACHINE OUT.md}. The catalogue below names every known
@@ -155,7 +155,7 @@ public final class BenchReport {
         }
         StringBuilder md = new StringBuilder();
         md.append(Files.readString(Path.of(args[1]), StandardCharsets.UTF_8)).append('\n');
-        md.append("| case | runs | median | min | max | unit | ratio of medians to the baseline (> 1: RoboMW better) | ceiling, same run (median) | target |\n");
+        md.append("| case | runs | median | min | max | unit | ratio of medians to the baseline (> 1: RoboMW better; per round: each round's sample against the baseline's) | ceiling, same run (median) | target |\n");
         md.append("|---|---:|---:|---:|---:|---|---:|---|---|\n");
         Map<String, Case> known = new LinkedHashMap<>();
         CATALOGUE.forEach(c -> known.put(c.id(), c));
