@@ -23,15 +23,16 @@ import java.security.InvalidAlgorithmParameterException;
  *     <td>nonce [0 0 0 0][seq 8]</td><td>nonce [0 0 0 1][seq 8]</td></tr>
  * </table>
  *
- * <p><b>Why AES-GCM.</b> The JDK runs AES-GCM on the processor's AES and carry-less multiply
- * instructions (AES-NI, PCLMULQDQ; with AVX-512, VAES and VPCLMULQDQ), several times faster than
+ * <p><b>Why AES-GCM.</b> AES-GCM runs on the processor's AES and carry-less multiply
+ * instructions (AES-NI, PCLMULQDQ; with AVX-512, VAES and VPCLMULQDQ; the ciphers come from
+ * {@link AesGcm}: the Amazon Corretto Crypto Provider where it loads, else the JDK's), several times faster than
  * HMAC-SHA256 over large messages on the project's machine (docs/benchmarks.md, ceilings), and an
  * agent's state is MAC'd twice per hop (seal and check). GCM's one demand is a nonce never used
  * twice under one key: each session has a key of its own (from both sides' fresh nonces), a
  * request's nonce is its sequence number, which the peer never repeats on a session, and a reply's
  * is the request's number in the other half of the nonce space; the host answers a number at most
- * once (its session's replay window refuses the second), and the JDK's own refusal to encrypt
- * twice with one key and nonce is turned into an error rather than a tag.
+ * once (its session's replay window refuses the second), and the provider's own refusal to encrypt
+ * twice with one key and nonce (the JDK's and ACCP's alike) is turned into an error rather than a tag.
  * The ciphertext is never sent, and a tag is revealed only by the side that made the message; the
  * side that checks computes it the same way and says only yes or no.
  *
@@ -171,7 +172,7 @@ abstract sealed class CallAuthenticator permits CallAuthenticator.HmacSha256, Ca
         /** Chunk the message goes through GCM in: a multiple of the block, small enough to stay in the cache. */
         private static final int CHUNK = 16 * 1024;
         private final SecretKeySpec key;
-        /** Per thread: [0] for tags it sends, [1] for tags it checks (the JDK refuses one cipher the nonce it has just used). */
+        /** Per thread: [0] for tags it sends, [1] for tags it checks (the provider refuses one cipher the nonce it has just used). */
         private final ThreadLocal<Cipher[]> ciphers = ThreadLocal.withInitial(AesGcmTag::newCiphers);
         private final ThreadLocal<byte[]> scratch = ThreadLocal.withInitial(() -> new byte[CHUNK + TAG]);
 
@@ -183,11 +184,7 @@ abstract sealed class CallAuthenticator permits CallAuthenticator.HmacSha256, Ca
         }
 
         private static Cipher[] newCiphers() {
-            try {
-                return new Cipher[] {Cipher.getInstance("AES/GCM/NoPadding"), Cipher.getInstance("AES/GCM/NoPadding")};
-            } catch (GeneralSecurityException e) {
-                throw new IllegalStateException("this JDK has no AES/GCM/NoPadding", e);
-            }
+            return new Cipher[] {AesGcm.newCipher(), AesGcm.newCipher()};
         }
 
         @Override
@@ -221,7 +218,7 @@ abstract sealed class CallAuthenticator permits CallAuthenticator.HmacSha256, Ca
                 if (!checking) {
                     throw e;
                 }
-                // The JDK refuses a cipher the key and nonce it has just used. A check sends nothing, and a
+                // The provider refuses a cipher the key and nonce it has just used. A check sends nothing, and a
                 // tampered copy of a call checked just before the call must not get the call refused: make
                 // the cipher forget, and check.
                 c.init(Cipher.ENCRYPT_MODE, key, FORGET);
@@ -243,7 +240,7 @@ abstract sealed class CallAuthenticator permits CallAuthenticator.HmacSha256, Ca
                 int t = gcm(ciphers.get()[0], false, reply, seq, data, off, len);
                 System.arraycopy(scratch.get(), t, out, outOff, TAG);
             } catch (InvalidAlgorithmParameterException e) {
-                // The JDK refuses a key and nonce it has just used: a number tagged twice is a bug here, never sent.
+                // The provider refuses a key and nonce it has just used: a number tagged twice is a bug here, never sent.
                 throw new IllegalStateException("refusing to tag a second message with " + (reply ? "reply" : "request") + " number " + seq
                         + " under one session key: " + e.getMessage(), e);
             } catch (GeneralSecurityException e) {

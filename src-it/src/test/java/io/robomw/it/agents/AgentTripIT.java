@@ -45,12 +45,15 @@ class AgentTripIT {
         Path keyFile = keyFile(dir);
         // h1 and h2 take agents on their agent wire (protocol 3); h3 has none (--no-wire), so the
         // trip's last hop, and every hop to and from it, goes over RMI: both paths between processes.
+        // h2 computes its AES-GCM tags with the JDK's provider, the others with the Amazon Corretto
+        // Crypto Provider where it loads: calls and frames between h2 and the others cross providers.
         for (String name : List.of("h1", "h2", "h3")) {
             List<String> args = new ArrayList<>(List.of("--world", world().toString(), "--world-robot", "sim-1", "--speed", "4", "--key-file", keyFile.toString()));
             if (name.equals("h3")) {
                 args.add("--no-wire");
             }
-            hosts.add(HostProcess.start(name, args.toArray(String[]::new)));
+            List<String> jvm = name.equals("h2") ? List.of("-Drobomw.agents.aesGcm=jdk") : List.of();
+            hosts.add(HostProcess.start(name, jvm, args.toArray(String[]::new)));
         }
         home = AgentHost.builder("it-home").clusterKey(KEY).start();
     }
@@ -92,6 +95,16 @@ class AgentTripIT {
         assertTrue(hosts.get(1).log().contains("received archive"), "h2 was sent the agent's code");
         assertTrue(hosts.get(0).wire().matches("127\\.0\\.0\\.1:[1-9][0-9]*"), "h1 has an agent wire: " + hosts.get(0).wire());
         assertTrue(hosts.get(2).wire().startsWith("none"), "h3 has none: " + hosts.get(2).wire());
+        String h2 = hosts.get(1).log();
+        assertTrue(h2.contains("AES-GCM from the JDK's provider (robomw.agents.aesGcm=jdk)"), "h2 tags with the JDK's AES-GCM");
+        String os = System.getProperty("os.name").toLowerCase(java.util.Locale.ROOT);
+        if (os.contains("linux") && List.of("amd64", "x86_64", "aarch64").contains(System.getProperty("os.arch"))) {
+            assertTrue(hosts.get(0).log().contains("AES-GCM from AmazonCorrettoCryptoProvider"), "h1 tags with ACCP's AES-GCM, where it ships");
+        }
+        for (HostProcess h : hosts) {
+            String log = h.log();
+            assertFalse(log.contains("wrong tag") || log.contains("wrong MAC"), "no call or frame refused between providers at " + h.address());
+        }
     }
 
     @Test

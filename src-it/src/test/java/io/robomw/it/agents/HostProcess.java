@@ -31,15 +31,17 @@ public final class HostProcess implements AutoCloseable {
     private final String name;
     private final int port;
     private final List<String> hostArgs;
+    private final List<String> jvmArgs;
     private final Path log;
     private Process process;
     private String messaging;
     private String wire;
     private String served;
 
-    private HostProcess(String name, int port, List<String> hostArgs) throws IOException {
+    private HostProcess(String name, int port, List<String> jvmArgs, List<String> hostArgs) throws IOException {
         this.name = name;
         this.port = port;
+        this.jvmArgs = jvmArgs;
         this.hostArgs = hostArgs;
         Path logs = Path.of("target", "it-logs");
         Files.createDirectories(logs);
@@ -55,7 +57,19 @@ public final class HostProcess implements AutoCloseable {
      * @return the running host
      */
     public static HostProcess start(String name, String... extra) throws IOException {
-        HostProcess h = new HostProcess(name, freePort(), List.of(extra));
+        return start(name, List.of(), extra);
+    }
+
+    /**
+     * Starts a host in a JVM with extra options.
+     *
+     * @param name    its name
+     * @param jvmArgs options for its JVM (system properties: {@code -Dk=v}), before the main class
+     * @param extra   {@code mw host} options besides --name and --port
+     * @return the running host
+     */
+    public static HostProcess start(String name, List<String> jvmArgs, String... extra) throws IOException {
+        HostProcess h = new HostProcess(name, freePort(), List.copyOf(jvmArgs), List.of(extra));
         h.launch();
         return h;
     }
@@ -94,8 +108,9 @@ public final class HostProcess implements AutoCloseable {
         // jdk.internal.vm.FillerArray / FillerElement[]): the soak's heap figures (jcmd GC.class_histogram)
         // would count up to 12 MiB of garbage as held (docs/reliability.md).
         List<String> command = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-XX:+UseSerialGC", "-XX:MarkSweepDeadRatio=0", "-XX:TieredStopAtLevel=1", "-cp", middlewareOnlyClassPath(), "io.robomw.cli.Mw", "host",
-                "--name", name, "--port", String.valueOf(port)));
+                "-XX:+UseSerialGC", "-XX:MarkSweepDeadRatio=0", "-XX:TieredStopAtLevel=1", "--enable-native-access=ALL-UNNAMED"));
+        command.addAll(jvmArgs);
+        command.addAll(List.of("-cp", middlewareOnlyClassPath(), "io.robomw.cli.Mw", "host", "--name", name, "--port", String.valueOf(port)));
         command.addAll(hostArgs);
         process = new ProcessBuilder(command).redirectError(ProcessBuilder.Redirect.appendTo(log.toFile())).start();
         StdoutLines q = new StdoutLines(process, "it-host-stdout-" + name);

@@ -40,7 +40,7 @@ public final class MwProcess implements AutoCloseable {
         Path logs = Path.of("target", "it-logs");
         Files.createDirectories(logs);
         List<String> command = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-Dmw.home=" + CHECKOUT, "-cp", middlewareOnlyClassPath(), "io.robomw.cli.Mw"));
+                "--enable-native-access=ALL-UNNAMED", "-Dmw.home=" + CHECKOUT, "-cp", middlewareOnlyClassPath(), "io.robomw.cli.Mw"));
         command.addAll(List.of(args));
         Process p = new ProcessBuilder(command).directory(CHECKOUT.toFile()).redirectError(logs.resolve(name + ".log").toFile()).start();
         return new MwProcess(name, p);

@@ -68,6 +68,7 @@ public final class PeerProcess implements AutoCloseable {
         Files.createDirectories(logs);
         List<String> command = new ArrayList<>();
         command.add(Path.of(System.getProperty("java.home"), "bin", "java").toString());
+        command.add("--enable-native-access=ALL-UNNAMED"); // as mw starts its JVMs: no JDK 24+ warning for ACCP's and JNA's native code
         command.addAll(jvmArgs);
         command.add("-cp");
         command.add(System.getProperty("java.class.path"));
