@@ -63,8 +63,8 @@ final class AesGcm {
             log.warn("{}={} is neither auto nor jdk: taking auto", PROPERTY, wanted);
         }
         try {
-            Provider accp = AmazonCorrettoCryptoProvider.INSTANCE;
-            Throwable error = AmazonCorrettoCryptoProvider.INSTANCE.getLoadingError();
+            AmazonCorrettoCryptoProvider accp = AmazonCorrettoCryptoProvider.INSTANCE;
+            Throwable error = accp.getLoadingError();
             if (error != null) {
                 log.info("AES-GCM from the JDK's provider: the Amazon Corretto Crypto Provider did not load here ({})", error.toString());
                 return null;
@@ -90,7 +90,7 @@ final class AesGcm {
     }
 
     /** @return whether both ciphers give the same ciphertext and tag for a fixed key, nonce and message of several pieces */
-    static boolean sameTag(Cipher a, Cipher b) throws GeneralSecurityException {
+    private static boolean sameTag(Cipher a, Cipher b) throws GeneralSecurityException {
         byte[] key = new byte[32];
         byte[] nonce = new byte[12];
         byte[] message = new byte[40_000];
