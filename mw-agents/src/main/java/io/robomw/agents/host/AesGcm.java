@@ -42,10 +42,13 @@ final class AesGcm {
 
     /** @return a new AES/GCM/NoPadding cipher of the chosen provider */
     static Cipher newCipher() {
+        if (PROVIDER == null) {
+            return jdkCipher();
+        }
         try {
-            return PROVIDER == null ? Cipher.getInstance(TRANSFORMATION) : Cipher.getInstance(TRANSFORMATION, PROVIDER);
+            return Cipher.getInstance(TRANSFORMATION, PROVIDER);
         } catch (GeneralSecurityException e) {
-            throw new IllegalStateException("this JDK has no " + TRANSFORMATION, e);
+            throw new IllegalStateException(PROVIDER.getName() + " has no " + TRANSFORMATION, e);
         }
     }
 
