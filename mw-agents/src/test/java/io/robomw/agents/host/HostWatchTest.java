@@ -114,7 +114,9 @@ class HostWatchTest {
         a.close();
         IOException down = assertThrows(IOException.class, watch::poll);
         assertTrue(down.getMessage().contains(address), down.getMessage());
-        hosts.add(AgentHost.builder("a").port(port).clusterKey(KEY).start());
+        // Back on the same port, as a restarted host is: the closed one's listening socket may take a moment to be
+        // released by RMI, and a host started before then gets "address already in use" (seen once in CI).
+        Await.until("the host restarts on its port", WITHIN, () -> restart("a", port));
         Await.until("the restarted host answers", WITHIN, () -> poll(watch) != null);
     }
 
@@ -129,6 +131,16 @@ class HostWatchTest {
         IOException hugeCount = assertThrows(IOException.class,
                 () -> HostWatch.decode("rmi://x:1/x", new byte[] {1, 2, 0, 0, 0, 4, 0x7f, 0, 0, 0}, 0));
         assertTrue(hugeCount.getMessage().contains("agents in 0 bytes"), hugeCount.getMessage());
+    }
+
+    /** @return whether a host of that name could be started on that port (it is then closed after the test) */
+    private boolean restart(String name, int port) {
+        try {
+            hosts.add(AgentHost.builder(name).port(port).clusterKey(KEY).start());
+            return true;
+        } catch (IOException e) {
+            return false;
+        }
     }
 
     private static HostWatch.Snapshot poll(HostWatch w) {
