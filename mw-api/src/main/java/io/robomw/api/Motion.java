@@ -13,6 +13,15 @@ import java.util.concurrent.CompletableFuture;
  * interrupted by a newer command on the same motors ends with {@link CommandPreemptedException}
  * (thrown, or completing the future exceptionally). A robot whose link to the hardware fails ends
  * its motions with {@link RobotLinkException}.
+ *
+ * <h2>Deadlines, interrupts and cancelling</h2>
+ * Every blocking form waits with a deadline: a motion three times its duration at the commanded
+ * speed plus {@link Futures#MOTION_SLACK} ({@link Futures#motionTimeout}), a named action at most
+ * {@link Futures#DEFAULT_TIMEOUT}. Cancelling the future of an {@code ...Async} form ends its
+ * command: its motors brake at the platform's next cycle. A blocking form whose thread is
+ * interrupted, or whose deadline passes, cancels its command that way and throws a
+ * {@link RobotException} saying so (an interrupted thread keeps its interrupt status): a robot
+ * does not drive on for a caller who stopped waiting.
  */
 public interface Motion {
 
@@ -24,7 +33,7 @@ public interface Motion {
      * @throws UnsupportedActionException if the robot cannot drive, or the speed is above its maximum
      */
     default void move(double distance, double speed) {
-        Futures.await(moveAsync(distance, speed));
+        Futures.await(moveAsync(distance, speed), Futures.motionTimeout(Math.abs(distance) / speed), call("move", distance, speed));
     }
 
     /**
@@ -44,7 +53,7 @@ public interface Motion {
      * @param speed   angular speed in radians per second, &gt; 0
      */
     default void turn(double radians, double speed) {
-        Futures.await(turnAsync(radians, speed));
+        Futures.await(turnAsync(radians, speed), Futures.motionTimeout(Math.abs(radians) / speed), call("turn", radians, speed));
     }
 
     /**
@@ -64,7 +73,8 @@ public interface Motion {
      * @param speed  metres per second of the robot's centre, &gt; 0
      */
     default void arc(double radius, double angle, double speed) {
-        Futures.await(arcAsync(radius, angle, speed));
+        Futures.await(arcAsync(radius, angle, speed), Futures.motionTimeout(Math.abs(radius * angle) / speed),
+                call("arc", radius, angle, speed));
     }
 
     /**
@@ -89,7 +99,12 @@ public interface Motion {
 
     /**
      * Stops every motor at once. This command has safety priority: no normal command interrupts
-     * it while it runs. Blocks until the stop has been handed to the hardware.
+     * it while it runs. Blocks until the stop has been handed to the hardware (written to its
+     * link), a few seconds at most; once it returns, the robot's motions have ended and a new
+     * command is taken as usual.
+     *
+     * @throws RobotLinkException naming the robot if the stop could not be handed to the hardware
+     *                            (the link is down, or did not take it in time)
      */
     void stop();
 
@@ -101,7 +116,8 @@ public interface Motion {
      * @throws UnsupportedActionException if the robot cannot fly
      */
     default void changeAltitude(double metres, double speed) {
-        Futures.await(changeAltitudeAsync(metres, speed));
+        Futures.await(changeAltitudeAsync(metres, speed), Futures.motionTimeout(Math.abs(metres) / speed),
+                call("changeAltitude", metres, speed));
     }
 
     /**
@@ -124,7 +140,7 @@ public interface Motion {
      * @throws UnsupportedActionException if the robot has no such action, or the arguments do not fit it
      */
     default void perform(String action, double... args) {
-        Futures.await(performAsync(action, args));
+        Futures.await(performAsync(action, args), Futures.DEFAULT_TIMEOUT, "perform(\"" + action + "\")");
     }
 
     /**
@@ -135,4 +151,17 @@ public interface Motion {
      * @return completes when the action is done
      */
     CompletableFuture<Void> performAsync(String action, double... args);
+
+    /**
+     * @param verb the verb
+     * @param args its arguments
+     * @return the call as messages name it, {@code move(0.500, 0.200)}
+     */
+    private static String call(String verb, double... args) {
+        StringBuilder b = new StringBuilder(verb).append('(');
+        for (int i = 0; i < args.length; i++) {
+            b.append(i == 0 ? "" : ", ").append(String.format(java.util.Locale.ROOT, "%.3f", args[i]));
+        }
+        return b.append(')').toString();
+    }
 }

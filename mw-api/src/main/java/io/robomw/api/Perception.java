@@ -13,7 +13,10 @@ public interface Perception {
 
     /**
      * Reads a sensor and converts its reading. Blocks until the reading arrives (bounded by the
-     * platform's reply timeout).
+     * platform's reply timeout, and at most {@link Futures#DEFAULT_TIMEOUT} in all).
+     *
+     * <p>{@link SensorType#RANGE} asks for whatever range finder sits at the position (a sonar, an
+     * infra-red or a laser one), so one program reads "the distance ahead" on every robot.
      *
      * <p>Boolean readings ({@link ReturnType#BOOLEAN}) are 1.0 for true (pressed, detected) and
      * 0.0 for false.
@@ -26,7 +29,8 @@ public interface Perception {
      * @throws RobotLinkException         if the hardware did not answer
      */
     default double getValue(Position position, SensorType type, ReturnType returnType) {
-        return Futures.await(getValueAsync(position, type, returnType));
+        return Futures.await(getValueAsync(position, type, returnType), Futures.DEFAULT_TIMEOUT,
+                "getValue(" + position + ", " + type + ", " + returnType + ")");
     }
 
     /**
@@ -47,7 +51,8 @@ public interface Perception {
      * @return the reading
      */
     default double getValue(String sensorName, ReturnType returnType) {
-        return Futures.await(getValueAsync(sensorName, returnType));
+        return Futures.await(getValueAsync(sensorName, returnType), Futures.DEFAULT_TIMEOUT,
+                "getValue(\"" + sensorName + "\", " + returnType + ")");
     }
 
     /**

@@ -1,7 +1,10 @@
 package io.robomw.api;
 
+import java.io.Serializable;
+import java.time.Duration;
 import java.util.List;
 import java.util.Set;
+import java.util.UUID;
 
 /**
  * One robot, as the Instruction Layer of the paper "A robotic middleware" sees it: it can move
@@ -16,6 +19,12 @@ import java.util.Set;
  * <p>Thread safety: every method may be called from any thread. Motion commands on the same
  * actuators follow the "most recent command wins" rule: a newer command interrupts an older one,
  * whose caller gets {@link CommandPreemptedException}.
+ *
+ * <p>The paper's four components are linked here: motion and perception are the robot's own;
+ * its messaging calls go to its communication component ({@link #messaging()}) and its agency
+ * calls to its agency ({@link #agency()}), so a program writes {@code robot.sendMessage(...)} or
+ * {@code robot.sendAgent(...)} as in the paper, and an implementation gives the two components
+ * rather than forwarding each call.
  *
  * <p>A robot holds a link to its hardware; {@link #close()} stops the motors and releases it.
  */
@@ -44,6 +53,78 @@ public interface Robot extends Motion, Perception, Messaging, Agency, AutoClosea
      *         with {@link #perform}
      */
     List<String> actions();
+
+    /**
+     * @return the robot's communication component, which its {@link Messaging} calls go to; one
+     *         that throws {@link UnsupportedActionException} from every call if it has none
+     */
+    Messaging messaging();
+
+    /**
+     * @return the robot's agency, which its {@link Agency} calls go to; one that throws
+     *         {@link UnsupportedActionException} from every call if it has none
+     */
+    Agency agency();
+
+    @Override
+    default UUID sendMessage(String name, String host, String pass, String topic, Serializable object, String function) {
+        return messaging().sendMessage(name, host, pass, topic, object, function);
+    }
+
+    @Override
+    default Message waitForReply(String topic, String host) {
+        return messaging().waitForReply(topic, host);
+    }
+
+    @Override
+    default Message waitForReply(String topic, String host, Duration timeout) {
+        return messaging().waitForReply(topic, host, timeout);
+    }
+
+    @Override
+    default Message waitForReply(UUID correlationId, Duration timeout) {
+        return messaging().waitForReply(correlationId, timeout);
+    }
+
+    @Override
+    default void replyMessage(Message request, Serializable object, String function) {
+        messaging().replyMessage(request, object, function);
+    }
+
+    @Override
+    default void publishMessage(String topic, Serializable object, String function, String password) {
+        messaging().publishMessage(topic, object, function, password);
+    }
+
+    @Override
+    default void subscribeMessage(String topic, String password) {
+        messaging().subscribeMessage(topic, password);
+    }
+
+    @Override
+    default void addMessageListener(String topic, String password, MessageListener listener) {
+        messaging().addMessageListener(topic, password, listener);
+    }
+
+    @Override
+    default void removeMessageListener(String topic, MessageListener listener) {
+        messaging().removeMessageListener(topic, listener);
+    }
+
+    @Override
+    default AgentRef sendAgent(String host, Agent agent) {
+        return agency().sendAgent(host, agent);
+    }
+
+    @Override
+    default AgentRef startTrip(Agent agent) {
+        return agency().startTrip(agent);
+    }
+
+    @Override
+    default List<AgentRef> dispatchClones(Agent agent, String... hosts) {
+        return agency().dispatchClones(agent, hosts);
+    }
 
     /** Stops every motor and releases the link to the hardware. Idempotent. */
     @Override

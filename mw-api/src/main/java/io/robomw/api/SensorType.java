@@ -14,6 +14,15 @@ public enum SensorType {
     SONAR(Quantity.DISTANCE),
     /** Infra-red range finder. */
     INFRARED(Quantity.DISTANCE),
+    /** Laser range finder: a single-beam lidar or a time-of-flight distance sensor. */
+    LASER(Quantity.DISTANCE),
+    /**
+     * Any range finder: asked for in {@link Perception#getValue}, it matches the sensor at that
+     * position that measures distance ({@link #SONAR}, {@link #INFRARED}, {@link #LASER}, or one a
+     * description declares as {@code range}), so one program reads the distance ahead on every
+     * robot whatever its hardware.
+     */
+    RANGE(Quantity.DISTANCE),
     /** Gyroscope: heading turned since reset. */
     GYRO(Quantity.ANGLE),
     /** Compass: heading. */
@@ -34,5 +43,19 @@ public enum SensorType {
     /** @return what its converted readings measure */
     public Quantity quantity() {
         return quantity;
+    }
+
+    /**
+     * @param declared the type a sensor is declared with
+     * @return whether a reading asked for as this type is answered by that sensor: the same type,
+     *         or {@link #RANGE} asked of any range finder
+     */
+    public boolean matches(SensorType declared) {
+        return this == declared || (this == RANGE && declared.ranging());
+    }
+
+    /** @return whether this is a range finder's type, which {@link #RANGE} matches */
+    public boolean ranging() {
+        return this == SONAR || this == INFRARED || this == LASER || this == RANGE;
     }
 }

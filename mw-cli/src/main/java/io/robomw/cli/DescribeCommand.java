@@ -116,7 +116,7 @@ final class DescribeCommand implements Callable<Integer> {
         List<String> problems;
         try {
             PlatformProvider provider = DescriptionRobotFactory.provider(d);
-            problems = provider.check(DescriptionRobotFactory.platformConfig(d, PlatformServices.none(), Clock.system()));
+            problems = provider.check(DescriptionRobotFactory.platformConfig(d, PlatformServices.none(), Clock.system(), io.robomw.api.spi.Cycling.OWN_THREADS));
         } catch (RobotException e) {
             err.println(e.getMessage());
             return 2;

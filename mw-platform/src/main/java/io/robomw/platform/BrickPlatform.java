@@ -1,7 +1,7 @@
 package io.robomw.platform;
 
 import io.robomw.platform.brick.BrickChannel;
-import io.robomw.api.Clock;
+import io.robomw.api.spi.Cycling;
 import io.robomw.api.RobotException;
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.spi.MotorCommand;
@@ -108,7 +108,7 @@ public final class BrickPlatform implements RobotPlatform {
      * @return this
      */
     public BrickPlatform start() {
-        if (config.clock() != Clock.system()) {
+        if (config.cycling() == Cycling.BY_OWNER) {
             return this;
         }
         running = true;
@@ -276,8 +276,8 @@ public final class BrickPlatform implements RobotPlatform {
     }
 
     @Override
-    public void stopAll() {
-        actionThread.submit(motors.stopContainer());
+    public CompletableFuture<Void> stopAll() {
+        return actionThread.submit(motors.stopContainer());
     }
 
     @Override

@@ -93,7 +93,7 @@ class LinkThreadFailureTest {
     private BrickPlatform open() throws Exception {
         PlatformConfig config = new PlatformConfig("failing", "fake", new ConnectionSettings(Map.of(), "test"),
                 List.of(MotorChannel.actuator("B"), MotorChannel.actuator("C")), List.of(), Duration.ofMillis(5), Duration.ZERO, Clock.system(),
-                PlatformServices.none());
+                PlatformServices.none(), io.robomw.api.spi.Cycling.OWN_THREADS, io.robomw.api.spi.FailurePolicy.logging());
         SensorPlatform sensors = new SensorPlatform(motors) {
             @Override
             public Sensor createSensor(SensorChannel channel) {

@@ -140,7 +140,7 @@ public final class SensorModel {
 
     private static Kind kindOf(SensorType type) {
         return switch (type) {
-            case SONAR, INFRARED -> Kind.RANGE;
+            case SONAR, INFRARED, LASER, RANGE -> Kind.RANGE;
             case TOUCH -> Kind.CONTACT;
             case LIGHT, COLOR -> Kind.FLOOR;
             case COMPASS -> Kind.HEADING;

@@ -90,7 +90,7 @@ public final class Simulation implements AutoCloseable {
                 }
                 RobotDescription d = r.description();
                 PlatformProvider provider = DescriptionRobotFactory.provider(d);
-                RobotPlatform platform = provider.open(DescriptionRobotFactory.platformConfig(d, services, world.clock()));
+                RobotPlatform platform = provider.open(DescriptionRobotFactory.platformConfig(d, services, world.clock(), io.robomw.api.spi.Cycling.BY_OWNER));
                 try {
                     robots.put(r.name(), ConfiguredRobot.withComponents(() -> d, platform, null));
                 } catch (RuntimeException e) {

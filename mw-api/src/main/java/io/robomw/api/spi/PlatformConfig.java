@@ -18,11 +18,13 @@ import java.util.Objects;
  * @param watchdogTimeout default timeout of continuous commands; {@link Duration#ZERO} is off
  * @param clock           the source of time
  * @param services        services the program handed over (a simulated world...)
+ * @param cycling         who runs the platform's cycles: its own threads, or its owner (a simulation)
+ * @param failures        where its owner threads report what they catch (one policy per process)
  */
 public record PlatformConfig(String robotName, String platformName, ConnectionSettings connection,
                              List<MotorChannel> motors, List<SensorChannel> sensors,
                              Duration cyclePeriod, Duration watchdogTimeout, Clock clock,
-                             PlatformServices services) {
+                             PlatformServices services, Cycling cycling, FailurePolicy failures) {
 
     /** Checks and copies. */
     public PlatformConfig {
@@ -35,6 +37,8 @@ public record PlatformConfig(String robotName, String platformName, ConnectionSe
         Objects.requireNonNull(watchdogTimeout, "watchdogTimeout");
         Objects.requireNonNull(clock, "clock");
         Objects.requireNonNull(services, "services");
+        Objects.requireNonNull(cycling, "cycling");
+        Objects.requireNonNull(failures, "failures");
         if (cyclePeriod.isZero() || cyclePeriod.isNegative()) {
             throw new IllegalArgumentException(robotName + ": cyclePeriod must be > 0, got " + cyclePeriod);
         }
@@ -46,6 +50,15 @@ public record PlatformConfig(String robotName, String platformName, ConnectionSe
                 }
             }
         }
+    }
+
+    /**
+     * @param other another connection block (a command line's override)
+     * @return this configuration with that connection
+     */
+    public PlatformConfig withConnection(ConnectionSettings other) {
+        return new PlatformConfig(robotName, platformName, other, motors, sensors, cyclePeriod, watchdogTimeout, clock, services,
+                cycling, failures);
     }
 
     /** @return the ports of every motor, in the order of {@link #motors()} */

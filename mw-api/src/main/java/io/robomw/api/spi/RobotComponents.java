@@ -1,17 +1,12 @@
 package io.robomw.api.spi;
 
-import io.robomw.api.Agent;
-import io.robomw.api.AgentRef;
-import io.robomw.api.Message;
-import io.robomw.api.MessageListener;
 import io.robomw.api.UnsupportedActionException;
 
-import java.io.Serializable;
-import java.time.Duration;
+import java.lang.reflect.InvocationHandler;
+import java.lang.reflect.Proxy;
 import java.util.List;
 import java.util.Optional;
 import java.util.ServiceLoader;
-import java.util.UUID;
 
 /**
  * Finds the providers that give every robot its communication component and its agency
@@ -36,7 +31,7 @@ public final class RobotComponents {
     public static MessagingComponent messaging(String robotName, MessagingConfig config) {
         return ServiceLoader.load(MessagingProvider.class, RobotComponents.class.getClassLoader()).findFirst()
                 .map(p -> p.open(config))
-                .orElseGet(() -> new Absent(robotName, "no messaging provider is on the class path; " + ADD_AGENTS));
+                .orElseGet(() -> absent(MessagingComponent.class, robotName, "no messaging provider is on the class path; " + ADD_AGENTS));
     }
 
     /**
@@ -47,88 +42,24 @@ public final class RobotComponents {
     public static AgencyComponent agency(String robotName, AgencyConfig config) {
         return ServiceLoader.load(AgencyProvider.class, RobotComponents.class.getClassLoader()).findFirst()
                 .map(p -> p.open(config))
-                .orElseGet(() -> new Absent(robotName, "no agent runtime is on the class path; " + ADD_AGENTS));
+                .orElseGet(() -> absent(AgencyComponent.class, robotName, "no agent runtime is on the class path; " + ADD_AGENTS));
     }
 
-    /** The component of a robot that has none: every call says why. */
-    private record Absent(String robot, String why) implements MessagingComponent, AgencyComponent {
-
-        private UnsupportedActionException refuse(String action) {
-            return new UnsupportedActionException(robot, action, why);
-        }
-
-        @Override
-        public List<String> addresses() {
-            return List.of();
-        }
-
-        @Override
-        public Optional<String> homeAddress() {
-            return Optional.empty();
-        }
-
-        @Override
-        public UUID sendMessage(String name, String host, String pass, String topic, Serializable object, String function) {
-            throw refuse("sendMessage");
-        }
-
-        @Override
-        public Message waitForReply(String topic, String host) {
-            throw refuse("waitForReply");
-        }
-
-        @Override
-        public Message waitForReply(String topic, String host, Duration timeout) {
-            throw refuse("waitForReply");
-        }
-
-        @Override
-        public Message waitForReply(UUID correlationId, Duration timeout) {
-            throw refuse("waitForReply");
-        }
-
-        @Override
-        public void replyMessage(Message request, Serializable object, String function) {
-            throw refuse("replyMessage");
-        }
-
-        @Override
-        public void publishMessage(String topic, Serializable object, String function, String password) {
-            throw refuse("publishMessage");
-        }
-
-        @Override
-        public void subscribeMessage(String topic, String password) {
-            throw refuse("subscribeMessage");
-        }
-
-        @Override
-        public void addMessageListener(String topic, String password, MessageListener listener) {
-            throw refuse("addMessageListener");
-        }
-
-        @Override
-        public void removeMessageListener(String topic, MessageListener listener) {
-            throw refuse("removeMessageListener");
-        }
-
-        @Override
-        public AgentRef sendAgent(String host, Agent agent) {
-            throw refuse("sendAgent");
-        }
-
-        @Override
-        public AgentRef startTrip(Agent agent) {
-            throw refuse("startTrip");
-        }
-
-        @Override
-        public List<AgentRef> dispatchClones(Agent agent, String... hosts) {
-            throw refuse("dispatchClones");
-        }
-
-        @Override
-        public void close() {
-        }
+    /**
+     * The component of a robot that has none: every call of the paper's operations throws
+     * {@link UnsupportedActionException} naming the robot, the operation and why; it receives
+     * nowhere, has no home, and closes without doing anything.
+     */
+    private static <T> T absent(Class<T> component, String robot, String why) {
+        InvocationHandler refuse = (proxy, method, args) -> switch (method.getName()) {
+            case "addresses" -> List.of();
+            case "homeAddress" -> Optional.empty();
+            case "close" -> null;
+            case "toString" -> component.getSimpleName() + "[absent: " + why + "]";
+            case "hashCode" -> System.identityHashCode(proxy);
+            case "equals" -> proxy == args[0];
+            default -> throw new UnsupportedActionException(robot, method.getName(), why);
+        };
+        return component.cast(Proxy.newProxyInstance(component.getClassLoader(), new Class<?>[]{component}, refuse));
     }
 }

@@ -16,7 +16,8 @@ public interface RobotPlatform extends AutoCloseable {
      * @param command the motors and their targets
      * @return completes when every target is reached; fails with
      *         {@link io.robomw.api.CommandPreemptedException} when a newer command takes one of its
-     *         motors, or {@link io.robomw.api.RobotLinkException} when the link fails
+     *         motors, or {@link io.robomw.api.RobotLinkException} when the link fails. Cancelling
+     *         it ends the command at the next cycle: its motors brake
      */
     CompletableFuture<Void> run(MotorCommand command);
 
@@ -37,8 +38,15 @@ public interface RobotPlatform extends AutoCloseable {
         run(command);
     }
 
-    /** Stops every motor with safety priority. Returns once the stop is scheduled. */
-    void stopAll();
+    /**
+     * Stops every motor with safety priority: every running command ends (interrupted), and no
+     * normal command queued with the stop restarts a motor. Returns at once.
+     *
+     * @return completes once the stop has been handed to the hardware (written to the link; a
+     *         simulator's motors have stopped); fails with {@link io.robomw.api.RobotLinkException}
+     *         naming the robot if the link is down or the platform has failed
+     */
+    CompletableFuture<Void> stopAll();
 
     /**
      * Reads one sensor's raw value.

@@ -44,8 +44,8 @@ public final class InstantPlatform implements RobotPlatform {
     }
 
     @Override
-    public void stopAll() {
-        // nothing moves between commands
+    public CompletableFuture<Void> stopAll() {
+        return CompletableFuture.completedFuture(null); // nothing moves between commands
     }
 
     @Override

@@ -1,12 +1,7 @@
 package io.robomw.config.robot;
 
-import io.robomw.api.Agency;
-import io.robomw.api.Agent;
-import io.robomw.api.AgentRef;
 import io.robomw.api.Capability;
-import io.robomw.api.Message;
-import io.robomw.api.MessageListener;
-import io.robomw.api.Messaging;
+import io.robomw.api.Futures;
 import io.robomw.api.Pose;
 import io.robomw.api.Position;
 import io.robomw.api.ReturnType;
@@ -31,14 +26,12 @@ import io.robomw.config.kinematics.WheelMotion;
 import io.robomw.config.legged.LeggedControl;
 import io.robomw.config.sensing.SensorConverter;
 
-import java.io.Serializable;
 import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
 import java.util.Objects;
 import java.util.Set;
-import java.util.UUID;
 import java.util.concurrent.CompletableFuture;
 import java.util.function.Supplier;
 import java.util.stream.Collectors;
@@ -118,11 +111,13 @@ public final class ConfiguredRobot implements Robot {
     }
 
     /** @return its communication component: where it receives, once started */
+    @Override
     public MessagingComponent messaging() {
         return messaging;
     }
 
     /** @return its agency */
+    @Override
     public AgencyComponent agency() {
         return agency;
     }
@@ -267,10 +262,16 @@ public final class ConfiguredRobot implements Robot {
 
     @Override
     public void stop() {
-        platform.stopAll();
-        legged.halted();
-        trackOdometry();
+        try {
+            Futures.await(platform.stopAll(), STOP_TIMEOUT, "stop() of robot '" + name() + "'");
+        } finally {
+            legged.halted();
+            trackOdometry();
+        }
     }
+
+    /** How long {@link #stop()} waits for the stop to be handed to the hardware. */
+    static final Duration STOP_TIMEOUT = Duration.ofSeconds(5);
 
     @Override
     public CompletableFuture<Void> changeAltitudeAsync(double metres, double speed) {
@@ -315,7 +316,7 @@ public final class ConfiguredRobot implements Robot {
     @Override
     public CompletableFuture<Double> getValueAsync(Position position, SensorType type, ReturnType returnType) {
         RobotDescription d = description.get();
-        SensorSpec sensor = d.sensors().stream().filter(s -> s.position() == position && s.type() == type).findFirst()
+        SensorSpec sensor = d.sensors().stream().filter(s -> s.position() == position && type.matches(s.type())).findFirst()
                 .orElseThrow(() -> new UnsupportedActionException(name(), "getValue(" + position + ", " + type + ", " + returnType + ")",
                         "it has no " + type + " sensor at " + position + "; its sensors are " + describeSensors(d)));
         return read(sensor, returnType);
@@ -353,68 +354,6 @@ public final class ConfiguredRobot implements Robot {
             updateOdometry();
             odometry.reset(pose);
         }
-    }
-
-    // ---- Messaging and agents ----
-
-    @Override
-    public UUID sendMessage(String name, String host, String pass, String topic, Serializable object, String function) {
-        return messaging.sendMessage(name, host, pass, topic, object, function);
-    }
-
-    @Override
-    public Message waitForReply(String topic, String host) {
-        return messaging.waitForReply(topic, host);
-    }
-
-    @Override
-    public Message waitForReply(String topic, String host, Duration timeout) {
-        return messaging.waitForReply(topic, host, timeout);
-    }
-
-    @Override
-    public Message waitForReply(UUID correlationId, Duration timeout) {
-        return messaging.waitForReply(correlationId, timeout);
-    }
-
-    @Override
-    public void replyMessage(Message request, Serializable object, String function) {
-        messaging.replyMessage(request, object, function);
-    }
-
-    @Override
-    public void publishMessage(String topic, Serializable object, String function, String password) {
-        messaging.publishMessage(topic, object, function, password);
-    }
-
-    @Override
-    public void subscribeMessage(String topic, String password) {
-        messaging.subscribeMessage(topic, password);
-    }
-
-    @Override
-    public void addMessageListener(String topic, String password, MessageListener listener) {
-        messaging.addMessageListener(topic, password, listener);
-    }
-
-    @Override
-    public void removeMessageListener(String topic, MessageListener listener) {
-        messaging.removeMessageListener(topic, listener);
-    }
-
-    @Override
-    public AgentRef sendAgent(String host, Agent agent) {
-        return agency.sendAgent(host, agent);
-    }
-
-    @Override
-    public AgentRef startTrip(Agent agent) {
-        return agency.startTrip(agent);
-    }
-
-    @Override
-    public List<AgentRef> dispatchClones(Agent agent, String... hosts) {
-        return agency.dispatchClones(agent, hosts);
     }
 
     @Override

@@ -29,7 +29,6 @@ public record ConnectionOverride(Map<String, String> values) {
         Map<String, Object> merged = new LinkedHashMap<>(config.connection().values());
         values.forEach((k, v) -> merged.put(k, v.matches("-?\\d{1,9}") ? (Object) Integer.valueOf(v) : v));
         ConnectionSettings c = new ConnectionSettings(merged, config.connection().source() + " (connection overridden by " + values + ")");
-        return new PlatformConfig(config.robotName(), config.platformName(), c, config.motors(), config.sensors(), config.cyclePeriod(),
-                config.watchdogTimeout(), config.clock(), config.services());
+        return config.withConnection(c);
     }
 }

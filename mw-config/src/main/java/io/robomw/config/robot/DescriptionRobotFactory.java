@@ -3,6 +3,8 @@ package io.robomw.config.robot;
 import io.robomw.api.Clock;
 import io.robomw.api.Robot;
 import io.robomw.api.RobotException;
+import io.robomw.api.spi.Cycling;
+import io.robomw.api.spi.FailurePolicy;
 import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.PlatformServices;
@@ -35,21 +37,23 @@ public final class DescriptionRobotFactory implements RobotFactory {
 
     @Override
     public Robot open(URI location, PlatformServices services) {
-        return open(Path.of(location), services, Clock.system());
+        return open(Path.of(location), services, Clock.system(), Cycling.OWN_THREADS);
     }
 
     /**
      * @param file     the robot's YAML file
-     * @param services services for the platform
+     * @param services services for the platform (a {@link FailurePolicy} among them is the one its
+     *                 owner threads report to; else a new {@link FailurePolicy#logging()} one)
      * @param clock    the clock of its execution action thread
+     * @param cycling  who runs its cycles
      * @return the open robot
      */
-    public Robot open(Path file, PlatformServices services, Clock clock) {
+    public Robot open(Path file, PlatformServices services, Clock clock, Cycling cycling) {
         ReloadableDescription description = new ReloadableDescription(file, new RobotDescriptionLoader());
         RobotDescription d = description.current();
         RobotPlatform platform;
         try {
-            PlatformConfig config = platformConfig(d, services, clock);
+            PlatformConfig config = platformConfig(d, services, clock, cycling);
             PlatformConfig opened = services.find(ConnectionOverride.class).map(o -> o.applyTo(config)).orElse(config);
             PlatformProvider provider = provider(d);
             List<String> problems = provider.check(opened);
@@ -83,14 +87,17 @@ public final class DescriptionRobotFactory implements RobotFactory {
 
     /**
      * @param d        a description
-     * @param services services for the platform
+     * @param services services for the platform (a {@link FailurePolicy} among them is the one its
+     *                 owner threads report to; else a new {@link FailurePolicy#logging()} one)
      * @param clock    its clock
+     * @param cycling  who runs its cycles
      * @return what its platform is told
      */
-    public static PlatformConfig platformConfig(RobotDescription d, PlatformServices services, Clock clock) {
+    public static PlatformConfig platformConfig(RobotDescription d, PlatformServices services, Clock clock, Cycling cycling) {
         return new PlatformConfig(d.name(), d.platform(), d.connection(), d.motors(),
                 d.sensors().stream().map(s -> new SensorChannel(s.name(), s.type(), s.port(), s.options())).toList(),
-                d.cyclePeriod(), d.watchdogTimeout(), clock, services);
+                d.cyclePeriod(), d.watchdogTimeout(), clock, services, cycling,
+                services.find(FailurePolicy.class).orElseGet(FailurePolicy::logging));
     }
 
     /**

@@ -47,8 +47,9 @@ final class FakeHighLevelPlatform implements RobotPlatform, HighLevelPlatform {
     }
 
     @Override
-    public synchronized void stopAll() {
+    public synchronized CompletableFuture<Void> stopAll() {
         stops++;
+        return CompletableFuture.completedFuture(null);
     }
 
     @Override

@@ -29,8 +29,9 @@ final class FakePlatform implements RobotPlatform {
     }
 
     @Override
-    public synchronized void stopAll() {
+    public synchronized CompletableFuture<Void> stopAll() {
         stops++;
+        return CompletableFuture.completedFuture(null);
     }
 
     @Override

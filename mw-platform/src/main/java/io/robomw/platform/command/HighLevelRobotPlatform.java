@@ -74,7 +74,7 @@ public final class HighLevelRobotPlatform implements RobotPlatform, HighLevelPla
      * @return this
      */
     public HighLevelRobotPlatform start() {
-        if (config.clock() == Clock.system()) {
+        if (config.cycling() == io.robomw.api.spi.Cycling.OWN_THREADS) {
             actionThread.start();
         }
         return this;
@@ -130,8 +130,8 @@ public final class HighLevelRobotPlatform implements RobotPlatform, HighLevelPla
     }
 
     @Override
-    public void stopAll() {
-        actionThread.submit(commands.stopContainer());
+    public CompletableFuture<Void> stopAll() {
+        return actionThread.submit(commands.stopContainer());
     }
 
     @Override

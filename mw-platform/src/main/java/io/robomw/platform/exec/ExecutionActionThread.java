@@ -384,7 +384,7 @@ public final class ExecutionActionThread implements AutoCloseable {
             holdersChanged = false;
         }
         CYCLES.setRelease(this, cycles + 1);
-        if (clock == Clock.system() && clock.nanoTime() - start > periodNanos) {
+        if (thread.get() != null && clock.nanoTime() - start > periodNanos) { // overruns of its own thread; a simulation's cycles take what they take
             long n = overruns.incrementAndGet();
             if (Long.bitCount(n) == 1) {
                 LOG.warn("robot '{}': execution action thread overran its {} µs period ({} overruns so far)", robot, periodNanos / 1000, n);
@@ -615,15 +615,12 @@ public final class ExecutionActionThread implements AutoCloseable {
     }
 
     /**
-     * Starts the real-time thread that cycles at the period, on the wall clock. Only once.
+     * Starts the real-time thread that cycles at the period, on this thread's clock (a platform
+     * whose owner cycles it, a simulation, never calls this). Only once.
      *
-     * @throws IllegalStateException if the clock is not the wall clock (a simulation cycles
-     *                               itself) or the thread was already started
+     * @throws IllegalStateException if the thread was already started
      */
     public void start() {
-        if (clock != Clock.system()) {
-            throw new IllegalStateException("robot '" + robot + "' runs on a simulated clock; its simulation calls cycle()");
-        }
         Thread t = new Thread(this::loop, robot + "-action");
         if (!thread.compareAndSet(null, t)) {
             throw new IllegalStateException("the execution action thread of '" + robot + "' was already started");

@@ -59,7 +59,7 @@ class AiboPlatformTest {
     private HighLevelRobotPlatform open(FakeUrbiServer server, int streamMs, SensorChannel... sensors) throws IOException {
         PlatformConfig config = new PlatformConfig("dog", "aibo", new ConnectionSettings(Map.of("host", "127.0.0.1", "port", server.port(),
                 "stream_ms", streamMs, "reply_timeout_ms", 1000), "dog.yaml"), List.of(), List.of(sensors), Duration.ofMillis(10),
-                Duration.ofMillis(500), Clock.system(), PlatformServices.none());
+                Duration.ofMillis(500), Clock.system(), PlatformServices.none(), io.robomw.api.spi.Cycling.OWN_THREADS, io.robomw.api.spi.FailurePolicy.logging());
         HighLevelRobotPlatform p = (HighLevelRobotPlatform) new AiboPlatformProvider().open(config);
         toClose.add(p);
         return p;

@@ -49,7 +49,7 @@ class Ev3PlatformTest {
     private static PlatformConfig config(List<String> motors) {
         return new PlatformConfig("ev3-test", "ev3", new ConnectionSettings(Map.of(), "test.yaml"),
                 motors.stream().map(io.robomw.api.spi.MotorChannel::actuator).toList(), List.of(),
-                Duration.ofMillis(10), Duration.ZERO, Clock.system(), PlatformServices.none());
+                Duration.ofMillis(10), Duration.ZERO, Clock.system(), PlatformServices.none(), io.robomw.api.spi.Cycling.OWN_THREADS, io.robomw.api.spi.FailurePolicy.logging());
     }
 
     private static List<byte[]> replyWithGlobals(byte[] frame, byte[] globals) {

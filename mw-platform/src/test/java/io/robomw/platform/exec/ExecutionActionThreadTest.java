@@ -298,8 +298,18 @@ class ExecutionActionThreadTest {
     }
 
     @Test
-    void shouldRefuseToStartOnSimulatedClock() {
-        assertThrows(IllegalStateException.class, thread::start);
+    void shouldRunItsOwnThreadOnADecoratedWallClockAndRefuseASecondStart() throws Exception {
+        io.robomw.api.Clock decorated = () -> System.nanoTime() + 1_000_000_000L; // a wall clock that is not Clock.system()
+        try (ExecutionActionThread real = new ExecutionActionThread("decorated", decorated, PERIOD)) {
+            CountDownLatch ran = new CountDownLatch(1);
+            real.submit(Container.builder("probe").requires("A").logic(now -> {
+                ran.countDown();
+                return true;
+            }).build());
+            real.start();
+            assertTrue(ran.await(10, java.util.concurrent.TimeUnit.SECONDS), "its thread cycles on any wall clock");
+            assertThrows(IllegalStateException.class, real::start);
+        }
     }
 
     @Test

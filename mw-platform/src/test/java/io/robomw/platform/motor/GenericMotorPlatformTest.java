@@ -135,7 +135,7 @@ class GenericMotorPlatformTest {
                 List.of(io.robomw.api.spi.MotorChannel.actuator("B"), io.robomw.api.spi.MotorChannel.actuator("C")),
                 List.of(new SensorChannel("left-tacho", io.robomw.api.SensorType.TACHO, "B", Map.of()),
                         new SensorChannel("sonar", io.robomw.api.SensorType.SONAR, "S4", Map.of())),
-                PERIOD, Duration.ofMillis(500), clock, PlatformServices.none());
+                PERIOD, Duration.ofMillis(500), clock, PlatformServices.none(), io.robomw.api.spi.Cycling.BY_OWNER, io.robomw.api.spi.FailurePolicy.logging());
         SensorPlatform sensors = new SensorPlatform(motors) {
             @Override
             public Sensor createSensor(SensorChannel sensorObject) {

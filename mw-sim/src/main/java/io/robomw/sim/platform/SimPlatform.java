@@ -59,8 +59,8 @@ class SimPlatform implements RobotPlatform {
     }
 
     @Override
-    public void stopAll() {
-        platform.stopAll();
+    public CompletableFuture<Void> stopAll() {
+        return wrap(platform.stopAll());
     }
 
     @Override

@@ -1,12 +1,11 @@
 package io.robomw.agents.messaging.robot;
 
 import io.robomw.agents.messaging.MessagingNode;
-import io.robomw.api.AgentRef;
-import io.robomw.api.Agent;
+import io.robomw.api.Agency;
+import io.robomw.api.Messaging;
 import io.robomw.api.Capability;
-import io.robomw.api.Futures;
 import io.robomw.api.Message;
-import io.robomw.api.MessageListener;
+import io.robomw.api.Futures;
 import io.robomw.api.MessagingException;
 import io.robomw.api.Pose;
 import io.robomw.api.Position;
@@ -24,7 +23,6 @@ import java.time.Duration;
 import java.util.EnumSet;
 import java.util.List;
 import java.util.Set;
-import java.util.UUID;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CompletionException;
 
@@ -71,7 +69,7 @@ public final class RemoteRobot implements Robot {
         this.host = host;
         this.password = password;
         this.topic = RobotProtocol.topic(robotName);
-        this.info = (RobotInfo) Futures.await(call(robotName, new RobotCall.Describe()));
+        this.info = (RobotInfo) Futures.await(call(robotName, new RobotCall.Describe()), Futures.DEFAULT_TIMEOUT, "describe robot '" + robotName + "' at " + host);
     }
 
     @Override
@@ -118,12 +116,12 @@ public final class RemoteRobot implements Robot {
 
     @Override
     public void drive(double linearSpeed, double angularSpeed) {
-        Futures.await(call(new RobotCall.Drive(linearSpeed, angularSpeed)));
+        Futures.await(call(new RobotCall.Drive(linearSpeed, angularSpeed)), Futures.DEFAULT_TIMEOUT, "drive");
     }
 
     @Override
     public void stop() {
-        Futures.await(call(new RobotCall.Stop()));
+        Futures.await(call(new RobotCall.Stop()), Futures.DEFAULT_TIMEOUT, "stop()");
     }
 
     @Override
@@ -150,77 +148,24 @@ public final class RemoteRobot implements Robot {
 
     @Override
     public Pose pose() {
-        double[] p = (double[]) Futures.await(call(new RobotCall.GetPose()));
+        double[] p = (double[]) Futures.await(call(new RobotCall.GetPose()), Futures.DEFAULT_TIMEOUT, "pose()");
         return new Pose(p[0], p[1], p[2]);
     }
 
     @Override
     public void resetPose(Pose pose) {
-        Futures.await(call(new RobotCall.ResetPose(pose.x(), pose.y(), pose.heading())));
+        Futures.await(call(new RobotCall.ResetPose(pose.x(), pose.y(), pose.heading())), Futures.DEFAULT_TIMEOUT, "resetPose()");
     }
 
-    // ---- Messaging: the local node's ----
-
+    /** @return the local messaging node, which this robot's messaging calls go to */
     @Override
-    public UUID sendMessage(String name, String host, String pass, String topic, Serializable object, String function) {
-        return node.sendMessage(name, host, pass, topic, object, function);
-    }
-
-    @Override
-    public Message waitForReply(String topic, String host) {
-        return node.waitForReply(topic, host);
+    public Messaging messaging() {
+        return node;
     }
 
     @Override
-    public Message waitForReply(String topic, String host, Duration timeout) {
-        return node.waitForReply(topic, host, timeout);
-    }
-
-    @Override
-    public Message waitForReply(UUID correlationId, Duration timeout) {
-        return node.waitForReply(correlationId, timeout);
-    }
-
-    @Override
-    public void replyMessage(Message request, Serializable object, String function) {
-        node.replyMessage(request, object, function);
-    }
-
-    @Override
-    public void publishMessage(String topic, Serializable object, String function, String password) {
-        node.publishMessage(topic, object, function, password);
-    }
-
-    @Override
-    public void subscribeMessage(String topic, String password) {
-        node.subscribeMessage(topic, password);
-    }
-
-    @Override
-    public void addMessageListener(String topic, String password, MessageListener listener) {
-        node.addMessageListener(topic, password, listener);
-    }
-
-    @Override
-    public void removeMessageListener(String topic, MessageListener listener) {
-        node.removeMessageListener(topic, listener);
-    }
-
-    // ---- Agency ----
-
-    @Override
-    public AgentRef sendAgent(String host, Agent agent) {
-        return agency.sendAgent(host, agent);
-    }
-
-    @Override
-    public AgentRef startTrip(Agent agent) {
-        return agency.startTrip(agent);
-    }
-
-    @Override
-    public List<AgentRef> dispatchClones(Agent agent, String... hosts) {
-        return agency.dispatchClones(agent, hosts);
+    public Agency agency() {
+        return agency;
     }
 
     @Override

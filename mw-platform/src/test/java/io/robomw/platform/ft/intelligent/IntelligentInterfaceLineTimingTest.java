@@ -153,7 +153,7 @@ class IntelligentInterfaceLineTimingTest {
         PlatformConfig config = new PlatformConfig("ft-test", "ft-intelligent",
                 new ConnectionSettings(Map.of("port", "/dev/ttyS0"), "test.yaml"),
                 List.of(new MotorChannel("M1", MotorChannel.Role.LEFT_WHEEL, TICKS, Optional.of("E1"))), List.of(),
-                Duration.ofMillis(10), Duration.ZERO, Clock.system(), PlatformServices.none());
+                Duration.ofMillis(10), Duration.ZERO, Clock.system(), PlatformServices.none(), io.robomw.api.spi.Cycling.OWN_THREADS, io.robomw.api.spi.FailurePolicy.logging());
         return new IntelligentInterfaceMotorPlatform(config, channel, new IntelligentInterfaceInputs(config.clock()));
     }
 

@@ -60,7 +60,7 @@ class TxtDriverTest {
         List<MotorChannel> wheels = List.of(new MotorChannel("M1", MotorChannel.Role.LEFT_WHEEL, TICKS, leftCounter),
                 new MotorChannel("M2", MotorChannel.Role.RIGHT_WHEEL, TICKS, rightCounter));
         PlatformConfig config = new PlatformConfig("txt-test", "ft-txt", connection, wheels, sensors, Duration.ofMillis(10), Duration.ZERO,
-                Clock.system(), io.robomw.api.spi.PlatformServices.none());
+                Clock.system(), io.robomw.api.spi.PlatformServices.none(), io.robomw.api.spi.Cycling.OWN_THREADS, io.robomw.api.spi.FailurePolicy.logging());
         channel = BrickChannel.open("txt-test", connection, SerialSettings.of(115200, 8, SerialSettings.Parity.NONE, 1),
                 TxtProtocol.TCP_PORT, Duration.ofMillis(500));
         controller = new TxtController("txt-test", channel);
