@@ -5,7 +5,7 @@ import io.robomw.agents.host.ClusterKey;
 import io.robomw.agents.host.HostProbe;
 import io.robomw.agents.host.code.CodeArchive;
 import io.robomw.agents.host.trip.VisitorAgent;
-import io.robomw.agents.messaging.Await;
+import io.robomw.testkit.Await;
 import io.robomw.cli.agents.HelloAgent;
 import io.robomw.cli.agents.NoDefaultConstructorAgent;
 import io.robomw.cli.agents.RobotAgent;

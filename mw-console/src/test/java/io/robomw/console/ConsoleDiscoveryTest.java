@@ -2,7 +2,7 @@ package io.robomw.console;
 
 import io.robomw.agents.host.AgentHost;
 import io.robomw.agents.host.ClusterKey;
-import io.robomw.agents.messaging.Await;
+import io.robomw.testkit.Await;
 import io.robomw.api.Agent;
 import io.robomw.api.AgentRef;
 import org.junit.jupiter.api.Test;

@@ -1,5 +1,6 @@
 package io.robomw.platform;
 
+import io.robomw.testkit.Await;
 import io.robomw.api.Clock;
 import io.robomw.api.RobotException;
 import io.robomw.api.RobotLinkException;

@@ -1,6 +1,6 @@
 package io.robomw.agents.components;
 
-import io.robomw.agents.messaging.Await;
+import io.robomw.testkit.Await;
 import io.robomw.agents.messaging.MessagingNode;
 import io.robomw.agents.messaging.MessagingSettings;
 import io.robomw.api.Message;

@@ -1,7 +1,7 @@
 package io.robomw.agents.host;
 
 import io.robomw.agents.host.trip.VisitorAgent;
-import io.robomw.agents.messaging.Await;
+import io.robomw.testkit.Await;
 import io.robomw.api.Agent;
 import io.robomw.api.AgentException;
 import io.robomw.api.AgentRef;

@@ -1,9 +1,10 @@
 package io.robomw.agents.host;
 
+import io.robomw.testkit.LogLines;
 import io.robomw.agents.host.code.CodeArchive;
 import org.junit.jupiter.api.Test;
 
-import io.robomw.agents.messaging.Await;
+import io.robomw.testkit.Await;
 
 import java.rmi.RemoteException;
 import java.rmi.registry.LocateRegistry;

@@ -2,7 +2,7 @@ package io.robomw.agents.host;
 
 import io.robomw.agents.host.trip.ChatCaller;
 import io.robomw.agents.host.trip.ChatResponder;
-import io.robomw.agents.messaging.Await;
+import io.robomw.testkit.Await;
 import io.robomw.api.Agent;
 import io.robomw.api.AgentRef;
 import io.robomw.api.Messaging;

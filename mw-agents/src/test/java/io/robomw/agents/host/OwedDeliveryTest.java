@@ -2,7 +2,7 @@ package io.robomw.agents.host;
 
 import io.robomw.agents.host.code.CodeArchive;
 import io.robomw.agents.host.trip.VisitorAgent;
-import io.robomw.agents.messaging.Await;
+import io.robomw.testkit.Await;
 import io.robomw.api.AgentRef;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.extension.RegisterExtension;

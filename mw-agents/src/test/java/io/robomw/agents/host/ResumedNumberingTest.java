@@ -1,7 +1,7 @@
 package io.robomw.agents.host;
 
 import io.robomw.agents.host.trip.NumberedReporter;
-import io.robomw.agents.messaging.Await;
+import io.robomw.testkit.Await;
 import io.robomw.api.AgentRef;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.extension.RegisterExtension;

@@ -1,6 +1,6 @@
 package io.robomw.agents.host;
 
-import io.robomw.agents.messaging.Await;
+import io.robomw.testkit.Await;
 import org.junit.jupiter.api.Test;
 
 import java.time.Duration;

@@ -1,5 +1,6 @@
 package io.robomw.agents.messaging;
 
+import io.robomw.testkit.Await;
 import io.robomw.agents.messaging.frame.Frame;
 import io.robomw.agents.messaging.frame.FrameCodec;
 import io.robomw.agents.messaging.frame.FrameKind;

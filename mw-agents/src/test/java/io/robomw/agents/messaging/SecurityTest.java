@@ -1,5 +1,6 @@
 package io.robomw.agents.messaging;
 
+import io.robomw.testkit.Await;
 import io.robomw.api.MessagingException;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;

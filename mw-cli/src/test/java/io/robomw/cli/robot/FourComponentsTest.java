@@ -3,7 +3,7 @@ package io.robomw.cli.robot;
 import io.robomw.agents.host.AgentHost;
 import io.robomw.agents.host.ClusterKey;
 import io.robomw.agents.host.trip.VisitorAgent;
-import io.robomw.agents.messaging.Await;
+import io.robomw.testkit.Await;
 import io.robomw.agents.messaging.MessagingNode;
 import io.robomw.agents.messaging.MessagingSettings;
 import io.robomw.agents.messaging.robot.RobotProtocol;

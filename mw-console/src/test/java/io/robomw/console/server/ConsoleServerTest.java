@@ -2,7 +2,7 @@ package io.robomw.console.server;
 
 import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.ObjectMapper;
-import io.robomw.agents.messaging.Await;
+import io.robomw.testkit.Await;
 import io.robomw.console.observe.HostView;
 import io.robomw.console.observe.Observation;
 import io.robomw.console.observe.WorldMap;

@@ -10,7 +10,7 @@ import io.robomw.api.spi.HighLevelCommand;
 import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformServices;
 import io.robomw.api.spi.SensorChannel;
-import io.robomw.platform.Await;
+import io.robomw.testkit.Await;
 import io.robomw.platform.command.HighLevelRobotPlatform;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;

@@ -1,6 +1,6 @@
 package io.robomw.platform.rcx;
 
-import io.robomw.platform.Await;
+import io.robomw.testkit.Await;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.Communicator;
 import io.robomw.platform.link.Link;

@@ -3,7 +3,7 @@ package io.robomw.it.agents;
 import io.robomw.agents.host.HostProbe;
 import io.robomw.agents.host.code.CodeArchive;
 import io.robomw.agents.host.trip.VisitorAgent;
-import io.robomw.it.Await;
+import io.robomw.testkit.Await;
 import io.robomw.it.soak.HostFigures;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;

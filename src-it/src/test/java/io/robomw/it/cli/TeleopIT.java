@@ -1,6 +1,6 @@
 package io.robomw.it.cli;
 
-import io.robomw.agents.messaging.Await;
+import io.robomw.testkit.Await;
 import io.robomw.api.Robot;
 import io.robomw.api.Robots;
 import io.robomw.it.demo.MwProcess;

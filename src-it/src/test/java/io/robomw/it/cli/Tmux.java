@@ -1,6 +1,6 @@
 package io.robomw.it.cli;
 
-import io.robomw.agents.messaging.Await;
+import io.robomw.testkit.Await;
 
 import java.io.IOException;
 import java.nio.charset.StandardCharsets;

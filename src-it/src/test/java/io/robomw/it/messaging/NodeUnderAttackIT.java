@@ -4,7 +4,7 @@ import io.robomw.agents.messaging.frame.Frame;
 import io.robomw.agents.messaging.frame.FrameCodec;
 import io.robomw.agents.messaging.frame.FrameKind;
 import io.robomw.agents.messaging.io.FrameStreamReader;
-import io.robomw.it.Await;
+import io.robomw.testkit.Await;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
 

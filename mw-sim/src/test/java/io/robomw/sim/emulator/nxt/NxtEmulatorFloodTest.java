@@ -2,7 +2,7 @@ package io.robomw.sim.emulator.nxt;
 
 import io.robomw.platform.nxt.NxtTelegram;
 import io.robomw.sim.emulator.EmulatorStack;
-import io.robomw.sim.emulator.LogLines;
+import io.robomw.testkit.LogLines;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 

@@ -8,7 +8,7 @@ import io.robomw.api.SensorType;
 import io.robomw.platform.ft.intelligent.IntelligentInterfaceTelegram;
 import io.robomw.platform.link.SerialLink;
 import io.robomw.platform.link.SerialSettings;
-import io.robomw.sim.emulator.BusyThreads;
+import io.robomw.testkit.BusyThreads;
 import io.robomw.sim.emulator.EmulatorStack;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.BeforeEach;

@@ -1,12 +1,13 @@
-package io.robomw.it;
+package io.robomw.testkit;
 
 import java.util.ArrayList;
 import java.util.List;
 
 /**
  * Threads that keep the machine's cores busy while a test runs, as a loaded host would: each
- * spins on arithmetic until closed. The processes a test starts (agent hosts, emulators) then
- * compete for time with them.
+ * spins on arithmetic until closed. Two of them on a two-core machine leave the driver's link
+ * thread, the emulator and the simulation to compete for time with them, so a driver that only
+ * works on an idle machine fails.
  */
 public final class BusyThreads implements AutoCloseable {
 

@@ -1,4 +1,4 @@
-package io.robomw.sim.emulator;
+package io.robomw.testkit;
 
 import java.io.ByteArrayOutputStream;
 import java.io.OutputStream;
