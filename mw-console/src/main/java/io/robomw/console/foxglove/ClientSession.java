@@ -21,9 +21,10 @@ import java.util.concurrent.atomic.AtomicInteger;
  *
  * <p>Threads: Jetty calls the {@code onWebSocket...} methods one at a time; the server's encoder
  * and drive threads queue frames concurrently. The queue and the sending flag are guarded by
- * {@code this}; subscriptions and client channels are touched only by Jetty's calls.
+ * {@code this}; subscriptions and client channels are touched only by Jetty's calls. Public only
+ * because Jetty calls its listener methods through method handles.
  */
-final class ClientSession extends Session.Listener.AbstractAutoDemanding {
+public final class ClientSession extends Session.Listener.AbstractAutoDemanding {
 
     private static final Logger LOG = LoggerFactory.getLogger(ClientSession.class);
     /** The longest a status error about a drive failure is repeated for the same robot and text. */

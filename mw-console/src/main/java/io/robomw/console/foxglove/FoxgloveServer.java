@@ -415,6 +415,11 @@ public final class FoxgloveServer implements Observer, AutoCloseable {
         return published.get();
     }
 
+    /** @return data frames dropped so far for the clients connected now, because they were slower than the data */
+    public long droppedForClients() {
+        return sessions.stream().mapToLong(ClientSession::dropped).sum();
+    }
+
     /** @return observations dropped because they came faster than they could be encoded */
     public long droppedObservations() {
         return droppedObservations.get();
