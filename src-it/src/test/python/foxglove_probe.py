@@ -6,7 +6,8 @@ foxglove-sdk's own reference server in the same test, so the check itself is sho
 
 Prints one JSON object per line: the subprotocol chosen, serverInfo, the channel of TOPIC (its
 schema parsed), the first N messages on it (log time, payload), whether a handshake offering only
-the legacy name is taken, and with --drive, the poses before and after publishing Twists.
+the legacy name is taken, the first TIME frame (a server with the time capability), and with
+--drive, the poses before and after publishing Twists.
 """
 import argparse
 import asyncio
@@ -30,9 +31,16 @@ async def next_text(ws, op):
             return json.loads(m)
 
 
+seen_time = False
+
+
 async def next_message(ws, subscription):
+    global seen_time
     while True:
         m = await ws.recv()
+        if isinstance(m, bytes) and m[0] == 2 and not seen_time:  # TIME: the server's clock (the time capability)
+            seen_time = True
+            say(serverTime=struct.unpack_from("<BQ", m)[1])
         if isinstance(m, bytes) and m[0] == 1:
             opcode, sub, log_time = struct.unpack_from("<BIQ", m)
             if sub == subscription:
