@@ -20,7 +20,7 @@ import java.util.concurrent.atomic.AtomicInteger;
  * client is answered with a status error and the connection goes on.
  *
  * <p>Threads: Jetty calls the {@code onWebSocket...} methods one at a time; the server's encoder
- * and drive threads queue frames concurrently. The queue and the sending flag are guarded by
+ * and drive threads queue frames concurrently. The queue and the count of frames in flight are guarded by
  * {@code this}; subscriptions and client channels are touched only by Jetty's calls. Public only
  * because Jetty calls its listener methods through method handles.
  */
@@ -29,6 +29,12 @@ public final class ClientSession extends Session.Listener.AbstractAutoDemanding 
     private static final Logger LOG = LoggerFactory.getLogger(ClientSession.class);
     /** The longest a status error about a drive failure is repeated for the same robot and text. */
     private static final long DRIVE_ERROR_REPEAT_NANOS = 2_000_000_000L;
+    /**
+     * Frames handed to Jetty and not yet written, at most: enough for Jetty to write many frames
+     * in one go, few enough that a slow client's backlog stays in {@link OutQueue}, where the
+     * oldest data is dropped.
+     */
+    static final int MAX_IN_FLIGHT = 64;
 
     private final FoxgloveServer server;
     private final Subprotocol subprotocol;
@@ -42,7 +48,7 @@ public final class ClientSession extends Session.Listener.AbstractAutoDemanding 
     private final Map<String, String> lastDriveError = new HashMap<>();
     private final Map<String, Long> lastDriveErrorAt = new HashMap<>();
     private final AtomicInteger pumping = new AtomicInteger();
-    private boolean sending;
+    private int inFlight;
     private boolean gone;
 
     /** A channel the client publishes on. @param robot the robot its Twists drive, or null if they are ignored */
@@ -258,24 +264,27 @@ public final class ClientSession extends Session.Listener.AbstractAutoDemanding 
     }
 
     /**
-     * Sends what is queued, one frame on its way at a time. A send that completes at once calls
-     * back into here; the counter turns that into one more round of the outer loop instead of a
-     * deeper stack.
+     * Hands what is queued to Jetty, up to {@value #MAX_IN_FLIGHT} frames not yet written. A send
+     * that completes at once calls back into here; the counter turns that into one more round of
+     * the outer loop instead of a deeper stack.
      */
     private void pump() {
         if (pumping.getAndIncrement() != 0) {
             return;
         }
         do {
-            OutQueue.Frame f;
-            Session s = getSession();
-            synchronized (this) {
-                f = sending || gone || s == null ? null : queue.poll();
-                if (f != null) {
-                    sending = true;
+            while (true) {
+                OutQueue.Frame f;
+                Session s = getSession();
+                synchronized (this) {
+                    f = inFlight >= MAX_IN_FLIGHT || gone || s == null ? null : queue.poll();
+                    if (f != null) {
+                        inFlight++;
+                    }
                 }
-            }
-            if (f != null) {
+                if (f == null) {
+                    break;
+                }
                 Callback done = Callback.from(this::sent, this::failed);
                 if (f.text() != null) {
                     s.sendText(f.text(), done);
@@ -288,7 +297,7 @@ public final class ClientSession extends Session.Listener.AbstractAutoDemanding 
 
     private void sent() {
         synchronized (this) {
-            sending = false;
+            inFlight--;
         }
         pump();
     }
@@ -296,7 +305,7 @@ public final class ClientSession extends Session.Listener.AbstractAutoDemanding 
     private void failed(Throwable failure) {
         LOG.debug("foxglove: sending to {} failed: {}", peer, failure.toString());
         synchronized (this) {
-            sending = false;
+            inFlight--;
             gone = true;
             queue.clear();
         }
