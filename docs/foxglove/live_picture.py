@@ -21,7 +21,7 @@ from websockets.asyncio.client import connect
 
 
 async def record(a):
-    channels, counts, poses, scene, first_time, last_time = {}, defaultdict(int), defaultdict(list), None, None, None
+    channels, counts, poses, scene = {}, defaultdict(int), defaultdict(list), None
     async with connect(a.url, subprotocols=["foxglove.sdk.v1", "foxglove.websocket.v1"], max_size=None) as ws:
         info = json.loads(await ws.recv())
         loop = asyncio.get_running_loop()
@@ -47,11 +47,9 @@ async def record(a):
                         channels[c["id"]] = c
                     await ws.send(json.dumps({"op": "subscribe", "subscriptions": [{"id": c["id"], "channelId": c["id"]} for c in new]}))
             elif m[0] == 1:
-                _, sub, log_time = struct.unpack_from("<BIQ", m)
+                _, sub, _ = struct.unpack_from("<BIQ", m)
                 c = channels[sub]
                 counts[sub] += 1
-                first_time = log_time if first_time is None else min(first_time, log_time)
-                last_time = log_time if last_time is None else max(last_time, log_time)
                 payload = json.loads(m[13:])
                 if c["topic"] == "/world/scene":
                     scene = payload
@@ -59,10 +57,10 @@ async def record(a):
                     p = payload["pose"]
                     q = p["orientation"]
                     poses[c["topic"].split("/")[2]].append((p["position"]["x"], p["position"]["y"], 2 * math.atan2(q["z"], q["w"])))
-    return info, channels, counts, poses, scene, (last_time - first_time) / 1e9 if first_time else 0
+    return info, channels, counts, poses, scene
 
 
-def svg(info, channels, counts, poses, scene, span, a):
+def svg(info, channels, counts, poses, scene, a):
     w, h, map_w = 1200, 620, 660
     cubes = [c for e in (scene or {}).get("entities", []) for c in e["cubes"]]
     xs = [c["pose"]["position"]["x"] + s * c["size"]["x"] / 2 for c in cubes for s in (-1, 1)] or [0, 4]
@@ -74,7 +72,7 @@ def svg(info, channels, counts, poses, scene, span, a):
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" font-family="sans-serif" font-size="13">',
            f'<rect width="{w}" height="{h}" fill="white"/>',
            f'<text x="30" y="32" font-size="18" font-weight="bold">{html.escape(info["name"])}</text>',
-           f'<text x="30" y="56" fill="#555">what its Foxglove WebSocket carried to one client in {span:.1f} s '
+           f'<text x="30" y="56" fill="#555">what its Foxglove WebSocket carried to one client in {a.seconds:g} s '
            f'(subprotocol foxglove.sdk.v1, capabilities {html.escape(json.dumps(info["capabilities"]))}); drawn from the received messages, not a Foxglove screenshot</text>']
     for c in cubes:
         p, s, col = c["pose"]["position"], c["size"], c["color"]
@@ -95,8 +93,9 @@ def svg(info, channels, counts, poses, scene, span, a):
         x, y, th = trail[-1]
         out.append(f'<circle cx="{sx(x):.1f}" cy="{sy(y):.1f}" r="7" fill="{col}"/>')
         out.append(f'<line x1="{sx(x):.1f}" y1="{sy(y):.1f}" x2="{sx(x) + 18 * math.cos(th):.1f}" y2="{sy(y) - 18 * math.sin(th):.1f}" stroke="{col}" stroke-width="3"/>')
-        label = robot + (" (driven from the client: Twists on /robots/%s/cmd_vel)" % robot if robot == a.drive else "")
-        out.append(f'<text x="{sx(x) + 10:.1f}" y="{sy(y) - 10:.1f}" fill="#222">{html.escape(label)}</text>')
+        label = robot + (" (Twists from this client)" if robot == a.drive else "")
+        anchor, dx = ("end", -12) if sx(x) > map_w / 2 else ("start", 12)
+        out.append(f'<text x="{sx(x) + dx:.1f}" y="{sy(y) - 12:.1f}" text-anchor="{anchor}" fill="#222">{html.escape(label)}</text>')
     out.append(f'<text x="{map_w + 20}" y="100" font-weight="bold">channel</text><text x="{map_w + 270}" y="100" font-weight="bold">schema</text>'
                f'<text x="{w - 30}" y="100" font-weight="bold" text-anchor="end">messages</text>')
     for row, c in enumerate(sorted(channels.values(), key=lambda c: c["topic"])):
