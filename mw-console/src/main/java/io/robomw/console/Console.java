@@ -369,16 +369,21 @@ public final class Console implements AutoCloseable {
         }
     }
 
+    /** @return the robots this console can stop and drive: watched ones, and a simulation's */
+    private java.util.Set<String> robotsDriven() {
+        java.util.Set<String> names = new java.util.TreeSet<>();
+        robots.forEach(w -> names.add(w.name()));
+        if (sim != null) {
+            sim.robots().forEach(r -> names.add(r.name()));
+        }
+        return names;
+    }
+
     /** What Foxglove clients may drive: the robots the page's stop buttons stop (watched ones, a simulation's). */
     private final class ConsoleTeleop implements Teleop {
         @Override
         public java.util.Set<String> robots() {
-            java.util.Set<String> names = new java.util.TreeSet<>();
-            robots.forEach(w -> names.add(w.name()));
-            if (sim != null) {
-                sim.robots().forEach(r -> names.add(r.name()));
-            }
-            return names;
+            return robotsDriven();
         }
 
         @Override
@@ -440,12 +445,7 @@ public final class Console implements AutoCloseable {
 
         @Override
         public java.util.Set<String> stoppableRobots() {
-            java.util.Set<String> names = new java.util.TreeSet<>();
-            robots.forEach(w -> names.add(w.name()));
-            if (sim != null) {
-                sim.robots().forEach(r -> names.add(r.name()));
-            }
-            return names;
+            return robotsDriven();
         }
 
         @Override
