@@ -90,10 +90,9 @@ public final class RobotDescriptionLoader {
     }
 
     private Optional<DifferentialDrive> drive(MappingReader m) {
-        String type = m.text("type").orElse("differential");
-        if (!type.equals("differential")) {
-            m.problem("type", "must be 'differential' (two driven wheels on one axle) or 'legged' (walks by its firmware's own commands), got '"
-                    + type + "'");
+        String type = m.text("type").orElse(DriveKind.DIFFERENTIAL.yamlName());
+        if (DriveKind.fromYaml(type).isEmpty()) {
+            m.problem("type", "must be " + DriveKind.choices() + ", got '" + type + "'");
         }
         double wheel = m.requireNumber("wheel_diameter", "> 0 metres (0.001 to 10)", v -> v >= 0.001 && v <= 10);
         double track = m.requireNumber("track_width", "> 0 metres (0.001 to 100)", v -> v >= 0.001 && v <= 100);
@@ -116,7 +115,7 @@ public final class RobotDescriptionLoader {
     }
 
     private boolean legged(MappingReader driveNode) {
-        return driveNode.has("type") && driveNode.text("type").map("legged"::equals).orElse(false);
+        return driveNode.has("type") && driveNode.text("type").flatMap(DriveKind::fromYaml).map(DriveKind.LEGGED::equals).orElse(false);
     }
 
     private Optional<LeggedDrive> leggedDrive(MappingReader m) {

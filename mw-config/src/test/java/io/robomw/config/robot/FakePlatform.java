@@ -21,6 +21,8 @@ final class FakePlatform implements RobotPlatform {
     boolean encoders = true;
     int stops;
     boolean closed;
+    /** How often the layer above asked whether a motor has an encoder. */
+    int encoderQuestions;
 
     @Override
     public synchronized CompletableFuture<Void> run(MotorCommand command) {
@@ -50,7 +52,8 @@ final class FakePlatform implements RobotPlatform {
     }
 
     @Override
-    public boolean hasEncoder(String port) {
+    public synchronized boolean hasEncoder(String port) {
+        encoderQuestions++;
         return encoders;
     }
 

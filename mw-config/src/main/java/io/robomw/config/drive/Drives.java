@@ -1,0 +1,39 @@
+package io.robomw.config.drive;
+
+import io.robomw.api.spi.RobotPlatform;
+import io.robomw.config.description.DifferentialDrive;
+import io.robomw.config.description.DriveSpec;
+import io.robomw.config.description.LeggedDrive;
+import io.robomw.config.description.RobotDescription;
+import io.robomw.config.legged.LeggedDriveControl;
+
+/**
+ * Chooses the {@link DriveControl} for a description: the one place that knows which
+ * implementation serves which {@link io.robomw.config.description.DriveKind}. A robot chooses
+ * once per description in force, not in every verb: when a reload brings a new description it
+ * chooses again, and a drive of the same kind continues the previous one's pose.
+ */
+public final class Drives {
+
+    private Drives() {
+    }
+
+    /**
+     * @param description the description in force
+     * @param platform    the opened platform
+     * @param previous    the drive chosen for the description before (a reload), or {@code null}
+     * @return the drive for the description: its pose continues {@code previous}'s if both are of
+     *         the same kind
+     */
+    public static DriveControl choose(RobotDescription description, RobotPlatform platform, DriveControl previous) {
+        DriveSpec spec = description.driveSpec().orElse(null);
+        if (spec instanceof DifferentialDrive wheels) {
+            return new DifferentialDriveControl(description, wheels, platform,
+                    previous instanceof DifferentialDriveControl p ? p : null);
+        }
+        if (spec instanceof LeggedDrive legs) {
+            return new LeggedDriveControl(description, legs, platform, previous instanceof LeggedDriveControl p ? p : null);
+        }
+        return new NoDrive(description);
+    }
+}
