@@ -1,7 +1,6 @@
 package io.robomw.config.drive;
 
 import io.robomw.api.Capability;
-import io.robomw.api.Futures;
 import io.robomw.api.Pose;
 import io.robomw.api.spi.CommandPriority;
 import io.robomw.api.spi.MotorCommand;
@@ -15,6 +14,7 @@ import io.robomw.config.kinematics.WheelMotion;
 import java.time.Duration;
 import java.util.List;
 import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.atomic.AtomicLong;
 
 /**
  * The Configuration Layer's first implementation (the paper's, for the LEGO and fischertechnik
@@ -22,7 +22,8 @@ import java.util.concurrent.CompletableFuture;
  * {@link DifferentialKinematics} computes from the description's geometry; each motion is one
  * {@link MotorCommand} on both wheels. Wheel speeds are checked against {@code drive.max_speed}
  * before anything is sent. When both wheel motors have encoders, the pose is odometry from their
- * readings; without encoders the robot still moves, timed, and has no pose.
+ * readings, kept by a {@link WheelOdometry} that listens to the motions this drive reports; without
+ * encoders the robot still moves, timed, and has no pose.
  *
  * <p>Everything a verb needs of the description (its kinematics, ports, watchdog, whether it may
  * drive on the ground, whether the platform has the encoders) is worked out once, when the drive
@@ -41,6 +42,10 @@ public final class DifferentialDriveControl implements DriveControl {
     private final String cannotDrive;
     /** The pose from the encoders, or {@code null} if a wheel motor has none. */
     private final WheelOdometry odometry;
+    /** Hears of every motion: the odometry, or nobody. */
+    private final MotionListener listener;
+    /** Numbers the motions, across reloads. */
+    private final AtomicLong movements;
 
     /**
      * @param description the description in force
@@ -67,6 +72,8 @@ public final class DifferentialDriveControl implements DriveControl {
         } else {
             this.odometry = new WheelOdometry(platform, kinematics);
         }
+        this.listener = odometry != null ? odometry : MotionListener.NONE;
+        this.movements = previous != null ? previous.movements : new AtomicLong();
     }
 
     @Override
@@ -79,7 +86,7 @@ public final class DifferentialDriveControl implements DriveControl {
         Call call = call("move(%.3f, %.3f)", distance, speed);
         call.finite(distance, "distance");
         requireWheelSpeed(call, call.positive(speed, "speed"));
-        return runWheels(call, kinematics.move(distance, speed));
+        return runWheels(call, kinematics.move(distance, speed), Math.signum(distance) * speed, 0, Math.abs(distance) / speed);
     }
 
     @Override
@@ -87,7 +94,7 @@ public final class DifferentialDriveControl implements DriveControl {
         Call call = call("turn(%.4f, %.4f)", radians, speed);
         call.finite(radians, "angle");
         requireWheelSpeed(call, call.positive(speed, "angular speed") * kinematics.drive().trackWidth() / 2);
-        return runWheels(call, kinematics.turn(radians, speed));
+        return runWheels(call, kinematics.turn(radians, speed), 0, Math.signum(radians) * speed, Math.abs(radians) / speed);
     }
 
     @Override
@@ -98,7 +105,12 @@ public final class DifferentialDriveControl implements DriveControl {
         call.positive(speed, "speed");
         WheelMotion m = kinematics.arc(radius, angle, speed);
         requireWheelSpeed(call, Math.max(m.leftDegreesPerSecond(), m.rightDegreesPerSecond()) / kinematics.motorDegreesPerMetre());
-        return runWheels(call, m);
+        if (radius == 0) {
+            double rate = speed / (kinematics.drive().trackWidth() / 2); // on the spot, speed is each wheel's
+            return runWheels(call, m, 0, Math.signum(angle) * rate, Math.abs(angle) / rate);
+        }
+        double linear = Math.signum(angle) * speed;
+        return runWheels(call, m, linear, linear / radius, Math.abs(radius * angle) / speed);
     }
 
     @Override
@@ -108,9 +120,7 @@ public final class DifferentialDriveControl implements DriveControl {
         call.finite(angularSpeed, "angular speed");
         WheelMotion m = kinematics.velocity(linearSpeed, angularSpeed);
         requireWheelSpeed(call, Math.max(Math.abs(m.leftDegreesPerSecond()), Math.abs(m.rightDegreesPerSecond())) / kinematics.motorDegreesPerMetre());
-        if (odometry != null) {
-            odometry.integrate();
-        }
+        listener.motionStarted(new Movement(movements.incrementAndGet(), linearSpeed, angularSpeed, Double.POSITIVE_INFINITY));
         // Nobody waits for a drive's completion: the platform need not make a future for it.
         platform.runDetached(new MotorCommand("drive", List.of(MotorTarget.run(left, m.leftDegreesPerSecond()),
                 MotorTarget.run(right, m.rightDegreesPerSecond())), CommandPriority.NORMAL, watchdog));
@@ -118,9 +128,7 @@ public final class DifferentialDriveControl implements DriveControl {
 
     @Override
     public void halted() {
-        if (odometry != null) {
-            odometry.integrate();
-        }
+        listener.halted();
     }
 
     @Override
@@ -153,16 +161,20 @@ public final class DifferentialDriveControl implements DriveControl {
         call.atMost(metresPerSecond, kinematics.drive().maxSpeed(), "wheel speed", "m/s", "drive.max_speed");
     }
 
-    private CompletableFuture<Void> runWheels(Call call, WheelMotion m) {
-        if (odometry != null) {
-            odometry.integrate();
-        }
+    /**
+     * Reports the motion started, hands its command to the platform, and has the listener hear of
+     * its end.
+     *
+     * @param linear  metres per second of the robot's centre, signed
+     * @param angular radians per second, signed
+     * @param seconds how long it takes at speed
+     */
+    private CompletableFuture<Void> runWheels(Call call, WheelMotion m, double linear, double angular, double seconds) {
+        Movement movement = new Movement(movements.incrementAndGet(), linear, angular, seconds);
+        listener.motionStarted(movement);
         CompletableFuture<Void> done = platform.run(MotorCommand.of(call.text(), List.of(
                 MotorTarget.rotate(left, m.leftDegrees(), m.leftDegreesPerSecond()),
                 MotorTarget.rotate(right, m.rightDegrees(), m.rightDegreesPerSecond()))));
-        if (odometry == null) {
-            return done;
-        }
-        return Futures.cancelling(done.whenComplete((v, e) -> odometry.integrate()), done);
+        return listener.endOf(done, movement);
     }
 }

@@ -1,7 +1,6 @@
 package io.robomw.config.legged;
 
 import io.robomw.api.Capability;
-import io.robomw.api.Futures;
 import io.robomw.api.Pose;
 import io.robomw.api.spi.CommandPriority;
 import io.robomw.api.spi.HighLevelCommand;
@@ -12,12 +11,14 @@ import io.robomw.config.description.LeggedDrive;
 import io.robomw.config.description.RobotDescription;
 import io.robomw.config.drive.Call;
 import io.robomw.config.drive.DriveControl;
+import io.robomw.config.drive.Movement;
 
 import java.time.Duration;
 import java.util.LinkedHashMap;
 import java.util.Map;
 import java.util.Set;
 import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.atomic.AtomicLong;
 
 /**
  * The Configuration Layer's second implementation (the paper's, for the Sony Aibo): a robot with a
@@ -27,7 +28,8 @@ import java.util.concurrent.CompletableFuture;
  *
  * <p>Every check happens before anything is sent, and a failed check is an
  * {@link io.robomw.api.UnsupportedActionException} naming the robot, the call and the limit. The
- * pose is dead reckoning from the commanded gait ({@link DeadReckoning}), kept across reloads.
+ * pose is dead reckoning from the commanded gait ({@link DeadReckoning}, which listens to the
+ * motions this drive reports), kept across reloads.
  *
  * <p>Thread-safe.
  */
@@ -41,6 +43,8 @@ public final class LeggedDriveControl implements DriveControl {
     private final String stopText;
     /** The pose, or {@code null} when the platform takes no high-level commands (nothing moves). */
     private final DeadReckoning reckoning;
+    /** Numbers the motions, across reloads. */
+    private final AtomicLong movements;
 
     /**
      * @param description the description in force
@@ -64,6 +68,7 @@ public final class LeggedDriveControl implements DriveControl {
         }
         this.reckoning = previous != null && previous.reckoning != null ? previous.reckoning
                 : platform instanceof HighLevelPlatform hl ? new DeadReckoning(hl.clock()) : null;
+        this.movements = previous != null ? previous.movements : new AtomicLong();
     }
 
     @Override
@@ -120,15 +125,16 @@ public final class LeggedDriveControl implements DriveControl {
         Map<String, Double> values = values("linear", linearSpeed, "angular", angularSpeed);
         HighLevelCommand command = new HighLevelCommand("drive", render(call, template, values), values, Set.of(LeggedDrive.LEGS),
                 Duration.ZERO, true, CommandPriority.NORMAL, description.watchdogTimeout(), stopText);
-        DeadReckoning.Segment segment = reckoning.begin(linearSpeed, angularSpeed, Double.POSITIVE_INFINITY);
-        track(((HighLevelPlatform) platform).execute(command), segment);
+        Movement movement = new Movement(movements.incrementAndGet(), linearSpeed, angularSpeed, Double.POSITIVE_INFINITY);
+        reckoning.motionStarted(movement);
+        reckoning.endOf(((HighLevelPlatform) platform).execute(command), movement);
     }
 
     /** The legs stopped now (a stop, or a named action on the legs such as sit): the current walk ends. */
     @Override
     public void halted() {
         if (reckoning != null) {
-            reckoning.halt();
+            reckoning.halted();
         }
     }
 
@@ -169,19 +175,9 @@ public final class LeggedDriveControl implements DriveControl {
                                          double linear, double angular) {
         HighLevelCommand command = new HighLevelCommand(verb, render(call, template, values), values, Set.of(LeggedDrive.LEGS),
                 seconds(seconds), false, CommandPriority.NORMAL, Duration.ZERO, stopText);
-        DeadReckoning.Segment segment = reckoning.begin(linear, angular, seconds);
-        return track(((HighLevelPlatform) platform).execute(command), segment);
-    }
-
-    private CompletableFuture<Void> track(CompletableFuture<Void> done, DeadReckoning.Segment segment) {
-        DeadReckoning r = reckoning;
-        return Futures.cancelling(done.whenComplete((v, e) -> {
-            if (e == null) {
-                r.completed(segment);
-            } else {
-                r.ended(segment);
-            }
-        }), done);
+        Movement movement = new Movement(movements.incrementAndGet(), linear, angular, seconds);
+        reckoning.motionStarted(movement);
+        return reckoning.endOf(((HighLevelPlatform) platform).execute(command), movement);
     }
 
     private Call call(String format, Object... args) {

@@ -10,15 +10,24 @@ import java.util.Map;
 import java.util.concurrent.CompletableFuture;
 
 /**
- * A platform that records the commands it is given and completes them at once, with raw sensor
- * values and motor rotations set by the test.
+ * A platform that records the commands it is given and completes them at once (or, when
+ * {@link #pending}, leaves their futures to the test), with raw sensor values and motor rotations
+ * set by the test.
  */
 final class FakePlatform implements RobotPlatform {
 
     final List<MotorCommand> commands = new ArrayList<>();
+    /** The future of each command {@link #run} was given, in order. */
+    final List<CompletableFuture<Void>> futures = new ArrayList<>();
     final Map<String, Double> raw = new HashMap<>();
     final Map<String, Double> motorDegrees = new HashMap<>();
     boolean encoders = true;
+    /** Whether {@link #run} leaves its futures for the test to complete. */
+    volatile boolean pending;
+    /** The future {@link #stopAll} returns, or {@code null} for one completed at once. */
+    volatile CompletableFuture<Void> stopFuture;
+    /** Called with the port before every encoder reading, outside the platform's lock (to block a reader). */
+    volatile java.util.function.Consumer<String> beforeRead = port -> { };
     int stops;
     boolean closed;
     /** How often the layer above asked whether a motor has an encoder. */
@@ -27,13 +36,21 @@ final class FakePlatform implements RobotPlatform {
     @Override
     public synchronized CompletableFuture<Void> run(MotorCommand command) {
         commands.add(command);
-        return CompletableFuture.completedFuture(null);
+        CompletableFuture<Void> f = pending ? new CompletableFuture<>() : CompletableFuture.completedFuture(null);
+        futures.add(f);
+        return f;
+    }
+
+    /** @return the future of the command run last */
+    synchronized CompletableFuture<Void> lastFuture() {
+        return futures.get(futures.size() - 1);
     }
 
     @Override
     public synchronized CompletableFuture<Void> stopAll() {
         stops++;
-        return CompletableFuture.completedFuture(null);
+        CompletableFuture<Void> f = stopFuture;
+        return f != null ? f : CompletableFuture.completedFuture(null);
     }
 
     @Override
@@ -44,11 +61,24 @@ final class FakePlatform implements RobotPlatform {
     }
 
     @Override
-    public synchronized double motorDegrees(String port) {
+    public double motorDegrees(String port) {
+        beforeRead.accept(port);
+        return reading(port);
+    }
+
+    private synchronized double reading(String port) {
         if (!encoders) {
             throw new UnsupportedOperationException("motor " + port + " has no encoder");
         }
         return motorDegrees.getOrDefault(port, 0.0);
+    }
+
+    /**
+     * @param port    a motor
+     * @param degrees its encoder's reading from now on
+     */
+    synchronized void turn(String port, double degrees) {
+        motorDegrees.put(port, degrees);
     }
 
     @Override

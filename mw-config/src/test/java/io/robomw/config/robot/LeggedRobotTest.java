@@ -179,6 +179,20 @@ class LeggedRobotTest {
     }
 
     @Test
+    void shouldNotEndANewerDriveWhenAnEarlierDrivesWatchdogEndIsHeardLate() {
+        robot.drive(0.1, 0);
+        advance(1);
+        robot.moveAsync(0.1, 0.1);
+        advance(1);
+        robot.drive(0.1, 0);
+        advance(1);
+        platform.futures.get(0).completeExceptionally(new RobotException("watchdog stopped 'drive'"));
+        advance(1);
+
+        assertPose(0.4, 0, 0, robot.pose());
+    }
+
+    @Test
     void shouldEndTheWalkInThePoseWhenStoppedOrSitting() {
         robot.moveAsync(0.5, 0.1);
         advance(1);
