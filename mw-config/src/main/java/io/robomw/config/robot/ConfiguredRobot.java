@@ -1,7 +1,6 @@
 package io.robomw.config.robot;
 
 import io.robomw.api.Capability;
-import io.robomw.api.Futures;
 import io.robomw.api.Pose;
 import io.robomw.api.Position;
 import io.robomw.api.ReturnType;
@@ -164,13 +163,17 @@ public final class ConfiguredRobot implements Robot {
     }
 
     /**
-     * Hands the stop to the platform (safety priority: it ends every command) and waits until the
-     * platform reports it handed to the hardware, at most {@link #STOP_TIMEOUT}; nothing else is
-     * done before. Then the drive's pose ends the motion under way.
+     * Hands the stop to the platform first (safety priority: it ends every command; nothing is
+     * read or integrated before) and waits until the platform reports it handed to the hardware,
+     * at most {@link #STOP_TIMEOUT}. Then the drive's pose ends the motion under way. Once it
+     * returns, the stop no longer holds the motors: the next command is admitted as usual.
+     *
+     * @throws io.robomw.api.RobotLinkException naming the robot if the stop could not be handed to
+     *                                          the hardware in time
      */
     @Override
     public void stop() {
-        Futures.await(platform.stopAll(), STOP_TIMEOUT, "stop() of robot '" + name() + "'");
+        Stops.awaitHanded(platform.stopAll(), STOP_TIMEOUT, name());
         drive().halted();
     }
 

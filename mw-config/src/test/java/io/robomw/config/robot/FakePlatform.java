@@ -1,5 +1,6 @@
 package io.robomw.config.robot;
 
+import io.robomw.api.CommandPreemptedException;
 import io.robomw.api.spi.MotorCommand;
 import io.robomw.api.spi.RobotPlatform;
 
@@ -19,10 +20,12 @@ final class FakePlatform implements RobotPlatform {
     final List<MotorCommand> commands = new ArrayList<>();
     /** The future of each command {@link #run} was given, in order. */
     final List<CompletableFuture<Void>> futures = new ArrayList<>();
+    /** The future of each read while {@link #pending}, in order. */
+    final List<CompletableFuture<Double>> reads = new ArrayList<>();
     final Map<String, Double> raw = new HashMap<>();
     final Map<String, Double> motorDegrees = new HashMap<>();
     boolean encoders = true;
-    /** Whether {@link #run} leaves its futures for the test to complete. */
+    /** Whether {@link #run} and {@link #readRaw} leave their futures for the test to complete. */
     volatile boolean pending;
     /** The future {@link #stopAll} returns, or {@code null} for one completed at once. */
     volatile CompletableFuture<Void> stopFuture;
@@ -35,6 +38,11 @@ final class FakePlatform implements RobotPlatform {
 
     @Override
     public synchronized CompletableFuture<Void> run(MotorCommand command) {
+        CompletableFuture<Void> stop = stopFuture;
+        if (stop != null && !stop.isDone()) {
+            // As an execution action thread refuses a normal command while the safety stop holds the motors
+            return CompletableFuture.failedFuture(CommandPreemptedException.refused(command.name(), "stop"));
+        }
         commands.add(command);
         CompletableFuture<Void> f = pending ? new CompletableFuture<>() : CompletableFuture.completedFuture(null);
         futures.add(f);
@@ -55,6 +63,11 @@ final class FakePlatform implements RobotPlatform {
 
     @Override
     public synchronized CompletableFuture<Double> readRaw(String sensorName) {
+        if (pending) {
+            CompletableFuture<Double> read = new CompletableFuture<>();
+            reads.add(read);
+            return read;
+        }
         Double value = raw.get(sensorName);
         return value == null ? CompletableFuture.failedFuture(new IllegalStateException("no raw value for " + sensorName))
                 : CompletableFuture.completedFuture(value);

@@ -220,6 +220,22 @@ class LeggedRobotTest {
     }
 
     @Test
+    void shouldCancelThePlatformsCommandWhenTheFutureOfAWalkOrAnActionIsCancelled() {
+        CompletableFuture<Void> walk = robot.moveAsync(0.5, 0.1);
+        CompletableFuture<Void> turn = robot.turnAsync(1.0, 1.0);
+        CompletableFuture<Void> sit = robot.performAsync("sit");
+
+        walk.cancel(true);
+        turn.cancel(true);
+        sit.cancel(true);
+
+        assertAll(
+                () -> assertTrue(platform.futures.get(0).isCancelled(), "the walk's command"),
+                () -> assertTrue(platform.futures.get(1).isCancelled(), "the turn's command"),
+                () -> assertTrue(platform.futures.get(2).isCancelled(), "the action's command"));
+    }
+
+    @Test
     void shouldRefuseALeggedDriveOnAPlatformWithoutHighLevelCommands() {
         ConfiguredRobot onMotors = ConfiguredRobot.withComponents(() -> description, new FakePlatform(), null);
 
