@@ -12,6 +12,15 @@ import io.robomw.config.legged.LeggedDriveControl;
  * implementation serves which {@link io.robomw.config.description.DriveKind}. A robot chooses
  * once per description in force, not in every verb: when a reload brings a new description it
  * chooses again, and a drive of the same kind continues the previous one's pose.
+ *
+ * <h2>Adding a kind of drive</h2>
+ * A vehicle (air, water, ground over an autopilot) is the next: a {@link
+ * io.robomw.config.description.DriveKind} constant (its {@code type:} value), a
+ * {@link DriveSpec} record for its section (permitted by the sealed interface, read and checked by
+ * the loader, carried by the description), a {@link DriveControl} that turns the verbs into its
+ * platform's commands (overriding {@link DriveControl#changeAltitude}, {@link DriveControl#takeOff}
+ * and {@link DriveControl#land} if it flies) and reports its motions to its pose tracker, and one
+ * branch here.
  */
 public final class Drives {
 

@@ -548,6 +548,18 @@ class RobotDescriptionLoaderTest {
     }
 
     @Test
+    void shouldRejectAnUnknownDriveTypeListingTheKindsThereAre() {
+        Problem p = onlyProblem("""
+                name: scout
+                platform: nxt
+                drive: {type: tracked, wheel_diameter: 0.056, track_width: 0.112, max_speed: 0.3, left: {port: B}, right: {port: C}}
+                """);
+
+        assertProblem(3, 15, "'drive.type': must be 'differential' (two driven wheels on one axle) or 'legged' (walks by its firmware's own commands),"
+                + " got 'tracked'", p);
+    }
+
+    @Test
     void shouldRejectNegativeWheelDiameter() {
         Problem p = onlyProblem("""
                 name: scout
