@@ -38,9 +38,9 @@ import java.util.concurrent.TimeUnit;
 /**
  * An agent host (paper section III.A.4, after the Aglets server): an RMI server, bound to a
  * robot or to none, that receives mobile agents, runs each stop of theirs on a named thread with
- * its robot, sends them on along their itineraries, and tells their homes how they are doing. It
- * is also an {@link Agency}: agents sent from here have this host as their home, where their
- * results arrive.
+ * its robot, sends them on along their itineraries, and tells their homes how they are doing. Its
+ * {@link #agency()} sends agents from here: they have this host as their home, where their results
+ * arrive.
  *
  * <p><b>No agent lost, none duplicated.</b> A hop completes only when the receiving host has
  * stored the agent (durably, with a {@link JournalStore}) and acknowledged; until then the sender
@@ -67,7 +67,7 @@ import java.util.concurrent.TimeUnit;
  * {@link Peers} calls other hosts, {@link RobotTurns} lends the robot to one stop at a time, and
  * {@link Bodies} lays out the call bodies.
  */
-public final class AgentHost implements Agency, AutoCloseable {
+public final class AgentHost implements AutoCloseable {
 
     private static final Logger LOG = LoggerFactory.getLogger(AgentHost.class);
 
@@ -690,19 +690,12 @@ public final class AgentHost implements Agency, AutoCloseable {
 
     // ---- Agency: this host as home ----
 
-    @Override
-    public AgentRef sendAgent(String host, Agent agent) {
-        return home.sendAgent(host, agent);
-    }
-
-    @Override
-    public AgentRef startTrip(Agent agent) {
-        return home.startTrip(agent);
-    }
-
-    @Override
-    public List<AgentRef> dispatchClones(Agent agent, String... hosts) {
-        return home.dispatchClones(agent, hosts);
+    /**
+     * @return this host as a home: the {@link Agency} whose agents (and their clones) report and
+     *         bring their results here, and can be retracted from here
+     */
+    public Agency agency() {
+        return home;
     }
 
     /** A clone an agent here makes of itself, sent with its own plan; this host is its home. */

@@ -38,7 +38,7 @@ class HostWatchTest {
         AgentHost b = host("b");
         VisitorAgent agent = new VisitorAgent().holdUntilReleased();
         agent.itinerary().addStop(a.address()).addStop(b.address());
-        AgentRef ref = home.startTrip(agent);
+        AgentRef ref = home.agency().startTrip(agent);
         HostWatch watch = HostWatch.of(a.address(), KEY, false, "test-console");
         List<HostWatch.Event> events = new CopyOnWriteArrayList<>();
         AtomicReference<HostWatch.Snapshot> last = new AtomicReference<>();
@@ -85,7 +85,7 @@ class HostWatchTest {
         AgentHost b = host("b");
         VisitorAgent agent = new VisitorAgent().holdUntilReleased();
         agent.itinerary().repeat(3);
-        AgentRef ref = home.sendAgent(b.address(), agent);
+        AgentRef ref = home.agency().sendAgent(b.address(), agent);
         Await.until("listed at b", WITHIN, () -> !b.agents().isEmpty());
         ref.sendMessage("release", Duration.ofSeconds(5));
         Await.until("on its second round at b", WITHIN, () -> b.agents().stream().anyMatch(a -> a.hop() >= 2));

@@ -42,7 +42,7 @@ class UnknownCodesTest {
 
     private static void refusedAndStillServing(String answer, String says) throws Exception {
         assertTrue(answer.startsWith("REFUSED") && answer.contains(says), answer);
-        assertEquals(List.of("strict"), home.sendAgent(host.address(), new VisitorAgent()).result().get(10, TimeUnit.SECONDS));
+        assertEquals(List.of("strict"), home.agency().sendAgent(host.address(), new VisitorAgent()).result().get(10, TimeUnit.SECONDS));
     }
 
     @Test

@@ -57,7 +57,7 @@ class AgentHostCrashIT {
             PatrolAgent agent = new PatrolAgent(0.1);
             agent.itinerary().addStop(a.address()).addStop(b.address()).addStop(c.address())
                     .retry(120, Duration.ofMillis(250)); // long enough for b to come back
-            refs.add(home.startTrip(agent));
+            refs.add(home.agency().startTrip(agent));
         }
         // Kill b once it holds agents (they drive there for about a second each).
         long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(60);

@@ -68,7 +68,7 @@ class BrokerClusterIT {
     @Test
     void agentsOnTwoHostsTalkByHostNameThroughTheBrokerAndTheClusterIsListedFromItsPresence() throws Exception {
         assertTrue(a.messaging().startsWith("mqtt://"), a.messaging());
-        AgentRef responder = home.sendAgent(b.address(), new ChatResponder());
+        AgentRef responder = home.agency().sendAgent(b.address(), new ChatResponder());
         CompletableFuture<Void> ready = new CompletableFuture<>();
         responder.addReportListener(r -> {
             if ("ready".equals(r)) {
@@ -89,7 +89,7 @@ class BrokerClusterIT {
         assertTrue(out.contains("2 agent hosts at " + broker.address()), out);
         assertTrue(out.contains("bc-a  online  " + a.address()) && out.contains("bc-b  online  " + b.address()), out);
         assertTrue(out.contains(expected), out);
-        AgentRef caller = home.sendAgent(a.address(), new ChatCaller("bc-b"));
+        AgentRef caller = home.agency().sendAgent(a.address(), new ChatCaller("bc-b"));
         assertEquals("pong from bc-b", caller.result().get(WAIT.toSeconds(), TimeUnit.SECONDS));
         assertEquals("heard news from bc-a", responder.result().get(WAIT.toSeconds(), TimeUnit.SECONDS));
 

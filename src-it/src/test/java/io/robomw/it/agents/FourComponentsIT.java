@@ -70,7 +70,7 @@ class FourComponentsIT {
 
     /** Sends an agent from the test's home and waits for a report it gives when ready. */
     private static AgentRef sendAndAwaitReport(String host, io.robomw.api.Agent agent, String report) throws Exception {
-        AgentRef ref = home.sendAgent(host, agent);
+        AgentRef ref = home.agency().sendAgent(host, agent);
         List<Serializable> reports = new CopyOnWriteArrayList<>();
         CompletableFuture<Void> ready = new CompletableFuture<>();
         ref.addReportListener(r -> {
@@ -104,7 +104,7 @@ class FourComponentsIT {
     @Test
     void twoAgentsOnTwoHostsExchangeARequestReplyAndAPublicationOnAProtectedTopicByHostName() throws Exception {
         AgentRef responder = sendAndAwaitReport(b.address(), new ChatResponder(), "ready");
-        AgentRef caller = home.sendAgent(a.address(), new ChatCaller("fc-b"));
+        AgentRef caller = home.agency().sendAgent(a.address(), new ChatCaller("fc-b"));
         assertEquals("pong from fc-b", caller.result().get(WAIT.toSeconds(), TimeUnit.SECONDS));
         assertEquals("heard news from fc-a", responder.result().get(WAIT.toSeconds(), TimeUnit.SECONDS));
     }
