@@ -13,6 +13,7 @@ import io.robomw.api.Itinerary;
 import io.robomw.api.Messaging;
 import io.robomw.api.MessagingException;
 import io.robomw.api.Robot;
+import io.robomw.api.spi.FailurePolicy;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -110,7 +111,7 @@ public final class AgentHost implements AutoCloseable {
         this.stopGrace = b.stopGrace;
         this.endpointSpin = b.endpointSpin;
         this.state = new HostState(this, b.name, b.robot, new StateCodec(b.allowed, b.maxStateBytes), (int) b.callTimeout.toMillis(),
-                b.runnerSpin);
+                b.runnerSpin, b.failures);
         this.robot = new RobotTurns(b.name, b.robot);
         this.code = new CodeLoaders(state);
         this.wire = b.wire && !b.version2Only;
@@ -167,6 +168,7 @@ public final class AgentHost implements AutoCloseable {
         private boolean version2Only;
         private WireServer.Limits wireLimits;
         private java.util.concurrent.ThreadFactory wireThreads;
+        private FailurePolicy failures = FailurePolicy.logging();
 
         private Builder(String name) {
             if (name == null || !name.matches("[A-Za-z0-9._-]+")) {
@@ -229,6 +231,20 @@ public final class AgentHost implements AutoCloseable {
         public Builder noMessaging() {
             this.withMessaging = false;
             this.node = null;
+            return this;
+        }
+
+        /**
+         * @param policy where whatever the host's threads catch goes (default
+         *               {@link FailurePolicy#logging()}): its agent runners (an agent's callback that
+         *               throws fails its stop, and is reported as survived; an error no thread
+         *               survives ends the agent's trip, naming it and this host, and the runner, while
+         *               the host serves on), its agent wire's accept and connection loops, its
+         *               deliveries to homes, and its own messaging node's threads
+         * @return this
+         */
+        public Builder failures(FailurePolicy policy) {
+            this.failures = Objects.requireNonNull(policy, "policy");
             return this;
         }
 
@@ -413,7 +429,7 @@ public final class AgentHost implements AutoCloseable {
             }
             if (withMessaging && node == null) {
                 try {
-                    node = MessagingNode.builder(name).settings(messagingSettings)
+                    node = MessagingNode.builder(name).settings(messagingSettings).failures(failures)
                             .bind(messagingAddress != null ? messagingAddress : "tcp://" + (bind.contains(":") ? "[" + bind + "]" : bind) + ":0").build();
                     ownsNode = true;
                 } catch (MessagingException e) {
@@ -460,10 +476,10 @@ public final class AgentHost implements AutoCloseable {
         SSLContext ssl = tls == null ? null : tls.context();
         HostSockets.Server serverSockets = new HostSockets.Server(bindAddress, ssl, counters, endpointSpin.toNanos());
         HostSockets.Client clientSockets = new HostSockets.Client(bind, tls != null, state.timeoutMillis);
-        endpoint = new HostEndpoint(name, key, calls, version2Only ? Session.PROTOCOL_VERSION : Session.WIRE_VERSION);
+        endpoint = new HostEndpoint(name, key, calls, version2Only ? Session.PROTOCOL_VERSION : Session.WIRE_VERSION, state.failures);
         peers.wire(ssl, wireSpin, version2Only, !wire);
         if (wire) {
-            wireServer = new WireServer(endpoint, bindAddress, wirePort, ssl, wireLimits);
+            wireServer = new WireServer(endpoint, bindAddress, wirePort, ssl, wireLimits, state.failures);
             wireServer.readSpin(wireReadSpin);
             wireServer.tagger(state.wireTaggers);
             if (wireThreads != null) {

@@ -1,5 +1,6 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.RecordingFailures;
 import io.robomw.agents.host.trip.VisitorAgent;
 import io.robomw.testkit.Await;
 import io.robomw.api.Agent;
@@ -232,14 +233,15 @@ class AgentHostTest {
     }
 
     @Test
-    void anErrorFromAnAgentsCodeFailsItsStopAndTheTripGoesOn() throws Exception {
+    void anErrorFromAnAgentsCodeThatAThreadSurvivesFailsItsStopAndTheTripGoesOn() throws Exception {
+        RecordingFailures failures = new RecordingFailures();
         AgentHost home = host("home");
-        AgentHost a = host("a");
+        AgentHost a = hosts.start(AgentHost.builder("a").clusterKey(KEY).failures(failures));
         VisitorAgent agent = new VisitorAgent();
         agent.itinerary().addStop(a.address(), ctx -> {
             throw new NoClassDefFoundError("org/example/Gone");
         }).addStop(a.address(), ctx -> {
-            throw new InternalError("agent code in trouble");
+            throw new StackOverflowError("agent code in trouble");
         }).addStop(a.address());
         AgentRef ref = home.agency().startTrip(agent);
         assertEquals(List.of("a"), ref.result().get(10, TimeUnit.SECONDS));
@@ -247,7 +249,40 @@ class AgentHostTest {
         assertEquals(List.of(io.robomw.api.Itinerary.Outcome.FAILED, io.robomw.api.Itinerary.Outcome.FAILED, io.robomw.api.Itinerary.Outcome.DONE),
                 visits.stream().map(io.robomw.api.Itinerary.Visit::outcome).toList(), visits.toString());
         assertTrue(visits.get(0).detail().startsWith("java.lang.NoClassDefFoundError: org/example/Gone"), visits.get(0).detail());
-        assertTrue(visits.get(1).detail().startsWith("java.lang.InternalError: agent code in trouble"), visits.get(1).detail());
+        assertTrue(visits.get(1).detail().startsWith("java.lang.StackOverflowError: agent code in trouble"), visits.get(1).detail());
+        List<RecordingFailures.Report> reports = failures.reports();
+        assertEquals(List.of(NoClassDefFoundError.class, StackOverflowError.class), reports.stream().map(r -> r.failure().getClass()).toList(),
+                "the host's failure policy heard of both: " + reports);
+        assertTrue(failures.deaths().isEmpty(), "no runner died: " + reports);
+        assertTrue(reports.get(0).owner().startsWith("agent-") && reports.get(0).owner().endsWith("-VisitorAgent@a"),
+                "reported under the agent's runner: " + reports.get(0).owner());
+    }
+
+    @Test
+    void anErrorNoThreadSurvivesEndsThatAgentsTripNamingItAndItsHostAndTheHostServesOn() throws Exception {
+        RecordingFailures failures = new RecordingFailures();
+        AgentHost home = host("home");
+        AgentHost a = hosts.start(AgentHost.builder("a").clusterKey(KEY).failures(failures));
+        VisitorAgent doomed = new VisitorAgent();
+        doomed.itinerary().addStop(a.address(), ctx -> {
+            throw new InternalError("the VM is in trouble");
+        }).addStop(a.address());
+        AgentRef ref = home.agency().startTrip(doomed);
+
+        Exception e = assertThrows(Exception.class, () -> ref.result().get(10, TimeUnit.SECONDS));
+        String why = e.getCause().getMessage();
+        assertTrue(why.contains("agent " + ref.id()) && why.contains("died at host a (" + a.address() + ")")
+                && why.contains("java.lang.InternalError: the VM is in trouble"), why);
+        assertEquals(AgentStatus.FAILED, ref.status());
+        Await.until("the runner's death is reported", Duration.ofSeconds(10), () -> !failures.deaths().isEmpty());
+        RecordingFailures.Report death = failures.deaths().get(0);
+        assertInstanceOf(InternalError.class, death.failure());
+        assertTrue(death.owner().endsWith("-VisitorAgent@a"), "reported under the agent's runner: " + death.owner());
+
+        VisitorAgent next = new VisitorAgent();
+        next.itinerary().addStop(a.address()).addStop(a.address());
+        assertEquals(List.of("a", "a"), home.agency().startTrip(next).result().get(10, TimeUnit.SECONDS), "the host serves on");
+        assertEquals(1, failures.deaths().size(), failures.reports().toString());
     }
 
     @Test

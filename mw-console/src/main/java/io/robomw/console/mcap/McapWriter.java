@@ -312,6 +312,21 @@ public final class McapWriter implements AutoCloseable {
         }
     }
 
+    /**
+     * Closes the stream without writing anything more: for a writer whose start failed, or that
+     * is given up. What was written stays as it is (readable as far as it goes, with
+     * {@link McapReader.Options#tolerant()}). Idempotent; {@link #close()} after it does nothing.
+     *
+     * @throws IOException if closing the stream fails
+     */
+    public synchronized void abandon() throws IOException {
+        if (closed) {
+            return;
+        }
+        closed = true;
+        out.close();
+    }
+
     private void writeSummary() throws IOException {
         CRC32 summaryCrc = new CRC32();
         long summaryStart = position;
