@@ -384,6 +384,31 @@ public final class MessagingNode implements Messaging, AutoCloseable {
      */
     public CompletableFuture<Message> request(String name, String host, String pass, String topic, Serializable object,
                                               String function, Duration timeout) {
+        return startRequest(name, host, pass, topic, object, function, timeout).reply();
+    }
+
+    /**
+     * A request on its way.
+     *
+     * @param correlationId what its reply names, and what a later message about it (a cancel) can name
+     * @param reply         completes with the reply, or fails with {@link MessagingException}
+     */
+    public record Request(UUID correlationId, CompletableFuture<Message> reply) {
+    }
+
+    /**
+     * {@link #request}, also saying which correlation id the request has.
+     *
+     * @param name     the receiver's name
+     * @param host     its address
+     * @param pass     the topic password, or {@code null}
+     * @param topic    the topic
+     * @param object   the payload
+     * @param function the function
+     * @param timeout  how long to wait for the reply
+     * @return the request: its correlation id and the future of its reply
+     */
+    public Request startRequest(String name, String host, String pass, String topic, Serializable object, String function, Duration timeout) {
         Outgoing out = prepare(FrameKind.MESSAGE, name, host, pass, topic, object, function);
         UUID id = out.correlationId;
         CompletableFuture<Message> reply = replies.await(out.sent.host(), r -> r.message().correlationId().equals(id));
@@ -393,7 +418,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
             replies.cancel(reply);
             throw e;
         }
-        return withTimeout(reply, timeout, () -> "no reply to " + id + " on topic '" + topic + "' from " + host + " within " + timeout);
+        return new Request(id, withTimeout(reply, timeout, () -> "no reply to " + id + " on topic '" + topic + "' from " + host + " within " + timeout));
     }
 
     @Override
