@@ -231,7 +231,10 @@ public final class Console implements AutoCloseable {
         }
     }
 
-    /** Asks each watched host which hosts it knows, and watches the ones not watched yet. */
+    /**
+     * Asks each watched host which hosts it knows, over its watcher's link (one session per host
+     * for the console's life, not one per look), and watches the ones not watched yet.
+     */
     private void discoverHosts() {
         for (HostWatcher w : List.copyOf(hosts)) {
             if (!w.last().up()) {
@@ -239,7 +242,7 @@ public final class Console implements AutoCloseable {
             }
             io.robomw.agents.host.HostDescription d;
             try {
-                d = io.robomw.agents.host.AgentHost.describe(w.address(), key != null ? key : ClusterKey.tlsOnly(), key == null);
+                d = w.describe();
             } catch (IOException | RuntimeException e) {
                 LOG.debug("console: {} did not say which hosts it knows: {}", w.address(), e.toString());
                 continue;

@@ -699,6 +699,11 @@ public final class AgentHost implements AutoCloseable {
         return wireServer == null ? 0 : wireServer.open();
     }
 
+    /** @return the peers' sessions this host keeps now (for tests) */
+    int sessionsKept() {
+        return endpoint.sessions();
+    }
+
     /** @return how many peers, calls, archives and agents this host has refused */
     public long refused() {
         return endpoint.refused() + state.refused();
@@ -737,7 +742,9 @@ public final class AgentHost implements AutoCloseable {
      * @throws IOException if the host cannot be reached, refuses this peer, or answers something else
      */
     public static HostDescription describe(String address, ClusterKey key, boolean useTls) throws IOException {
-        return new HostClient(key, useTls, 10_000).describe(address);
+        try (HostClient client = new HostClient(key, useTls, 10_000)) {
+            return client.describe(address);
+        }
     }
 
     // ---- listing another host ----
@@ -752,7 +759,9 @@ public final class AgentHost implements AutoCloseable {
      * @throws IOException if the host cannot be reached or refuses this peer
      */
     public static List<AgentInfo> list(String address, ClusterKey key, boolean useTls) throws IOException {
-        return new HostClient(key, useTls, 10_000).agents(address);
+        try (HostClient client = new HostClient(key, useTls, 10_000)) {
+            return client.agents(address);
+        }
     }
 
     @Override

@@ -95,6 +95,11 @@ final class HostEndpoint implements AgentHostRemote {
         this.failures = failures;
     }
 
+    /** @return the peers' sessions kept now (for tests: one per link that authenticated) */
+    int sessions() {
+        return sessions.size();
+    }
+
     /** @param port where the host's agent wire listens, offered to version-3 peers in their authentication answer */
     void wirePort(int port) {
         this.wirePort = port;

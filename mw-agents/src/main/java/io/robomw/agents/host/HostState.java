@@ -3,6 +3,7 @@ package io.robomw.agents.host;
 import io.robomw.agents.host.code.StateCodec;
 import io.robomw.agents.host.store.AgentStore;
 import io.robomw.agents.net.OwnerThreads;
+import io.robomw.agents.net.ThrottledWarnings;
 import io.robomw.api.Robot;
 import io.robomw.api.spi.FailurePolicy;
 import org.slf4j.Logger;
@@ -59,6 +60,8 @@ final class HostState {
     final FailurePolicy failures;
     private final AgentHost facade;
     private final AtomicInteger refused = new AtomicInteger();
+    /** A flood of refused calls (a peer that sends garbage with a valid session) logs a line a second, not one per call. */
+    private final ThrottledWarnings refusals = new ThrottledWarnings(LOG, java.time.Duration.ofSeconds(1));
     private final Map<UUID, String> forwards = new LinkedHashMap<>(256, 0.75f, false) {
         private static final long serialVersionUID = 1L;
 
@@ -96,10 +99,10 @@ final class HostState {
         return new HostContext(facade, h);
     }
 
-    /** Counts, logs and answers a refused call or archive. */
+    /** Counts, logs (at most a line a second; the next line says how many more there were) and answers a refused call or archive. */
     Reply refuse(String why) {
         refused.incrementAndGet();
-        LOG.warn("host {}: {}", name, why);
+        refusals.warn("host {}: {}", name, why);
         return Reply.of(Reply.Status.REFUSED, why);
     }
 

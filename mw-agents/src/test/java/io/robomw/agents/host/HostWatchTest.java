@@ -32,6 +32,22 @@ class HostWatchTest {
 
 
     @Test
+    void aWatcherAsksWhoTheHostIsOverItsOwnSessionHoweverOftenItAsks() throws Exception {
+        AgentHost a = host("a");
+        try (HostWatch watch = HostWatch.of(a.address(), KEY, false, "test-console")) {
+            watch.poll();
+            int sessions = a.sessionsKept();
+            for (int i = 0; i < 5; i++) {
+                HostDescription d = watch.describe();
+                assertEquals("a", d.name());
+                assertEquals(a.address(), d.address());
+            }
+            watch.poll();
+            assertEquals(sessions, a.sessionsKept(), "no new session for each question");
+        }
+    }
+
+    @Test
     void aWatcherSeesTheAgentItsItineraryAndItsReportThenRetractsItHome() throws Exception {
         AgentHost home = host("home");
         AgentHost a = host("a");

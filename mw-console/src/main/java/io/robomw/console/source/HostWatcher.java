@@ -130,6 +130,16 @@ public final class HostWatcher implements AutoCloseable {
     }
 
     /**
+     * Asks the host which hosts it knows (and who it is), over this watcher's link: no new session.
+     *
+     * @return what the host says of itself
+     * @throws IOException if it cannot be reached, refuses this console, or answers nonsense
+     */
+    public io.robomw.agents.host.HostDescription describe() throws IOException {
+        return watch.describe();
+    }
+
+    /**
      * @param agent an agent at this host
      * @return what happened
      * @throws IOException if no host took the request
@@ -160,5 +170,6 @@ public final class HostWatcher implements AutoCloseable {
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
         }
+        watch.close();
     }
 }
