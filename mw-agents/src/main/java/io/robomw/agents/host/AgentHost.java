@@ -7,7 +7,6 @@ import io.robomw.agents.messaging.MessagingNode;
 import io.robomw.agents.messaging.MessagingSettings;
 import io.robomw.agents.messaging.security.TlsSettings;
 import io.robomw.api.Agency;
-import io.robomw.api.Agent;
 import io.robomw.api.AgentRef;
 import io.robomw.api.Itinerary;
 import io.robomw.api.Messaging;

@@ -6,7 +6,6 @@ import io.robomw.api.AgentRef;
 import io.robomw.api.Itinerary;
 import io.robomw.api.Messaging;
 import io.robomw.api.Robot;
-import io.robomw.api.UnsupportedActionException;
 
 import java.io.Serializable;
 import java.util.UUID;

@@ -1,5 +1,6 @@
 package io.robomw.it.agents;
 
+import io.robomw.testkit.Await;
 import io.robomw.agents.host.AgentHost;
 import io.robomw.agents.host.trip.ChatCaller;
 import io.robomw.agents.host.trip.ChatResponder;
@@ -89,16 +90,17 @@ class FourComponentsIT {
 
     /** Publishes through the program every 200 ms until the listener has heard (pub/sub is fire and forget). */
     private static String publishUntilHeard(PeerProcess program, String command, AgentRef listener) throws Exception {
-        long deadline = System.nanoTime() + WAIT.toNanos();
-        while (System.nanoTime() < deadline) {
-            program.ask(command, "PUBLISHED");
+        Await.until("the listener hears a publication", WAIT, () -> {
             try {
-                return (String) listener.result().get(200, TimeUnit.MILLISECONDS);
+                program.ask(command, "PUBLISHED");
+                return listener.result().get(200, TimeUnit.MILLISECONDS) != null;
             } catch (TimeoutException notYet) {
-                // not heard yet: publish again
+                return false; // not heard yet: publish again
+            } catch (Exception e) {
+                throw new AssertionError(e);
             }
-        }
-        return fail("the listener heard nothing within " + WAIT + " of publications");
+        });
+        return (String) listener.result().get(WAIT.toMillis(), TimeUnit.MILLISECONDS);
     }
 
     @Test

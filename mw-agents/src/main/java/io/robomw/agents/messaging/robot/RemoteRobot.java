@@ -4,7 +4,6 @@ import io.robomw.agents.messaging.MessagingNode;
 import io.robomw.api.Agency;
 import io.robomw.api.Messaging;
 import io.robomw.api.Capability;
-import io.robomw.api.Message;
 import io.robomw.api.Futures;
 import io.robomw.api.MessagingException;
 import io.robomw.api.Pose;
