@@ -60,8 +60,9 @@ final class HostState {
     final FailurePolicy failures;
     private final AgentHost facade;
     private final AtomicInteger refused = new AtomicInteger();
-    /** A flood of refused calls (a peer that sends garbage with a valid session) logs a line a second, not one per call. */
-    private final ThrottledWarnings refusals = new ThrottledWarnings(LOG, java.time.Duration.ofSeconds(1));
+    /** How many refusals a second are logged; a flood of them (a peer that sends garbage with a valid session) logs no more. */
+    static final int REFUSALS_LOGGED_PER_SECOND = 10;
+    private final ThrottledWarnings refusals = new ThrottledWarnings(LOG, java.time.Duration.ofSeconds(1), REFUSALS_LOGGED_PER_SECOND);
     private final Map<UUID, String> forwards = new LinkedHashMap<>(256, 0.75f, false) {
         private static final long serialVersionUID = 1L;
 
@@ -99,7 +100,10 @@ final class HostState {
         return new HostContext(facade, h);
     }
 
-    /** Counts, logs (at most a line a second; the next line says how many more there were) and answers a refused call or archive. */
+    /**
+     * Counts, logs (at most {@value #REFUSALS_LOGGED_PER_SECOND} lines a second; the next line says
+     * how many more there were) and answers a refused call or archive.
+     */
     Reply refuse(String why) {
         refused.incrementAndGet();
         refusals.warn("host {}: {}", name, why);
