@@ -95,7 +95,7 @@ public final class Topic {
      * @param listener the subscription
      * @param node     the subscribing node's name, as rosapi lists subscribers
      */
-    public void subscribe(TopicListener listener, String node) {
+    public synchronized void subscribe(TopicListener listener, String node) {
         boolean first = listeners.isEmpty();
         listeners.add(listener);
         receiverNodes.put(listener, node);
@@ -111,7 +111,7 @@ public final class Topic {
     /**
      * @param listener a subscription added before
      */
-    public void unsubscribe(TopicListener listener) {
+    public synchronized void unsubscribe(TopicListener listener) {
         receiverNodes.remove(listener);
         if (listeners.remove(listener) && listeners.isEmpty()) {
             demandChanged(false);
@@ -147,7 +147,7 @@ public final class Topic {
      * @param watcher told {@code true} when the first client subscribes and {@code false} when the
      *                last one leaves; told the current state at once
      */
-    public void onDemand(Consumer<Boolean> watcher) {
+    public synchronized void onDemand(Consumer<Boolean> watcher) {
         demandWatchers.add(watcher);
         watcher.accept(hasSubscribers());
     }
