@@ -13,9 +13,10 @@ import java.nio.ByteBuffer;
 /**
  * One client's WebSocket: hands its frames to its {@link ClientSession} and sends what its
  * {@link Outbox} gives, one frame at a time. Jetty calls the {@code onWebSocket...} methods one
- * at a time per connection.
+ * at a time per connection. Public only because Jetty calls its listener methods through method
+ * handles.
  */
-final class ClientSocket extends Session.Listener.AbstractAutoDemanding implements Transport {
+public final class ClientSocket extends Session.Listener.AbstractAutoDemanding implements Transport {
 
     private static final Logger LOG = LoggerFactory.getLogger(ClientSocket.class);
 

@@ -7,7 +7,7 @@ import org.eclipse.jetty.websocket.api.Session;
  * A plain WebSocket echo on the bridge's own server (its {@code echo} path, off unless asked
  * for): the baseline a rosbridge round trip is measured against (bench/rosbridge).
  */
-final class EchoSocket extends Session.Listener.AbstractAutoDemanding {
+public final class EchoSocket extends Session.Listener.AbstractAutoDemanding {
 
     @Override
     public void onWebSocketText(String text) {
