@@ -294,6 +294,13 @@ public final class Outbox {
         } while (missed != 0);
     }
 
+    private void woken() {
+        synchronized (this) {
+            wake = null; // a throttled subscription sending now may need the next wake-up at once
+        }
+        drain();
+    }
+
     private void sent() {
         synchronized (this) {
             sending = false;
@@ -349,7 +356,7 @@ public final class Outbox {
             wake.cancel(false);
         }
         wakeAt = at;
-        wake = timer.schedule(this::drain, Math.max(0, at - now), TimeUnit.NANOSECONDS);
+        wake = timer.schedule(this::woken, Math.max(0, at - now), TimeUnit.NANOSECONDS);
     }
 
     private Frame fragmented(Frame f) {
