@@ -134,6 +134,11 @@ public final class MessageReader {
             }
             return zeros;
         }
+        if (f.numberSequence() && v instanceof com.fasterxml.jackson.databind.node.POJONode pojo && pojo.getPojo() instanceof NumberSequence n
+                && n.element() == f.primitive()) {
+            checkLength(f, n.size(), root, path);
+            return v; // the bridge's own tree
+        }
         if (f.numberSequence() && v.isBinary()) {
             return NODES.pojoNode(typedArray(f.primitive(), binary(v)));
         }

@@ -5,7 +5,9 @@ import io.robomw.api.Pose;
 import java.time.Instant;
 
 /**
- * A robot's pose at one moment, with the velocity since the sample before.
+ * A robot's pose at one moment, with its velocity over the last {@link #WINDOW} of samples (a
+ * difference over a window, not from one sample to the next: samples taken back to back, when a
+ * late tick is caught up, would otherwise show a moving robot standing still).
  *
  * @param pose    the odometry estimate
  * @param z       height, metres (0 for robots on the ground)
@@ -15,8 +17,11 @@ import java.time.Instant;
  */
 record PoseSample(Pose pose, double z, Instant stamp, double forward, double turning) {
 
+    /** The span velocities are taken over. */
+    static final java.time.Duration WINDOW = java.time.Duration.ofMillis(200);
+
     /**
-     * @param previous the sample before, or {@code null}
+     * @param previous the oldest sample of the window, or {@code null}
      * @param pose     the pose now
      * @param stamp    now
      * @return the sample, its velocity from the difference (0 for the first)

@@ -60,6 +60,7 @@ public final class RobotNode implements AutoCloseable {
     private final List<Periodic> feeds = new ArrayList<>();
     private final AtomicBoolean poseInFlight = new AtomicBoolean();
     private final AtomicLong failures = new AtomicLong();
+    private final List<PoseSample> window = new ArrayList<>();
     private volatile PoseSample latest;
     private volatile boolean noOdometry;
     private volatile boolean tfWanted;
@@ -197,8 +198,17 @@ public final class RobotNode implements AutoCloseable {
             failed("its pose", e);
             return;
         }
-        PoseSample s = PoseSample.after(latest, p, clock.instant());
-        latest = s;
+        PoseSample s;
+        synchronized (window) {
+            Instant now = clock.instant();
+            Instant from = now.minus(PoseSample.WINDOW);
+            while (window.size() > 1 && !window.get(1).stamp().isAfter(from)) {
+                window.remove(0); // keep one sample at or before the window's start
+            }
+            s = PoseSample.after(window.isEmpty() ? null : window.get(0), p, now);
+            window.add(s);
+            latest = s;
+        }
         if (odom.hasSubscribers()) {
             odom.publish(RosMessages.odometry(s, ns));
         }
