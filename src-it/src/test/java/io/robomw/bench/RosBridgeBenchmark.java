@@ -225,14 +225,18 @@ public final class RosBridgeBenchmark {
 
     /** A JDK WebSocket client that hands every text frame to a consumer. */
     private static final class Client implements AutoCloseable {
+        /** Held: an HttpClient no one references closes its connections when it is collected. */
+        private final HttpClient http;
         private final WebSocket socket;
 
-        private Client(WebSocket socket) {
+        private Client(HttpClient http, WebSocket socket) {
+            this.http = http;
             this.socket = socket;
         }
 
         static Client connect(URI uri, Consumer<String> frames) throws Exception {
-            WebSocket ws = HttpClient.newHttpClient().newWebSocketBuilder().buildAsync(uri, new WebSocket.Listener() {
+            HttpClient http = HttpClient.newHttpClient();
+            WebSocket ws = http.newWebSocketBuilder().buildAsync(uri, new WebSocket.Listener() {
                 private final StringBuilder text = new StringBuilder();
 
                 @Override
@@ -245,8 +249,19 @@ public final class RosBridgeBenchmark {
                     w.request(1);
                     return null;
                 }
+
+                @Override
+                public CompletionStage<?> onClose(WebSocket w, int status, String reason) {
+                    System.err.println("bench: " + uri + " closed: " + status + " " + reason);
+                    return null;
+                }
+
+                @Override
+                public void onError(WebSocket w, Throwable error) {
+                    System.err.println("bench: " + uri + " failed: " + error);
+                }
             }).get(30, TimeUnit.SECONDS);
-            return new Client(ws);
+            return new Client(http, ws);
         }
 
         void send(String text) throws Exception {

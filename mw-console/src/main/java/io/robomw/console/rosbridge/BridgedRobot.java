@@ -1,5 +1,6 @@
 package io.robomw.console.rosbridge;
 
+import io.robomw.api.Pose;
 import io.robomw.api.Robot;
 import io.robomw.api.SensorInfo;
 import io.robomw.config.description.RobotDescription;
@@ -10,16 +11,21 @@ import io.robomw.sim.SimRobot;
 import java.util.LinkedHashMap;
 import java.util.Map;
 import java.util.Objects;
+import java.util.function.Supplier;
 
 /**
  * A robot the bridge offers to ROS clients, with what it knows about its sensors beyond the
  * {@link Robot} API ({@link SensorGeometry}) and how its calls behave.
  *
- * @param robot   the robot
- * @param reach   whether its calls return at once or wait for a network
- * @param sensors each sensor's geometry, by name; a sensor not here gets its type's defaults
+ * @param robot     the robot
+ * @param reach     whether its calls return at once or wait for a network
+ * @param sensors   each sensor's geometry, by name; a sensor not here gets its type's defaults
+ * @param truePose  for a simulated robot, where the simulator has its body, which its odometry
+ *                  topic carries if the robot has no odometry of its own (wheels without encoders,
+ *                  as a swarm robot's), as a simulator's ground-truth plugin publishes it;
+ *                  {@code null} for any other robot
  */
-public record BridgedRobot(Robot robot, Reach reach, Map<String, SensorGeometry> sensors) {
+public record BridgedRobot(Robot robot, Reach reach, Map<String, SensorGeometry> sensors, Supplier<Pose> truePose) {
 
     /** How a robot's calls behave, which decides the thread they run on. */
     public enum Reach {
@@ -47,7 +53,7 @@ public record BridgedRobot(Robot robot, Reach reach, Map<String, SensorGeometry>
      * @return it, its sensors with their types' defaults
      */
     public static BridgedRobot remote(Robot robot) {
-        return new BridgedRobot(robot, Reach.REMOTE, Map.of());
+        return new BridgedRobot(robot, Reach.REMOTE, Map.of(), null);
     }
 
     /**
@@ -55,7 +61,7 @@ public record BridgedRobot(Robot robot, Reach reach, Map<String, SensorGeometry>
      * @return it, its sensors with their types' defaults
      */
     public static BridgedRobot inProcess(Robot robot) {
-        return new BridgedRobot(robot, Reach.IN_PROCESS, Map.of());
+        return new BridgedRobot(robot, Reach.IN_PROCESS, Map.of(), null);
     }
 
     /**
@@ -68,7 +74,7 @@ public record BridgedRobot(Robot robot, Reach reach, Map<String, SensorGeometry>
         for (SensorInfo s : robot.sensors()) {
             description.sensor(s.name()).map(SensorSpec::options).ifPresent(o -> g.put(s.name(), SensorGeometry.fromOptions(s, o)));
         }
-        return new BridgedRobot(robot, Reach.IN_PROCESS, g);
+        return new BridgedRobot(robot, Reach.IN_PROCESS, g, null);
     }
 
     /**
@@ -87,7 +93,7 @@ public record BridgedRobot(Robot robot, Reach reach, Map<String, SensorGeometry>
                         ranging ? m.maxRange() : d.maxRange(), m.rateHz(), m.mountX(), m.mountY(), m.mountAngle()));
             }
         }
-        return new BridgedRobot(robot, Reach.IN_PROCESS, g);
+        return new BridgedRobot(robot, Reach.IN_PROCESS, g, body::pose);
     }
 
     /**

@@ -25,10 +25,12 @@ final class WsClient implements AutoCloseable {
 
     final BlockingQueue<JsonNode> frames = new LinkedBlockingQueue<>();
     final CompletableFuture<Integer> closed = new CompletableFuture<>();
+    /** Held: an HttpClient no one references closes its connections when it is collected. */
+    private final HttpClient http = HttpClient.newHttpClient();
     private final WebSocket socket;
 
     private WsClient(URI uri, String origin) throws Exception {
-        WebSocket.Builder b = HttpClient.newHttpClient().newWebSocketBuilder().connectTimeout(Duration.ofSeconds(20));
+        WebSocket.Builder b = http.newWebSocketBuilder().connectTimeout(Duration.ofSeconds(20));
         if (origin != null) {
             b.header("Origin", origin);
         }

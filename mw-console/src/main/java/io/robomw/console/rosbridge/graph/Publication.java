@@ -49,7 +49,7 @@ public final class Publication {
     public String jsonFrame() {
         String j = json;
         if (j == null) {
-            j = jsonFrame(topic);
+            j = Wire.jsonFrame(frame(topic));
             json = j;
         }
         return j;
@@ -60,10 +60,7 @@ public final class Publication {
      * @return the frame with that name
      */
     public String jsonFrame(String clientTopic) {
-        if (clientTopic.equals(topic) && json != null) {
-            return json;
-        }
-        return Wire.jsonFrame(frame(clientTopic));
+        return clientTopic.equals(topic) ? jsonFrame() : Wire.jsonFrame(frame(clientTopic));
     }
 
     /** @return the same frame as one CBOR map (a binary frame: {@code compression: cbor}) */

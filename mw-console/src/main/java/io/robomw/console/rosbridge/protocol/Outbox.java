@@ -66,8 +66,8 @@ public final class Outbox {
     record Frame(String text, byte[] binary, String id) {
     }
 
-    /** A message in a subscription's queue, with its encoded size. */
-    record Queued(Publication publication, int size) {
+    /** A message in a subscription's queue, encoded as its subscription wants it, with its size. */
+    record Queued(String text, byte[] binary, int size) {
     }
 
     /**
@@ -181,7 +181,10 @@ public final class Outbox {
                 q.lastAccepted = now;
             }
         }
-        int size = q.compression == Compression.CBOR ? p.cborFrame(q.clientTopic).length : p.jsonFrame(q.clientTopic).length();
+        boolean cbor = q.compression == Compression.CBOR;
+        String text = cbor ? null : p.jsonFrame(q.clientTopic);
+        byte[] binary = cbor ? p.cborFrame(q.clientTopic) : null;
+        int size = cbor ? binary.length : text.length();
         synchronized (this) {
             if (closed || q.removed) {
                 return;
@@ -197,7 +200,7 @@ public final class Outbox {
                 countDrop(q);
                 return;
             }
-            q.messages.add(new Queued(p, size));
+            q.messages.add(new Queued(text, binary, size));
             queuedChars += size;
             if (!q.inReady) {
                 q.inReady = true;
@@ -338,9 +341,7 @@ public final class Outbox {
             } else {
                 ready.add(q);
             }
-            Publication p = m.publication();
-            return q.compression == Compression.CBOR ? new Frame(null, p.cborFrame(q.clientTopic), null)
-                    : fragmented(new Frame(p.jsonFrame(q.clientTopic), null, null));
+            return m.binary() != null ? new Frame(null, m.binary(), null) : fragmented(new Frame(m.text(), null, null));
         }
         if (earliest != Long.MAX_VALUE) {
             wakeAt(earliest, now);

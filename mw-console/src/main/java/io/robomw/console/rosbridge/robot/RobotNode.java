@@ -40,7 +40,8 @@ import java.util.concurrent.atomic.AtomicLong;
  *   <tr><td>{@code /<ns>/joint_states}</td><td>{@code sensor_msgs/msg/JointState}</td><td>the joint sensors (a legged robot's), radians</td></tr>
  * </table>
  * and its pose in {@code /tf} ({@link TransformFeed}). Nothing is read while a topic has no
- * subscriber. A robot without odometry (its {@code pose()} is unsupported) publishes no odometry;
+ * subscriber. A robot without odometry (its {@code pose()} is unsupported) publishes none, unless
+ * it is simulated: then {@code odom} and {@code /tf} carry the simulator's true pose of its body;
  * a failed read is skipped and logged (at growing intervals), and the next one is tried.
  */
 public final class RobotNode implements AutoCloseable {
@@ -63,6 +64,7 @@ public final class RobotNode implements AutoCloseable {
     private final List<PoseSample> window = new ArrayList<>();
     private volatile PoseSample latest;
     private volatile boolean noOdometry;
+    private volatile boolean truth;
     private volatile boolean tfWanted;
 
     private RobotNode(BridgedRobot robot, Graph graph, double odometryHz, Threads threads, Clock clock) {
@@ -94,7 +96,7 @@ public final class RobotNode implements AutoCloseable {
     public static RobotNode start(BridgedRobot robot, Graph graph, double odometryHz, java.util.function.ToDoubleFunction<SensorGeometry> sensorRate,
                                   Threads threads, Clock clock) {
         RobotNode n = new RobotNode(robot, graph, odometryHz, threads, clock);
-        n.odom.onDemand(wanted -> n.poseFeed.demand(wanted || n.tfWanted));
+        n.odom.onDemand(wanted -> n.poseFeed.demand(!n.noOdometry && (wanted || n.tfWanted)));
         Interfaces types = graph.interfaces();
         List<SensorInfo> joints = new ArrayList<>();
         double jointHz = 0;
@@ -144,7 +146,7 @@ public final class RobotNode implements AutoCloseable {
     /** @param wanted whether {@code /tf} has subscribers, which need this robot's pose */
     void tfDemand(boolean wanted) {
         tfWanted = wanted;
-        poseFeed.demand(wanted || odom.hasSubscribers());
+        poseFeed.demand(!noOdometry && (wanted || odom.hasSubscribers()));
     }
 
     /**
@@ -189,9 +191,15 @@ public final class RobotNode implements AutoCloseable {
     private void takePose() {
         Pose p;
         try {
-            p = robot.robot().pose();
+            p = truth ? robot.truePose().get() : robot.robot().pose();
         } catch (UnsupportedActionException e) {
+            if (robot.truePose() != null) {
+                truth = true;
+                LOG.info("rosbridge: robot '{}' has no odometry ({}); {}/odom carries the simulator's true pose", robot.robot().name(), e.getMessage(), node);
+                return;
+            }
             noOdometry = true;
+            poseFeed.demand(false);
             LOG.info("rosbridge: robot '{}' has no odometry ({}); {}/odom and its /tf stay empty", robot.robot().name(), e.getMessage(), node);
             return;
         } catch (RobotException e) {
