@@ -14,8 +14,8 @@ import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicInteger;
 
 /**
- * Everything waiting to go to one client, bounded, sent one frame at a time as the client takes
- * them. A slow client never costs the server more than {@link Limits#maxClientBytes}: each of its
+ * Everything waiting to go to one client, bounded, handed to the connection as the client takes
+ * it (at most {@value #MAX_IN_FLIGHT} frames on their way at once). A slow client never costs the server more than {@link Limits#maxClientBytes}: each of its
  * subscriptions ({@link TopicQueue}) holds at most its {@code queue_length} messages (or
  * {@link Limits#maxQueue} for 0), and a full one drops its oldest, as rosbridge_suite's queue
  * does. Replies and status messages ({@link #reply}) are never dropped; a client that lets more
@@ -41,6 +41,12 @@ public final class Outbox {
     private static final Logger LOG = LoggerFactory.getLogger(Outbox.class);
     /** WebSocket close code: policy violation. */
     static final int CLOSE_POLICY = 1008;
+    /**
+     * Frames handed to the connection and not yet written: Jetty queues them and writes several
+     * together, one system call for many small messages; a client that does not read holds at
+     * most this many there, the rest wait here, bounded.
+     */
+    static final int MAX_IN_FLIGHT = 64;
 
     private final Transport transport;
     private final Limits limits;
@@ -52,7 +58,7 @@ public final class Outbox {
     private final ArrayDeque<Frame> control = new ArrayDeque<>();
     private final ArrayDeque<Frame> fragments = new ArrayDeque<>();
     private final ArrayDeque<TopicQueue> ready = new ArrayDeque<>();
-    private boolean sending;
+    private int inFlight;
     private boolean closed;
     private long queuedChars;
     private int fragmentSize;
@@ -269,14 +275,14 @@ public final class Outbox {
             while (true) {
                 Frame f;
                 synchronized (this) {
-                    if (closed || sending) {
+                    if (closed || inFlight >= MAX_IN_FLIGHT) {
                         break;
                     }
                     f = next();
                     if (f == null) {
                         break;
                     }
-                    sending = true;
+                    inFlight++;
                     sentFrames++;
                 }
                 try {
@@ -288,7 +294,7 @@ public final class Outbox {
                 } catch (RuntimeException e) {
                     LOG.debug("rosbridge: sending to {} failed: {}", client, e.toString());
                     synchronized (this) {
-                        sending = false;
+                        inFlight--;
                         closed = true;
                     }
                 }
@@ -306,7 +312,7 @@ public final class Outbox {
 
     private void sent() {
         synchronized (this) {
-            sending = false;
+            inFlight--;
         }
         drain();
     }

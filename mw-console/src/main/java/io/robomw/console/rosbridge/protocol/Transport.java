@@ -1,9 +1,9 @@
 package io.robomw.console.rosbridge.protocol;
 
 /**
- * A client's connection as the {@link Outbox} sees it: frames go out one at a time, and each
- * send says when it is done, so the outbox knows when the client has taken a frame (and keeps
- * the rest, bounded, until it has).
+ * A client's connection as the {@link Outbox} sees it: frames go out in order, a few at a time,
+ * and each send says when it is done, so the outbox knows when the client has taken a frame (and
+ * keeps the rest, bounded, until it has).
  */
 public interface Transport {
 

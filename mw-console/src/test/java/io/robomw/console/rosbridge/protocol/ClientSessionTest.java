@@ -344,7 +344,8 @@ class ClientSessionTest {
             w.transport.hold();
             w.send(q("{'op':'subscribe','id':'s','topic':'/chatter','queue_length':2}"));
             Topic chatter = w.graph.topic("/chatter").orElseThrow();
-            for (int i = 0; i < 10; i++) {
+            int n = Outbox.MAX_IN_FLIGHT + 10;
+            for (int i = 0; i < n; i++) {
                 chatter.publish((ObjectNode) parse("{\"data\":\"" + i + "\"}"));
             }
             w.transport.release();
@@ -355,8 +356,10 @@ class ClientSessionTest {
                     throw new AssertionError(e);
                 }
             }).toList();
-            assertEquals(List.of("0", "8", "9"), got, "the one on its way, then the newest two");
-            assertEquals(7, w.outbox.dropped());
+            assertEquals(Outbox.MAX_IN_FLIGHT + 2, got.size());
+            assertEquals(String.valueOf(Outbox.MAX_IN_FLIGHT - 1), got.get(Outbox.MAX_IN_FLIGHT - 1), "those handed to the connection before it stalled");
+            assertEquals(List.of(String.valueOf(n - 2), String.valueOf(n - 1)), got.subList(Outbox.MAX_IN_FLIGHT, got.size()), "then the newest two");
+            assertEquals(8, w.outbox.dropped());
         }
     }
 
