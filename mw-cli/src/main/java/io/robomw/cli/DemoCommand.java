@@ -106,6 +106,9 @@ final class DemoCommand implements Callable<Integer> {
     Path record;
 
     @picocli.CommandLine.Mixin
+    FoxgloveOption foxglove;
+
+    @picocli.CommandLine.Mixin
     RosBridgeOption rosbridge;
 
     @Spec
@@ -191,12 +194,13 @@ final class DemoCommand implements Callable<Integer> {
                 step("virtual %s for %s on %s", kind.title(), r, describeLink(links.get(r)));
             }
             io.robomw.console.Console watching = null;
-            if (console || record != null) {
-                io.robomw.console.Console.Builder b = io.robomw.console.Console.builder("mw demo").simulation(sim).record(record)
-                        .clusterKey(ClusterKey.read(keyFile), false).about("world", worldFile.toString());
+            if (console || record != null || foxglove.on()) {
+                io.robomw.console.Console.Builder b = foxglove.apply(io.robomw.console.Console.builder("mw demo").simulation(sim).record(record)
+                        .clusterKey(ClusterKey.read(keyFile), false).about("world", worldFile.toString()));
                 watching = (console ? b.page("127.0.0.1", consolePort) : b.noPage()).start();
                 closeLater.add(watching);
                 watching.pageAddress().ifPresent(a -> step("console at %s", a));
+                watching.foxgloveAddress().ifPresent(a -> step("foxglove at %s", a));
                 watching.recording().ifPresent(f -> step("recording to %s", f));
             }
             sim.startRealTime(1.0);
@@ -280,11 +284,11 @@ final class DemoCommand implements Callable<Integer> {
             step("wrote %s (the trajectories)", picture);
             if (rosbridge.wanted()) {
                 sim.resumeRealTime(); // ROS clients go on driving the robots through their hosts
-                step("the rosbridge keeps serving the robots%s until Ctrl-C", console ? " and the console keeps showing them" : "");
+                step("the rosbridge keeps serving the robots%s until Ctrl-C", console || foxglove.on() ? " (and the watchers showing them)" : "");
                 awaitCtrlC();
-            } else if (console) {
+            } else if (console || foxglove.on()) {
                 stopHosts(hosts);
-                step("the console keeps showing the run until Ctrl-C");
+                step((console ? "the console keeps" : "Foxglove keeps") + " showing the run until Ctrl-C");
                 awaitCtrlC();
             }
         } finally {

@@ -111,6 +111,9 @@ final class HostCommand implements Callable<Integer> {
     BeaconOption beacon;
 
     @Mixin
+    FoxgloveOption foxglove;
+
+    @Mixin
     RosBridgeOption rosbridge;
 
     @Spec
@@ -156,9 +159,9 @@ final class HostCommand implements Callable<Integer> {
                 err.println("--messaging and --no-messaging contradict each other; give one");
                 return 2;
             }
-            if (record != null) {
-                console = io.robomw.console.Console.builder("mw " + String.join(" ", spec.commandLine().getParseResult().originalArgs()))
-                        .noPage().record(record).clusterKey(cluster.key(), cluster.tls() != null).simulation(sim).start();
+            if (record != null || foxglove.on()) {
+                console = foxglove.apply(io.robomw.console.Console.builder("mw " + String.join(" ", spec.commandLine().getParseResult().originalArgs()))
+                        .noPage().record(record).clusterKey(cluster.key(), cluster.tls() != null).simulation(sim)).start();
                 if (robot != null) {
                     console.watchRobot(robot, robotFile != null ? robotFile.toString() : world + " (" + worldRobot + ")");
                     robot = console.recordCommands(robot);
@@ -180,7 +183,8 @@ final class HostCommand implements Callable<Integer> {
             if (console != null) {
                 console.watchHost(host.address());
                 open.add(0, console);
-                out.printf("recording to %s%n", record);
+                console.recording().ifPresent(f -> out.printf("recording to %s%n", f));
+                console.foxgloveAddress().ifPresent(a -> out.printf("foxglove at %s%n", a));
             }
             String served = null;
             MessagingNode servingNode = null;

@@ -15,25 +15,34 @@ import java.util.concurrent.TimeUnit;
 import static org.junit.jupiter.api.Assertions.fail;
 
 /**
- * A Python client script (src-it/src/test/python) run in the tests' venv, as its own process:
- * {@code src-it/target/python-venv}, made by {@code src-it/src/test/python/setup-venv.sh} (which
- * .ci/run calls) with the pinned requirements. A missing venv fails the test saying how to make
- * it: these tests are never skipped.
+ * A Python client script (src-it/src/test/python) run as its own process in the integration
+ * tests' Python environment: {@code target/it-python}, made from {@code requirements.txt} (pinned;
+ * roslibpy 2.1.0 among them) by {@code src-it/src/test/python/setup-venv}, which the build runs
+ * before the integration tests and .ci/run runs too; or the Python {@code -Dit.python=PATH} names.
+ * A missing environment fails the test saying how to make it: these tests are never skipped.
  */
 final class PythonClient {
 
     static final Path SCRIPTS = MwProcess.CHECKOUT.resolve("src-it/src/test/python");
-    static final Path PYTHON = MwProcess.CHECKOUT.resolve("src-it/target/python-venv/bin/python");
 
     private PythonClient() {
     }
 
-    /** Fails, saying how to make it, if the venv with roslibpy is not there. */
-    static void requireVenv() {
-        if (!Files.isExecutable(PYTHON)) {
-            fail("no Python venv with roslibpy at " + PYTHON + ": run " + SCRIPTS.resolve("setup-venv.sh")
-                    + " (needs python3 and its venv module; .ci/run does this before mvn verify)");
+    /** @return the Python that has roslibpy; fails, saying how to make it, if there is none */
+    static Path python() throws IOException, InterruptedException {
+        String given = System.getProperty("it.python");
+        Path python = given != null ? Path.of(given) : MwProcess.CHECKOUT.resolve("target/it-python/bin/python");
+        String make = "run src-it/src/test/python/setup-venv (python3 -m venv target/it-python and pip install -r src-it/src/test/python/requirements.txt;"
+                + " .ci/run and the build do it), or name a Python that has roslibpy with -Dit.python=PATH";
+        if (!Files.isExecutable(python)) {
+            fail("the rosbridge tests need Python with roslibpy at " + python + ": " + make);
         }
+        Process p = new ProcessBuilder(python.toString(), "-c", "import roslibpy").redirectErrorStream(true).start();
+        if (!p.waitFor(60, TimeUnit.SECONDS) || p.exitValue() != 0) {
+            p.destroyForcibly();
+            fail(python + " lacks roslibpy (" + new String(p.getInputStream().readAllBytes()).strip() + "): " + make);
+        }
+        return python;
     }
 
     /** The outcome of a script: its exit status and everything it printed. */
@@ -50,8 +59,7 @@ final class PythonClient {
      * @return how it ended
      */
     static Run run(String script, Map<String, String> env, Duration within, String... args) throws IOException, InterruptedException {
-        requireVenv();
-        List<String> command = new ArrayList<>(List.of(PYTHON.toString(), "-u", SCRIPTS.resolve(script).toString()));
+        List<String> command = new ArrayList<>(List.of(python().toString(), "-u", SCRIPTS.resolve(script).toString()));
         command.addAll(List.of(args));
         ProcessBuilder pb = new ProcessBuilder(command).redirectErrorStream(true);
         pb.environment().putAll(env);

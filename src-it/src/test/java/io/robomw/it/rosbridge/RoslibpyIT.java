@@ -33,7 +33,7 @@ class RoslibpyIT {
 
     @BeforeAll
     static void start() throws Exception {
-        PythonClient.requireVenv();
+        PythonClient.python();
         simPort = freePort();
         sim = MwProcess.start("rosbridge-it-sim", "sim", MwProcess.CHECKOUT.resolve("examples/worlds/arena.yaml").toString(), "--rosbridge",
                 String.valueOf(simPort));
