@@ -75,6 +75,8 @@ final class RosbridgeCommand implements Callable<Integer> {
     public Integer call() throws Exception {
         PrintWriter out = spec.commandLine().getOut();
         List<AutoCloseable> open = new ArrayList<>();
+        String token = RosBridgeOption.token(tokenFile);
+        io.robomw.console.rosbridge.server.RosBridgeServer.checkAccess(bind, token); // before any robot is opened
         try {
             List<BridgedRobot> robots = new ArrayList<>();
             Messaging node = null;
@@ -101,7 +103,7 @@ final class RosbridgeCommand implements Callable<Integer> {
                 open.add(0, m);
                 node = m;
             }
-            RosBridge.Builder b = RosBridge.builder().listen(bind, port).token(RosBridgeOption.token(tokenFile)).rates(new Rates(odometryHz, sensorHz))
+            RosBridge.Builder b = RosBridge.builder().listen(bind, port).token(token).rates(new Rates(odometryHz, sensorHz))
                     .limits(Limits.DEFAULTS.withMaxConnections(maxConnections).withMaxMessageBytes(maxMessageBytes)).messaging(node);
             origins.forEach(b::allowOrigin);
             robots.forEach(b::robot);

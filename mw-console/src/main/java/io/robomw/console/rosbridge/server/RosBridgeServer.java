@@ -123,13 +123,7 @@ public final class RosBridgeServer implements AutoCloseable {
      */
     public static RosBridgeServer start(Graph graph, TopicResolver resolver, MessageReader reader, Limits limits, ScheduledExecutorService timer,
                                         String token, List<String> allowedOrigins, String bind, int port, String echoPath) throws IOException {
-        if (token == null && !loopback(bind)) {
-            throw new IllegalArgumentException("a rosbridge listening on " + bind + " (beyond this machine) needs an access token: give it in a file "
-                    + "(--token-file FILE) or in the environment (MW_ROSBRIDGE_TOKEN); ROS 2's rosbridge has no authentication (docs/ros2.md)");
-        }
-        if (token != null && token.length() < 16) {
-            throw new IllegalArgumentException("a rosbridge access token must be at least 16 characters, got " + token.length());
-        }
+        checkAccess(bind, token);
         RosBridgeServer s = new RosBridgeServer(graph, resolver, reader, limits, timer, new Handshake(token, allowedOrigins), bind, port, echoPath);
         try {
             s.server.start();
@@ -186,6 +180,21 @@ public final class RosBridgeServer implements AutoCloseable {
     private void pingAll() {
         for (ClientSocket c : clients) {
             c.ping();
+        }
+    }
+
+    /**
+     * @param bind  where a bridge would listen
+     * @param token its access token, or {@code null}
+     * @throws IllegalArgumentException if the bind is beyond this machine and there is no token, or the token is too short
+     */
+    public static void checkAccess(String bind, String token) {
+        if (token == null && !loopback(bind)) {
+            throw new IllegalArgumentException("a rosbridge listening on " + bind + " (beyond this machine) needs an access token: give it in a file "
+                    + "(--token-file FILE) or in the environment (MW_ROSBRIDGE_TOKEN); ROS 2's rosbridge has no authentication (docs/ros2.md)");
+        }
+        if (token != null && token.length() < 16) {
+            throw new IllegalArgumentException("a rosbridge access token must be at least 16 characters, got " + token.length());
         }
     }
 
