@@ -74,10 +74,10 @@ public final class RosBridgeBenchmark {
             }
         }
         if (cases.contains("odom")) {
-            odometry(smoke ? 2 : 8, smoke ? 3 : 15);
+            odometry(smoke ? 2 : 5, smoke ? 3 : 10);
         }
         if (cases.contains("rtt")) {
-            roundTrip(smoke ? 2_000 : 20_000, smoke ? 2_000 : 20_000, smoke ? 1 : 3);
+            roundTrip(smoke ? 2_000 : 10_000, smoke ? 2_000 : 10_000, smoke ? 1 : 3);
         }
     }
 
