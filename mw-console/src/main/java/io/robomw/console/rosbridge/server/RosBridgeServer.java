@@ -39,15 +39,16 @@ import java.util.concurrent.TimeUnit;
  *
  * <p>Before a connection is taken: the {@link Handshake} (token, Origin), and the connection
  * limit (one more gets HTTP 503; handshakes that race may admit one or two more for a moment). Frames are at most {@link Limits#maxMessageBytes}; a larger one
- * closes the connection (1009, as the WebSocket protocol says). A client that vanished without
- * closing is found by a ping every {@value #PING_SECONDS} s and the idle timeout.
+ * closes the connection (1009, as the WebSocket protocol says). Every client is pinged every
+ * {@value #PING_SECONDS} s, so one that vanished without closing is found out when a ping cannot be
+ * delivered; a connection with no traffic either way for {@link #IDLE_TIMEOUT} is closed.
  */
 public final class RosBridgeServer implements AutoCloseable {
 
     private static final Logger LOG = LoggerFactory.getLogger(RosBridgeServer.class);
     /** Seconds between pings to each client. */
     static final int PING_SECONDS = 30;
-    /** A connection without any frame (a pong counts) for this long is closed. */
+    /** A connection with no traffic either way for this long is closed. */
     static final Duration IDLE_TIMEOUT = Duration.ofSeconds(4L * PING_SECONDS);
 
     private final Graph graph;
