@@ -77,7 +77,7 @@ public final class BrickPlatform implements RobotPlatform {
         this.motors = motors;
         this.threading = threading;
         this.link = link;
-        this.actionThread = new ExecutionActionThread(config.robotName(), config.clock(), config.cyclePeriod());
+        this.actionThread = new ExecutionActionThread(config.robotName(), config.clock(), config.cyclePeriod(), config.failures());
         motors.cyclePeriod(config.cyclePeriod());
         if (threading == LinkThreading.INLINE) {
             motors.linkServicedInline();
@@ -196,23 +196,24 @@ public final class BrickPlatform implements RobotPlatform {
                 LOG.warn("robot '{}': link failed: {}", config.robotName(), e.getMessage());
                 actionThread.linkFailed(config.platformName(), e);
             }
-        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+        } catch (Throwable t) {
             // The brick answered but refused (an error status), or the driver failed: the link is fine.
-            // The commands running now fail with the brick's own words, at once; the log gets one line
-            // a second at most about refusals (the stack trace at debug level), and the first failures
-            // of the driver itself (an error it can cause) with their stack trace.
-            long n = driverErrors.incrementAndGet();
+            // A failure the thread cannot survive goes on up (the policy re-throws it). The commands
+            // running now fail with the brick's own words, at once; the log gets one line a second at
+            // most about refusals (the stack trace at debug level); the driver's own failures go to the
+            // failure policy.
+            if (t instanceof RobotException) {
+                refusals.warn("{}", t.getMessage());
+                LOG.debug("robot '{}': the driver's refusal", config.robotName(), t);
+            } else {
+                config.failures().surviveOrRethrow(config.robotName() + "-link", t);
+            }
+            driverErrors.incrementAndGet();
             // It ends the commands whose states the service took and those running when it began, not
             // those admitted since (a poll refused just before the brick recovered must not fail them).
-            actionThread.driverFailed(e instanceof RuntimeException r ? r
-                    : new RobotException("robot '" + config.robotName() + "': the driver failed: " + e, e),
+            actionThread.driverFailed(t instanceof RuntimeException r ? r
+                    : new RobotException("robot '" + config.robotName() + "': the driver failed: " + t, t),
                     Math.max(began, motors.servedCycle()));
-            if (e instanceof RuntimeException) {
-                refusals.warn("{}", e.getMessage());
-                LOG.debug("robot '{}': the driver's refusal", config.robotName(), e);
-            } else if (Long.bitCount(n) == 1) {
-                LOG.error("robot '{}': the driver failed ({} times so far): {}", config.robotName(), n, e.getMessage(), e);
-            }
         }
     }
 

@@ -56,7 +56,7 @@ public final class HighLevelRobotPlatform implements RobotPlatform, HighLevelPla
         this.config = config;
         this.commands = commands;
         this.link = link;
-        this.actionThread = new ExecutionActionThread(config.robotName(), config.clock(), config.cyclePeriod());
+        this.actionThread = new ExecutionActionThread(config.robotName(), config.clock(), config.cyclePeriod(), config.failures());
         for (SensorChannel channel : config.sensors()) {
             sensors.put(channel.name(), sensorPlatform.createSensor(channel));
         }

@@ -971,8 +971,9 @@ public abstract class GenericMotorPlatform {
             return;
         }
         long wait = (long) java.util.Arrays.stream(due).filter(d -> d >= 0).average().orElse(0);
-        if (wait > 0 && clock == Clock.system()) {
-            // The action side unparks the link thread whenever it publishes: wait out the time.
+        if (wait > 0 && !linkInline) {
+            // On a link thread of its own (which the action side unparks whenever it publishes):
+            // wait out the time. Inline, on a simulation's cycling thread, time is the owner's to step.
             long until = clock.nanoTime() + wait;
             for (long left = wait; left > 0; left = until - clock.nanoTime()) {
                 java.util.concurrent.locks.LockSupport.parkNanos(this, left);
