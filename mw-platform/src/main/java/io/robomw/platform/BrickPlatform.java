@@ -2,6 +2,7 @@ package io.robomw.platform;
 
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.api.spi.Cycling;
+import io.robomw.api.spi.FailurePolicy;
 import io.robomw.api.RobotException;
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.spi.MotorCommand;
@@ -190,30 +191,37 @@ public final class BrickPlatform implements RobotPlatform {
                 linkDown = false;
                 LOG.info("robot '{}': link restored", config.robotName());
             }
+        } catch (io.robomw.platform.brick.ChannelBusyException e) {
+            // A sensor read held the channel too long: nothing is known to be wrong with the link.
+            // The states taken were put back and go with the next service.
+            LOG.debug("robot '{}': {}", config.robotName(), e.getMessage());
         } catch (IOException e) {
             if (!linkDown) {
                 linkDown = true;
                 LOG.warn("robot '{}': link failed: {}", config.robotName(), e.getMessage());
                 actionThread.linkFailed(config.platformName(), e);
             }
+            motors.failPendingStops(linkDown("failed: " + e.getMessage(), e));
         } catch (Throwable t) {
             // The brick answered but refused (an error status), or the driver failed: the link is fine.
-            // A failure the thread cannot survive goes on up (the policy re-throws it). The commands
-            // running now fail with the brick's own words, at once; the log gets one line a second at
-            // most about refusals (the stack trace at debug level); the driver's own failures go to the
-            // failure policy.
+            // The commands running now fail with the brick's own words, at once: those whose states
+            // the service took and those running when it began, not those admitted since (a poll
+            // refused just before the brick recovered must not fail them). The log gets one line a
+            // second at most about refusals (the stack trace at debug level); the driver's own
+            // failures go to the failure policy. One the thread cannot survive ends it (linkThreadDied).
+            if (!FailurePolicy.survivable(t)) {
+                throw (VirtualMachineError) t;
+            }
+            driverErrors.incrementAndGet();
+            actionThread.driverFailed(t instanceof RuntimeException r ? r
+                    : new RobotException("robot '" + config.robotName() + "': the driver failed: " + t, t),
+                    Math.max(began, motors.servedCycle()));
             if (t instanceof RobotException) {
                 refusals.warn("{}", t.getMessage());
                 LOG.debug("robot '{}': the driver's refusal", config.robotName(), t);
             } else {
-                config.failures().surviveOrRethrow(config.robotName() + "-link", t);
+                config.failures().survived(config.robotName() + "-link", t);
             }
-            driverErrors.incrementAndGet();
-            // It ends the commands whose states the service took and those running when it began, not
-            // those admitted since (a poll refused just before the brick recovered must not fail them).
-            actionThread.driverFailed(t instanceof RuntimeException r ? r
-                    : new RobotException("robot '" + config.robotName() + "': the driver failed: " + t, t),
-                    Math.max(began, motors.servedCycle()));
         }
     }
 
@@ -276,9 +284,38 @@ public final class BrickPlatform implements RobotPlatform {
         motors.submitDetached(command, actionThread);
     }
 
+    /**
+     * Stops every motor: a safety-priority container brakes them all in the next cycle.
+     *
+     * @return completes once the link side has written the batch carrying the brakes (with the
+     *         platform's own threads, on its link thread; inline, within the cycle that applied the
+     *         stop); fails with {@link RobotLinkException} naming the robot if the link is down or
+     *         fails before, or the platform has failed or is closed. The stop is queued all the same:
+     *         a link that comes back brakes the motors first.
+     */
     @Override
     public CompletableFuture<Void> stopAll() {
-        return actionThread.submit(motors.stopContainer());
+        CompletableFuture<Void> handed = new CompletableFuture<>();
+        RobotLinkException failed = linkThreadFailure;
+        if (failed != null) {
+            handed.completeExceptionally(new RobotLinkException("robot '" + config.robotName() + "' has failed: " + failed.getMessage()
+                    + "; its stop could not be handed to the hardware (close the robot and open it again)", failed));
+        } else if (linkDown) {
+            handed.completeExceptionally(linkDown("it is down", null));
+        }
+        actionThread.submit(motors.stopContainer(handed)).whenComplete((v, e) -> {
+            if (e != null && !(e instanceof io.robomw.api.CommandPreemptedException)) {
+                // Refused by a failed or closed action thread (a newer stop that took over hands itself over).
+                handed.completeExceptionally(new RobotLinkException("robot '" + config.robotName() + "': its stop could not be handed to the hardware: "
+                        + e.getMessage(), e));
+            }
+        });
+        return handed;
+    }
+
+    private RobotLinkException linkDown(String why, Throwable cause) {
+        return new RobotLinkException("robot '" + config.robotName() + "': its stop was not handed to the hardware: the link ("
+                + config.platformName() + ") " + why + "; it goes out when the link returns", cause);
     }
 
     @Override
@@ -319,6 +356,7 @@ public final class BrickPlatform implements RobotPlatform {
         if (!linkDown) {
             serviceLink();
         }
+        motors.failPendingStops(linkDown("was closed with the robot", null));
         if (link != null) {
             try {
                 link.close();

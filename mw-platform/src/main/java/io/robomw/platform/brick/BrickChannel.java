@@ -24,7 +24,9 @@ import java.util.concurrent.locks.ReentrantLock;
  * restart.
  *
  * <p>Thread-safe: exchanges from the link thread and from program threads (sensor reads) are
- * serialised by a fair lock.
+ * serialised by a fair lock, which each waits for with a deadline (the reply timeout plus the time
+ * the exchange under way is expected to take): a waiter never blocks for ever behind a stuck
+ * exchange ({@link ChannelBusyException}).
  */
 public final class BrickChannel implements AutoCloseable {
 
@@ -143,14 +145,14 @@ public final class BrickChannel implements AutoCloseable {
      * @throws IOException if the link is down (and could not be reopened yet) or failed during the exchange
      */
     public <T> T exchange(Exchange<T> exchange) throws IOException {
-        lock.lock();
+        acquire();
         try {
             ensureOpen();
             long started = LINK_TIME.nanoTime();
             exchangeStartedAt = started;
             exchanging = true;
             try {
-                Duration timeout = answered ? replyTimeout : max(replyTimeout, FIRST_REPLY_TIMEOUT);
+                Duration timeout = replyTimeoutNow();
                 T result = exchange.run(communicator, timeout);
                 answered = true;
                 exchangeTime.sample(LINK_TIME.nanoTime() - started);
@@ -163,6 +165,37 @@ public final class BrickChannel implements AutoCloseable {
             }
         } finally {
             lock.unlock();
+        }
+    }
+
+    /** How long a reply is awaited now: longer on a channel that has not answered yet. */
+    private Duration replyTimeoutNow() {
+        return answered ? replyTimeout : max(replyTimeout, FIRST_REPLY_TIMEOUT);
+    }
+
+    /**
+     * Takes the channel, waiting at most the reply timeout plus the time the exchange under way is
+     * expected to take still (at least another reply timeout): an exchange under way ends by its
+     * own timeouts, so a waiter is never held longer than it could take.
+     *
+     * @throws ChannelBusyException naming the robot and the link, if the wait runs out
+     * @throws java.io.InterruptedIOException if the waiting thread is interrupted
+     */
+    private void acquire() throws IOException {
+        long timeout = replyTimeoutNow().toNanos();
+        long wait = timeout + Math.max(timeout, nanosUntilFree());
+        boolean locked;
+        try {
+            locked = lock.tryLock(wait, java.util.concurrent.TimeUnit.NANOSECONDS);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            java.io.InterruptedIOException i = new java.io.InterruptedIOException("robot '" + robot + "': interrupted while waiting for "
+                    + communicator.describe());
+            i.initCause(e);
+            throw i;
+        }
+        if (!locked) {
+            throw new ChannelBusyException(robot, communicator.describe(), Duration.ofNanos(wait));
         }
     }
 

@@ -40,6 +40,9 @@ import java.util.concurrent.atomic.AtomicLong;
  *   rules.</li>
  *   <li><b>Watchdog:</b> a container with a watchdog timeout ends when it has run that long
  *   without being refreshed or replaced.</li>
+ *   <li><b>Cancel:</b> a container whose caller cancels its future (an interrupted or timed-out
+ *   wait) ends at the next cycle as interrupted, so its end action stops its motors; one cancelled
+ *   before it started never runs.</li>
  *   <li><b>Link failure:</b> after {@link #linkFailed}, every container ends with
  *   {@link RobotLinkException} and runs its end action (stopping its motors).</li>
  * </ul>
@@ -172,7 +175,8 @@ public final class ExecutionActionThread implements AutoCloseable {
      * Queues a container; it starts at the next cycle, subject to the clash rules.
      *
      * @param container the container
-     * @return its completion future
+     * @return its completion future; cancelling it ends the container at the next cycle as
+     *         interrupted (its end action stops its motors), or drops it if it has not started
      */
     public CompletableFuture<Void> submit(Container container) {
         RobotException failed = failure;
@@ -367,8 +371,10 @@ public final class ExecutionActionThread implements AutoCloseable {
      *   up to the cycle it names) with that refusal.</li>
      *   <li>Admit queued containers and refresh slots in the order they were submitted, applying
      *   the clash and refresh rules, and start each admitted one (its action objects run); what an
-     *   action submits meanwhile is admitted in this cycle too.</li>
-     *   <li>End containers whose watchdog expired.</li>
+     *   action submits meanwhile is admitted in this cycle too. A container whose caller cancelled
+     *   its future before it started is dropped.</li>
+     *   <li>End, as interrupted (their end actions stop their motors), containers whose caller
+     *   cancelled their future, and those whose watchdog expired.</li>
      *   <li>Evaluate the logic objects of every running container; end those whose logic all holds.</li>
      *   <li>Run the cycle listeners.</li>
      * </ol>
@@ -402,6 +408,9 @@ public final class ExecutionActionThread implements AutoCloseable {
             }
             long t0 = timed ? clock.nanoTime() : 0;
             if (next instanceof Container c) {
+                if (c.completion().isCancelled()) {
+                    continue; // its caller cancelled it before it started: it never runs
+                }
                 admit(c, start);
                 if (timed) {
                     epoch(c.name(), "admission", t0);
@@ -417,7 +426,7 @@ public final class ExecutionActionThread implements AutoCloseable {
             // One container (a robot's running drive): nothing to copy, as ending it ends the loop.
             Container c = active.get(0);
             long t0 = timed ? clock.nanoTime() : 0;
-            if (!watchdog(c, start)) {
+            if (!cancelled(c) && !watchdog(c, start)) {
                 evaluate(c, start);
             }
             if (timed) {
@@ -425,7 +434,9 @@ public final class ExecutionActionThread implements AutoCloseable {
             }
         } else {
             for (Container c : snapshot()) {
-                watchdog(c, start);
+                if (!cancelled(c)) {
+                    watchdog(c, start);
+                }
             }
             for (Container c : snapshot()) {
                 long t0 = timed ? clock.nanoTime() : 0;
@@ -470,6 +481,21 @@ public final class ExecutionActionThread implements AutoCloseable {
             slowestStep = step;
             slowestKind = kind;
         }
+    }
+
+    /**
+     * Ends a container whose caller cancelled its future (an interrupted or timed-out wait): as
+     * interrupted, so its end action stops its motors.
+     *
+     * @return whether it did
+     */
+    private boolean cancelled(Container c) {
+        if (!c.completion().isCancelled()) {
+            return false;
+        }
+        LOG.debug("robot '{}': '{}' was cancelled by its caller; ending it", robot, c.name());
+        finish(c, true, null);
+        return true;
     }
 
     /**

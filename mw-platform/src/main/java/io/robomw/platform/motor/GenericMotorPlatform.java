@@ -12,6 +12,7 @@ import java.io.IOException;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Set;
+import java.util.concurrent.CompletableFuture;
 
 /**
  * The paper's motor platform: turns motor commands into containers for the execution action
@@ -81,8 +82,22 @@ public abstract class GenericMotorPlatform {
     private long publishedCycle = Long.MAX_VALUE;
     /** The cycle whose published states the link side took last; link side. */
     private long servedCycle = Long.MAX_VALUE;
+    /** Batches published so far (each flush that changed something is one); under {@link #publishLock}. */
+    private long publishedBatches;
+    /** The count of published batches the link side took last; link side. */
+    private long takenBatches;
+    /** Batches the link side has written (all up to the count); written under {@link #publishLock}. */
+    private long sentBatches;
+    /** Stops waiting to be handed to the link: each with the batch that must be written first; under {@link #publishLock}. */
+    private final List<PendingStop> pendingStops = new ArrayList<>(2);
+    /** Stops whose action ran this cycle, for the next flush; action side. */
+    private final List<CompletableFuture<Void>> stopsThisCycle = new ArrayList<>(2);
     /** Whether the link side runs on the action side's thread right after each flush ({@link #linkServicedInline}). */
     private boolean linkInline;
+    /** A stop waiting for the link side to write every batch up to {@code batch}. */
+    private record PendingStop(long batch, CompletableFuture<Void> handed) {
+    }
+
     /** The requirements of the last command's motors, kept so a repeated {@code drive} shares one set. */
     private volatile Requirements lastRequirements;
     private volatile long cyclePeriodNanos = 10_000_000L;
@@ -644,6 +659,17 @@ public abstract class GenericMotorPlatform {
      *         cycle, so that no normal command queued in the same cycle can restart them
      */
     public Container stopContainer() {
+        return stopContainer(null);
+    }
+
+    /**
+     * {@link #stopContainer()}, telling when the stop is on the wire.
+     *
+     * @param handed completed once the link side has written the batch that carries the stop (or
+     *               every batch before it, when the motors were stopped already), or {@code null}
+     * @return the container
+     */
+    public Container stopContainer(CompletableFuture<Void> handed) {
         return Container.builder("stop")
                 .requires(ports)
                 .priority(CommandPriority.SAFETY)
@@ -651,9 +677,73 @@ public abstract class GenericMotorPlatform {
                     for (Port p : motors) {
                         stop(p, MotorState.StopMode.BRAKE);
                     }
+                    if (handed != null) {
+                        stopsThisCycle.add(handed);
+                    }
                 })
                 .logic(now -> true)
                 .build();
+    }
+
+    /**
+     * Fails every stop still waiting to be written (the link failed, the platform closed).
+     *
+     * @param why what the waiting callers get
+     */
+    public void failPendingStops(RuntimeException why) {
+        List<PendingStop> failed;
+        synchronized (publishLock) {
+            if (pendingStops.isEmpty()) {
+                return;
+            }
+            failed = List.copyOf(pendingStops);
+            pendingStops.clear();
+        }
+        for (PendingStop s : failed) {
+            s.handed().completeExceptionally(why);
+        }
+    }
+
+    /** Queues this cycle's stops behind the batch just published (or complete them, when it is already written). */
+    private void queueStops() {
+        List<CompletableFuture<Void>> done = null;
+        synchronized (publishLock) {
+            for (CompletableFuture<Void> handed : stopsThisCycle) {
+                if (sentBatches >= publishedBatches) {
+                    if (done == null) {
+                        done = new ArrayList<>(stopsThisCycle.size());
+                    }
+                    done.add(handed);
+                } else {
+                    pendingStops.add(new PendingStop(publishedBatches, handed));
+                }
+            }
+        }
+        stopsThisCycle.clear();
+        if (done != null) {
+            done.forEach(f -> f.complete(null));
+        }
+    }
+
+    /** The link side wrote every batch up to {@code batches}: completes the stops that waited for them. */
+    private void written(long batches) {
+        List<CompletableFuture<Void>> done = null;
+        synchronized (publishLock) {
+            sentBatches = Math.max(sentBatches, batches);
+            for (java.util.Iterator<PendingStop> i = pendingStops.iterator(); i.hasNext(); ) {
+                PendingStop s = i.next();
+                if (s.batch() <= sentBatches) {
+                    i.remove();
+                    if (done == null) {
+                        done = new ArrayList<>(2);
+                    }
+                    done.add(s.handed());
+                }
+            }
+        }
+        if (done != null) {
+            done.forEach(f -> f.complete(null));
+        }
     }
 
     private boolean reached(Port p, MotorTarget t, MotorState started, long elapsedNanos) {
@@ -767,6 +857,9 @@ public abstract class GenericMotorPlatform {
      */
     public boolean flushOutputs(long cycle) {
         if (!anyChanged) {
+            if (!stopsThisCycle.isEmpty()) {
+                queueStops();
+            }
             return false;
         }
         if (linkInline) {
@@ -777,12 +870,16 @@ public abstract class GenericMotorPlatform {
             }
         }
         anyChanged = false;
+        if (!stopsThisCycle.isEmpty()) {
+            queueStops();
+        }
         return true;
     }
 
     /** Moves this cycle's changed states to the published ones (under {@link #publishLock} unless the link side is inline). */
     private void publishChanged(long cycle) {
         publishedCycle = cycle;
+        publishedBatches++;
         for (Port p : motors) {
             if (p.changed != null) {
                 p.published = p.changed;
@@ -860,6 +957,9 @@ public abstract class GenericMotorPlatform {
             }
             try {
                 runImpl(batch);
+                if (takenBatches > sentBatches) {
+                    written(takenBatches);
+                }
                 long took = clock.nanoTime() - actedNanosAgo();
                 for (Port p : motors) {
                     MotorState s = p.draining;
@@ -875,8 +975,11 @@ public abstract class GenericMotorPlatform {
                     }
                 }
                 // A refusal (RuntimeException: the brick answered with an error status) is not sent
-                // again: it would be refused again, every cycle; the commands that wanted it fail with it.
-                if (e instanceof IOException) {
+                // again: it would be refused again, every cycle; the commands that wanted it fail with
+                // it, and so do the stops waiting for it to be written.
+                if (e instanceof RuntimeException r) {
+                    failPendingStops(r);
+                } else {
                     synchronized (publishLock) {
                         for (Port p : motors) {
                             if (p.draining != null && p.published == null) {
@@ -909,6 +1012,7 @@ public abstract class GenericMotorPlatform {
     /** Takes every published state into the batch (under {@link #publishLock} unless the link side is inline). */
     private void takePublished() {
         servedCycle = publishedCycle;
+        takenBatches = publishedBatches;
         for (Port p : motors) {
             p.draining = p.published;
             p.published = null;

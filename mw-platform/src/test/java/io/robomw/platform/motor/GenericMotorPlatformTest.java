@@ -23,6 +23,7 @@ import java.util.ArrayList;
 import java.util.HashMap;
 import java.util.List;
 import java.util.Map;
+import java.util.Set;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
@@ -353,5 +354,88 @@ class GenericMotorPlatformTest {
         platform.runDetached(drive(80, 80));
         step();
         assertEquals(80.0, motors.speed.get("B"), "once the link is back, drives run again");
+    }
+
+    private static final MotorState BRAKED_B = MotorState.stopped("B", MotorState.StopMode.BRAKE);
+    private static final MotorState BRAKED_C = MotorState.stopped("C", MotorState.StopMode.BRAKE);
+
+    @Test
+    void aStopCompletesOnceTheLinkSideHasWrittenTheBrakesAndAMoveAfterItIsAdmitted() throws Exception {
+        open();
+        platform.run(drive(100, 100));
+        step();
+        CompletableFuture<Void> stop = platform.stopAll();
+        assertFalse(stop.isDone(), "not before the cycle that applies it has handed it to the link");
+        step();
+        stop.get(0, TimeUnit.SECONDS);
+        assertEquals(List.of(BRAKED_B, BRAKED_C), motors.sent.get(motors.sent.size() - 1), "the brakes were written when the stop completed");
+
+        CompletableFuture<Void> move = platform.run(MotorCommand.of("move", List.of(MotorTarget.rotate("B", 90, 90))));
+        step();
+        assertFalse(move.isCompletedExceptionally(), "the move after the stop is admitted, not held by 'stop'");
+        assertEquals(90.0, motors.speed.get("B"));
+        stepUntilDone(move, 1000);
+        move.get(0, TimeUnit.SECONDS);
+    }
+
+    @Test
+    void aStopOfMotorsAtRestCompletesAtTheNextCycleWithoutWritingAgain() throws Exception {
+        open();
+        CompletableFuture<Void> stop = platform.stopAll();
+        step();
+        stop.get(0, TimeUnit.SECONDS);
+        assertEquals(List.of(), motors.sent, "the motors were braked already: nothing to write");
+    }
+
+    @Test
+    void aStopOnADeadLinkFailsNamingTheRobotAndItsBrakesGoOutWhenTheLinkReturns() throws Exception {
+        open();
+        motors.failNext = new IOException("brick unplugged");
+        platform.run(drive(100, 100));
+        step();
+        step();
+        CompletableFuture<Void> stop = platform.stopAll();
+        RobotLinkException e = assertInstanceOf(RobotLinkException.class, assertThrows(ExecutionException.class, () -> stop.get(0, TimeUnit.SECONDS)).getCause());
+        assertTrue(e.getMessage().contains("robot 'fake'") && e.getMessage().contains("link"), e.getMessage());
+
+        motors.failNext = null;
+        step();
+        step();
+        assertEquals(0.0, motors.speed.get("B"));
+        assertEquals(0.0, motors.speed.get("C"));
+    }
+
+    @Test
+    void aStopWhoseBatchTheLinkFailsToWriteFailsNamingTheRobot() throws Exception {
+        open();
+        platform.run(drive(100, 100));
+        step();
+        CompletableFuture<Void> stop = platform.stopAll();
+        motors.failNext = new IOException("brick unplugged");
+        step();
+        RobotLinkException e = assertInstanceOf(RobotLinkException.class, assertThrows(ExecutionException.class, () -> stop.get(0, TimeUnit.SECONDS)).getCause());
+        assertTrue(e.getMessage().contains("robot 'fake'") && e.getMessage().contains("brick unplugged"), e.getMessage());
+    }
+
+    @Test
+    void aCancelledRunBrakesItsMotorsAtTheNextCycle() throws Exception {
+        open();
+        CompletableFuture<Void> move = platform.run(MotorCommand.of("move", List.of(MotorTarget.rotate("B", 720, 90), MotorTarget.rotate("C", 720, 90))));
+        step();
+        assertEquals(90.0, motors.speed.get("B"));
+        move.cancel(true);
+        step();
+        assertEquals(List.of(BRAKED_B, BRAKED_C), motors.sent.get(motors.sent.size() - 1), "the cancelled move's end action braked its motors");
+        assertEquals(0.0, motors.speed.get("B"));
+        assertEquals(Set.of(), platform.actionThread().actuatorsInUse());
+    }
+
+    @Test
+    void aRunCancelledBeforeItsCycleNeverStarts() throws Exception {
+        open();
+        CompletableFuture<Void> move = platform.run(MotorCommand.of("move", List.of(MotorTarget.rotate("B", 720, 90))));
+        move.cancel(true);
+        step();
+        assertEquals(List.of(), motors.sent, "nothing was started");
     }
 }
