@@ -94,7 +94,7 @@ class HonestVerbsTest {
                 return () -> CompletableFuture.completedFuture(0.0);
             }
         };
-        platform = new BrickPlatform(config, motors, sensors, LinkThreading.OWN_THREAD, null).start();
+        platform = new BrickPlatform(config, motors, sensors, null, null).start();
     }
 
     @AfterEach

@@ -101,7 +101,7 @@ class LinkThreadFailureTest {
                 return () -> CompletableFuture.completedFuture(0.0);
             }
         };
-        platform = new BrickPlatform(config, motors, sensors, LinkThreading.OWN_THREAD, null).start();
+        platform = new BrickPlatform(config, motors, sensors, null, null).start();
         return platform;
     }
 

@@ -8,8 +8,6 @@ import io.robomw.platform.link.SerialLink;
 import io.robomw.platform.link.SerialSettings;
 import io.robomw.platform.link.TcpClientLink;
 import io.robomw.platform.link.WireLog;
-import org.slf4j.Logger;
-import org.slf4j.LoggerFactory;
 
 import java.io.IOException;
 import java.nio.file.Path;
@@ -19,9 +17,11 @@ import java.util.concurrent.locks.ReentrantLock;
 /**
  * The request/reply channel to one brick, shared by its driver's motor and sensor platforms: one
  * exchange at a time (a brick answers in order), every reply awaited with a timeout, a lost link
- * reported by the exception of the exchange that found it, and reopened by a later exchange (at
- * most every {@link #REOPEN_INTERVAL}), so a brick that comes back is used again without a
- * restart.
+ * reported by the exception of the exchange that found it. Whether the link is up is its owner's
+ * to keep, the brick's {@link LinkAgent}: an exchange that fails tells it, an exchange while the
+ * link is not up fails at once naming the robot, and the agent reopens the link (at most every
+ * {@link #REOPEN_INTERVAL}), so a brick that comes back is used again without a restart. A channel
+ * without an owner (a test's) just tries the link as it is.
  *
  * <p>Thread-safe: exchanges from the link thread and from program threads (sensor reads) are
  * serialised by a fair lock, which each waits for with a deadline (the reply timeout plus the time
@@ -29,8 +29,6 @@ import java.util.concurrent.locks.ReentrantLock;
  * exchange ({@link ChannelBusyException}).
  */
 public final class BrickChannel implements AutoCloseable {
-
-    private static final Logger LOG = LoggerFactory.getLogger(BrickChannel.class);
 
     /** Shortest time between two attempts to reopen a lost link. */
     public static final Duration REOPEN_INTERVAL = Duration.ofMillis(500);
@@ -45,8 +43,8 @@ public final class BrickChannel implements AutoCloseable {
     private final Communicator communicator;
     private final Duration replyTimeout;
     private final ReentrantLock lock = new ReentrantLock(true);
-    private boolean down;
-    private long lastAttempt;
+    /** The link agent that keeps the link's state, once one owns this channel. */
+    private volatile Owner owner;
     /**
      * The least time the first exchange on a newly opened channel waits for its replies: a brick
      * just connected (a Bluetooth link still being set up, an emulator whose process has only just
@@ -113,6 +111,32 @@ public final class BrickChannel implements AutoCloseable {
         return communicator.describe();
     }
 
+    /** What a channel tells, and asks, the one that keeps its link's state: its {@link LinkAgent}. */
+    interface Owner {
+        /**
+         * @throws IOException (a {@link LinkLostException} naming the robot and the link) if the link
+         *                     is not up: the exchange is not tried
+         */
+        void ensureUp() throws IOException;
+
+        /**
+         * An exchange failed: the link counts as lost.
+         *
+         * @param cause what it failed with
+         */
+        void lost(IOException cause);
+    }
+
+    /** @param o the link agent that keeps the link's state from now on */
+    void ownedBy(Owner o) {
+        owner = o;
+    }
+
+    /** @return the robot's name */
+    public String robot() {
+        return robot;
+    }
+
     /** @return the communicator, for drivers that read replies themselves inside {@link #exchange} */
     public Communicator communicator() {
         return communicator;
@@ -145,9 +169,12 @@ public final class BrickChannel implements AutoCloseable {
      * @throws IOException if the link is down (and could not be reopened yet) or failed during the exchange
      */
     public <T> T exchange(Exchange<T> exchange) throws IOException {
+        Owner o = owner;
+        if (o != null) {
+            o.ensureUp();
+        }
         acquire();
         try {
-            ensureOpen();
             long started = LINK_TIME.nanoTime();
             exchangeStartedAt = started;
             exchanging = true;
@@ -158,7 +185,9 @@ public final class BrickChannel implements AutoCloseable {
                 exchangeTime.sample(LINK_TIME.nanoTime() - started);
                 return result;
             } catch (IOException e) {
-                markDown(e);
+                if (o != null) {
+                    o.lost(e);
+                }
                 throw e;
             } finally {
                 exchanging = false;
@@ -199,27 +228,19 @@ public final class BrickChannel implements AutoCloseable {
         }
     }
 
-    private void ensureOpen() throws IOException {
-        if (!down) {
-            return;
+    /**
+     * Closes and opens the link again, under the channel's lock (an exchange under way ends first,
+     * or this waits as an exchange does); the owner calls it while the link is down.
+     *
+     * @throws IOException if the link cannot be opened, or the channel stays busy
+     */
+    public void reopen() throws IOException {
+        acquire();
+        try {
+            communicator.reopen();
+        } finally {
+            lock.unlock();
         }
-        long now = LINK_TIME.nanoTime();
-        if (now - lastAttempt < REOPEN_INTERVAL.toNanos()) {
-            throw new LinkLostException(communicator.describe(), "link to robot '" + robot + "' is down; next reopen attempt within "
-                    + REOPEN_INTERVAL.toMillis() + " ms");
-        }
-        lastAttempt = now;
-        communicator.reopen();
-        down = false;
-        LOG.info("robot '{}': reopened {}", robot, communicator.describe());
-    }
-
-    private void markDown(IOException e) {
-        if (!down) {
-            LOG.warn("robot '{}': link {} failed: {}", robot, communicator.describe(), e.getMessage());
-        }
-        down = true;
-        lastAttempt = LINK_TIME.nanoTime();
     }
 
     /** Closes the link. */

@@ -4,7 +4,6 @@ import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
-import io.robomw.platform.LinkThreading;
 import io.robomw.platform.PlatformCheck;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.SerialSettings;
@@ -50,7 +49,7 @@ public final class Ev3PlatformProvider implements PlatformProvider {
             Ev3Brick brick = new Ev3Brick(config.robotName(), channel);
             Ev3MotorPlatform motors = new Ev3MotorPlatform(config, brick);
             motors.clearCounts();
-            return new BrickPlatform(config, motors, new Ev3SensorPlatform(motors, brick), LinkThreading.OWN_THREAD, channel).start();
+            return new BrickPlatform(config, motors, new Ev3SensorPlatform(motors, brick), channel, null).start();
         } catch (IOException | RuntimeException e) {
             channel.close();
             throw e;

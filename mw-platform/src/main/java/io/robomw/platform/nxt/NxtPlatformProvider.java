@@ -4,7 +4,6 @@ import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
-import io.robomw.platform.LinkThreading;
 import io.robomw.platform.PlatformCheck;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.SerialSettings;
@@ -51,7 +50,7 @@ public final class NxtPlatformProvider implements PlatformProvider {
             NxtBrick brick = new NxtBrick(config.robotName(), channel);
             NxtMotorPlatform motors = new NxtMotorPlatform(config, brick);
             motors.resetCounters();
-            return new BrickPlatform(config, motors, new NxtSensorPlatform(motors, brick), LinkThreading.OWN_THREAD, channel).start();
+            return new BrickPlatform(config, motors, new NxtSensorPlatform(motors, brick), channel, null).start();
         } catch (IOException | RuntimeException e) {
             channel.close();
             throw e;

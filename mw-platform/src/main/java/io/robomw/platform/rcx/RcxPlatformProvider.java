@@ -4,7 +4,6 @@ import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
-import io.robomw.platform.LinkThreading;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.SerialSettings;
 
@@ -39,7 +38,7 @@ public final class RcxPlatformProvider implements PlatformProvider {
             brick.alive();
             RcxMotorPlatform motors = new RcxMotorPlatform(config, brick);
             motors.setUp();
-            return new BrickPlatform(config, motors, new RcxSensorPlatform(motors, brick), LinkThreading.OWN_THREAD, channel).start();
+            return new BrickPlatform(config, motors, new RcxSensorPlatform(motors, brick), channel, null).start();
         } catch (IOException | RuntimeException e) {
             channel.close();
             throw e;

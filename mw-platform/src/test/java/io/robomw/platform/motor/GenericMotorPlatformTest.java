@@ -11,7 +11,6 @@ import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformServices;
 import io.robomw.api.spi.SensorChannel;
 import io.robomw.platform.BrickPlatform;
-import io.robomw.platform.LinkThreading;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
 import org.junit.jupiter.api.AfterEach;
@@ -143,7 +142,7 @@ class GenericMotorPlatformTest {
                 return () -> CompletableFuture.completedFuture(42.0);
             }
         };
-        platform = new BrickPlatform(config, motors, sensors, LinkThreading.INLINE, null).start();
+        platform = new BrickPlatform(config, motors, sensors, null, null).start();
         return platform;
     }
 

@@ -4,7 +4,6 @@ import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
-import io.robomw.platform.LinkThreading;
 import io.robomw.platform.command.HighLevelRobotPlatform;
 import io.robomw.sim.SimMotors;
 import io.robomw.sim.SimWorld;
@@ -38,7 +37,7 @@ public final class SimPlatformProvider implements PlatformProvider {
             return new SimPlatform.HighLevel(platform, world.lockstep());
         }
         SimMotorPlatform motorPlatform = new SimMotorPlatform(config, motors);
-        BrickPlatform platform = new BrickPlatform(config, motorPlatform, new SimSensorPlatform(motorPlatform, motors), LinkThreading.INLINE, null);
+        BrickPlatform platform = new BrickPlatform(config, motorPlatform, new SimSensorPlatform(motorPlatform, motors), null, null);
         world.attach(motors.robot(), platform.actionThread());
         return new SimPlatform(platform, world.lockstep());
     }

@@ -4,7 +4,6 @@ import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
-import io.robomw.platform.LinkThreading;
 import io.robomw.platform.PlatformCheck;
 import io.robomw.platform.ft.FtMotors;
 import io.robomw.platform.brick.BrickChannel;
@@ -68,7 +67,7 @@ public final class IntelligentInterfacePlatformProvider implements PlatformProvi
             IntelligentInterfaceInputs inputs = new IntelligentInterfaceInputs(config.clock());
             IntelligentInterfaceMotorPlatform motors = new IntelligentInterfaceMotorPlatform(config, channel, inputs);
             return new BrickPlatform(config, motors, new IntelligentInterfaceSensorPlatform(config.robotName(), motors, inputs),
-                    LinkThreading.OWN_THREAD, channel).start();
+                    channel, null).start();
         } catch (IOException | RuntimeException e) {
             channel.close();
             throw e;

@@ -4,7 +4,6 @@ import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
-import io.robomw.platform.LinkThreading;
 import io.robomw.platform.PlatformCheck;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.SerialSettings;
@@ -64,7 +63,7 @@ public final class TxtPlatformProvider implements PlatformProvider {
                 controller.stopOnline();
                 channel.close();
             };
-            return new BrickPlatform(config, motors, new TxtSensorPlatform(motors, controller), LinkThreading.OWN_THREAD, link).start();
+            return new BrickPlatform(config, motors, new TxtSensorPlatform(motors, controller), channel, link).start();
         } catch (IOException | RuntimeException e) {
             channel.close();
             throw e;
