@@ -13,7 +13,7 @@ import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.brick.LinkAgent;
 import io.robomw.platform.brick.LinkState;
 import io.robomw.platform.exec.ExecutionActionThread;
-import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
 
@@ -25,7 +25,7 @@ import java.util.concurrent.CompletableFuture;
 
 /**
  * A running robot platform assembled from the Platform Layer's parts: an
- * {@link ExecutionActionThread}, a driver's {@link GenericMotorPlatform} and
+ * {@link ExecutionActionThread}, a driver's {@link MotorPlatform} and
  * {@link SensorPlatform}, and the {@link LinkAgent} that owns the brick's link. Drivers'
  * {@code PlatformProvider}s build one of these; the Configuration Layer sees only
  * {@link RobotPlatform}.
@@ -41,7 +41,7 @@ public final class BrickPlatform implements RobotPlatform {
 
     private final PlatformConfig config;
     private final ExecutionActionThread actionThread;
-    private final GenericMotorPlatform motors;
+    private final MotorPlatform motors;
     private final Map<String, Sensor> sensors = new LinkedHashMap<>();
     private final LinkAgent agent;
 
@@ -55,12 +55,11 @@ public final class BrickPlatform implements RobotPlatform {
      * @param link           closed last (a driver's goodbye, then the channel), or {@code null} to close the channel
      * @throws IOException if a sensor cannot be set up
      */
-    public BrickPlatform(PlatformConfig config, GenericMotorPlatform motors, SensorPlatform sensorPlatform, BrickChannel channel,
+    public BrickPlatform(PlatformConfig config, MotorPlatform motors, SensorPlatform sensorPlatform, BrickChannel channel,
                          AutoCloseable link) throws IOException {
         this.config = config;
         this.motors = motors;
         this.actionThread = new ExecutionActionThread(config.robotName(), config.clock(), config.cyclePeriod(), config.failures());
-        motors.cyclePeriod(config.cyclePeriod());
         for (SensorChannel channelOfSensor : config.sensors()) {
             Sensor sensor = channelOfSensor.type() == SensorType.TACHO
                     ? sensorPlatform.selectMotorSensor(channelOfSensor.port(), channelOfSensor.type(), ReturnType.RAW)
@@ -76,7 +75,7 @@ public final class BrickPlatform implements RobotPlatform {
     }
 
     /** @return the motor platform */
-    public GenericMotorPlatform motors() {
+    public MotorPlatform motors() {
         return motors;
     }
 
@@ -132,7 +131,7 @@ public final class BrickPlatform implements RobotPlatform {
 
     /**
      * Runs a command nobody waits for: a {@code drive} (every target continuous) goes through the
-     * motor platform's refresh slot instead of a container per call ({@link GenericMotorPlatform#submitDetached}),
+     * motor platform's refresh slot instead of a container per call ({@link MotorPlatform#submitDetached}),
      * in its place among the other commands; when the link is down or the platform has failed, it
      * is dropped, as {@link #run} refuses it.
      */

@@ -11,7 +11,10 @@ import io.robomw.api.spi.MotorTarget;
 import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformServices;
 import io.robomw.api.spi.SensorChannel;
-import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.motor.FeedbackSink;
+import io.robomw.platform.motor.LinkTiming;
+import io.robomw.platform.motor.MotorDriver;
+import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.motor.MotorState;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
@@ -42,16 +45,17 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 class HonestVerbsTest {
 
     /** Records every batch it is handed; fails every write while {@link #unplugged}. */
-    static final class RecordingMotors extends GenericMotorPlatform {
+    static final class RecordingMotors implements MotorDriver {
         final List<List<MotorState>> sent = new CopyOnWriteArrayList<>();
         volatile boolean unplugged;
 
-        RecordingMotors() {
-            super("honest", Clock.system(), List.of("B", "C"));
+        @Override
+        public LinkTiming timing() {
+            return LinkTiming.NONE;
         }
 
         @Override
-        protected void runImpl(List<MotorState> motors) throws IOException {
+        public void send(List<MotorState> motors, FeedbackSink feedback) throws IOException {
             if (unplugged) {
                 throw new IOException("brick unplugged");
             }
@@ -59,10 +63,11 @@ class HonestVerbsTest {
         }
 
         @Override
-        protected void pollFeedback() throws IOException {
+        public int poll(FeedbackSink feedback) throws IOException {
             if (unplugged) {
                 throw new IOException("brick unplugged");
             }
+            return 0;
         }
 
         boolean lastBrakes(String port) {
@@ -88,13 +93,14 @@ class HonestVerbsTest {
         PlatformConfig config = new PlatformConfig("honest", "fake", new ConnectionSettings(Map.of(), "test"),
                 List.of(MotorChannel.actuator("B"), MotorChannel.actuator("C")), List.of(), Duration.ofMillis(10), Duration.ZERO, Clock.system(),
                 PlatformServices.none(), Cycling.OWN_THREADS, FailurePolicy.logging());
-        SensorPlatform sensors = new SensorPlatform(motors) {
+        MotorPlatform motorPlatform = new MotorPlatform(config, motors);
+        SensorPlatform sensors = new SensorPlatform(motorPlatform) {
             @Override
             public Sensor createSensor(SensorChannel channel) {
                 return () -> CompletableFuture.completedFuture(0.0);
             }
         };
-        platform = new BrickPlatform(config, motors, sensors, null, null).start();
+        platform = new BrickPlatform(config, motorPlatform, sensors, null, null).start();
     }
 
     @AfterEach

@@ -10,7 +10,7 @@ import io.robomw.api.spi.PlatformConfig;
 import io.robomw.platform.ThrottledWarnings;
 import io.robomw.platform.exec.ExecutionActionThread;
 import io.robomw.platform.link.LinkLostException;
-import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.motor.MotorPlatform;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -28,8 +28,9 @@ import java.util.concurrent.atomic.AtomicReference;
  * reopens a lost link. Everything about the link that used to be kept in several layers is here:
  * <ul>
  *   <li><b>Hand-off.</b> At the end of every action cycle the motor platform publishes the states
- *   that changed ({@link GenericMotorPlatform#flushOutputs(long)}); the agent takes them whole, one
- *   batch per cycle, and its driver writes them, then polls.</li>
+ *   that changed ({@link MotorPlatform#flushOutputs(long)}); the agent takes them whole, one
+ *   batch per cycle, and its driver writes them, then polls ({@link io.robomw.platform.motor.MotorLinkSide});
+ *   a stop's future completes once the batch carrying it is written.</li>
  *   <li><b>Link state.</b> An exchange that fails (on any thread: a sensor read too) takes the link
  *   {@link LinkState#DOWN DOWN}: every command is stopped ({@link ExecutionActionThread#linkFailed}),
  *   new ones are refused, exchanges fail at once, and stops waiting to be written fail naming the
@@ -64,7 +65,7 @@ public final class LinkAgent implements AutoCloseable {
     private final String robot;
     private final String role;
     private final ExecutionActionThread actionThread;
-    private final GenericMotorPlatform motors;
+    private final MotorPlatform motors;
     private final BrickChannel channel;
     private final AutoCloseable link;
     private final FailurePolicy failures;
@@ -90,7 +91,7 @@ public final class LinkAgent implements AutoCloseable {
      * @param link         closed last, when the agent closes (a driver's goodbye, then the channel); or
      *                     {@code null} to close the channel
      */
-    public LinkAgent(PlatformConfig config, ExecutionActionThread actionThread, GenericMotorPlatform motors, BrickChannel channel,
+    public LinkAgent(PlatformConfig config, ExecutionActionThread actionThread, MotorPlatform motors, BrickChannel channel,
                      AutoCloseable link) {
         this.config = config;
         this.robot = config.robotName();
@@ -200,8 +201,9 @@ public final class LinkAgent implements AutoCloseable {
     private int service() {
         // Containers admitted in cycles up to this one were running before the service began.
         long began = actionThread.cycles();
+        int work;
         try {
-            motors.serviceLink();
+            work = motors.linkSide().service();
         } catch (ChannelBusyException e) {
             // A sensor read held the channel too long: nothing is known to be wrong with the link.
             // The states taken were put back and go with the next service.
@@ -212,9 +214,10 @@ public final class LinkAgent implements AutoCloseable {
             return 0;
         } catch (Throwable t) {
             refused(t, began);
+            work = 1;
         }
         up();
-        return 1;
+        return work;
     }
 
     /**
@@ -231,7 +234,7 @@ public final class LinkAgent implements AutoCloseable {
         }
         driverErrors.incrementAndGet();
         actionThread.driverFailed(t instanceof RuntimeException r ? r : new RobotException("robot '" + robot + "': the driver failed: " + t, t),
-                Math.max(began, motors.servedCycle()));
+                Math.max(began, motors.linkSide().servedCycle()));
         if (t instanceof RobotException) {
             refusals.warn("{}", t.getMessage());
             LOG.debug("robot '{}': the driver's refusal", robot, t);
@@ -242,7 +245,7 @@ public final class LinkAgent implements AutoCloseable {
 
     /** The link works (again): one line if it was being reopened. */
     private void up() {
-        if (state.compareAndSet(LinkState.REOPENING, LinkState.UP)) {
+        if (state.get() == LinkState.REOPENING && state.compareAndSet(LinkState.REOPENING, LinkState.UP)) {
             LOG.info("robot '{}': link {} is up again", robot, describe());
         }
     }
@@ -319,7 +322,7 @@ public final class LinkAgent implements AutoCloseable {
         }
         try {
             motors.flushOutputs();
-            motors.serviceLink();
+            motors.linkSide().service();
         } catch (Throwable e) {
             LOG.error("robot '{}': the last stop could not be handed to the link: {}", robot, e.toString());
         }

@@ -7,6 +7,7 @@ import io.robomw.platform.BrickPlatform;
 import io.robomw.platform.PlatformCheck;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.SerialSettings;
+import io.robomw.platform.motor.MotorPlatform;
 
 import java.io.IOException;
 import java.time.Duration;
@@ -47,8 +48,9 @@ public final class Ev3PlatformProvider implements PlatformProvider {
                 SerialSettings.of(115200, 8, SerialSettings.Parity.NONE, 1), TCP_PORT, timeout);
         try {
             Ev3Brick brick = new Ev3Brick(config.robotName(), channel);
-            Ev3MotorPlatform motors = new Ev3MotorPlatform(config, brick);
-            motors.clearCounts();
+            Ev3MotorDriver driver = new Ev3MotorDriver(config, brick);
+            driver.clearCounts();
+            MotorPlatform motors = new MotorPlatform(config, driver);
             return new BrickPlatform(config, motors, new Ev3SensorPlatform(motors, brick), channel, null).start();
         } catch (IOException | RuntimeException e) {
             channel.close();

@@ -4,7 +4,7 @@ import io.robomw.platform.brick.LittleEndian;
 import io.robomw.platform.link.Deadline;
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.spi.SensorChannel;
-import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
 
@@ -41,7 +41,7 @@ public final class NxtSensorPlatform extends SensorPlatform {
      * @param motors the motor platform (for tachometers)
      * @param brick  the brick
      */
-    public NxtSensorPlatform(GenericMotorPlatform motors, NxtBrick brick) {
+    public NxtSensorPlatform(MotorPlatform motors, NxtBrick brick) {
         super(motors);
         this.brick = brick;
     }

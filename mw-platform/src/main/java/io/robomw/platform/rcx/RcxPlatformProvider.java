@@ -6,6 +6,7 @@ import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.SerialSettings;
+import io.robomw.platform.motor.MotorPlatform;
 
 import java.io.IOException;
 import java.time.Duration;
@@ -36,8 +37,9 @@ public final class RcxPlatformProvider implements PlatformProvider {
         try {
             RcxBrick brick = new RcxBrick(config.robotName(), channel, echo);
             brick.alive();
-            RcxMotorPlatform motors = new RcxMotorPlatform(config, brick);
-            motors.setUp();
+            RcxMotorDriver driver = new RcxMotorDriver(config, brick);
+            driver.setUp();
+            MotorPlatform motors = new MotorPlatform(config, driver);
             return new BrickPlatform(config, motors, new RcxSensorPlatform(motors, brick), channel, null).start();
         } catch (IOException | RuntimeException e) {
             channel.close();

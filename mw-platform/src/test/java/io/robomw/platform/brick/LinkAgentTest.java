@@ -15,7 +15,10 @@ import io.robomw.platform.BrickPlatform;
 import io.robomw.platform.link.Communicator;
 import io.robomw.platform.link.Link;
 import io.robomw.platform.link.LinkLostException;
-import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.motor.FeedbackSink;
+import io.robomw.platform.motor.LinkTiming;
+import io.robomw.platform.motor.MotorDriver;
+import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.motor.MotorState;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
@@ -108,17 +111,21 @@ class LinkAgentTest {
     }
 
     /** Sends one byte per motor state (1 running, 0 stopped) and reads its echo; polls with one byte. */
-    static final class EchoMotors extends GenericMotorPlatform {
+    static final class EchoMotors implements MotorDriver {
         final List<List<MotorState>> sent = new CopyOnWriteArrayList<>();
         private final BrickChannel channel;
 
         EchoMotors(BrickChannel channel) {
-            super("pluggable", Clock.system(), List.of("B", "C"));
             this.channel = channel;
         }
 
         @Override
-        protected void runImpl(List<MotorState> motors) throws IOException {
+        public LinkTiming timing() {
+            return LinkTiming.NONE;
+        }
+
+        @Override
+        public void send(List<MotorState> motors, FeedbackSink feedback) throws IOException {
             byte[] bytes = new byte[motors.size()];
             for (int i = 0; i < bytes.length; i++) {
                 bytes[i] = (byte) (motors.get(i).running() ? 1 : 0);
@@ -128,8 +135,9 @@ class LinkAgentTest {
         }
 
         @Override
-        protected void pollFeedback() throws IOException {
+        public int poll(FeedbackSink feedback) throws IOException {
             ping(new byte[] {7});
+            return 0;
         }
 
         void ping(byte[] bytes) throws IOException {
@@ -153,13 +161,14 @@ class LinkAgentTest {
         PlatformConfig config = new PlatformConfig("pluggable", "fake", new ConnectionSettings(Map.of(), "test"),
                 List.of(MotorChannel.actuator("B"), MotorChannel.actuator("C")), List.of(), Duration.ofMillis(10), Duration.ZERO, Clock.system(),
                 PlatformServices.none(), Cycling.OWN_THREADS, FailurePolicy.logging());
-        SensorPlatform sensors = new SensorPlatform(motors) {
+        MotorPlatform motorPlatform = new MotorPlatform(config, motors);
+        SensorPlatform sensors = new SensorPlatform(motorPlatform) {
             @Override
             public Sensor createSensor(SensorChannel s) {
                 return () -> CompletableFuture.completedFuture(0.0);
             }
         };
-        platform = new BrickPlatform(config, motors, sensors, channel, null).start();
+        platform = new BrickPlatform(config, motorPlatform, sensors, channel, null).start();
     }
 
     @AfterEach

@@ -90,11 +90,11 @@ class NxtTelegramTest {
 
     @Test
     void shouldMapSpeedsToPowerAndPortsToOutputs() {
-        assertEquals(50, NxtMotorPlatform.power(450));
-        assertEquals(-100, NxtMotorPlatform.power(-5000));
-        assertEquals(2, NxtMotorPlatform.outputPort("C"));
+        assertEquals(50, NxtMotorDriver.power(450));
+        assertEquals(-100, NxtMotorDriver.power(-5000));
+        assertEquals(2, NxtMotorDriver.outputPort("C"));
         assertEquals(3, NxtSensorPlatform.inputPort("S4"));
-        IllegalArgumentException e = assertThrows(IllegalArgumentException.class, () -> NxtMotorPlatform.outputPort("D"));
+        IllegalArgumentException e = assertThrows(IllegalArgumentException.class, () -> NxtMotorDriver.outputPort("D"));
         assertTrue(e.getMessage().contains("A, B and C"));
     }
 

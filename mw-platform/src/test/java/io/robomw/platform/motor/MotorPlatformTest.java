@@ -35,24 +35,24 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 /**
  * The motor platform and BrickPlatform on a manual clock, with a fake driver whose motors turn at
- * exactly the commanded speed between cycles.
+ * exactly the commanded speed between cycles; the link agent runs inline, after each cycle.
  */
-class GenericMotorPlatformTest {
+class MotorPlatformTest {
 
     private static final Duration PERIOD = Duration.ofMillis(10);
 
     private final ManualClock clock = new ManualClock();
-    private final FakeMotors motors = new FakeMotors(clock);
+    private final FakeMotors motors = new FakeMotors();
     private BrickPlatform platform;
 
     /**
-     * Motors that integrate their speed over simulated time; records what runImpl got. Optionally
+     * Motors that integrate their speed over simulated time; records what the link side sent. Optionally
      * like an NXT: the brick ends a limited rotation itself at its limit, counted from where the
      * motor is when the command arrives, and says so; optionally on a busy link, whose commands
-     * reach the motors {@code commandLag} cycles after runImpl took them (replies still report
+     * reach the motors {@code commandLag} cycles after the link side sent them (replies still report
      * what the brick did after every command sent before them); or with a blocked motor.
      */
-    static final class FakeMotors extends GenericMotorPlatform {
+    static final class FakeMotors implements MotorDriver, LinkTiming {
         final List<List<MotorState>> sent = new ArrayList<>();
         final Map<String, Double> speed = new HashMap<>(Map.of("B", 0.0, "C", 0.0));
         final Map<String, Double> position = new HashMap<>(Map.of("B", 0.0, "C", 0.0));
@@ -65,17 +65,18 @@ class GenericMotorPlatformTest {
         boolean blocked;
         int commandLag;
 
-        FakeMotors(ManualClock clock) {
-            super("fake", clock, List.of("B", "C"));
+        @Override
+        public LinkTiming timing() {
+            return this;
         }
 
         @Override
-        protected boolean stopsAtLimit() {
+        public boolean stopsAtLimit() {
             return brickStopsAtLimit;
         }
 
         @Override
-        protected void runImpl(List<MotorState> motors) throws IOException {
+        public void send(List<MotorState> motors, FeedbackSink feedback) throws IOException {
             if (failNext != null) {
                 throw failNext;
             }
@@ -86,15 +87,16 @@ class GenericMotorPlatformTest {
         }
 
         @Override
-        protected void pollFeedback() {
-            position.forEach(this::reportDegrees);
+        public int poll(FeedbackSink feedback) {
+            position.forEach(feedback::degrees);
             if (brickStopsAtLimit && inFlight.isEmpty()) {
                 speed.forEach((port, dps) -> {
                     if (dps == 0) {
-                        reportStoppedAtLimit(port);
+                        feedback.stoppedAtLimit(port);
                     }
                 });
             }
+            return 0;
         }
 
         private void applyDue() {
@@ -136,13 +138,14 @@ class GenericMotorPlatformTest {
                 List.of(new SensorChannel("left-tacho", io.robomw.api.SensorType.TACHO, "B", Map.of()),
                         new SensorChannel("sonar", io.robomw.api.SensorType.SONAR, "S4", Map.of())),
                 PERIOD, Duration.ofMillis(500), clock, PlatformServices.none(), io.robomw.api.spi.Cycling.BY_OWNER, io.robomw.api.spi.FailurePolicy.logging());
-        SensorPlatform sensors = new SensorPlatform(motors) {
+        MotorPlatform motorPlatform = new MotorPlatform(config, motors);
+        SensorPlatform sensors = new SensorPlatform(motorPlatform) {
             @Override
             public Sensor createSensor(SensorChannel sensorObject) {
                 return () -> CompletableFuture.completedFuture(42.0);
             }
         };
-        platform = new BrickPlatform(config, motors, sensors, null, null).start();
+        platform = new BrickPlatform(config, motorPlatform, sensors, null, null).start();
         return platform;
     }
 
@@ -182,7 +185,7 @@ class GenericMotorPlatformTest {
     }
 
     @Test
-    void shouldSendOnlyChangedMotorsToRunImpl() throws Exception {
+    void shouldSendOnlyChangedMotorsToTheDriver() throws Exception {
         open();
         platform.run(MotorCommand.of("b only", List.of(MotorTarget.run("B", 100))));
         step();
