@@ -2,7 +2,6 @@ package io.robomw.platform.nxt;
 
 import io.robomw.api.Clock;
 import io.robomw.api.spi.PlatformConfig;
-import io.robomw.platform.brick.LittleEndian;
 import io.robomw.platform.motor.FeedbackSink;
 import io.robomw.platform.motor.LinkTiming;
 import io.robomw.platform.motor.MotorDriver;
@@ -162,7 +161,7 @@ public final class NxtMotorDriver implements MotorDriver, LinkTiming {
         }
         for (MotorState m : motors) {
             int port = outputPort(m.port());
-            batch.add(new NxtBrick.Request(setOutputState(m, port, sync), NxtTelegram.STATUS_REPLY, port));
+            batch.add(new NxtBrick.Request(NxtTelegram.setOutputState(true, outputState(m, port, sync)), NxtTelegram.STATUS_REPLY, port));
         }
         int motorTelegrams = batch.size();
         long now = clock.nanoTime();
@@ -178,30 +177,20 @@ public final class NxtMotorDriver implements MotorDriver, LinkTiming {
         List<byte[]> replies = brick.pipeline(batch);
         readPolls(polled, replies.subList(motorTelegrams, replies.size()), batch.subList(motorTelegrams, batch.size()), feedback);
         polledThisCycle = true;
-        for (int i = 0; i < motorTelegrams; i++) {
-            int status = replies.get(i)[NxtTelegram.STATUS_OFFSET] & 0xFF;
-            if (status != NxtStatus.SUCCESS) {
-                throw new NxtException(brick.robot(), batch.get(i).telegram()[1] & 0xFF, batch.get(i).port(), status, batch.get(i).telegram());
-            }
-        }
+        brick.checkStatus(batch.subList(0, motorTelegrams), replies.subList(0, motorTelegrams));
     }
 
     private boolean limited(MotorState m) {
         return resetCountCommand && !Double.isInfinite(m.limitDegrees());
     }
 
-    private byte[] setOutputState(MotorState m, int port, boolean sync) {
+    /** @return the output state a motor state is on the NXT */
+    OutputState outputState(MotorState m, int port, boolean sync) {
         if (m.running()) {
             long limit = limited(m) ? Math.max(1, Math.round(m.limitDegrees())) : 0;
-            return NxtTelegram.setOutputState(true, port, power(m.degreesPerSecond()),
-                    NxtTelegram.MODE_MOTORON | NxtTelegram.MODE_BRAKE | NxtTelegram.MODE_REGULATED,
-                    sync ? NxtTelegram.REGULATION_SYNC : NxtTelegram.REGULATION_SPEED, 0, NxtTelegram.RUN_RUNNING, limit);
+            return OutputState.running(port, power(m.degreesPerSecond()), sync ? OutputState.Regulation.SYNC : OutputState.Regulation.SPEED, limit);
         }
-        if (m.stopMode() == MotorState.StopMode.BRAKE) {
-            return NxtTelegram.setOutputState(true, port, 0, NxtTelegram.MODE_MOTORON | NxtTelegram.MODE_BRAKE | NxtTelegram.MODE_REGULATED,
-                    NxtTelegram.REGULATION_SPEED, 0, NxtTelegram.RUN_RUNNING, 0);
-        }
-        return NxtTelegram.setOutputState(true, port, 0, 0, NxtTelegram.REGULATION_IDLE, 0, NxtTelegram.RUN_IDLE, 0);
+        return m.stopMode() == MotorState.StopMode.BRAKE ? OutputState.braked(port) : OutputState.coasting(port);
     }
 
     /**
@@ -254,27 +243,20 @@ public final class NxtMotorDriver implements MotorDriver, LinkTiming {
         return out;
     }
 
-    private void readPolls(List<Integer> polled, List<byte[]> replies, List<NxtBrick.Request> requests, FeedbackSink feedback) {
+    private void readPolls(List<Integer> polled, List<byte[]> replies, List<NxtBrick.Request> requests, FeedbackSink feedback) throws IOException {
         long now = clock.nanoTime();
         for (int k = 0; k < polled.size(); k++) {
             byte[] reply = replies.get(k);
-            int status = reply[NxtTelegram.STATUS_OFFSET] & 0xFF;
-            if (status != NxtStatus.SUCCESS) {
-                throw new NxtException(brick.robot(), NxtTelegram.GETOUTPUTSTATE, requests.get(k).port(), status, requests.get(k).telegram());
-            }
+            brick.checkStatus(requests.get(k), reply);
+            NxtTelegram.OutputReading reading = brick.outputReading(reply);
             int i = polled.get(k);
             polledAt[i] = now;
-            feedback.degrees(i, LittleEndian.s32(reply, ROTATION_COUNT_OFFSET));
-            if (reply[RUN_STATE_OFFSET] == NxtTelegram.RUN_IDLE) {
+            feedback.degrees(i, reading.rotationCount());
+            if (reading.state().runState() == OutputState.RunState.IDLE) {
                 feedback.stoppedAtLimit(ports.get(i));
             }
         }
     }
-
-    /** Offset of the run state in a GETOUTPUTSTATE reply. */
-    private static final int RUN_STATE_OFFSET = 8;
-    /** Offset of the rotation count in a GETOUTPUTSTATE reply. */
-    private static final int ROTATION_COUNT_OFFSET = 21;
 
     /**
      * Zeroes every motor's rotation count, so encoders count from the platform's start, and its
@@ -290,16 +272,15 @@ public final class NxtMotorDriver implements MotorDriver, LinkTiming {
         }
         List<byte[]> replies = brick.pipeline(requests);
         for (int i = 0; i < replies.size(); i++) {
-            int status = replies.get(i)[NxtTelegram.STATUS_OFFSET] & 0xFF;
-            boolean resetCount = (requests.get(i).telegram()[1] & 0xFF) == NxtTelegram.UPDATE_RESET_COUNT;
-            if (resetCount && status == NxtStatus.UNKNOWN_COMMAND) {
+            boolean resetCount = NxtTelegram.opcode(requests.get(i).telegram()) == NxtTelegram.UPDATE_RESET_COUNT;
+            if (resetCount && NxtTelegram.status(replies.get(i)) == NxtStatus.UNKNOWN_COMMAND) {
                 if (resetCountCommand) {
                     LOG.info("robot '{}': the NXT's firmware has no UPDATE_RESET_COUNT (older than 1.29); rotations are stopped by the "
                             + "encoder instead of the brick's tacho limit", brick.robot());
                 }
                 resetCountCommand = false;
-            } else if (status != NxtStatus.SUCCESS) {
-                throw new NxtException(brick.robot(), requests.get(i).telegram()[1] & 0xFF, requests.get(i).port(), status, requests.get(i).telegram());
+            } else {
+                brick.checkStatus(requests.get(i), replies.get(i));
             }
         }
     }
