@@ -227,7 +227,7 @@ final class DemoCommand implements Callable<Integer> {
                 if (watching != null) {
                     watching.watchHost(home.address());
                 }
-                List<AgentRef> refs = home.dispatchClones(agent, addresses.values().toArray(String[]::new));
+                List<AgentRef> refs = home.agency().dispatchClones(agent, addresses.values().toArray(String[]::new));
                 step("dispatched clones of %s (its code from %s) to %s", AGENT, jar.getFileName(), hostsWord(names.size()));
                 results = new LinkedHashMap<>();
                 List<CompletableFuture<Serializable>> pending = new ArrayList<>();
