@@ -1,8 +1,11 @@
 package io.robomw.platform.rcx;
 
+import io.robomw.api.Clock;
 import io.robomw.api.spi.MotorChannel;
 import io.robomw.api.spi.PlatformConfig;
-import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.motor.FeedbackSink;
+import io.robomw.platform.motor.LinkTiming;
+import io.robomw.platform.motor.MotorDriver;
 import io.robomw.platform.motor.MotorState;
 
 import java.io.IOException;
@@ -12,7 +15,7 @@ import java.util.List;
 import java.util.Map;
 
 /**
- * The RCX's motor platform. The RCX sets a motor's power in eight steps (0..7, no speed
+ * The RCX's motor driver. The RCX sets a motor's power in eight steps (0..7, no speed
  * regulation), its direction, and switches it on, off (braking) or to float; it has no encoders:
  * a wheel's rotation is counted by a rotation sensor on an input (the wheel's {@code counter:},
  * {@code S1}..{@code S3}), 16 counts per turn of its axle ({@code encoder_ticks_per_revolution}).
@@ -31,7 +34,7 @@ import java.util.Map;
  * driver takes the step nearest the wanted speed, and predicts with the step's speed. The
  * constant is shared with the emulator.
  */
-public final class RcxMotorPlatform extends GenericMotorPlatform {
+public final class RcxMotorDriver implements MotorDriver, LinkTiming {
 
     /**
      * Speed of a motor at power 7, degrees per second of the shaft the description counts (a 9 V
@@ -44,6 +47,8 @@ public final class RcxMotorPlatform extends GenericMotorPlatform {
     static final long SETTLE_NANOS = 400_000_000L;
 
     private final RcxBrick brick;
+    private final Clock clock;
+    private final List<String> ports;
     private final Map<String, Integer> counterOf = new HashMap<>();
     private final int ticksPerRevolution;
     private final Map<String, Integer> power = new HashMap<>();
@@ -56,9 +61,10 @@ public final class RcxMotorPlatform extends GenericMotorPlatform {
      * @param config the platform configuration (motor ports A, B, C; wheels counted by rotation sensors on S1..S3)
      * @param brick  the brick
      */
-    public RcxMotorPlatform(PlatformConfig config, RcxBrick brick) {
-        super(config.robotName(), config.clock(), config.motorPorts());
+    public RcxMotorDriver(PlatformConfig config, RcxBrick brick) {
         this.brick = brick;
+        this.clock = config.clock();
+        this.ports = List.copyOf(config.motorPorts());
         for (String port : config.motorPorts()) {
             motorBit(port);
         }
@@ -104,21 +110,26 @@ public final class RcxMotorPlatform extends GenericMotorPlatform {
         return counterOf.containsKey(port) && ticksPerRevolution > 0;
     }
 
+    @Override
+    public LinkTiming timing() {
+        return this;
+    }
+
     /** A rotation sensor's count is 22.5° of its axle (16 a turn). */
     @Override
-    protected double encoderResolutionDegrees(String port) {
+    public double encoderResolutionDegrees(String port) {
         return hasEncoder(port) ? 360.0 / ticksPerRevolution : 0;
     }
 
     /** The RCX turns a motor at its power step's speed, not the one asked for. */
     @Override
-    protected double actualDegreesPerSecond(MotorState state) {
+    public double actualDegreesPerSecond(MotorState state) {
         return state.running() ? Math.signum(state.degreesPerSecond()) * speedAt(powerStep(state.degreesPerSecond())) : 0;
     }
 
-    /** The link thread stops rotations itself, just in time: a stop from the action thread could wait a whole exchange. */
+    /** The link side stops rotations itself, just in time: a stop from the action thread could wait a whole exchange. */
     @Override
-    protected boolean stopsOnLinkSide() {
+    public boolean stopsOnLinkSide() {
         return true;
     }
 
@@ -128,13 +139,13 @@ public final class RcxMotorPlatform extends GenericMotorPlatform {
      * the measured round trip.
      */
     @Override
-    protected long linkDelayNanos() {
+    public long oneWayDelayNanos() {
         return brick.roundTrip().nanos() * 2 / 3;
     }
 
     /** The last packet of a batch acted when it had arrived: its echo and reply (16 of 25 bytes) came after. */
     @Override
-    protected long actedNanosAgo() {
+    public long actedNanosAgo() {
         return brick.roundTrip().nanos() * 16 / 25;
     }
 
@@ -143,19 +154,19 @@ public final class RcxMotorPlatform extends GenericMotorPlatform {
      * round trip with echo and reply (25 bytes); after the exchange under way.
      */
     @Override
-    protected long commandDelayNanos() {
+    public long commandDelayNanos() {
         return brick.nanosUntilFree() + brick.roundTrip().nanos() * 9 / 25;
     }
 
     /** The next packet can go after this cycle's exchanges: a round trip for each wheel read. */
     @Override
-    protected long nextSendNanos() {
-        return Math.max(super.nextSendNanos(), brick.roundTrip().nanos() * Math.max(1, counterOf.size()));
+    public long nextSendNanos(long cycleNanos) {
+        return Math.max(cycleNanos, brick.roundTrip().nanos() * Math.max(1, counterOf.size()));
     }
 
     @Override
-    protected void runImpl(List<MotorState> motors) throws IOException {
-        long now = clock().nanoTime();
+    public void send(List<MotorState> motors, FeedbackSink feedback) throws IOException {
+        long now = clock.nanoTime();
         Map<Integer, Integer> byPower = new LinkedHashMap<>();
         Map<Integer, Integer> byDirection = new LinkedHashMap<>();
         Map<Integer, Integer> byState = new LinkedHashMap<>();
@@ -191,7 +202,7 @@ public final class RcxMotorPlatform extends GenericMotorPlatform {
     }
 
     private void remember(Map<String, Integer> values, int motors, int value) {
-        for (String port : ports()) {
+        for (String port : ports) {
             if ((motors & motorBit(port)) != 0) {
                 values.put(port, value);
             }
@@ -201,24 +212,31 @@ public final class RcxMotorPlatform extends GenericMotorPlatform {
     /**
      * Reads the rotation sensor of every wheel that turns, or stopped less than
      * {@link #SETTLE_NANOS} ago, or was not read for a second.
+     *
+     * @return the wheels read that turn or settle
      */
     @Override
-    protected void pollFeedback() throws IOException {
-        long now = clock().nanoTime();
+    public int poll(FeedbackSink feedback) throws IOException {
+        long now = clock.nanoTime();
+        int moving = 0;
         for (Map.Entry<String, Integer> e : counterOf.entrySet()) {
             String port = e.getKey();
             MotorState m = running.get(port);
             Long changed = changedAt.get(port);
             Long polled = polledAt.get(port);
-            boolean due = (m != null && m.running()) || (changed != null && now - changed < SETTLE_NANOS)
-                    || polled == null || now - polled >= 1_000_000_000L;
+            boolean settling = (m != null && m.running()) || (changed != null && now - changed < SETTLE_NANOS);
+            boolean due = settling || polled == null || now - polled >= 1_000_000_000L;
             if (!due || ticksPerRevolution <= 0) {
                 continue;
             }
             int counts = brick.request(RcxPacket.GET_VALUE, RcxPacket.getValue(RcxPacket.SOURCE_SENSOR_VALUE, e.getValue())).s16();
-            polledAt.put(port, clock().nanoTime());
-            reportDegrees(port, counts * 360.0 / ticksPerRevolution);
+            polledAt.put(port, clock.nanoTime());
+            feedback.degrees(port, counts * 360.0 / ticksPerRevolution);
+            if (settling) {
+                moving++;
+            }
         }
+        return moving;
     }
 
     /**
@@ -233,7 +251,7 @@ public final class RcxMotorPlatform extends GenericMotorPlatform {
             brick.request(RcxPacket.SET_SENSOR_MODE, RcxPacket.setSensorMode(input, RcxPacket.MODE_ANGLE));
         }
         int all = 0;
-        for (String port : ports()) {
+        for (String port : ports) {
             all |= motorBit(port);
         }
         if (all != 0) {

@@ -1,22 +1,20 @@
 package io.robomw.platform.nxt;
 
+import io.robomw.api.Clock;
 import io.robomw.api.spi.PlatformConfig;
-import io.robomw.platform.brick.LittleEndian;
-import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.motor.FeedbackSink;
+import io.robomw.platform.motor.LinkTiming;
+import io.robomw.platform.motor.MotorDriver;
 import io.robomw.platform.motor.MotorState;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 import java.io.IOException;
 import java.util.ArrayList;
-import java.util.HashMap;
-import java.util.LinkedHashSet;
 import java.util.List;
-import java.util.Map;
-import java.util.Set;
 
 /**
- * The NXT's motor platform: motor states become SETOUTPUTSTATE telegrams (regulated speed, the
+ * The NXT's motor driver: motor states become SETOUTPUTSTATE telegrams (regulated speed, the
  * rotation as the brick's tacho limit, brake when stopping, coast when closing; two motors started
  * together at the same speed for the same rotation run synchronised, so the robot drives
  * straight), and the encoders are read with GETOUTPUTSTATE's rotation count.
@@ -29,9 +27,10 @@ import java.util.Set;
  * ends exactly its limit from where the motor is when the brick takes it. A synchronised pair also
  * gets its block tacho counts reset first (RESETMOTORPOSITION relative), since the firmware keeps
  * the pair in step by their difference. A limited rotation is over when the brick reports the
- * output's run state idle. Firmware older than 1.29 has no UPDATE_RESET_COUNT (it answers 0xBE
- * when the robot opens): then no tacho limit is sent and the platform stops each rotation by the
- * encoder, like a brick without limits.
+ * output's run state idle ({@link FeedbackSink#stoppedAtLimit}: the link side brakes it at once).
+ * Firmware older than 1.29 has no UPDATE_RESET_COUNT (it answers 0xBE when the robot opens): then
+ * no tacho limit is sent and the link side stops each rotation by the encoder, just in time, like a
+ * brick without limits.
  *
  * <h2>Over a slow link</h2>
  * Each cycle's telegrams go out {@link NxtBrick#pipeline pipelined}: the motor changes (resets and
@@ -41,9 +40,9 @@ import java.util.Set;
  * and those stopped less than {@link #SETTLE_NANOS} ago (their coasting still shows in the
  * encoder); the others once every {@link #IDLE_POLL_NANOS}. A keep-alive goes out every minute.
  */
-public final class NxtMotorPlatform extends GenericMotorPlatform {
+public final class NxtMotorDriver implements MotorDriver, LinkTiming {
 
-    private static final Logger LOG = LoggerFactory.getLogger(NxtMotorPlatform.class);
+    private static final Logger LOG = LoggerFactory.getLogger(NxtMotorDriver.class);
 
     private static final long KEEP_ALIVE_NANOS = 60_000_000_000L;
     /** How long a stopped motor is still polled every cycle. */
@@ -52,24 +51,36 @@ public final class NxtMotorPlatform extends GenericMotorPlatform {
     static final long IDLE_POLL_NANOS = 1_000_000_000L;
 
     private final NxtBrick brick;
-    private final Map<String, MotorState> commanded = new HashMap<>();
-    private final Map<String, Long> changedAt = new HashMap<>();
-    private final Map<String, Long> polledAt = new HashMap<>();
-    private boolean resetCountCommand = true;
+    private final Clock clock;
+    /** The motor ports, in the description's order, and each one's NXT output number. */
+    private final List<String> ports;
+    private final int[] outputs;
+    // By port index; link side only:
+    private final MotorState[] commanded;
+    private final long[] changedAt;
+    private final long[] polledAt;
+    private volatile boolean resetCountCommand = true;
     private boolean polledThisCycle;
     private long lastKeepAlive;
 
     /**
      * @param config the platform configuration (motor ports A, B, C)
      * @param brick  the brick
+     * @throws IllegalArgumentException if a motor port is not A, B or C
      */
-    public NxtMotorPlatform(PlatformConfig config, NxtBrick brick) {
-        super(config.robotName(), config.clock(), config.motorPorts());
+    public NxtMotorDriver(PlatformConfig config, NxtBrick brick) {
         this.brick = brick;
-        for (String port : config.motorPorts()) {
-            outputPort(port);
+        this.clock = config.clock();
+        this.ports = List.copyOf(config.motorPorts());
+        this.outputs = new int[ports.size()];
+        for (int i = 0; i < outputs.length; i++) {
+            outputs[i] = outputPort(ports.get(i));
         }
-        this.lastKeepAlive = clock().nanoTime();
+        this.commanded = new MotorState[ports.size()];
+        this.changedAt = new long[ports.size()];
+        this.polledAt = new long[ports.size()];
+        java.util.Arrays.fill(polledAt, Long.MIN_VALUE);
+        this.lastKeepAlive = clock.nanoTime();
     }
 
     /**
@@ -95,41 +106,46 @@ public final class NxtMotorPlatform extends GenericMotorPlatform {
         return (int) Math.max(-100, Math.min(100, p));
     }
 
+    @Override
+    public LinkTiming timing() {
+        return this;
+    }
+
     /**
      * With UPDATE_RESET_COUNT, the NXT ends a rotation at its tacho limit itself and then reports
-     * the output idle; without it, the platform stops rotations by the encoder.
+     * the output idle; without it, the link side stops rotations by the encoder.
      */
     @Override
-    protected boolean stopsAtLimit() {
+    public boolean stopsAtLimit() {
         return resetCountCommand;
     }
 
     /** Half the measured round trip of the brick's link. */
     @Override
-    protected long linkDelayNanos() {
+    public long oneWayDelayNanos() {
         return brick.roundTrip().oneWayNanos();
     }
 
-    /** The link's one-way delay, after the exchange under way (a poll, a sensor read) ends. */
+    /** The exchange under way on the channel (a poll, a sensor read): a command waits for it. */
     @Override
-    protected long commandDelayNanos() {
-        return brick.nanosUntilFree() + linkDelayNanos();
+    public long nanosUntilFree() {
+        return brick.nanosUntilFree();
     }
 
-    /** Without tacho limits (firmware before 1.29), the link thread stops rotations just in time itself. */
+    /** Without tacho limits (firmware before 1.29), the link side stops rotations just in time itself. */
     @Override
-    protected boolean stopsOnLinkSide() {
+    public boolean stopsOnLinkSide() {
         return !resetCountCommand;
     }
 
     /** The next telegram can go after this cycle's pipelined exchange, at the earliest a cycle from now. */
     @Override
-    protected long nextSendNanos() {
-        return Math.max(super.nextSendNanos(), brick.roundTrip().nanos());
+    public long nextSendNanos(long cycleNanos) {
+        return Math.max(cycleNanos, brick.roundTrip().nanos());
     }
 
     @Override
-    protected void runImpl(List<MotorState> motors) throws IOException {
+    public void send(List<MotorState> motors, FeedbackSink feedback) throws IOException {
         boolean sync = motors.size() == 2 && motors.get(0).running() && motors.get(1).running()
                 && motors.get(0).degreesPerSecond() == motors.get(1).degreesPerSecond()
                 && motors.get(0).limitDegrees() == motors.get(1).limitDegrees();
@@ -145,60 +161,55 @@ public final class NxtMotorPlatform extends GenericMotorPlatform {
         }
         for (MotorState m : motors) {
             int port = outputPort(m.port());
-            batch.add(new NxtBrick.Request(setOutputState(m, port, sync), NxtTelegram.STATUS_REPLY, port));
+            batch.add(new NxtBrick.Request(NxtTelegram.setOutputState(true, outputState(m, port, sync)), NxtTelegram.STATUS_REPLY, port));
         }
         int motorTelegrams = batch.size();
-        long now = clock().nanoTime();
+        long now = clock.nanoTime();
         for (MotorState m : motors) {
-            commanded.put(m.port(), m);
-            changedAt.put(m.port(), now);
+            int i = ports.indexOf(m.port());
+            commanded[i] = m;
+            changedAt[i] = now;
         }
-        List<String> polled = toPoll(now);
-        for (String port : polled) {
-            int p = outputPort(port);
-            batch.add(new NxtBrick.Request(NxtTelegram.getOutputState(p), NxtTelegram.GETOUTPUTSTATE_REPLY, p));
+        List<Integer> polled = toPoll(now);
+        for (int i : polled) {
+            batch.add(new NxtBrick.Request(NxtTelegram.getOutputState(outputs[i]), NxtTelegram.GETOUTPUTSTATE_REPLY, outputs[i]));
         }
         List<byte[]> replies = brick.pipeline(batch);
-        readPolls(polled, replies.subList(motorTelegrams, replies.size()), batch.subList(motorTelegrams, batch.size()));
+        readPolls(polled, replies.subList(motorTelegrams, replies.size()), batch.subList(motorTelegrams, batch.size()), feedback);
         polledThisCycle = true;
-        for (int i = 0; i < motorTelegrams; i++) {
-            int status = replies.get(i)[NxtTelegram.STATUS_OFFSET] & 0xFF;
-            if (status != NxtStatus.SUCCESS) {
-                throw new NxtException(brick.robot(), batch.get(i).telegram()[1] & 0xFF, batch.get(i).port(), status, batch.get(i).telegram());
-            }
-        }
+        brick.checkStatus(batch.subList(0, motorTelegrams), replies.subList(0, motorTelegrams));
     }
 
     private boolean limited(MotorState m) {
         return resetCountCommand && !Double.isInfinite(m.limitDegrees());
     }
 
-    private byte[] setOutputState(MotorState m, int port, boolean sync) {
+    /** @return the output state a motor state is on the NXT */
+    OutputState outputState(MotorState m, int port, boolean sync) {
         if (m.running()) {
             long limit = limited(m) ? Math.max(1, Math.round(m.limitDegrees())) : 0;
-            return NxtTelegram.setOutputState(true, port, power(m.degreesPerSecond()),
-                    NxtTelegram.MODE_MOTORON | NxtTelegram.MODE_BRAKE | NxtTelegram.MODE_REGULATED,
-                    sync ? NxtTelegram.REGULATION_SYNC : NxtTelegram.REGULATION_SPEED, 0, NxtTelegram.RUN_RUNNING, limit);
+            return OutputState.running(port, power(m.degreesPerSecond()), sync ? OutputState.Regulation.SYNC : OutputState.Regulation.SPEED, limit);
         }
-        if (m.stopMode() == MotorState.StopMode.BRAKE) {
-            return NxtTelegram.setOutputState(true, port, 0, NxtTelegram.MODE_MOTORON | NxtTelegram.MODE_BRAKE | NxtTelegram.MODE_REGULATED,
-                    NxtTelegram.REGULATION_SPEED, 0, NxtTelegram.RUN_RUNNING, 0);
-        }
-        return NxtTelegram.setOutputState(true, port, 0, 0, NxtTelegram.REGULATION_IDLE, 0, NxtTelegram.RUN_IDLE, 0);
+        return m.stopMode() == MotorState.StopMode.BRAKE ? OutputState.braked(port) : OutputState.coasting(port);
     }
 
+    /**
+     * Polls the motors that matter (unless this cycle's telegrams carried the polls) and keeps the
+     * brick awake.
+     *
+     * @return the motors polled that run or settle
+     */
     @Override
-    protected void pollFeedback() throws IOException {
-        long now = clock().nanoTime();
+    public int poll(FeedbackSink feedback) throws IOException {
+        long now = clock.nanoTime();
         if (!polledThisCycle) {
-            List<String> polled = toPoll(now);
+            List<Integer> polled = toPoll(now);
             if (!polled.isEmpty()) {
                 List<NxtBrick.Request> requests = new ArrayList<>();
-                for (String port : polled) {
-                    int p = outputPort(port);
-                    requests.add(new NxtBrick.Request(NxtTelegram.getOutputState(p), NxtTelegram.GETOUTPUTSTATE_REPLY, p));
+                for (int i : polled) {
+                    requests.add(new NxtBrick.Request(NxtTelegram.getOutputState(outputs[i]), NxtTelegram.GETOUTPUTSTATE_REPLY, outputs[i]));
                 }
-                readPolls(polled, brick.pipeline(requests), requests);
+                readPolls(polled, brick.pipeline(requests), requests, feedback);
             }
         }
         polledThisCycle = false;
@@ -206,44 +217,46 @@ public final class NxtMotorPlatform extends GenericMotorPlatform {
             lastKeepAlive = now;
             brick.keepAlive();
         }
-    }
-
-    /** The motors to poll now: running, stopped within {@link #SETTLE_NANOS}, or not polled for {@link #IDLE_POLL_NANOS}. */
-    private List<String> toPoll(long now) {
-        Set<String> out = new LinkedHashSet<>();
-        for (String port : ports()) {
-            MotorState m = commanded.get(port);
-            Long changed = changedAt.get(port);
-            Long polled = polledAt.get(port);
-            if ((m != null && m.running()) || (changed != null && now - changed < SETTLE_NANOS)
-                    || polled == null || now - polled >= IDLE_POLL_NANOS) {
-                out.add(port);
-            }
-        }
-        return new ArrayList<>(out);
-    }
-
-    private void readPolls(List<String> ports, List<byte[]> replies, List<NxtBrick.Request> requests) {
-        long now = clock().nanoTime();
+        int moving = 0;
         for (int i = 0; i < ports.size(); i++) {
-            byte[] reply = replies.get(i);
-            int status = reply[NxtTelegram.STATUS_OFFSET] & 0xFF;
-            if (status != NxtStatus.SUCCESS) {
-                throw new NxtException(brick.robot(), NxtTelegram.GETOUTPUTSTATE, requests.get(i).port(), status, requests.get(i).telegram());
+            if (moving(i, now)) {
+                moving++;
             }
-            String port = ports.get(i);
-            polledAt.put(port, now);
-            reportDegrees(port, LittleEndian.s32(reply, ROTATION_COUNT_OFFSET));
-            if (reply[RUN_STATE_OFFSET] == NxtTelegram.RUN_IDLE) {
-                reportStoppedAtLimit(port);
+        }
+        return moving;
+    }
+
+    /** @return whether a motor runs, or stopped less than {@link #SETTLE_NANOS} ago (its coasting still shows in the encoder) */
+    private boolean moving(int i, long now) {
+        MotorState m = commanded[i];
+        return m != null && (m.running() || now - changedAt[i] < SETTLE_NANOS);
+    }
+
+    /** The motors to poll now, by index: moving, or not polled for {@link #IDLE_POLL_NANOS}. */
+    private List<Integer> toPoll(long now) {
+        List<Integer> out = new ArrayList<>(ports.size());
+        for (int i = 0; i < ports.size(); i++) {
+            if (moving(i, now) || polledAt[i] == Long.MIN_VALUE || now - polledAt[i] >= IDLE_POLL_NANOS) {
+                out.add(i);
+            }
+        }
+        return out;
+    }
+
+    private void readPolls(List<Integer> polled, List<byte[]> replies, List<NxtBrick.Request> requests, FeedbackSink feedback) throws IOException {
+        long now = clock.nanoTime();
+        for (int k = 0; k < polled.size(); k++) {
+            byte[] reply = replies.get(k);
+            brick.checkStatus(requests.get(k), reply);
+            NxtTelegram.OutputReading reading = brick.outputReading(reply);
+            int i = polled.get(k);
+            polledAt[i] = now;
+            feedback.degrees(i, reading.rotationCount());
+            if (reading.state().runState() == OutputState.RunState.IDLE) {
+                feedback.stoppedAtLimit(ports.get(i));
             }
         }
     }
-
-    /** Offset of the run state in a GETOUTPUTSTATE reply. */
-    private static final int RUN_STATE_OFFSET = 8;
-    /** Offset of the rotation count in a GETOUTPUTSTATE reply. */
-    private static final int ROTATION_COUNT_OFFSET = 21;
 
     /**
      * Zeroes every motor's rotation count, so encoders count from the platform's start, and its
@@ -253,23 +266,21 @@ public final class NxtMotorPlatform extends GenericMotorPlatform {
      */
     void resetCounters() throws IOException {
         List<NxtBrick.Request> requests = new ArrayList<>();
-        for (String port : ports()) {
-            int p = outputPort(port);
+        for (int p : outputs) {
             requests.add(new NxtBrick.Request(NxtTelegram.resetMotorPosition(true, p, false), NxtTelegram.STATUS_REPLY, p));
             requests.add(new NxtBrick.Request(NxtTelegram.updateResetCount(true, p), NxtTelegram.STATUS_REPLY, p));
         }
         List<byte[]> replies = brick.pipeline(requests);
         for (int i = 0; i < replies.size(); i++) {
-            int status = replies.get(i)[NxtTelegram.STATUS_OFFSET] & 0xFF;
-            boolean resetCount = (requests.get(i).telegram()[1] & 0xFF) == NxtTelegram.UPDATE_RESET_COUNT;
-            if (resetCount && status == NxtStatus.UNKNOWN_COMMAND) {
+            boolean resetCount = NxtTelegram.opcode(requests.get(i).telegram()) == NxtTelegram.UPDATE_RESET_COUNT;
+            if (resetCount && NxtTelegram.status(replies.get(i)) == NxtStatus.UNKNOWN_COMMAND) {
                 if (resetCountCommand) {
                     LOG.info("robot '{}': the NXT's firmware has no UPDATE_RESET_COUNT (older than 1.29); rotations are stopped by the "
                             + "encoder instead of the brick's tacho limit", brick.robot());
                 }
                 resetCountCommand = false;
-            } else if (status != NxtStatus.SUCCESS) {
-                throw new NxtException(brick.robot(), requests.get(i).telegram()[1] & 0xFF, requests.get(i).port(), status, requests.get(i).telegram());
+            } else {
+                brick.checkStatus(requests.get(i), replies.get(i));
             }
         }
     }

@@ -1,9 +1,13 @@
 package io.robomw.platform.ft.txt;
 
+import io.robomw.api.Clock;
 import io.robomw.api.spi.MotorChannel;
 import io.robomw.api.spi.PlatformConfig;
 import io.robomw.platform.ft.FtMotors;
-import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.motor.FeedbackSink;
+import io.robomw.platform.motor.LinkTiming;
+import io.robomw.platform.motor.MotorDriver;
+import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.motor.MotorState;
 
 import java.io.IOException;
@@ -11,18 +15,18 @@ import java.util.List;
 import java.util.Map;
 
 /**
- * The TXT's motor platform. The TXT is driven by one cyclic exchange that carries every output and
+ * The TXT's motor driver. The TXT is driven by one cyclic exchange that carries every output and
  * brings back every input and counter, so:
  * <ul>
- *   <li>{@link #runImpl} only records each changed motor's wanted PWM (|speed| ÷
+ *   <li>{@link #send} only records each changed motor's wanted PWM (|speed| ÷
  *   {@link FtMotors#DEGREES_PER_SECOND_AT_FULL_POWER} × 512, forward on pwm[2i], reverse on
  *   pwm[2i+1]) and a new motor command: a rotation with a limit becomes the TXT's own distance
  *   command ({@code motor_dist} pulses, started by a new {@code motor_cmd_id}), so the controller
  *   stops the motor at the target without waiting for the link; two wheels started together at
  *   the same speed for the same rotation are also put in step ({@code motor_sync}). The
- *   {@link GenericMotorPlatform} logic stops at the target too, whichever comes first;</li>
- *   <li>{@link #pollFeedback}, on the link thread every cycle, sends the exchange (this is also
- *   the keep-alive) and turns the fast counters into encoder degrees.</li>
+ *   {@link MotorPlatform}'s logic stops at the target too, whichever comes first;</li>
+ *   <li>{@link #poll}, on the link side every round, sends the exchange (this is also the
+ *   keep-alive) and turns the fast counters into encoder degrees.</li>
  * </ul>
  *
  * <h2>Encoders</h2>
@@ -35,13 +39,14 @@ import java.util.Map;
  * is the counter the TXT's distance command watches. Actuator motors have no encoders here and
  * are stopped by time.
  *
- * <p>Threads: {@link #runImpl} and {@link #pollFeedback} run on the link thread;
+ * <p>Threads: {@link #send} and {@link #poll} run on the link side;
  * {@link #exchangeNow} may also be called by a sensor read on a program thread. The output state
  * and counter bookkeeping are guarded by one lock.
  */
-public final class TxtMotorPlatform extends GenericMotorPlatform {
+public final class TxtMotorDriver implements MotorDriver {
 
     private final TxtController controller;
+    private final Clock clock;
     private final Map<String, Integer> counterOf;
     private final int ticksPerRevolution;
     private final Object lock = new Object();
@@ -72,9 +77,9 @@ public final class TxtMotorPlatform extends GenericMotorPlatform {
      * @param controller  the TXT
      * @throws IllegalArgumentException if a motor port is not M1..M4 or a counter is not C1..C4
      */
-    public TxtMotorPlatform(PlatformConfig config, TxtController controller) {
-        super(config.robotName(), config.clock(), config.motorPorts());
+    public TxtMotorDriver(PlatformConfig config, TxtController controller) {
         this.controller = controller;
+        this.clock = config.clock();
         for (String port : config.motorPorts()) {
             TxtPorts.motor(port);
         }
@@ -116,7 +121,12 @@ public final class TxtMotorPlatform extends GenericMotorPlatform {
     }
 
     @Override
-    protected void runImpl(List<MotorState> motors) {
+    public LinkTiming timing() {
+        return LinkTiming.NONE;
+    }
+
+    @Override
+    public void send(List<MotorState> motors, FeedbackSink feedback) {
         boolean pair = motors.size() == 2 && motors.get(0).running() && motors.get(1).running()
                 && motors.get(0).degreesPerSecond() == motors.get(1).degreesPerSecond()
                 && motors.get(0).limitDegrees() == motors.get(1).limitDegrees() && Double.isFinite(motors.get(0).limitDegrees())
@@ -136,19 +146,34 @@ public final class TxtMotorPlatform extends GenericMotorPlatform {
         }
     }
 
+    /**
+     * Runs the exchange.
+     *
+     * @return the motors driven (a PWM value other than 0)
+     */
     @Override
-    protected void pollFeedback() throws IOException {
-        exchangeNow();
+    public int poll(FeedbackSink feedback) throws IOException {
+        exchangeNow(feedback);
+        int driven = 0;
+        synchronized (lock) {
+            for (int i = 0; i < TxtProtocol.MOTORS; i++) {
+                if (pwm[2 * i] != 0 || pwm[2 * i + 1] != 0) {
+                    driven++;
+                }
+            }
+        }
+        return driven;
     }
 
     /**
      * Runs one exchange now: sends the current outputs, reports the encoders and publishes the
-     * inputs. Called every cycle by the link thread, and by a sensor read that finds the inputs
+     * inputs. Called every round by the link side, and by a sensor read that finds the inputs
      * stale.
      *
+     * @param feedback where the encoders go
      * @throws IOException if the link failed; the published inputs are then cleared
      */
-    void exchangeNow() throws IOException {
+    void exchangeNow(FeedbackSink feedback) throws IOException {
         synchronized (lock) {
             TxtProtocol.Exchange request = new TxtProtocol.Exchange(pwm, sync, dist, motorCmdId, counterCmdId, 0, 0, 0);
             TxtController.Reading reading;
@@ -158,20 +183,20 @@ public final class TxtMotorPlatform extends GenericMotorPlatform {
                 inputs = null;
                 throw e;
             }
-            count(reading);
+            count(reading, feedback);
             for (int i = 0; i < TxtProtocol.MOTORS; i++) {
                 int driven = pwm[2 * i] - pwm[2 * i + 1];
                 if (driven != 0) {
                     direction[i] = Integer.signum(driven);
                 }
             }
-            inputs = new Inputs(reading.reply().input(), reading.generation(), clock().nanoTime());
+            inputs = new Inputs(reading.reply().input(), reading.generation(), clock.nanoTime());
         }
     }
 
     /** @return how long ago, on the platform's clock, inputs read at {@code atNanos} were read */
     long ageNanos(Inputs in) {
-        return clock().nanoTime() - in.atNanos();
+        return clock.nanoTime() - in.atNanos();
     }
 
     /** @return the inputs of the last exchange, or {@code null} if it failed or none ran yet */
@@ -183,7 +208,7 @@ public final class TxtMotorPlatform extends GenericMotorPlatform {
      * Adds the pulses counted since the last reading, signed by the direction each motor was
      * driven in until this exchange, and reports the wheels' degrees. Called with the lock held.
      */
-    private void count(TxtController.Reading reading) {
+    private void count(TxtController.Reading reading, FeedbackSink feedback) {
         boolean rebase = reading.session() != session;
         session = reading.session();
         int[] values = reading.reply().counterValue();
@@ -200,7 +225,7 @@ public final class TxtMotorPlatform extends GenericMotorPlatform {
             }
             lastCount[c] = values[c];
             if (ticksPerRevolution > 0) {
-                reportDegrees(e.getKey(), pulses[motor] * 360.0 / ticksPerRevolution);
+                feedback.degrees(e.getKey(), pulses[motor] * 360.0 / ticksPerRevolution);
             }
         }
     }

@@ -11,7 +11,6 @@ import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformServices;
 import io.robomw.api.spi.SensorChannel;
 import io.robomw.platform.BrickPlatform;
-import io.robomw.platform.LinkThreading;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
 import org.junit.jupiter.api.AfterEach;
@@ -23,6 +22,7 @@ import java.util.ArrayList;
 import java.util.HashMap;
 import java.util.List;
 import java.util.Map;
+import java.util.Set;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
@@ -35,24 +35,24 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 /**
  * The motor platform and BrickPlatform on a manual clock, with a fake driver whose motors turn at
- * exactly the commanded speed between cycles.
+ * exactly the commanded speed between cycles; the link agent runs inline, after each cycle.
  */
-class GenericMotorPlatformTest {
+class MotorPlatformTest {
 
     private static final Duration PERIOD = Duration.ofMillis(10);
 
     private final ManualClock clock = new ManualClock();
-    private final FakeMotors motors = new FakeMotors(clock);
+    private final FakeMotors motors = new FakeMotors();
     private BrickPlatform platform;
 
     /**
-     * Motors that integrate their speed over simulated time; records what runImpl got. Optionally
+     * Motors that integrate their speed over simulated time; records what the link side sent. Optionally
      * like an NXT: the brick ends a limited rotation itself at its limit, counted from where the
      * motor is when the command arrives, and says so; optionally on a busy link, whose commands
-     * reach the motors {@code commandLag} cycles after runImpl took them (replies still report
+     * reach the motors {@code commandLag} cycles after the link side sent them (replies still report
      * what the brick did after every command sent before them); or with a blocked motor.
      */
-    static final class FakeMotors extends GenericMotorPlatform {
+    static final class FakeMotors implements MotorDriver, LinkTiming {
         final List<List<MotorState>> sent = new ArrayList<>();
         final Map<String, Double> speed = new HashMap<>(Map.of("B", 0.0, "C", 0.0));
         final Map<String, Double> position = new HashMap<>(Map.of("B", 0.0, "C", 0.0));
@@ -65,17 +65,18 @@ class GenericMotorPlatformTest {
         boolean blocked;
         int commandLag;
 
-        FakeMotors(ManualClock clock) {
-            super("fake", clock, List.of("B", "C"));
+        @Override
+        public LinkTiming timing() {
+            return this;
         }
 
         @Override
-        protected boolean stopsAtLimit() {
+        public boolean stopsAtLimit() {
             return brickStopsAtLimit;
         }
 
         @Override
-        protected void runImpl(List<MotorState> motors) throws IOException {
+        public void send(List<MotorState> motors, FeedbackSink feedback) throws IOException {
             if (failNext != null) {
                 throw failNext;
             }
@@ -86,15 +87,16 @@ class GenericMotorPlatformTest {
         }
 
         @Override
-        protected void pollFeedback() {
-            position.forEach(this::reportDegrees);
+        public int poll(FeedbackSink feedback) {
+            position.forEach(feedback::degrees);
             if (brickStopsAtLimit && inFlight.isEmpty()) {
                 speed.forEach((port, dps) -> {
                     if (dps == 0) {
-                        reportStoppedAtLimit(port);
+                        feedback.stoppedAtLimit(port);
                     }
                 });
             }
+            return 0;
         }
 
         private void applyDue() {
@@ -136,13 +138,14 @@ class GenericMotorPlatformTest {
                 List.of(new SensorChannel("left-tacho", io.robomw.api.SensorType.TACHO, "B", Map.of()),
                         new SensorChannel("sonar", io.robomw.api.SensorType.SONAR, "S4", Map.of())),
                 PERIOD, Duration.ofMillis(500), clock, PlatformServices.none(), io.robomw.api.spi.Cycling.BY_OWNER, io.robomw.api.spi.FailurePolicy.logging());
-        SensorPlatform sensors = new SensorPlatform(motors) {
+        MotorPlatform motorPlatform = new MotorPlatform(config, motors);
+        SensorPlatform sensors = new SensorPlatform(motorPlatform) {
             @Override
             public Sensor createSensor(SensorChannel sensorObject) {
                 return () -> CompletableFuture.completedFuture(42.0);
             }
         };
-        platform = new BrickPlatform(config, motors, sensors, LinkThreading.INLINE, null).start();
+        platform = new BrickPlatform(config, motorPlatform, sensors, null, null).start();
         return platform;
     }
 
@@ -182,7 +185,7 @@ class GenericMotorPlatformTest {
     }
 
     @Test
-    void shouldSendOnlyChangedMotorsToRunImpl() throws Exception {
+    void shouldSendOnlyChangedMotorsToTheDriver() throws Exception {
         open();
         platform.run(MotorCommand.of("b only", List.of(MotorTarget.run("B", 100))));
         step();
@@ -353,5 +356,88 @@ class GenericMotorPlatformTest {
         platform.runDetached(drive(80, 80));
         step();
         assertEquals(80.0, motors.speed.get("B"), "once the link is back, drives run again");
+    }
+
+    private static final MotorState BRAKED_B = MotorState.stopped("B", MotorState.StopMode.BRAKE);
+    private static final MotorState BRAKED_C = MotorState.stopped("C", MotorState.StopMode.BRAKE);
+
+    @Test
+    void aStopCompletesOnceTheLinkSideHasWrittenTheBrakesAndAMoveAfterItIsAdmitted() throws Exception {
+        open();
+        platform.run(drive(100, 100));
+        step();
+        CompletableFuture<Void> stop = platform.stopAll();
+        assertFalse(stop.isDone(), "not before the cycle that applies it has handed it to the link");
+        step();
+        stop.get(0, TimeUnit.SECONDS);
+        assertEquals(List.of(BRAKED_B, BRAKED_C), motors.sent.get(motors.sent.size() - 1), "the brakes were written when the stop completed");
+
+        CompletableFuture<Void> move = platform.run(MotorCommand.of("move", List.of(MotorTarget.rotate("B", 90, 90))));
+        step();
+        assertFalse(move.isCompletedExceptionally(), "the move after the stop is admitted, not held by 'stop'");
+        assertEquals(90.0, motors.speed.get("B"));
+        stepUntilDone(move, 1000);
+        move.get(0, TimeUnit.SECONDS);
+    }
+
+    @Test
+    void aStopOfMotorsAtRestCompletesAtTheNextCycleWithoutWritingAgain() throws Exception {
+        open();
+        CompletableFuture<Void> stop = platform.stopAll();
+        step();
+        stop.get(0, TimeUnit.SECONDS);
+        assertEquals(List.of(), motors.sent, "the motors were braked already: nothing to write");
+    }
+
+    @Test
+    void aStopOnADeadLinkFailsNamingTheRobotAndItsBrakesGoOutWhenTheLinkReturns() throws Exception {
+        open();
+        motors.failNext = new IOException("brick unplugged");
+        platform.run(drive(100, 100));
+        step();
+        step();
+        CompletableFuture<Void> stop = platform.stopAll();
+        RobotLinkException e = assertInstanceOf(RobotLinkException.class, assertThrows(ExecutionException.class, () -> stop.get(0, TimeUnit.SECONDS)).getCause());
+        assertTrue(e.getMessage().contains("robot 'fake'") && e.getMessage().contains("link"), e.getMessage());
+
+        motors.failNext = null;
+        step();
+        step();
+        assertEquals(0.0, motors.speed.get("B"));
+        assertEquals(0.0, motors.speed.get("C"));
+    }
+
+    @Test
+    void aStopWhoseBatchTheLinkFailsToWriteFailsNamingTheRobot() throws Exception {
+        open();
+        platform.run(drive(100, 100));
+        step();
+        CompletableFuture<Void> stop = platform.stopAll();
+        motors.failNext = new IOException("brick unplugged");
+        step();
+        RobotLinkException e = assertInstanceOf(RobotLinkException.class, assertThrows(ExecutionException.class, () -> stop.get(0, TimeUnit.SECONDS)).getCause());
+        assertTrue(e.getMessage().contains("robot 'fake'") && e.getMessage().contains("brick unplugged"), e.getMessage());
+    }
+
+    @Test
+    void aCancelledRunBrakesItsMotorsAtTheNextCycle() throws Exception {
+        open();
+        CompletableFuture<Void> move = platform.run(MotorCommand.of("move", List.of(MotorTarget.rotate("B", 720, 90), MotorTarget.rotate("C", 720, 90))));
+        step();
+        assertEquals(90.0, motors.speed.get("B"));
+        move.cancel(true);
+        step();
+        assertEquals(List.of(BRAKED_B, BRAKED_C), motors.sent.get(motors.sent.size() - 1), "the cancelled move's end action braked its motors");
+        assertEquals(0.0, motors.speed.get("B"));
+        assertEquals(Set.of(), platform.actionThread().actuatorsInUse());
+    }
+
+    @Test
+    void aRunCancelledBeforeItsCycleNeverStarts() throws Exception {
+        open();
+        CompletableFuture<Void> move = platform.run(MotorCommand.of("move", List.of(MotorTarget.rotate("B", 720, 90))));
+        move.cancel(true);
+        step();
+        assertEquals(List.of(), motors.sent, "nothing was started");
     }
 }

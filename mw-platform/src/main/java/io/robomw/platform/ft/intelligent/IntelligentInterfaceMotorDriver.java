@@ -3,8 +3,11 @@ package io.robomw.platform.ft.intelligent;
 import io.robomw.api.spi.MotorChannel;
 import io.robomw.api.spi.PlatformConfig;
 import io.robomw.platform.brick.BrickChannel;
+import io.robomw.api.Clock;
 import io.robomw.platform.ft.FtMotors;
-import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.motor.FeedbackSink;
+import io.robomw.platform.motor.LinkTiming;
+import io.robomw.platform.motor.MotorDriver;
 import io.robomw.platform.motor.MotorState;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -18,12 +21,12 @@ import static io.robomw.platform.ft.intelligent.IntelligentInterfaceTelegram.ANA
 import static io.robomw.platform.ft.intelligent.IntelligentInterfaceTelegram.ANALOG_EY;
 
 /**
- * The Intelligent Interface's motor platform. The interface only switches motors on and off, has
+ * The Intelligent Interface's motor driver. The interface only switches motors on and off, has
  * no encoders, and stops its motors 300 ms after the last command, so:
  * <ul>
- *   <li>{@link #runImpl} only records each motor's wanted duty (speed ÷ full speed);</li>
- *   <li>{@link #pollFeedback}, on the link thread every cycle whatever the application does, sends
- *   the motor byte (keeping the interface alive) and reads the inputs back, alternating the EX and
+ *   <li>{@link #send} only records each motor's wanted duty (speed ÷ full speed);</li>
+ *   <li>{@link #poll}, on the link side every cycle whatever the application does (it always
+ *   reports work, so the link agent keeps the cycle's pace), sends the motor byte (keeping the interface alive) and reads the inputs back, alternating the EX and
  *   EY reads;</li>
  *   <li>a wheel's rotation comes from the impulse wheel on the digital input its description names
  *   ({@code counter: E1}), {@code encoder_ticks_per_revolution} switch transitions per motor turn,
@@ -48,9 +51,9 @@ import static io.robomw.platform.ft.intelligent.IntelligentInterfaceTelegram.ANA
  * Positive speeds turn a motor clockwise ("right", bits {@code 10}). Time is the injected clock's:
  * a real robot's is the wall clock, which the interface's motors run on.
  */
-public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatform {
+public final class IntelligentInterfaceMotorDriver implements MotorDriver {
 
-    private static final Logger LOG = LoggerFactory.getLogger(IntelligentInterfaceMotorPlatform.class);
+    private static final Logger LOG = LoggerFactory.getLogger(IntelligentInterfaceMotorDriver.class);
 
     /**
      * Over a TCP bridge: the share of the cycles in which a limited move's wheel is pulsed (on for
@@ -67,7 +70,11 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
     private static final double GAP_DECAY = 0.98;
 
     private final BrickChannel channel;
+    private final Clock clock;
+    private final String robot;
     private final IntelligentInterfaceInputs inputs;
+    /** Where the readings of the poll under way go; link side. */
+    private FeedbackSink feedback;
     private final long pulseNanos;
     /** Whether the interface is on a serial line, whose byte timing times the wheels (not a TCP bridge). */
     private final boolean serialLine;
@@ -103,10 +110,11 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
      * @param channel     the channel to the interface
      * @param inputs      where the latest inputs are published for the sensor platform
      */
-    public IntelligentInterfaceMotorPlatform(PlatformConfig config, BrickChannel channel,
-                                             IntelligentInterfaceInputs inputs) {
-        super(config.robotName(), config.clock(), config.motorPorts());
+    public IntelligentInterfaceMotorDriver(PlatformConfig config, BrickChannel channel,
+                                           IntelligentInterfaceInputs inputs) {
         this.channel = channel;
+        this.clock = config.clock();
+        this.robot = config.robotName();
         this.inputs = inputs;
         this.serialLine = config.connection().text("host").isEmpty();
         int pulseMillis = config.connection().integer("pulse_ms", DEFAULT_PULSE_MILLIS);
@@ -140,7 +148,12 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
     }
 
     @Override
-    protected void runImpl(List<MotorState> motors) {
+    public LinkTiming timing() {
+        return LinkTiming.NONE;
+    }
+
+    @Override
+    public void send(List<MotorState> motors, FeedbackSink feedback) {
         for (MotorState m : motors) {
             int i = FtMotors.index(m.port(), IntelligentInterfaceTelegram.MOTORS);
             duty[i] = FtMotors.duty(m.degreesPerSecond());
@@ -191,8 +204,14 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
      * that is due on is pulsed: on with one exchange and off again with the next.
      */
     @Override
-    protected void pollFeedback() throws IOException {
-        long now = clock().nanoTime();
+    public int poll(FeedbackSink feedback) throws IOException {
+        this.feedback = feedback;
+        pollInterface();
+        return 1; // the interface needs its motor byte every cycle, and its inputs are read at every poll
+    }
+
+    private void pollInterface() throws IOException {
+        long now = clock.nanoTime();
         long sinceLastPoll = lastPollStart == Long.MIN_VALUE ? 0 : now - lastPollStart;
         lastPollStart = now;
         if (serialLine) {
@@ -200,7 +219,7 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
             if (Arrays.stream(slots).max().orElse(0) > 0) {
                 lineTimedBurst(slots);
             } else {
-                poll(nextMotorByte(unCounted()));
+                exchange(nextMotorByte(unCounted()));
             }
             return;
         }
@@ -210,22 +229,22 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
         boolean pulse = pulsing();
         int sent = nextMotorByte(ALL_MOTORS);
         int pulsed = wheelsOn(sent) & (pulse ? ALL_MOTORS : creeping());
-        long pulseStart = clock().nanoTime();
-        boolean reached = poll(sent);
+        long pulseStart = clock.nanoTime();
+        boolean reached = exchange(sent);
         if (pulsed != 0) {
             if (pulse) {
                 pulses++;
             }
             // The action side unparks the link thread whenever it publishes: wait out the time.
-            for (long left = pulseNanos - (clock().nanoTime() - pulseStart); left > 0;
-                 left = pulseNanos - (clock().nanoTime() - pulseStart)) {
+            for (long left = pulseNanos - (clock.nanoTime() - pulseStart); left > 0;
+                 left = pulseNanos - (clock.nanoTime() - pulseStart)) {
                 LockSupport.parkNanos(this, left);
             }
-            poll(without(nextMotorByteAfterPulse(), pulsed));
+            exchange(without(nextMotorByteAfterPulse(), pulsed));
         } else if (reached) {
-            poll(nextMotorByteAfterPulse());
+            exchange(nextMotorByteAfterPulse());
         }
-        lastServiceEnd = clock().nanoTime();
+        lastServiceEnd = clock.nanoTime();
     }
 
     /**
@@ -304,14 +323,14 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
         long[] times = new long[3];
         byte[][] replies = channel.exchange((c, timeout) -> {
             // Taken once the channel is ours, before and after writing.
-            times[0] = clock().nanoTime();
+            times[0] = clock.nanoTime();
             c.send(request);
-            times[1] = clock().nanoTime();
+            times[1] = clock.nanoTime();
             byte[][] r = new byte[count][];
             for (int k = 0; k < count; k++) {
                 r[k] = c.receiveExactly(IntelligentInterfaceTelegram.replyLength(commands[k]), timeout);
                 if (k == 0) {
-                    times[2] = clock().nanoTime();
+                    times[2] = clock.nanoTime();
                 }
             }
             return r;
@@ -490,7 +509,7 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
      * @param motorByte the motors' state from now on
      * @return whether a motor that the byte switched on has reached its target
      */
-    private boolean poll(int motorByte) throws IOException {
+    private boolean exchange(int motorByte) throws IOException {
         int command = readEy ? ANALOG_EY : ANALOG_EX;
         readEy = !readEy;
         byte[] request = IntelligentInterfaceTelegram.request(command, motorByte);
@@ -498,15 +517,15 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
         byte[] reply = channel.exchange((c, timeout) -> {
             // Taken once the channel is ours (a sensor read may have held it), before and after
             // writing: a host held up in between writes late.
-            sent[0] = clock().nanoTime();
+            sent[0] = clock.nanoTime();
             c.send(request);
-            sent[1] = clock().nanoTime();
+            sent[1] = clock.nanoTime();
             return c.receiveExactly(3, timeout);
         });
         long sentAt = sent[0];
         long writtenAt = sent[1];
         // The interface took the command, and sampled its inputs, between sending and receiving.
-        long receivedAt = clock().nanoTime();
+        long receivedAt = clock.nanoTime();
         sampleLineRoundTrip(receivedAt - writtenAt);
         int digital = reply[0] & 0xFF;
         inputs.publish(digital, command == ANALOG_EX ? IntelligentInterfaceTelegram.analog(reply) : -1,
@@ -579,9 +598,9 @@ public final class IntelligentInterfaceMotorPlatform extends GenericMotorPlatfor
             counter.poll(changed, previousDigital >= 0 ? driven : 0, lastDirection[motor], leastOn, mostOn);
             if (counter.recovered() != before) {
                 LOG.debug("robot '{}': a poll up to {} ms after the last with {} on: counted {} transitions its switch did not show",
-                        robot(), Math.round(mostOn * 1000), portOf[motor], counter.recovered() - before);
+                        robot, Math.round(mostOn * 1000), portOf[motor], counter.recovered() - before);
             }
-            reportDegrees(portOf[motor], counter.ticks() * 360.0 / ticksPerRevolution);
+            feedback.degrees(portOf[motor], counter.ticks() * 360.0 / ticksPerRevolution);
         }
         previousDigital = digital;
     }
