@@ -177,6 +177,11 @@ public final class AiboEmulator implements Emulator {
         return clients.size();
     }
 
+    /** @return bytes received from every client since it started */
+    public long bytesReceived() {
+        return bytesIn.get();
+    }
+
     /** @return clients served since it started */
     public long connectionsServed() {
         return connections.get();
