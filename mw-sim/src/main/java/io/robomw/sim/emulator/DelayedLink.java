@@ -103,8 +103,12 @@ final class DelayedLink implements Link {
             this.sender = null;
             return;
         }
-        this.pump = OwnerThread.start(inner.describe() + "-in", Thread.NORM_PRIORITY, new Pump(), EmulatorThreads.BACK_OFF, failures);
-        this.sender = OwnerThread.start(inner.describe() + "-out", Thread.NORM_PRIORITY, new Sender(), EmulatorThreads.BACK_OFF, failures);
+        Pump in = new Pump();
+        Sender out = new Sender();
+        this.pump = OwnerThread.start(inner.describe() + "-in", Thread.NORM_PRIORITY, in, EmulatorThreads.BACK_OFF, failures);
+        in.self = pump;
+        this.sender = OwnerThread.start(inner.describe() + "-out", Thread.NORM_PRIORITY, out, EmulatorThreads.BACK_OFF, failures);
+        out.self = sender;
     }
 
     /** @return when byte {@code index} of a chunk has arrived */
@@ -127,14 +131,31 @@ final class DelayedLink implements Link {
         return new Chunk(bytes, start + model.latency().toNanos(), null);
     }
 
+    /**
+     * Ends the loop of the thread running a duty once the link is closed (by {@link #close()}, or
+     * because the other thread died), from that thread itself.
+     *
+     * @return whether the link is closed
+     */
+    private boolean endedWithTheLink(OwnerThread self) {
+        if (!closed) {
+            return false;
+        }
+        if (self != null) { // null only in the moment before start() returned it
+            self.close();
+        }
+        return true;
+    }
+
     /** Reads what the driver writes off the real link at once, and stamps it. */
     private final class Pump implements OwnerThread.Duty {
         private final byte[] buf = new byte[CHUNK_BYTES];
+        private volatile OwnerThread self;
 
         /** @return 1: bytes were read, the peer left, or the poll interval passed; 0 once the link is closed */
         @Override
         public int doWork() throws IOException {
-            if (closed) {
+            if (endedWithTheLink(self)) {
                 return 0;
             }
             try {
@@ -177,11 +198,12 @@ final class DelayedLink implements Link {
 
         /** The longest the sender waits for a reply to send before it looks at whether the link closed. */
         private static final long IDLE_WAIT_NANOS = PUMP_POLL.toNanos();
+        private volatile OwnerThread self;
 
         /** @return 1: a reply was sent, or one was waited for; 0 once the link is closed */
         @Override
         public int doWork() throws IOException, InterruptedException {
-            if (closed) {
+            if (endedWithTheLink(self)) {
                 return 0;
             }
             Chunk next;
@@ -213,7 +235,10 @@ final class DelayedLink implements Link {
         }
     }
 
-    /** The pump or the sender died: the link closes, and reads end with an error naming why. Must not throw. */
+    /**
+     * The pump or the sender died: the link closes, reads end with an error naming why, and the
+     * other thread ends its loop at its next round. Must not throw.
+     */
     private void died(Throwable failure) {
         if (death == null) {
             death = failure;

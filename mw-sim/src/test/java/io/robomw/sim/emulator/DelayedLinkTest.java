@@ -207,6 +207,10 @@ class DelayedLinkTest {
             assertEquals(List.of(new io.robomw.sim.RecordingFailures.Report("memory-in", injected, true)), failures.reports());
             assertTrue(memory.closed, "the real link was closed: the driver sees it drop");
             org.junit.jupiter.api.Assertions.assertFalse(link.isOpen());
+            io.robomw.testkit.Await.until("the pump and the sender ended", Duration.ofSeconds(10), () -> Thread.getAllStackTraces().keySet().stream()
+                    .noneMatch(t -> (t.getName().equals("memory-in") || t.getName().equals("memory-out")) && t.isAlive()),
+                    () -> Thread.getAllStackTraces().entrySet().stream().filter(t -> t.getKey().getName().startsWith("memory"))
+                            .map(t -> t.getKey().getName() + " " + t.getKey().getState() + " " + java.util.Arrays.toString(t.getValue())).toList().toString());
         } finally {
             link.close();
         }
