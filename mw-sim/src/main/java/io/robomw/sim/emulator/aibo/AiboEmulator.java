@@ -16,6 +16,7 @@ import java.io.OutputStream;
 import java.net.InetSocketAddress;
 import java.net.ServerSocket;
 import java.net.Socket;
+import java.net.SocketTimeoutException;
 import java.nio.charset.StandardCharsets;
 import java.util.List;
 import java.util.Locale;
@@ -49,7 +50,8 @@ import java.util.concurrent.atomic.AtomicLong;
  * and each client's reader and writer hand what they catch to the simulation's
  * {@link FailurePolicy}: a failed accept is reported and the next client accepted; whatever ends a
  * client's reader or writer other than its connection closing is reported, and that client is
- * disconnected (its commands stop), the others served on.
+ * disconnected (its commands stop), the others served on. A client's reader waits at most half a
+ * second in one read before it looks whether its client was disconnected.
  */
 public final class AiboEmulator implements Emulator {
 
@@ -61,6 +63,8 @@ public final class AiboEmulator implements Emulator {
     public static final int MAX_CLIENTS = 8;
     /** Messages that may wait for a client. */
     public static final int OUTBOX = 8192;
+    /** The longest one read of a client waits before its reader looks whether the client was disconnected, milliseconds. */
+    private static final int READ_POLL_MILLIS = 500;
     /** The banner, one {@code ***} line each. */
     static final List<String> BANNER = List.of(
             "********************************************************",
@@ -264,8 +268,17 @@ public final class AiboEmulator implements Emulator {
         private void read() {
             byte[] buf = new byte[4096];
             try (InputStream in = socket.getInputStream()) {
-                int n;
-                while (open && (n = in.read(buf)) > 0) {
+                socket.setSoTimeout(READ_POLL_MILLIS);
+                while (open) {
+                    int n;
+                    try {
+                        n = in.read(buf);
+                    } catch (SocketTimeoutException e) {
+                        continue; // nothing for a while: look whether the client was disconnected, and read on
+                    }
+                    if (n < 0) {
+                        break;
+                    }
                     bytesIn.addAndGet(n);
                     session.submit(buf, 0, n);
                 }
