@@ -97,7 +97,7 @@ public final class ScriptedLink implements Link {
     private final ReentrantLock lock = new ReentrantLock();
     private final Condition changed = lock.newCondition();
 
-    private String name = "scripted";
+    private volatile String name = "scripted";
     private Clock clock = Clock.system();
     private Function<byte[], Answer> responder = written -> Answer.none();
     private Framing framing;
@@ -385,7 +385,7 @@ public final class ScriptedLink implements Link {
     @Override
     public int read(byte[] buf, int off, int len, Duration timeout) throws IOException {
         Objects.checkFromIndexSize(off, len, buf.length);
-        boolean pieceDone = false;
+        Runnable pieceDone = null;
         int n;
         lock.lock();
         try {
@@ -412,7 +412,7 @@ public final class ScriptedLink implements Link {
                     head.consumed += n;
                     if (head.consumed == head.bytes.length) {
                         arrived.pollFirst();
-                        pieceDone = true;
+                        pieceDone = afterPiece;
                     }
                     break;
                 }
@@ -437,15 +437,15 @@ public final class ScriptedLink implements Link {
         } finally {
             lock.unlock();
         }
-        if (pieceDone) {
-            afterPiece.run();
+        if (pieceDone != null) {
+            pieceDone.run();
         }
         return n;
     }
 
     @Override
     public String describe() {
-        return get(() -> name);
+        return name;
     }
 
     /** Closes the link; a read or write waiting on another thread throws. Idempotent. */
