@@ -83,19 +83,22 @@ class DelayedLinkTest {
     @Test
     void shouldSendARepliesBytesAtTheLinesPaceAfterTheLatency() throws Exception {
         ScriptedLink memory = memory();
-        LinkModel model = LINE.withLatency(Duration.ofMillis(15));
+        // A latency long beside a loaded machine's stalls: whether the second reply waited a latency
+        // of its own (half a second more) or not (its bytes' time) stays clear under load.
+        long latency = 500_000_000L;
+        LinkModel model = LINE.withLatency(Duration.ofNanos(latency));
         DelayedLink link = new DelayedLink(memory, model, io.robomw.api.spi.FailurePolicy.logging());
         try {
             long start = System.nanoTime();
             link.write(new byte[3], 0, 3);
             link.write(new byte[3], 0, 3);
-            io.robomw.testkit.Await.until("both replies sent", Duration.ofSeconds(2), () -> memory.writes() == 2);
+            io.robomw.testkit.Await.until("both replies sent", Duration.ofSeconds(10), () -> memory.writes() == 2);
             long first = memory.writeTimes().get(0) - start;
             long second = memory.writeTimes().get(1) - start;
             // Latencies overlap: the second reply follows the first by its own bytes' time.
-            assertTrue(first >= 15_000_000 + model.transmissionNanos(3), "first reply after " + first / 1e6 + " ms");
-            assertTrue(second >= 15_000_000 + model.transmissionNanos(6), "second reply after " + second / 1e6 + " ms");
-            assertTrue(second - first < 15_000_000, "the second reply waited for a latency of its own");
+            assertTrue(first >= latency + model.transmissionNanos(3), "first reply after " + first / 1e6 + " ms");
+            assertTrue(second >= latency + model.transmissionNanos(6), "second reply after " + second / 1e6 + " ms");
+            assertTrue(second - first < latency, "the second reply waited for a latency of its own: " + (second - first) / 1e6 + " ms after the first");
         } finally {
             link.close();
         }
