@@ -31,6 +31,18 @@ class MsgCommandTest {
         return new Run(status, out.toString(), err.toString());
     }
 
+    /** @return a file holding a topic password (mw msg takes it from a file, never from an option's value) */
+    private static String passwordFile(String password) {
+        try {
+            java.nio.file.Path f = java.nio.file.Files.createTempFile("mw-msg-password-", "");
+            f.toFile().deleteOnExit();
+            java.nio.file.Files.writeString(f, password);
+            return f.toString();
+        } catch (IOException e) {
+            throw new java.io.UncheckedIOException(e);
+        }
+    }
+
     private static int freeTcpPort() throws IOException {
         try (ServerSocket s = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
             return s.getLocalPort();
@@ -52,11 +64,11 @@ class MsgCommandTest {
     void sendPrintsTheEchoOfABoundSubscriber() throws Exception {
         String address = "tcp://127.0.0.1:" + freeTcpPort();
         CompletableFuture<Run> sub = CompletableFuture.supplyAsync(() -> mw("msg", "sub", address, "cmd", "--bind", "--echo",
-                "--password", "pw", "--count", "1", "--timeout", "20"));
+                "--password-file", passwordFile("pw"), "--count", "1", "--timeout", "20"));
         Run send;
         long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(20);
         do {
-            send = mw("msg", "send", address, "*", "cmd", "ping", "--password", "pw", "--timeout", "5");
+            send = mw("msg", "send", address, "*", "cmd", "ping", "--password-file", passwordFile("pw"), "--timeout", "5");
         } while (send.status() != 0 && System.nanoTime() < deadline && send.err().contains("cannot reach"));
         assertEquals(0, send.status(), send.err());
         assertTrue(send.out().contains("reply [cmd] mw-msg echo: ping"), send.out());
@@ -99,18 +111,18 @@ class MsgCommandTest {
     void sendSaysTheReceiverRefusedAWrongOrMissingPassword() throws Exception {
         String address = "tcp://127.0.0.1:" + freeTcpPort();
         CompletableFuture<Run> sub = CompletableFuture.supplyAsync(() -> mw("msg", "sub", address, "cmd", "--bind", "--echo",
-                "--password", "right", "--count", "1", "--timeout", "20s"));
+                "--password-file", passwordFile("right"), "--count", "1", "--timeout", "20s"));
         Run wrong;
         long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(20);
         do {
-            wrong = mw("msg", "send", address, "*", "cmd", "ping", "--password", "wrong", "--timeout", "5s");
+            wrong = mw("msg", "send", address, "*", "cmd", "ping", "--password-file", passwordFile("wrong"), "--timeout", "5s");
         } while (System.nanoTime() < deadline && wrong.err().contains("cannot reach"));
         assertEquals(1, wrong.status());
         assertTrue(wrong.err().contains("topic 'cmd' is password-protected and the message had a wrong password"), wrong.err());
         Run missing = mw("msg", "send", address, "*", "cmd", "ping", "--timeout", "5s");
         assertEquals(1, missing.status());
         assertTrue(missing.err().contains("the message had no password"), missing.err());
-        assertEquals(0, mw("msg", "send", address, "*", "cmd", "ping", "--password", "right").status());
+        assertEquals(0, mw("msg", "send", address, "*", "cmd", "ping", "--password-file", passwordFile("right")).status());
         assertEquals(0, sub.get(20, TimeUnit.SECONDS).status());
     }
 
