@@ -1,6 +1,7 @@
 package io.robomw.sim.world;
 
 import io.robomw.api.Pose;
+import io.robomw.config.yaml.FileScope;
 import io.robomw.config.yaml.MappingReader;
 import io.robomw.config.yaml.YamlDocument;
 
@@ -33,7 +34,9 @@ import java.util.Set;
  *   - { robot: ../robots/sim-two-wheeled.yaml, name: r1, x: 0.5, y: 1.5, heading: 0 }
  * </pre>
  *
- * Robot paths are relative to the world file. Stateless.
+ * Robot paths are relative to the world file, and must stay in its directory tree
+ * ({@link FileScope}): a world from someone else cannot make RoboMW read, and quote, files
+ * elsewhere. Stateless.
  */
 public final class WorldLoader {
 
@@ -121,10 +124,14 @@ public final class WorldLoader {
         List<WorldDescription.RobotPlacement> robots = new ArrayList<>();
         Set<String> names = new HashSet<>();
         Path dir = file.toAbsolutePath().getParent();
+        FileScope scope = FileScope.of(file);
         for (MappingReader r : root.mappingList("robots")) {
             String robotFile = r.requireText("robot");
             Path robotPath = dir.resolve(robotFile).normalize();
-            if (!robotFile.isEmpty() && !Files.isRegularFile(robotPath)) {
+            Optional<String> outside = robotFile.isEmpty() ? Optional.empty() : scope.refusal(robotPath);
+            if (outside.isPresent()) {
+                r.problem("robot", "refused: " + outside.get());
+            } else if (!robotFile.isEmpty() && !Files.isRegularFile(robotPath)) {
                 r.problem("robot", "no such robot file: " + robotPath);
             }
             String robotName = r.text("name").orElse(robotPath.getFileName().toString().replaceFirst("\\.ya?ml$", ""));
