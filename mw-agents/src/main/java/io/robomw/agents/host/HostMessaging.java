@@ -81,6 +81,10 @@ final class HostMessaging implements AutoCloseable {
             brokerEvents.receive(onEvent);
         }
         if (node != null) {
+            if (eventsKey != null) {
+                // what the node announces at a broker is signed with the cluster key; presences not signed with it are ignored
+                node.presence().seal(eventsKey.presenceSeal());
+            }
             node.presence().host(host.name, host.address);
             for (String broker : addresses()) {
                 if (broker.startsWith("mqtt://") || broker.startsWith("mqtts://")) {
@@ -98,7 +102,7 @@ final class HostMessaging implements AutoCloseable {
     private void watchBroker(String broker) {
         try {
             io.robomw.agents.messaging.mqtt.BrokerDirectory d = io.robomw.agents.messaging.mqtt.BrokerDirectory.open(broker,
-                    node.settings().connectTimeout(), node.settings().tls());
+                    node.settings().connectTimeout(), node.settings().tls(), eventsKey == null ? null : eventsKey.presenceSeal());
             brokerDirectories.add(d);
             d.onPresence(p -> {
                 if (p.host() != null && !p.hostAddress().equals(host.address)) {
