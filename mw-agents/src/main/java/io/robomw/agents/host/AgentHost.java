@@ -506,6 +506,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         for (int attempt = 0; ; attempt++) {
             int tryPort = port != 0 ? port : freePort(bindAddress);
             try {
+                endpoint.address(bindAddress, tryPort);
                 registry = LocateRegistry.createRegistry(tryPort, clientSockets, serverSockets);
                 AgentHostRemote stub = (AgentHostRemote) UnicastRemoteObject.exportObject(endpoint, tryPort, clientSockets, serverSockets, onlyBytes);
                 // In-process: the registry refuses every change from outside (HostSockets hides callers' addresses from RMI).
@@ -519,7 +520,6 @@ public final class AgentHost implements Agency, AutoCloseable {
             }
         }
         state.address = new HostAddress(bind, port, name).toString();
-        endpoint.address(bindAddress, port);
         messaging.started();
         new Recovery(state, code, trips, owed).resume();
         LOG.info("agent host {} listening at {} ({} store{}, {}, robot: {}, messaging: {})", name, state.address,

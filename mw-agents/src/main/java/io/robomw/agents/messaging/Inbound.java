@@ -236,7 +236,10 @@ final class Inbound {
             throw new FrameException(DropReason.STALE, "frame from '" + f.sender() + "' is timestamped " + instant(f.timestampMicros())
                     + ", further than " + maxSkewMicros / 1_000_000 + " s from this host's clock");
         }
-        if (f.messageNumber() <= store.floor(f.source())) {
+        // Only requests and publications are kept across restarts: a reply is taken only for a request sent from here, so a
+        // replayed one finds none (UNSOLICITED_REPLY), restart or not.
+        boolean kept = f.kind() == FrameKind.MESSAGE || f.kind() == FrameKind.PUBLISH;
+        if (kept && f.messageNumber() <= store.floor(f.source())) {
             throw new FrameException(DropReason.REPLAYED, "frame " + f.messageNumber() + " of source " + Long.toHexString(f.source())
                     + " from '" + f.sender() + "' was already received, before this node restarted");
         }
@@ -244,7 +247,9 @@ final class Inbound {
             throw new FrameException(DropReason.REPLAYED, "frame " + f.messageNumber() + " of source " + Long.toHexString(f.source())
                     + " from '" + f.sender() + "' was already received");
         }
-        store.record(f.source(), f.messageNumber(), System.currentTimeMillis());
+        if (kept) {
+            store.record(f.source(), f.messageNumber(), System.currentTimeMillis());
+        }
     }
 
     /**

@@ -59,6 +59,26 @@ class RegistryLockTest {
         }
     }
 
+    /**
+     * Over TLS the host knows which connection a call comes on too (the TLS layer reads the counted
+     * socket on RMI's connection thread): a large call on a connection that proved the key is read.
+     */
+    @Test
+    void aTlsHostReadsALargeCallOnAConnectionThatProvedTheKey(@org.junit.jupiter.api.io.TempDir java.nio.file.Path dir) throws Exception {
+        io.robomw.agents.messaging.TestKeys keys = io.robomw.agents.messaging.TestKeys.create(dir);
+        javax.net.ssl.SSLContext before = javax.net.ssl.SSLContext.getDefault();
+        javax.net.ssl.SSLContext.setDefault(keys.node().context());
+        try (AgentHost host = AgentHost.builder("tls-locked").tls(keys.node()).clusterKey(KEY).noMessaging().wire(false).start()) {
+            HostAddress a = HostAddress.parse(host.address());
+            PeerLink peer = new PeerLink(a, "probe", KEY, new HostSockets.Client(a.host(), true, 10_000), new java.security.SecureRandom());
+            byte[] large = new byte[32 + 300_000];
+            Reply r = peer.call(Op.PUT_ARCHIVE, large);
+            assertEquals(Reply.Status.REFUSED, r.status(), "read and answered (the archive is no jar): " + r.text());
+        } finally {
+            javax.net.ssl.SSLContext.setDefault(before);
+        }
+    }
+
     private static void refused(RemoteException e) {
         for (Throwable t = e; t != null; t = t.getCause()) {
             if (t instanceof AccessException) {

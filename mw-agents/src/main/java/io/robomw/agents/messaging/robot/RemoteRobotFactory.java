@@ -71,8 +71,9 @@ public abstract class RemoteRobotFactory implements RobotFactory {
             robot = path[0];
         }
         MessagingSettings settings = RobotProtocol.forClient(services.find(MessagingSettings.class).orElse(MessagingSettings.defaults()));
+        // a name of its own each time: a replay window kept on disk under it would never be read again
         MessagingNode node = MessagingNode.builder("remote-" + robot + "-" + Long.toHexString(new SecureRandom().nextLong()).substring(0, 6))
-                .settings(settings).build();
+                .settings(settings).replayDirectory(null).build();
         AgencyConfig agencyConfig = services.find(AgencyConfig.class).orElse(AgencyConfig.defaults(robot, location.toString()));
         RobotAgency agency = new RobotAgency(agencyConfig, ClusterKeyLookup.ofThisProcess());
         try {
