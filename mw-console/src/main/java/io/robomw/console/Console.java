@@ -1,7 +1,11 @@
 package io.robomw.console;
 
+import io.robomw.agents.net.OwnerThreads;
+import io.robomw.api.spi.FailurePolicy;
 import io.robomw.agents.host.ClusterKey;
 import io.robomw.api.Robot;
+import io.robomw.console.foxglove.FoxgloveServer;
+import io.robomw.console.foxglove.Teleop;
 import io.robomw.console.observe.Observation;
 import io.robomw.console.observe.Observer;
 import io.robomw.console.observe.WorldMap;
@@ -38,6 +42,9 @@ import java.util.UUID;
  * <p>The page's retract and dispose buttons go to the host the agent was last seen at, over the
  * host's authenticated link (the cluster key this console was given; without one they are
  * disabled and say why); its stop buttons stop a watched remote robot or a simulated one.
+ *
+ * <p>With {@link Builder#foxglove} the same observations also go, live, to a Foxglove WebSocket
+ * ({@link FoxgloveServer}), whose clients may drive the robots this console can stop.
  */
 public final class Console implements AutoCloseable {
 
@@ -45,6 +52,7 @@ public final class Console implements AutoCloseable {
 
     private final ConsoleView view;
     private final McapRecorder recorder;
+    private final FoxgloveServer foxglove;
     private final Observer observer;
     private final List<HostWatcher> hosts = new java.util.concurrent.CopyOnWriteArrayList<>();
     private final List<RobotWatcher> robots = new java.util.concurrent.CopyOnWriteArrayList<>();
@@ -52,16 +60,26 @@ public final class Console implements AutoCloseable {
     private final Simulation sim;
     private final ClusterKey key;
     private final Duration period;
+    private final FailurePolicy failures;
     private ConsoleServer server;
     private boolean closed;
 
     private Console(Builder b, McapRecorder recorder) {
         this.view = new ConsoleView(b.title);
         this.recorder = recorder;
-        this.observer = recorder == null ? view : Observer.all(view, recorder);
+        this.foxglove = b.foxglovePort < 0 ? null : FoxgloveServer.create(FoxgloveServer.Options.live(b.title, b.foxgloveBind, b.foxglovePort));
+        List<Observer> to = new ArrayList<>(List.of(view));
+        if (recorder != null) {
+            to.add(recorder);
+        }
+        if (foxglove != null) {
+            to.add(foxglove);
+        }
+        this.observer = to.size() == 1 ? view : Observer.all(to.toArray(Observer[]::new));
         this.sim = b.simulation;
         this.key = b.key;
         this.period = b.period;
+        this.failures = b.failures;
     }
 
     /** @param title shown on the page: the command that runs the console @return a builder */
@@ -85,6 +103,9 @@ public final class Console implements AutoCloseable {
         private final Map<String, String> about = new LinkedHashMap<>();
         private Duration period = Duration.ofMillis(500);
         private boolean discover;
+        private String foxgloveBind = "127.0.0.1";
+        private int foxglovePort = -1;
+        private FailurePolicy failures = FailurePolicy.logging();
 
         private Builder(String title) {
             this.title = Objects.requireNonNull(title);
@@ -142,6 +163,23 @@ public final class Console implements AutoCloseable {
             return this;
         }
 
+        /**
+         * Also serves what is watched, live, as a Foxglove WebSocket ({@link FoxgloveServer}: the
+         * recordings' channels; clients may drive the robots this console can stop).
+         *
+         * @param address where it listens (127.0.0.1: this machine only)
+         * @param port    its port ({@link FoxgloveServer#DEFAULT_PORT} is Foxglove's usual one), 0 for a free one
+         * @return this
+         */
+        public Builder foxglove(String address, int port) {
+            if (port < 0 || port > 65_535) {
+                throw new IllegalArgumentException("the Foxglove WebSocket's port must be 0 to 65535, got " + port);
+            }
+            this.foxgloveBind = Objects.requireNonNull(address, "address");
+            this.foxglovePort = port;
+            return this;
+        }
+
         /** @param key a fact about the run, kept in the recording's metadata @param value its value @return this */
         public Builder about(String key, String value) {
             about.put(key, value);
@@ -162,6 +200,17 @@ public final class Console implements AutoCloseable {
         /** Seconds between two looks at the watched hosts' directories. */
         public static final int DISCOVER_SECONDS = 5;
 
+        /**
+         * @param policy where whatever the console's threads catch goes (default
+         *               {@link FailurePolicy#logging()}): its host and robot watchers, its discovery,
+         *               its recorder, its page's pushes and requests
+         * @return this
+         */
+        public Builder failures(FailurePolicy policy) {
+            this.failures = Objects.requireNonNull(policy, "policy");
+            return this;
+        }
+
         /** @param period how often hosts and robots are asked @return this */
         public Builder period(Duration period) {
             this.period = period;
@@ -179,7 +228,7 @@ public final class Console implements AutoCloseable {
                 throw new IllegalArgumentException("watching agent hosts needs the cluster key (--key-file, MW_CLUSTER_KEY or ~/.robomw/cluster.key): "
                         + "hosts answer authenticated peers only");
             }
-            McapRecorder recorder = recording == null ? null : McapRecorder.start(recording, about);
+            McapRecorder recorder = recording == null ? null : McapRecorder.start(recording, about, failures);
             Console c = new Console(this, recorder);
             try {
                 c.open(this);
@@ -192,6 +241,9 @@ public final class Console implements AutoCloseable {
     }
 
     private void open(Builder b) throws IOException {
+        if (foxglove != null) {
+            foxglove.start(new ConsoleTeleop());
+        }
         if (b.world != null) {
             observer.observe(new Observation.World(now(), b.world));
         }
@@ -199,50 +251,46 @@ public final class Console implements AutoCloseable {
             others.add(SimSource.watch(b.simulation, observer));
         }
         for (String h : b.hostAddresses) {
-            hosts.add(HostWatcher.watch(h, b.key != null ? b.key : ClusterKey.tlsOnly(), b.tls, observer, b.period));
+            hosts.add(HostWatcher.watch(h, b.key != null ? b.key : ClusterKey.tlsOnly(), b.tls, observer, b.period, failures));
         }
         for (String r : b.robotAddresses) {
-            robots.add(RobotWatcher.watch(r, observer, b.period.dividedBy(2)));
+            robots.add(RobotWatcher.watch(r, observer, b.period.dividedBy(2), failures));
         }
         if (b.discover) {
-            java.util.concurrent.ScheduledExecutorService s = java.util.concurrent.Executors.newSingleThreadScheduledExecutor(r -> {
-                Thread t = new Thread(r, "console-discover");
-                t.setDaemon(true);
-                return t;
-            });
-            s.scheduleWithFixedDelay(this::discoverHosts, 0, Builder.DISCOVER_SECONDS, java.util.concurrent.TimeUnit.SECONDS);
+            java.util.concurrent.ScheduledExecutorService s = java.util.concurrent.Executors.newSingleThreadScheduledExecutor(
+                    r -> OwnerThreads.thread("console-discover", r, failures));
+            s.scheduleWithFixedDelay(OwnerThreads.rounds(failures, this::discoverHosts), 0, Builder.DISCOVER_SECONDS, java.util.concurrent.TimeUnit.SECONDS);
             others.add(s::shutdownNow);
         }
         if (b.page) {
-            server = ConsoleServer.start(view, new ConsoleControls(), b.bind, b.port);
+            server = ConsoleServer.start(view, new ConsoleControls(), b.bind, b.port, failures);
         }
     }
 
-    /** Asks each watched host which hosts it knows, and watches the ones not watched yet. */
+    /**
+     * Asks each watched host which hosts it knows, over its watcher's link (one session per host
+     * for the console's life, not one per look), and watches the ones not watched yet.
+     */
     private void discoverHosts() {
-        try {
-            for (HostWatcher w : List.copyOf(hosts)) {
-                if (!w.last().up()) {
-                    continue;
-                }
-                io.robomw.agents.host.HostDescription d;
-                try {
-                    d = io.robomw.agents.host.AgentHost.describe(w.address(), key != null ? key : ClusterKey.tlsOnly(), key == null);
-                } catch (IOException | RuntimeException e) {
-                    LOG.debug("console: {} did not say which hosts it knows: {}", w.address(), e.toString());
-                    continue;
-                }
-                for (io.robomw.agents.host.HostDescription.Known k : d.known()) {
-                    synchronized (this) {
-                        if (!closed && hosts.stream().noneMatch(h -> h.address().equals(k.address()))) {
-                            LOG.info("console: {} knows host {} at {}: watching it too", w.address(), k.name(), k.address());
-                            watchHost(k.address());
-                        }
+        for (HostWatcher w : List.copyOf(hosts)) {
+            if (!w.last().up()) {
+                continue;
+            }
+            io.robomw.agents.host.HostDescription d;
+            try {
+                d = w.describe();
+            } catch (IOException | RuntimeException e) {
+                LOG.debug("console: {} did not say which hosts it knows: {}", w.address(), e.toString());
+                continue;
+            }
+            for (io.robomw.agents.host.HostDescription.Known k : d.known()) {
+                synchronized (this) {
+                    if (!closed && hosts.stream().noneMatch(h -> h.address().equals(k.address()))) {
+                        LOG.info("console: {} knows host {} at {}: watching it too", w.address(), k.name(), k.address());
+                        watchHost(k.address());
                     }
                 }
             }
-        } catch (RuntimeException | Error e) {
-            LOG.error("console: looking for more hosts failed: {}", e.toString(), e);
         }
     }
 
@@ -252,7 +300,7 @@ public final class Console implements AutoCloseable {
      * @param address the host
      */
     public void watchHost(String address) {
-        hosts.add(HostWatcher.watch(address, key != null ? key : ClusterKey.tlsOnly(), key == null, observer, period));
+        hosts.add(HostWatcher.watch(address, key != null ? key : ClusterKey.tlsOnly(), key == null, observer, period, failures));
     }
 
     /**
@@ -262,7 +310,7 @@ public final class Console implements AutoCloseable {
      * @param source where it is (its robot file, its host), for the page
      */
     public void watchRobot(Robot robot, String source) {
-        robots.add(RobotWatcher.watch(robot, source, observer, period.dividedBy(2)));
+        robots.add(RobotWatcher.watch(robot, source, observer, period.dividedBy(2), failures));
     }
 
     /** @return the addresses of the hosts watched, those found through the directory included */
@@ -286,6 +334,11 @@ public final class Console implements AutoCloseable {
     /** @return the page's address with its access token, or empty without a page */
     public Optional<String> pageAddress() {
         return Optional.ofNullable(server).map(ConsoleServer::pageWithToken);
+    }
+
+    /** @return where Foxglove connects ({@code ws://127.0.0.1:8765}), or empty without {@link Builder#foxglove} */
+    public Optional<java.net.URI> foxgloveAddress() {
+        return Optional.ofNullable(foxglove).map(FoxgloveServer::address);
     }
 
     /** @return the recording, or empty */
@@ -322,6 +375,43 @@ public final class Console implements AutoCloseable {
         }
         if (server != null) {
             server.close();
+        }
+        if (foxglove != null) {
+            foxglove.close();
+        }
+    }
+
+    /** @return the robots this console can stop and drive: watched ones, and a simulation's */
+    private java.util.Set<String> robotsDriven() {
+        java.util.Set<String> names = new java.util.TreeSet<>();
+        robots.forEach(w -> names.add(w.name()));
+        if (sim != null) {
+            sim.robots().forEach(r -> names.add(r.name()));
+        }
+        return names;
+    }
+
+    /** What Foxglove clients may drive: the robots the page's stop buttons stop (watched ones, a simulation's). */
+    private final class ConsoleTeleop implements Teleop {
+        @Override
+        public java.util.Set<String> robots() {
+            return robotsDriven();
+        }
+
+        @Override
+        public void drive(String robot, double linear, double angular) {
+            RobotWatcher watched = robots.stream().filter(w -> w.name().equals(robot)).findFirst().orElse(null);
+            if (watched != null) {
+                watched.drive(linear, angular);
+            } else if (sim != null) {
+                sim.robot(robot).drive(linear, angular);
+            } else {
+                throw new IllegalArgumentException("this console drives no robot named '" + robot + "'");
+            }
+            Map<String, Double> args = new LinkedHashMap<>();
+            args.put("linearSpeed", linear);
+            args.put("angularSpeed", angular);
+            observer.observe(new Observation.RobotCommand(now(), robot, "drive", args));
         }
     }
 
@@ -367,12 +457,7 @@ public final class Console implements AutoCloseable {
 
         @Override
         public java.util.Set<String> stoppableRobots() {
-            java.util.Set<String> names = new java.util.TreeSet<>();
-            robots.forEach(w -> names.add(w.name()));
-            if (sim != null) {
-                sim.robots().forEach(r -> names.add(r.name()));
-            }
-            return names;
+            return robotsDriven();
         }
 
         @Override

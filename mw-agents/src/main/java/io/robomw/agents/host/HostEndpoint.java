@@ -1,5 +1,6 @@
 package io.robomw.agents.host;
 
+import io.robomw.api.spi.FailurePolicy;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -63,6 +64,7 @@ final class HostEndpoint implements AgentHostRemote {
     private final ThrottledWarnings refusedPeers = new ThrottledWarnings(LOG, Duration.ofSeconds(1));
     private final ThrottledWarnings droppedCalls = new ThrottledWarnings(LOG, Duration.ofSeconds(1));
 
+    private final FailurePolicy failures;
     /** The highest protocol version this endpoint takes: {@link Session#BOUND_VERSION}, or a lower one to act as a host of a build before it. */
     private final int highestVersion;
     /** The state of the RMI connections calls come on, or {@code null} for an endpoint called directly (tests). */
@@ -82,18 +84,22 @@ final class HostEndpoint implements AgentHostRemote {
      *                       refuses the versions above it as older builds do (tests of mixed versions)
      */
     HostEndpoint(String hostName, ClusterKey key, Handler handler, int highestVersion) {
-        this(hostName, key, handler, highestVersion, null);
+        this(hostName, key, handler, highestVersion, FailurePolicy.logging(), null);
     }
 
     /**
      * @param highestVersion as above
+     * @param failures       where a failure of the handler, other than a refusal, goes: the call is
+     *                       refused and the thread serving it goes on
      * @param connections    the state of the RMI connections calls come on: which proved the key, where they come from
+     *                       ({@code null} for an endpoint called directly, in tests)
      */
-    HostEndpoint(String hostName, ClusterKey key, Handler handler, int highestVersion, HostConnections connections) {
+    HostEndpoint(String hostName, ClusterKey key, Handler handler, int highestVersion, FailurePolicy failures, HostConnections connections) {
         this.hostName = hostName;
         this.key = key;
         this.handler = handler;
         this.highestVersion = highestVersion;
+        this.failures = failures;
         this.connections = connections;
     }
 
@@ -104,6 +110,11 @@ final class HostEndpoint implements AgentHostRemote {
     void address(InetAddress bind, int port) {
         this.bindAddress = bind;
         this.port = port;
+    }
+
+    /** @return the peers' sessions kept now (for tests: one per link that authenticated) */
+    int sessions() {
+        return sessions.size();
     }
 
     /** @param port where the host's agent wire listens, offered to version-3 peers in their authentication answer */
@@ -323,7 +334,8 @@ final class HostEndpoint implements AgentHostRemote {
         }
         try {
             return handler.handle(peer.name(), op, message, offset, length);
-        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+        } catch (Throwable e) {
+            failures.surviveOrRethrow(Thread.currentThread().getName(), e);
             refused.increment();
             LOG.warn("host {}: {} call from peer '{}' failed: {}", hostName, op, peer.name(), e.toString());
             return Reply.of(Reply.Status.REFUSED, "the host could not handle the call: " + e.getMessage());
