@@ -16,9 +16,10 @@ import java.util.function.IntSupplier;
  * The names: {@code 127.0.0.1}, {@code localhost} and {@code [::1]}, the address or name
  * {@code --bind} gave, and for a console bound to every interface ({@code 0.0.0.0}) this
  * machine's addresses and host name; with the console's port (a request for port 80 may leave it
- * out). Anything else is refused before it is served.
+ * out). Anything else is refused before it is served. The Foxglove WebSocket server checks its
+ * handshakes the same way.
  */
-final class HostCheck {
+public final class HostCheck {
 
     private final Set<String> names;
     private final IntSupplier port;
@@ -27,7 +28,7 @@ final class HostCheck {
      * @param bind the address the console listens on, as given
      * @param port its port, once it listens
      */
-    HostCheck(String bind, IntSupplier port) {
+    public HostCheck(String bind, IntSupplier port) {
         this.port = port;
         Set<String> n = new TreeSet<>();
         n.add("127.0.0.1");
@@ -64,7 +65,7 @@ final class HostCheck {
      * @param host a request's {@code Host} header, or {@code null}
      * @return whether it names this console
      */
-    boolean allows(String host) {
+    public boolean allows(String host) {
         if (host == null || host.isBlank()) {
             return false;
         }
@@ -84,7 +85,7 @@ final class HostCheck {
     }
 
     /** @return the names it takes, for a refusal */
-    Set<String> names() {
+    public Set<String> names() {
         return names;
     }
 }
