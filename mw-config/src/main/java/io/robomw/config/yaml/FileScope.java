@@ -41,7 +41,8 @@ public record FileScope(Path root) {
     public Optional<String> refusal(Path named) {
         Path p = named.toAbsolutePath().normalize();
         if (!p.startsWith(root)) {
-            return Optional.of(p + " is outside " + root + ", the tree this file may name files in; name it on the command line instead");
+            return Optional.of(p + " is outside " + root + ", the tree this file may name files in (its folder, or the folder above it"
+                    + " unless that is / or your home folder); move the file there");
         }
         for (Path part : root.relativize(p)) {
             if (part.toString().startsWith(".")) {
