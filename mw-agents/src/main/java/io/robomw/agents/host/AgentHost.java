@@ -125,6 +125,7 @@ public final class AgentHost implements AutoCloseable {
         Peers peers = new Peers(state, key, tls != null, this::serveSelf);
         this.peers = peers;
         this.messaging = new HostMessaging(state, peers, b.node, b.node != null && b.ownsNode);
+        messaging.given(b.messagingAddress);
         state.messaging = messaging;
         this.owed = new OwedEvents(state, peers, b.delivery);
         this.trips = new Trips(state, new HopSender(state, peers), owed, robot, b.delivery.expiry());
