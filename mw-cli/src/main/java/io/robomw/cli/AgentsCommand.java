@@ -122,14 +122,18 @@ final class AgentsCommand implements Callable<Integer> {
     }
 
     private int listCluster(PrintWriter out, PrintWriter err, OwedSelector drop) throws IOException {
+        Optional<ClusterKey> key = cluster.keyIfAny();
         List<PresenceRecord> all;
-        try {
-            all = BrokerDirectory.read(broker, wait);
+        long ignored;
+        // With the cluster key, only what the cluster's hosts signed is listed; anything else is ignored and counted.
+        try (BrokerDirectory d = BrokerDirectory.open(broker, wait, null, key.map(ClusterKey::presenceSeal).orElse(null))) {
+            d.awaitQuiet(wait);
+            all = d.records();
+            ignored = d.ignored();
         } catch (IOException | IllegalArgumentException e) {
             err.println("mw agents: " + Mw.oneLine(e));
             return 2;
         }
-        Optional<ClusterKey> key = cluster.keyIfAny();
         if (drop != null && key.isEmpty()) {
             err.println("mw agents: --drop-owed asks each host: give the cluster key (--key-file FILE or " + ClusterOptions.KEY_VARIABLE + ")");
             return 2;
@@ -150,7 +154,11 @@ final class AgentsCommand implements Callable<Integer> {
             }
         }
         if (key.isEmpty() && !agentHosts.isEmpty()) {
-            out.println("(give the cluster key, --key-file FILE or " + ClusterOptions.KEY_VARIABLE + ", to list the deliveries each host owes)");
+            out.println("(unverified: give the cluster key, --key-file FILE or " + ClusterOptions.KEY_VARIABLE
+                    + ", to list only what the cluster's hosts signed and the deliveries each host owes)");
+        }
+        if (ignored > 0) {
+            out.printf("%d presence record%s ignored: unsigned, or not signed with this cluster key%n", ignored, ignored == 1 ? "" : "s");
         }
         List<PresenceRecord> others = all.stream().filter(p -> p.host() == null && p.online()).toList();
         if (!others.isEmpty()) {

@@ -35,9 +35,10 @@ final class HostPresence implements AutoCloseable {
      * @param host   the agent host
      * @param broker a broker to announce at besides those the node is at already, or {@code null}
      * @param node   the host's messaging node (or the node serving its robot), or {@code null} when it has none
+     * @param seal   signs what it announces (the cluster key's), or {@code null} for a host without a key (TLS alone)
      * @return the running announcement
      */
-    static HostPresence start(AgentHost host, String broker, MessagingNode node) {
+    static HostPresence start(AgentHost host, String broker, MessagingNode node, io.robomw.agents.messaging.security.PresenceSeal seal) {
         boolean own = node == null;
         if (own) {
             node = MessagingNode.builder(host.name()).settings(MessagingSettings.defaults()).bind(broker).build();
@@ -45,6 +46,9 @@ final class HostPresence implements AutoCloseable {
             node.bind(broker);
         }
         MessagingNode announcing = node;
+        if (seal != null) {
+            announcing.presence().seal(seal);
+        }
         announcing.presence().host(host.name(), host.address());
         ScheduledExecutorService refresh = Executors.newSingleThreadScheduledExecutor(
                 r -> OwnerThreads.thread("mw-host-presence-" + host.name(), r, announcing.failures()));

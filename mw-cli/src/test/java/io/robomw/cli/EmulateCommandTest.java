@@ -86,6 +86,12 @@ class EmulateCommandTest {
         command.start();
     }
 
+    /** @return the robot file's name, copied beside the test's world: a world may name robot files in its own tree only (issue 37) */
+    private String beside(Path robot) throws java.io.IOException {
+        Files.copy(robot, dir.resolve(robot.getFileName()), java.nio.file.StandardCopyOption.REPLACE_EXISTING);
+        return robot.getFileName().toString();
+    }
+
     @Test
     void shouldServeTheTxtsCommandPortAndAcceptItsI2cChannelOnPortPlusTwo() throws Exception {
         Files.writeString(dir.resolve("world.yaml"), """
@@ -93,7 +99,7 @@ class EmulateCommandTest {
                 arena: { width: 3, height: 3 }
                 robots:
                   - { robot: %s, name: txt, x: 1.0, y: 1.5, heading: 0 }
-                """.formatted(TXT_ROBOT));
+                """.formatted(beside(TXT_ROBOT)));
         start("emulate", "ft-txt", "--world", dir.resolve("world.yaml").toString(), "--robot", "txt", "--tcp", "0");
         String where = lines.poll(30, TimeUnit.SECONDS);
         assertNotNull(where, "mw emulate printed where it serves");
@@ -116,7 +122,7 @@ class EmulateCommandTest {
                 arena: { width: 3, height: 3 }
                 robots:
                   - { robot: %s, name: rcx, x: 1.0, y: 1.5, heading: 0 }
-                """.formatted(RCX_ROBOT));
+                """.formatted(beside(RCX_ROBOT)));
         start("emulate", "rcx", "--world", dir.resolve("world.yaml").toString(), "--robot", "rcx", "--latency", "0", "--baud", "0");
         String device = lines.poll(30, TimeUnit.SECONDS);
         assertNotNull(device, "mw emulate printed the device");

@@ -3,6 +3,8 @@ package io.robomw.agents.messaging;
 import io.robomw.agents.messaging.frame.Frame;
 import io.robomw.agents.messaging.frame.FrameKind;
 import io.robomw.agents.messaging.security.FrameMac;
+import io.robomw.agents.messaging.security.PayloadSealer;
+import io.robomw.agents.messaging.security.ReplayStore;
 import io.robomw.agents.messaging.security.PayloadCodec;
 import io.robomw.agents.messaging.security.TopicKeys;
 import io.robomw.agents.messaging.spi.Channel;
@@ -26,6 +28,7 @@ import java.io.IOException;
 import java.io.Serializable;
 import java.security.SecureRandom;
 import java.time.Duration;
+import java.nio.file.Path;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Map;
@@ -118,10 +121,16 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     private final ScheduledExecutorService housekeeping;
     private final Context context = new Context();
     private final Presence presence;
+    private final ReplayStore replayStore;
     private volatile boolean closed;
     private volatile boolean joinedGroup;
 
-    private MessagingNode(String name, MessagingSettings settings, ClassLoader classLoader, FailurePolicy failures) {
+    /** @return where nodes keep their replay windows unless told otherwise: {@code ~/.robomw/replay} */
+    public static Path defaultReplayDirectory() {
+        return Path.of(System.getProperty("user.home"), ".robomw", "replay");
+    }
+
+    private MessagingNode(String name, MessagingSettings settings, ClassLoader classLoader, FailurePolicy failures, ReplayStore store) {
         this.name = name;
         this.settings = settings;
         this.failures = failures;
@@ -130,10 +139,12 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         this.counters = new NodeCounters(name);
         PayloadCodec payloads = new PayloadCodec(settings.allowList(), classLoader);
         FrameMac mac = new FrameMac();
-        this.frames = new FrameFactory(name, id, payloads, mac, settings.maxFrameSize());
+        PayloadSealer sealer = new PayloadSealer();
+        this.replayStore = store;
+        this.frames = new FrameFactory(name, id, payloads, mac, sealer, settings.maxFrameSize());
         this.topics = new LocalTopics(name);
         this.remoteSubscribers = new RemoteSubscribers(settings.limits());
-        this.inbound = new Inbound(this, counters, mac, payloads, settings, failures);
+        this.inbound = new Inbound(this, counters, mac, payloads, settings, failures, sealer, store);
         this.links = new Links(name, this::transport, this::linkOpened);
         this.presence = new Presence(name, this::boundAddresses);
         for (TransportProvider p : ServiceLoader.load(TransportProvider.class, MessagingNode.class.getClassLoader())) {
@@ -162,6 +173,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         private FailurePolicy failures = FailurePolicy.logging();
         private final List<String> binds = new ArrayList<>();
         private final List<String> connects = new ArrayList<>();
+        private Path replayDirectory = defaultReplayDirectory();
 
         private Builder(String name) {
             if (name == null || name.isBlank()) {
@@ -192,6 +204,20 @@ public final class MessagingNode implements Messaging, AutoCloseable {
             return this;
         }
 
+        /**
+         * Where the node keeps its replay window across restarts ({@link ReplayStore}, a file named
+         * after the node): by default {@code ~/.robomw/replay}; {@code null} keeps it in memory only
+         * (a replay of a frame taken before a restart is then refused only once it is older than
+         * the allowed clock skew).
+         *
+         * @param dir the folder, or {@code null}
+         * @return this builder
+         */
+        public Builder replayDirectory(Path dir) {
+            this.replayDirectory = dir;
+            return this;
+        }
+
         /** @param address where to receive: tcp, udp, rmi (listen) or multicast (join) @return this builder */
         public Builder bind(String address) {
             binds.add(address);
@@ -209,7 +235,11 @@ public final class MessagingNode implements Messaging, AutoCloseable {
          * @throws MessagingException if an address cannot be bound (a connect that fails is retried in the background)
          */
         public MessagingNode build() {
-            MessagingNode node = new MessagingNode(name, settings, classLoader == null ? MessagingNode.class.getClassLoader() : classLoader, failures);
+            ReplayStore store = replayDirectory == null ? ReplayStore.memoryOnly()
+                    // a frame taken now may carry a timestamp up to the skew ahead, so it is stale only twice the skew from now
+                    : ReplayStore.in(ReplayStore.fileFor(replayDirectory, name), settings.maxClockSkew().multipliedBy(2));
+            MessagingNode node = new MessagingNode(name, settings, classLoader == null ? MessagingNode.class.getClassLoader() : classLoader, failures,
+                    store);
             try {
                 for (String b : binds) {
                     node.bind(b);
@@ -567,6 +597,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
             }
         }
         connections.clear();
+        replayStore.close();
     }
 
     @Override

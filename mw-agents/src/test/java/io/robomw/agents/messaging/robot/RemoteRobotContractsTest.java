@@ -51,7 +51,7 @@ class RemoteRobotContractsTest {
     @BeforeEach
     void serve() {
         server = MessagingNode.builder("host").settings(RobotProtocol.forServer(MessagingSettings.defaults())).bind("tcp://127.0.0.1:0").build();
-        RobotServer.serve(server, served, null);
+        RobotServer.serveInsecure(server, served);
         remote = Robots.remote(server.address("tcp") + "/held");
     }
 
