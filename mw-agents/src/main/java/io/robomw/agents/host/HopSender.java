@@ -62,6 +62,10 @@ final class HopSender {
                 break;
             } catch (PeerException e) {
                 why = e.getMessage();
+                if (!e.delivered() && a + 1 < attempts) {
+                    LOG.warn("host {}: agent {} cannot reach its next stop {} (attempt {} of {}): {}; trying again in {} ms", host.name, h.id, target, a + 1,
+                            attempts, why, it.retryBackoff().toMillis());
+                }
                 if (e.delivered()) {
                     // It may be there already: only that host may have it, so ask it until it answers.
                     if (resendUntilAnswered(image, raw, target)) {
