@@ -155,4 +155,90 @@ class AgentPartitionIT {
                 String.format("skipped as UNREACHABLE; trip home %.1f s after the cut; reports %d, lost 0, duplicated 0", (back - cut) / 1e9,
                         home.reportsDelivered()));
     }
+
+    /** Waits until a host's log has a line matching {@code regex}; returns it. */
+    private static String awaitLog(LabProcess host, String what, String regex) {
+        Pattern p = Pattern.compile(regex);
+        String[] found = new String[1];
+        Await.until(what, TRIP, () -> {
+            try {
+                found[0] = host.log().lines().filter(l -> p.matcher(l).find()).findFirst().orElse(null);
+            } catch (IOException e) {
+                throw new UncheckedIOException(e);
+            }
+            return found[0] != null;
+        });
+        return found[0];
+    }
+
+    @Test
+    void homeCutOffWhileReportsAndTheResultAreOwedGetsThemOnceItIsBack() throws Exception {
+        start("home", false);
+        String id = home.send("trip 1500 5 500 " + aAddress() + "," + bAddress(), 1, TRIP).get(0);
+        lab.isolate(homeNs); // the first host has the agent; from now on nothing reaches the home
+        long cut = System.nanoTime();
+        String homeAddress = homeNs.rmi("home");
+        String aOwes = awaitLog(a, "a cannot deliver the agent's report home", "home " + Pattern.quote(homeAddress) + " does not take deliveries");
+        String bOwes = awaitLog(b, "b cannot deliver the agent's result home", "home " + Pattern.quote(homeAddress) + " does not take deliveries");
+        lab.heal();
+        long healed = System.nanoTime();
+        home.await("the result comes home", TRIP, home::allHome);
+        long back = System.nanoTime();
+        home.await("every report comes home", TRIP, home::allReported);
+        home.drain(Duration.ofSeconds(30));
+        home.assertNothingLostOrDuplicated();
+        assertEquals(List.of("a#0:0", "b#0:1"), home.result(id));
+        for (String line : List.of(aOwes, bOwes)) {
+            assertTrue(line.contains("connecting to " + homeNs.ip() + ":1099") || line.contains(homeNs.ip()), "names the home's address: " + line);
+            assertFalse(line.contains("127.0.0.1"), "and no other: " + line);
+        }
+        awaitLog(b, "b says the home takes deliveries again", "home " + Pattern.quote(homeAddress) + " takes deliveries again");
+        NetFigures.record("home cut off while a report (at a) and the result (at b) are owed; 2 s at most between tries",
+                String.format("cut %.1f s; result home %.1f s after healing; reports %d, lost 0, duplicated 0", (healed - cut) / 1e9, (back - healed) / 1e9,
+                        home.reportsDelivered()));
+    }
+
+    @Test
+    void aWholeTripOfClonesThroughTwentyPercentLossLosesAndDuplicatesNothing() throws Exception {
+        start("loss", false);
+        lab.loss(20);
+        long t0 = System.nanoTime();
+        List<String> ids = home.send("clones 300 10 500 " + aAddress() + "," + bAddress() + " " + aAddress() + "," + bAddress(), 2, TRIP);
+        home.await("both clones come home", TRIP, home::allHome);
+        home.await("every report comes home", TRIP, home::allReported);
+        long t1 = System.nanoTime();
+        long dropped = lab.dropped();
+        lab.heal();
+        home.drain(Duration.ofSeconds(30));
+        home.assertNothingLostOrDuplicated();
+        assertEquals(List.of("a#0:0", "a#0:1", "b#0:2"), home.result(ids.get(0)), "the clone sent to a toured a and b");
+        assertEquals(List.of("b#0:0", "a#0:1", "b#0:2"), home.result(ids.get(1)), "the clone sent to b toured a and b");
+        assertTrue(dropped > 0, "the loss rule dropped packets");
+        NetFigures.record("20 % of packets lost between all hosts, 2 clones of 3 stops each",
+                String.format("trips and reports home in %.1f s; %d packets dropped; reports %d, lost 0, duplicated 0", (t1 - t0) / 1e9, dropped,
+                        home.reportsDelivered()));
+    }
+
+    @Test
+    void aDurableHostKilledWhileItsNextHostIsCutOffResumesTheHopAndNothingIsLost() throws Exception {
+        start("kill", true);
+        lab.isolate(bNs);
+        String id = home.send("trip 500 60 1000 " + aAddress() + "," + bAddress() + "," + aAddress(), 1, TRIP).get(0);
+        awaitFailedAttempts(a, id, 1);
+        a.kill(); // kill -9 while the agent waits at a to hop to b
+        long killed = System.nanoTime();
+        a = startA(true);
+        awaitLog(a, "a resumes the agent from its store", "resumed");
+        lab.heal();
+        long healed = System.nanoTime();
+        home.await("the agent comes home", TRIP, home::allHome);
+        home.await("every report comes home", TRIP, home::allReported);
+        long back = System.nanoTime();
+        home.drain(Duration.ofSeconds(30));
+        home.assertNothingLostOrDuplicated();
+        assertEquals(List.of("a#0:0", "b#0:1", "a#0:2"), home.result(id), "the stop at a ran once before the kill, and the trip went on after it");
+        NetFigures.record("durable host a killed -9 while its agent waits to hop to b, which is cut off; a restarted during the cut",
+                String.format("restarted and cut %.1f s after the kill; result home %.1f s after healing; reports %d, lost 0, duplicated 0, no stop run twice",
+                        (healed - killed) / 1e9, (back - healed) / 1e9, home.reportsDelivered()));
+    }
 }

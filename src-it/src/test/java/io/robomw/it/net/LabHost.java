@@ -69,7 +69,7 @@ public record LabHost(NetLab lab, String name, String namespace, String ip) {
         List<String> args = new ArrayList<>(List.of("host", "--name", hostName, "--bind", ip, "--port", "1099", "--key-file", keyFile.toString(),
                 "--beacon", "off"));
         args.addAll(List.of(extra));
-        LabProcess p = mw(hostName, List.of(), args.toArray(String[]::new));
+        LabProcess p = mw(lab.tag() + "-" + hostName, List.of(), args.toArray(String[]::new));
         p.expect("agent host " + hostName + " ready at", START);
         p.expect("messaging at", START);
         return p;

@@ -177,6 +177,11 @@ public final class NetLab implements AutoCloseable {
         return h;
     }
 
+    /** @return the lab's tag, which the logs of its processes start with */
+    public String tag() {
+        return tag;
+    }
+
     /** Remembers a process to kill at {@link #close()} if it still runs. */
     void started(LabProcess p) {
         synchronized (processes) {
