@@ -54,6 +54,17 @@ public interface AgentRef {
     void addReportListener(Consumer<Serializable> listener);
 
     /**
+     * Like {@link #addReportListener(Consumer)}, and also tells where each value was sent from:
+     * the address of the host the agent was at when it sent it (for a clone, the host it had
+     * travelled to, not the one it was first sent to).
+     *
+     * @param listener called with the host's address and the value
+     */
+    default void onReport(java.util.function.BiConsumer<String, Serializable> listener) {
+        addReportListener(v -> listener.accept(location(), v));
+    }
+
+    /**
      * Brings the agent home (after Aglets' {@code retractAglet}): it finishes the callback it is
      * in, stops travelling, and its state comes home. Returns at once.
      *

@@ -134,18 +134,20 @@ final class DispatchCommand implements Callable<Integer> {
                 out.printf("sent %s %s to %s%n", agentClass, ref.id(), clone ? s.label() : String.join(" -> ", hosts));
                 out.flush();
             }
-            ref.addReportListener(v -> {
+            // Each line says where the agent was when it sent it (a clone travels on from its first host).
+            String who = sent.size() > 1 ? " " + ref.id().toString().substring(0, 8) : "";
+            ref.onReport((at, v) -> {
                 synchronized (out) {
-                    out.printf("[%s] %s%n", s.label(), v);
+                    out.printf("[%s%s] %s%n", at, who, v);
                     out.flush();
                 }
             });
             done.add(ref.result().handle((Serializable result, Throwable failure) -> {
                 synchronized (out) {
                     if (failure != null) {
-                        out.printf("[%s] FAILED: %s%n", s.label(), Mw.oneLine(failure.getCause() != null ? failure.getCause() : failure));
+                        out.printf("[%s%s] FAILED: %s%n", ref.location(), who, Mw.oneLine(failure.getCause() != null ? failure.getCause() : failure));
                     } else {
-                        out.printf("[%s] result from %s:%n%s%n", s.label(), ref.location(), ResultText.format(result, "  "));
+                        out.printf("[%s%s] result:%n%s%n", ref.location(), who, ResultText.format(result, "  "));
                     }
                     out.flush();
                 }

@@ -10,6 +10,7 @@ import io.robomw.testkit.Await;
 import io.robomw.cli.agents.HelloAgent;
 import io.robomw.cli.agents.NoDefaultConstructorAgent;
 import io.robomw.cli.agents.RobotAgent;
+import io.robomw.cli.agents.TouringAgent;
 import org.junit.jupiter.api.BeforeEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.extension.RegisterExtension;
@@ -54,7 +55,7 @@ class AgentCommandsTest {
         key = Files.writeString(dir.resolve("cluster.key"), "agent commands test");
         jar = dir.resolve("agents.jar");
         try (JarOutputStream out = new JarOutputStream(Files.newOutputStream(jar))) {
-            for (Class<?> c : List.of(HelloAgent.class, RobotAgent.class, NoDefaultConstructorAgent.class)) {
+            for (Class<?> c : List.of(HelloAgent.class, RobotAgent.class, NoDefaultConstructorAgent.class, TouringAgent.class)) {
                 String entry = c.getName().replace('.', '/') + ".class";
                 out.putNextEntry(new JarEntry(entry));
                 try (var in = c.getClassLoader().getResourceAsStream(entry)) {
@@ -94,12 +95,34 @@ class AgentCommandsTest {
         assertTrue(run.out().contains("[" + a.address() + "] hello from a"), run.out());
         assertTrue(run.out().contains("visited a"), run.out());
         String summary = run.out().substring(run.out().indexOf("summary:"));
-        assertTrue(summary.contains("COMPLETED at " + a.address()), summary);
+        assertTrue(summary.matches("(?s).*\\n  COMPLETED  \\[" + java.util.regex.Pattern.quote(a.address()) + "\\] agent \\S+ ended at "
+                + java.util.regex.Pattern.quote(a.address()) + "\\n.*"), summary);
+        assertTrue(summary.contains("  NOT-SENT   [" + DEAD_HOST + "]"), summary);
         assertTrue(summary.contains("DONE         " + a.address()), summary);
         assertTrue(summary.matches("(?s).*UNREACHABLE  " + java.util.regex.Pattern.quote(DEAD_HOST) + ": .*Connection refused.*"), summary);
         // The command ends once its home has replied to the calls that brought the results; host a reads
         // that reply a moment later. Had the home closed first, the result would stay owed, retried.
         Await.until("host a owes nothing once the command has ended: " + a.owed(), Duration.ofSeconds(10), () -> a.owed().isEmpty());
+    }
+
+    @Test
+    void reportsAndResultsArePrefixedWithTheHostTheCloneWasAtNotItsFirstHost() throws Exception {
+        AgentHost a = host("a");
+        AgentHost b = host("b");
+        Run run = dispatch("--agent", TouringAgent.class.getName(), "--arg", b.address(), "--clone", a.address());
+        assertEquals(0, run.status(), run.toString());
+        assertTrue(run.out().contains("[" + a.address() + "] hello from a"), run.out());
+        assertTrue(run.out().contains("[" + b.address() + "] hello from b"), "the report sent from b is prefixed with b: " + run.out());
+        assertTrue(run.out().contains("[" + b.address() + "] result:\n  last at b"), "and so is the result: " + run.out());
+    }
+
+    @Test
+    void aTripWithASkippedStopIsNotSummarisedAsCompleted() throws Exception {
+        AgentHost a = host("a");
+        Run run = dispatch("--agent", HelloAgent.class.getName(), a.address(), DEAD_HOST, a.address());
+        String summary = run.out().substring(run.out().indexOf("summary:"));
+        assertTrue(summary.contains("\n  INCOMPLETE [agent "), "the first word says a stop was skipped: " + summary);
+        assertTrue(summary.contains("ended at " + a.address() + ", 1 stop unreachable"), summary);
     }
 
     @Test

@@ -192,7 +192,7 @@ final class Home implements Agency {
                     return Reply.ok();
                 }
                 if (e.kind() == AgentEvent.Kind.REPORT) {
-                    h.report(e.seq(), value);
+                    h.report(e.seq(), e.location(), value);
                 } else {
                     h.completed(e.location(), value);
                 }
