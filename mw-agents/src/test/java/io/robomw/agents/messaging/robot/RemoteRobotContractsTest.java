@@ -239,4 +239,12 @@ class RemoteRobotContractsTest {
         public void close() {
         }
     }
+
+    @Test
+    void aRobotTheHostDoesNotServeIsSaidSoNamingTheRobotsItServes() {
+        io.robomw.api.RobotLinkException e = org.junit.jupiter.api.Assertions.assertThrows(io.robomw.api.RobotLinkException.class,
+                () -> Robots.remote(server.address("tcp") + "/nxt-1"));
+        org.junit.jupiter.api.Assertions.assertEquals("no robot 'nxt-1' is served at " + server.address("tcp") + "; it serves held ("
+                + server.address("tcp") + "/held)", e.getMessage());
+    }
 }
