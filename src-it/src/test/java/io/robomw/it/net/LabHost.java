@@ -36,7 +36,21 @@ public record LabHost(NetLab lab, String name, String namespace, String ip) {
      * @throws IOException if it cannot start
      */
     public LabProcess java(String logName, String mainClass, String... args) throws IOException {
-        return launch(logName, System.getProperty("java.class.path"), List.of(), mainClass, List.of(args));
+        return java(logName, List.of(), mainClass, args);
+    }
+
+    /**
+     * {@link #java(String, String, String...)} with JVM options.
+     *
+     * @param logName   the log's name
+     * @param jvm       JVM options (system properties)
+     * @param mainClass the class
+     * @param args      its arguments
+     * @return the process
+     * @throws IOException if it cannot start
+     */
+    public LabProcess java(String logName, List<String> jvm, String mainClass, String... args) throws IOException {
+        return launch(logName, System.getProperty("java.class.path"), jvm, mainClass, List.of(args));
     }
 
     /**

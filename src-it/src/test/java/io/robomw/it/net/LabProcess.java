@@ -81,6 +81,19 @@ public final class LabProcess implements AutoCloseable {
         }
     }
 
+    /**
+     * Sends a command and waits for its answer.
+     *
+     * @param command one line to its stdin
+     * @param prefix  what the answer starts with
+     * @param within  the deadline
+     * @return the answer
+     */
+    public String ask(String command, String prefix, Duration within) {
+        send(command);
+        return expect(prefix, within);
+    }
+
     /** @param command one line to its stdin */
     public void send(String command) {
         in.println(command);
