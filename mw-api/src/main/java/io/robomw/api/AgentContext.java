@@ -78,6 +78,19 @@ public interface AgentContext extends Agency {
     void dispose();
 
     /**
+     * Whether an operator asked this agent to leave (a retract or a dispose): its callback's thread
+     * has been interrupted, and the request takes effect when the callback returns. An agent that
+     * works in a loop without blocking calls polls this (or {@link Thread#interrupted()}) and
+     * returns soon; the host waits for it (Java cannot end a thread that ignores its interrupt) and
+     * says so after 5 s.
+     *
+     * @return whether it should return from its callback now
+     */
+    default boolean leaving() {
+        return Thread.currentThread().isInterrupted();
+    }
+
+    /**
      * Sets the result the agent brings home at the end of its trip; the last value set wins.
      *
      * @param result the result (serializable, of the agent's own classes or allow-listed JDK types)

@@ -144,14 +144,17 @@ final class DispatchCommand implements Callable<Integer> {
             });
             done.add(ref.result().handle((Serializable result, Throwable failure) -> {
                 synchronized (out) {
-                    if (failure != null) {
+                    io.robomw.api.Agent back = ref.status() == io.robomw.api.AgentStatus.RETRACTED ? ref.whenRetracted().getNow(null) : null;
+                    if (back != null) {
+                        out.printf("[%s%s] RETRACTED: its state came home:%n%s%n", ref.location(), who, ResultText.state(back, "  "));
+                    } else if (failure != null) {
                         out.printf("[%s%s] FAILED: %s%n", ref.location(), who, Mw.oneLine(failure.getCause() != null ? failure.getCause() : failure));
                     } else {
                         out.printf("[%s%s] result:%n%s%n", ref.location(), who, ResultText.format(result, "  "));
                     }
                     out.flush();
                 }
-                return failure == null;
+                return failure == null || ref.status() == io.robomw.api.AgentStatus.RETRACTED;
             }));
         }
         // Ctrl-C while agents travel: say what keeps going and how to stop the hosts owing this home their results.

@@ -57,7 +57,7 @@ final class TripSummary {
             boolean home = ref.result().isDone();
             Verdict verdict = verdict(ref);
             if (home) {
-                out.printf("  %-10s [%s] agent %s %s at %s%s%n", verdict, s.label(), ref.id(), verdict == Verdict.RETRACTED ? "came home from" : "ended",
+                out.printf("  %-10s [%s] agent %s %s %s%s%n", verdict, s.label(), ref.id(), verdict == Verdict.RETRACTED ? "came home from" : "ended at",
                         ref.location(), skipped(ref));
             } else {
                 out.printf("  %-10s [%s] agent %s: no result within %s; last seen %s at %s%n", verdict, s.label(), ref.id(), timeout, ref.status(),

@@ -108,6 +108,11 @@ final class AgentHandle implements AgentRef {
     }
 
     @Override
+    public CompletableFuture<Agent> whenRetracted() {
+        return retracted;
+    }
+
+    @Override
     public void dispose() {
         home.requestOfAgent(this, Op.DISPOSE).whenComplete((ok, e) -> {
             if (e != null) {

@@ -53,6 +53,10 @@ final class HopSender {
             if (a > 0 && !pause(it.retryBackoff().toMillis())) {
                 break;
             }
+            if (a > 0 && (h.retractRequested || h.disposeRequested)) {
+                why = (h.retractRequested ? "retracted" : "disposed of") + " while it waited to reach " + target + " (" + why + ")";
+                break;
+            }
             try {
                 transfer(image, raw, target);
                 arrivedElsewhere(h, image, target);

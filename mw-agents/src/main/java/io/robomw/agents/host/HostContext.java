@@ -72,6 +72,11 @@ final class HostContext implements AgentContext {
     }
 
     @Override
+    public boolean leaving() {
+        return hosted.retractRequested || hosted.disposeRequested || Thread.currentThread().isInterrupted();
+    }
+
+    @Override
     public void dispose() {
         hosted.disposeRequested = true;
     }

@@ -70,6 +70,21 @@ final class HostMessaging implements AutoCloseable {
         this.onEvent = handler;
     }
 
+    /** A broker the host's own node joins once the host knows its address, or {@code null}. */
+    private volatile String deferredBroker;
+
+    /**
+     * The host's own node joins this broker only in {@link #started()}, once its presence names the
+     * host: the presence it leaves there as its will (the offline version, published when the host
+     * is gone without closing, as after kill -9) is made when it joins, so it must already name the
+     * host, or {@code mw agents --cluster} would not see the host go offline.
+     *
+     * @param broker an {@code mqtt://} or {@code mqtts://} address
+     */
+    void joinWhenStarted(String broker) {
+        this.deferredBroker = broker;
+    }
+
     /** Called once the host knows its own address, before it takes calls. */
     void started() {
         directory = new HostDirectory(host.address);
@@ -82,6 +97,9 @@ final class HostMessaging implements AutoCloseable {
         }
         if (node != null) {
             node.presence().host(host.name, host.address);
+            if (deferredBroker != null) {
+                node.bind(deferredBroker);
+            }
             for (String broker : addresses()) {
                 if (broker.startsWith("mqtt://") || broker.startsWith("mqtts://")) {
                     watchBroker(broker);
