@@ -56,9 +56,13 @@ public interface AgentContext extends Agency {
     /**
      * Goes to {@code host} next: inserts a stop there (its work is {@link Agent#run()}) before the
      * rest of the itinerary. The agent leaves when the current callback returns; this method does
-     * not block.
+     * not block (it may ask the agent's home or the hosts known here where a host of that name is).
      *
-     * @param host the host's address
+     * @param host the host's address ({@code rmi://host:port/name}), or its name as messages use it
+     *             (a host this one knows: its agents' homes and stops, the hosts those know, the hosts
+     *             announced at a broker it is at)
+     * @throws IllegalArgumentException if it is neither an address nor the name of a host known here
+     *                                  or at the agent's home (the message lists the hosts known)
      */
     void dispatch(String host);
 

@@ -634,6 +634,11 @@ public final class AgentHost implements AutoCloseable {
         return r;
     }
 
+    /** @return the agent host address of a host an agent here names (its address, or its name as messages use it) */
+    String hostAddressOf(String nameOrAddress, HostedAgent h) {
+        return messaging.hostAddress(nameOrAddress, h);
+    }
+
     /** @return an agent's view of this host's messaging node */
     Messaging messagingFor(HostedAgent h) {
         return messaging.forAgent(h);

@@ -61,9 +61,9 @@ final class HostContext implements AgentContext {
     }
 
     @Override
-    public void dispatch(String address) {
-        HostAddress.parse(address);
-        hosted.agent.itinerary().insertNext(address, null);
+    public void dispatch(String host) {
+        // a host's name works as messages do (hosts that met, or met at a broker): resolved here, now
+        hosted.agent.itinerary().insertNext(this.host.hostAddressOf(host, hosted), null);
     }
 
     @Override

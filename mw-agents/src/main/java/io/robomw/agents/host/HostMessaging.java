@@ -159,6 +159,19 @@ final class HostMessaging implements AutoCloseable {
         return node == null ? List.of() : node.boundAddresses().stream().map(Object::toString).toList();
     }
 
+    /**
+     * @param nameOrAddress an agent host's name or address
+     * @param h             the agent asking (its home is asked about names this host does not know)
+     * @return the host's agent host address
+     * @throws IllegalArgumentException when no host of that name is known
+     */
+    String hostAddress(String nameOrAddress, HostedAgent h) {
+        if (nameOrAddress.equals(host.name)) {
+            return host.address;
+        }
+        return directory.hostAddress(nameOrAddress, h.home, peers::describe);
+    }
+
     /** @return an agent's view of the node, made on first use and released when the agent leaves */
     Messaging forAgent(HostedAgent h) {
         if (node == null) {

@@ -209,6 +209,20 @@ final class Trips {
                 return new Departure(false, null, unreachable.isEmpty() ? "its itinerary is done" : "no further stop could be reached: " + String.join("; ", unreachable));
             }
             String target = next.get().host();
+            if (!target.contains("://")) {
+                // a stop named by its host's name, as messages name hosts: resolved at the host that sends the agent there
+                try {
+                    target = host.messaging.hostAddress(target, h);
+                } catch (RuntimeException e) {
+                    it.record(target, Itinerary.Outcome.UNREACHABLE, e.getMessage());
+                    unreachable.add(target + " (" + e.getMessage() + ")");
+                    LOG.warn("host {}: agent {} cannot go to {}: {}", host.name, h.id, target, e.getMessage());
+                    if (it.unreachablePolicy() == Itinerary.UnreachablePolicy.RETURN_HOME) {
+                        return new Departure(false, null, "its stop " + target + " could not be found and its policy is to return home");
+                    }
+                    continue;
+                }
+            }
             try {
                 h.agent.onDispatching();
             } catch (Throwable e) {

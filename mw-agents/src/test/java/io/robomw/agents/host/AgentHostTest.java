@@ -175,6 +175,29 @@ class AgentHostTest {
     }
 
     @Test
+    void anAgentHopsToAHostGivenByNameAsMessagesDo() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        AgentHost b = host("lab-b");
+        assertEquals(List.of("lab-b"), home.agency().sendAgent(b.address(), new VisitorAgent()).result().get(10, TimeUnit.SECONDS),
+                "the home has met lab-b");
+        // a has never met lab-b: it asks the agent's home where the host of that name is
+        AgentRef ref = home.agency().sendAgent(a.address(), new io.robomw.agents.host.trip.HopByNameAgent("lab-b"));
+        assertEquals(List.of("a", "lab-b"), ref.result().get(10, TimeUnit.SECONDS));
+        assertEquals(b.address(), ref.location());
+    }
+
+    @Test
+    void anAgentHoppingToAnUnknownHostNameFailsItsStopNamingTheHostsKnown() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        AgentRef ref = home.agency().sendAgent(a.address(), new io.robomw.agents.host.trip.HopByNameAgent("nowhere"));
+        assertThrows(Exception.class, () -> ref.result().get(10, TimeUnit.SECONDS));
+        String detail = ref.history().get(0).detail();
+        assertTrue(detail.contains("no agent host named 'nowhere' is known at " + a.address()), detail);
+    }
+
+    @Test
     void unreachableStopIsSkippedAndRecorded() throws Exception {
         AgentHost home = host("home");
         AgentHost a = host("a");
