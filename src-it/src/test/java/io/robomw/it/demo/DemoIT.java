@@ -44,9 +44,12 @@ class DemoIT {
     void demoSendsClonesToTheNxtAndTheFischertechnikRobotAndBringsBothResultsHome() throws Exception {
         Path png = dir.resolve("demo.png");
         try (BusyThreads load = new BusyThreads(2);
-             MwProcess demo = MwProcess.start("demo", "demo", "--png", png.toString(), "--logs", dir.resolve("logs").toString())) {
+             MwProcess demo = MwProcess.startAsOnATerminal("demo", "demo", "--png", png.toString(), "--logs", dir.resolve("logs").toString())) {
             assertEquals(0, demo.waitFor(Duration.ofMinutes(2)), demo.output());
             String out = demo.output();
+            // What a terminal shows, standard error included: the demo's lines, not the libraries' INFO lines among its tables.
+            assertTrue(out.lines().noneMatch(l -> l.contains(" INFO ")), "no library log line on the terminal:\n" + out);
+            assertTrue(Files.readString(dir.resolve("logs").resolve("demo.log")).contains(" INFO "), "they are in the demo's log");
             for (String robot : List.of("nxt", "ft")) {
                 String table = out.substring(out.indexOf("== " + robot + " ("));
                 assertTrue(table.contains("distance driven       1.600 m"), table);

@@ -145,4 +145,30 @@ class MessagingPartitionIT {
                 String.format("cut %.1f s: y's request timed out; 50 publications kept by the broker and 10 queued at y, all delivered in order %.1f s after"
                         + " healing", (healed - cut) / 1e9, (delivered - healed) / 1e9));
     }
+
+    @Test
+    void requestReplyThroughADelayedLinkTakesTheDelayAndAReplyLaterThanTheTimeoutIsReportedAsMissing() throws Exception {
+        lab = NetLab.open("delay");
+        LabHost xs = lab.host("x");
+        LabHost rs = lab.host("relay");
+        LabHost ys = lab.host("y");
+        LabProcess x = peer(xs, "x");
+        x.ask("bind tcp://" + xs.ip() + ":7000", "BOUND", WAIT);
+        x.ask("echo cmd -", "OK", WAIT);
+        // 300 ms each way on port 7000, 3 s each way on port 7001 (more than the request's 5 s reply timeout, both ways)
+        rs.java("delay-relay", DelayRelay.class.getName(), "300", rs.ip(), "7000=" + xs.ip() + ":7000").expect("READY", LabHost.START);
+        rs.java("delay-relay-slow", DelayRelay.class.getName(), "3000", rs.ip(), "7001=" + xs.ip() + ":7000").expect("READY", LabHost.START);
+        LabProcess y = peer(ys, "y");
+        String near = "tcp://" + rs.ip() + ":7000";
+        assertEquals("REPLY warm", y.ask("request " + near + " x cmd warm -", "REPLY", WAIT)); // the connection is made
+        long t0 = System.nanoTime();
+        assertEquals("REPLY hello", y.ask("request " + near + " x cmd hello -", "REPLY", WAIT));
+        double rtt = (System.nanoTime() - t0) / 1e9;
+        assertTrue(rtt >= 0.6, "the round trip took at least the relay's 2 x 300 ms: " + rtt + " s");
+        String far = "tcp://" + rs.ip() + ":7001";
+        String late = y.ask("request " + far + " x cmd late -", "FAILED", WAIT);
+        assertTrue(late.contains("on topic 'cmd' from " + far + " within PT5S"), "the time-out names the topic, the host and the timeout: " + late);
+        NetFigures.record("TCP request/reply through a user-space delay relay",
+                String.format("300 ms each way: round trip %.2f s (2 x 0.30 s of it the relay's); 3 s each way: no reply within the 5 s timeout, reported", rtt));
+    }
 }
