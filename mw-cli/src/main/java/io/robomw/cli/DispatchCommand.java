@@ -67,6 +67,10 @@ final class DispatchCommand implements Callable<Integer> {
     @Option(names = "--timeout", defaultValue = "PT2M", description = "how long to wait for results: 30s, 2m, ISO-8601... (default ${DEFAULT-VALUE})")
     Duration timeout;
 
+    @Option(names = "--wait-hosts", defaultValue = "20s", paramLabel = "DURATION",
+            description = "how long to wait for a host that does not answer yet (it may be starting: mw host ... & just before) before sending to it (default ${DEFAULT-VALUE}; 0: not at all)")
+    Duration waitHosts;
+
     @Option(names = "--bind", defaultValue = "127.0.0.1", description = "address of this command's own home host, where results arrive (default ${DEFAULT-VALUE})")
     String bind;
 
@@ -91,6 +95,7 @@ final class DispatchCommand implements Callable<Integer> {
             Agent agent = instantiate(code);
             try (AgentHost home = AgentHost.builder("dispatch-" + ProcessHandle.current().pid()).bind(bind).clusterKey(cluster.key())
                     .tls(cluster.tls()).start()) {
+                awaitHosts(clone ? hosts : hosts.subList(0, 1), err);
                 return dispatch(home, agent, out, err);
             }
         } catch (AgentException | IllegalArgumentException | java.io.IOException e) {
@@ -99,6 +104,43 @@ final class DispatchCommand implements Callable<Integer> {
                 e.printStackTrace(err);
             }
             return 2;
+        }
+    }
+
+    /**
+     * Waits (up to {@code --wait-hosts}) for the hosts the agents go to first to answer: a host
+     * started in the background a moment before ({@code mw host ... &} pasted with this command)
+     * refuses connections until it serves. A host that answers, refuses this peer, or still does not
+     * answer at the deadline is sent to as it is (the summary then says what happened).
+     */
+    private void awaitHosts(List<String> first, PrintWriter err) throws java.io.IOException {
+        if (waitHosts.isZero()) {
+            return;
+        }
+        long deadline = System.nanoTime() + waitHosts.toNanos();
+        try (io.robomw.agents.host.HostClient client = new io.robomw.agents.host.HostClient(cluster.keyOrTlsOnly(), cluster.tls() != null, 5_000)) {
+            for (String host : first) {
+                boolean said = false;
+                while (true) {
+                    try {
+                        client.describe(host);
+                        break;
+                    } catch (java.io.IOException | RuntimeException e) {
+                        String why = Mw.oneLine(e);
+                        boolean notYet = why.contains("cannot connect to") || why.contains("timed out") || why.contains("Connection refused");
+                        if (!notYet || System.nanoTime() - deadline > 0) {
+                            break;
+                        }
+                        if (!said) {
+                            err.println("mw dispatch: waiting up to " + Durations.format(waitHosts) + " for " + host + " to answer (" + why
+                                    + "); a host started just before answers once it prints 'ready at'");
+                            err.flush();
+                            said = true;
+                        }
+                        java.util.concurrent.locks.LockSupport.parkNanos(200_000_000L); // the host starting: nothing to be woken by
+                    }
+                }
+            }
         }
     }
 

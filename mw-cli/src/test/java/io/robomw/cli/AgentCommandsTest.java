@@ -82,7 +82,7 @@ class AgentCommandsTest {
     }
 
     private Run dispatch(String... rest) {
-        List<String> args = new ArrayList<>(List.of("dispatch", "--key-file", key.toString(), "--jar", jar.toString(), "--timeout", "PT30S"));
+        List<String> args = new ArrayList<>(List.of("dispatch", "--key-file", key.toString(), "--jar", jar.toString(), "--timeout", "PT30S", "--wait-hosts", "1s"));
         args.addAll(List.of(rest));
         return mw(args.toArray(String[]::new));
     }
