@@ -145,7 +145,9 @@ class DemoIT {
             assertEquals(0, dispatch.waitFor(Duration.ofMinutes(2)), dispatch.output());
             String out = dispatch.output();
             for (String robot : List.of("nxt", "ft")) {
-                String block = out.substring(out.indexOf("] result from rmi://127.0.0.1:" + (robot.equals("nxt") ? nxtPort : ftPort)));
+                // "[HOST ID] result:" names the host the clone was at when its trip ended
+                String block = out.substring(out.indexOf("[rmi://127.0.0.1:" + (robot.equals("nxt") ? nxtPort : ftPort) + "/" + robot + " "));
+                block = block.substring(block.indexOf("] result:"));
                 assertTrue(block.contains("distanceDriven: 1.6000"), block);
                 Matcher closure = Pattern.compile("odometryClosure: ([0-9.]+)").matcher(block);
                 assertTrue(closure.find(), block);
