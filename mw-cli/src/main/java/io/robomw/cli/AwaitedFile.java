@@ -16,7 +16,7 @@ import java.util.concurrent.locks.LockSupport;
 final class AwaitedFile {
 
     /** How long a command waits for a file that is not there yet. */
-    static final Duration PATIENCE = Duration.ofSeconds(20);
+    static final Duration PATIENCE = Duration.ofSeconds(30);
     private static final long LOOK_EVERY_NANOS = 100_000_000L;
 
     private AwaitedFile() {

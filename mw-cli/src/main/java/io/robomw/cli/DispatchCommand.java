@@ -67,7 +67,7 @@ final class DispatchCommand implements Callable<Integer> {
     @Option(names = "--timeout", defaultValue = "PT2M", description = "how long to wait for results: 30s, 2m, ISO-8601... (default ${DEFAULT-VALUE})")
     Duration timeout;
 
-    @Option(names = "--wait-hosts", defaultValue = "20s", paramLabel = "DURATION",
+    @Option(names = "--wait-hosts", defaultValue = "30s", paramLabel = "DURATION",
             description = "how long to wait for a host that does not answer yet (it may be starting: mw host ... & just before) before sending to it (default ${DEFAULT-VALUE}; 0: not at all)")
     Duration waitHosts;
 
