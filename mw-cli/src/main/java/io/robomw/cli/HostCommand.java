@@ -115,6 +115,11 @@ final class HostCommand implements Callable<Integer> {
             description = "the longest pause between tries to deliver to a home that does not answer (default ${DEFAULT-VALUE})")
     java.time.Duration owedMaxBackoff;
 
+    @Option(names = "--call-timeout", paramLabel = "DURATION", defaultValue = "30s",
+            description = "how long a call to another host may take, its connection included (default ${DEFAULT-VALUE}): a hop to a host that does not answer"
+                    + " fails after this long and the agent's itinerary decides what next (retry, skip, go home)")
+    java.time.Duration callTimeout;
+
     @Option(names = "--record", paramLabel = "FILE.mcap", description = "record this host's agents (arrivals, stops, reports, results) and its robot (commands, pose, sensors) into an MCAP file")
     Path record;
 
@@ -152,6 +157,7 @@ final class HostCommand implements Callable<Integer> {
                 sim.startRealTime(speed);
                 robot = sim.robot(worldRobot);
             } else if (robotFile != null) {
+                AwaitedFile.await(robotFile, err, "mw host");
                 PlatformServices services = connection.isEmpty() ? PlatformServices.none()
                         : PlatformServices.none().with(ConnectionOverride.class, new ConnectionOverride(connection));
                 robot = Robots.open(robotFile, services);
@@ -195,6 +201,12 @@ final class HostCommand implements Callable<Integer> {
                 closeAll(open);
                 return 2;
             }
+            if (callTimeout.compareTo(java.time.Duration.ofMillis(100)) < 0) {
+                err.println("--call-timeout " + Durations.format(callTimeout) + " is too short: a call to another host needs at least 100ms");
+                closeAll(open);
+                return 2;
+            }
+            rmiHostName(bind);
             MessagingSettings settings = serve == null ? MessagingSettings.defaults() : RobotProtocol.forServer(MessagingSettings.defaults());
             settings = settings.withLimits(settings.limits().withMaxConnections(maxConnections));
             if (serveOverTls && servePassword == null && !serveInsecure) {
@@ -202,7 +214,7 @@ final class HostCommand implements Callable<Integer> {
                 settings = settings.withTls(cluster.tls());
             }
             AgentHost.Builder builder = AgentHost.builder(name).bind(bind).port(port).robot(robot).clusterKey(cluster.key()).tls(cluster.tls())
-                    .store(store).allow(allow).messagingSettings(settings)
+                    .store(store).allow(allow).messagingSettings(settings).callTimeout(callTimeout)
                     .deliveryPolicy(io.robomw.agents.host.DeliveryPolicy.defaults().withExpiry(owedExpiry).withMaxBackoff(owedMaxBackoff));
             builder.wire(!noWire).wirePort(wirePort);
             if (olderHosts) {
@@ -284,6 +296,18 @@ final class HostCommand implements Callable<Integer> {
             }
             closeAll(open);
             return 2;
+        }
+    }
+
+    /**
+     * RMI stubs carry the exporting machine's name (its first address, often 127.0.0.1 in a
+     * container or namespace) unless {@code java.rmi.server.hostname} says otherwise; RMI names
+     * that in its errors. One host per JVM here: its stubs carry its bind address, unless the
+     * property was given ({@code MW_JAVA_OPTS}) or the host binds every interface.
+     */
+    private static void rmiHostName(String bind) {
+        if (System.getProperty("java.rmi.server.hostname") == null && !bind.equals("0.0.0.0") && !bind.equals("::")) {
+            System.setProperty("java.rmi.server.hostname", bind);
         }
     }
 

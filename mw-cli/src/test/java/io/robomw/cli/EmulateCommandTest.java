@@ -79,7 +79,7 @@ class EmulateCommandTest {
             public void close() {
             }
         };
-        CommandLine cl = new CommandLine(new Mw());
+        CommandLine cl = Mw.commandLine(); // as the launcher runs it: its converters (durations) and handlers
         cl.setOut(new PrintWriter(out, true));
         cl.setErr(new PrintWriter(new StringWriter(), true));
         command = new Thread(() -> cl.execute(args), "mw-emulate-under-test");
@@ -153,5 +153,32 @@ class EmulateCommandTest {
 
     private static byte[] id(long messageId) {
         return ByteBuffer.allocate(4).order(ByteOrder.LITTLE_ENDIAN).putInt((int) messageId).array();
+    }
+
+    @Test
+    void latencyIsADurationAsEveryOtherTimeOption() throws Exception {
+        Files.writeString(dir.resolve("world.yaml"), """
+                name: rcx-world
+                arena: { width: 3, height: 3 }
+                robots:
+                  - { robot: %s, name: rcx, x: 1.0, y: 1.5, heading: 0 }
+                """.formatted(RCX_ROBOT));
+        start("emulate", "rcx", "--world", dir.resolve("world.yaml").toString(), "--robot", "rcx", "--latency", "30ms", "--baud", "0");
+        String device = lines.poll(30, TimeUnit.SECONDS);
+        assertNotNull(device, "mw emulate started with --latency 30ms");
+        assertTrue(device.startsWith("/dev/"), device);
+    }
+
+    @Test
+    void aBareLatencyLongerThanAnyLinkIsRefusedAskingForAUnit() throws Exception {
+        Files.writeString(dir.resolve("world.yaml"), """
+                name: rcx-world
+                arena: { width: 3, height: 3 }
+                robots:
+                  - { robot: %s, name: rcx, x: 1.0, y: 1.5, heading: 0 }
+                """.formatted(RCX_ROBOT));
+        CliRun run = CliRun.mw("emulate", "rcx", "--world", dir.resolve("world.yaml").toString(), "--robot", "rcx", "--latency", "40");
+        assertEquals(2, run.status(), run.toString());
+        assertTrue(run.err().contains("--latency 40s is longer than any link's (at most 10s); give a unit: --latency 40ms"), run.err());
     }
 }

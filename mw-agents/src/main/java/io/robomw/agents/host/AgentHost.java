@@ -443,10 +443,17 @@ public final class AgentHost implements AutoCloseable {
             if (key == null) {
                 key = ClusterKey.tlsOnly();
             }
+            String atBroker = null;
             if (withMessaging && node == null) {
                 try {
-                    node = MessagingNode.builder(name).settings(messagingSettings).failures(failures)
-                            .bind(messagingAddress != null ? messagingAddress : "tcp://" + (bind.contains(":") ? "[" + bind + "]" : bind) + ":0").build();
+                    String address = messagingAddress != null ? messagingAddress : "tcp://" + (bind.contains(":") ? "[" + bind + "]" : bind) + ":0";
+                    MessagingNode.Builder nb = MessagingNode.builder(name).settings(messagingSettings).failures(failures);
+                    if (address.startsWith("mqtt://") || address.startsWith("mqtts://")) {
+                        atBroker = address; // joined once the host's address is known (HostMessaging.joinWhenStarted)
+                    } else {
+                        nb.bind(address);
+                    }
+                    node = nb.build();
                     ownsNode = true;
                 } catch (MessagingException e) {
                     throw new IOException("agent host " + name + " cannot start its messaging node: " + e.getMessage(), e);
@@ -461,8 +468,14 @@ public final class AgentHost implements AutoCloseable {
                 }
                 throw e;
             }
+            if (atBroker != null) {
+                host.messaging.joinWhenStarted(atBroker);
+            }
             try {
                 host.open();
+            } catch (io.robomw.api.MessagingException e) {
+                host.close();
+                throw new IOException("agent host " + name + " cannot start its messaging node: " + e.getMessage(), e);
             } catch (IOException | RuntimeException e) {
                 host.close();
                 throw e;
@@ -637,7 +650,14 @@ public final class AgentHost implements AutoCloseable {
 
     /** Takes the robot for the calling agent's stop (waiting for the agent that has it), unless it already has it. */
     Robot claimRobot(HostedAgent h) {
-        return robot.claim(h);
+        Robot r = robot.claim(h);
+        h.drives = r != null;
+        return r;
+    }
+
+    /** @return the agent host address of a host an agent here names (its address, or its name as messages use it) */
+    String hostAddressOf(String nameOrAddress, HostedAgent h) {
+        return messaging.hostAddress(nameOrAddress, h);
     }
 
     /** @return an agent's view of this host's messaging node */

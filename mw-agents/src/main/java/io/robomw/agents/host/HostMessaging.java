@@ -91,6 +91,21 @@ final class HostMessaging implements AutoCloseable {
         this.onEvent = handler;
     }
 
+    /** A broker the host's own node joins once the host knows its address, or {@code null}. */
+    private volatile String deferredBroker;
+
+    /**
+     * The host's own node joins this broker only in {@link #started()}, once its presence names the
+     * host: the presence it leaves there as its will (the offline version, published when the host
+     * is gone without closing, as after kill -9) is made when it joins, so it must already name the
+     * host, or {@code mw agents --cluster} would not see the host go offline.
+     *
+     * @param broker an {@code mqtt://} or {@code mqtts://} address
+     */
+    void joinWhenStarted(String broker) {
+        this.deferredBroker = broker;
+    }
+
     /** Called once the host knows its own address, before it takes calls. */
     void started() {
         directory = new HostDirectory(host.address);
@@ -107,6 +122,9 @@ final class HostMessaging implements AutoCloseable {
                 node.presence().seal(eventsKey.presenceSeal());
             }
             node.presence().host(host.name, host.address);
+            if (deferredBroker != null) {
+                node.bind(deferredBroker);
+            }
             for (String broker : addresses()) {
                 if (broker.startsWith("mqtt://") || broker.startsWith("mqtts://")) {
                     watchBroker(broker, withOptions(broker));
@@ -167,6 +185,19 @@ final class HostMessaging implements AutoCloseable {
     /** @return where the node receives; empty without one */
     List<String> addresses() {
         return node == null ? List.of() : node.boundAddresses().stream().map(Object::toString).toList();
+    }
+
+    /**
+     * @param nameOrAddress an agent host's name or address
+     * @param h             the agent asking (its home is asked about names this host does not know)
+     * @return the host's agent host address
+     * @throws IllegalArgumentException when no host of that name is known
+     */
+    String hostAddress(String nameOrAddress, HostedAgent h) {
+        if (nameOrAddress.equals(host.name)) {
+            return host.address;
+        }
+        return directory.hostAddress(nameOrAddress, h.home, peers::describe);
     }
 
     /** @return an agent's view of the node, made on first use and released when the agent leaves */

@@ -453,7 +453,8 @@ final class PeerLink {
     private PeerException failure(String op, Exception e) {
         boolean delivered = !(e instanceof ConnectException || e instanceof ConnectIOException || e instanceof NoSuchObjectException
                 || e instanceof NotBoundException || e instanceof UnknownHostException);
-        String what = e instanceof NotBoundException ? "nothing is bound as '" + address.name() + "' there" : String.valueOf(e.getMessage());
+        String what = e instanceof NotBoundException ? "nothing is bound as '" + address.name() + "' there"
+                : io.robomw.agents.net.RmiSocketSetup.reason(e);
         return new PeerException("cannot reach agent host " + address + (delivered ? " (the " + op + " may have reached it)" : "") + ": " + what, delivered, e);
     }
 

@@ -20,6 +20,7 @@ import org.slf4j.LoggerFactory;
 import javax.crypto.SecretKey;
 import java.io.Serializable;
 import java.time.Instant;
+import java.util.List;
 
 /**
  * What a node does with each received frame, in this order: decode it; ignore its own frames
@@ -123,10 +124,10 @@ final class Inbound {
     private void onMessage(Frame f, byte[] buf, int offset, int length, Channel from) throws FrameException {
         boolean request = f.kind() == FrameKind.MESSAGE;
         LocalTopics.Topic topic = node.topics().get(f.topic());
-        if (topic == null || (!request && !topic.subscribed)) {
+        if (topic == null || (!request && !topic.subscribed) || (request && topic.listeners.isEmpty())) {
             if (request && !from.isGroup()) {
                 counters.drop(DropReason.NO_LISTENER, from.peer(), "message for topic '" + f.topic() + "', which nobody here listens to");
-                refuse(f, from, "no listener for topic '" + f.topic() + "' at node '" + node.name() + "'");
+                refuse(f, from, "no listener for topic '" + f.topic() + "' at node '" + node.name() + "'" + siblings(f.topic()));
             } else {
                 counters.dropQuietly(DropReason.NO_LISTENER);
             }
@@ -277,6 +278,21 @@ final class Inbound {
             throw new FrameException(DropReason.BAD_MAC, "the payload on topic '" + f.topic() + "' from '" + f.sender() + "' does not decrypt");
         }
         return plain;
+    }
+
+    /**
+     * @return the topics here under the same first level as a topic nobody listens to ("; topics
+     *         under 'robot/' here: robot/sim-1"), so that a sender who misspelled a robot's or
+     *         agent's name learns the right ones; empty for a topic without levels
+     */
+    private String siblings(String topic) {
+        int slash = topic.indexOf('/');
+        if (slash <= 0) {
+            return "";
+        }
+        String level = topic.substring(0, slash + 1);
+        List<String> near = node.topics().names().stream().filter(t -> t.startsWith(level) && t.length() > level.length()).limit(20).toList();
+        return near.isEmpty() ? "; no topic under '" + level + "' here" : "; topics under '" + level + "' here: " + String.join(", ", near);
     }
 
     private void refuse(Frame f, Channel from, String why) {

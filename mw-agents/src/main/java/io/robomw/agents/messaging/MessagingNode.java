@@ -84,7 +84,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     }
 
     /** A request this node sent, for routing and checking its reply. */
-    record Sent(String host, SecretKey key) {
+    record Sent(String host, String topic, SecretKey key) {
     }
 
     private final String name;
@@ -474,7 +474,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         }
         refuseWaitOnDeliveryThread(sent.host());
         return await(sent.host(), replies.await(sent.host(), r -> r.message().correlationId().equals(correlationId)), timeout,
-                () -> "no reply to " + correlationId + " from " + sent.host() + " within " + timeout);
+                () -> "no reply to " + correlationId + " on topic '" + sent.topic() + "' from " + sent.host() + " within " + timeout);
     }
 
     @Override
@@ -559,15 +559,13 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     @Override
     public void addMessageListener(String topic, String password, MessageListener listener) {
         Objects.requireNonNull(listener, "listener");
-        topics.register(requireTopic(topic), keys.key(topic, password)).listeners.add(listener);
+        topics.listen(requireTopic(topic), keys.key(topic, password), listener);
     }
 
+    /** Removes a listener; once a topic has no listener left (and is not subscribed to), the node forgets it: it is not announced, and messages to it are refused. */
     @Override
     public void removeMessageListener(String topic, MessageListener listener) {
-        LocalTopics.Topic t = topics.get(topic);
-        if (t != null) {
-            t.listeners.remove(listener);
-        }
+        topics.unlisten(topic, listener);
     }
 
     /** Closes every link, endpoint, transport and thread. Idempotent. */
@@ -669,7 +667,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         Address address = links.parse(host);
         Link link = links.link(address);
         FrameFactory.Made made = frames.message(kind, receiver, topic, object, function, key);
-        return new Outgoing(link, frames.correlationId(made.number()), made.bytes(), new Sent(links.key(address), key));
+        return new Outgoing(link, frames.correlationId(made.number()), made.bytes(), new Sent(links.key(address), topic, key));
     }
 
     private void transmit(Outgoing out) {
