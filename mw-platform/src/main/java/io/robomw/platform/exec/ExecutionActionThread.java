@@ -366,13 +366,14 @@ public final class ExecutionActionThread implements AutoCloseable {
     /**
      * Runs one cycle, in this order:
      * <ol>
-     *   <li>If the link failed, end every container with {@link RobotLinkException}; if the hardware
-     *   refused a command ({@link #driverFailed}), end every container it concerns (those admitted
-     *   up to the cycle it names) with that refusal.</li>
+     *   <li>If the hardware refused a command ({@link #driverFailed}), end every container it
+     *   concerns (those admitted up to the cycle it names) with that refusal.</li>
      *   <li>Admit queued containers and refresh slots in the order they were submitted, applying
      *   the clash and refresh rules, and start each admitted one (its action objects run); what an
      *   action submits meanwhile is admitted in this cycle too. A container whose caller cancelled
      *   its future before it started is dropped.</li>
+     *   <li>If the link failed, end every container with {@link RobotLinkException}, those just
+     *   admitted too (they were submitted while the link still looked up).</li>
      *   <li>End, as interrupted (their end actions stop their motors), containers whose caller
      *   cancelled their future, and those whose watchdog expired.</li>
      *   <li>Evaluate the logic objects of every running container; end those whose logic all holds.</li>
@@ -386,12 +387,6 @@ public final class ExecutionActionThread implements AutoCloseable {
         // On its own thread a cycle's steps are timed, so an overrun names the slowest (WPILib's epochs).
         boolean timed = runner != null;
         slowestNanos = 0;
-        RobotLinkException failure = linkFailure == null ? null : (RobotLinkException) LINK_FAILURE.getAndSet(this, null);
-        if (failure != null) {
-            for (Container c : snapshot()) {
-                finish(c, true, failure);
-            }
-        }
         Refusal refused = driverFailure == null ? null : (Refusal) DRIVER_FAILURE.getAndSet(this, null);
         if (refused != null) {
             for (Container c : snapshot()) {
@@ -420,6 +415,14 @@ public final class ExecutionActionThread implements AutoCloseable {
                 if (timed) {
                     epoch(((RefreshSlot) next).name(), "refresh", t0);
                 }
+            }
+        }
+        // After admission: a container submitted while the link was still up, and reported lost before
+        // this cycle, is ended with the others rather than admitted to wait on a link that is gone.
+        RobotLinkException failure = linkFailure == null ? null : (RobotLinkException) LINK_FAILURE.getAndSet(this, null);
+        if (failure != null) {
+            for (Container c : snapshot()) {
+                finish(c, true, failure);
             }
         }
         if (active.size() == 1) {

@@ -260,6 +260,17 @@ class ExecutionActionThreadTest {
     }
 
     @Test
+    void shouldEndAContainerSubmittedBeforeTheLinkWasReportedLostButNotYetAdmitted() {
+        // the platform admitted it while the link was up; the link agent found it down before the next cycle
+        CompletableFuture<Void> late = thread.submit(normal("late", new AtomicBoolean(), "A"));
+        thread.linkFailed("serial /dev/pts/9", new IOException("port closed"));
+        thread.cycle();
+
+        assertInstanceOf(RobotLinkException.class, failure(late), "not left running on a link that is down");
+        assertEquals(List.of("late:interrupted"), ended, "its end action stopped its motors");
+    }
+
+    @Test
     void shouldEndContainerWhoseLogicThrowsAndKeepCycling() {
         Container bad = Container.builder("bad").requires("A").logic(now -> {
             throw new IllegalStateException("sensor exploded");
