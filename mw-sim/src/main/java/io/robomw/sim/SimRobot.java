@@ -70,6 +70,9 @@ public final class SimRobot {
     private final boolean hasAccel;
     private final Quadruped quadruped;
     private final UrbiKernel kernel;
+    /** Its dynamics, if it is a vehicle (a drone, boat or rover); else {@code null}. */
+    private final io.robomw.sim.vehicle.SimVehicle vehicle;
+    private final io.robomw.sim.world.WorldDescription.Surroundings surroundings;
     private double lastVx;
     private double lastVy;
     private final double[] accel = {0, 0, Quadruped.GRAVITY};
@@ -94,7 +97,9 @@ public final class SimRobot {
     }
 
     SimRobot(int index, String name, RobotDescription description, Physics physics, int body, long seed,
-             java.util.function.LongSupplier nanos, io.robomw.sim.world.WorldDescription.TrajectorySettings trajectorySettings) {
+             java.util.function.LongSupplier nanos, io.robomw.sim.world.WorldDescription.TrajectorySettings trajectorySettings,
+             io.robomw.sim.world.WorldDescription.Surroundings surroundings) {
+        this.surroundings = surroundings;
         this.index = index;
         this.trajectory = new Trajectory(trajectorySettings);
         this.name = name;
@@ -130,6 +135,13 @@ public final class SimRobot {
         lastY = physics.y(body);
         lastHeading = poseHeading;
         trajectory.add(lastX, lastY);
+        this.vehicle = description.vehicleDrive().map(d -> new io.robomw.sim.vehicle.SimVehicle(
+                io.robomw.sim.vehicle.VehicleSpec.of(d, description.body()), lastX, lastY, lastHeading)).orElse(null);
+    }
+
+    /** @return its vehicle dynamics, if it is a vehicle (a drone, boat or rover); else {@code null} */
+    public io.robomw.sim.vehicle.SimVehicle vehicle() {
+        return vehicle;
     }
 
     /** @return its index in the world */
@@ -262,6 +274,10 @@ public final class SimRobot {
     void applyDrive() {
         double v;
         double w;
+        if (vehicle != null) {
+            physics.setVelocity(body, vehicle.commandX(), vehicle.commandY(), vehicle.commandYawRate());
+            return;
+        }
         if (quadruped != null) {
             v = quadruped.linearVelocity();
             w = quadruped.angularVelocity();
@@ -296,6 +312,10 @@ public final class SimRobot {
             quadruped.advance(dt);
             contacts();
             kernel.step();
+        }
+        if (vehicle != null) {
+            vehicle.advance(dt, physics.x(body), physics.y(body), Math.atan2(physics.sin(body), physics.cos(body)), physics.vx(body),
+                    physics.vy(body), surroundings);
         }
         if (physics.atRest(body) && !hasTouch) {
             if (recordTrajectory) {

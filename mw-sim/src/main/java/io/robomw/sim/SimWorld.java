@@ -289,7 +289,7 @@ public final class SimWorld implements AutoCloseable {
         }
         int body = physics.addBody(b.length(), b.width(), b.mass(), b.friction(), start.x(), start.y(), start.heading());
         SimRobot robot = new SimRobot(robots.size(), name, description, physics, body, this.description.seed(), clock::nanoTime,
-                this.description.trajectories());
+                this.description.trajectories(), this.description.surroundings());
         robots.add(robot);
         cycled = java.util.Arrays.copyOf(cycled, robots.size());
         byName.put(name, robot);

@@ -33,16 +33,20 @@ import java.util.stream.Stream;
  * @param messaging       how its communication component starts (the {@code messaging:} section, or defaults)
  * @param agency          how its agency starts (the {@code agency:} section, or defaults)
  * @param source          the file it was read from, for messages
+ * @param vehicleDrive    the vehicle drive, if the robot is a drone, boat or rover moved by its
+ *                        autopilot (then {@code drive} and {@code leggedDrive} are empty)
  */
 public record RobotDescription(String name, String platform, ConnectionSettings connection,
                                Duration cyclePeriod, Duration watchdogTimeout,
                                Set<Capability> capabilities, Optional<DifferentialDrive> drive,
                                Body body, List<SensorSpec> sensors, List<ActuatorSpec> actuators,
                                Optional<LeggedDrive> leggedDrive, List<HighLevelAction> highLevelActions,
-                               MessagingConfig messaging, AgencyConfig agency, String source) {
+                               MessagingConfig messaging, AgencyConfig agency, String source,
+                               Optional<VehicleDrive> vehicleDrive) {
 
     /** Copies collections. */
     public RobotDescription {
+        Objects.requireNonNull(vehicleDrive, "vehicleDrive");
         Objects.requireNonNull(name, "name");
         Objects.requireNonNull(platform, "platform");
         capabilities = Set.copyOf(capabilities);
@@ -52,6 +56,33 @@ public record RobotDescription(String name, String platform, ConnectionSettings 
         highLevelActions = List.copyOf(highLevelActions);
         Objects.requireNonNull(messaging, "messaging");
         Objects.requireNonNull(agency, "agency");
+    }
+
+    /**
+     * A description without a vehicle drive.
+     *
+     * @param name             the robot's name
+     * @param platform         the {@code platform:} value
+     * @param connection       the {@code connection:} block
+     * @param cyclePeriod      the execution action thread's period
+     * @param watchdogTimeout  the continuous commands' watchdog
+     * @param capabilities     ground, air, water
+     * @param drive            the differential drive, if any
+     * @param body             size and mass
+     * @param sensors          the sensors
+     * @param actuators        extra actuators
+     * @param leggedDrive      the legged drive, if any
+     * @param highLevelActions named actions of the firmware
+     * @param messaging        the messaging section
+     * @param agency           the agency section
+     * @param source           the file it was read from
+     */
+    public RobotDescription(String name, String platform, ConnectionSettings connection, Duration cyclePeriod, Duration watchdogTimeout,
+                            Set<Capability> capabilities, Optional<DifferentialDrive> drive, Body body, List<SensorSpec> sensors,
+                            List<ActuatorSpec> actuators, Optional<LeggedDrive> leggedDrive, List<HighLevelAction> highLevelActions,
+                            MessagingConfig messaging, AgencyConfig agency, String source) {
+        this(name, platform, connection, cyclePeriod, watchdogTimeout, capabilities, drive, body, sensors, actuators, leggedDrive,
+                highLevelActions, messaging, agency, source, Optional.empty());
     }
 
     /** @return every motor port the description uses: wheels first, then actuators */

@@ -68,8 +68,17 @@ public final class RobotDescriptionLoader {
             capabilities.add(Capability.GROUND);
         }
         Optional<MappingReader> driveNode = root.mapping("drive");
-        Optional<DifferentialDrive> drive = driveNode.filter(m -> !legged(m)).flatMap(this::drive);
+        Optional<DifferentialDrive> drive = driveNode.filter(m -> !legged(m) && !vehicle(m)).flatMap(this::drive);
         Optional<LeggedDrive> leggedDrive = driveNode.filter(this::legged).flatMap(this::leggedDrive);
+        Optional<VehicleDrive> vehicleDrive = driveNode.filter(this::vehicle).flatMap(this::vehicleDrive);
+        if (vehicleDrive.isPresent() && !root.has("capabilities")) {
+            capabilities.clear();
+            capabilities.add(switch (vehicleDrive.get().medium()) {
+                case AIR -> Capability.AIR;
+                case WATER -> Capability.WATER;
+                case GROUND -> Capability.GROUND;
+            });
+        }
         Body body = root.mapping("body").map(this::body).orElse(Body.DEFAULT);
         List<Read<SensorSpec>> sensors = root.mappingList("sensors").stream()
                 .flatMap(m -> sensor(m).map(s -> new Read<>(s, m)).stream()).toList();
@@ -86,14 +95,14 @@ public final class RobotDescriptionLoader {
         return new RobotDescription(name, platform, new ConnectionSettings(connection, source),
                 Duration.ofNanos(Math.round(1e9 / cycleHz)), Duration.ofNanos(Math.round(watchdog * 1e9)),
                 capabilities, drive, body, sensors.stream().map(Read::value).toList(),
-                actuators.stream().map(Read::value).toList(), leggedDrive, highLevelActions, messaging, agency, source);
+                actuators.stream().map(Read::value).toList(), leggedDrive, highLevelActions, messaging, agency, source, vehicleDrive);
     }
 
     private Optional<DifferentialDrive> drive(MappingReader m) {
         String type = m.text("type").orElse("differential");
         if (!type.equals("differential")) {
-            m.problem("type", "must be 'differential' (two driven wheels on one axle) or 'legged' (walks by its firmware's own commands), got '"
-                    + type + "'");
+            m.problem("type", "must be 'differential' (two driven wheels on one axle), 'legged' (walks by its firmware's own commands)"
+                    + " or 'vehicle' (a drone, boat or rover moved by its autopilot), got '" + type + "'");
         }
         double wheel = m.requireNumber("wheel_diameter", "> 0 metres (0.001 to 10)", v -> v >= 0.001 && v <= 10);
         double track = m.requireNumber("track_width", "> 0 metres (0.001 to 100)", v -> v >= 0.001 && v <= 100);
@@ -117,6 +126,37 @@ public final class RobotDescriptionLoader {
 
     private boolean legged(MappingReader driveNode) {
         return driveNode.has("type") && driveNode.text("type").map("legged"::equals).orElse(false);
+    }
+
+    private boolean vehicle(MappingReader driveNode) {
+        return driveNode.has("type") && driveNode.text("type").map("vehicle"::equals).orElse(false);
+    }
+
+    private Optional<VehicleDrive> vehicleDrive(MappingReader m) {
+        m.text("type");
+        VehicleDrive.Medium medium = m.enumValue("medium", VehicleDrive.Medium.class, null);
+        if (!m.has("medium")) {
+            m.problem("medium", "missing: say where the vehicle moves: air, water or ground");
+        }
+        VehicleDrive.Autopilot autopilot = m.enumValue("autopilot", VehicleDrive.Autopilot.class, VehicleDrive.Autopilot.ARDUPILOT);
+        double max = m.requireNumber("max_speed", "> 0 metres per second (at most 100)", v -> v > 0 && v <= 100);
+        double climb = m.number("max_climb_rate", medium == VehicleDrive.Medium.AIR ? 1.5 : 0,
+                "between 0 and 50 metres per second (> 0 for an air vehicle)", v -> v >= 0 && v <= 50);
+        double turnRate = m.number("max_turn_rate", Math.toRadians(90), "> 0 radians per second (at most 20)", v -> v > 0 && v <= 20);
+        double acceptance = m.number("acceptance_radius", 0.5, "> 0 metres (at most 1000)", v -> v > 0 && v <= 1000);
+        double takeoff = m.number("takeoff_altitude", 2.0, "between 0 and 1000 metres", v -> v >= 0 && v <= 1000);
+        if (medium == VehicleDrive.Medium.AIR && climb == 0) {
+            m.problem("max_climb_rate", "an air vehicle must be able to climb: give max_climb_rate > 0");
+        }
+        if (medium != VehicleDrive.Medium.AIR && m.has("max_climb_rate") && climb > 0) {
+            m.problem("max_climb_rate", "a " + medium.yamlName() + " vehicle does not climb; leave max_climb_rate out");
+        }
+        m.finish();
+        if (medium == null || Double.isNaN(max) || Double.isNaN(climb) || Double.isNaN(turnRate) || Double.isNaN(acceptance)
+                || Double.isNaN(takeoff) || (medium == VehicleDrive.Medium.AIR) != (climb > 0)) {
+            return Optional.empty();
+        }
+        return Optional.of(new VehicleDrive(medium, autopilot, max, climb, turnRate, acceptance, takeoff));
     }
 
     private Optional<LeggedDrive> leggedDrive(MappingReader m) {
