@@ -20,7 +20,9 @@ import math
 import sys
 import time
 
-from pymavlink import mavutil
+import os
+os.environ.setdefault('MAVLINK20', '1')   # pymavlink speaks MAVLink 1 unless told (signing needs 2)
+from pymavlink import mavutil  # noqa: E402
 
 M = mavutil.mavlink
 

@@ -74,6 +74,8 @@ final class Autopilot {
     private final boolean air;
 
     private FlightMode mode;
+    /** The custom mode HEARTBEAT reports: the one asked for (a mode held under another name keeps its number). */
+    private long customMode;
     private double now;
     // guided targets, in the world's frame; NaN when absent
     private double[] position;
@@ -110,6 +112,7 @@ final class Autopilot {
         this.announce = announce;
         this.air = drive.medium() == VehicleDrive.Medium.AIR;
         this.mode = dialect == Dialect.PX4 || !air ? FlightMode.HOLD : FlightMode.MANUAL;
+        this.customMode = dialect.customMode(mode, drive.medium()).orElse(0L);
         SimVehicle.Snapshot s = vehicle.snapshot();
         holdHere(s);
     }
@@ -119,6 +122,11 @@ final class Autopilot {
     /** @return the flight mode */
     FlightMode mode() {
         return mode;
+    }
+
+    /** @return the custom mode HEARTBEAT reports */
+    long customMode() {
+        return customMode;
     }
 
     /** @return whether armed */
@@ -206,10 +214,20 @@ final class Autopilot {
      *         PX4 OFFBOARD without a setpoint stream, AUTO without a mission
      */
     MavResult setMode(FlightMode requested) {
-        if (dialect.customMode(requested, drive.medium()).isEmpty()) {
+        return setMode(requested, dialect.customMode(requested, drive.medium()).orElse(-1L));
+    }
+
+    /**
+     * @param requested the mode asked for
+     * @param number    the custom mode number that asked for it (HEARTBEAT reports it)
+     * @return as {@link #setMode(FlightMode)}
+     */
+    MavResult setMode(FlightMode requested, long number) {
+        if (dialect.customMode(requested, drive.medium()).isEmpty() || number < 0) {
             return MavResult.DENIED;
         }
         if (requested == mode) {
+            customMode = number;
             return MavResult.ACCEPTED;
         }
         SimVehicle.Snapshot s = vehicle.snapshot();
@@ -225,11 +243,13 @@ final class Autopilot {
             return MavResult.DENIED;
         }
         enter(requested, s);
+        customMode = number;
         return MavResult.ACCEPTED;
     }
 
     private void enter(FlightMode m, SimVehicle.Snapshot s) {
         mode = m;
+        customMode = dialect.customMode(m, drive.medium()).orElse(customMode);
         holdHere(s);
         position = null;
         velocity = null;

@@ -20,6 +20,9 @@ import java.util.Optional;
  * LAND      LAND 9       -            AUTO (4) . LAND (6)
  * RTL       RTL 6        RTL 11       AUTO (4) . RTL (5)
  * </pre>
+ * Modes that need a pilot's sticks hold instead (no pilot here): ArduCopter ALT_HOLD 2, POSHOLD 16
+ * and BRAKE 17, Rover LOITER 5 (HOLD), ACRO 1 and STEERING 3 (MANUAL), PX4 ALTCTL and POSCTL; the
+ * HEARTBEAT then reports the number that was asked for.
  */
 enum Dialect {
     /** ArduPilot: ArduCopter for multirotors, Rover for rovers and boats. */
@@ -112,6 +115,12 @@ enum Dialect {
             if (code.isPresent() && code.get() == customMode) {
                 return Optional.of(m);
             }
+        }
+        if (this == ARDUPILOT && medium == VehicleDrive.Medium.AIR && (customMode == 2 || customMode == 16 || customMode == 17)) {
+            return Optional.of(FlightMode.HOLD); // ALT_HOLD, POSHOLD, BRAKE: without a pilot's sticks, the copter holds
+        }
+        if (this == ARDUPILOT && medium != VehicleDrive.Medium.AIR && (customMode == 5 || customMode == 1 || customMode == 3)) {
+            return Optional.of(customMode == 5 ? FlightMode.HOLD : FlightMode.MANUAL); // LOITER holds; ACRO, STEERING are manual
         }
         if (this == PX4 && (customMode >> 16 & 0xFF) == PX4_AUTO && (customMode >> 24 & 0xFF) == 0) {
             return Optional.of(FlightMode.HOLD); // AUTO without a sub-mode: PX4 holds (AUTO.READY)

@@ -406,7 +406,12 @@ public final class MavlinkEmulator implements Emulator {
     }
 
     private MavResult mode(long customMode) {
-        return dialect.mode(customMode, autopilot.medium()).map(autopilot::setMode).orElse(MavResult.DENIED);
+        Optional<FlightMode> m = dialect.mode(customMode, autopilot.medium());
+        if (m.isEmpty()) {
+            statusText(Severity.WARNING, "Mode change to " + customMode + " failed: unknown mode");
+            return MavResult.DENIED;
+        }
+        return autopilot.setMode(m.get(), customMode);
     }
 
     private void ack(Frame to, int command, MavResult result) {

@@ -245,7 +245,7 @@ final class Telemetry {
                 .set(Messages.Heartbeat.TYPE, type.code())
                 .set(Messages.Heartbeat.AUTOPILOT, dialect.autopilot().code())
                 .set(Messages.Heartbeat.BASE_MODE, base)
-                .set(Messages.Heartbeat.CUSTOM_MODE, dialect.customMode(m, autopilot.medium()).orElse(0L))
+                .set(Messages.Heartbeat.CUSTOM_MODE, autopilot.customMode())
                 .set(Messages.Heartbeat.SYSTEM_STATUS, (s.armed() ? MavState.ACTIVE : MavState.STANDBY).code())
                 .set(Messages.Heartbeat.MAVLINK_VERSION, 3);
     }
