@@ -96,15 +96,17 @@ public final class SimVehicle {
         return target;
     }
 
-    /** Arms its motors (they may run). */
+    /** Arms its motors (they may run); the snapshot says so at once. */
     public void arm() {
         state.armed = true;
+        publish();
     }
 
     /** Disarms it: its motors stop (a multirotor in the air falls). */
     public void disarm() {
         state.armed = false;
         target = VehicleTarget.HOLD;
+        publish();
     }
 
     /**

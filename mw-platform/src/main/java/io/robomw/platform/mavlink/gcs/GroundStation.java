@@ -92,6 +92,7 @@ public final class GroundStation implements AutoCloseable {
     private final Telemetry telemetry = new Telemetry();
     private final CommandSender commands;
     private final CountDownLatch found = new CountDownLatch(1);
+    private final CountDownLatch positioned = new CountDownLatch(1);
     private final ThrottledWarnings warnings;
     private final FailurePolicy failures;
     private volatile Listener listener;
@@ -158,6 +159,22 @@ public final class GroundStation implements AutoCloseable {
             throw new IOException("robot '" + robot + "': interrupted while waiting for the vehicle", e);
         }
         return kind;
+    }
+
+    /**
+     * Waits for the vehicle's first local position (LOCAL_POSITION_NED): a vehicle without a
+     * position fix does not send it, and motions need it.
+     *
+     * @param within the deadline
+     * @return whether it came in time
+     */
+    public boolean awaitPosition(Duration within) {
+        try {
+            return positioned.await(within.toMillis(), TimeUnit.MILLISECONDS);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            return false;
+        }
     }
 
     /** @return what the vehicle is (after {@link #awaitVehicle}) */
@@ -317,6 +334,9 @@ public final class GroundStation implements AutoCloseable {
             }
         }
         telemetry.update(f, now);
+        if (f.is(Messages.LocalPositionNed.MESSAGE)) {
+            positioned.countDown();
+        }
         if (f.is(Messages.CommandAck.MESSAGE)) {
             commands.acknowledged(f.payload(), now);
         } else if (f.is(Messages.Statustext.MESSAGE)) {

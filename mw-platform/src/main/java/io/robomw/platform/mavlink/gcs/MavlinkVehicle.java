@@ -16,6 +16,10 @@ import java.util.List;
  */
 public final class MavlinkVehicle {
 
+    private static final org.slf4j.Logger LOG = org.slf4j.LoggerFactory.getLogger(MavlinkVehicle.class);
+    /** How long opening waits for the vehicle's first local position, after its HEARTBEAT. */
+    static final Duration POSITION_WAIT = Duration.ofSeconds(3);
+
     private MavlinkVehicle() {
     }
 
@@ -41,6 +45,10 @@ public final class MavlinkVehicle {
         Relay relay = new Relay();
         gcs.start(relay);
         gcs.awaitVehicle(connect);
+        if (!gcs.awaitPosition(POSITION_WAIT)) {
+            LOG.warn("robot '{}': the vehicle on {} reports no local position (LOCAL_POSITION_NED) yet: no position fix? Motions fail"
+                    + " until it does", config.robotName(), gcs.describe());
+        }
         VehicleCommandPlatform commands = new VehicleCommandPlatform(config.robotName(), config.clock(), gcs);
         VehicleSensorPlatform sensors = new VehicleSensorPlatform(config.robotName(), gcs);
         HighLevelRobotPlatform platform = new HighLevelRobotPlatform(config, commands, sensors, gcs);

@@ -64,6 +64,8 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
     private final GroundStation gcs;
     private final Map<Run, Maneuver> running = new ConcurrentHashMap<>();
     private volatile Payload keep;
+    /** The altitude last commanded (down, metres; NaN when none): moves and turns hold it, climbs start from it. */
+    private volatile double commandedDown = Double.NaN;
     private volatile long streamSince = Long.MIN_VALUE;
     private volatile boolean offboardAsked;
 
@@ -154,6 +156,15 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
     private Telemetry.Local here() {
         return t().local().orElseThrow(() -> new RobotException("robot '" + robot() + "': the vehicle has not reported its position"
                 + " (LOCAL_POSITION_NED) yet; is it streaming, and has it a position fix?"));
+    }
+
+    /** @return the position with the altitude last commanded, if any (a flyer holds that, not where it has sagged to) */
+    private Telemetry.Local held(Telemetry.Local l) {
+        double down = commandedDown;
+        if (!flyer() || Double.isNaN(down)) {
+            return l;
+        }
+        return new Telemetry.Local(l.north(), l.east(), down, l.vn(), l.ve(), l.vd(), l.yaw(), l.atNanos());
     }
 
     private boolean flyer() {
@@ -295,7 +306,12 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
 
         @Override
         boolean tick(long now) {
-            return t().relativeAltitude() >= altitude - ALTITUDE_TOLERANCE && t().landed() != LandedState.ON_GROUND;
+            if (t().relativeAltitude() >= altitude - ALTITUDE_TOLERANCE && t().landed() != LandedState.ON_GROUND) {
+                // the local origin is home, on the ground: down = -altitude
+                commandedDown = -altitude;
+                return true;
+            }
+            return false;
         }
     }
 
@@ -308,6 +324,7 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
                 return;
             }
             keep = null;
+            commandedDown = Double.NaN;
             gcs.command(MavCmd.NAV_LAND, 0, 0, 0, Double.NaN, Double.NaN, Double.NaN, Double.NaN).whenComplete((v, e) -> {
                 if (e != null) {
                     fail(e);
@@ -343,7 +360,7 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
         @Override
         void begin() {
             super.begin();
-            start = here();
+            start = held(here());
             endNorth = start.north() + distance * Math.cos(start.yaw());
             endEast = start.east() + distance * Math.sin(start.yaw());
             prepare(true);
@@ -390,7 +407,7 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
         @Override
         void begin() {
             super.begin();
-            start = here();
+            start = held(here());
             lastYaw = start.yaw();
             prepare(true);
             tick(began);
@@ -508,7 +525,8 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
                 failure = "robot '" + robot() + "' is a " + gcs.kind().medium().name().toLowerCase(Locale.ROOT) + " vehicle: it cannot climb";
                 return;
             }
-            start = here();
+            start = held(here());
+            commandedDown = start.down() - height;
             prepare(true);
             tick(began);
         }
