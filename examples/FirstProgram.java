@@ -22,7 +22,7 @@ public class FirstProgram {
         try (Robot robot = Robots.open(file)) {
             robot.move(0.50, 0.20);                       // metres, metres per second; blocks until done
             robot.turn(Math.PI / 2, 1.0);                 // radians (positive = left), radians per second
-            double cm = robot.getValue(Position.FRONT, SensorType.SONAR, ReturnType.CENTIMETERS);
+            double cm = robot.getValue(Position.FRONT, SensorType.RANGE, ReturnType.CENTIMETERS);
             robot.moveAsync(0.30, 0.10).join();           // every verb has a non-blocking ...Async form
             System.out.printf("front range %.0f cm; odometry says %s%n", cm, robot.pose());
         }

@@ -16,8 +16,11 @@ import java.util.Locale;
 /**
  * A platform-independent program: drives a square and samples the robot's front range sensor at
  * each corner. It knows nothing of the robot but its {@link Robot} interface; the same class
- * drives a LEGO NXT or EV3, a fischertechnik Intelligent Interface or TXT, or a simulated robot,
- * with only the robot's YAML file changed.
+ * drives a LEGO NXT or EV3, a fischertechnik Intelligent Interface or TXT, a Sony Aibo, or a
+ * simulated robot, with only the robot's YAML file changed. It asks for the distance ahead as
+ * {@link SensorType#RANGE}, which whatever range finder the robot has at its front answers: an
+ * ultrasonic sensor on the LEGO bricks, an infra-red one on the fischertechnik interface and the
+ * Aibo's head, a laser in a simulated world.
  *
  * <p>Run it: {@code java ... io.robomw.examples.SquareSurvey ROBOT.yaml [SIDE_METRES]}.
  *
@@ -42,25 +45,25 @@ public record SquareSurvey(double side, double speed) {
      * @return the samples and the final odometry pose
      */
     public Report run(Robot robot) {
-        SensorType range = frontRange(robot);
+        boolean seesAhead = hasFrontRange(robot);
         List<Double> ranges = new ArrayList<>();
         for (int i = 0; i < 4; i++) {
             robot.move(side, speed);
             robot.turn(Math.PI / 2, 1.0);
-            if (range != null) {
-                ranges.add(robot.getValue(Position.FRONT, range, ReturnType.METERS));
+            if (seesAhead) {
+                ranges.add(robot.getValue(Position.FRONT, SensorType.RANGE, ReturnType.METERS));
             }
         }
         return new Report(ranges, robot.pose());
     }
 
-    private static SensorType frontRange(Robot robot) {
+    private static boolean hasFrontRange(Robot robot) {
         for (SensorInfo s : robot.sensors()) {
-            if (s.position() == Position.FRONT && (s.type() == SensorType.SONAR || s.type() == SensorType.INFRARED)) {
-                return s.type();
+            if (s.position() == Position.FRONT && SensorType.RANGE.matches(s.type())) {
+                return true;
             }
         }
-        return null;
+        return false;
     }
 
     /**

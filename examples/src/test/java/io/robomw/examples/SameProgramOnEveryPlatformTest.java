@@ -23,11 +23,14 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 /**
- * One application class, {@link SquareSurvey}, on every platform, with only the robot's YAML file
- * changed: the real drivers over real pseudo-terminals (or TCP) to brick emulators, the Sony Aibo
- * (the example robot file) walking on four legs through its URBI emulator and in the simulator,
- * and the pure simulated robot. Each robot starts 0.7 m from the east wall of its world, facing it,
- * so its last corner sample sees that wall.
+ * One application class, {@link SquareSurvey}, on every platform with a front range sensor, with
+ * only the robot's YAML file changed: the real drivers over real pseudo-terminals (or TCP) to brick
+ * emulators, the Sony Aibo (the example robot file) walking on four legs through its URBI emulator
+ * and in the simulator, and the pure simulated robot. The range finders differ (ultrasonic on the
+ * LEGO bricks and the TXT, infra-red on the Intelligent Interface and the Aibo, a laser reporting
+ * millimetres and a generic {@code range} sensor in the simulator); the program reads each as
+ * {@code RANGE}. Each robot starts 0.7 m from the east wall of its world, facing it, so its last
+ * corner sample sees that wall.
  */
 class SameProgramOnEveryPlatformTest {
 
@@ -97,7 +100,16 @@ class SameProgramOnEveryPlatformTest {
                     %s  left: { port: B }
                       right: { port: C }
                     sensors:
-                      - { name: sonar, type: sonar, position: front, port: S4 }
+                      - { name: lidar, type: laser, position: front, port: L1, conversion: { scale: 0.001 }, options: { max_range: 4.0 } }
+                    """.formatted(GEOMETRY);
+            case "sim-range" -> """
+                    name: r
+                    platform: sim
+                    drive:
+                    %s  left: { port: B }
+                      right: { port: C }
+                    sensors:
+                      - { name: tof, type: range, position: front, port: R1, options: { max_range: 2.0 } }
                     """.formatted(GEOMETRY);
             default -> throw new IllegalArgumentException(platform);
         };
@@ -115,7 +127,7 @@ class SameProgramOnEveryPlatformTest {
     }
 
     @ParameterizedTest
-    @ValueSource(strings = {"nxt", "ev3", "ft-intelligent", "ft-txt", "aibo", "aibo-sim", "sim"})
+    @ValueSource(strings = {"nxt", "ev3", "ft-intelligent", "ft-txt", "aibo", "aibo-sim", "sim", "sim-range"})
     void shouldDriveTheSquareAndSeeTheWallOnEveryPlatform(String platform) throws Exception {
         Files.writeString(dir.resolve("body.yaml"), robotFile(platform, "port: /dev/unused"));
         Files.writeString(dir.resolve("world.yaml"), """
@@ -124,7 +136,7 @@ class SameProgramOnEveryPlatformTest {
                 robots:
                   - { robot: body.yaml, name: r, x: 2.2, y: 1.0, heading: 0 }
                 """);
-        boolean emulated = !platform.equals("sim") && !platform.equals("aibo-sim");
+        boolean emulated = !platform.startsWith("sim") && !platform.equals("aibo-sim");
         try (Simulation sim = Simulation.load(dir.resolve("world.yaml"), emulated ? Set.of("r") : Set.of())) {
             Pose start = sim.world().robot("r").pose();
             SquareSurvey.Report report;

@@ -37,14 +37,17 @@ final class ConsoleCommand implements Callable<Integer> {
     @Option(names = "--record", paramLabel = "FILE.mcap", description = "also record what the console sees (Foxglove opens it; mw replay plays it)")
     Path record;
 
+    @Mixin
+    FoxgloveOption foxglove;
+
     @Spec
     CommandSpec spec;
 
     @Override
     public Integer call() throws Exception {
         PrintWriter out = spec.commandLine().getOut();
-        Console.Builder b = watch.apply(Console.builder("mw " + String.join(" ", spec.commandLine().getParseResult().originalArgs())))
-                .page(bind, port).record(record);
+        Console.Builder b = foxglove.apply(watch.apply(Console.builder("mw " + String.join(" ", spec.commandLine().getParseResult().originalArgs())))
+                .page(bind, port).record(record));
         return Waiting.runUntilStopped(b, out, spec.commandLine().getErr(), "mw console");
     }
 

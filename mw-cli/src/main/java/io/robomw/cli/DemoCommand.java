@@ -105,6 +105,9 @@ final class DemoCommand implements Callable<Integer> {
     @Option(names = "--record", paramLabel = "FILE.mcap", description = "record the run (both robots' poses and sensors, the agents' events) into an MCAP file that Foxglove opens")
     Path record;
 
+    @picocli.CommandLine.Mixin
+    FoxgloveOption foxglove;
+
     @Spec
     CommandSpec spec;
 
@@ -188,12 +191,13 @@ final class DemoCommand implements Callable<Integer> {
                 step("virtual %s for %s on %s", kind.title(), r, describeLink(links.get(r)));
             }
             io.robomw.console.Console watching = null;
-            if (console || record != null) {
-                io.robomw.console.Console.Builder b = io.robomw.console.Console.builder("mw demo").simulation(sim).record(record)
-                        .clusterKey(ClusterKey.read(keyFile), false).about("world", worldFile.toString());
+            if (console || record != null || foxglove.on()) {
+                io.robomw.console.Console.Builder b = foxglove.apply(io.robomw.console.Console.builder("mw demo").simulation(sim).record(record)
+                        .clusterKey(ClusterKey.read(keyFile), false).about("world", worldFile.toString()));
                 watching = (console ? b.page("127.0.0.1", consolePort) : b.noPage()).start();
                 closeLater.add(watching);
                 watching.pageAddress().ifPresent(a -> step("console at %s", a));
+                watching.foxgloveAddress().ifPresent(a -> step("foxglove at %s", a));
                 watching.recording().ifPresent(f -> step("recording to %s", f));
             }
             sim.startRealTime(1.0);
@@ -264,9 +268,9 @@ final class DemoCommand implements Callable<Integer> {
             }
             PngRenderer.write(sim.world(), picture, RenderOptions.DEFAULT);
             step("wrote %s (the trajectories)", picture);
-            if (console) {
+            if (console || foxglove.on()) {
                 stopHosts(hosts);
-                step("the console keeps showing the run until Ctrl-C");
+                step((console ? "the console keeps" : "Foxglove keeps") + " showing the run until Ctrl-C");
                 awaitCtrlC();
             }
         } finally {

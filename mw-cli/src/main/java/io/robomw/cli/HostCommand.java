@@ -110,6 +110,9 @@ final class HostCommand implements Callable<Integer> {
     @Mixin
     BeaconOption beacon;
 
+    @Mixin
+    FoxgloveOption foxglove;
+
     @Spec
     CommandSpec spec;
 
@@ -153,9 +156,9 @@ final class HostCommand implements Callable<Integer> {
                 err.println("--messaging and --no-messaging contradict each other; give one");
                 return 2;
             }
-            if (record != null) {
-                console = io.robomw.console.Console.builder("mw " + String.join(" ", spec.commandLine().getParseResult().originalArgs()))
-                        .noPage().record(record).clusterKey(cluster.key(), cluster.tls() != null).simulation(sim).start();
+            if (record != null || foxglove.on()) {
+                console = foxglove.apply(io.robomw.console.Console.builder("mw " + String.join(" ", spec.commandLine().getParseResult().originalArgs()))
+                        .noPage().record(record).clusterKey(cluster.key(), cluster.tls() != null).simulation(sim)).start();
                 if (robot != null) {
                     console.watchRobot(robot, robotFile != null ? robotFile.toString() : world + " (" + worldRobot + ")");
                     robot = console.recordCommands(robot);
@@ -177,7 +180,8 @@ final class HostCommand implements Callable<Integer> {
             if (console != null) {
                 console.watchHost(host.address());
                 open.add(0, console);
-                out.printf("recording to %s%n", record);
+                console.recording().ifPresent(f -> out.printf("recording to %s%n", f));
+                console.foxgloveAddress().ifPresent(a -> out.printf("foxglove at %s%n", a));
             }
             String served = null;
             MessagingNode servingNode = null;

@@ -1,6 +1,8 @@
 package io.robomw.cli;
 
 import io.robomw.console.Console;
+import io.robomw.console.foxglove.FoxgloveServer;
+import io.robomw.console.foxglove.Teleop;
 import io.robomw.console.mcap.McapFormatException;
 import io.robomw.console.observe.Observer;
 import io.robomw.console.record.McapReplay;
@@ -22,8 +24,10 @@ import java.util.concurrent.atomic.AtomicBoolean;
 
 /**
  * {@code mw replay FILE.mcap}: plays a recording into the console's page (and, with {@code --png},
- * into a picture), at the recorded pace times {@code --speed}. The page stays up after the
- * replay until Ctrl-C; {@code --no-console} only draws the picture and exits.
+ * into a picture; with {@code --foxglove}, to Foxglove live, in recorded time), at the recorded
+ * pace times {@code --speed}. The page stays up after the replay until Ctrl-C;
+ * {@code --no-console} only draws the picture (or serves Foxglove) and exits when done (when
+ * Ctrl-C ends Foxglove's).
  */
 @Command(name = "replay", mixinStandardHelpOptions = true,
         description = {"Plays an MCAP recording (mw record, --record) back into the console's page and/or a PNG.",
@@ -42,8 +46,11 @@ final class ReplayCommand implements Callable<Integer> {
     @Option(names = "--width", defaultValue = "1000", description = "width of the PNG, pixels (default ${DEFAULT-VALUE})")
     int width;
 
-    @Option(names = "--no-console", description = "no page: only the picture (needs --png); exits when done")
+    @Option(names = "--no-console", description = "no page: only the picture (needs --png or --foxglove); exits when done")
     boolean noConsole;
+
+    @picocli.CommandLine.Mixin
+    FoxgloveOption foxglove;
 
     @Option(names = "--bind", defaultValue = "127.0.0.1", description = "address the page listens on (default ${DEFAULT-VALUE})")
     String bind;
@@ -61,11 +68,12 @@ final class ReplayCommand implements Callable<Integer> {
         if (!(speed >= 0) || Double.isInfinite(speed)) {
             throw new CommandLine.ParameterException(spec.commandLine(), "--speed must be a number >= 0, got " + speed);
         }
-        if (noConsole && png == null) {
-            throw new CommandLine.ParameterException(spec.commandLine(), "--no-console leaves nothing to show: add --png FILE");
+        if (noConsole && png == null && !foxglove.on()) {
+            throw new CommandLine.ParameterException(spec.commandLine(), "--no-console leaves nothing to show: add --png FILE or --foxglove");
         }
         ReplayPicture picture = new ReplayPicture();
         Console console = null;
+        FoxgloveServer live = null;
         AtomicBoolean stop = new AtomicBoolean();
         CountDownLatch interrupted = new CountDownLatch(1);
         CountDownLatch stopped = new CountDownLatch(1);
@@ -85,10 +93,22 @@ final class ReplayCommand implements Callable<Integer> {
                 out.println("console at " + console.pageAddress().orElseThrow());
                 out.flush();
             }
+            if (foxglove.on()) {
+                // Foxglove is told the recorded times (and the replay's time, the time capability); the page ages what it shows on the replay's clock.
+                live = FoxgloveServer.create(FoxgloveServer.Options.replay("mw replay " + file, FoxgloveOption.BIND, foxglove.port));
+                try {
+                    live.start(Teleop.NONE);
+                } catch (IOException e) {
+                    err.println("mw replay: " + e.getMessage());
+                    return 2;
+                }
+                out.println("foxglove at " + live.address());
+                out.flush();
+            }
             Observer sink = console == null ? picture : Observer.all(console.observer(), picture);
             McapReplay.Played played;
             try {
-                played = McapReplay.play(file, sink, speed, stop::get);
+                played = McapReplay.play(file, sink, live == null ? o -> { } : live, speed, stop::get);
             } catch (McapFormatException e) {
                 err.println("mw replay: " + e.getMessage());
                 return 2;
@@ -106,8 +126,8 @@ final class ReplayCommand implements Callable<Integer> {
                 out.println("wrote " + png);
             }
             out.flush();
-            if (console != null && !stop.get()) {
-                out.println("the console keeps showing the replay until Ctrl-C");
+            if ((console != null || live != null) && !stop.get()) {
+                out.println((console != null ? "the console keeps" : "Foxglove keeps") + " showing the replay until Ctrl-C");
                 out.flush();
                 interrupted.await();
             }
@@ -115,6 +135,9 @@ final class ReplayCommand implements Callable<Integer> {
         } finally {
             if (console != null) {
                 console.close();
+            }
+            if (live != null) {
+                live.close();
             }
             stopped.countDown();
             try {

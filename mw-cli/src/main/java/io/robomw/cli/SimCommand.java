@@ -125,6 +125,9 @@ final class SimCommand implements Callable<Integer> {
     @Option(names = "--record", paramLabel = "FILE.mcap", description = "record the run (poses, sensors, the programs' commands) into an MCAP file that Foxglove opens")
     private Path record;
 
+    @CommandLine.Mixin
+    private FoxgloveOption foxglove;
+
     @Spec
     private CommandSpec spec;
 
@@ -180,9 +183,9 @@ final class SimCommand implements Callable<Integer> {
             return INVALID;
         }
         try (sim) {
-            if (console || record != null) {
-                io.robomw.console.Console.Builder b = io.robomw.console.Console.builder("mw " + String.join(" ", spec.commandLine().getParseResult().originalArgs()))
-                        .simulation(sim).record(record).about("world", worldFile.toString());
+            if (console || record != null || foxglove.on()) {
+                io.robomw.console.Console.Builder b = foxglove.apply(io.robomw.console.Console.builder("mw " + String.join(" ", spec.commandLine().getParseResult().originalArgs()))
+                        .simulation(sim).record(record).about("world", worldFile.toString()));
                 if (console) {
                     b.page("127.0.0.1", consolePort);
                 } else {
@@ -200,6 +203,7 @@ final class SimCommand implements Callable<Integer> {
                     w.close(); // a run stopped by Ctrl-C still gets its recording's summary and footer
                 }, "mw-sim-shutdown"));
                 watching.pageAddress().ifPresent(a -> out.println("console at " + a));
+                watching.foxgloveAddress().ifPresent(a -> out.println("foxglove at " + a));
                 watching.recording().ifPresent(f -> out.println("recording to " + f));
                 out.flush();
             }
@@ -220,7 +224,7 @@ final class SimCommand implements Callable<Integer> {
             try {
                 if (view) {
                     runInViewer(sim, options);
-                } else if (pace != null && pace.realTime || console && pace == null) {
+                } else if (pace != null && pace.realTime || (console || foxglove.on()) && pace == null) {
                     runInRealTime(sim);
                 } else {
                     runFast(sim);
@@ -244,8 +248,8 @@ final class SimCommand implements Callable<Integer> {
                 }
             }
             printSummary(out, sim.world(), wallSeconds);
-            if (console) {
-                out.println("the console keeps showing the world until Ctrl-C");
+            if (console || foxglove.on()) {
+                out.println((console ? "the console keeps" : "Foxglove keeps") + " showing the world until Ctrl-C");
                 out.flush();
                 awaitCtrlC();
             }

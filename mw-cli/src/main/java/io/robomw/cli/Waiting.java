@@ -23,6 +23,7 @@ final class Waiting {
             return 2;
         }
         console.pageAddress().ifPresent(a -> out.println("console at " + a));
+        console.foxgloveAddress().ifPresent(a -> out.println("foxglove at " + a));
         console.recording().ifPresent(f -> out.println("recording to " + f + " (Ctrl-C ends it)"));
         out.flush();
         CountDownLatch stopped = new CountDownLatch(1);

@@ -2,6 +2,8 @@ package io.robomw.console;
 
 import io.robomw.agents.host.ClusterKey;
 import io.robomw.api.Robot;
+import io.robomw.console.foxglove.FoxgloveServer;
+import io.robomw.console.foxglove.Teleop;
 import io.robomw.console.observe.Observation;
 import io.robomw.console.observe.Observer;
 import io.robomw.console.observe.WorldMap;
@@ -38,6 +40,9 @@ import java.util.UUID;
  * <p>The page's retract and dispose buttons go to the host the agent was last seen at, over the
  * host's authenticated link (the cluster key this console was given; without one they are
  * disabled and say why); its stop buttons stop a watched remote robot or a simulated one.
+ *
+ * <p>With {@link Builder#foxglove} the same observations also go, live, to a Foxglove WebSocket
+ * ({@link FoxgloveServer}), whose clients may drive the robots this console can stop.
  */
 public final class Console implements AutoCloseable {
 
@@ -45,6 +50,7 @@ public final class Console implements AutoCloseable {
 
     private final ConsoleView view;
     private final McapRecorder recorder;
+    private final FoxgloveServer foxglove;
     private final Observer observer;
     private final List<HostWatcher> hosts = new java.util.concurrent.CopyOnWriteArrayList<>();
     private final List<RobotWatcher> robots = new java.util.concurrent.CopyOnWriteArrayList<>();
@@ -58,7 +64,15 @@ public final class Console implements AutoCloseable {
     private Console(Builder b, McapRecorder recorder) {
         this.view = new ConsoleView(b.title);
         this.recorder = recorder;
-        this.observer = recorder == null ? view : Observer.all(view, recorder);
+        this.foxglove = b.foxglovePort < 0 ? null : FoxgloveServer.create(FoxgloveServer.Options.live(b.title, b.foxgloveBind, b.foxglovePort));
+        List<Observer> to = new ArrayList<>(List.of(view));
+        if (recorder != null) {
+            to.add(recorder);
+        }
+        if (foxglove != null) {
+            to.add(foxglove);
+        }
+        this.observer = to.size() == 1 ? view : Observer.all(to.toArray(Observer[]::new));
         this.sim = b.simulation;
         this.key = b.key;
         this.period = b.period;
@@ -85,6 +99,8 @@ public final class Console implements AutoCloseable {
         private final Map<String, String> about = new LinkedHashMap<>();
         private Duration period = Duration.ofMillis(500);
         private boolean discover;
+        private String foxgloveBind = "127.0.0.1";
+        private int foxglovePort = -1;
 
         private Builder(String title) {
             this.title = Objects.requireNonNull(title);
@@ -142,6 +158,23 @@ public final class Console implements AutoCloseable {
             return this;
         }
 
+        /**
+         * Also serves what is watched, live, as a Foxglove WebSocket ({@link FoxgloveServer}: the
+         * recordings' channels; clients may drive the robots this console can stop).
+         *
+         * @param address where it listens (127.0.0.1: this machine only)
+         * @param port    its port ({@link FoxgloveServer#DEFAULT_PORT} is Foxglove's usual one), 0 for a free one
+         * @return this
+         */
+        public Builder foxglove(String address, int port) {
+            if (port < 0 || port > 65_535) {
+                throw new IllegalArgumentException("the Foxglove WebSocket's port must be 0 to 65535, got " + port);
+            }
+            this.foxgloveBind = Objects.requireNonNull(address, "address");
+            this.foxglovePort = port;
+            return this;
+        }
+
         /** @param key a fact about the run, kept in the recording's metadata @param value its value @return this */
         public Builder about(String key, String value) {
             about.put(key, value);
@@ -192,6 +225,9 @@ public final class Console implements AutoCloseable {
     }
 
     private void open(Builder b) throws IOException {
+        if (foxglove != null) {
+            foxglove.start(new ConsoleTeleop());
+        }
         if (b.world != null) {
             observer.observe(new Observation.World(now(), b.world));
         }
@@ -288,6 +324,11 @@ public final class Console implements AutoCloseable {
         return Optional.ofNullable(server).map(ConsoleServer::pageWithToken);
     }
 
+    /** @return where Foxglove connects ({@code ws://127.0.0.1:8765}), or empty without {@link Builder#foxglove} */
+    public Optional<java.net.URI> foxgloveAddress() {
+        return Optional.ofNullable(foxglove).map(FoxgloveServer::address);
+    }
+
     /** @return the recording, or empty */
     public Optional<Path> recording() {
         return Optional.ofNullable(recorder).map(McapRecorder::file);
@@ -322,6 +363,43 @@ public final class Console implements AutoCloseable {
         }
         if (server != null) {
             server.close();
+        }
+        if (foxglove != null) {
+            foxglove.close();
+        }
+    }
+
+    /** @return the robots this console can stop and drive: watched ones, and a simulation's */
+    private java.util.Set<String> robotsDriven() {
+        java.util.Set<String> names = new java.util.TreeSet<>();
+        robots.forEach(w -> names.add(w.name()));
+        if (sim != null) {
+            sim.robots().forEach(r -> names.add(r.name()));
+        }
+        return names;
+    }
+
+    /** What Foxglove clients may drive: the robots the page's stop buttons stop (watched ones, a simulation's). */
+    private final class ConsoleTeleop implements Teleop {
+        @Override
+        public java.util.Set<String> robots() {
+            return robotsDriven();
+        }
+
+        @Override
+        public void drive(String robot, double linear, double angular) {
+            RobotWatcher watched = robots.stream().filter(w -> w.name().equals(robot)).findFirst().orElse(null);
+            if (watched != null) {
+                watched.drive(linear, angular);
+            } else if (sim != null) {
+                sim.robot(robot).drive(linear, angular);
+            } else {
+                throw new IllegalArgumentException("this console drives no robot named '" + robot + "'");
+            }
+            Map<String, Double> args = new LinkedHashMap<>();
+            args.put("linearSpeed", linear);
+            args.put("angularSpeed", angular);
+            observer.observe(new Observation.RobotCommand(now(), robot, "drive", args));
         }
     }
 
@@ -367,12 +445,7 @@ public final class Console implements AutoCloseable {
 
         @Override
         public java.util.Set<String> stoppableRobots() {
-            java.util.Set<String> names = new java.util.TreeSet<>();
-            robots.forEach(w -> names.add(w.name()));
-            if (sim != null) {
-                sim.robots().forEach(r -> names.add(r.name()));
-            }
-            return names;
+            return robotsDriven();
         }
 
         @Override

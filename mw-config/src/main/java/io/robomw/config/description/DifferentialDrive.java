@@ -13,7 +13,7 @@ package io.robomw.config.description;
  * @param right           the right wheel's motor
  */
 public record DifferentialDrive(double wheelDiameter, double trackWidth, double gearRatio, double maxSpeed,
-                                int encoderTicksPerRevolution, Wheel left, Wheel right) {
+                                int encoderTicksPerRevolution, Wheel left, Wheel right) implements DriveSpec {
 
     /** Checks the geometry, naming the value and the rule. */
     public DifferentialDrive {
@@ -27,6 +27,12 @@ public record DifferentialDrive(double wheelDiameter, double trackWidth, double 
         if (left.port().equals(right.port())) {
             throw new IllegalArgumentException("left and right wheels must be on different ports, both are on " + left.port());
         }
+    }
+
+    /** @return {@link DriveKind#DIFFERENTIAL} */
+    @Override
+    public DriveKind kind() {
+        return DriveKind.DIFFERENTIAL;
     }
 
     private static void requirePositive(String key, double value) {

@@ -31,7 +31,7 @@ import java.util.Set;
  */
 public record LeggedDrive(double maxSpeed, double maxTurnRate, CommandTemplate move, CommandTemplate turn,
                           Optional<CommandTemplate> arc, Optional<CommandTemplate> drive, Optional<CommandTemplate> stop,
-                          Gait gait) {
+                          Gait gait) implements DriveSpec {
 
     /** The actuator group every walking command drives. */
     public static final String LEGS = "legs";
@@ -55,6 +55,12 @@ public record LeggedDrive(double maxSpeed, double maxTurnRate, CommandTemplate m
         Objects.requireNonNull(drive, "drive");
         Objects.requireNonNull(stop, "stop");
         Objects.requireNonNull(gait, "gait");
+    }
+
+    /** @return {@link DriveKind#LEGGED} */
+    @Override
+    public DriveKind kind() {
+        return DriveKind.LEGGED;
     }
 
     private static void requirePositive(String key, double value) {

@@ -85,6 +85,19 @@ public record RobotDescription(String name, String platform, ConnectionSettings 
                 highLevelActions, messaging, agency, source, Optional.empty());
     }
 
+    /**
+     * @return its drive section, whatever its kind ({@link #drive()}, {@link #leggedDrive()} or
+     *         {@link #vehicleDrive()}), if it has one
+     */
+    public Optional<DriveSpec> driveSpec() {
+        return drive.<DriveSpec>map(d -> d).or(() -> leggedDrive.map(d -> d)).or(() -> vehicleDrive.map(d -> d));
+    }
+
+    /** @return the kind of its drive, if it has one */
+    public Optional<DriveKind> driveKind() {
+        return driveSpec().map(DriveSpec::kind);
+    }
+
     /** @return every motor port the description uses: wheels first, then actuators */
     public List<String> motorPorts() {
         Stream<String> wheels = drive.stream().flatMap(d -> Stream.of(d.left().port(), d.right().port()));

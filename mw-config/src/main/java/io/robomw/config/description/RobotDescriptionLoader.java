@@ -7,6 +7,7 @@ import io.robomw.api.spi.AgencyConfig;
 import io.robomw.api.spi.ConnectionSettings;
 import io.robomw.api.spi.MessagingConfig;
 import io.robomw.config.yaml.MappingReader;
+import io.robomw.config.yaml.Range;
 import io.robomw.config.yaml.YamlDocument;
 
 import java.nio.file.Path;
@@ -37,6 +38,29 @@ public final class RobotDescriptionLoader {
     /** The default watchdog timeout of continuous commands, seconds. */
     public static final double DEFAULT_WATCHDOG_SECONDS = 0.5;
 
+    // Each rule once: its range makes both the check and the words of the problem.
+    private static final Range CYCLE_HZ = Range.between(1, 1000, "");
+    private static final Range WATCHDOG = Range.between(0, 3600, "seconds").noting("0 turns it off");
+    private static final Range WHEEL_DIAMETER = Range.positive(0.001, 10, "metres");
+    private static final Range TRACK_WIDTH = Range.positive(0.001, 100, "metres");
+    private static final Range GEAR_RATIO = Range.positive(0.001, 10_000, "");
+    private static final Range SPEED = Range.above(0, 100, "metres per second");
+    private static final Range TURN_RATE = Range.above(0, 100, "radians per second");
+    private static final Range CLIMB_RATE = Range.between(0, 50, "metres per second").noting("> 0 for an air vehicle");
+    private static final Range VEHICLE_TURN_RATE = Range.above(0, 20, "radians per second");
+    private static final Range ACCEPTANCE_RADIUS = Range.above(0, 1000, "metres");
+    private static final Range TAKEOFF_ALTITUDE = Range.between(0, 1000, "metres");
+    private static final Range STEP_FREQUENCY = Range.above(0, 100, "steps per second");
+    private static final Range JITTER = Range.fromBelow(0, 1, "").noting("a fraction of the speed");
+    private static final Range SLIP = Range.fromBelow(0, 1, "").noting("a fraction of the motion");
+    private static final Range ACTION_DURATION = Range.above(0, 3600, "seconds");
+    private static final Range BODY_SIZE = Range.positive(0.001, 100, "metres");
+    private static final Range BODY_MASS = Range.positive(0.001, 100_000, "kilograms");
+    private static final Range FRICTION = Range.between(0, 10, "");
+    private static final Range LUX_AT_FULL_SCALE = Range.above(0, 1_000_000, "");
+    private static final Range ACTION_DEGREES = Range.between(-1_000_000, 1_000_000, "motor degrees").noting("or 'argument'");
+    private static final Range ACTION_SPEED = Range.above(0, 100_000, "motor degrees per second");
+
     /**
      * @param file a robot YAML file
      * @return its description
@@ -61,8 +85,8 @@ public final class RobotDescriptionLoader {
         String name = root.requireText("name");
         String platform = root.requireText("platform");
         Map<String, Object> connection = root.plainMap("connection");
-        double cycleHz = root.number("cycle_hz", DEFAULT_CYCLE_HZ, "between 1 and 1000", v -> v >= 1 && v <= 1000);
-        double watchdog = root.number("watchdog", DEFAULT_WATCHDOG_SECONDS, "between 0 and 3600 seconds (0 turns it off)", v -> v >= 0 && v <= 3600);
+        double cycleHz = root.number("cycle_hz", DEFAULT_CYCLE_HZ, CYCLE_HZ);
+        double watchdog = root.number("watchdog", DEFAULT_WATCHDOG_SECONDS, WATCHDOG);
         Set<Capability> capabilities = new LinkedHashSet<>(root.enumList("capabilities", Capability.class));
         if (!root.has("capabilities")) {
             capabilities.add(Capability.GROUND);
@@ -99,15 +123,14 @@ public final class RobotDescriptionLoader {
     }
 
     private Optional<DifferentialDrive> drive(MappingReader m) {
-        String type = m.text("type").orElse("differential");
-        if (!type.equals("differential")) {
-            m.problem("type", "must be 'differential' (two driven wheels on one axle), 'legged' (walks by its firmware's own commands)"
-                    + " or 'vehicle' (a drone, boat or rover moved by its autopilot), got '" + type + "'");
+        String type = m.text("type").orElse(DriveKind.DIFFERENTIAL.yamlName());
+        if (DriveKind.fromYaml(type).isEmpty()) {
+            m.problem("type", "must be " + DriveKind.choices() + ", got '" + type + "'");
         }
-        double wheel = m.requireNumber("wheel_diameter", "> 0 metres (0.001 to 10)", v -> v >= 0.001 && v <= 10);
-        double track = m.requireNumber("track_width", "> 0 metres (0.001 to 100)", v -> v >= 0.001 && v <= 100);
-        double gear = m.number("gear_ratio", 1, "> 0 (0.001 to 10000)", v -> v >= 0.001 && v <= 10_000);
-        double max = m.requireNumber("max_speed", "> 0 metres per second (at most 100)", v -> v > 0 && v <= 100);
+        double wheel = m.requireNumber("wheel_diameter", WHEEL_DIAMETER);
+        double track = m.requireNumber("track_width", TRACK_WIDTH);
+        double gear = m.number("gear_ratio", 1, GEAR_RATIO);
+        double max = m.requireNumber("max_speed", SPEED);
         int ticks = m.integer("encoder_ticks_per_revolution", 360, 0, 1_000_000);
         Optional<DifferentialDrive.Wheel> left = m.requireMapping("left").map(this::wheel);
         Optional<DifferentialDrive.Wheel> right = m.requireMapping("right").map(this::wheel);
@@ -125,11 +148,11 @@ public final class RobotDescriptionLoader {
     }
 
     private boolean legged(MappingReader driveNode) {
-        return driveNode.has("type") && driveNode.text("type").map("legged"::equals).orElse(false);
+        return driveNode.has("type") && driveNode.text("type").flatMap(DriveKind::fromYaml).map(DriveKind.LEGGED::equals).orElse(false);
     }
 
     private boolean vehicle(MappingReader driveNode) {
-        return driveNode.has("type") && driveNode.text("type").map("vehicle"::equals).orElse(false);
+        return driveNode.has("type") && driveNode.text("type").flatMap(DriveKind::fromYaml).map(DriveKind.VEHICLE::equals).orElse(false);
     }
 
     private Optional<VehicleDrive> vehicleDrive(MappingReader m) {
@@ -139,16 +162,15 @@ public final class RobotDescriptionLoader {
             m.problem("medium", "missing: say where the vehicle moves: air, water or ground");
         }
         VehicleDrive.Autopilot autopilot = m.enumValue("autopilot", VehicleDrive.Autopilot.class, VehicleDrive.Autopilot.ARDUPILOT);
-        double max = m.requireNumber("max_speed", "> 0 metres per second (at most 100)", v -> v > 0 && v <= 100);
-        double climb = m.number("max_climb_rate", medium == VehicleDrive.Medium.AIR ? 1.5 : 0,
-                "between 0 and 50 metres per second (> 0 for an air vehicle)", v -> v >= 0 && v <= 50);
-        double turnRate = m.number("max_turn_rate", Math.toRadians(90), "> 0 radians per second (at most 20)", v -> v > 0 && v <= 20);
-        double acceptance = m.number("acceptance_radius", 0.5, "> 0 metres (at most 1000)", v -> v > 0 && v <= 1000);
-        double takeoff = m.number("takeoff_altitude", 2.0, "between 0 and 1000 metres", v -> v >= 0 && v <= 1000);
+        double max = m.requireNumber("max_speed", SPEED);
+        double climb = m.number("max_climb_rate", medium == VehicleDrive.Medium.AIR ? 1.5 : 0, CLIMB_RATE);
+        double turnRate = m.number("max_turn_rate", Math.toRadians(90), VEHICLE_TURN_RATE);
+        double acceptance = m.number("acceptance_radius", 0.5, ACCEPTANCE_RADIUS);
+        double takeoff = m.number("takeoff_altitude", 2.0, TAKEOFF_ALTITUDE);
         if (medium == VehicleDrive.Medium.AIR && climb == 0) {
             m.problem("max_climb_rate", "an air vehicle must be able to climb: give max_climb_rate > 0");
         }
-        if (medium != VehicleDrive.Medium.AIR && m.has("max_climb_rate") && climb > 0) {
+        if (medium != null && medium != VehicleDrive.Medium.AIR && m.has("max_climb_rate") && climb > 0) {
             m.problem("max_climb_rate", "a " + medium.yamlName() + " vehicle does not climb; leave max_climb_rate out");
         }
         m.finish();
@@ -161,8 +183,8 @@ public final class RobotDescriptionLoader {
 
     private Optional<LeggedDrive> leggedDrive(MappingReader m) {
         m.text("type");
-        double max = m.requireNumber("max_speed", "> 0 metres per second", v -> v > 0 && v < 100);
-        double turnRate = m.requireNumber("max_turn_rate", "> 0 radians per second", v -> v > 0 && v < 100);
+        double max = m.requireNumber("max_speed", SPEED);
+        double turnRate = m.requireNumber("max_turn_rate", TURN_RATE);
         Optional<MappingReader> commands = m.requireMapping("commands");
         Optional<CommandTemplate> move = commands.flatMap(c -> template(c, "move", LeggedDrive.MOVE_VALUES, true));
         Optional<CommandTemplate> turn = commands.flatMap(c -> template(c, "turn", LeggedDrive.TURN_VALUES, true));
@@ -197,9 +219,9 @@ public final class RobotDescriptionLoader {
 
     private LeggedDrive.Gait gait(MappingReader m) {
         LeggedDrive.Gait g = new LeggedDrive.Gait(
-                m.number("step_frequency", LeggedDrive.Gait.DEFAULT.stepFrequency(), "> 0 steps per second", v -> v > 0 && v < 100),
-                m.number("jitter", 0, ">= 0 (a fraction of the speed)", v -> v >= 0 && v < 1),
-                m.number("slip", 0, "in [0, 1)", v -> v >= 0 && v < 1));
+                m.number("step_frequency", LeggedDrive.Gait.DEFAULT.stepFrequency(), STEP_FREQUENCY),
+                m.number("jitter", 0, JITTER),
+                m.number("slip", 0, SLIP));
         m.finish();
         return g;
     }
@@ -232,7 +254,7 @@ public final class RobotDescriptionLoader {
         Set<String> allowed = new HashSet<>(arguments);
         allowed.add("duration");
         Optional<CommandTemplate> command = template(a, "command", allowed, true);
-        double duration = a.requireNumber("duration", "> 0 seconds", v -> v > 0 && v < 3600);
+        double duration = a.requireNumber("duration", ACTION_DURATION);
         List<String> uses = a.textList("uses");
         if (uses.isEmpty() && !a.has("uses")) {
             a.problem("uses", "missing: name the actuator groups the action drives, for example [legs] or [head]");
@@ -268,10 +290,10 @@ public final class RobotDescriptionLoader {
 
     private Body body(MappingReader m) {
         Body b = new Body(
-                m.number("length", Body.DEFAULT.length(), "> 0 metres (0.001 to 100)", v -> v >= 0.001 && v <= 100),
-                m.number("width", Body.DEFAULT.width(), "> 0 metres (0.001 to 100)", v -> v >= 0.001 && v <= 100),
-                m.number("mass", Body.DEFAULT.mass(), "> 0 kilograms (0.001 to 100000)", v -> v >= 0.001 && v <= 100_000),
-                m.number("friction", Body.DEFAULT.friction(), "between 0 and 10", v -> v >= 0 && v <= 10));
+                m.number("length", Body.DEFAULT.length(), BODY_SIZE),
+                m.number("width", Body.DEFAULT.width(), BODY_SIZE),
+                m.number("mass", Body.DEFAULT.mass(), BODY_MASS),
+                m.number("friction", Body.DEFAULT.friction(), FRICTION));
         m.finish();
         return b;
     }
@@ -291,8 +313,8 @@ public final class RobotDescriptionLoader {
     }
 
     private Conversion conversion(MappingReader m) {
-        double scale = m.number("scale", 1, "a finite number", Double::isFinite);
-        double offset = m.number("offset", 0, "a finite number", Double::isFinite);
+        double scale = m.number("scale", 1, Range.ANY);
+        double offset = m.number("offset", 0, Range.ANY);
         List<Conversion.Point> table = new ArrayList<>();
         for (MappingReader.NumberRow row : m.numberRows("table")) {
             if (row.values().length != 2) {
@@ -307,9 +329,9 @@ public final class RobotDescriptionLoader {
         if (m.has("table") && (m.has("scale") || m.has("offset"))) {
             m.problem("table", "give either a table or scale/offset, not both");
         }
-        OptionalDouble threshold = m.optionalNumber("threshold", "a finite number", Double::isFinite);
+        OptionalDouble threshold = m.optionalNumber("threshold", Range.ANY);
         boolean below = m.bool("true_below", false);
-        OptionalDouble lux = m.optionalNumber("lux_at_full_scale", "> 0 (at most 1000000)", v -> v > 0 && v <= 1_000_000);
+        OptionalDouble lux = m.optionalNumber("lux_at_full_scale", LUX_AT_FULL_SCALE);
         m.finish();
         return new Conversion(scale, offset, table, threshold, below, lux);
     }
@@ -323,13 +345,12 @@ public final class RobotDescriptionLoader {
                 a.mapping(actionName).ifPresent(spec -> {
                     OptionalDouble degrees = OptionalDouble.empty();
                     if (!spec.text("degrees").map("argument"::equals).orElse(false)) {
-                        degrees = spec.optionalNumber("degrees", "motor degrees (-1000000 to 1000000), or 'argument'",
-                                v -> Math.abs(v) <= 1_000_000);
+                        degrees = spec.optionalNumber("degrees", ACTION_DEGREES);
                         if (degrees.isEmpty() && !spec.has("degrees")) {
                             spec.problem("degrees", "missing: give motor degrees, or 'argument' to take the angle when performed");
                         }
                     }
-                    double speed = spec.requireNumber("speed", "> 0 motor degrees per second (at most 100000)", v -> v > 0 && v <= 100_000);
+                    double speed = spec.requireNumber("speed", ACTION_SPEED);
                     spec.finish();
                     actions.put(actionName, new ActuatorSpec.Action(degrees, speed));
                 });

@@ -19,7 +19,12 @@ import java.util.Objects;
  * @param takeoffAltitude  metres above home a take-off climbs to when no altitude is given
  */
 public record VehicleDrive(Medium medium, Autopilot autopilot, double maxSpeed, double maxClimbRate, double maxTurnRate,
-                           double acceptanceRadius, double takeoffAltitude) {
+                           double acceptanceRadius, double takeoffAltitude) implements DriveSpec {
+
+    @Override
+    public DriveKind kind() {
+        return DriveKind.VEHICLE;
+    }
 
     /** The actuator group every motion of a vehicle drives. */
     public static final String VEHICLE = "vehicle";

@@ -7,7 +7,7 @@ import io.robomw.api.Pose;
  * circular arc (exact when the wheel speeds were constant in between, as they are within one
  * {@code move}, {@code turn} or {@code arc}).
  *
- * <p>Not thread-safe: callers synchronise (the robot updates it under its own lock).
+ * <p>Not thread-safe: callers synchronise ({@code io.robomw.config.drive.WheelOdometry} updates it under its own lock).
  */
 public final class Odometry {
 

@@ -26,7 +26,9 @@ import java.util.TreeSet;
 /**
  * Opens robots from YAML description files ({@code file:} URIs) for
  * {@link io.robomw.api.Robots#open}: loads and validates the description, finds its platform by
- * the {@code platform:} value, opens it, and starts watching the file for reloads.
+ * the {@code platform:} value, opens it, and starts watching the file for reloads. The platform's
+ * owner threads and the file's watcher report to one {@link FailurePolicy}: the program's, if its
+ * services carry one.
  */
 public final class DescriptionRobotFactory implements RobotFactory {
 
@@ -49,11 +51,13 @@ public final class DescriptionRobotFactory implements RobotFactory {
      * @return the open robot
      */
     public Robot open(Path file, PlatformServices services, Clock clock, Cycling cycling) {
-        ReloadableDescription description = new ReloadableDescription(file, new RobotDescriptionLoader());
+        FailurePolicy failures = failurePolicy(services);
+        PlatformServices withPolicy = services.find(FailurePolicy.class).isPresent() ? services : services.with(FailurePolicy.class, failures);
+        ReloadableDescription description = new ReloadableDescription(file, new RobotDescriptionLoader()::load, failures);
         RobotDescription d = description.current();
         RobotPlatform platform;
         try {
-            PlatformConfig config = platformConfig(d, services, clock, cycling);
+            PlatformConfig config = platformConfig(d, withPolicy, clock, cycling);
             PlatformConfig opened = services.find(ConnectionOverride.class).map(o -> o.applyTo(config)).orElse(config);
             PlatformProvider provider = provider(d);
             List<String> problems = provider.check(opened);
@@ -96,8 +100,16 @@ public final class DescriptionRobotFactory implements RobotFactory {
     public static PlatformConfig platformConfig(RobotDescription d, PlatformServices services, Clock clock, Cycling cycling) {
         return new PlatformConfig(d.name(), d.platform(), d.connection(), d.motors(),
                 d.sensors().stream().map(s -> new SensorChannel(s.name(), s.type(), s.port(), s.options())).toList(),
-                d.cyclePeriod(), d.watchdogTimeout(), clock, services, cycling,
-                services.find(FailurePolicy.class).orElseGet(FailurePolicy::logging));
+                d.cyclePeriod(), d.watchdogTimeout(), clock, services, cycling, failurePolicy(services));
+    }
+
+    /**
+     * @param services a program's services
+     * @return the failure policy among them, which every owner thread of the robot reports to (its
+     *         platform's and its description's watcher); else a new {@link FailurePolicy#logging()} one
+     */
+    static FailurePolicy failurePolicy(PlatformServices services) {
+        return services.find(FailurePolicy.class).orElseGet(FailurePolicy::logging);
     }
 
     /**
@@ -105,8 +117,9 @@ public final class DescriptionRobotFactory implements RobotFactory {
      * error when a robot file's platform has no driver on the class path.
      */
     public static final Map<String, String> KNOWN_PLATFORMS = Map.of(
-            "nxt", "io.robomw:mw-platform", "ev3", "io.robomw:mw-platform", "ft-intelligent", "io.robomw:mw-platform",
-            "ft-txt", "io.robomw:mw-platform", "sim", "io.robomw:mw-sim");
+            "nxt", "io.robomw:mw-platform", "ev3", "io.robomw:mw-platform", "rcx", "io.robomw:mw-platform",
+            "ft-intelligent", "io.robomw:mw-platform", "ft-txt", "io.robomw:mw-platform", "aibo", "io.robomw:mw-platform",
+            "sim", "io.robomw:mw-sim");
 
     /**
      * @param d        a description
@@ -143,7 +156,8 @@ public final class DescriptionRobotFactory implements RobotFactory {
         }
         Set<String> names = new TreeSet<>(KNOWN_PLATFORMS.keySet());
         names.addAll(present);
-        String near = names.stream().filter(n -> distance(n, platform) <= 2).findFirst().map(n -> "did you mean '" + n + "'? ").orElse("");
+        String near = names.stream().filter(n -> distance(n, platform) <= 2).min(java.util.Comparator.comparingInt(n -> distance(n, platform)))
+                .map(n -> "did you mean '" + n + "'? ").orElse("");
         return "unknown platform '" + platform + "'; " + near + "platforms: " + String.join(", ", names) + " (" + has + ")";
     }
 

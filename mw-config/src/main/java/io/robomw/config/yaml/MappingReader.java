@@ -132,6 +132,37 @@ public final class MappingReader {
     /**
      * @param key      a key
      * @param fallback the value when absent or invalid
+     * @param range    the values it may take, which also words the problem
+     * @return its number
+     */
+    public double number(String key, double fallback, Range range) {
+        return number(key, fallback, range.rule(), range);
+    }
+
+    /**
+     * @param key   a required key
+     * @param range the values it may take, which also words the problem
+     * @return its number, or NaN after recording the problem
+     */
+    public double requireNumber(String key, Range range) {
+        return requireNumber(key, range.rule(), range);
+    }
+
+    /**
+     * @param key   a key
+     * @param range the values it may take, which also words the problem
+     * @return its number, if present and valid
+     */
+    public OptionalDouble optionalNumber(String key, Range range) {
+        return optionalNumber(key, range.rule(), range);
+    }
+
+    /**
+     * A number with a rule given twice, as words and as a check; prefer
+     * {@link #number(String, double, Range)}, whose one {@link Range} makes both.
+     *
+     * @param key      a key
+     * @param fallback the value when absent or invalid
      * @param rule     what a valid value is, in words, for example {@code "> 0"}
      * @param valid    the check
      * @return its number
@@ -142,6 +173,8 @@ public final class MappingReader {
     }
 
     /**
+     * A required number with a rule given twice; prefer {@link #requireNumber(String, Range)}.
+     *
      * @param key   a required key
      * @param rule  what a valid value is
      * @param valid the check
@@ -158,6 +191,8 @@ public final class MappingReader {
     }
 
     /**
+     * An optional number with a rule given twice; prefer {@link #optionalNumber(String, Range)}.
+     *
      * @param key   a key
      * @param rule  what a valid value is
      * @param valid the check

@@ -513,6 +513,25 @@ class RobotDescriptionLoaderTest {
         assertTrue(e.problems().stream().anyMatch(p -> p.line() == 4 && p.message().contains("sensors[0].port")), e::getMessage);
     }
 
+    @Test
+    void shouldLoadLaserAndGenericRangeSensorsWithTheirDistanceConversions() {
+        RobotDescription d = loader.parse("""
+                name: rover
+                platform: sim
+                sensors:
+                  - {name: lidar, type: laser, position: front, port: L1, conversion: {scale: 0.001}}
+                  - {name: tof, type: range, position: back, port: R1, conversion: {table: [[0, 2.0], [1000, 0.1]]}}
+                """, SOURCE);
+
+        SensorSpec lidar = d.sensor("lidar").orElseThrow();
+        SensorSpec tof = d.sensor("tof").orElseThrow();
+        assertAll(
+                () -> assertEquals(SensorType.LASER, lidar.type()),
+                () -> assertEquals(1.234, lidar.conversion().apply(1234), 1e-12, "millimetres to metres"),
+                () -> assertEquals(SensorType.RANGE, tof.type()),
+                () -> assertEquals(1.05, tof.conversion().apply(500), 1e-12, "the table, interpolated"));
+    }
+
     // ---- invalid values ----
 
     @Test
@@ -526,6 +545,18 @@ class RobotDescriptionLoaderTest {
 
         assertProblem(4, 25, "'sensors[0].type' must be one of touch, light,", p);
         assertTrue(p.message().contains("got 'radar'"), p::toString);
+    }
+
+    @Test
+    void shouldRejectAnUnknownDriveTypeListingTheKindsThereAre() {
+        Problem p = onlyProblem("""
+                name: scout
+                platform: nxt
+                drive: {type: tracked, wheel_diameter: 0.056, track_width: 0.112, max_speed: 0.3, left: {port: B}, right: {port: C}}
+                """);
+
+        assertProblem(3, 15, "'drive.type': must be 'differential' (two driven wheels on one axle) or 'legged' (walks by its firmware's own commands),"
+                + " got 'tracked'", p);
     }
 
     @Test

@@ -283,6 +283,30 @@ class ConfiguredRobotTest {
     }
 
     @Test
+    void shouldReadAnyRangeFinderAtAPositionAsRange() {
+        platform.raw.put("sonar", 42.0);
+
+        assertEquals(42, robot.getValue(Position.FRONT, SensorType.RANGE, ReturnType.CENTIMETERS), 1e-9);
+    }
+
+    @Test
+    void shouldRefuseARangeReadingWhereThereIsNoRangeFinderListingWhatTheRobotHas() {
+        UnsupportedActionException e = assertThrows(UnsupportedActionException.class,
+                () -> robot.getValue(Position.BACK, SensorType.RANGE, ReturnType.METERS));
+
+        assertEquals("robot 'scout' cannot getValue(BACK, RANGE, METERS): it has no range finder (SONAR, INFRARED, LASER, RANGE sensor) at BACK;"
+                + " its sensors are sonar (SONAR at FRONT), bumper (TOUCH at BACK)", e.getMessage());
+    }
+
+    @Test
+    void shouldRefuseARangeReadingInAnAngleUnitBeforeReading() {
+        UnsupportedActionException e = assertThrows(UnsupportedActionException.class,
+                () -> robot.getValueAsync(Position.FRONT, SensorType.RANGE, ReturnType.RADIANS));
+
+        assertTrue(e.getMessage().contains("a SONAR sensor measures DISTANCE"), e.getMessage());
+    }
+
+    @Test
     void shouldReadSensorByName() {
         platform.raw.put("sonar", 42.0);
 

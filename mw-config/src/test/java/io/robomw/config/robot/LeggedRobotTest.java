@@ -179,6 +179,20 @@ class LeggedRobotTest {
     }
 
     @Test
+    void shouldNotEndANewerDriveWhenAnEarlierDrivesWatchdogEndIsHeardLate() {
+        robot.drive(0.1, 0);
+        advance(1);
+        robot.moveAsync(0.1, 0.1);
+        advance(1);
+        robot.drive(0.1, 0);
+        advance(1);
+        platform.futures.get(0).completeExceptionally(new RobotException("watchdog stopped 'drive'"));
+        advance(1);
+
+        assertPose(0.4, 0, 0, robot.pose());
+    }
+
+    @Test
     void shouldEndTheWalkInThePoseWhenStoppedOrSitting() {
         robot.moveAsync(0.5, 0.1);
         advance(1);
@@ -203,6 +217,22 @@ class LeggedRobotTest {
         advance(2);
 
         assertPose(1, 2.2, Math.PI / 2, robot.pose());
+    }
+
+    @Test
+    void shouldCancelThePlatformsCommandWhenTheFutureOfAWalkOrAnActionIsCancelled() {
+        CompletableFuture<Void> walk = robot.moveAsync(0.5, 0.1);
+        CompletableFuture<Void> turn = robot.turnAsync(1.0, 1.0);
+        CompletableFuture<Void> sit = robot.performAsync("sit");
+
+        walk.cancel(true);
+        turn.cancel(true);
+        sit.cancel(true);
+
+        assertAll(
+                () -> assertTrue(platform.futures.get(0).isCancelled(), "the walk's command"),
+                () -> assertTrue(platform.futures.get(1).isCancelled(), "the turn's command"),
+                () -> assertTrue(platform.futures.get(2).isCancelled(), "the action's command"));
     }
 
     @Test

@@ -1,10 +1,12 @@
 package io.robomw.config.robot;
 
+import io.robomw.api.spi.FailurePolicy;
 import io.robomw.config.description.DescriptionException;
 import io.robomw.config.description.DifferentialDrive;
 import io.robomw.config.description.RobotDescription;
 import io.robomw.config.description.RobotDescriptionLoader;
 import io.robomw.config.robot.ReloadableDescription.ReloadOutcome;
+import io.robomw.testkit.Await;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -16,10 +18,14 @@ import java.nio.file.StandardCopyOption;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Optional;
+import java.time.Duration;
+import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.atomic.AtomicInteger;
 import java.util.concurrent.TimeUnit;
 import java.util.function.Predicate;
 
+import static org.junit.jupiter.api.Assertions.assertAll;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertSame;
@@ -30,6 +36,7 @@ import static org.junit.jupiter.api.Assertions.fail;
 class ReloadableDescriptionTest {
 
     private static final long DEADLINE_SECONDS = 10;
+    private static final Duration DEADLINE = Duration.ofSeconds(DEADLINE_SECONDS);
 
     @TempDir
     Path dir;
@@ -68,6 +75,33 @@ class ReloadableDescriptionTest {
         ReloadableDescription d = new ReloadableDescription(write(yaml), new RobotDescriptionLoader());
         opened.add(d);
         return d;
+    }
+
+    private ReloadableDescription open(String yaml, ReloadableDescription.Loader loader, FailurePolicy policy) throws IOException {
+        ReloadableDescription d = new ReloadableDescription(write(yaml), loader, policy);
+        opened.add(d);
+        return d;
+    }
+
+    /** A failure policy that keeps what it is told, as {@code owner: failure}. */
+    private static final class RecordingPolicy implements FailurePolicy {
+        final List<String> survived = new CopyOnWriteArrayList<>();
+        final List<String> died = new CopyOnWriteArrayList<>();
+
+        @Override
+        public void survived(String owner, Throwable failure) {
+            survived.add(owner + ": " + failure);
+        }
+
+        @Override
+        public void died(String owner, Throwable failure) {
+            died.add(owner + ": " + failure);
+        }
+
+        @Override
+        public long count() {
+            return survived.size() + died.size();
+        }
     }
 
     private static double wheelDiameter(RobotDescription d) {
@@ -111,7 +145,7 @@ class ReloadableDescriptionTest {
 
         ReloadOutcome outcome = d.reload();
 
-        assertEquals(new ReloadOutcome(true, true, ""), outcome);
+        assertEquals(ReloadOutcome.SWAPPED, outcome);
         assertEquals(0.081, wheelDiameter(d.current()));
     }
 
@@ -140,8 +174,7 @@ class ReloadableDescriptionTest {
 
         ReloadOutcome outcome = d.reload();
 
-        assertFalse(outcome.accepted());
-        assertFalse(outcome.changed());
+        assertEquals(ReloadOutcome.Result.REJECTED, outcome.result());
         assertTrue(outcome.message().startsWith(d.file() + ":4:11: not valid YAML"), outcome.message());
         assertSame(before, d.current());
     }
@@ -274,7 +307,7 @@ class ReloadableDescriptionTest {
 
         ReloadOutcome outcome = d.reload();
 
-        assertEquals(new ReloadOutcome(true, false, ""), outcome);
+        assertEquals(ReloadOutcome.UNCHANGED, outcome);
         assertSame(before, d.current());
     }
 
@@ -285,8 +318,7 @@ class ReloadableDescriptionTest {
 
         ReloadOutcome outcome = d.reload();
 
-        assertTrue(outcome.accepted());
-        assertFalse(outcome.changed());
+        assertEquals(ReloadOutcome.Result.UNCHANGED, outcome.result());
     }
 
     // ---- watch() ----
@@ -349,6 +381,54 @@ class ReloadableDescriptionTest {
 
         watcher.join(TimeUnit.SECONDS.toMillis(DEADLINE_SECONDS));
         assertFalse(watcher.isAlive(), "the watch thread still runs after close()");
+    }
+
+    @Test
+    void shouldReportAListenersFailureToThePolicyAndGoOnWatching() throws Exception {
+        RecordingPolicy policy = new RecordingPolicy();
+        ReloadableDescription d = open(robot("listened", "nxt", 0.056, "B"), new RobotDescriptionLoader()::load, policy);
+        IllegalStateException broken = new IllegalStateException("a listener's bug");
+        d.addListener(next -> {
+            if (wheelDiameter(next) == 0.081) {
+                throw broken;
+            }
+        });
+        CountDownLatch second = whenAccepted(d, next -> wheelDiameter(next) == 0.1);
+        d.watch();
+
+        write(robot("listened", "nxt", 0.081, "B"));
+        Await.until("the listener's failure reaches the policy", DEADLINE, () -> !policy.survived.isEmpty());
+        write(robot("listened", "nxt", 0.1, "B"));
+
+        await(second, "the next change is still reloaded and heard by the other listener");
+        assertAll(
+                () -> assertEquals(List.of("robomw-reload-listened: " + broken), policy.survived),
+                () -> assertEquals(List.of(), policy.died));
+    }
+
+    @Test
+    void shouldReportAnUncheckedFailureOfTheLoaderToThePolicyAndGoOnWatching() throws Exception {
+        RecordingPolicy policy = new RecordingPolicy();
+        RobotDescriptionLoader real = new RobotDescriptionLoader();
+        AtomicInteger loads = new AtomicInteger();
+        IllegalStateException broken = new IllegalStateException("the loader's bug");
+        ReloadableDescription d = open(robot("loaded", "nxt", 0.056, "B"), file -> {
+            if (loads.incrementAndGet() == 2) {
+                throw broken; // the first reload
+            }
+            return real.load(file);
+        }, policy);
+        CountDownLatch reloaded = whenAccepted(d, next -> wheelDiameter(next) == 0.1);
+        d.watch();
+
+        write(robot("loaded", "nxt", 0.081, "B"));
+        Await.until("the loader's failure reaches the policy", DEADLINE, () -> !policy.survived.isEmpty());
+        write(robot("loaded", "nxt", 0.1, "B"));
+
+        await(reloaded, "the next change is still reloaded");
+        assertAll(
+                () -> assertEquals("robomw-reload-loaded: " + broken, policy.survived.get(0)),
+                () -> assertTrue(watchThread("loaded").isPresent(), "the watcher still runs"));
     }
 
     @Test

@@ -54,6 +54,24 @@ class SensorConverterTest {
     // ---- distance ----
 
     @Test
+    void shouldConvertLaserAndGenericRangeReadingsAsDistances() {
+        SensorSpec laser = sensor("lidar", SensorType.LASER, linear(0.001));
+        SensorSpec range = sensor("tof", SensorType.RANGE, linear(0.001));
+
+        assertEquals(123.4, convert(laser, 1234, ReturnType.CENTIMETERS), 1e-9);
+        assertEquals(1234, convert(range, 1234, ReturnType.MILLIMETERS), 1e-9);
+        assertEquals(1.234, convert(range, 1234, ReturnType.METERS), 1e-12);
+    }
+
+    @Test
+    void shouldRefuseAnAngleOfALaserSayingItMeasuresDistance() {
+        UnsupportedActionException e = assertThrows(UnsupportedActionException.class,
+                () -> SensorConverter.check(ROBOT, sensor("lidar", SensorType.LASER, linear(0.001)), ReturnType.DEGREES));
+
+        assertTrue(e.getMessage().contains("a LASER sensor measures DISTANCE"), e.getMessage());
+    }
+
+    @Test
     void shouldConvertSonarCentimetresToMeters() {
         assertEquals(0.42, convert(sonar(), 42, ReturnType.METERS), EPS);
     }

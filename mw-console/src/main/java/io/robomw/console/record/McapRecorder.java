@@ -8,8 +8,6 @@ import org.slf4j.LoggerFactory;
 
 import java.io.BufferedOutputStream;
 import java.io.IOException;
-import java.io.InputStream;
-import java.io.UncheckedIOException;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.HashMap;
@@ -124,7 +122,7 @@ public final class McapRecorder implements Observer, AutoCloseable {
     private void write(Observation o) throws IOException {
         for (RecordingCodec.Out m : RecordingCodec.encode(o)) {
             int schema = schemas.computeIfAbsent(m.schema(), this::registerSchemaOf);
-            int channel = channels.computeIfAbsent(m.topic(), t -> writer.registerChannel(schema, t, "json", Map.of()));
+            int channel = channels.computeIfAbsent(m.topic(), t -> writer.registerChannel(schema, t, Schemas.MESSAGE_ENCODING, Map.of()));
             long seq = sequences.merge(channel, 1L, Long::sum) - 1;
             long t = Math.max(0, o.timeNanos());
             writer.addMessage(channel, seq & 0xFFFFFFFFL, t, t, m.json());
@@ -133,14 +131,7 @@ public final class McapRecorder implements Observer, AutoCloseable {
     }
 
     private int registerSchemaOf(String name) {
-        try (InputStream in = McapRecorder.class.getResourceAsStream("/io/robomw/console/schemas/" + name + ".json")) {
-            if (in == null) {
-                throw new IllegalStateException("no JSON schema " + name + " in the console's jar");
-            }
-            return writer.registerSchema(name, "jsonschema", in.readAllBytes());
-        } catch (IOException e) {
-            throw new UncheckedIOException(e);
-        }
+        return writer.registerSchema(name, Schemas.SCHEMA_ENCODING, Schemas.json(name));
     }
 
     /**

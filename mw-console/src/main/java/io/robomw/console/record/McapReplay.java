@@ -54,6 +54,24 @@ public final class McapReplay {
      * @throws IOException if the file cannot be read or is not a recording (the message says where)
      */
     public static Played play(Path file, Observer observer, double speed, BooleanSupplier stop) throws IOException {
+        return play(file, observer, o -> { }, speed, stop);
+    }
+
+    /**
+     * Plays a recording to two observers at once: one on the replay's clock (as
+     * {@link #play(Path, Observer, double, BooleanSupplier)}), and one that gets each observation
+     * with the times it was recorded at, at the same moment (the live Foxglove WebSocket, which
+     * tells its clients the recorded time).
+     *
+     * @param file       the .mcap file
+     * @param observer   who is told, on the replay's clock
+     * @param asRecorded who is told, in recorded time
+     * @param speed      recorded seconds per second; 0 for as fast as possible
+     * @param stop       checked between messages: true ends the replay early
+     * @return what was played
+     * @throws IOException if the file cannot be read or is not a recording (the message says where)
+     */
+    public static Played play(Path file, Observer observer, Observer asRecorded, double speed, BooleanSupplier stop) throws IOException {
         if (!(speed >= 0) || Double.isInfinite(speed)) {
             throw new IllegalArgumentException("replay speed must be a number >= 0 (0 = as fast as possible), got " + speed);
         }
@@ -96,6 +114,7 @@ public final class McapReplay {
                         waitUntil(nanoStart + (long) offsetNanos, stop);
                     }
                     long shift = wallStart + (long) (speed == 0 ? 0 : offsetNanos) - m.logTime();
+                    asRecorded.observe(o);
                     observer.observe(restamped(o, shift, first, speed, wallStart));
                     observations++;
                 }

@@ -37,8 +37,13 @@ import java.util.Map;
  * </table>
  *
  * Times in messages are {@code {sec, nsec}} since the Unix epoch, as the MCAP log times.
+ *
+ * <p>The one definition of these topics, schemas and messages: a recording ({@link McapRecorder})
+ * and the live Foxglove WebSocket ({@code io.robomw.console.foxglove}) both encode through
+ * {@link #encode}, with the schemas {@link Schemas} holds, so a Foxglove layout made for one shows
+ * the other. Stateless and thread-safe.
  */
-final class RecordingCodec {
+public final class RecordingCodec {
 
     static final String WORLD = "/world";
     static final String SCENE = "/world/scene";
@@ -47,14 +52,26 @@ final class RecordingCodec {
     static final String AGENT_LOG = "/agents/log";
     private static final ObjectMapper JSON = new ObjectMapper();
 
-    /** One message to write: its topic, its schema's name and its JSON. */
-    record Out(String topic, String schema, byte[] json) {
+    /**
+     * One message to write or send: its topic, its schema's name ({@link Schemas#json} has the
+     * schema) and its JSON.
+     *
+     * @param topic  the channel's topic, {@code /robots/nxt/pose}
+     * @param schema the schema's name, {@code foxglove.PoseInFrame}
+     * @param json   the message, UTF-8 JSON
+     */
+    public record Out(String topic, String schema, byte[] json) {
     }
 
     private RecordingCodec() {
     }
 
-    static List<Out> encode(Observation o) {
+    /**
+     * @param o an observation
+     * @return the messages it becomes (one or more; none for an observation nothing records),
+     *         stamped with its time
+     */
+    public static List<Out> encode(Observation o) {
         List<Out> out = new ArrayList<>();
         long t = o.timeNanos();
         if (o instanceof Observation.Batch b) {

@@ -169,6 +169,22 @@ public final class RobotWatcher implements AutoCloseable {
         return "robot " + name + " stopped";
     }
 
+    /**
+     * Drives the robot continuously ({@code Robot.drive}: it stops by itself unless driven again
+     * within its watchdog's timeout).
+     *
+     * @param linear  m/s
+     * @param angular rad/s
+     * @throws IllegalStateException if the robot is not answering
+     */
+    public void drive(double linear, double angular) {
+        Robot r = robot;
+        if (r == null) {
+            throw new IllegalStateException("robot " + name + " at " + address + " is not answering");
+        }
+        r.drive(linear, angular);
+    }
+
     @Override
     public void close() {
         closed.countDown();

@@ -1,7 +1,6 @@
 package io.robomw.it.demo;
 
 import io.robomw.testkit.BusyThreads;
-import io.robomw.it.BusyThreads;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
