@@ -162,8 +162,8 @@ public final class GroundStation implements AutoCloseable {
     }
 
     /**
-     * Waits for the vehicle's first local position (LOCAL_POSITION_NED): a vehicle without a
-     * position fix does not send it, and motions need it.
+     * Waits for the vehicle's first local position and attitude (LOCAL_POSITION_NED and
+     * ATTITUDE): a vehicle without a position fix does not send the first, and motions need both.
      *
      * @param within the deadline
      * @return whether it came in time
@@ -334,7 +334,7 @@ public final class GroundStation implements AutoCloseable {
             }
         }
         telemetry.update(f, now);
-        if (f.is(Messages.LocalPositionNed.MESSAGE)) {
+        if ((f.is(Messages.LocalPositionNed.MESSAGE) || f.is(Messages.Attitude.MESSAGE)) && telemetry.local().isPresent()) {
             positioned.countDown();
         }
         if (f.is(Messages.CommandAck.MESSAGE)) {

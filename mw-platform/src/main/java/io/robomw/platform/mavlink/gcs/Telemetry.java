@@ -93,9 +93,10 @@ public final class Telemetry {
         }
     }
 
-    /** @return the local position and yaw, once reported */
+    /** @return the local position and yaw, once both are reported (LOCAL_POSITION_NED and ATTITUDE) */
     public Optional<Local> local() {
-        return Optional.ofNullable(local);
+        Local l = local;
+        return l == null || Double.isNaN(l.yaw()) ? Optional.empty() : Optional.of(l);
     }
 
     /** @return the last HEARTBEAT's state, once heard */
