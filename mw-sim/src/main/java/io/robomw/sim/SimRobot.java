@@ -528,7 +528,8 @@ public final class SimRobot {
      */
     double siValue(SensorModel sensor, SimWorld world) {
         return switch (sensor.kind()) {
-            case RANGE -> sensor.latest();
+            case RANGE -> vehicle != null && sensor.spec().position() == io.robomw.api.Position.BOTTOM
+                    ? Math.min(sensor.maxRange(), vehicle.snapshot().z()) : sensor.latest();
             case CONTACT -> touching(sensor) ? 1.0 : 0.0;
             case FLOOR -> world.floorAt(sensorX(sensor), sensorY(sensor), sensor.spec().type() == io.robomw.api.SensorType.COLOR);
             case HEADING -> poseHeading;

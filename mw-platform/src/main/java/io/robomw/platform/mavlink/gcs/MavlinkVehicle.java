@@ -41,7 +41,7 @@ public final class MavlinkVehicle {
      * @return the running platform
      * @throws IOException naming the link when no vehicle is heard in time
      */
-    public static HighLevelRobotPlatform open(PlatformConfig config, GroundStation gcs, Duration connect) throws IOException {
+    public static MavlinkPlatform open(PlatformConfig config, GroundStation gcs, Duration connect) throws IOException {
         Relay relay = new Relay();
         gcs.start(relay);
         gcs.awaitVehicle(connect);
@@ -53,7 +53,7 @@ public final class MavlinkVehicle {
         VehicleSensorPlatform sensors = new VehicleSensorPlatform(config.robotName(), gcs);
         HighLevelRobotPlatform platform = new HighLevelRobotPlatform(config, commands, sensors, gcs);
         relay.to(commands, platform, gcs.describe());
-        return platform.start();
+        return new MavlinkPlatform(platform.start(), gcs);
     }
 
     /** Passes the ground station's events on, once the platform exists. */

@@ -42,11 +42,8 @@ import java.util.function.BiConsumer;
  * </ul>
  *
  * <h2>Guidance</h2>
- * A multirotor flies to a position at {@code min(speed limit, 1/s · distance, √(2 · 2.5 m/s² ·
- * distance))}, climbs at {@code 1.5/s · height error} within its climb rate, and turns to a yaw at
- * {@code 2/s · yaw error}; it keeps its yaw otherwise. A boat or rover steers toward the position
- * ({@code yaw rate = 2/s · course error}) at a speed scaled by the cosine of that error, and stops
- * within half its acceptance radius.
+ * To a position as {@link io.robomw.sim.vehicle.Guidance} says; a multirotor turns to a yaw target
+ * at {@code 2/s · yaw error} and keeps its yaw otherwise.
  *
  * <p>Not thread-safe: the simulation's thread only.
  */
@@ -680,26 +677,10 @@ final class Autopilot {
         }
     }
 
-    /** Guidance to a position: see the class description. */
+    /** Guidance to a position ({@link io.robomw.sim.vehicle.Guidance}). */
     private VehicleTarget goTo(SimVehicle.Snapshot s, double x, double y, double z, double radius) {
-        double dx = x - s.x();
-        double dy = y - s.y();
-        double dist = Math.hypot(dx, dy);
-        double limit = drive.maxSpeed();
-        if (air) {
-            double v = Math.min(limit, Math.min(POSITION_GAIN * dist, Math.sqrt(2 * STOPPING_ACCELERATION * dist)));
-            double vx = dist > 1e-6 ? v * dx / dist : 0;
-            double vy = dist > 1e-6 ? v * dy / dist : 0;
-            double vz = clamp(CLIMB_GAIN * (z - s.z()), drive.maxClimbRate());
-            return new VehicleTarget(vx, vy, vz, turnRate(s));
-        }
-        if (dist < radius / 2) {
-            return new VehicleTarget(0, 0, 0, turnRate(s));
-        }
-        double err = LocalFrame.normalize(Math.atan2(dy, dx) - s.heading());
-        double rate = clamp(YAW_GAIN * err, drive.maxTurnRate());
-        double speed = Math.min(limit, POSITION_GAIN * dist) * Math.max(0, Math.cos(err));
-        return new VehicleTarget(speed * Math.cos(s.heading()), speed * Math.sin(s.heading()), 0, rate);
+        return io.robomw.sim.vehicle.Guidance.goTo(s, drive.medium(), drive.maxSpeed(), drive.maxClimbRate(), drive.maxTurnRate(), x, y, z,
+                radius, turnRate(s));
     }
 
     private static double clamp(double v, double max) {
