@@ -545,6 +545,24 @@ public final class SimRobot {
                 Quadruped.Joint j = quadruped == null ? null : quadruped.joint(sensor.spec().port());
                 yield j == null ? 0.0 : Math.toRadians(j.angle());
             }
+            case VEHICLE -> vehicleValue(sensor.spec().type(), world);
+        };
+    }
+
+    /** A vehicle's reported quantity, in SI: altitude m, battery 0..1, latitude and longitude in radians. */
+    private double vehicleValue(io.robomw.api.SensorType type, SimWorld world) {
+        if (vehicle == null) {
+            return 0;
+        }
+        io.robomw.sim.vehicle.SimVehicle.Snapshot s = vehicle.snapshot();
+        io.robomw.sim.world.WorldDescription.GeoOrigin home = world.description().surroundings().home();
+        double radius = 6_378_137;
+        return switch (type) {
+            case ALTITUDE -> s.z();
+            case BATTERY -> s.battery();
+            case LATITUDE -> Math.toRadians(home.latitude()) + s.y() / radius;
+            case LONGITUDE -> Math.toRadians(home.longitude()) + s.x() / (radius * Math.cos(Math.toRadians(home.latitude())));
+            default -> 0;
         };
     }
 

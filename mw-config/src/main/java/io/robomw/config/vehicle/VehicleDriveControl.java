@@ -43,9 +43,10 @@ import java.util.concurrent.CompletableFuture;
  *
  * <h2>Pose</h2>
  * The vehicle reports where it is ({@link PoseSource}); the pose is that report, relative to where
- * the robot was first reported (or last reset): x ahead as it then faced, y to its left, heading
- * anti-clockwise, and z its altitude above its home's ground (not reset). No dead reckoning: a
- * vehicle pushed by wind or current is where it says it is.
+ * the robot was when it was opened (or last reset; or first reported, if it had not reported yet
+ * when it was opened): x ahead as it then faced, y to its left, heading anti-clockwise, and z its
+ * altitude above its home's ground (not reset). No dead reckoning: a vehicle pushed by wind or
+ * current is where it says it is.
  *
  * <p>Thread-safe.
  */
@@ -83,6 +84,9 @@ public final class VehicleDriveControl implements DriveControl {
                 this.reference = previous.reference;
                 this.origin = previous.origin;
             }
+        } else {
+            // where the robot is when it is opened is its pose's origin (a vehicle reports it by then)
+            this.reference = reported().orElse(null);
         }
     }
 

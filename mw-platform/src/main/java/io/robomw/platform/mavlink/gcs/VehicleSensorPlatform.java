@@ -20,16 +20,16 @@ import java.util.function.Function;
  * {@code port}:
  *
  * <pre>
- * port               value                                           from
- * distance:forward   metres to what the forward range finder sees      DISTANCE_SENSOR, orientation NONE (0)
+ * port               value (SI, as the sensor types want it)          from                                       type
+ * distance:forward   metres to what the forward range finder sees      DISTANCE_SENSOR, orientation NONE (0)      laser, sonar, range...
  * distance:down      metres to the ground or water below (altimeter)   DISTANCE_SENSOR, orientation PITCH_270 (25)
  * distance:backward, distance:left, distance:right, distance:up        orientations YAW_180, YAW_270, YAW_90, PITCH_90
- * altitude           metres above home                                GLOBAL_POSITION_INT.relative_alt
- * battery:volts      volts                                             SYS_STATUS.voltage_battery
- * battery:remaining  percent                                           SYS_STATUS.battery_remaining
- * gps:latitude       degrees                                           GLOBAL_POSITION_INT.lat
- * gps:longitude      degrees                                           GLOBAL_POSITION_INT.lon
- * heading            radians clockwise from north                      ATTITUDE.yaw
+ * altitude           metres above home                                GLOBAL_POSITION_INT.relative_alt           altitude
+ * battery:remaining  the charge left, 0 to 1                          SYS_STATUS.battery_remaining (percent)     battery
+ * battery:volts      volts                                             SYS_STATUS.voltage_battery                 (read raw)
+ * gps:latitude       radians                                           GLOBAL_POSITION_INT.lat                    latitude
+ * gps:longitude      radians                                           GLOBAL_POSITION_INT.lon                    longitude
+ * heading            radians anti-clockwise from east (a compass's)    ATTITUDE.yaw                               compass
  * </pre>
  * A value the vehicle has not reported yet, or a lost link, fails the read with
  * {@link RobotLinkException} naming the robot and what is missing.
@@ -55,10 +55,10 @@ final class VehicleSensorPlatform extends SensorPlatform {
         }
         m.put("altitude", t -> finite(t.relativeAltitude()));
         m.put("battery:volts", t -> finite(t.batteryVolts()));
-        m.put("battery:remaining", t -> finite(t.batteryRemaining()));
-        m.put("gps:latitude", t -> finite(t.latitude()));
-        m.put("gps:longitude", t -> finite(t.longitude()));
-        m.put("heading", t -> t.local().map(l -> finite(l.yaw())).orElse(OptionalDouble.empty()));
+        m.put("battery:remaining", t -> finite(t.batteryRemaining() / 100));
+        m.put("gps:latitude", t -> finite(Math.toRadians(t.latitude())));
+        m.put("gps:longitude", t -> finite(Math.toRadians(t.longitude())));
+        m.put("heading", t -> t.local().map(l -> finite(Math.PI / 2 - l.yaw())).orElse(OptionalDouble.empty()));
         return Map.copyOf(m);
     }
 
