@@ -11,7 +11,10 @@ import io.robomw.config.description.VehicleDrive;
  *   within its climb rate.</li>
  *   <li>A boat or rover steers toward the point ({@code yaw rate = 2/s · course error}) at a speed
  *   scaled by the cosine of that error (it turns before it goes), and stops within half the
- *   radius.</li>
+ *   radius. A boat crabs against the current: it takes its drift as its ground velocity less its
+ *   speed through the water along its heading (what its GPS and its own speed tell an autopilot),
+ *   and heads and throttles for the velocity through the water that makes its ground velocity point
+ *   at the point (up to its top speed).</li>
  *   <li>A yaw target is turned to at {@code 2/s · yaw error} within the turn rate.</li>
  * </ul>
  * Stateless.
@@ -58,9 +61,18 @@ public final class Guidance {
         if (dist < radius / 2) {
             return new VehicleTarget(0, 0, 0, rate);
         }
-        double err = normalize(Math.atan2(dy, dx) - s.heading());
+        double ground = Math.min(speed, POSITION_GAIN * dist);
+        double wx = ground * dx / dist;
+        double wy = ground * dy / dist;
+        double limit = speed;
+        if (medium == VehicleDrive.Medium.WATER) {
+            wx -= s.vx() - s.surge() * Math.cos(s.heading());
+            wy -= s.vy() - s.surge() * Math.sin(s.heading());
+            limit = Math.max(speed, Math.hypot(wx, wy));
+        }
+        double err = normalize(Math.atan2(wy, wx) - s.heading());
         double steer = clamp(YAW_GAIN * err, turnRate);
-        double v = Math.min(speed, POSITION_GAIN * dist) * Math.max(0, Math.cos(err));
+        double v = Math.min(limit, Math.hypot(wx, wy)) * Math.max(0, Math.cos(err));
         return new VehicleTarget(v * Math.cos(s.heading()), v * Math.sin(s.heading()), 0, steer);
     }
 

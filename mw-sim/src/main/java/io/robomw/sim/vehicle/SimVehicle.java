@@ -48,9 +48,10 @@ public final class SimVehicle {
      * @param battery      charge left, 0 to 1
      * @param volts        battery voltage
      * @param amps         battery current
+     * @param surge        m/s along the heading through the water or over the ground (boats, rovers; 0 for a multirotor)
      */
     public record Snapshot(double time, double x, double y, double z, double heading, double vx, double vy, double vz, double yawRate,
-                           boolean armed, boolean landed, double battery, double volts, double amps) {
+                           boolean armed, boolean landed, double battery, double volts, double amps, double surge) {
     }
 
     /**
@@ -134,7 +135,7 @@ public final class SimVehicle {
 
     private void publish() {
         snapshot = new Snapshot(time, state.x, state.y, state.z, state.heading, state.vx, state.vy, state.vz, state.yawRate,
-                state.armed, state.landed, battery.remaining(), battery.volts(), battery.amps());
+                state.armed, state.landed, battery.remaining(), battery.volts(), battery.amps(), state.surge);
     }
 
     /** @return the velocity x to give its body for the next step */

@@ -101,6 +101,7 @@ public final class VehicleSimPlatform extends HighLevelCommandPlatform {
 
     @Override
     protected void stop(Run run) {
+        planned = null;
         if (running == run) {
             current = null;
             running = null;
@@ -113,6 +114,8 @@ public final class VehicleSimPlatform extends HighLevelCommandPlatform {
     }
 
     private double targetZ = Double.NaN;
+    /** Where the last move or turn meant the vehicle to be (x, y, heading), or {@code null}: the next one starts from there. */
+    private double[] planned;
 
     /**
      * One step of the autopilot: the current command's targets, or holding; ends the command when
@@ -171,11 +174,25 @@ public final class VehicleSimPlatform extends HighLevelCommandPlatform {
 
         Maneuver(HighLevelCommand command, SimVehicle.Snapshot s) {
             this.command = command;
-            this.x0 = s.x();
-            this.y0 = s.y();
             this.z0 = air && !Double.isNaN(targetZ) ? targetZ : s.z();
-            this.h0 = s.heading();
             this.began = time;
+            // as a waypoint autopilot chains its legs: a move or turn starts where the last one aimed,
+            // when the vehicle is within twice the acceptance radius of it (a boat also from the course
+            // it aimed for, whatever its heading: in a current it points into the current to hold on)
+            double[] p = planned;
+            boolean chain = p != null && (command.name().equals("move") || command.name().equals("turn"))
+                    && Math.hypot(p[0] - s.x(), p[1] - s.y()) <= 2 * Math.max(drive.acceptanceRadius(), 0.25)
+                    && (Math.abs(Guidance.normalize(p[2] - s.heading())) <= Math.toRadians(10) || drive.medium() == VehicleDrive.Medium.WATER);
+            this.x0 = chain ? p[0] : s.x();
+            this.y0 = chain ? p[1] : s.y();
+            this.h0 = chain ? p[2] : s.heading();
+            this.turned = chain ? Guidance.normalize(s.heading() - h0) : 0;
+            planned = switch (command.name()) {
+                case "move" -> new double[]{x0 + command.argument("distance") * Math.cos(h0), y0 + command.argument("distance") * Math.sin(h0), h0};
+                case "turn" -> new double[]{x0, y0, Guidance.normalize(h0 + command.argument("angle"))};
+                case "climb" -> planned;
+                default -> null;
+            };
         }
 
         double arg(String key) {

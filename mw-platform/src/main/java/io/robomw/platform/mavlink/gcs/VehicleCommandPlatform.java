@@ -66,6 +66,8 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
     private volatile Payload keep;
     /** The altitude last commanded (down, metres; NaN when none): moves and turns hold it, climbs start from it. */
     private volatile double commandedDown = Double.NaN;
+    /** Where the last motion meant the vehicle to be (north, east, yaw), or {@code null}: the next one starts from there. */
+    private volatile double[] planned;
     private volatile long streamSince = Long.MIN_VALUE;
     private volatile boolean offboardAsked;
 
@@ -106,6 +108,7 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
 
     @Override
     protected void stop(Run run) {
+        planned = null;
         Maneuver m = running.remove(run);
         if (m != null) {
             m.brake();
@@ -158,13 +161,25 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
                 + " (LOCAL_POSITION_NED) yet; is it streaming, and has it a position fix?"));
     }
 
-    /** @return the position with the altitude last commanded, if any (a flyer holds that, not where it has sagged to) */
-    private Telemetry.Local held(Telemetry.Local l) {
-        double down = commandedDown;
-        if (!flyer() || Double.isNaN(down)) {
-            return l;
+    /**
+     * Where a motion starts: where the vehicle is, but, as a waypoint autopilot chains its legs, at
+     * the point and yaw the last motion aimed for when the vehicle is within twice the acceptance
+     * radius of it (so a square of short moves does not shrink by a radius per leg; a boat also at the
+     * course it aimed for, whatever its heading: in a current it points into the current to hold its
+     * place), and at the altitude last commanded (a flyer holds that, not where it has sagged to).
+     */
+    private Telemetry.Local held(Telemetry.Local l, double radius) {
+        double down = flyer() && !Double.isNaN(commandedDown) ? commandedDown : l.down();
+        double[] p = planned;
+        if (p != null && Math.hypot(p[0] - l.north(), p[1] - l.east()) <= 2 * radius
+                && (Math.abs(normalize(p[2] - l.yaw())) <= Math.toRadians(10) || gcs.kind().medium() == VehicleKind.Medium.WATER)) {
+            return new Telemetry.Local(p[0], p[1], down, l.vn(), l.ve(), l.vd(), p[2], l.atNanos());
         }
         return new Telemetry.Local(l.north(), l.east(), down, l.vn(), l.ve(), l.vd(), l.yaw(), l.atNanos());
+    }
+
+    private Telemetry.Local held(Telemetry.Local l) {
+        return held(l, 0);
     }
 
     private boolean flyer() {
@@ -277,6 +292,7 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
         @Override
         void begin() {
             super.begin();
+            planned = null;
             if (!flyer()) {
                 failure = "robot '" + robot() + "' is a " + gcs.kind().medium().name().toLowerCase(Locale.ROOT) + " vehicle: it cannot take off";
                 return;
@@ -324,6 +340,7 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
                 return;
             }
             keep = null;
+            planned = null;
             commandedDown = Double.NaN;
             gcs.command(MavCmd.NAV_LAND, 0, 0, 0, Double.NaN, Double.NaN, Double.NaN, Double.NaN).whenComplete((v, e) -> {
                 if (e != null) {
@@ -360,9 +377,10 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
         @Override
         void begin() {
             super.begin();
-            start = held(here());
+            start = held(here(), radius);
             endNorth = start.north() + distance * Math.cos(start.yaw());
             endEast = start.east() + distance * Math.sin(start.yaw());
+            planned = new double[]{endNorth, endEast, start.yaw()};
             prepare(true);
             tick(began);
         }
@@ -407,8 +425,10 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
         @Override
         void begin() {
             super.begin();
-            start = held(here());
-            lastYaw = start.yaw();
+            start = held(here(), 0.5);
+            lastYaw = here().yaw();
+            turned = normalize(lastYaw - start.yaw());
+            planned = new double[]{start.north(), start.east(), normalize(start.yaw() - angle)};
             prepare(true);
             tick(began);
         }
@@ -457,6 +477,7 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
         @Override
         void begin() {
             super.begin();
+            planned = null;
             lastYaw = here().yaw();
             prepare(true);
             tick(began);
@@ -493,6 +514,7 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
         @Override
         void begin() {
             super.begin();
+            planned = null;
             prepare(true);
             stream();
         }
