@@ -213,7 +213,8 @@ public final class VehicleSetpointBenchmark {
                         robot.drive(0.5, 0);
                         LockSupport.parkNanos(100_000_000L);
                     }
-                    List<long[]> stream = vehicle.setpoints.subList(from, vehicle.setpoints.size());
+                    List<long[]> stream = List.copyOf(vehicle.setpoints);
+                    stream = stream.subList(Math.min(from, stream.size()), stream.size());
                     long[] gaps = new long[stream.size() - 1];
                     for (int k = 1; k < stream.size(); k++) {
                         gaps[k - 1] = stream.get(k)[0] - stream.get(k - 1)[0];
@@ -224,9 +225,10 @@ public final class VehicleSetpointBenchmark {
                     interval[r] = ticks[ticks.length / 2] / 1e6;
                     jitterP50[r] = dev[dev.length / 2] / 1e6;
                     jitterP99[r] = dev[(int) (dev.length * 0.99)] / 1e6;
+                    int streamed = stream.size();
                     robot.stop();
                     System.out.printf(Locale.ROOT, "round %d: drive→wire p50 %.0f µs, plain UDP p50 %.0f µs; stream interval p50 %.2f ms, |jitter| p50 %.2f ms,"
-                            + " p99 %.2f ms (%d setpoints)%n", r + 1, latency[r], base[r], interval[r], jitterP50[r], jitterP99[r], stream.size());
+                            + " p99 %.2f ms (%d setpoints)%n", r + 1, latency[r], base[r], interval[r], jitterP50[r], jitterP99[r], streamed);
                 }
             }
             System.out.printf(Locale.ROOT, "machine: %d processors, %s %s; %d rounds of %d samples; load average %s%n",
