@@ -1,6 +1,7 @@
 package io.robomw.api;
 
 import java.io.Serializable;
+import java.util.List;
 import java.util.UUID;
 
 /**
@@ -10,7 +11,8 @@ import java.util.UUID;
  * (except {@link #report}, which any thread may call).
  *
  * <p>It is also an {@link Agency}: an agent may send other agents from here; their home is
- * this host.
+ * this host. Those calls go to the host's agency ({@link #agency()}), as a {@link Robot}'s go to
+ * its own, so an implementation gives the component rather than forwarding each call.
  */
 public interface AgentContext extends Agency {
 
@@ -41,6 +43,12 @@ public interface AgentContext extends Agency {
      * @throws UnsupportedActionException if this host has no messaging node
      */
     Messaging messaging();
+
+    /**
+     * @return the host's agency, where the {@link Agency} calls of this context go: agents sent
+     *         with it have this host as their home
+     */
+    Agency agency();
 
     /** @return the agent's itinerary (the same object as {@link Agent#itinerary()}) */
     Itinerary itinerary();
@@ -83,4 +91,19 @@ public interface AgentContext extends Agency {
      * @param value the value
      */
     void report(Serializable value);
+
+    @Override
+    default AgentRef sendAgent(String host, Agent agent) {
+        return agency().sendAgent(host, agent);
+    }
+
+    @Override
+    default AgentRef startTrip(Agent agent) {
+        return agency().startTrip(agent);
+    }
+
+    @Override
+    default List<AgentRef> dispatchClones(Agent agent, String... hosts) {
+        return agency().dispatchClones(agent, hosts);
+    }
 }

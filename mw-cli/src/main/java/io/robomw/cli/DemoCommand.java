@@ -111,6 +111,9 @@ final class DemoCommand implements Callable<Integer> {
     @picocli.CommandLine.Mixin
     FoxgloveOption foxglove;
 
+    @picocli.CommandLine.Mixin
+    RosBridgeOption rosbridge;
+
     @Spec
     CommandSpec spec;
 
@@ -211,17 +214,26 @@ final class DemoCommand implements Callable<Integer> {
             Map<String, String> addresses = new LinkedHashMap<>();
             for (String r : names) {
                 int port = freePort();
-                hosts.add(startHost(r, port, robotFiles.get(r), links.get(r), keyFile, logDir));
+                hosts.add(startHost(r, port, robotFiles.get(r), links.get(r), keyFile, logDir, rosbridge.wanted()));
                 addresses.put(r, "rmi://127.0.0.1:" + port + "/" + r);
             }
+            List<io.robomw.console.rosbridge.BridgedRobot> served = new ArrayList<>();
             for (int i = 0; i < names.size(); i++) {
                 String r = names.get(i);
-                awaitReady(r, hosts.get(i), logDir);
+                String ready = awaitReady(r, hosts.get(i), logDir, rosbridge.wanted() ? " served at " : " ready at ");
+                if (rosbridge.wanted()) {
+                    io.robomw.api.Robot remote = io.robomw.api.Robots.remote(ready.substring(ready.indexOf(" served at ") + " served at ".length()).trim());
+                    closeLater.add(0, remote);
+                    served.add(io.robomw.console.rosbridge.BridgedRobot.remote(remote));
+                }
                 step("agent host %s ready at %s (driver: %s over %s)", r, addresses.get(r), EMULATORS.get(platforms.get(r)).title(),
                         describeLink(links.get(r)));
                 if (watching != null) {
                     watching.watchHost(addresses.get(r));
                 }
+            }
+            if (rosbridge.wanted()) {
+                closeLater.add(0, rosbridge.start(served, null, out)); // the robots through their hosts' drivers, as the agents drive them
             }
             Map<String, Pose> startPoses = new LinkedHashMap<>();
             for (String r : names) {
@@ -234,7 +246,7 @@ final class DemoCommand implements Callable<Integer> {
                 if (watching != null) {
                     watching.watchHost(home.address());
                 }
-                List<AgentRef> refs = home.dispatchClones(agent, addresses.values().toArray(String[]::new));
+                List<AgentRef> refs = home.agency().dispatchClones(agent, addresses.values().toArray(String[]::new));
                 step("dispatched clones of %s (its code from %s) to %s", AGENT, jar.getFileName(), hostsWord(names.size()));
                 results = new LinkedHashMap<>();
                 List<CompletableFuture<Serializable>> pending = new ArrayList<>();
@@ -255,7 +267,9 @@ final class DemoCommand implements Callable<Integer> {
                 }
             }
             step("%s home after %.1f s", names.size() == 2 ? "both clones are" : "all " + names.size() + " clones are", (System.nanoTime() - started) / 1e9);
-            stopHosts(hosts);
+            if (!rosbridge.wanted()) {
+                stopHosts(hosts);
+            }
             boolean complete = true;
             for (String r : names) {
                 if (results.get(r) == null) {
@@ -275,7 +289,11 @@ final class DemoCommand implements Callable<Integer> {
             }
             PngRenderer.write(sim.world(), picture, RenderOptions.DEFAULT);
             step("wrote %s (the trajectories)", picture);
-            if (console || foxglove.on()) {
+            if (rosbridge.wanted()) {
+                sim.resumeRealTime(); // ROS clients go on driving the robots through their hosts
+                step("the rosbridge keeps serving the robots%s until Ctrl-C", console || foxglove.on() ? " (and the watchers showing them)" : "");
+                awaitCtrlC();
+            } else if (console || foxglove.on()) {
                 stopHosts(hosts);
                 step((console ? "the console keeps" : "Foxglove keeps") + " showing the run until Ctrl-C");
                 awaitCtrlC();
@@ -423,7 +441,8 @@ final class DemoCommand implements Callable<Integer> {
         throw new IllegalStateException(record.getClass().getName() + " has no component " + name);
     }
 
-    private static Process startHost(String name, int port, Path robotFile, Map<String, String> link, Path keyFile, Path logDir) throws IOException {
+    private static Process startHost(String name, int port, Path robotFile, Map<String, String> link, Path keyFile, Path logDir, boolean serve)
+            throws IOException {
         String java = ProcessHandle.current().info().command().orElse(Path.of(System.getProperty("java.home"), "bin", "java").toString());
         List<String> command = new ArrayList<>(List.of(java, "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-cp", System.getProperty("java.class.path"),
                 Mw.class.getName(), "host", "--name", name, "--port", String.valueOf(port), "--robot", robotFile.toString(),
@@ -432,10 +451,14 @@ final class DemoCommand implements Callable<Integer> {
             command.add("--connection");
             command.add(e.getKey() + "=" + e.getValue());
         }
+        if (serve) {
+            command.addAll(List.of("--serve", "tcp://127.0.0.1:0")); // --rosbridge reaches the robot through its host
+        }
         return new ProcessBuilder(command).redirectError(logDir.resolve(name + "-host.log").toFile()).start();
     }
 
-    private static void awaitReady(String name, Process p, Path logDir) throws IOException, InterruptedException {
+    /** @return the first line of the host's output that holds {@code until} (it is ready once it printed " ready at ") */
+    private static String awaitReady(String name, Process p, Path logDir, String until) throws IOException, InterruptedException {
         BlockingQueue<String> lines = new LinkedBlockingQueue<>();
         Thread reader = new Thread(() -> {
             try (BufferedReader r = new BufferedReader(new InputStreamReader(p.getInputStream(), StandardCharsets.UTF_8))) {
@@ -456,8 +479,8 @@ final class DemoCommand implements Callable<Integer> {
             if (line == null || line.equals("EOF")) {
                 throw new IOException("agent host " + name + " did not start (see " + logDir.resolve(name + "-host.log") + ")");
             }
-            if (line.contains(" ready at ")) {
-                return;
+            if (line.contains(until)) {
+                return line;
             }
         }
     }

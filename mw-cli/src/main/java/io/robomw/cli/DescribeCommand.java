@@ -9,9 +9,9 @@ import io.robomw.config.description.SensorSpec;
 import io.robomw.config.kinematics.DifferentialKinematics;
 import io.robomw.config.robot.DescriptionRobotFactory;
 import io.robomw.api.Clock;
-import io.robomw.api.RobotException;
-import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.PlatformServices;
+import io.robomw.config.yaml.MappingReader;
+import io.robomw.config.yaml.YamlDocument;
 import io.robomw.sim.world.WorldDescription;
 import io.robomw.sim.world.WorldLoader;
 import picocli.CommandLine.Command;
@@ -24,19 +24,26 @@ import java.io.PrintWriter;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
-import java.util.regex.Pattern;
+import java.util.ArrayList;
+import java.util.Comparator;
+import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Locale;
+import java.util.Map;
 import java.util.concurrent.Callable;
+import java.util.regex.Pattern;
+import java.util.stream.Collectors;
 
 /**
  * {@code mw describe FILE.yaml...}: checks robot and world files and prints what the middleware
  * makes of them (geometry in motor terms, sensors, actions; a world's arena and robots). A robot
  * file gets every check {@code mw host} makes before it opens the link: the driver of its
  * platform is on the class path, and the file fits it (port names, sensor types, connection; the
- * driver's own {@link io.robomw.api.spi.PlatformProvider#check}). A world file is recognised by
- * its {@code arena:} and {@code robots:} and each of its robot files is checked. Exit code 2 when
- * a file is invalid.
+ * driver's own {@link io.robomw.api.spi.PlatformProvider#check}). Every problem of a file is
+ * printed, all together, before its description: a platform without a driver with the file's
+ * other problems. A world file is recognised by its {@code arena:} and {@code robots:}; each robot
+ * file it uses is checked and described once, with how many of its robots use it. Exit code 2
+ * when a file is invalid.
  */
 @Command(mixinStandardHelpOptions = true, name = "describe", description = {"Check robot and world YAML files and show what RoboMW reads from them.",
         "A robot file gets every check mw host makes before it opens the link (driver present, port names, sensor types); a world file's robots too."})
@@ -61,7 +68,7 @@ final class DescribeCommand implements Callable<Integer> {
                 if (isWorld(file)) {
                     status = Math.max(status, describeWorld(file, out, err));
                 } else {
-                    status = Math.max(status, describeRobot(new RobotDescriptionLoader().load(file), "", out, err));
+                    status = Math.max(status, describeRobot(file, "", out, err));
                 }
             } catch (DescriptionException e) {
                 err.println(e.getMessage());
@@ -70,9 +77,9 @@ final class DescribeCommand implements Callable<Integer> {
                 err.println(file + ": cannot read it: " + e.getMessage());
                 status = 2;
             }
+            out.flush();
+            err.flush();
         }
-        out.flush();
-        err.flush();
         return status;
     }
 
@@ -90,42 +97,97 @@ final class DescribeCommand implements Callable<Integer> {
         }
     }
 
+    /** How many robots of a world are listed by name and place, and how many names of the robots sharing one robot file. */
+    static final int MAX_LISTED = 20;
+
+    /**
+     * Prints a world, its robots' places, and each robot file it uses once, with how many robots
+     * and which use it (a swarm of 200 robots from one file is one description, not 200).
+     *
+     * @return 0, or 2 when a robot file has a problem
+     */
     private static int describeWorld(Path file, PrintWriter out, PrintWriter err) {
         WorldDescription w = new WorldLoader().load(file);
         out.printf(Locale.ROOT, "%s: world '%s', arena %.2f × %.2f m%s, %d obstacle%s, %d floor patch%s, %d robot%s, physics %.0f Hz, seed %d%n",
                 w.source(), w.name(), w.width(), w.height(), w.walls() ? " with walls" : "", w.obstacles().size(), w.obstacles().size() == 1 ? "" : "s",
                 w.patches().size(), w.patches().size() == 1 ? "" : "es", w.robots().size(), w.robots().size() == 1 ? "" : "s", w.physicsHz(), w.seed());
-        int status = 0;
-        RobotDescriptionLoader loader = new RobotDescriptionLoader();
+        Map<Path, List<WorldDescription.RobotPlacement>> byFile = new LinkedHashMap<>();
         for (WorldDescription.RobotPlacement r : w.robots()) {
-            out.printf(Locale.ROOT, "  robot '%s' at (%.2f, %.2f) heading %.1f°, from %s%n", r.name(), r.start().x(), r.start().y(),
-                    Math.toDegrees(r.start().heading()), r.description());
-            try {
-                status = Math.max(status, describeRobot(loader.load(r.description()), "    ", out, err));
-            } catch (DescriptionException e) {
-                err.println(e.getMessage());
-                status = 2;
-            }
+            byFile.computeIfAbsent(r.description(), f -> new ArrayList<>()).add(r);
+        }
+        w.robots().stream().limit(MAX_LISTED).forEach(r -> out.printf(Locale.ROOT, "  robot '%s' at (%.2f, %.2f) heading %.1f°, from %s%n",
+                r.name(), r.start().x(), r.start().y(), Math.toDegrees(r.start().heading()), r.description()));
+        if (w.robots().size() > MAX_LISTED) {
+            out.printf(Locale.ROOT, "  ... and %d more robots%n", w.robots().size() - MAX_LISTED);
+        }
+        int status = 0;
+        for (Map.Entry<Path, List<WorldDescription.RobotPlacement>> group : byFile.entrySet()) {
+            List<String> names = group.getValue().stream().map(WorldDescription.RobotPlacement::name).toList();
+            out.printf(Locale.ROOT, "  robot file %s, for %d robot%s: %s%n", group.getKey(), names.size(), names.size() == 1 ? "" : "s", listed(names));
+            status = Math.max(status, describeRobot(group.getKey(), "    ", out, err));
         }
         return status;
     }
 
-    /** Prints a robot, then runs its platform's checks; @return 0, or 2 when the file does not fit its platform */
-    private static int describeRobot(RobotDescription d, String indent, PrintWriter out, PrintWriter err) {
-        print(out, d, indent);
-        List<String> problems;
+    /** @return up to {@link #MAX_LISTED} names, and how many more */
+    static String listed(List<String> names) {
+        String shown = names.stream().limit(MAX_LISTED).map(n -> "'" + n + "'").collect(Collectors.joining(", "));
+        return names.size() > MAX_LISTED ? shown + " and " + (names.size() - MAX_LISTED) + " more" : shown;
+    }
+
+    /**
+     * Checks a robot file as {@code mw host} does before it opens the link, prints every problem
+     * it finds (the file's own, a platform without a driver, what its driver refuses), and then,
+     * if the file could be read, what RoboMW makes of it.
+     *
+     * @return 0, or 2 when the file has a problem
+     */
+    private static int describeRobot(Path file, String indent, PrintWriter out, PrintWriter err) {
+        List<DescriptionException.Problem> problems = new ArrayList<>();
+        RobotDescription d = null;
         try {
-            PlatformProvider provider = DescriptionRobotFactory.provider(d);
-            problems = provider.check(DescriptionRobotFactory.platformConfig(d, PlatformServices.none(), Clock.system(), io.robomw.api.spi.Cycling.OWN_THREADS));
-        } catch (RobotException e) {
-            err.println(e.getMessage());
-            return 2;
+            d = new RobotDescriptionLoader().load(file);
+        } catch (DescriptionException e) {
+            problems.addAll(e.problems());
+        }
+        platformProblem(file).ifPresent(problems::add);
+        List<String> misfits = List.of();
+        if (d != null && problems.isEmpty()) {
+            misfits = DescriptionRobotFactory.provider(d)
+                    .check(DescriptionRobotFactory.platformConfig(d, PlatformServices.none(), Clock.system(), io.robomw.api.spi.Cycling.OWN_THREADS));
         }
         if (!problems.isEmpty()) {
-            err.println(DescriptionRobotFactory.misfit(d, problems));
-            return 2;
+            problems.sort(Comparator.comparingInt(DescriptionException.Problem::line).thenComparingInt(DescriptionException.Problem::column));
+            err.println(new DescriptionException(problems).getMessage());
         }
-        return 0;
+        if (!misfits.isEmpty()) {
+            err.println(DescriptionRobotFactory.misfit(d, misfits));
+        }
+        if (d != null) {
+            print(out, d, indent);
+        }
+        return problems.isEmpty() && misfits.isEmpty() ? 0 : 2;
+    }
+
+    /**
+     * @return the problem of a {@code platform:} that no driver on the class path has, at its place
+     *         in the file, found whatever else is wrong with the file; empty if the driver is
+     *         there, or the file has no readable platform (the loader says why)
+     */
+    private static java.util.Optional<DescriptionException.Problem> platformProblem(Path file) {
+        MappingReader root;
+        try {
+            root = YamlDocument.read(file);
+        } catch (DescriptionException e) {
+            return java.util.Optional.empty();
+        }
+        java.util.Optional<String> platform = root.text("platform").filter(p -> !p.isBlank());
+        if (platform.isEmpty()) {
+            return java.util.Optional.empty();
+        }
+        org.yaml.snakeyaml.error.Mark at = root.mark("platform");
+        return DescriptionRobotFactory.missingDriver(platform.get())
+                .map(why -> new DescriptionException.Problem(file.toString(), at.getLine() + 1, at.getColumn() + 1, "'platform': " + why));
     }
 
     private static void print(PrintWriter out, RobotDescription d, String indent) {

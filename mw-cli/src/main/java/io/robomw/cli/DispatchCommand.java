@@ -108,7 +108,7 @@ final class DispatchCommand implements Callable<Integer> {
         if (clone) {
             List<AgentRef> refs;
             try {
-                refs = home.dispatchClones(agent, hosts.toArray(String[]::new));
+                refs = home.agency().dispatchClones(agent, hosts.toArray(String[]::new));
             } catch (PartialDispatchException e) {
                 refs = e.sent();
                 unsent.putAll(e.unsent());
@@ -124,7 +124,7 @@ final class DispatchCommand implements Callable<Integer> {
             });
         } else {
             hosts.forEach(h -> agent.itinerary().addStop(h));
-            AgentRef ref = home.startTrip(agent);
+            AgentRef ref = home.agency().startTrip(agent);
             sent.add(new TripSummary.Sent("agent " + ref.id().toString().substring(0, 8), ref));
         }
         List<CompletableFuture<Boolean>> done = new ArrayList<>();

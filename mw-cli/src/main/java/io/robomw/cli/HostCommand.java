@@ -113,6 +113,9 @@ final class HostCommand implements Callable<Integer> {
     @Mixin
     FoxgloveOption foxglove;
 
+    @Mixin
+    RosBridgeOption rosbridge;
+
     @Spec
     CommandSpec spec;
 
@@ -202,6 +205,17 @@ final class HostCommand implements Callable<Integer> {
             }
             if (presenceNode != null) {
                 open.add(0, beacon.announce(presenceNode));
+            }
+            if (rosbridge.wanted()) {
+                if (robot == null) {
+                    err.println("--rosbridge needs a robot (--robot or --world)");
+                    closeAll(open);
+                    return 2;
+                }
+                io.robomw.console.rosbridge.BridgedRobot bridged = sim != null
+                        ? io.robomw.console.rosbridge.BridgedRobot.simulated(robot, sim.world().robot(worldRobot))
+                        : io.robomw.console.rosbridge.BridgedRobot.described(robot, new io.robomw.config.description.RobotDescriptionLoader().load(robotFile));
+                open.add(0, rosbridge.start(java.util.List.of(bridged), host.messagingNode().orElse(servingNode), out));
             }
             out.printf("agent host %s ready at %s (robot: %s, store: %s)%n", name, host.address(), robot == null ? "none" : robot.name(),
                     store == null ? "memory" : store);

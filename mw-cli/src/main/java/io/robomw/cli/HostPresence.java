@@ -1,5 +1,6 @@
 package io.robomw.cli;
 
+import io.robomw.agents.net.OwnerThreads;
 import io.robomw.agents.host.AgentHost;
 import io.robomw.agents.host.AgentInfo;
 import io.robomw.agents.messaging.MessagingNode;
@@ -45,18 +46,11 @@ final class HostPresence implements AutoCloseable {
         }
         MessagingNode announcing = node;
         announcing.presence().host(host.name(), host.address());
-        ScheduledExecutorService refresh = Executors.newSingleThreadScheduledExecutor(r -> {
-            Thread t = new Thread(r, "mw-host-presence-" + host.name());
-            t.setDaemon(true);
-            return t;
-        });
-        refresh.scheduleWithFixedDelay(() -> {
-            try {
-                announcing.presence().agents(describe(host.agents()));
-            } catch (RuntimeException e) {
-                org.slf4j.LoggerFactory.getLogger(HostPresence.class).warn("host {}: cannot announce its agents: {}", host.name(), e.toString());
-            }
-        }, 0, REFRESH_MILLIS, TimeUnit.MILLISECONDS);
+        ScheduledExecutorService refresh = Executors.newSingleThreadScheduledExecutor(
+                r -> OwnerThreads.thread("mw-host-presence-" + host.name(), r, announcing.failures()));
+        // a failed announcement is reported to the node's failure policy, and the next one comes
+        refresh.scheduleWithFixedDelay(OwnerThreads.rounds(announcing.failures(), () -> announcing.presence().agents(describe(host.agents()))),
+                0, REFRESH_MILLIS, TimeUnit.MILLISECONDS);
         return new HostPresence(announcing, own, refresh);
     }
 

@@ -26,6 +26,7 @@ import java.util.Arrays;
         subcommands = {DescribeCommand.class, SimCommand.class, EmulateCommand.class, MsgCommand.class, BrokerCommand.class, HostCommand.class,
                 AgentsCommand.class, DispatchCommand.class, RetractCommand.class, DisposeCommand.class, DemoCommand.class, ConsoleCommand.class, RecordCommand.class, ReplayCommand.class,
                 RunCommand.class, ClasspathCommand.class, RobotCommand.class, NewCommand.class, UpCommand.class, NodesCommand.class, TopicsCommand.class,
+                RosbridgeCommand.class,
                 CommandLine.HelpCommand.class, AutoComplete.GenerateCompletion.class})
 public final class Mw {
 

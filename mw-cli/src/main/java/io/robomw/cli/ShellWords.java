@@ -3,13 +3,22 @@ package io.robomw.cli;
 import java.util.ArrayList;
 import java.util.List;
 
-/** Splits a command line into words as a shell does for plain words and quotes ('...' and "..."); no variables, no escapes. */
-final class ShellWords {
+/**
+ * Splits a command line into words as a shell does for plain words and quotes ('...' and "...");
+ * no variables, no escapes. For {@code mw up}'s command lines and the tests that run the commands
+ * the docs show.
+ */
+public final class ShellWords {
 
     private ShellWords() {
     }
 
-    static List<String> split(String line) {
+    /**
+     * @param line a command line
+     * @return its words, quotes removed
+     * @throws IllegalArgumentException if a quote is not closed
+     */
+    public static List<String> split(String line) {
         List<String> words = new ArrayList<>();
         StringBuilder w = new StringBuilder();
         char quote = 0;

@@ -128,6 +128,9 @@ final class SimCommand implements Callable<Integer> {
     @CommandLine.Mixin
     private FoxgloveOption foxglove;
 
+    @CommandLine.Mixin
+    private RosBridgeOption rosbridge;
+
     @Spec
     private CommandSpec spec;
 
@@ -207,9 +210,19 @@ final class SimCommand implements Callable<Integer> {
                 watching.recording().ifPresent(f -> out.println("recording to " + f));
                 out.flush();
             }
+            io.robomw.console.rosbridge.RosBridge bridge = null;
             try {
+                if (rosbridge.wanted()) {
+                    bridge = startRosBridge(sim, out, err);
+                    if (bridge == null) {
+                        return FAILED;
+                    }
+                }
                 return runAndReport(sim, out, err, options);
             } finally {
+                if (bridge != null) {
+                    bridge.close();
+                }
                 if (watching != null) {
                     watching.close();
                 }
@@ -224,7 +237,7 @@ final class SimCommand implements Callable<Integer> {
             try {
                 if (view) {
                     runInViewer(sim, options);
-                } else if (pace != null && pace.realTime || (console || foxglove.on()) && pace == null) {
+                } else if (pace != null && pace.realTime || (console || foxglove.on() || rosbridge.wanted()) && pace == null) {
                     runInRealTime(sim);
                 } else {
                     runFast(sim);
@@ -257,6 +270,26 @@ final class SimCommand implements Callable<Integer> {
         }
     }
 
+    /**
+     * Serves the world's robots to ROS 2 clients (--rosbridge) until the run ends or Ctrl-C.
+     *
+     * @return the endpoint, or {@code null} if it could not start (said on {@code err})
+     */
+    private io.robomw.console.rosbridge.RosBridge startRosBridge(Simulation sim, PrintWriter out, PrintWriter err) {
+        List<io.robomw.console.rosbridge.BridgedRobot> robots = new ArrayList<>();
+        for (Robot r : sim.robots()) {
+            robots.add(io.robomw.console.rosbridge.BridgedRobot.simulated(r, sim.world().robot(r.name())));
+        }
+        try {
+            io.robomw.console.rosbridge.RosBridge bridge = rosbridge.start(robots, null, out);
+            Runtime.getRuntime().addShutdownHook(new Thread(bridge::close, "mw-sim-rosbridge-shutdown"));
+            return bridge;
+        } catch (IOException | IllegalArgumentException e) {
+            err.println("mw sim: " + e.getMessage());
+            return null;
+        }
+    }
+
     /** Waits for Ctrl-C (or SIGTERM), so a page stays up after the run. */
     private void awaitCtrlC() {
         try {
@@ -280,6 +313,12 @@ final class SimCommand implements Callable<Integer> {
         }
         if (width < RenderOptions.MIN_SIZE_PX || width > RenderOptions.MAX_SIZE_PX) {
             throw new CommandLine.ParameterException(cl, "--width must be " + RenderOptions.MIN_SIZE_PX + " to " + RenderOptions.MAX_SIZE_PX + " px, got " + width);
+        }
+        if (rosbridge.wanted() && pace != null && pace.fast) {
+            throw new CommandLine.ParameterException(cl, "--rosbridge runs the world in real time (ROS clients drive it as it runs), so it cannot be combined with --fast");
+        }
+        if (rosbridge.wanted() && !cl.getParseResult().hasMatchedOption("--duration")) {
+            duration = Double.POSITIVE_INFINITY; // a world served to ROS clients runs until Ctrl-C
         }
         if (view && pace != null && pace.fast) {
             throw new CommandLine.ParameterException(cl, "--view runs the world in real time, so it cannot be combined with --fast; "

@@ -1,6 +1,7 @@
 package io.robomw.cli;
 
 import io.robomw.agents.host.AgentHost;
+import io.robomw.agents.host.StartedHosts;
 import io.robomw.agents.host.ClusterKey;
 import io.robomw.agents.host.HostProbe;
 import io.robomw.agents.host.code.CodeArchive;
@@ -9,9 +10,9 @@ import io.robomw.testkit.Await;
 import io.robomw.cli.agents.HelloAgent;
 import io.robomw.cli.agents.NoDefaultConstructorAgent;
 import io.robomw.cli.agents.RobotAgent;
-import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.BeforeEach;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.extension.RegisterExtension;
 import org.junit.jupiter.api.io.TempDir;
 
 import java.io.IOException;
@@ -42,7 +43,8 @@ class AgentCommandsTest {
     Path dir;
     private Path key;
     private Path jar;
-    private final List<AgentHost> hosts = new ArrayList<>();
+    @RegisterExtension
+    final StartedHosts hosts = new StartedHosts();
 
     record Run(int status, String out, String err) {
     }
@@ -63,15 +65,8 @@ class AgentCommandsTest {
         }
     }
 
-    @AfterEach
-    void closeHosts() {
-        hosts.forEach(AgentHost::close);
-    }
-
-    private AgentHost host(String name) throws IOException {
-        AgentHost h = AgentHost.builder(name).clusterKey(ClusterKey.read(key)).noMessaging().stopGrace(Duration.ZERO).start();
-        hosts.add(h);
-        return h;
+    private AgentHost host(String name) throws Exception {
+        return hosts.start(AgentHost.builder(name).clusterKey(ClusterKey.read(key)).noMessaging().stopGrace(Duration.ZERO));
     }
 
     private Run mw(String... args) {

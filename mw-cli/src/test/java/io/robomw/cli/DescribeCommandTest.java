@@ -77,4 +77,57 @@ class DescribeCommandTest {
         assertEquals(2, host.status());
         assertTrue(host.err().contains("sensor 'sonar': the NXT has no standard gyro sensor"), host.err());
     }
+
+    /** @return what {@code mw describe} printed, standard output and error in one stream, in the order printed */
+    private static String describedInOrder(Path file) {
+        java.io.StringWriter both = new java.io.StringWriter();
+        picocli.CommandLine cl = Mw.commandLine();
+        java.io.PrintWriter w = new java.io.PrintWriter(both, true);
+        cl.setOut(w);
+        cl.setErr(w);
+        assertEquals(2, cl.execute("describe", file.toString()));
+        return both.toString();
+    }
+
+    @Test
+    void anUnknownPlatformIsReportedWithTheFilesOtherProblems() throws IOException {
+        Path file = dir.resolve("two-problems.yaml");
+        Files.writeString(file, Files.readString(NXT).replace("platform: nxt", "platform: nxtt").replace("cycle_hz: 100", "cycle_hz: 5000"));
+
+        CliRun run = CliRun.mw("describe", file.toString());
+
+        assertEquals(2, run.status());
+        assertTrue(run.err().contains("2 problems:"), run.err());
+        assertTrue(run.err().contains("two-problems.yaml:5:11: 'platform': unknown platform 'nxtt'; did you mean 'nxt'?"), run.err());
+        assertTrue(run.err().contains("two-problems.yaml:9:11: 'cycle_hz' must be between 1 and 1000, got '5000'"), run.err());
+        assertEquals("", run.out(), "a file that cannot be read is not described");
+    }
+
+    @Test
+    void everyProblemIsPrintedBeforeTheDescription() throws IOException {
+        String printed = describedInOrder(nxtWith("nxtt.yaml", "platform: nxt", "platform: nxtt"));
+
+        int problem = printed.indexOf("unknown platform 'nxtt'");
+        int description = printed.indexOf("robot 'nxt-1' on platform 'nxtt'");
+        assertTrue(problem >= 0 && description > problem, printed);
+    }
+
+    @Test
+    void aWorldOfTwoHundredRobotsFromOneFileDescribesThatFileOnce() throws IOException {
+        Files.copy(NXT, dir.resolve("nxt.yaml"));
+        StringBuilder world = new StringBuilder("name: swarm\narena: { width: 10, height: 10 }\nrobots:\n");
+        for (int i = 0; i < 200; i++) {
+            world.append(String.format(java.util.Locale.ROOT, "  - { robot: nxt.yaml, name: n%d, x: %.2f, y: %.2f }%n", i, 0.5 + (i % 20) * 0.45, 0.5 + (i / 20) * 0.5));
+        }
+        Files.writeString(dir.resolve("world.yaml"), world);
+
+        CliRun run = CliRun.mw("describe", dir.resolve("world.yaml").toString());
+
+        assertEquals(0, run.status(), run.err());
+        assertEquals(1, run.out().split("robot 'nxt-1' on platform 'nxt'", -1).length - 1, run.out());
+        assertTrue(run.out().contains("robot file " + dir.resolve("nxt.yaml") + ", for 200 robots: 'n0', 'n1', "), run.out());
+        assertTrue(run.out().contains("'n19' and 180 more\n"), run.out());
+        assertTrue(run.out().contains("robot 'n19' at (9.05, 0.50)") && !run.out().contains("robot 'n20' at"), run.out());
+        assertTrue(run.out().contains("  ... and 180 more robots\n"), run.out());
+    }
 }

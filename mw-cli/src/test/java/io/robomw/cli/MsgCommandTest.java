@@ -1,5 +1,6 @@
 package io.robomw.cli;
 
+import io.robomw.testkit.Await;
 import org.junit.jupiter.api.Test;
 import picocli.CommandLine;
 
@@ -8,8 +9,10 @@ import java.io.PrintWriter;
 import java.io.StringWriter;
 import java.net.InetAddress;
 import java.net.ServerSocket;
+import java.time.Duration;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicReference;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
@@ -53,11 +56,12 @@ class MsgCommandTest {
         String address = "tcp://127.0.0.1:" + freeTcpPort();
         CompletableFuture<Run> sub = CompletableFuture.supplyAsync(() -> mw("msg", "sub", address, "cmd", "--bind", "--echo",
                 "--password", "pw", "--count", "1", "--timeout", "20"));
-        Run send;
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(20);
-        do {
-            send = mw("msg", "send", address, "*", "cmd", "ping", "--password", "pw", "--timeout", "5");
-        } while (send.status() != 0 && System.nanoTime() < deadline && send.err().contains("cannot reach"));
+        AtomicReference<Run> sent = new AtomicReference<>();
+        Await.until("the subscriber is reachable", Duration.ofSeconds(20), () -> {
+            sent.set(mw("msg", "send", address, "*", "cmd", "ping", "--password", "pw", "--timeout", "5"));
+            return !sent.get().err().contains("cannot reach");
+        });
+        Run send = sent.get();
         assertEquals(0, send.status(), send.err());
         assertTrue(send.out().contains("reply [cmd] mw-msg echo: ping"), send.out());
         assertEquals(0, sub.get(20, TimeUnit.SECONDS).status());
@@ -100,11 +104,12 @@ class MsgCommandTest {
         String address = "tcp://127.0.0.1:" + freeTcpPort();
         CompletableFuture<Run> sub = CompletableFuture.supplyAsync(() -> mw("msg", "sub", address, "cmd", "--bind", "--echo",
                 "--password", "right", "--count", "1", "--timeout", "20s"));
-        Run wrong;
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(20);
-        do {
-            wrong = mw("msg", "send", address, "*", "cmd", "ping", "--password", "wrong", "--timeout", "5s");
-        } while (System.nanoTime() < deadline && wrong.err().contains("cannot reach"));
+        AtomicReference<Run> sent = new AtomicReference<>();
+        Await.until("the subscriber is reachable", Duration.ofSeconds(20), () -> {
+            sent.set(mw("msg", "send", address, "*", "cmd", "ping", "--password", "wrong", "--timeout", "5s"));
+            return !sent.get().err().contains("cannot reach");
+        });
+        Run wrong = sent.get();
         assertEquals(1, wrong.status());
         assertTrue(wrong.err().contains("topic 'cmd' is password-protected and the message had a wrong password"), wrong.err());
         Run missing = mw("msg", "send", address, "*", "cmd", "ping", "--timeout", "5s");

@@ -1,5 +1,7 @@
 package io.robomw.console;
 
+import io.robomw.agents.net.OwnerThreads;
+import io.robomw.api.spi.FailurePolicy;
 import io.robomw.agents.host.ClusterKey;
 import io.robomw.api.Robot;
 import io.robomw.console.foxglove.FoxgloveServer;
@@ -58,6 +60,7 @@ public final class Console implements AutoCloseable {
     private final Simulation sim;
     private final ClusterKey key;
     private final Duration period;
+    private final FailurePolicy failures;
     private ConsoleServer server;
     private boolean closed;
 
@@ -76,6 +79,7 @@ public final class Console implements AutoCloseable {
         this.sim = b.simulation;
         this.key = b.key;
         this.period = b.period;
+        this.failures = b.failures;
     }
 
     /** @param title shown on the page: the command that runs the console @return a builder */
@@ -101,6 +105,7 @@ public final class Console implements AutoCloseable {
         private boolean discover;
         private String foxgloveBind = "127.0.0.1";
         private int foxglovePort = -1;
+        private FailurePolicy failures = FailurePolicy.logging();
 
         private Builder(String title) {
             this.title = Objects.requireNonNull(title);
@@ -195,6 +200,17 @@ public final class Console implements AutoCloseable {
         /** Seconds between two looks at the watched hosts' directories. */
         public static final int DISCOVER_SECONDS = 5;
 
+        /**
+         * @param policy where whatever the console's threads catch goes (default
+         *               {@link FailurePolicy#logging()}): its host and robot watchers, its discovery,
+         *               its recorder, its page's pushes and requests
+         * @return this
+         */
+        public Builder failures(FailurePolicy policy) {
+            this.failures = Objects.requireNonNull(policy, "policy");
+            return this;
+        }
+
         /** @param period how often hosts and robots are asked @return this */
         public Builder period(Duration period) {
             this.period = period;
@@ -212,7 +228,7 @@ public final class Console implements AutoCloseable {
                 throw new IllegalArgumentException("watching agent hosts needs the cluster key (--key-file, MW_CLUSTER_KEY or ~/.robomw/cluster.key): "
                         + "hosts answer authenticated peers only");
             }
-            McapRecorder recorder = recording == null ? null : McapRecorder.start(recording, about);
+            McapRecorder recorder = recording == null ? null : McapRecorder.start(recording, about, failures);
             Console c = new Console(this, recorder);
             try {
                 c.open(this);
@@ -235,50 +251,46 @@ public final class Console implements AutoCloseable {
             others.add(SimSource.watch(b.simulation, observer));
         }
         for (String h : b.hostAddresses) {
-            hosts.add(HostWatcher.watch(h, b.key != null ? b.key : ClusterKey.tlsOnly(), b.tls, observer, b.period));
+            hosts.add(HostWatcher.watch(h, b.key != null ? b.key : ClusterKey.tlsOnly(), b.tls, observer, b.period, failures));
         }
         for (String r : b.robotAddresses) {
-            robots.add(RobotWatcher.watch(r, observer, b.period.dividedBy(2)));
+            robots.add(RobotWatcher.watch(r, observer, b.period.dividedBy(2), failures));
         }
         if (b.discover) {
-            java.util.concurrent.ScheduledExecutorService s = java.util.concurrent.Executors.newSingleThreadScheduledExecutor(r -> {
-                Thread t = new Thread(r, "console-discover");
-                t.setDaemon(true);
-                return t;
-            });
-            s.scheduleWithFixedDelay(this::discoverHosts, 0, Builder.DISCOVER_SECONDS, java.util.concurrent.TimeUnit.SECONDS);
+            java.util.concurrent.ScheduledExecutorService s = java.util.concurrent.Executors.newSingleThreadScheduledExecutor(
+                    r -> OwnerThreads.thread("console-discover", r, failures));
+            s.scheduleWithFixedDelay(OwnerThreads.rounds(failures, this::discoverHosts), 0, Builder.DISCOVER_SECONDS, java.util.concurrent.TimeUnit.SECONDS);
             others.add(s::shutdownNow);
         }
         if (b.page) {
-            server = ConsoleServer.start(view, new ConsoleControls(), b.bind, b.port);
+            server = ConsoleServer.start(view, new ConsoleControls(), b.bind, b.port, failures);
         }
     }
 
-    /** Asks each watched host which hosts it knows, and watches the ones not watched yet. */
+    /**
+     * Asks each watched host which hosts it knows, over its watcher's link (one session per host
+     * for the console's life, not one per look), and watches the ones not watched yet.
+     */
     private void discoverHosts() {
-        try {
-            for (HostWatcher w : List.copyOf(hosts)) {
-                if (!w.last().up()) {
-                    continue;
-                }
-                io.robomw.agents.host.HostDescription d;
-                try {
-                    d = io.robomw.agents.host.AgentHost.describe(w.address(), key != null ? key : ClusterKey.tlsOnly(), key == null);
-                } catch (IOException | RuntimeException e) {
-                    LOG.debug("console: {} did not say which hosts it knows: {}", w.address(), e.toString());
-                    continue;
-                }
-                for (io.robomw.agents.host.HostDescription.Known k : d.known()) {
-                    synchronized (this) {
-                        if (!closed && hosts.stream().noneMatch(h -> h.address().equals(k.address()))) {
-                            LOG.info("console: {} knows host {} at {}: watching it too", w.address(), k.name(), k.address());
-                            watchHost(k.address());
-                        }
+        for (HostWatcher w : List.copyOf(hosts)) {
+            if (!w.last().up()) {
+                continue;
+            }
+            io.robomw.agents.host.HostDescription d;
+            try {
+                d = w.describe();
+            } catch (IOException | RuntimeException e) {
+                LOG.debug("console: {} did not say which hosts it knows: {}", w.address(), e.toString());
+                continue;
+            }
+            for (io.robomw.agents.host.HostDescription.Known k : d.known()) {
+                synchronized (this) {
+                    if (!closed && hosts.stream().noneMatch(h -> h.address().equals(k.address()))) {
+                        LOG.info("console: {} knows host {} at {}: watching it too", w.address(), k.name(), k.address());
+                        watchHost(k.address());
                     }
                 }
             }
-        } catch (RuntimeException | Error e) {
-            LOG.error("console: looking for more hosts failed: {}", e.toString(), e);
         }
     }
 
@@ -288,7 +300,7 @@ public final class Console implements AutoCloseable {
      * @param address the host
      */
     public void watchHost(String address) {
-        hosts.add(HostWatcher.watch(address, key != null ? key : ClusterKey.tlsOnly(), key == null, observer, period));
+        hosts.add(HostWatcher.watch(address, key != null ? key : ClusterKey.tlsOnly(), key == null, observer, period, failures));
     }
 
     /**
@@ -298,7 +310,7 @@ public final class Console implements AutoCloseable {
      * @param source where it is (its robot file, its host), for the page
      */
     public void watchRobot(Robot robot, String source) {
-        robots.add(RobotWatcher.watch(robot, source, observer, period.dividedBy(2)));
+        robots.add(RobotWatcher.watch(robot, source, observer, period.dividedBy(2), failures));
     }
 
     /** @return the addresses of the hosts watched, those found through the directory included */

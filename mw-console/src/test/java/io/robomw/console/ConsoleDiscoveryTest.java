@@ -35,7 +35,7 @@ class ConsoleDiscoveryTest {
              AgentHost b = AgentHost.builder("b").clusterKey(KEY).start()) {
             Hopper hopper = new Hopper();
             hopper.itinerary().addStop(a.address()).addStop(b.address());
-            AgentRef ref = home.startTrip(hopper);
+            AgentRef ref = home.agency().startTrip(hopper);
             assertEquals("b", ref.result().get(10, TimeUnit.SECONDS));
             Await.until("a knows b", Duration.ofSeconds(10), () -> {
                 try {

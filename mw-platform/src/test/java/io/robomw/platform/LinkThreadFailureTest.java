@@ -11,7 +11,10 @@ import io.robomw.api.spi.MotorTarget;
 import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformServices;
 import io.robomw.api.spi.SensorChannel;
-import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.motor.FeedbackSink;
+import io.robomw.platform.motor.LinkTiming;
+import io.robomw.platform.motor.MotorDriver;
+import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.motor.MotorState;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
@@ -46,7 +49,7 @@ class LinkThreadFailureTest {
      * A driver whose feedback poll throws what a test puts in {@link #throwOnce}, or holds the
      * poll until {@link #release} and then refuses it with {@link #refuseHeldPoll}; records what it sends.
      */
-    static final class FailingMotors extends GenericMotorPlatform {
+    static final class FailingMotors implements MotorDriver {
         final List<List<MotorState>> sent = new CopyOnWriteArrayList<>();
         final AtomicReference<Throwable> throwOnce = new AtomicReference<>();
         final CompletableFuture<Void> thrown = new CompletableFuture<>();
@@ -54,17 +57,18 @@ class LinkThreadFailureTest {
         final CompletableFuture<Void> pollHeld = new CompletableFuture<>();
         final CountDownLatch release = new CountDownLatch(1);
 
-        FailingMotors() {
-            super("failing", Clock.system(), List.of("B", "C"));
+        @Override
+        public LinkTiming timing() {
+            return LinkTiming.NONE;
         }
 
         @Override
-        protected void runImpl(List<MotorState> motors) {
+        public void send(List<MotorState> motors, FeedbackSink feedback) {
             sent.add(List.copyOf(motors));
         }
 
         @Override
-        protected void pollFeedback() {
+        public int poll(FeedbackSink feedback) {
             RuntimeException refusal = refuseHeldPoll.getAndSet(null);
             if (refusal != null) {
                 pollHeld.complete(null);
@@ -85,6 +89,7 @@ class LinkThreadFailureTest {
                 }
                 throw (RuntimeException) t;
             }
+            return 0;
         }
     }
 
@@ -95,13 +100,14 @@ class LinkThreadFailureTest {
         PlatformConfig config = new PlatformConfig("failing", "fake", new ConnectionSettings(Map.of(), "test"),
                 List.of(MotorChannel.actuator("B"), MotorChannel.actuator("C")), List.of(), Duration.ofMillis(5), Duration.ZERO, Clock.system(),
                 PlatformServices.none(), io.robomw.api.spi.Cycling.OWN_THREADS, io.robomw.api.spi.FailurePolicy.logging());
-        SensorPlatform sensors = new SensorPlatform(motors) {
+        MotorPlatform motorPlatform = new MotorPlatform(config, motors);
+        SensorPlatform sensors = new SensorPlatform(motorPlatform) {
             @Override
             public Sensor createSensor(SensorChannel channel) {
                 return () -> CompletableFuture.completedFuture(0.0);
             }
         };
-        platform = new BrickPlatform(config, motors, sensors, LinkThreading.OWN_THREAD, null).start();
+        platform = new BrickPlatform(config, motorPlatform, sensors, null, null).start();
         return platform;
     }
 

@@ -98,7 +98,7 @@ public final class SimRobot {
 
     SimRobot(int index, String name, RobotDescription description, Physics physics, int body, long seed,
              java.util.function.LongSupplier nanos, io.robomw.sim.world.WorldDescription.TrajectorySettings trajectorySettings,
-             io.robomw.sim.world.WorldDescription.Surroundings surroundings) {
+             io.robomw.api.spi.FailurePolicy failures, io.robomw.sim.world.WorldDescription.Surroundings surroundings) {
         this.surroundings = surroundings;
         this.index = index;
         this.trajectory = new Trajectory(trajectorySettings);
@@ -129,7 +129,7 @@ public final class SimRobot {
         this.hasTouch = touch;
         this.hasAccel = acc;
         this.quadruped = description.leggedDrive().map(d -> new Quadruped(d, seed * 0x9E3779B97F4A7C15L + index * 7_919L + 17)).orElse(null);
-        this.kernel = quadruped == null ? null : new UrbiKernel(name, quadruped, this::urbiSensor, nanos);
+        this.kernel = quadruped == null ? null : new UrbiKernel(name, quadruped, this::urbiSensor, nanos, failures);
         readPose();
         lastX = physics.x(body);
         lastY = physics.y(body);
@@ -268,6 +268,18 @@ public final class SimRobot {
             }
         }
         return -1;
+    }
+
+    /**
+     * Sets every motor to rest and the body's velocities to match, when the world halts (its
+     * stepping thread died): what no end action could stop is stopped here.
+     */
+    void halt() {
+        java.util.Arrays.fill(commanded, 0);
+        if (quadruped != null) {
+            quadruped.stop();
+        }
+        applyDrive();
     }
 
     /** Sets the body's velocities from the commanded wheel speeds. */
@@ -515,8 +527,11 @@ public final class SimRobot {
                 double raw = r.sensor().spec().conversion().invert(kind == SensorModel.Kind.JOINT || kind == SensorModel.Kind.TACHO
                         ? Math.toDegrees(si) : si);
                 world.lockstep().defer(() -> f.complete(raw));
-            } catch (RuntimeException e) {
-                world.lockstep().defer(() -> f.completeExceptionally(e));
+            } catch (Throwable e) {
+                if (!io.robomw.api.spi.FailurePolicy.survivable(e)) {
+                    throw e; // no thread survives it: the world's thread dies of it, and halts the world
+                }
+                world.lockstep().defer(() -> f.completeExceptionally(e)); // the read's failure is its reader's
             }
         }
     }

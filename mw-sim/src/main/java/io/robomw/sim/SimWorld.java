@@ -3,6 +3,7 @@ package io.robomw.sim;
 import io.robomw.api.Clock;
 import io.robomw.api.ManualClock;
 import io.robomw.api.Pose;
+import io.robomw.api.spi.FailurePolicy;
 import io.robomw.config.description.Body;
 import io.robomw.config.description.RobotDescription;
 import io.robomw.platform.exec.ExecutionActionThread;
@@ -47,6 +48,15 @@ import java.util.Map;
  * 2, pending reads, step 6: none of it reads the clock or another robot); otherwise two, step 2
  * (and each body's place in the range index) before the clock moves, then 4–6 robot by robot.
  *
+ * <h2>Failures</h2>
+ * What one robot's part of a step throws (its sensors, its execution action thread's cycle, its
+ * pending reads, a {@linkplain #addRobotController controller}'s work on it) concerns that robot
+ * only: if the {@link FailurePolicy} says it is survivable, it is reported there, the robot's
+ * commands end with it at its next cycle (their end actions stop its motors), and the step goes
+ * on for every other robot. Any other failure (of the physics, or one the policy says no thread
+ * survives) leaves {@link #step()} for the thread that steps the world, which then
+ * {@linkplain #halt halts} it.
+ *
  * <p>Not thread-safe: one thread steps it (a {@link Simulation} does). Poses and trajectories may
  * be read from other threads.
  */
@@ -69,6 +79,9 @@ public final class SimWorld implements AutoCloseable {
     private final double physicsHz;
     private final int trajectoryEvery;
     private final Parallel parallel;
+    private final FailurePolicy failures;
+    /** The role robots' failures are reported under ({@code sim-<world>}). */
+    private final String role;
     /** Per robot (by index): the execution action threads the world cycles, or {@code null}. */
     private Cycled[] cycled = new Cycled[0];
     /** The earliest time a cycle is due. */
@@ -178,6 +191,20 @@ public final class SimWorld implements AutoCloseable {
      * @param rangeMethod    how range sensors cast their rays
      */
     public SimWorld(WorldDescription description, int sensingThreads, RangeMethod rangeMethod) {
+        this(description, sensingThreads, rangeMethod, FailurePolicy.logging());
+    }
+
+    /**
+     * Builds the world with a chosen range method, reporting robots' failures to a policy.
+     *
+     * @param description    the world
+     * @param sensingThreads worker threads for the per-robot parts of a step
+     * @param rangeMethod    how range sensors cast their rays
+     * @param failures       where what one robot's part of a step throws is reported
+     */
+    public SimWorld(WorldDescription description, int sensingThreads, RangeMethod rangeMethod, FailurePolicy failures) {
+        this.failures = java.util.Objects.requireNonNull(failures, "failures");
+        this.role = "sim-" + description.name();
         this.description = description;
         this.physicsHz = description.physicsHz();
         this.stepSeconds = 1.0 / description.physicsHz();
@@ -289,7 +316,7 @@ public final class SimWorld implements AutoCloseable {
         }
         int body = physics.addBody(b.length(), b.width(), b.mass(), b.friction(), start.x(), start.y(), start.heading());
         SimRobot robot = new SimRobot(robots.size(), name, description, physics, body, this.description.seed(), clock::nanoTime,
-                this.description.trajectories(), this.description.surroundings());
+                this.description.trajectories(), failures, this.description.surroundings());
         robots.add(robot);
         cycled = java.util.Arrays.copyOf(cycled, robots.size());
         byName.put(name, robot);
@@ -415,7 +442,7 @@ public final class SimWorld implements AutoCloseable {
      * {@code control} for every robot on the worker threads (the world's clock and the robots'
      * sensors are the same), since what it commands reaches the motors at the next cycle either
      * way. {@code control} must touch only robot {@code i} and the controller's own state for it;
-     * what it throws ends the step with it.
+     * what it throws is that robot's failure (see the class description).
      *
      * @param everySteps the controller's period, in steps (at least 1)
      * @param control    its work on the robot of the given {@linkplain SimRobot#index() index}
@@ -495,7 +522,13 @@ public final class SimWorld implements AutoCloseable {
             if (grid) {
                 rangeIndex.indexPlacedRobots();
             }
-            parallel.forEach(n, i -> sense(robots.get(i), -1));
+            parallel.forEach(n, i -> {
+                try {
+                    sense(robots.get(i), -1);
+                } catch (Throwable e) {
+                    robotFailed(i, e);
+                }
+            });
             initialSampleDue = false;
         }
         long t = tick(0, null);
@@ -510,12 +543,16 @@ public final class SimWorld implements AutoCloseable {
         if (!sensing && !cycling && !controlling) {
             // No robot's work after the motion reads the clock or another robot: one pass.
             parallel.forEach(n, i -> {
-                SimRobot r = robots.get(i);
-                r.afterStep(stepSeconds, record);
-                if (cycled[i] != null) {
-                    r.completeReads(this);
+                try {
+                    SimRobot r = robots.get(i);
+                    r.afterStep(stepSeconds, record);
+                    if (cycled[i] != null) {
+                        r.completeReads(this);
+                    }
+                    r.applyDrive();
+                } catch (Throwable e) {
+                    robotFailed(i, e);
                 }
-                r.applyDrive();
             });
             t = tick(t, Phase.AFTER_STEP);
             clock.advanceNanos(stepNanos);
@@ -529,7 +566,11 @@ public final class SimWorld implements AutoCloseable {
         }
         parallel.forEach(n, i -> {
             SimRobot r = robots.get(i);
-            r.afterStep(stepSeconds, record);
+            try {
+                r.afterStep(stepSeconds, record);
+            } catch (Throwable e) {
+                robotFailed(i, e);
+            }
             if (grid) {
                 place(r);
             }
@@ -545,23 +586,27 @@ public final class SimWorld implements AutoCloseable {
         int dueNow = dueCount;
         parallel.forEach(n, i -> {
             SimRobot r = robots.get(i);
-            if (senseStep != 0) {
-                sense(r, senseStep);
-            }
-            Cycled c = cycled[i];
-            if (c != null) {
-                for (; c != null; c = c.more) {
-                    while (c.next <= now) {
-                        c.thread.cycle();
-                        c.next += c.period;
-                    }
+            try {
+                if (senseStep != 0) {
+                    sense(r, senseStep);
                 }
-                r.completeReads(this);
+                Cycled c = cycled[i];
+                if (c != null) {
+                    for (; c != null; c = c.more) {
+                        while (c.next <= now) {
+                            c.next += c.period; // first: a cycle that throws is not run again in this step
+                            c.thread.cycle();
+                        }
+                    }
+                    r.completeReads(this);
+                }
+                for (int k = 0; k < dueNow; k++) {
+                    due[k].control().accept(i);
+                }
+                r.applyDrive();
+            } catch (Throwable e) {
+                robotFailed(i, e);
             }
-            for (int k = 0; k < dueNow; k++) {
-                due[k].control().accept(i);
-            }
-            r.applyDrive();
         });
         if (cycling) {
             long earliest = Long.MAX_VALUE;
@@ -573,6 +618,49 @@ public final class SimWorld implements AutoCloseable {
             nextCycle = earliest;
         }
         tick(t, Phase.ROBOTS);
+    }
+
+    /**
+     * What robot {@code i}'s part of a step threw: reported, and its commands end with it at its
+     * next cycle (their end actions stop its motors); the step goes on for the others. On the
+     * worker thread that handled the robot.
+     *
+     * @throws VirtualMachineError the failure itself, if no thread survives it (the step ends with it)
+     */
+    private void robotFailed(int i, Throwable failure) {
+        SimRobot r = robots.get(i);
+        failures.surviveOrRethrow(role + ": robot '" + r.name() + "'", failure);
+        for (Cycled c = cycled[i]; c != null; c = c.more) {
+            c.thread.linkFailed("to its simulated body in world '" + description.name() + "'", failure);
+        }
+    }
+
+    /**
+     * Stops the world for good, when the thread stepping it dies: every robot's commands end with
+     * {@code why} (each execution action thread is cycled once more, on the calling thread, so
+     * their end actions stop the motors), every robot's motors are set to rest, and every wait on
+     * a simulator future ends with {@code why}, now and later. Must not throw; later steps are
+     * the caller's to refuse.
+     *
+     * @param why what the programs are told, naming what killed the world's thread
+     */
+    public void halt(io.robomw.api.RobotException why) {
+        for (int i = 0; i < robots.size(); i++) {
+            for (Cycled c = cycled[i]; c != null; c = c.more) {
+                try {
+                    c.thread.linkFailed("to its simulated world '" + description.name() + "'", why);
+                    c.thread.cycle();
+                } catch (Throwable ignored) {
+                    // the thread is dying already: what cannot be stopped here is failed below
+                }
+            }
+            try {
+                robots.get(i).halt();
+            } catch (Throwable ignored) {
+                // as above
+            }
+        }
+        lockstep.fail(why);
     }
 
     /** Places a robot's body in the range index, from its pose after the step. */

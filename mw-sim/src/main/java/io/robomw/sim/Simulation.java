@@ -2,6 +2,9 @@ package io.robomw.sim;
 
 import io.robomw.api.Robot;
 import io.robomw.api.RobotException;
+import io.robomw.api.spi.FailurePolicy;
+import io.robomw.api.spi.IdleStrategy;
+import io.robomw.api.spi.OwnerThread;
 import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.AgencyConfig;
 import io.robomw.api.spi.MessagingConfig;
@@ -44,6 +47,24 @@ import java.util.function.BooleanSupplier;
  *   <li><b>In real time</b>: {@link #startRealTime(double)} steps the world on a thread of its own,
  *   paced by the wall clock (times a speed factor); programs call robots from any thread.</li>
  * </ul>
+ *
+ * <h2>Failures</h2>
+ * The thread that steps the world (the real-time thread, an {@link OwnerThread}, or the caller of
+ * the fast runs) owns the simulation's clock, and hands what it catches to the simulation's
+ * {@link FailurePolicy} (the one in the {@link PlatformServices} it was given, else a
+ * {@linkplain FailurePolicy#logging() logging} one; every simulated robot's platform reports to
+ * the same one):
+ * <ul>
+ *   <li>a failure it can survive fails what it concerns, and the clock goes on: a step listener's
+ *   is reported and the other listeners run; one robot's (its sensors, its cycle, a controller's
+ *   work on it) ends that robot's commands (see {@link SimWorld}); in a real-time run, a failure
+ *   of the whole step (the physics) is reported and the next step is tried;</li>
+ *   <li>any other one (see {@link FailurePolicy#survivable}) {@linkplain SimWorld#halt halts} the
+ *   world: every robot's motors stop, every program waiting for a robot, and every later call,
+ *   fails at once with a {@link RobotException} naming the failure ({@link #failure()}), and the
+ *   thread ends cleanly.</li>
+ * </ul>
+ * In a fast run, a failure of the whole step ends the run the same way, and reaches its caller.
  */
 public final class Simulation implements AutoCloseable {
 
@@ -62,15 +83,23 @@ public final class Simulation implements AutoCloseable {
     private final Map<String, ConfiguredRobot> robots = new LinkedHashMap<>();
     private final List<Runnable> stepListeners = new CopyOnWriteArrayList<>();
     private final Set<String> emulated;
+    private final FailurePolicy failures;
+    /** The role the clock's owner reports under, and the real-time thread's name: {@code sim-<world>}. */
+    private final String role;
     private volatile boolean realTime;
     private volatile boolean paused;
     private volatile double realTimeSpeed = 1;
     private volatile long stepWallNanos;
     private volatile boolean stepScheduled;
-    private Thread realTimeThread;
+    private OwnerThread realTimeThread;
+    /** Why the world was halted, once it was. */
+    private volatile RobotException failure;
 
-    private Simulation(WorldDescription description, int sensingThreads, SimWorld.RangeMethod rangeMethod, Set<String> emulated) {
-        this.world = new SimWorld(description, sensingThreads, rangeMethod);
+    private Simulation(WorldDescription description, int sensingThreads, SimWorld.RangeMethod rangeMethod, Set<String> emulated,
+                       PlatformServices given) {
+        this.failures = given.find(FailurePolicy.class).orElseGet(FailurePolicy::logging);
+        this.role = "sim-" + description.name();
+        this.world = new SimWorld(description, sensingThreads, rangeMethod, failures);
         this.emulated = Set.copyOf(emulated);
         RobotDescriptionLoader loader = new RobotDescriptionLoader();
         Map<Path, RobotDescription> files = new HashMap<>();
@@ -83,7 +112,7 @@ public final class Simulation implements AutoCloseable {
                     throw new RobotException(description.source() + ": robot '" + p.name() + "' (" + p.description() + "): " + e.getMessage(), e);
                 }
             }
-            PlatformServices services = PlatformServices.none().with(SimWorld.class, world);
+            PlatformServices services = given.with(SimWorld.class, world).with(FailurePolicy.class, failures);
             for (SimRobot r : world.robots()) {
                 if (this.emulated.contains(r.name())) {
                     continue;
@@ -126,6 +155,20 @@ public final class Simulation implements AutoCloseable {
      * @return the simulation
      */
     public static Simulation load(Path worldFile, Set<String> emulated) {
+        return load(worldFile, emulated, PlatformServices.none());
+    }
+
+    /**
+     * Loads a world file, some of whose robots are driven by brick emulators, with services for
+     * every robot's platform: a {@link FailurePolicy} among them is the one the simulation's
+     * clock, its robots' platforms and its emulators report to.
+     *
+     * @param worldFile the world YAML
+     * @param emulated  names of the robots that emulators drive (none: every robot runs in this process)
+     * @param services  services for the platforms (the simulation adds its world, and its failure policy)
+     * @return the simulation
+     */
+    public static Simulation load(Path worldFile, Set<String> emulated, PlatformServices services) {
         WorldDescription d = new WorldLoader().load(worldFile);
         for (String name : emulated) {
             if (d.robots().stream().noneMatch(r -> r.name().equals(name))) {
@@ -133,7 +176,7 @@ public final class Simulation implements AutoCloseable {
                         + d.robots().stream().map(WorldDescription.RobotPlacement::name).toList());
             }
         }
-        return new Simulation(d, Runtime.getRuntime().availableProcessors(), SimWorld.RangeMethod.GRID, emulated);
+        return new Simulation(d, Runtime.getRuntime().availableProcessors(), SimWorld.RangeMethod.GRID, emulated, services);
     }
 
     /**
@@ -150,7 +193,7 @@ public final class Simulation implements AutoCloseable {
      * @return the simulation
      */
     public static Simulation create(WorldDescription description, int sensingThreads) {
-        return new Simulation(description, sensingThreads, SimWorld.RangeMethod.GRID, Set.of());
+        return new Simulation(description, sensingThreads, SimWorld.RangeMethod.GRID, Set.of(), PlatformServices.none());
     }
 
     /**
@@ -160,7 +203,7 @@ public final class Simulation implements AutoCloseable {
      * @return the simulation
      */
     public static Simulation create(WorldDescription description, int sensingThreads, SimWorld.RangeMethod rangeMethod) {
-        return new Simulation(description, sensingThreads, rangeMethod, Set.of());
+        return new Simulation(description, sensingThreads, rangeMethod, Set.of(), PlatformServices.none());
     }
 
     private static RobotDescription renamed(RobotDescription d, String name) {
@@ -173,6 +216,19 @@ public final class Simulation implements AutoCloseable {
                 ? new AgencyConfig(AgencyConfig.defaults(name, a.source()).homeName(), a.bind(), a.port(), a.clusterKey(), a.source()) : a;
         return new RobotDescription(name, "sim", d.connection(), d.cyclePeriod(), d.watchdogTimeout(), d.capabilities(), d.drive(),
                 d.body(), d.sensors(), d.actuators(), d.leggedDrive(), d.highLevelActions(), messaging, agency, d.source(), d.vehicleDrive());
+    }
+
+    /** @return the policy the simulation's clock, its robots' platforms and its emulators report failures to */
+    public FailurePolicy failures() {
+        return failures;
+    }
+
+    /**
+     * @return why the world was halted (the thread stepping it died of a failure it could not
+     *         survive, or a fast run's step failed), if it was: every robot call fails with it
+     */
+    public java.util.Optional<RobotException> failure() {
+        return java.util.Optional.ofNullable(failure);
     }
 
     /** @return the world */
@@ -215,10 +271,58 @@ public final class Simulation implements AutoCloseable {
         stepListeners.remove(listener);
     }
 
+    /**
+     * One step and its listeners. A listener's survivable failure is reported and the others run;
+     * what the world's step throws, and a failure nothing survives, leave for the caller.
+     */
     private void step() {
         world.step();
         for (Runnable l : stepListeners) {
-            l.run();
+            try {
+                l.run();
+            } catch (Throwable t) {
+                failures.surviveOrRethrow(role + ": step listener " + l, t);
+            }
+        }
+    }
+
+    /**
+     * A step taken on the caller's thread (a fast run, the first real-time step): a failure of
+     * the step halts the world and goes on to the caller.
+     */
+    private void stepOnCaller() {
+        try {
+            step();
+        } catch (Throwable t) {
+            halt(t, "a step at " + String.format(java.util.Locale.ROOT, "%.3f", world.time()) + " s failed");
+            if (!FailurePolicy.survivable(t)) {
+                failures.died(role, t); // the caller hears of it too, but the one counter sees every death
+            }
+            throw t;
+        }
+    }
+
+    /**
+     * Halts the world for good: records why, stops every robot and fails every wait (see
+     * {@link SimWorld#halt}). Must not throw.
+     *
+     * @param cause what killed the stepping
+     * @param what  what happened, for the message
+     */
+    private void halt(Throwable cause, String what) {
+        RobotException why = new RobotException("simulation '" + world.description().name() + "' (" + world.description().source() + "): "
+                + what + ": " + cause + "; every robot was stopped and simulated time stands still (close the simulation and load it again)", cause);
+        if (failure == null) {
+            failure = why;
+        }
+        realTime = false;
+        world.halt(failure);
+    }
+
+    private void requireNotHalted(String what) {
+        RobotException failed = failure;
+        if (failed != null) {
+            throw new RobotException("cannot " + what + ": " + failed.getMessage(), failed);
         }
     }
 
@@ -245,6 +349,7 @@ public final class Simulation implements AutoCloseable {
      */
     public void run(Duration maxSimTime, Runnable... programs) {
         requireStopped("run programs");
+        requireNotHalted("run programs");
         world.lockstep().driver(Thread.currentThread());
         double end = world.time() + maxSimTime.toNanos() / 1e9;
         Programs running = new Programs(world.lockstep(), programs);
@@ -258,7 +363,7 @@ public final class Simulation implements AutoCloseable {
                     throw new RobotException("programs did not finish within " + maxSimTime.toMillis() / 1000.0 + " s of simulated time; still running: "
                             + running.running());
                 }
-                step();
+                stepOnCaller();
             }
         } finally {
             world.lockstep().driver(null);
@@ -286,11 +391,12 @@ public final class Simulation implements AutoCloseable {
      */
     public void runFor(Duration simTime) {
         requireStopped("step");
+        requireNotHalted("step");
         world.lockstep().driver(Thread.currentThread());
         try {
             double end = world.time() + simTime.toNanos() / 1e9 - world.stepSeconds() / 2;
             while (world.time() < end) {
-                step();
+                stepOnCaller();
             }
         } finally {
             world.lockstep().driver(null);
@@ -306,25 +412,28 @@ public final class Simulation implements AutoCloseable {
      */
     public boolean runUntil(BooleanSupplier condition, Duration maxSimTime) {
         requireStopped("step");
+        requireNotHalted("step");
         double end = world.time() + maxSimTime.toNanos() / 1e9;
         while (!condition.getAsBoolean()) {
             if (world.time() >= end) {
                 return false;
             }
-            step();
+            stepOnCaller();
         }
         return true;
     }
 
     /**
-     * Starts stepping the world on a thread named {@code sim-<world>}, paced by the wall clock. The
-     * first step is taken before this returns. A run whose thread was held up for up to a
-     * second catches up, stepping back to back; held up longer, it goes on from
-     * now.
+     * Starts stepping the world on an {@link OwnerThread} named {@code sim-<world>}, paced by the
+     * wall clock. The first step is taken before this returns. A run whose thread was held up for
+     * up to a second catches up, stepping back to back; held up longer, it goes on from now. What
+     * the thread catches goes to the simulation's {@link FailurePolicy} (see the class description).
      *
      * @param speed simulated seconds per wall-clock second (1 = real time)
+     * @throws RobotException if the world was halted by a failure
      */
     public synchronized void startRealTime(double speed) {
+        requireNotHalted("run in real time");
         if (realTimeThread != null) {
             throw new IllegalStateException("the simulation already runs in real time");
         }
@@ -336,40 +445,64 @@ public final class Simulation implements AutoCloseable {
         realTimeSpeed = speed;
         // One step before returning: sensors are sampled and emulators' inputs are set up by the time
         // anyone talks to a robot.
-        step();
-        Thread t = new Thread(() -> {
-            long next = System.nanoTime();
-            while (realTime) {
-                if (paused) {
-                    LockSupport.parkNanos(this, 10_000_000);
-                    next = System.nanoTime();
-                    continue;
-                }
-                try {
-                    stepWallNanos = next;
-                    stepScheduled = true;
-                    step();
-                } catch (RuntimeException e) {
-                    LOG.error("simulation step failed; stopping the real-time run", e);
-                    realTime = false;
-                }
-                long period = Math.round(world.stepSeconds() * 1e9 / realTimeSpeed);
-                next += period;
-                long now;
-                while (realTime && (now = System.nanoTime()) < next) {
-                    LockSupport.parkNanos(this, next - now);
-                }
-                long late = System.nanoTime() - next;
-                if (late > CATCH_UP_NANOS) {
-                    LOG.debug("real-time run {} ms behind the wall clock; going on from now", late / 1_000_000);
-                    next = System.nanoTime();
-                }
+        stepOnCaller();
+        // Robot calls may wait from now on; the run's thread takes the driver's place at its first round.
+        world.lockstep().driver(Thread.currentThread());
+        RealTimeRun run = new RealTimeRun();
+        realTimeThread = OwnerThread.start(role, Thread.NORM_PRIORITY, run, run, failures);
+    }
+
+    /**
+     * The real-time run's duty and its pacing, on its owner thread: each round takes one step at
+     * its scheduled wall-clock time (the idle wait between rounds is the pacing), or, paused, none.
+     */
+    private final class RealTimeRun implements OwnerThread.Duty, IdleStrategy {
+
+        /** How long a paused run, or one whose step failed, waits before it looks again (a resume wakes it sooner). */
+        private static final long IDLE_NANOS = 10_000_000;
+
+        /** When the next step is due, {@link System#nanoTime()} time; owner thread only. */
+        private long next = System.nanoTime();
+        private boolean started;
+
+        @Override
+        public int doWork() {
+            if (!started) {
+                started = true;
+                world.lockstep().driver(Thread.currentThread()); // programs that block wake this thread, not the caller's
             }
-        }, "sim-" + world.description().name());
-        t.setDaemon(true);
-        world.lockstep().driver(t);
-        realTimeThread = t;
-        t.start();
+            if (paused) {
+                return 0;
+            }
+            stepWallNanos = next;
+            stepScheduled = true;
+            step();
+            return 1;
+        }
+
+        @Override
+        public void idle(int steps) {
+            if (steps == 0) {
+                // paused, or the step failed (reported): simulated time holds, and goes on from now
+                LockSupport.parkNanos(this, IDLE_NANOS);
+                next = System.nanoTime();
+                return;
+            }
+            next += Math.round(world.stepSeconds() * 1e9 / realTimeSpeed);
+            for (long now; realTime && (now = System.nanoTime()) < next; ) {
+                LockSupport.parkNanos(this, next - now);
+            }
+            long late = System.nanoTime() - next;
+            if (late > CATCH_UP_NANOS) {
+                LOG.debug("real-time run {} ms behind the wall clock; going on from now", late / 1_000_000);
+                next = System.nanoTime();
+            }
+        }
+
+        @Override
+        public void onDeath(Throwable failure) {
+            halt(failure, "its real-time thread " + role + " died");
+        }
     }
 
     /**
@@ -383,9 +516,9 @@ public final class Simulation implements AutoCloseable {
     /** Resumes a paused real-time run. */
     public void resumeRealTime() {
         paused = false;
-        Thread t = realTimeThread;
+        OwnerThread t = realTimeThread;
         if (t != null) {
-            LockSupport.unpark(t);
+            t.wake();
         }
     }
 
@@ -413,17 +546,12 @@ public final class Simulation implements AutoCloseable {
 
     /** Stops the real-time thread, waiting for its current step. */
     public synchronized void stopRealTime() {
-        Thread t = realTimeThread;
+        OwnerThread t = realTimeThread;
         if (t == null) {
             return;
         }
         realTime = false;
-        LockSupport.unpark(t);
-        try {
-            t.join(5000);
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
-        }
+        t.close();
         stepScheduled = false;
         realTimeThread = null;
         world.lockstep().driver(null);

@@ -340,7 +340,7 @@ public final class AgentBenchmark {
         Ticks ticks = new Ticks(rounds);
         System.getProperties().put(TICKS, ticks);
         try {
-            AgentRef ref = a.startTrip(agent(agentClass, payload, far, rounds));
+            AgentRef ref = a.agency().startTrip(agent(agentClass, payload, far, rounds));
             ref.result().get(60 + rounds / 10, TimeUnit.SECONDS);
         } finally {
             System.getProperties().remove(TICKS);
@@ -361,9 +361,9 @@ public final class AgentBenchmark {
     private Wire wire(AgentHost a, PeerProcess b, String far, Class<?> agentClass, int payload) throws Exception {
         int rounds = payload >= 1 << 20 ? WIRE_ROUNDS / 4 : WIRE_ROUNDS;
         // One round trip first, so that whatever the trip before left in flight is done.
-        a.startTrip(agent(agentClass, payload, far, 1)).result().get(60, TimeUnit.SECONDS);
+        a.agency().startTrip(agent(agentClass, payload, far, 1)).result().get(60, TimeUnit.SECONDS);
         long before = a.wireBytesIn() + a.wireBytesOut() + wireOf(b);
-        a.startTrip(agent(agentClass, payload, far, rounds)).result().get(120, TimeUnit.SECONDS);
+        a.agency().startTrip(agent(agentClass, payload, far, rounds)).result().get(120, TimeUnit.SECONDS);
         long after = a.wireBytesIn() + a.wireBytesOut() + wireOf(b);
         // The state as it leaves A on every round but the first: itinerary [B], history [A done], at stop 0.
         Agent replica = agent(agentClass, payload, far, rounds);
@@ -389,7 +389,7 @@ public final class AgentBenchmark {
             try (URLClassLoader code = loader(jar("cold-" + UUID.randomUUID()))) {
                 Agent agent = agent(code.loadClass(AGENT_CLASS), 0, far, 0);
                 long t0 = System.nanoTime();
-                AgentRef ref = a.startTrip(agent);
+                AgentRef ref = a.agency().startTrip(agent);
                 long t1 = System.nanoTime();
                 Serializable r = ref.result().get(30, TimeUnit.SECONDS);
                 long t2 = System.nanoTime();

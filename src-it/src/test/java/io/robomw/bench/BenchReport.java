@@ -126,7 +126,20 @@ public final class BenchReport {
             new Case("mqtt.mosquitto.ps-robomw", "MQTT pub/sub, RoboMW, Mosquitto", true, "mqtt.mosquitto.ps-bare", List.of(), ""),
             // NXT
             new Case("nxt.bare", "NXT GETINPUTVALUES round trip, bare write/read on a pty (baseline), p50", false, null, List.of(), ""),
-            new Case("nxt.driver", "NXT GETINPUTVALUES round trip through the driver, p50", false, "nxt.bare", List.of(), "overhead ≤ 50 µs"));
+            new Case("nxt.driver", "NXT GETINPUTVALUES round trip through the driver, p50", false, "nxt.bare", List.of(), "overhead ≤ 50 µs"),
+            // rosbridge endpoint (issue 34): RosBridgeBenchmark
+            new Case("rosbridge.odom100x50.rate", "rosbridge: odometry of 100 simulated robots at 50 Hz to one client, messages/s received", true, null,
+                    List.of(), "5000 (every one)"),
+            new Case("rosbridge.odom100x50.endpoint-cpu-per-msg", "rosbridge: the endpoint's threads' CPU per odometry message", false, null, List.of(), ""),
+            new Case("rosbridge.odom100x50.jvm-cpu-per-msg", "rosbridge: the server JVM's CPU per odometry message over the world alone", false, null,
+                    List.of(), ""),
+            new Case("rosbridge.odom100x50.world-alone-cpu", "rosbridge: the 100-robot world alone, before the client subscribed (baseline)", false, null,
+                    List.of(), ""),
+            new Case("rosbridge.rtt64.echo.p50", "plain WebSocket echo, 64 B, on the endpoint's server (baseline), p50", false, null, List.of(), ""),
+            new Case("rosbridge.rtt64.publish.p50", "rosbridge: 64-byte publish round trip (publish, get it back as a subscriber), p50", false,
+                    "rosbridge.rtt64.echo.p50", List.of(), ""),
+            new Case("rosbridge.rtt64.echo.p99", "plain WebSocket echo, 64 B (baseline), p99", false, null, List.of(), ""),
+            new Case("rosbridge.rtt64.publish.p99", "rosbridge: 64-byte publish round trip, p99", false, "rosbridge.rtt64.echo.p99", List.of(), ""));
 
     private BenchReport() {
     }

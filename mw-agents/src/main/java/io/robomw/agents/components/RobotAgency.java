@@ -81,17 +81,17 @@ public final class RobotAgency implements AgencyComponent {
 
     @Override
     public AgentRef sendAgent(String host, Agent agent) {
-        return home("sendAgent").sendAgent(host, agent);
+        return home("sendAgent").agency().sendAgent(host, agent);
     }
 
     @Override
     public AgentRef startTrip(Agent agent) {
-        return home("startTrip").startTrip(agent);
+        return home("startTrip").agency().startTrip(agent);
     }
 
     @Override
     public List<AgentRef> dispatchClones(Agent agent, String... hosts) {
-        return home("dispatchClones").dispatchClones(agent, hosts);
+        return home("dispatchClones").agency().dispatchClones(agent, hosts);
     }
 
     @Override

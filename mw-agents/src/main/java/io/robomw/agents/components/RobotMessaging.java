@@ -1,9 +1,10 @@
 package io.robomw.agents.components;
 
+import io.robomw.agents.messaging.ForwardingMessaging;
 import io.robomw.agents.messaging.MessagingNode;
 import io.robomw.agents.messaging.MessagingSettings;
-import io.robomw.api.Message;
 import io.robomw.api.MessageListener;
+import io.robomw.api.Messaging;
 import io.robomw.api.MessagingException;
 import io.robomw.api.spi.MessagingComponent;
 import io.robomw.api.spi.MessagingConfig;
@@ -12,7 +13,6 @@ import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 import java.io.Serializable;
-import java.time.Duration;
 import java.util.List;
 import java.util.Map;
 import java.util.UUID;
@@ -27,11 +27,12 @@ import java.util.function.Function;
  *
  * <p>A topic whose password the section names by reference ({@code topics: {alerts:
  * {password_file: ...}}}) uses that password whenever a call passes {@code null} for it, so
- * programs need not carry secrets; a password passed explicitly always wins.
+ * programs need not carry secrets; a password passed explicitly always wins. The calls without a
+ * password go to the node as they are.
  *
  * <p>Thread-safe.
  */
-public final class RobotMessaging implements MessagingComponent {
+public final class RobotMessaging implements MessagingComponent, ForwardingMessaging {
 
     private static final Logger LOG = LoggerFactory.getLogger(RobotMessaging.class);
 
@@ -110,29 +111,15 @@ public final class RobotMessaging implements MessagingComponent {
         }
     }
 
+    /** @return the node, started now if this is its first use */
+    @Override
+    public Messaging delegate(String operation) {
+        return node(operation);
+    }
+
     @Override
     public UUID sendMessage(String name, String host, String pass, String topic, Serializable object, String function) {
         return node("sendMessage").sendMessage(name, host, password(topic, pass), topic, object, function);
-    }
-
-    @Override
-    public Message waitForReply(String topic, String host) {
-        return node("waitForReply").waitForReply(topic, host);
-    }
-
-    @Override
-    public Message waitForReply(String topic, String host, Duration timeout) {
-        return node("waitForReply").waitForReply(topic, host, timeout);
-    }
-
-    @Override
-    public Message waitForReply(UUID correlationId, Duration timeout) {
-        return node("waitForReply").waitForReply(correlationId, timeout);
-    }
-
-    @Override
-    public void replyMessage(Message request, Serializable object, String function) {
-        node("replyMessage").replyMessage(request, object, function);
     }
 
     @Override
@@ -150,6 +137,7 @@ public final class RobotMessaging implements MessagingComponent {
         node("addMessageListener").addMessageListener(topic, password(topic, password), listener);
     }
 
+    /** Does not start the node: a listener was never added to one that has not started. */
     @Override
     public void removeMessageListener(String topic, MessageListener listener) {
         MessagingNode n = node;

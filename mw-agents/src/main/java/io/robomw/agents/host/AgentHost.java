@@ -7,12 +7,12 @@ import io.robomw.agents.messaging.MessagingNode;
 import io.robomw.agents.messaging.MessagingSettings;
 import io.robomw.agents.messaging.security.TlsSettings;
 import io.robomw.api.Agency;
-import io.robomw.api.Agent;
 import io.robomw.api.AgentRef;
 import io.robomw.api.Itinerary;
 import io.robomw.api.Messaging;
 import io.robomw.api.MessagingException;
 import io.robomw.api.Robot;
+import io.robomw.api.spi.FailurePolicy;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -38,9 +38,9 @@ import java.util.concurrent.TimeUnit;
 /**
  * An agent host (paper section III.A.4, after the Aglets server): an RMI server, bound to a
  * robot or to none, that receives mobile agents, runs each stop of theirs on a named thread with
- * its robot, sends them on along their itineraries, and tells their homes how they are doing. It
- * is also an {@link Agency}: agents sent from here have this host as their home, where their
- * results arrive.
+ * its robot, sends them on along their itineraries, and tells their homes how they are doing. Its
+ * {@link #agency()} sends agents from here: they have this host as their home, where their results
+ * arrive.
  *
  * <p><b>No agent lost, none duplicated.</b> A hop completes only when the receiving host has
  * stored the agent (durably, with a {@link JournalStore}) and acknowledged; until then the sender
@@ -67,7 +67,7 @@ import java.util.concurrent.TimeUnit;
  * {@link Peers} calls other hosts, {@link RobotTurns} lends the robot to one stop at a time, and
  * {@link Bodies} lays out the call bodies.
  */
-public final class AgentHost implements Agency, AutoCloseable {
+public final class AgentHost implements AutoCloseable {
 
     private static final Logger LOG = LoggerFactory.getLogger(AgentHost.class);
 
@@ -110,7 +110,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         this.stopGrace = b.stopGrace;
         this.endpointSpin = b.endpointSpin;
         this.state = new HostState(this, b.name, b.robot, new StateCodec(b.allowed, b.maxStateBytes), (int) b.callTimeout.toMillis(),
-                b.runnerSpin);
+                b.runnerSpin, b.failures);
         this.robot = new RobotTurns(b.name, b.robot);
         this.code = new CodeLoaders(state);
         this.wire = b.wire && !b.version2Only;
@@ -167,6 +167,7 @@ public final class AgentHost implements Agency, AutoCloseable {
         private boolean version2Only;
         private WireServer.Limits wireLimits;
         private java.util.concurrent.ThreadFactory wireThreads;
+        private FailurePolicy failures = FailurePolicy.logging();
 
         private Builder(String name) {
             if (name == null || !name.matches("[A-Za-z0-9._-]+")) {
@@ -229,6 +230,20 @@ public final class AgentHost implements Agency, AutoCloseable {
         public Builder noMessaging() {
             this.withMessaging = false;
             this.node = null;
+            return this;
+        }
+
+        /**
+         * @param policy where whatever the host's threads catch goes (default
+         *               {@link FailurePolicy#logging()}): its agent runners (an agent's callback that
+         *               throws fails its stop, and is reported as survived; an error no thread
+         *               survives ends the agent's trip, naming it and this host, and the runner, while
+         *               the host serves on), its agent wire's accept and connection loops, its
+         *               deliveries to homes, and its own messaging node's threads
+         * @return this
+         */
+        public Builder failures(FailurePolicy policy) {
+            this.failures = Objects.requireNonNull(policy, "policy");
             return this;
         }
 
@@ -413,7 +428,7 @@ public final class AgentHost implements Agency, AutoCloseable {
             }
             if (withMessaging && node == null) {
                 try {
-                    node = MessagingNode.builder(name).settings(messagingSettings)
+                    node = MessagingNode.builder(name).settings(messagingSettings).failures(failures)
                             .bind(messagingAddress != null ? messagingAddress : "tcp://" + (bind.contains(":") ? "[" + bind + "]" : bind) + ":0").build();
                     ownsNode = true;
                 } catch (MessagingException e) {
@@ -460,10 +475,10 @@ public final class AgentHost implements Agency, AutoCloseable {
         SSLContext ssl = tls == null ? null : tls.context();
         HostSockets.Server serverSockets = new HostSockets.Server(bindAddress, ssl, counters, endpointSpin.toNanos());
         HostSockets.Client clientSockets = new HostSockets.Client(bind, tls != null, state.timeoutMillis);
-        endpoint = new HostEndpoint(name, key, calls, version2Only ? Session.PROTOCOL_VERSION : Session.WIRE_VERSION);
+        endpoint = new HostEndpoint(name, key, calls, version2Only ? Session.PROTOCOL_VERSION : Session.WIRE_VERSION, state.failures);
         peers.wire(ssl, wireSpin, version2Only, !wire);
         if (wire) {
-            wireServer = new WireServer(endpoint, bindAddress, wirePort, ssl, wireLimits);
+            wireServer = new WireServer(endpoint, bindAddress, wirePort, ssl, wireLimits, state.failures);
             wireServer.readSpin(wireReadSpin);
             wireServer.tagger(state.wireTaggers);
             if (wireThreads != null) {
@@ -683,6 +698,11 @@ public final class AgentHost implements Agency, AutoCloseable {
         return wireServer == null ? 0 : wireServer.open();
     }
 
+    /** @return the peers' sessions this host keeps now (for tests) */
+    int sessionsKept() {
+        return endpoint.sessions();
+    }
+
     /** @return how many peers, calls, archives and agents this host has refused */
     public long refused() {
         return endpoint.refused() + state.refused();
@@ -690,19 +710,12 @@ public final class AgentHost implements Agency, AutoCloseable {
 
     // ---- Agency: this host as home ----
 
-    @Override
-    public AgentRef sendAgent(String host, Agent agent) {
-        return home.sendAgent(host, agent);
-    }
-
-    @Override
-    public AgentRef startTrip(Agent agent) {
-        return home.startTrip(agent);
-    }
-
-    @Override
-    public List<AgentRef> dispatchClones(Agent agent, String... hosts) {
-        return home.dispatchClones(agent, hosts);
+    /**
+     * @return this host as a home: the {@link Agency} whose agents (and their clones) report and
+     *         bring their results here, and can be retracted from here
+     */
+    public Agency agency() {
+        return home;
     }
 
     /** A clone an agent here makes of itself, sent with its own plan; this host is its home. */
@@ -728,7 +741,9 @@ public final class AgentHost implements Agency, AutoCloseable {
      * @throws IOException if the host cannot be reached, refuses this peer, or answers something else
      */
     public static HostDescription describe(String address, ClusterKey key, boolean useTls) throws IOException {
-        return new HostClient(key, useTls, 10_000).describe(address);
+        try (HostClient client = new HostClient(key, useTls, 10_000)) {
+            return client.describe(address);
+        }
     }
 
     // ---- listing another host ----
@@ -743,7 +758,9 @@ public final class AgentHost implements Agency, AutoCloseable {
      * @throws IOException if the host cannot be reached or refuses this peer
      */
     public static List<AgentInfo> list(String address, ClusterKey key, boolean useTls) throws IOException {
-        return new HostClient(key, useTls, 10_000).agents(address);
+        try (HostClient client = new HostClient(key, useTls, 10_000)) {
+            return client.agents(address);
+        }
     }
 
     @Override

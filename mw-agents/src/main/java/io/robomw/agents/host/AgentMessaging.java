@@ -1,5 +1,6 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.messaging.ForwardingMessaging;
 import io.robomw.agents.messaging.MessagingNode;
 import io.robomw.api.Message;
 import io.robomw.api.MessageListener;
@@ -20,10 +21,11 @@ import java.util.function.UnaryOperator;
  * through the host's {@link HostDirectory}. The listeners the agent registers are removed when it
  * leaves the host or ends ({@link #release()}), so a departed agent's code is never called from
  * here; its subscriptions stay with the node, which delivers a topic nobody listens to nowhere.
+ * The other calls go to the node as they are.
  *
  * <p>Thread-safe.
  */
-final class AgentMessaging implements Messaging {
+final class AgentMessaging implements ForwardingMessaging {
 
     private record Registered(String topic, MessageListener listener) {
     }
@@ -43,6 +45,11 @@ final class AgentMessaging implements Messaging {
     }
 
     @Override
+    public Messaging delegate(String operation) {
+        return node;
+    }
+
+    @Override
     public UUID sendMessage(String name, String host, String pass, String topic, Serializable object, String function) {
         return node.sendMessage(name, resolve.apply(Objects.requireNonNull(host, "host")), pass, topic, object, function);
     }
@@ -55,26 +62,6 @@ final class AgentMessaging implements Messaging {
     @Override
     public Message waitForReply(String topic, String host, Duration timeout) {
         return node.waitForReply(topic, resolve.apply(host), timeout);
-    }
-
-    @Override
-    public Message waitForReply(UUID correlationId, Duration timeout) {
-        return node.waitForReply(correlationId, timeout);
-    }
-
-    @Override
-    public void replyMessage(Message request, Serializable object, String function) {
-        node.replyMessage(request, object, function);
-    }
-
-    @Override
-    public void publishMessage(String topic, Serializable object, String function, String password) {
-        node.publishMessage(topic, object, function, password);
-    }
-
-    @Override
-    public void subscribeMessage(String topic, String password) {
-        node.subscribeMessage(topic, password);
     }
 
     @Override

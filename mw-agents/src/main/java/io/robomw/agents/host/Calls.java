@@ -125,7 +125,9 @@ final class Calls implements HostEndpoint.Handler {
         boolean handled;
         try {
             handled = h.agent.handleMessage(m);
-        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+        } catch (Throwable e) {
+            // the agent's code: what a thread survives refuses this message; the rest ends the thread serving it
+            host.failures.surviveOrRethrow(Thread.currentThread().getName(), e);
             return Reply.of(Reply.Status.REFUSED, "agent " + id + " threw while handling the message: " + e);
         }
         if (!handled) {

@@ -3,6 +3,7 @@ package io.robomw.agents.host;
 import io.robomw.agents.host.code.CodeArchive;
 import io.robomw.agents.host.code.StateCodec;
 import io.robomw.agents.host.code.StateRejectedException;
+import io.robomw.api.Agency;
 import io.robomw.api.Agent;
 import io.robomw.api.AgentException;
 import io.robomw.api.AgentRef;
@@ -32,7 +33,7 @@ import java.util.concurrent.CompletionException;
  * back from them: the events other hosts send ({@link #onEvent}) and a retracted agent coming
  * home ({@link #onHomecoming}).
  */
-final class Home {
+final class Home implements Agency {
 
     private static final Logger LOG = LoggerFactory.getLogger(Home.class);
 
@@ -48,13 +49,15 @@ final class Home {
         this.requests = requests;
     }
 
-    AgentRef sendAgent(String to, Agent agent) {
+    @Override
+    public AgentRef sendAgent(String to, Agent agent) {
         HostAddress.parse(to);
         agent.itinerary().insertNext(to, null);
         return startTrip(agent);
     }
 
-    AgentRef startTrip(Agent agent) {
+    @Override
+    public AgentRef startTrip(Agent agent) {
         if (agent.itinerary().stops().isEmpty()) {
             throw new IllegalArgumentException("agent " + agent.getClass().getName() + " has no stops in its itinerary");
         }
@@ -62,7 +65,8 @@ final class Home {
         return launch(agent, UUID.randomUUID());
     }
 
-    List<AgentRef> dispatchClones(Agent agent, String... hosts) {
+    @Override
+    public List<AgentRef> dispatchClones(Agent agent, String... hosts) {
         for (String h : hosts) {
             HostAddress.parse(h);
         }

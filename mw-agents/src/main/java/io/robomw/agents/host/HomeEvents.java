@@ -1,5 +1,7 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.net.OwnerThreads;
+import io.robomw.api.spi.FailurePolicy;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -85,6 +87,7 @@ final class HomeEvents implements AutoCloseable {
     private final Sender sender;
     private final Settled settled;
     private final DeliveryPolicy policy;
+    private final FailurePolicy failures;
     /** The workers, one per home with something queued; guarded by itself. */
     private final Map<String, Worker> workers = new HashMap<>();
     private final Map<Key, Owed> owed = new ConcurrentHashMap<>();
@@ -93,8 +96,12 @@ final class HomeEvents implements AutoCloseable {
     private final Map<UUID, Outgoing> latestArrival = new ConcurrentHashMap<>();
     private volatile boolean closed;
 
-    HomeEvents(String hostName, DeliveryPolicy policy, Sender sender, Settled settled) {
+    /**
+     * @param failures where a delivery thread's failure goes (its deliveries are taken over by a new one)
+     */
+    HomeEvents(String hostName, DeliveryPolicy policy, Sender sender, Settled settled, FailurePolicy failures) {
         this.hostName = hostName;
+        this.failures = failures;
         this.policy = policy;
         this.sender = sender;
         this.settled = settled;
@@ -248,8 +255,8 @@ final class HomeEvents implements AutoCloseable {
 
         Worker(String home) {
             this.home = home;
-            this.thread = new Thread(this, "agent-events-" + hostName + "-to-" + HostAddress.parse(home).name());
-            thread.setDaemon(true);
+            // run() catches whatever ends it, in one place
+            this.thread = OwnerThreads.thread("agent-events-" + hostName + "-to-" + HostAddress.parse(home).name(), this, failures);
         }
 
         synchronized void add(Outgoing o) {
@@ -309,7 +316,8 @@ final class HomeEvents implements AutoCloseable {
                     }
                 }
             } catch (Throwable t) {
-                LOG.error("host {}: the delivery thread to {} failed ({}); a new one takes over its deliveries", hostName, home, t.toString(), t);
+                LOG.warn("host {}: the delivery thread to {} failed ({}); a new one takes over its deliveries", hostName, home, t.toString());
+                failures.died(thread.getName(), t);
                 List<Outgoing> left;
                 synchronized (workers) {
                     workers.remove(home, this);
@@ -334,7 +342,8 @@ final class HomeEvents implements AutoCloseable {
             }
             try {
                 sender.deliver(home, o.arrival());
-            } catch (Exception | LinkageError | StackOverflowError e) {
+            } catch (Throwable e) {
+                OwnerThreads.rethrowFatal(e);
                 LOG.debug("host {}: arrival news for agent {} not delivered to {}: {}", hostName, o.arrival().id(), home, e.getMessage());
             }
         }
@@ -358,7 +367,8 @@ final class HomeEvents implements AutoCloseable {
                         LOG.info("host {}: home {} takes deliveries again", hostName, home);
                     }
                     return;
-                } catch (Exception | LinkageError | StackOverflowError e) {
+                } catch (Throwable e) {
+                    OwnerThreads.rethrowFatal(e); // anything else is the home's failure to take it: tried again
                     o.attempts++;
                     o.lastError = e.getMessage() != null ? e.getMessage() : e.toString();
                     logFailure(o);

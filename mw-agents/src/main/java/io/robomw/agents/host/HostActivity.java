@@ -68,7 +68,8 @@ final class HostActivity {
     static String describe(Object value) {
         try {
             return String.valueOf(value);
-        } catch (RuntimeException | StackOverflowError e) {
+        } catch (Throwable e) {
+            io.robomw.agents.net.OwnerThreads.rethrowFatal(e);
             return "(a " + value.getClass().getName() + " whose toString() threw " + e + ")";
         }
     }

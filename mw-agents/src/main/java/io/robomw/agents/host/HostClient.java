@@ -146,9 +146,16 @@ public final class HostClient implements AutoCloseable {
         });
     }
 
-    /** Forgets the links (a host keeps no state for them beyond its session table's limits). */
+    /**
+     * Closes the links: their agent wire connections are closed and their sessions forgotten (a
+     * host keeps no state for them beyond its session table's limits; RMI closes its own idle
+     * connections). Later calls open new links.
+     */
     @Override
     public void close() {
-        links.clear();
+        for (var it = links.values().iterator(); it.hasNext(); ) {
+            it.next().drop();
+            it.remove();
+        }
     }
 }

@@ -1,15 +1,13 @@
 package io.robomw.agents.host;
 
-import io.robomw.api.Agent;
+import io.robomw.api.Agency;
 import io.robomw.api.AgentContext;
 import io.robomw.api.AgentRef;
 import io.robomw.api.Itinerary;
 import io.robomw.api.Messaging;
 import io.robomw.api.Robot;
-import io.robomw.api.UnsupportedActionException;
 
 import java.io.Serializable;
-import java.util.List;
 import java.util.UUID;
 
 /** An agent's view of the host it is at. */
@@ -89,17 +87,7 @@ final class HostContext implements AgentContext {
     }
 
     @Override
-    public AgentRef sendAgent(String address, Agent agent) {
-        return host.sendAgent(address, agent);
-    }
-
-    @Override
-    public AgentRef startTrip(Agent agent) {
-        return host.startTrip(agent);
-    }
-
-    @Override
-    public List<AgentRef> dispatchClones(Agent agent, String... hosts) {
-        return host.dispatchClones(agent, hosts);
+    public Agency agency() {
+        return host.agency();
     }
 }

@@ -1,5 +1,6 @@
 package io.robomw.agents.host;
 
+import io.robomw.api.spi.FailurePolicy;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -64,6 +65,7 @@ final class HostEndpoint implements AgentHostRemote {
     private final ThrottledWarnings refusedPeers = new ThrottledWarnings(LOG, Duration.ofSeconds(1));
     private final ThrottledWarnings droppedCalls = new ThrottledWarnings(LOG, Duration.ofSeconds(1));
 
+    private final FailurePolicy failures;
     /** The highest protocol version this endpoint takes: {@link Session#WIRE_VERSION}, or 2 to act as a host of a build before it. */
     private final int highestVersion;
     /** The port of the host's agent wire ({@link WireServer}), 0 while it has none. */
@@ -78,10 +80,24 @@ final class HostEndpoint implements AgentHostRemote {
      *                       endpoint that refuses version 3 as builds before the agent wire do (tests of mixed versions)
      */
     HostEndpoint(String hostName, ClusterKey key, Handler handler, int highestVersion) {
+        this(hostName, key, handler, highestVersion, FailurePolicy.logging());
+    }
+
+    /**
+     * @param failures where a failure of the handler, other than a refusal, goes: the call is
+     *                 refused and the thread serving it goes on
+     */
+    HostEndpoint(String hostName, ClusterKey key, Handler handler, int highestVersion, FailurePolicy failures) {
         this.hostName = hostName;
         this.key = key;
         this.handler = handler;
         this.highestVersion = highestVersion;
+        this.failures = failures;
+    }
+
+    /** @return the peers' sessions kept now (for tests: one per link that authenticated) */
+    int sessions() {
+        return sessions.size();
     }
 
     /** @param port where the host's agent wire listens, offered to version-3 peers in their authentication answer */
@@ -246,7 +262,8 @@ final class HostEndpoint implements AgentHostRemote {
         }
         try {
             return handler.handle(peer.name(), op, message, offset, length);
-        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+        } catch (Throwable e) {
+            failures.surviveOrRethrow(Thread.currentThread().getName(), e);
             refused.increment();
             LOG.warn("host {}: {} call from peer '{}' failed: {}", hostName, op, peer.name(), e.toString());
             return Reply.of(Reply.Status.REFUSED, "the host could not handle the call: " + e.getMessage());

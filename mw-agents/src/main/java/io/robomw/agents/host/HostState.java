@@ -2,7 +2,10 @@ package io.robomw.agents.host;
 
 import io.robomw.agents.host.code.StateCodec;
 import io.robomw.agents.host.store.AgentStore;
+import io.robomw.agents.net.OwnerThreads;
+import io.robomw.agents.net.ThrottledWarnings;
 import io.robomw.api.Robot;
+import io.robomw.api.spi.FailurePolicy;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -53,8 +56,13 @@ final class HostState {
     final ExecutorService wireTaggers;
     /** Runs the home's calls to its agents (messages, retract and dispose requests) and clone launches. */
     final ExecutorService requests;
+    /** Where whatever the host's threads catch goes; its pools' threads report what ends them there. */
+    final FailurePolicy failures;
     private final AgentHost facade;
     private final AtomicInteger refused = new AtomicInteger();
+    /** How many refusals a second are logged; a flood of them (a peer that sends garbage with a valid session) logs no more. */
+    static final int REFUSALS_LOGGED_PER_SECOND = 10;
+    private final ThrottledWarnings refusals = new ThrottledWarnings(LOG, java.time.Duration.ofSeconds(1), REFUSALS_LOGGED_PER_SECOND);
     private final Map<UUID, String> forwards = new LinkedHashMap<>(256, 0.75f, false) {
         private static final long serialVersionUID = 1L;
 
@@ -72,17 +80,19 @@ final class HostState {
     /**
      * @param runnerSpin how long an idle runner thread spins for the next agent before it parks ({@link SpinHandoff})
      */
-    HostState(AgentHost facade, String name, Robot robot, StateCodec codec, int timeoutMillis, java.time.Duration runnerSpin) {
+    HostState(AgentHost facade, String name, Robot robot, StateCodec codec, int timeoutMillis, java.time.Duration runnerSpin,
+              FailurePolicy failures) {
         this.facade = facade;
+        this.failures = failures;
         this.name = name;
         this.robot = robot;
         this.codec = codec;
         this.timeoutMillis = timeoutMillis;
         this.runnerSpinNanos = runnerSpin.toNanos();
         this.runnerHandoff = new SpinHandoff<>(runnerSpin, System::nanoTime);
-        this.runners = pool(named("agent-runner-" + name), runnerHandoff);
-        this.requests = pool(named("agent-requests-" + name), new java.util.concurrent.SynchronousQueue<>());
-        this.wireTaggers = pool(named("agent-wire-tag-" + name), new java.util.concurrent.SynchronousQueue<>());
+        this.runners = pool(new OwnerThreads("agent-runner-" + name, failures), runnerHandoff);
+        this.requests = pool(new OwnerThreads("agent-requests-" + name, failures), new java.util.concurrent.SynchronousQueue<>());
+        this.wireTaggers = pool(new OwnerThreads("agent-wire-tag-" + name, failures), new java.util.concurrent.SynchronousQueue<>());
     }
 
     /** @return a new context for an agent here, to attach to it before one of its callbacks */
@@ -90,10 +100,13 @@ final class HostState {
         return new HostContext(facade, h);
     }
 
-    /** Counts, logs and answers a refused call or archive. */
+    /**
+     * Counts, logs (at most {@value #REFUSALS_LOGGED_PER_SECOND} lines a second; the next line says
+     * how many more there were) and answers a refused call or archive.
+     */
     Reply refuse(String why) {
         refused.incrementAndGet();
-        LOG.warn("host {}: {}", name, why);
+        refusals.warn("host {}: {}", name, why);
         return Reply.of(Reply.Status.REFUSED, why);
     }
 
@@ -124,14 +137,5 @@ final class HostState {
     private static ExecutorService pool(ThreadFactory threads, java.util.concurrent.BlockingQueue<Runnable> handoff) {
         return new java.util.concurrent.ThreadPoolExecutor(0, Integer.MAX_VALUE, IDLE_THREAD_SECONDS, java.util.concurrent.TimeUnit.SECONDS,
                 handoff, threads);
-    }
-
-    private static ThreadFactory named(String prefix) {
-        AtomicInteger n = new AtomicInteger();
-        return r -> {
-            Thread t = new Thread(r, prefix + "-" + n.incrementAndGet());
-            t.setDaemon(true);
-            return t;
-        };
     }
 }

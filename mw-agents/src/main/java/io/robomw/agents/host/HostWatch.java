@@ -16,8 +16,10 @@ import java.util.UUID;
  * TLS) for its name, its robot, its agents with their itineraries, and the events since the last
  * poll. The link is kept between polls; a host that restarted is authenticated to again, a host
  * that is down fails the poll with an {@link IOException} and is asked again at the next one.
- * {@link #retract} and {@link #dispose} send those requests to the host an agent is at. One thread
- * at a time.
+ * {@link #retract} and {@link #dispose} send those requests to the host an agent is at, and
+ * {@link #describe} asks the host who it is, on the same link (so a console that asks often does
+ * not open a session each time). One thread at a time polls; {@link #describe} may be called from
+ * another. {@link #close()} closes the link.
  *
  * <p>The answer's layout (big-endian, strings as {@code DataOutput.writeUTF}):
  * <pre>
@@ -33,7 +35,7 @@ import java.util.UUID;
  * watchers; an unknown version, a section running past the end, or a malformed string is an
  * {@link IOException} naming the host.
  */
-public final class HostWatch {
+public final class HostWatch implements AutoCloseable {
 
     /** The answer's format version. */
     public static final int FORMAT_VERSION = 1;
@@ -124,6 +126,36 @@ public final class HostWatch {
         long last = s.events().isEmpty() ? nextSeq : s.events().get(s.events().size() - 1).seq();
         nextSeq = Math.max(nextSeq, last);
         return s;
+    }
+
+    /**
+     * Asks the host who it is (its name, robot, messaging addresses and the hosts it knows), over
+     * this watcher's link.
+     *
+     * @return what it says of itself
+     * @throws IOException if the host cannot be reached, refuses this watcher, or answers nonsense
+     */
+    public HostDescription describe() throws IOException {
+        Reply r;
+        try {
+            r = link.call(Op.DESCRIBE, new byte[0]);
+        } catch (PeerException e) {
+            throw new IOException(e.getMessage(), e);
+        }
+        if (r.status() != Reply.Status.OK) {
+            throw new IOException(address + " answered " + r.status() + " to DESCRIBE: " + r.text());
+        }
+        try {
+            return HostDescription.decode(r.body(), address.toString());
+        } catch (IllegalArgumentException e) {
+            throw new IOException(e.getMessage(), e);
+        }
+    }
+
+    /** Closes the link to the host (its agent wire connections) and forgets its session. */
+    @Override
+    public void close() {
+        link.drop();
     }
 
     /**
@@ -269,6 +301,10 @@ public final class HostWatch {
                 r = l.call(op, body);
             } catch (PeerException e) {
                 throw new IOException(e.getMessage(), e);
+            } finally {
+                if (l != link) {
+                    l.drop(); // a link to a host the agent moved to, made for this request alone
+                }
             }
             switch (r.status()) {
                 case OK -> {

@@ -29,7 +29,7 @@ final class OwedEvents implements AutoCloseable {
     OwedEvents(HostState host, Peers peers, DeliveryPolicy policy) {
         this.host = host;
         this.peers = peers;
-        this.events = new HomeEvents(host.name, policy, this::deliver, this::settled);
+        this.events = new HomeEvents(host.name, policy, this::deliver, this::settled, host.failures);
     }
 
     /** Stores an event owed to a home (durably, with a journal) and sends it until the home has it. */

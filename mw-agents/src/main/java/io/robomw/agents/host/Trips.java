@@ -3,6 +3,7 @@ package io.robomw.agents.host;
 import io.robomw.agents.host.code.StateCodec;
 import io.robomw.api.AgentStatus;
 import io.robomw.api.Itinerary;
+import io.robomw.api.spi.FailurePolicy;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -63,7 +64,9 @@ final class Trips {
     void runStop(HostedAgent h, boolean interrupted) {
         Thread t = Thread.currentThread();
         String poolName = t.getName();
-        t.setName("agent-" + h.shortId() + "-" + simpleName(h.className) + "@" + host.name);
+        String role = "agent-" + h.shortId() + "-" + simpleName(h.className) + "@" + host.name;
+        t.setName(role);
+        boolean dying = false;
         try {
             host.messaging.met(h);
             Itinerary it = h.agent.itinerary();
@@ -96,7 +99,9 @@ final class Trips {
                         it.record(stopHost, Itinerary.Outcome.DONE, "");
                         host.activity.record(h.id, h.className, HostActivity.STOP_DONE, host.address, "");
                     } catch (Throwable e) {
-                        // Whatever the agent's code throws (an exception, a LinkageError, a StackOverflowError...) fails its stop, not the host.
+                        // Whatever the agent's code throws that a thread survives (an exception, a LinkageError, a
+                        // StackOverflowError...) fails its stop, not the host; any other ends its trip (below).
+                        host.failures.surviveOrRethrow(role, e);
                         LOG.warn("host {}: agent {} ({}) failed at its stop: {}", host.name, h.id, h.className, e.toString());
                         it.record(stopHost, Itinerary.Outcome.FAILED, StackTraces.of(e));
                         host.activity.record(h.id, h.className, HostActivity.STOP_FAILED, host.address, e.toString());
@@ -106,20 +111,41 @@ final class Trips {
             robot.release();
             moveOn(h);
         } catch (Throwable e) {
-            // The runner must not die silently with the agent stuck here: say so, and end its trip here unless it has left.
-            LOG.error("host {}: agent {} ({}) could not go on: {}", host.name, h.id, h.className, e.toString(), e);
-            if (!h.departure.isDone() && !host.closed) {
-                try {
+            if (FailurePolicy.survivable(e)) {
+                // The runner must not die silently with the agent stuck here: say so, and end its trip here unless it has left.
+                host.failures.survived(role, e);
+                LOG.warn("host {}: agent {} ({}) could not go on: {}; its trip ends here", host.name, h.id, h.className, e.toString());
+                endHere(h, () -> {
                     h.agent.itinerary().record(host.address, Itinerary.Outcome.FAILED, StackTraces.of(e));
                     finish(h, AgentEvent.Kind.RESULT);
-                } catch (Throwable again) {
-                    LOG.error("host {}: agent {} could not end its trip here either ({}); it stays in the store for the next start", host.name, h.id,
-                            again.toString());
-                }
+                });
+            } else {
+                // An error no thread survives (out of memory, an internal error of the VM): the agent's trip ends
+                // here in failure, and the runner with it (the thread reports its death under the agent's name;
+                // the pool starts another runner for the next agent), while the host serves on.
+                dying = true;
+                endHere(h, () -> fail(h, "agent " + h.id + " (" + h.className + ") died at host " + host.name + " (" + host.address
+                        + ") of " + e + "; its trip ends there"));
+                throw (VirtualMachineError) e;
             }
         } finally {
             robot.release();
-            t.setName(poolName);
+            if (!dying) {
+                t.setName(poolName);
+            }
+        }
+    }
+
+    /** Ends an agent's trip here unless it has left, as {@code end} says; if that fails too, the agent stays in the store. */
+    private void endHere(HostedAgent h, Runnable end) {
+        if (h.departure.isDone() || host.closed) {
+            return;
+        }
+        try {
+            end.run();
+        } catch (Throwable again) {
+            LOG.error("host {}: agent {} could not end its trip here either ({}); it stays in the store for the next start", host.name, h.id,
+                    again.toString());
         }
     }
 
@@ -163,7 +189,8 @@ final class Trips {
             String target = next.get().host();
             try {
                 h.agent.onDispatching();
-            } catch (RuntimeException e) {
+            } catch (Throwable e) {
+                host.failures.surviveOrRethrow(Thread.currentThread().getName(), e);
                 LOG.warn("host {}: agent {} onDispatching threw {}", host.name, h.id, e.toString());
             }
             owed.awaitDelivered(h.id, REPORT_FLUSH_MILLIS);
@@ -210,7 +237,8 @@ final class Trips {
         h.agent.attach(ctx);
         try {
             h.agent.onDisposing();
-        } catch (RuntimeException e) {
+        } catch (Throwable e) {
+            host.failures.surviveOrRethrow(Thread.currentThread().getName(), e);
             LOG.warn("host {}: agent {} onDisposing threw {}", host.name, h.id, e.toString());
         }
         h.agent.attach(null);
@@ -233,6 +261,20 @@ final class Trips {
         } else {
             payload = ("was disposed of at " + host.address).getBytes(StandardCharsets.UTF_8);
         }
+        end(h, k, payload);
+    }
+
+    /**
+     * Ends an agent's trip here in failure, without calling its code again (it failed beyond what
+     * its callbacks may catch): its home's result fails with {@code why}.
+     */
+    void fail(HostedAgent h, String why) {
+        h.agent.attach(null);
+        end(h, AgentEvent.Kind.FAILED, why.getBytes(StandardCharsets.UTF_8));
+    }
+
+    /** Owes the trip's visits and its last event to the agent's home, and forgets the agent here. */
+    private void end(HostedAgent h, AgentEvent.Kind k, byte[] payload) {
         h.status = k == AgentEvent.Kind.RESULT ? AgentStatus.COMPLETED : k == AgentEvent.Kind.DISPOSED ? AgentStatus.DISPOSED : AgentStatus.FAILED;
         // The visits first, then the event that ends the trip: the home has them when its result future completes.
         owed.owe(h.home, new AgentEvent(h.id, h.eventSeq++, AgentEvent.Kind.VISITS, host.address, Bodies.visits(h.agent.itinerary().history())));
@@ -254,7 +296,8 @@ final class Trips {
         host.activity.record(h.id, h.className, HostActivity.RETRACTED, host.address, "going home to " + h.home);
         try {
             h.agent.onDispatching();
-        } catch (RuntimeException e) {
+        } catch (Throwable e) {
+            host.failures.surviveOrRethrow(Thread.currentThread().getName(), e);
             LOG.warn("host {}: agent {} onDispatching threw {}", host.name, h.id, e.toString());
         }
         h.agent.attach(null);

@@ -1,5 +1,7 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.net.OwnerThreads;
+import io.robomw.api.spi.FailurePolicy;
 import io.robomw.agents.net.ThrottledWarnings;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -85,7 +87,8 @@ final class WireServer implements AutoCloseable {
     private final ThrottledWarnings refusals = new ThrottledWarnings(LOG, Duration.ofSeconds(1));
     private volatile boolean closing;
     private volatile Throwable failure;
-    private volatile ThreadFactory connectionThreads = Thread::new;
+    private final FailurePolicy failures;
+    private volatile ThreadFactory connectionThreads;
     /** How long a connection thread spins for the next frame before it blocks reading (0: never; plain connections only). */
     private volatile long readSpinNanos;
     private volatile java.util.concurrent.Executor tagger;
@@ -98,10 +101,13 @@ final class WireServer implements AutoCloseable {
      * @param port     the port, 0 for any free one
      * @param tls      the host's TLS context (client certificates required), or {@code null}
      * @param limits   the limits
+     * @param failures where what its accept and connection threads catch goes
      * @throws IOException if the port cannot be bound
      */
-    WireServer(HostEndpoint endpoint, InetAddress bind, int port, SSLContext tls, Limits limits) throws IOException {
+    WireServer(HostEndpoint endpoint, InetAddress bind, int port, SSLContext tls, Limits limits, FailurePolicy failures) throws IOException {
         this.endpoint = endpoint;
+        this.failures = failures;
+        this.connectionThreads = r -> OwnerThreads.thread("agent-wire-" + endpoint.hostName(), r, failures);
         this.hostName = endpoint.hostName();
         this.tls = tls;
         this.limits = limits;
@@ -115,7 +121,7 @@ final class WireServer implements AutoCloseable {
         }
         this.acceptor = new Thread(this::accept, "agent-wire-accept-" + hostName);
         acceptor.setDaemon(true);
-        acceptor.start();
+        acceptor.start(); // accept() catches whatever ends it, in one place
     }
 
     /** @param c where the frames' bytes are counted (the host's, with its RMI endpoint's) */
@@ -162,7 +168,9 @@ final class WireServer implements AutoCloseable {
             // refused at once and send their agents over RMI (docs/agents.md, "Versions").
             endpoint.wirePort(0);
             closeQuietly(server);
-            LOG.error("host {}: the agent wire's accept thread failed; the wire stops listening and peers send their agents over RMI", hostName, t);
+            LOG.warn("host {}: the agent wire's accept thread failed ({}); the wire stops listening and peers send their agents over RMI", hostName,
+                    t.toString());
+            failures.died(Thread.currentThread().getName(), t);
         }
     }
 
@@ -319,7 +327,9 @@ final class WireServer implements AutoCloseable {
                     LOG.debug("host {}: agent wire connection of {} ended: {}", hostName, who(), e.toString());
                 }
             } catch (Throwable t) {
-                LOG.error("host {}: agent wire connection of {} failed; closing it", hostName, who(), t);
+                // this connection ends; the wire serves on (and an error no thread survives ends this thread too)
+                LOG.warn("host {}: agent wire connection of {} failed ({}); closing it", hostName, who(), t.toString());
+                failures.surviveOrRethrow(Thread.currentThread().getName(), t);
             } finally {
                 busy = false;
                 closeQuietly(channel);

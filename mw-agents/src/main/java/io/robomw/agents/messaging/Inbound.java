@@ -10,8 +10,10 @@ import io.robomw.agents.messaging.security.PayloadCodec;
 import io.robomw.agents.messaging.security.PayloadRejectedException;
 import io.robomw.agents.messaging.security.ReplayGuard;
 import io.robomw.agents.messaging.spi.Channel;
+import io.robomw.agents.net.OwnerThreads;
 import io.robomw.api.Message;
 import io.robomw.api.MessageListener;
+import io.robomw.api.spi.FailurePolicy;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -45,9 +47,11 @@ final class Inbound {
     private final int maxFrameSize;
     private final int maxTopicBytes;
     private final long maxSkewMicros;
+    private final FailurePolicy failures;
 
-    Inbound(MessagingNode node, NodeCounters counters, FrameMac mac, PayloadCodec payloads, MessagingSettings settings) {
+    Inbound(MessagingNode node, NodeCounters counters, FrameMac mac, PayloadCodec payloads, MessagingSettings settings, FailurePolicy failures) {
         this.node = node;
+        this.failures = failures;
         this.counters = counters;
         this.losses = new LossDetector(counters);
         this.mac = mac;
@@ -85,7 +89,9 @@ final class Inbound {
             }
         } catch (FrameException e) {
             counters.drop(e.reason(), from.peer(), e.getMessage());
-        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+        } catch (Throwable e) {
+            // a failure of this frame's handling, not the link's: the frame is dropped, the thread goes on
+            failures.surviveOrRethrow(OwnerThreads.current(), e);
             counters.drop(DropReason.MALFORMED, from.peer(), "frame could not be handled: " + e);
         }
     }
@@ -159,10 +165,11 @@ final class Inbound {
         for (MessageListener listener : topic.listeners) {
             try {
                 listener.onMessage(message);
-            } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+            } catch (Throwable e) {
                 // A listener's failure (an agent's code: an exception or an error it can cause) is its own, not the connection's.
+                failures.surviveOrRethrow(OwnerThreads.current(), e);
                 counters.listenerError();
-                LOG.warn("node '{}': a listener of topic '{}' failed on a message from '{}': {}", node.name(), f.topic(), f.sender(), e.toString(), e);
+                LOG.warn("node '{}': a listener of topic '{}' failed on a message from '{}': {}", node.name(), f.topic(), f.sender(), e.toString());
             }
         }
     }

@@ -11,9 +11,12 @@ import io.robomw.agents.messaging.spi.Link;
 import io.robomw.agents.messaging.spi.Transport;
 import io.robomw.agents.messaging.spi.TransportContext;
 import io.robomw.agents.messaging.spi.TransportProvider;
+import io.robomw.agents.net.OwnerThreads;
 import io.robomw.api.Message;
 import io.robomw.api.MessageListener;
 import io.robomw.api.Messaging;
+import io.robomw.api.spi.FailurePolicy;
+
 import io.robomw.api.MessagingException;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -84,6 +87,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     private final String name;
     private final long id;
     private final MessagingSettings settings;
+    private final FailurePolicy failures;
     private final Set<String> names = ConcurrentHashMap.newKeySet();
     private final AtomicInteger threadNumbers = new AtomicInteger();
     private final NodeCounters counters;
@@ -117,9 +121,10 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     private volatile boolean closed;
     private volatile boolean joinedGroup;
 
-    private MessagingNode(String name, MessagingSettings settings, ClassLoader classLoader) {
+    private MessagingNode(String name, MessagingSettings settings, ClassLoader classLoader, FailurePolicy failures) {
         this.name = name;
         this.settings = settings;
+        this.failures = failures;
         this.id = new SecureRandom().nextLong();
         this.names.add(name);
         this.counters = new NodeCounters(name);
@@ -128,7 +133,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         this.frames = new FrameFactory(name, id, payloads, mac, settings.maxFrameSize());
         this.topics = new LocalTopics(name);
         this.remoteSubscribers = new RemoteSubscribers(settings.limits());
-        this.inbound = new Inbound(this, counters, mac, payloads, settings);
+        this.inbound = new Inbound(this, counters, mac, payloads, settings, failures);
         this.links = new Links(name, this::transport, this::linkOpened);
         this.presence = new Presence(name, this::boundAddresses);
         for (TransportProvider p : ServiceLoader.load(TransportProvider.class, MessagingNode.class.getClassLoader())) {
@@ -136,9 +141,9 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         }
         this.housekeeping = Executors.newSingleThreadScheduledExecutor(context.threads("housekeeping"));
         long period = settings.subscriptionRefresh().toMillis();
-        housekeeping.scheduleWithFixedDelay(this::keepHouse, period, period, TimeUnit.MILLISECONDS);
+        housekeeping.scheduleWithFixedDelay(OwnerThreads.rounds(failures, this::keepHouse), period, period, TimeUnit.MILLISECONDS);
         long keepAlive = Math.max(1, settings.limits().keepAliveInterval().toMillis() / 2);
-        housekeeping.scheduleWithFixedDelay(this::keepAlive, keepAlive, keepAlive, TimeUnit.MILLISECONDS);
+        housekeeping.scheduleWithFixedDelay(OwnerThreads.rounds(failures, this::keepAlive), keepAlive, keepAlive, TimeUnit.MILLISECONDS);
     }
 
     /**
@@ -154,6 +159,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         private final String name;
         private MessagingSettings settings = MessagingSettings.defaults();
         private ClassLoader classLoader = Thread.currentThread().getContextClassLoader();
+        private FailurePolicy failures = FailurePolicy.logging();
         private final List<String> binds = new ArrayList<>();
         private final List<String> connects = new ArrayList<>();
 
@@ -176,6 +182,16 @@ public final class MessagingNode implements Messaging, AutoCloseable {
             return this;
         }
 
+        /**
+         * @param policy where whatever the node's threads (transports' read, write and accept loops,
+         *               housekeeping) and its listeners throw goes (default {@link FailurePolicy#logging()})
+         * @return this builder
+         */
+        public Builder failures(FailurePolicy policy) {
+            this.failures = Objects.requireNonNull(policy, "policy");
+            return this;
+        }
+
         /** @param address where to receive: tcp, udp, rmi (listen) or multicast (join) @return this builder */
         public Builder bind(String address) {
             binds.add(address);
@@ -193,7 +209,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
          * @throws MessagingException if an address cannot be bound (a connect that fails is retried in the background)
          */
         public MessagingNode build() {
-            MessagingNode node = new MessagingNode(name, settings, classLoader == null ? MessagingNode.class.getClassLoader() : classLoader);
+            MessagingNode node = new MessagingNode(name, settings, classLoader == null ? MessagingNode.class.getClassLoader() : classLoader, failures);
             try {
                 for (String b : binds) {
                     node.bind(b);
@@ -265,6 +281,11 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         if (names.add(receiverName)) {
             transports.values().forEach(t -> t.answerTo(receiverName));
         }
+    }
+
+    /** @return where whatever the node's threads and listeners throw goes */
+    public FailurePolicy failures() {
+        return failures;
     }
 
     /** @return the node's name */
@@ -363,6 +384,31 @@ public final class MessagingNode implements Messaging, AutoCloseable {
      */
     public CompletableFuture<Message> request(String name, String host, String pass, String topic, Serializable object,
                                               String function, Duration timeout) {
+        return startRequest(name, host, pass, topic, object, function, timeout).reply();
+    }
+
+    /**
+     * A request on its way.
+     *
+     * @param correlationId what its reply names, and what a later message about it (a cancel) can name
+     * @param reply         completes with the reply, or fails with {@link MessagingException}
+     */
+    public record Request(UUID correlationId, CompletableFuture<Message> reply) {
+    }
+
+    /**
+     * {@link #request}, also saying which correlation id the request has.
+     *
+     * @param name     the receiver's name
+     * @param host     its address
+     * @param pass     the topic password, or {@code null}
+     * @param topic    the topic
+     * @param object   the payload
+     * @param function the function
+     * @param timeout  how long to wait for the reply
+     * @return the request: its correlation id and the future of its reply
+     */
+    public Request startRequest(String name, String host, String pass, String topic, Serializable object, String function, Duration timeout) {
         Outgoing out = prepare(FrameKind.MESSAGE, name, host, pass, topic, object, function);
         UUID id = out.correlationId;
         CompletableFuture<Message> reply = replies.await(out.sent.host(), r -> r.message().correlationId().equals(id));
@@ -372,7 +418,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
             replies.cancel(reply);
             throw e;
         }
-        return withTimeout(reply, timeout, () -> "no reply to " + id + " on topic '" + topic + "' from " + host + " within " + timeout);
+        return new Request(id, withTimeout(reply, timeout, () -> "no reply to " + id + " on topic '" + topic + "' from " + host + " within " + timeout));
     }
 
     @Override
@@ -733,49 +779,41 @@ public final class MessagingNode implements Messaging, AutoCloseable {
      * as often as that), so the peer's idle timeout never cuts a quiet healthy link.
      */
     private void keepAlive() {
-        try {
-            long now = System.nanoTime();
-            long silent = settings.limits().keepAliveInterval().toNanos();
-            byte[] frame = null;
-            for (Channel c : connections) {
-                if (frame == null) {
-                    frame = frames.control(FrameKind.KEEPALIVE, "");
-                }
-                c.keepAlive(frame, now, silent);
+        long now = System.nanoTime();
+        long silent = settings.limits().keepAliveInterval().toNanos();
+        byte[] frame = null;
+        for (Channel c : connections) {
+            if (frame == null) {
+                frame = frames.control(FrameKind.KEEPALIVE, "");
             }
-        } catch (RuntimeException e) {
-            LOG.warn("node '{}': sending keep-alives failed: {}", name, e.toString(), e);
+            c.keepAlive(frame, now, silent);
         }
     }
 
     private void keepHouse() {
-        try {
-            long now = System.nanoTime();
-            long limit = settings.sendTimeout().toNanos();
-            for (Channel c : connections) {
-                if (c.stuck(now, limit)) {
-                    LOG.warn("node '{}': closing {}: it has not read for {}", name, c.peer(), settings.sendTimeout());
-                    c.close();
-                }
+        long now = System.nanoTime();
+        long limit = settings.sendTimeout().toNanos();
+        for (Channel c : connections) {
+            if (c.stuck(now, limit)) {
+                LOG.warn("node '{}': closing {}: it has not read for {}", name, c.peer(), settings.sendTimeout());
+                c.close();
             }
-            for (Address peer : peers) {
-                if (links.find(links.key(peer)) == null) {
-                    try {
-                        links.link(peer);
-                        LOG.info("node '{}': connected to {}", name, peer);
-                    } catch (MessagingException e) {
-                        LOG.debug("node '{}': still cannot reach {}: {}", name, peer, e.getMessage());
-                    }
-                }
-            }
-            List<String> subscribed = topics.subscribed();
-            for (Link l : links.datagramPeers()) {
-                subscribed.forEach(topic -> trySend(l, frames.control(FrameKind.SUBSCRIBE, topic)));
-            }
-            remoteSubscribers.expire(now, 5 * settings.subscriptionRefresh().toNanos());
-        } catch (RuntimeException e) {
-            LOG.warn("node '{}': housekeeping failed: {}", name, e.toString(), e);
         }
+        for (Address peer : peers) {
+            if (links.find(links.key(peer)) == null) {
+                try {
+                    links.link(peer);
+                    LOG.info("node '{}': connected to {}", name, peer);
+                } catch (MessagingException e) {
+                    LOG.debug("node '{}': still cannot reach {}: {}", name, peer, e.getMessage());
+                }
+            }
+        }
+        List<String> subscribed = topics.subscribed();
+        for (Link l : links.datagramPeers()) {
+            subscribed.forEach(topic -> trySend(l, frames.control(FrameKind.SUBSCRIBE, topic)));
+        }
+        remoteSubscribers.expire(now, 5 * settings.subscriptionRefresh().toNanos());
     }
 
     /** The node as its transports see it. */
@@ -843,20 +881,14 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         }
 
         @Override
+        public FailurePolicy failures() {
+            return failures;
+        }
+
+        @Override
         public ThreadFactory threads(String role) {
-            return r -> {
-                String threadName = "mw-msg-" + name + "-" + role + "-" + threadNumbers.incrementAndGet();
-                Thread t = new Thread(() -> {
-                    try {
-                        r.run();
-                    } catch (Throwable e) {
-                        // Its loop handles what it can; whatever gets here ends the thread, said aloud.
-                        LOG.error("node '{}': thread {} ended by {}", name, threadName, e.toString(), e);
-                    }
-                }, threadName);
-                t.setDaemon(true);
-                return t;
-            };
+            // Its loop handles what it can; whatever gets here ends the thread, reported as its death.
+            return r -> OwnerThreads.thread("mw-msg-" + name + "-" + role + "-" + threadNumbers.incrementAndGet(), r, failures);
         }
     }
 }

@@ -1,5 +1,6 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.RecordingFailures;
 import io.robomw.agents.host.trip.VisitorAgent;
 import io.robomw.testkit.Await;
 import io.robomw.api.Agent;
@@ -41,7 +42,7 @@ class AgentHostTest {
         AgentHost b = host("b");
         VisitorAgent agent = new VisitorAgent();
         agent.itinerary().addStop(a.address()).addStop(b.address()).addStop(a.address());
-        AgentRef ref = home.startTrip(agent);
+        AgentRef ref = home.agency().startTrip(agent);
         Serializable result = ref.result().get(10, TimeUnit.SECONDS);
         assertEquals(List.of("a", "b", "a"), result);
         assertEquals(AgentStatus.COMPLETED, ref.status());
@@ -55,7 +56,7 @@ class AgentHostTest {
         AgentHost b = host("b");
         VisitorAgent agent = new VisitorAgent().holdUntilReleased();
         agent.itinerary().addStop(a.address()).addStop(b.address());
-        AgentRef ref = home.startTrip(agent);
+        AgentRef ref = home.agency().startTrip(agent);
         List<Serializable> reports = new CopyOnWriteArrayList<>();
         ref.addReportListener(reports::add);
         assertEquals("a", ref.sendMessage("where", Duration.ofSeconds(5)));
@@ -72,7 +73,7 @@ class AgentHostTest {
         AgentHost home = host("home");
         AgentHost a = host("a");
         AgentHost b = host("b");
-        List<AgentRef> refs = home.dispatchClones(new VisitorAgent(), a.address(), b.address());
+        List<AgentRef> refs = home.agency().dispatchClones(new VisitorAgent(), a.address(), b.address());
         assertEquals(2, refs.size());
         assertNotEquals(refs.get(0).id(), refs.get(1).id());
         assertEquals(List.of("a"), refs.get(0).result().get(10, TimeUnit.SECONDS));
@@ -83,7 +84,7 @@ class AgentHostTest {
     void messageTheAgentDoesNotHandleFailsWithNotHandled() throws Exception {
         AgentHost home = host("home");
         AgentHost a = host("a");
-        AgentRef ref = home.sendAgent(a.address(), new VisitorAgent().holdUntilReleased());
+        AgentRef ref = home.agency().sendAgent(a.address(), new VisitorAgent().holdUntilReleased());
         AgentException e = assertThrows(AgentException.class, () -> ref.sendMessage("dance", Duration.ofSeconds(5)));
         assertInstanceOf(NotHandledException.class, e);
         ref.sendMessage("release", Duration.ofSeconds(5));
@@ -97,7 +98,7 @@ class AgentHostTest {
         AgentHost b = host("b");
         VisitorAgent agent = new VisitorAgent().holdUntilReleased();
         agent.itinerary().addStop(a.address()).addStop(b.address());
-        AgentRef ref = home.startTrip(agent);
+        AgentRef ref = home.agency().startTrip(agent);
         var retracted = ref.retract();
         // The retract takes effect when the stop's work returns; release the agent until it is home.
         await(() -> {
@@ -116,7 +117,7 @@ class AgentHostTest {
         AgentHost b = host("b");
         VisitorAgent agent = new VisitorAgent().holdUntilReleased();
         agent.itinerary().addStop(a.address()).addStop(b.address());
-        AgentRef ref = home.startTrip(agent);
+        AgentRef ref = home.agency().startTrip(agent);
         ref.dispose();
         await(() -> !a.agents().isEmpty()); // still there, holding
         ref.sendMessage("release", Duration.ofSeconds(5));
@@ -131,7 +132,7 @@ class AgentHostTest {
         AgentHost a = host("a");
         VisitorAgent agent = new VisitorAgent();
         agent.itinerary().addStop(a.address()).addStop("rmi://127.0.0.1:1/nobody").addStop(a.address());
-        AgentRef ref = home.startTrip(agent);
+        AgentRef ref = home.agency().startTrip(agent);
         assertEquals(List.of("a", "a"), ref.result().get(10, TimeUnit.SECONDS));
     }
 
@@ -140,11 +141,11 @@ class AgentHostTest {
         AgentHost a = host("a");
         AgentHost intruder = AgentHost.builder("intruder").clusterKey(ClusterKey.fromPassphrase("guess")).start();
         hosts.add(intruder);
-        AgentException e = assertThrows(AgentException.class, () -> intruder.sendAgent(a.address(), new VisitorAgent()));
+        AgentException e = assertThrows(AgentException.class, () -> intruder.agency().sendAgent(a.address(), new VisitorAgent()));
         assertTrue(e.getMessage().contains("refused"), e.getMessage());
         assertTrue(a.refused() >= 1);
         AgentHost home = host("home");
-        assertEquals(List.of("a"), home.sendAgent(a.address(), new VisitorAgent()).result().get(10, TimeUnit.SECONDS));
+        assertEquals(List.of("a"), home.agency().sendAgent(a.address(), new VisitorAgent()).result().get(10, TimeUnit.SECONDS));
     }
 
     @Test
@@ -155,7 +156,7 @@ class AgentHostTest {
         hosts.add(a);
         VisitorAgent agent = new VisitorAgent().payload(300_000);
         agent.itinerary().addStop(a.address()).addStop(home.address()).addStop(a.address()).addStop(home.address());
-        assertEquals(List.of("a", "home", "a", "home"), home.startTrip(agent).result().get(10, TimeUnit.SECONDS));
+        assertEquals(List.of("a", "home", "a", "home"), home.agency().startTrip(agent).result().get(10, TimeUnit.SECONDS));
         // The result can be home before host a has read home's acknowledgement of the last hop there
         // (home runs the stop as soon as it has stored the agent): a lists it IN_TRANSIT until then.
         Await.until("host a no longer lists the agent once the hop home is acknowledged", Duration.ofSeconds(10), () -> a.agents().isEmpty());
@@ -173,7 +174,7 @@ class AgentHostTest {
         hosts.add(a);
         VisitorAgent agent = new VisitorAgent().holdUntilReleased();
         agent.itinerary().addStop(a.address()).addStop(a.address());
-        AgentRef ref = home.startTrip(agent);
+        AgentRef ref = home.agency().startTrip(agent);
         List<Serializable> reports = new CopyOnWriteArrayList<>();
         ref.addReportListener(reports::add); // the first listener gets the reports that came before it
         await(() -> reports.size() == 1);
@@ -199,7 +200,7 @@ class AgentHostTest {
         AgentHost a = host("a");
         VisitorAgent agent = new VisitorAgent().holdUntilReleased();
         agent.itinerary().addStop(a.address());
-        AgentRef ref = home.startTrip(agent);
+        AgentRef ref = home.agency().startTrip(agent);
         var retracted = ref.retract();
         await(() -> {
             safeSend(ref, "release");
@@ -219,7 +220,7 @@ class AgentHostTest {
         AgentHost a = host("a");
         VisitorAgent agent = new VisitorAgent();
         agent.itinerary().addStop(a.address(), ctx -> ctx.robot()).addStop("rmi://127.0.0.1:1/nobody").addStop(a.address());
-        AgentRef ref = home.startTrip(agent);
+        AgentRef ref = home.agency().startTrip(agent);
         assertEquals(List.of("a"), ref.result().get(10, TimeUnit.SECONDS));
         List<io.robomw.api.Itinerary.Visit> visits = ref.history();
         assertEquals(List.of(io.robomw.api.Itinerary.Outcome.FAILED, io.robomw.api.Itinerary.Outcome.UNREACHABLE, io.robomw.api.Itinerary.Outcome.DONE),
@@ -232,22 +233,56 @@ class AgentHostTest {
     }
 
     @Test
-    void anErrorFromAnAgentsCodeFailsItsStopAndTheTripGoesOn() throws Exception {
+    void anErrorFromAnAgentsCodeThatAThreadSurvivesFailsItsStopAndTheTripGoesOn() throws Exception {
+        RecordingFailures failures = new RecordingFailures();
         AgentHost home = host("home");
-        AgentHost a = host("a");
+        AgentHost a = hosts.start(AgentHost.builder("a").clusterKey(KEY).failures(failures));
         VisitorAgent agent = new VisitorAgent();
         agent.itinerary().addStop(a.address(), ctx -> {
             throw new NoClassDefFoundError("org/example/Gone");
         }).addStop(a.address(), ctx -> {
-            throw new InternalError("agent code in trouble");
+            throw new StackOverflowError("agent code in trouble");
         }).addStop(a.address());
-        AgentRef ref = home.startTrip(agent);
+        AgentRef ref = home.agency().startTrip(agent);
         assertEquals(List.of("a"), ref.result().get(10, TimeUnit.SECONDS));
         List<io.robomw.api.Itinerary.Visit> visits = ref.history();
         assertEquals(List.of(io.robomw.api.Itinerary.Outcome.FAILED, io.robomw.api.Itinerary.Outcome.FAILED, io.robomw.api.Itinerary.Outcome.DONE),
                 visits.stream().map(io.robomw.api.Itinerary.Visit::outcome).toList(), visits.toString());
         assertTrue(visits.get(0).detail().startsWith("java.lang.NoClassDefFoundError: org/example/Gone"), visits.get(0).detail());
-        assertTrue(visits.get(1).detail().startsWith("java.lang.InternalError: agent code in trouble"), visits.get(1).detail());
+        assertTrue(visits.get(1).detail().startsWith("java.lang.StackOverflowError: agent code in trouble"), visits.get(1).detail());
+        List<RecordingFailures.Report> reports = failures.reports();
+        assertEquals(List.of(NoClassDefFoundError.class, StackOverflowError.class), reports.stream().map(r -> r.failure().getClass()).toList(),
+                "the host's failure policy heard of both: " + reports);
+        assertTrue(failures.deaths().isEmpty(), "no runner died: " + reports);
+        assertTrue(reports.get(0).owner().startsWith("agent-") && reports.get(0).owner().endsWith("-VisitorAgent@a"),
+                "reported under the agent's runner: " + reports.get(0).owner());
+    }
+
+    @Test
+    void anErrorNoThreadSurvivesEndsThatAgentsTripNamingItAndItsHostAndTheHostServesOn() throws Exception {
+        RecordingFailures failures = new RecordingFailures();
+        AgentHost home = host("home");
+        AgentHost a = hosts.start(AgentHost.builder("a").clusterKey(KEY).failures(failures));
+        VisitorAgent doomed = new VisitorAgent();
+        doomed.itinerary().addStop(a.address(), ctx -> {
+            throw new InternalError("the VM is in trouble");
+        }).addStop(a.address());
+        AgentRef ref = home.agency().startTrip(doomed);
+
+        Exception e = assertThrows(Exception.class, () -> ref.result().get(10, TimeUnit.SECONDS));
+        String why = e.getCause().getMessage();
+        assertTrue(why.contains("agent " + ref.id()) && why.contains("died at host a (" + a.address() + ")")
+                && why.contains("java.lang.InternalError: the VM is in trouble"), why);
+        assertEquals(AgentStatus.FAILED, ref.status());
+        Await.until("the runner's death is reported", Duration.ofSeconds(10), () -> !failures.deaths().isEmpty());
+        RecordingFailures.Report death = failures.deaths().get(0);
+        assertInstanceOf(InternalError.class, death.failure());
+        assertTrue(death.owner().endsWith("-VisitorAgent@a"), "reported under the agent's runner: " + death.owner());
+
+        VisitorAgent next = new VisitorAgent();
+        next.itinerary().addStop(a.address()).addStop(a.address());
+        assertEquals(List.of("a", "a"), home.agency().startTrip(next).result().get(10, TimeUnit.SECONDS), "the host serves on");
+        assertEquals(1, failures.deaths().size(), failures.reports().toString());
     }
 
     @Test
@@ -255,7 +290,7 @@ class AgentHostTest {
         AgentHost home = host("home");
         AgentHost a = host("a");
         io.robomw.api.PartialDispatchException e = assertThrows(io.robomw.api.PartialDispatchException.class,
-                () -> home.dispatchClones(new VisitorAgent(), a.address(), "rmi://127.0.0.1:1/nobody"));
+                () -> home.agency().dispatchClones(new VisitorAgent(), a.address(), "rmi://127.0.0.1:1/nobody"));
         assertEquals(List.of("rmi://127.0.0.1:1/nobody"), List.copyOf(e.unsent().keySet()));
         assertTrue(e.unsent().get("rmi://127.0.0.1:1/nobody").contains("Connection refused"), e.unsent().toString());
         assertEquals(1, e.sent().size());
@@ -268,7 +303,7 @@ class AgentHostTest {
         AgentHost a = host("a");
         VisitorAgent agent = new VisitorAgent();
         agent.itinerary().addStop(a.address(), ctx -> ctx.setResult("task ran at " + ctx.hostName()));
-        assertEquals("task ran at a", home.startTrip(agent).result().get(10, TimeUnit.SECONDS));
+        assertEquals("task ran at a", home.agency().startTrip(agent).result().get(10, TimeUnit.SECONDS));
     }
 
     private static String safeWhere(AgentRef ref) {

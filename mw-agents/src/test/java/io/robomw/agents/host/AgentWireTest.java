@@ -43,7 +43,7 @@ class AgentWireTest {
         // 600 kB: more than the unproven limit, and written in several pieces (WireWriter.ONE_WRITE)
         VisitorAgent agent = new VisitorAgent().payload(600_000);
         agent.itinerary().addStop(a.address()).addStop(b.address()).addStop(a.address()).addStop(home.address());
-        assertEquals(List.of("a", "b", "a", "home"), home.startTrip(agent).result().get(20, TimeUnit.SECONDS));
+        assertEquals(List.of("a", "b", "a", "home"), home.agency().startTrip(agent).result().get(20, TimeUnit.SECONDS));
         // A first arrival is answered NEED_ARCHIVE, the archive goes over RMI, and the transfer comes again: 2 + 1 at a.
         assertEquals(3, a.wireFramesServed(), "both arrivals at a came on its wire");
         assertEquals(2, b.wireFramesServed());
@@ -59,14 +59,14 @@ class AgentWireTest {
         int port = a.wirePort();
         VisitorAgent first = new VisitorAgent().payload(20_000);
         first.itinerary().addStop(a.address()).addStop(home.address());
-        assertEquals(List.of("a", "home"), home.startTrip(first).result().get(20, TimeUnit.SECONDS), "the agent still reached a, over RMI");
+        assertEquals(List.of("a", "home"), home.agency().startTrip(first).result().get(20, TimeUnit.SECONDS), "the agent still reached a, over RMI");
         assertInstanceOf(OutOfMemoryError.class, a.wireFailure(), "the failure is kept for the host's operator");
         assertEquals(0, a.wireFramesServed());
         assertThrows(java.net.ConnectException.class, () -> new java.net.Socket("127.0.0.1", port).close(),
                 "the wire no longer listens, so peers are refused at once rather than left waiting");
         VisitorAgent second = new VisitorAgent().payload(20_000);
         second.itinerary().addStop(a.address()).addStop(home.address()).addStop(a.address()).addStop(home.address());
-        assertEquals(List.of("a", "home", "a", "home"), home.startTrip(second).result().get(20, TimeUnit.SECONDS), "and a keeps serving");
+        assertEquals(List.of("a", "home", "a", "home"), home.agency().startTrip(second).result().get(20, TimeUnit.SECONDS), "and a keeps serving");
     }
 
     @Test
@@ -75,7 +75,7 @@ class AgentWireTest {
         AgentHost a = start(AgentHost.builder("a").clusterKey(KEY).noMessaging().store(dir.resolve("a")));
         VisitorAgent agent = new VisitorAgent().payload(300_000);
         agent.itinerary().addStop(a.address()).addStop(home.address()).addStop(a.address()).addStop(home.address());
-        assertEquals(List.of("a", "home", "a", "home"), home.startTrip(agent).result().get(20, TimeUnit.SECONDS));
+        assertEquals(List.of("a", "home", "a", "home"), home.agency().startTrip(agent).result().get(20, TimeUnit.SECONDS));
         assertEquals(3, a.wireFramesServed(), "both arrivals at a (the first asked for the archive) came on its wire");
         AgentHostTest.await(() -> a.agents().isEmpty());
     }
@@ -91,7 +91,7 @@ class AgentWireTest {
             AgentHost a = start(AgentHost.builder("a").tls(keys.node()).noMessaging());
             VisitorAgent agent = new VisitorAgent().payload(300_000);
             agent.itinerary().addStop(a.address()).addStop(home.address()).addStop(a.address());
-            assertEquals(List.of("a", "home", "a"), home.startTrip(agent).result().get(30, TimeUnit.SECONDS));
+            assertEquals(List.of("a", "home", "a"), home.agency().startTrip(agent).result().get(30, TimeUnit.SECONDS));
             assertEquals(3, a.wireFramesServed(), "both arrivals at a (the first asked for the archive) came on its TLS wire");
             assertEquals(1, home.wireFramesServed());
         } finally {
@@ -107,7 +107,7 @@ class AgentWireTest {
         assertEquals(0, old.wirePort(), "a version-2 host offers no wire");
         VisitorAgent agent = new VisitorAgent().payload(100_000);
         agent.itinerary().addStop(old.address()).addStop(a.address()).addStop(home.address());
-        assertEquals(List.of("old", "a", "home"), home.startTrip(agent).result().get(20, TimeUnit.SECONDS));
+        assertEquals(List.of("old", "a", "home"), home.agency().startTrip(agent).result().get(20, TimeUnit.SECONDS));
         assertEquals(0, a.wireFramesServed(), "the version-2 host sent the agent to a over RMI");
         assertEquals(1, home.wireFramesServed(), "a sent it home on home's wire");
         assertTrue(old.refused() >= 1, "the old host refused home's version-3 authentication, naming its version, once");
@@ -135,7 +135,7 @@ class AgentWireTest {
         assertEquals(0, off.wirePort());
         VisitorAgent agent = new VisitorAgent().payload(100_000);
         agent.itinerary().addStop(off.address()).addStop(a.address()).addStop(home.address());
-        assertEquals(List.of("off", "a", "home"), home.startTrip(agent).result().get(20, TimeUnit.SECONDS));
+        assertEquals(List.of("off", "a", "home"), home.agency().startTrip(agent).result().get(20, TimeUnit.SECONDS));
         assertEquals(0, a.wireFramesServed(), "the host with its wire off sent the agent to a over RMI");
         assertEquals(1, home.wireFramesServed(), "a sent it home on home's wire");
         PeerLink toOff = new PeerLink(HostAddress.parse(off.address()), "probe", KEY, new HostSockets.Client("127.0.0.1", false, 10_000), new SecureRandom());

@@ -98,8 +98,8 @@ class CodeShippingTest {
         AgentHost home = host("home");
         Agent v1 = load(compileJar("v1"));
         Agent v2 = load(compileJar("v2"));
-        var r1 = home.sendAgent(host.address(), v1);
-        var r2 = home.sendAgent(host.address(), v2);
+        var r1 = home.agency().sendAgent(host.address(), v1);
+        var r2 = home.agency().sendAgent(host.address(), v2);
         assertEquals("v1 2 1.0 4.0 4", r1.result().get(10, TimeUnit.SECONDS));
         assertEquals("v2 2 1.0 4.0 4", r2.result().get(10, TimeUnit.SECONDS));
     }

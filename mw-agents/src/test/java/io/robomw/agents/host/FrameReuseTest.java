@@ -192,7 +192,7 @@ class FrameReuseTest {
                 agent.itinerary().addStop(s % 2 == 1 ? a.address() : b.address());
             }
             agent.itinerary().addStop(home.address());
-            results.add(home.startTrip(agent).result());
+            results.add(home.agency().startTrip(agent).result());
         }
         for (int i = 0; i < results.size(); i++) {
             @SuppressWarnings("unchecked")

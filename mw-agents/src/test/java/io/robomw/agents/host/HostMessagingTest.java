@@ -43,7 +43,7 @@ class HostMessagingTest {
     void aHostDescribesItsNameItsMessagingAndTheHostsItKnows() throws Exception {
         AgentHost home = host("home");
         AgentHost a = host("a");
-        home.sendAgent(a.address(), new io.robomw.agents.host.trip.VisitorAgent()).result().get(10, TimeUnit.SECONDS);
+        home.agency().sendAgent(a.address(), new io.robomw.agents.host.trip.VisitorAgent()).result().get(10, TimeUnit.SECONDS);
         HostDescription d = AgentHost.describe(home.address(), KEY, false);
         assertEquals("home", d.name());
         assertEquals(home.messagingAddresses(), d.messaging());
@@ -56,11 +56,11 @@ class HostMessagingTest {
         AgentHost home = host("home");
         AgentHost a = host("a");
         AgentHost b = host("b");
-        AgentRef responder = home.sendAgent(b.address(), new ChatResponder());
+        AgentRef responder = home.agency().sendAgent(b.address(), new ChatResponder());
         List<Serializable> reports = new CopyOnWriteArrayList<>();
         responder.addReportListener(reports::add);
         Await.until("the responder listens at b", Duration.ofSeconds(10), () -> reports.contains("ready"));
-        AgentRef caller = home.sendAgent(a.address(), new ChatCaller("b"));
+        AgentRef caller = home.agency().sendAgent(a.address(), new ChatCaller("b"));
         assertEquals("pong from b", caller.result().get(20, TimeUnit.SECONDS));
         assertEquals("heard news from a", responder.result().get(20, TimeUnit.SECONDS));
     }
@@ -70,11 +70,11 @@ class HostMessagingTest {
         AgentHost home = host("home");
         AgentHost a = host("a");
         AgentHost b = host("b");
-        AgentRef responder = home.sendAgent(b.address(), new ChatResponder());
+        AgentRef responder = home.agency().sendAgent(b.address(), new ChatResponder());
         List<Serializable> reports = new CopyOnWriteArrayList<>();
         responder.addReportListener(reports::add);
         Await.until("the responder listens at b", Duration.ofSeconds(10), () -> reports.contains("ready"));
-        assertEquals("pong from b", home.sendAgent(a.address(), new ChatCaller(b.address())).result().get(20, TimeUnit.SECONDS));
+        assertEquals("pong from b", home.agency().sendAgent(a.address(), new ChatCaller(b.address())).result().get(20, TimeUnit.SECONDS));
         responder.result().get(20, TimeUnit.SECONDS);
     }
 
@@ -83,7 +83,7 @@ class HostMessagingTest {
         AgentHost home = host("home");
         AgentHost a = host("a");
         ExecutionException e = assertThrows(ExecutionException.class,
-                () -> home.sendAgent(a.address(), new ChatCaller("nowhere")).result().get(20, TimeUnit.SECONDS));
+                () -> home.agency().sendAgent(a.address(), new ChatCaller("nowhere")).result().get(20, TimeUnit.SECONDS));
         assertTrue(e.getCause().getMessage().contains("no agent host named 'nowhere'"), e.getCause().getMessage());
     }
 
@@ -92,7 +92,7 @@ class HostMessagingTest {
         AgentHost home = host("home");
         AgentHost quiet = host(AgentHost.builder("quiet").clusterKey(KEY).noMessaging());
         assertEquals(List.of(), quiet.messagingAddresses());
-        Serializable result = home.sendAgent(quiet.address(), new AskMessaging()).result().get(10, TimeUnit.SECONDS);
+        Serializable result = home.agency().sendAgent(quiet.address(), new AskMessaging()).result().get(10, TimeUnit.SECONDS);
         assertInstanceOf(String.class, result);
         assertTrue(((String) result).contains("--no-messaging"), (String) result);
     }

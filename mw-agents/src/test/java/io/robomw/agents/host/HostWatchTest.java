@@ -32,13 +32,29 @@ class HostWatchTest {
 
 
     @Test
+    void aWatcherAsksWhoTheHostIsOverItsOwnSessionHoweverOftenItAsks() throws Exception {
+        AgentHost a = host("a");
+        try (HostWatch watch = HostWatch.of(a.address(), KEY, false, "test-console")) {
+            watch.poll();
+            int sessions = a.sessionsKept();
+            for (int i = 0; i < 5; i++) {
+                HostDescription d = watch.describe();
+                assertEquals("a", d.name());
+                assertEquals(a.address(), d.address());
+            }
+            watch.poll();
+            assertEquals(sessions, a.sessionsKept(), "no new session for each question");
+        }
+    }
+
+    @Test
     void aWatcherSeesTheAgentItsItineraryAndItsReportThenRetractsItHome() throws Exception {
         AgentHost home = host("home");
         AgentHost a = host("a");
         AgentHost b = host("b");
         VisitorAgent agent = new VisitorAgent().holdUntilReleased();
         agent.itinerary().addStop(a.address()).addStop(b.address());
-        AgentRef ref = home.startTrip(agent);
+        AgentRef ref = home.agency().startTrip(agent);
         HostWatch watch = HostWatch.of(a.address(), KEY, false, "test-console");
         List<HostWatch.Event> events = new CopyOnWriteArrayList<>();
         AtomicReference<HostWatch.Snapshot> last = new AtomicReference<>();
@@ -85,7 +101,7 @@ class HostWatchTest {
         AgentHost b = host("b");
         VisitorAgent agent = new VisitorAgent().holdUntilReleased();
         agent.itinerary().repeat(3);
-        AgentRef ref = home.sendAgent(b.address(), agent);
+        AgentRef ref = home.agency().sendAgent(b.address(), agent);
         Await.until("listed at b", WITHIN, () -> !b.agents().isEmpty());
         ref.sendMessage("release", Duration.ofSeconds(5));
         Await.until("on its second round at b", WITHIN, () -> b.agents().stream().anyMatch(a -> a.hop() >= 2));

@@ -137,7 +137,7 @@ class OwedDeliveryTest {
         AgentHost b = started(AgentHost.builder("b"));
         VisitorAgent agent = new VisitorAgent().holdUntilReleased();
         agent.itinerary().addStop(a.address()).addStop(b.address());
-        AgentRef ref = home.startTrip(agent);
+        AgentRef ref = home.agency().startTrip(agent);
         ref.sendMessage("release", Duration.ofSeconds(5));
         Await.until("the agent is at b", Duration.ofSeconds(10), () -> !b.agents().isEmpty());
 

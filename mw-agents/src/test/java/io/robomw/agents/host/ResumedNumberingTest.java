@@ -42,7 +42,7 @@ class ResumedNumberingTest {
         AgentHost b = started(AgentHost.builder("b"));
         NumberedReporter agent = new NumberedReporter("a");
         agent.itinerary().addStop(a.address()).addStop(b.address());
-        AgentRef ref = home.startTrip(agent);
+        AgentRef ref = home.agency().startTrip(agent);
         List<Serializable> reports = new CopyOnWriteArrayList<>();
         ref.addReportListener(reports::add);
         ref.sendMessage("go", Duration.ofSeconds(10));

@@ -9,9 +9,10 @@ import java.util.List;
 /**
  * The agent hosts a test starts, each closed after the test whatever it did (register as a
  * field with {@code @RegisterExtension}). A host that fails to close does not keep the others
- * open: every host is closed, then the first failure is thrown.
+ * open: every host is closed, then the first failure is thrown. In mw-agents' test-jar, for the
+ * tests of every module that starts hosts.
  */
-final class StartedHosts implements AfterEachCallback {
+public final class StartedHosts implements AfterEachCallback {
 
     private final List<AgentHost> hosts = new ArrayList<>();
 
@@ -20,7 +21,7 @@ final class StartedHosts implements AfterEachCallback {
      * @return the host it started, closed after the test
      * @throws Exception if the host did not start
      */
-    AgentHost start(AgentHost.Builder builder) throws Exception {
+    public AgentHost start(AgentHost.Builder builder) throws Exception {
         return add(builder.start());
     }
 
@@ -28,7 +29,7 @@ final class StartedHosts implements AfterEachCallback {
      * @param host a host the test started itself
      * @return the same host, now closed after the test
      */
-    AgentHost add(AgentHost host) {
+    public AgentHost add(AgentHost host) {
         hosts.add(host);
         return host;
     }

@@ -2,8 +2,9 @@ package io.robomw.agents.host;
 
 import io.robomw.agents.host.code.CodeArchive;
 import io.robomw.agents.host.trip.VisitorAgent;
-import org.junit.jupiter.api.AfterAll;
-import org.junit.jupiter.api.BeforeAll;
+import io.robomw.testkit.LogLines;
+import org.junit.jupiter.api.BeforeEach;
+import org.junit.jupiter.api.extension.RegisterExtension;
 import org.junit.jupiter.api.Test;
 
 import java.util.List;
@@ -20,29 +21,25 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 class UnknownCodesTest {
 
     private static final ClusterKey KEY = ClusterKey.fromPassphrase("unknown codes");
-    private static AgentHost host;
-    private static AgentHost home;
-    private static HostProbe probe;
-    private static CodeArchive archive;
+    @RegisterExtension
+    final StartedHosts hosts = new StartedHosts();
+    private AgentHost host;
+    private AgentHost home;
+    private HostProbe probe;
+    private CodeArchive archive;
 
-    @BeforeAll
-    static void start() throws Exception {
-        host = AgentHost.builder("strict").clusterKey(KEY).start();
-        home = AgentHost.builder("home").clusterKey(KEY).start();
+    @BeforeEach
+    void start() throws Exception {
+        host = hosts.start(AgentHost.builder("strict").clusterKey(KEY));
+        home = hosts.start(AgentHost.builder("home").clusterKey(KEY));
         probe = new HostProbe(host.address(), KEY);
         archive = HostProbe.archiveOf(VisitorAgent.class);
         assertEquals("OK ", probe.putArchive(archive.digest(), archive.bytes()));
     }
 
-    @AfterAll
-    static void stop() {
-        home.close();
-        host.close();
-    }
-
-    private static void refusedAndStillServing(String answer, String says) throws Exception {
+    private void refusedAndStillServing(String answer, String says) throws Exception {
         assertTrue(answer.startsWith("REFUSED") && answer.contains(says), answer);
-        assertEquals(List.of("strict"), home.sendAgent(host.address(), new VisitorAgent()).result().get(10, TimeUnit.SECONDS));
+        assertEquals(List.of("strict"), home.agency().sendAgent(host.address(), new VisitorAgent()).result().get(10, TimeUnit.SECONDS));
     }
 
     @Test
@@ -88,6 +85,25 @@ class UnknownCodesTest {
     @Test
     void requestCutShortIsRefused() throws Exception {
         refusedAndStillServing(probe.call(Op.DISPOSE.code(), new byte[3]), "refused a DISPOSE from peer 'probe': a RETRACT or DISPOSE body of 3 bytes");
+    }
+
+    @Test
+    void aFloodOfRefusedCallsLogsAFewLinesASecondAndCountsEveryOne() throws Exception {
+        byte[] event = new AgentEvent(UUID.randomUUID(), 1, AgentEvent.Kind.REPORT, "rmi://127.0.0.1:1/x", new byte[0]).encode();
+        event[24] = 42;
+        long before = host.refused();
+        try (LogLines log = new LogLines()) {
+            long start = System.nanoTime();
+            for (int i = 0; i < 200; i++) {
+                assertTrue(host.serve("flood", Op.EVENT, event).text().contains("unknown event kind code 42"));
+            }
+            long elapsedSeconds = (System.nanoTime() - start) / 1_000_000_000L;
+            List<String> lines = log.containing("host strict: refused an event from peer 'flood'");
+            // A burst at once, then at most a burst a second; one more burst for one begun at a second's edge.
+            long most = HostState.REFUSALS_LOGGED_PER_SECOND * (elapsedSeconds + 2);
+            assertTrue(!lines.isEmpty() && lines.size() <= most, lines.size() + " lines for 200 refusals in " + elapsedSeconds + " s (at most " + most + ")");
+        }
+        assertEquals(before + 200, host.refused(), "every refusal is counted");
     }
 
     private static int indexAfter(byte[] bytes, byte[] pattern) {

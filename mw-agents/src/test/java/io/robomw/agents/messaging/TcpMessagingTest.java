@@ -1,5 +1,6 @@
 package io.robomw.agents.messaging;
 
+import io.robomw.agents.RecordingFailures;
 import io.robomw.testkit.Await;
 import io.robomw.api.Message;
 import io.robomw.api.MessagingException;
@@ -46,6 +47,32 @@ class TcpMessagingTest {
         for (int i = 0; i < 1000; i++) {
             assertEquals(i, got.get(i));
         }
+    }
+
+    @Test
+    void aListenerThatThrowsIsReportedToTheNodesFailurePolicyAndTheLinkDeliversOn() {
+        RecordingFailures failures = new RecordingFailures();
+        MessagingNode pub = node(MessagingNode.builder("pub").bind("tcp://127.0.0.1:0"));
+        MessagingNode sub = node(MessagingNode.builder("sub").failures(failures).connect(pub.address("tcp")));
+        List<Object> got = new CopyOnWriteArrayList<>();
+        sub.addMessageListener("numbers", null, m -> {
+            if (m.payload().equals(1)) {
+                throw new NoClassDefFoundError("org/example/Gone");
+            }
+            got.add(m.payload());
+        });
+        sub.subscribeMessage("numbers", null);
+        Await.until("publisher sees the subscriber", WAIT, () -> pub.subscriberCount("numbers") == 1);
+        for (int i = 0; i < 3; i++) {
+            pub.publishMessage("numbers", i, "count", null);
+        }
+        Await.until("the publications after the failed one arrive", WAIT, () -> got.size() == 2);
+        assertEquals(List.of(0, 2), got);
+        List<RecordingFailures.Report> reports = failures.reports();
+        assertEquals(1, reports.size(), reports.toString());
+        assertEquals(false, reports.get(0).died());
+        assertEquals(NoClassDefFoundError.class, reports.get(0).failure().getClass());
+        assertEquals(true, reports.get(0).owner().startsWith("mw-msg-sub-"), "reported under the reading thread: " + reports.get(0).owner());
     }
 
     @Test

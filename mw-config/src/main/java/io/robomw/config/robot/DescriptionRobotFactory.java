@@ -143,6 +143,19 @@ public final class DescriptionRobotFactory implements RobotFactory {
     }
 
     /**
+     * For a file whose other problems keep it from loading ({@code mw describe} reports them all):
+     * the problem {@link #provider} would name, from the platform's name alone.
+     *
+     * @param platform a {@code platform:} value
+     * @return what is wrong if no driver for it is on the class path, as {@link #provider} says it; else empty
+     */
+    public static java.util.Optional<String> missingDriver(String platform) {
+        List<String> present = ServiceLoader.load(PlatformProvider.class, DescriptionRobotFactory.class.getClassLoader()).stream()
+                .map(p -> p.get().platformName()).sorted().toList();
+        return present.contains(platform) ? java.util.Optional.empty() : java.util.Optional.of(noDriver(platform, present));
+    }
+
+    /**
      * @param platform a {@code platform:} value without a driver
      * @param present  the platforms whose drivers are on the class path
      * @return what is wrong and how to fix it: the artifact that has the driver, or the spelling meant

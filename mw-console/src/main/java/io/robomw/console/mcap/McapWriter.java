@@ -19,6 +19,7 @@ import io.robomw.console.mcap.McapRecord.SummaryOffset;
 import java.io.IOException;
 import java.io.OutputStream;
 import java.util.ArrayList;
+import java.util.EnumSet;
 import java.util.LinkedHashMap;
 import java.util.LinkedHashSet;
 import java.util.List;
@@ -42,29 +43,90 @@ import java.util.zip.CRC32;
  */
 public final class McapWriter implements AutoCloseable {
 
+    /** What a writer can write besides the messages: each is in the file only if its options have it. */
+    public enum Feature {
+        /** Put messages (and their schemas and channels) in chunks. */
+        CHUNKED,
+        /** A message index per channel after each chunk. */
+        MESSAGE_INDEX,
+        /** A chunk index per chunk in the summary. */
+        CHUNK_INDEX,
+        /** A statistics record in the summary. */
+        STATISTICS,
+        /** Summary offset records for each group. */
+        SUMMARY_OFFSETS,
+        /** Every schema again in the summary. */
+        REPEAT_SCHEMAS,
+        /** Every channel again in the summary. */
+        REPEAT_CHANNELS,
+        /** An attachment index per attachment in the summary. */
+        ATTACHMENT_INDEX,
+        /** A metadata index per metadata record in the summary. */
+        METADATA_INDEX
+    }
+
     /**
-     * What to write besides the messages.
+     * What to write besides the messages ({@link #builder()}, or {@link #INDEXED}).
      *
-     * @param chunked         put messages (and their schemas and channels) in chunks
-     * @param chunkSize       close a chunk once it holds this many bytes
-     * @param messageIndex    a message index per channel after each chunk
-     * @param chunkIndex      a chunk index per chunk in the summary
-     * @param statistics      a statistics record in the summary
-     * @param summaryOffsets  summary offset records for each group
-     * @param repeatSchemas   every schema again in the summary
-     * @param repeatChannels  every channel again in the summary
-     * @param attachmentIndex an attachment index per attachment in the summary
-     * @param metadataIndex   a metadata index per metadata record in the summary
+     * @param features  what the file has
+     * @param chunkSize close a chunk once it holds this many bytes (with {@link Feature#CHUNKED})
      */
-    public record Options(boolean chunked, long chunkSize, boolean messageIndex, boolean chunkIndex, boolean statistics, boolean summaryOffsets,
-                          boolean repeatSchemas, boolean repeatChannels, boolean attachmentIndex, boolean metadataIndex) {
-        /** Chunked and indexed, 1 MiB chunks. */
-        public static final Options INDEXED = new Options(true, 1 << 20, true, true, true, true, true, true, true, true);
+    public record Options(Set<Feature> features, long chunkSize) {
+        /** The chunk size of {@link #INDEXED} and of a new builder: 1 MiB. */
+        public static final long DEFAULT_CHUNK_SIZE = 1 << 20;
+        /** Chunked and indexed, 1 MiB chunks: everything Foxglove and the {@code mcap} tools use. */
+        public static final Options INDEXED = builder().with(Feature.values()).build();
+
+        /**
+         * @param features  what the file has
+         * @param chunkSize close a chunk once it holds this many bytes, &gt; 0
+         */
+        public Options {
+            features = features.isEmpty() ? Set.of() : Set.copyOf(EnumSet.copyOf(features));
+            if (chunkSize <= 0) {
+                throw new IllegalArgumentException("an MCAP chunk size must be > 0 bytes, got " + chunkSize);
+            }
+        }
+
+        /** @return options without any feature (an unchunked file with no index), 1 MiB chunks, to add to */
+        public static Builder builder() {
+            return new Builder();
+        }
+
+        /** @param feature a feature @return whether these options have it */
+        public boolean has(Feature feature) {
+            return features.contains(feature);
+        }
 
         /** @param bytes the chunk size @return these options with it */
         public Options withChunkSize(long bytes) {
-            return new Options(chunked, bytes, messageIndex, chunkIndex, statistics, summaryOffsets, repeatSchemas, repeatChannels, attachmentIndex,
-                    metadataIndex);
+            return new Options(features, bytes);
+        }
+
+        /** Builds {@link Options}: the features to write, and the chunk size. */
+        public static final class Builder {
+            private final Set<Feature> features = EnumSet.noneOf(Feature.class);
+            private long chunkSize = DEFAULT_CHUNK_SIZE;
+
+            private Builder() {
+            }
+
+            /** @param more features to write @return this */
+            public Builder with(Feature... more) {
+                features.addAll(List.of(more));
+                return this;
+            }
+
+            /** @param bytes close a chunk once it holds this many bytes @return this */
+            public Builder chunkSize(long bytes) {
+                this.chunkSize = bytes;
+                return this;
+            }
+
+            /** @return the options */
+            public Options build() {
+                return new Options(features, chunkSize);
+            }
         }
     }
 
@@ -176,18 +238,18 @@ public final class McapWriter implements AutoCloseable {
         }
         messageCount++;
         channelMessageCounts.merge(channelId, 1L, Long::sum);
-        LeWriter target = options.chunked() ? chunk : buffer;
+        LeWriter target = options.has(Feature.CHUNKED) ? chunk : buffer;
         if (!writtenChannels.contains(channelId)) {
             if (channel.schemaId() != 0 && writtenSchemas.add(channel.schemaId())) {
                 RecordCodec.write(schemas.get(channel.schemaId()), target);
             }
-            if (options.chunked() && options.messageIndex()) {
+            if (options.has(Feature.CHUNKED) && options.has(Feature.MESSAGE_INDEX)) {
                 chunkMessageIndex.computeIfAbsent(channelId, k -> new ArrayList<>());
             }
             RecordCodec.write(channel, target);
             writtenChannels.add(channelId);
         }
-        if (options.chunked()) {
+        if (options.has(Feature.CHUNKED)) {
             if (chunkMessages == 0 || Long.compareUnsigned(logTime, chunkStart) < 0) {
                 chunkStart = logTime;
             }
@@ -195,7 +257,7 @@ public final class McapWriter implements AutoCloseable {
                 chunkEnd = logTime;
             }
             chunkMessages++;
-            if (options.messageIndex()) {
+            if (options.has(Feature.MESSAGE_INDEX)) {
                 chunkMessageIndex.computeIfAbsent(channelId, k -> new ArrayList<>()).add(new long[] {logTime, chunk.length()});
             }
             RecordCodec.write(new Message(channelId, sequence, logTime, publishTime, data), chunk);
@@ -218,7 +280,7 @@ public final class McapWriter implements AutoCloseable {
         long offset = position + buffer.length();
         long length = RecordCodec.write(new Attachment(logTime, createTime, name, mediaType, data, 0), buffer);
         attachmentCount++;
-        if (options.attachmentIndex()) {
+        if (options.has(Feature.ATTACHMENT_INDEX)) {
             attachmentIndexes.add(new AttachmentIndex(offset, length, logTime, createTime, data.length, name, mediaType));
         }
         emit(true);
@@ -234,7 +296,7 @@ public final class McapWriter implements AutoCloseable {
         long offset = position + buffer.length();
         long length = RecordCodec.write(new Metadata(name, metadata), buffer);
         metadataCount++;
-        if (options.metadataIndex()) {
+        if (options.has(Feature.METADATA_INDEX)) {
             metadataIndexes.add(new MetadataIndex(offset, length, name));
         }
         emit(true);
@@ -255,7 +317,7 @@ public final class McapWriter implements AutoCloseable {
     }
 
     private void finishChunk() throws IOException {
-        if (!options.chunked() || chunkMessages == 0) {
+        if (!options.has(Feature.CHUNKED) || chunkMessages == 0) {
             return;
         }
         chunkCount++;
@@ -279,7 +341,7 @@ public final class McapWriter implements AutoCloseable {
         }
         long indexLength = position + buffer.length() - indexStart;
         emit(true);
-        if (options.chunkIndex()) {
+        if (options.has(Feature.CHUNK_INDEX)) {
             chunkIndexes.add(new ChunkIndex(chunkStart, chunkEnd, chunkOffset, chunkLength, indexOffsets, indexLength, "", records.length,
                     records.length));
         }
@@ -312,32 +374,47 @@ public final class McapWriter implements AutoCloseable {
         }
     }
 
+    /**
+     * Closes the stream without writing anything more: for a writer whose start failed, or that
+     * is given up. What was written stays as it is (readable as far as it goes, with
+     * {@link McapReader.Options#tolerant()}). Idempotent; {@link #close()} after it does nothing.
+     *
+     * @throws IOException if closing the stream fails
+     */
+    public synchronized void abandon() throws IOException {
+        if (closed) {
+            return;
+        }
+        closed = true;
+        out.close();
+    }
+
     private void writeSummary() throws IOException {
         CRC32 summaryCrc = new CRC32();
         long summaryStart = position;
         List<SummaryOffset> groups = new ArrayList<>();
-        if (options.repeatSchemas()) {
+        if (options.has(Feature.REPEAT_SCHEMAS)) {
             group(groups, Mcap.OP_SCHEMA, new ArrayList<>(schemas.values()), summaryCrc);
         }
-        if (options.repeatChannels()) {
+        if (options.has(Feature.REPEAT_CHANNELS)) {
             group(groups, Mcap.OP_CHANNEL, new ArrayList<>(channels.values()), summaryCrc);
         }
-        if (options.statistics()) {
+        if (options.has(Feature.STATISTICS)) {
             group(groups, Mcap.OP_STATISTICS, List.of(new Statistics(messageCount, schemas.size(), channels.size(), attachmentCount, metadataCount,
                     chunkCount, messageStart, messageEnd, channelMessageCounts)), summaryCrc);
         }
-        if (options.metadataIndex()) {
+        if (options.has(Feature.METADATA_INDEX)) {
             group(groups, Mcap.OP_METADATA_INDEX, new ArrayList<>(metadataIndexes), summaryCrc);
         }
-        if (options.attachmentIndex()) {
+        if (options.has(Feature.ATTACHMENT_INDEX)) {
             group(groups, Mcap.OP_ATTACHMENT_INDEX, new ArrayList<>(attachmentIndexes), summaryCrc);
         }
-        if (options.chunkIndex()) {
+        if (options.has(Feature.CHUNK_INDEX)) {
             group(groups, Mcap.OP_CHUNK_INDEX, new ArrayList<>(chunkIndexes), summaryCrc);
         }
         long summaryOffsetStart = position;
         long summaryLength = summaryOffsetStart - summaryStart;
-        if (options.summaryOffsets()) {
+        if (options.has(Feature.SUMMARY_OFFSETS)) {
             for (SummaryOffset g : groups) {
                 if (g.groupLength() != 0) {
                     RecordCodec.write(g, buffer);
@@ -345,7 +422,7 @@ public final class McapWriter implements AutoCloseable {
             }
         }
         long footerSummaryStart = summaryLength == 0 ? 0 : summaryStart;
-        long footerOffsetStart = options.summaryOffsets() ? summaryOffsetStart : 0;
+        long footerOffsetStart = options.has(Feature.SUMMARY_OFFSETS) ? summaryOffsetStart : 0;
         RecordCodec.write(new Footer(footerSummaryStart, footerOffsetStart, 0), buffer);
         // The summary CRC runs from the summary's start through the footer's summary_offset_start field.
         summaryCrc.update(buffer.array(), 0, buffer.length() - 4);

@@ -1,5 +1,6 @@
 package io.robomw.console.record;
 
+import io.robomw.api.spi.FailurePolicy;
 import io.robomw.console.mcap.McapWriter;
 import io.robomw.console.observe.Observation;
 import io.robomw.console.observe.Observer;
@@ -44,21 +45,32 @@ public final class McapRecorder implements Observer, AutoCloseable {
     private final AtomicLong dropped = new AtomicLong();
     private final AtomicLong written = new AtomicLong();
     private final Thread thread;
+    private final FailurePolicy failures;
     private volatile IOException failure;
     private volatile boolean closedWriter;
 
-    private McapRecorder(Path file, Map<String, String> about) throws IOException {
+    private McapRecorder(Path file, Map<String, String> about, FailurePolicy failures) throws IOException {
         this.file = file;
+        this.failures = failures;
         Path parent = file.toAbsolutePath().getParent();
         if (parent != null) {
             Files.createDirectories(parent);
         }
         this.writer = new McapWriter(new BufferedOutputStream(Files.newOutputStream(file), 1 << 16), McapWriter.Options.INDEXED);
-        writer.start("", "robomw " + FORMAT_VERSION);
-        Map<String, String> meta = new java.util.LinkedHashMap<>(about);
-        meta.put("format", FORMAT_VERSION);
-        writer.addMetadata("robomw", meta);
-        this.thread = new Thread(this::run, "console-recorder");
+        try {
+            writer.start("", "robomw " + FORMAT_VERSION);
+            Map<String, String> meta = new java.util.LinkedHashMap<>(about);
+            meta.put("format", FORMAT_VERSION);
+            writer.addMetadata("robomw", meta);
+        } catch (IOException | RuntimeException e) {
+            try {
+                writer.abandon();
+            } catch (IOException closing) {
+                e.addSuppressed(closing);
+            }
+            throw e;
+        }
+        this.thread = new Thread(this::run, "console-recorder"); // run() catches whatever ends it, in one place
         thread.setDaemon(false);
         thread.start();
     }
@@ -69,10 +81,23 @@ public final class McapRecorder implements Observer, AutoCloseable {
      * @param file  the .mcap file (replaced if it exists)
      * @param about what is recorded (command line, world...), kept as the file's "robomw" metadata
      * @return the recorder; close it to finish the file
-     * @throws IOException if the file cannot be written
+     * @throws IOException if the file cannot be written (then it is closed again)
      */
     public static McapRecorder start(Path file, Map<String, String> about) throws IOException {
-        return new McapRecorder(file, about);
+        return start(file, about, FailurePolicy.logging());
+    }
+
+    /**
+     * Starts a recording.
+     *
+     * @param file     the .mcap file (replaced if it exists)
+     * @param about    what is recorded, kept as the file's "robomw" metadata
+     * @param failures where what ends the recording's thread goes
+     * @return the recorder; close it to finish the file
+     * @throws IOException if the file cannot be written (then it is closed again)
+     */
+    public static McapRecorder start(Path file, Map<String, String> about, FailurePolicy failures) throws IOException {
+        return new McapRecorder(file, about, failures);
     }
 
     /** @return the file */
@@ -113,9 +138,10 @@ public final class McapRecorder implements Observer, AutoCloseable {
         } catch (IOException e) {
             failure = e;
             LOG.error("recording {} failed; nothing more is recorded: {}", file, e.toString());
-        } catch (RuntimeException | Error e) {
+        } catch (Throwable e) {
             failure = new IOException(e.toString(), e);
-            LOG.error("recording {} failed; nothing more is recorded: {}", file, e.toString(), e);
+            LOG.warn("recording {} failed; nothing more is recorded: {}", file, e.toString());
+            failures.died(thread.getName(), e);
         }
     }
 

@@ -1,5 +1,7 @@
 package io.robomw.console.server;
 
+import io.robomw.agents.net.OwnerThreads;
+import io.robomw.api.spi.FailurePolicy;
 import com.fasterxml.jackson.core.JsonProcessingException;
 import com.fasterxml.jackson.databind.ObjectMapper;
 import org.eclipse.jetty.http.HttpHeader;
@@ -26,8 +28,11 @@ import java.util.LinkedHashMap;
 import java.util.Map;
 import java.util.Set;
 import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.ArrayBlockingQueue;
 import java.util.concurrent.Executors;
+import java.util.concurrent.RejectedExecutionException;
 import java.util.concurrent.ScheduledExecutorService;
+import java.util.concurrent.ThreadPoolExecutor;
 import java.util.concurrent.TimeUnit;
 
 /**
@@ -49,6 +54,10 @@ public final class ConsoleServer implements AutoCloseable {
 
     private static final Logger LOG = LoggerFactory.getLogger(ConsoleServer.class);
     private static final long PUSH_MILLIS = 100;
+    /** The most page requests (button presses) served at once; each may wait seconds for a host. */
+    static final int MAX_REQUEST_THREADS = 4;
+    /** The most page requests waiting for a thread; beyond them a request is refused at once, saying so. */
+    static final int MAX_QUEUED_REQUESTS = 64;
     private static final Map<String, String> FILES = Map.of(
             "/", "index.html",
             "/index.html", "index.html",
@@ -62,11 +71,15 @@ public final class ConsoleServer implements AutoCloseable {
     private final Server server;
     private final Set<ConsoleSocket> sockets = ConcurrentHashMap.newKeySet();
     private final ScheduledExecutorService pusher;
+    /** Runs the pages' requests off the WebSockets' threads: a retract may wait seconds for a host. */
+    private final ThreadPoolExecutor requests;
+    private final FailurePolicy failures;
     private final Map<String, byte[]> files = new LinkedHashMap<>();
 
-    private ConsoleServer(ConsoleView view, Controls controls, String bind, int port) {
+    private ConsoleServer(ConsoleView view, Controls controls, String bind, int port, FailurePolicy failures) {
         this.view = view;
         this.controls = controls;
+        this.failures = failures;
         byte[] secret = new byte[16];
         new SecureRandom().nextBytes(secret);
         this.token = HexFormat.of().formatHex(secret);
@@ -97,11 +110,10 @@ public final class ConsoleServer implements AutoCloseable {
         });
         ws.setHandler(new Files());
         server.setHandler(ws);
-        this.pusher = Executors.newSingleThreadScheduledExecutor(r -> {
-            Thread t = new Thread(r, "console-push");
-            t.setDaemon(true);
-            return t;
-        });
+        this.pusher = Executors.newSingleThreadScheduledExecutor(r -> OwnerThreads.thread("console-push", r, failures));
+        this.requests = new ThreadPoolExecutor(MAX_REQUEST_THREADS, MAX_REQUEST_THREADS, 30, TimeUnit.SECONDS,
+                new ArrayBlockingQueue<>(MAX_QUEUED_REQUESTS), new OwnerThreads("console-request", failures), new ThreadPoolExecutor.AbortPolicy());
+        requests.allowCoreThreadTimeOut(true);
     }
 
     /**
@@ -111,18 +123,19 @@ public final class ConsoleServer implements AutoCloseable {
      * @param controls what the buttons do
      * @param bind     the address to listen on (127.0.0.1 keeps it to this machine)
      * @param port     the port, 0 for a free one
+     * @param failures where what its push and request threads catch goes
      * @return the running server
      * @throws IOException if the port cannot be used
      */
-    public static ConsoleServer start(ConsoleView view, Controls controls, String bind, int port) throws IOException {
-        ConsoleServer s = new ConsoleServer(view, controls, bind, port);
+    public static ConsoleServer start(ConsoleView view, Controls controls, String bind, int port, FailurePolicy failures) throws IOException {
+        ConsoleServer s = new ConsoleServer(view, controls, bind, port, failures);
         try {
             s.server.start();
         } catch (Exception e) {
             s.close();
             throw new IOException("the console cannot listen on " + bind + ":" + port + ": " + e.getMessage(), e);
         }
-        s.pusher.scheduleWithFixedDelay(s::push, PUSH_MILLIS, PUSH_MILLIS, TimeUnit.MILLISECONDS);
+        s.pusher.scheduleWithFixedDelay(OwnerThreads.rounds(failures, s::push), PUSH_MILLIS, PUSH_MILLIS, TimeUnit.MILLISECONDS);
         LOG.info("console serving at {}", s.address());
         return s;
     }
@@ -182,16 +195,25 @@ public final class ConsoleServer implements AutoCloseable {
         }
     }
 
-    /** Sends every page what it has not seen; a page whose last update is still on its way is skipped this time. */
+    /**
+     * Sends every page what it has not seen; a page whose last update is still on its way is
+     * skipped this time. A failed push is reported, and the next one comes.
+     */
     private void push() {
-        try {
-            long now = System.currentTimeMillis() * 1_000_000L;
-            for (ConsoleSocket s : sockets) {
-                s.push(now);
-            }
-        } catch (RuntimeException | Error e) {
-            LOG.error("console: pushing updates failed; the pages may show stale data until the next push: {}", e.toString(), e);
+        long now = System.currentTimeMillis() * 1_000_000L;
+        for (ConsoleSocket s : sockets) {
+            s.push(now);
         }
+    }
+
+    /**
+     * Runs a page's request on one of the server's request threads.
+     *
+     * @param request the request's work
+     * @throws RejectedExecutionException if {@value #MAX_QUEUED_REQUESTS} requests wait already, or the server is closed
+     */
+    void serve(Runnable request) {
+        requests.execute(request);
     }
 
     private static boolean sameOrigin(String origin, String host) {
@@ -242,6 +264,7 @@ public final class ConsoleServer implements AutoCloseable {
     @Override
     public void close() {
         pusher.shutdownNow();
+        requests.shutdownNow();
         for (ConsoleSocket s : sockets) {
             s.close();
         }

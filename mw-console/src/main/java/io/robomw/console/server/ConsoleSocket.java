@@ -7,8 +7,7 @@ import org.slf4j.LoggerFactory;
 
 import java.util.LinkedHashMap;
 import java.util.Map;
-import java.util.concurrent.ExecutorService;
-import java.util.concurrent.Executors;
+import java.util.concurrent.RejectedExecutionException;
 import java.util.concurrent.atomic.AtomicBoolean;
 
 /**
@@ -19,12 +18,6 @@ import java.util.concurrent.atomic.AtomicBoolean;
 public final class ConsoleSocket extends Session.Listener.AbstractAutoDemanding {
 
     private static final Logger LOG = LoggerFactory.getLogger(ConsoleSocket.class);
-    /** Requests run off the WebSocket's thread: a retract may wait seconds for a host. */
-    private static final ExecutorService REQUESTS = Executors.newCachedThreadPool(r -> {
-        Thread t = new Thread(r, "console-request");
-        t.setDaemon(true);
-        return t;
-    });
 
     private final ConsoleServer server;
     private final ConsoleView.Cursor cursor = new ConsoleView.Cursor();
@@ -60,9 +53,23 @@ public final class ConsoleSocket extends Session.Listener.AbstractAutoDemanding 
         }));
     }
 
+    /**
+     * Serves a request on the server's request threads (off the WebSocket's thread: a retract may
+     * wait seconds for a host); when too many wait already, the page is told at once.
+     */
     @Override
     public void onWebSocketText(String text) {
-        REQUESTS.execute(() -> reply(serve(text)));
+        try {
+            server.serve(() -> reply(serve(text)));
+        } catch (RejectedExecutionException e) {
+            Map<String, Object> r = new LinkedHashMap<>();
+            r.put("type", "reply");
+            r.put("ok", false);
+            r.put("message", "the console is busy: " + ConsoleServer.MAX_QUEUED_REQUESTS + " requests wait already (or it is closing); try again");
+            LOG.warn("console: refused a request from {}: {} requests wait already", getSession() == null ? "?" : getSession().getRemoteSocketAddress(),
+                    ConsoleServer.MAX_QUEUED_REQUESTS);
+            reply(r);
+        }
     }
 
     private Map<String, Object> serve(String text) {

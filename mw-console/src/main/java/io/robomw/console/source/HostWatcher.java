@@ -1,5 +1,6 @@
 package io.robomw.console.source;
 
+import io.robomw.api.spi.FailurePolicy;
 import io.robomw.agents.host.ClusterKey;
 import io.robomw.agents.host.HostWatch;
 import io.robomw.console.observe.HostView;
@@ -30,17 +31,19 @@ public final class HostWatcher implements AutoCloseable {
     private final Observer observer;
     private final Duration period;
     private final Thread thread;
+    private final FailurePolicy failures;
     private final CountDownLatch closed = new CountDownLatch(1);
     private volatile HostView last;
     private boolean wasDown;
 
-    private HostWatcher(HostWatch watch, Observer observer, Duration period) {
+    private HostWatcher(HostWatch watch, Observer observer, Duration period, FailurePolicy failures) {
         this.watch = watch;
+        this.failures = failures;
         this.observer = observer;
         this.period = period;
         String address = watch.address();
         this.last = new HostView(address, address.substring(address.lastIndexOf('/') + 1), false, null, List.of(), null, "not asked yet", 0);
-        this.thread = new Thread(this::run, "console-host-" + last.name());
+        this.thread = new Thread(this::run, "console-host-" + last.name()); // run() catches whatever ends it, in one place
         thread.setDaemon(true);
     }
 
@@ -50,10 +53,12 @@ public final class HostWatcher implements AutoCloseable {
      * @param useTls   whether the host uses TLS
      * @param observer who is told
      * @param period   time between two looks
+     * @param failures where a failed look (reported as survived; the next period looks again) and
+     *                 what ends the watcher go
      * @return the running watcher
      */
-    public static HostWatcher watch(String address, ClusterKey key, boolean useTls, Observer observer, Duration period) {
-        HostWatcher w = new HostWatcher(HostWatch.of(address, key, useTls, "console-" + ProcessHandle.current().pid()), observer, period);
+    public static HostWatcher watch(String address, ClusterKey key, boolean useTls, Observer observer, Duration period, FailurePolicy failures) {
+        HostWatcher w = new HostWatcher(HostWatch.of(address, key, useTls, "console-" + ProcessHandle.current().pid()), observer, period, failures);
         w.thread.start();
         return w;
     }
@@ -71,12 +76,18 @@ public final class HostWatcher implements AutoCloseable {
     private void run() {
         try {
             do {
-                look();
+                try {
+                    look();
+                } catch (Throwable e) {
+                    // one look failed (what the host said, or an observer): reported, and the next period looks again
+                    failures.surviveOrRethrow(thread.getName(), e);
+                }
             } while (!closed.await(period.toMillis(), TimeUnit.MILLISECONDS));
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
         } catch (Throwable t) {
-            LOG.error("console: watching host {} failed; no more updates of it: {}", watch.address(), t.toString(), t);
+            LOG.warn("console: watching host {} failed; no more updates of it: {}", watch.address(), t.toString());
+            failures.died(thread.getName(), t);
             observer.observe(new Observation.HostSeen(now(), last.down("the console stopped watching it: " + t)));
         }
     }
@@ -119,6 +130,16 @@ public final class HostWatcher implements AutoCloseable {
     }
 
     /**
+     * Asks the host which hosts it knows (and who it is), over this watcher's link: no new session.
+     *
+     * @return what the host says of itself
+     * @throws IOException if it cannot be reached, refuses this console, or answers nonsense
+     */
+    public io.robomw.agents.host.HostDescription describe() throws IOException {
+        return watch.describe();
+    }
+
+    /**
      * @param agent an agent at this host
      * @return what happened
      * @throws IOException if no host took the request
@@ -149,5 +170,6 @@ public final class HostWatcher implements AutoCloseable {
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
         }
+        watch.close();
     }
 }

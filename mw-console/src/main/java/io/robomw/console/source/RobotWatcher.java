@@ -1,5 +1,6 @@
 package io.robomw.console.source;
 
+import io.robomw.api.spi.FailurePolicy;
 import io.robomw.api.Pose;
 import io.robomw.api.Quantity;
 import io.robomw.api.ReturnType;
@@ -32,13 +33,15 @@ public final class RobotWatcher implements AutoCloseable {
     private final Observer observer;
     private final Duration period;
     private final Thread thread;
+    private final FailurePolicy failures;
     private final CountDownLatch closed = new CountDownLatch(1);
     private final boolean owned;
     private volatile Robot robot;
     private volatile String name;
 
-    private RobotWatcher(String address, Robot given, Observer observer, Duration period) {
+    private RobotWatcher(String address, Robot given, Observer observer, Duration period, FailurePolicy failures) {
         this.address = address;
+        this.failures = failures;
         this.observer = observer;
         this.period = period;
         this.owned = given == null;
@@ -49,7 +52,7 @@ public final class RobotWatcher implements AutoCloseable {
             String path = URI.create(address).getPath();
             this.name = path == null || path.length() <= 1 ? address : path.substring(path.lastIndexOf('/') + 1);
         }
-        this.thread = new Thread(this::run, "console-robot-" + name);
+        this.thread = new Thread(this::run, "console-robot-" + name); // run() catches whatever ends it, in one place
         thread.setDaemon(true);
     }
 
@@ -57,10 +60,11 @@ public final class RobotWatcher implements AutoCloseable {
      * @param address  the robot's address, as {@code Robots.remote} takes it
      * @param observer who is told
      * @param period   time between two looks
+     * @param failures where what ends the watcher goes
      * @return the running watcher
      */
-    public static RobotWatcher watch(String address, Observer observer, Duration period) {
-        RobotWatcher w = new RobotWatcher(address, null, observer, period);
+    public static RobotWatcher watch(String address, Observer observer, Duration period, FailurePolicy failures) {
+        RobotWatcher w = new RobotWatcher(address, null, observer, period, failures);
         w.thread.start();
         return w;
     }
@@ -72,10 +76,11 @@ public final class RobotWatcher implements AutoCloseable {
      * @param source   where it is, for the page
      * @param observer who is told
      * @param period   time between two looks
+     * @param failures where what ends the watcher goes
      * @return the running watcher
      */
-    public static RobotWatcher watch(Robot robot, String source, Observer observer, Duration period) {
-        RobotWatcher w = new RobotWatcher(source, robot, observer, period);
+    public static RobotWatcher watch(Robot robot, String source, Observer observer, Duration period, FailurePolicy failures) {
+        RobotWatcher w = new RobotWatcher(source, robot, observer, period, failures);
         w.thread.start();
         return w;
     }
@@ -116,7 +121,8 @@ public final class RobotWatcher implements AutoCloseable {
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
         } catch (Throwable t) {
-            LOG.error("console: watching robot {} failed; no more updates of it: {}", name, t.toString(), t);
+            LOG.warn("console: watching robot {} failed; no more updates of it: {}", name, t.toString());
+            failures.died(thread.getName(), t);
         } finally {
             if (owned) {
                 drop();

@@ -78,8 +78,17 @@ class McapConformanceTest {
     /** Writes a variant from its listed records, with the features its name lists. */
     static byte[] write(String variant) throws IOException {
         Set<String> f = features(variant);
-        McapWriter.Options options = new McapWriter.Options(f.contains("ch"), 1 << 20, f.contains("mx"), f.contains("chx"), f.contains("st"),
-                f.contains("sum"), f.contains("rsh"), f.contains("rch"), f.contains("ax"), f.contains("mdx"));
+        McapWriter.Options.Builder b = McapWriter.Options.builder();
+        Map<String, McapWriter.Feature> byName = Map.of("ch", McapWriter.Feature.CHUNKED, "mx", McapWriter.Feature.MESSAGE_INDEX,
+                "chx", McapWriter.Feature.CHUNK_INDEX, "st", McapWriter.Feature.STATISTICS, "sum", McapWriter.Feature.SUMMARY_OFFSETS,
+                "rsh", McapWriter.Feature.REPEAT_SCHEMAS, "rch", McapWriter.Feature.REPEAT_CHANNELS, "ax", McapWriter.Feature.ATTACHMENT_INDEX,
+                "mdx", McapWriter.Feature.METADATA_INDEX);
+        byName.forEach((name, feature) -> {
+            if (f.contains(name)) {
+                b.with(feature);
+            }
+        });
+        McapWriter.Options options = b.build();
         ByteArrayOutputStream bytes = new ByteArrayOutputStream();
         McapWriter writer = new McapWriter(bytes, options);
         Map<Integer, Integer> schemaIds = new HashMap<>();

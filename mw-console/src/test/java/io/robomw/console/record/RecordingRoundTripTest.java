@@ -65,6 +65,33 @@ class RecordingRoundTripTest {
     }
 
     @Test
+    void aRecordingThatCannotStartLeavesItsFileClosed(@TempDir Path dir) throws Exception {
+        org.junit.jupiter.api.Assumptions.assumeTrue(Files.isDirectory(Path.of("/proc/self/fd")), "open files are counted through /proc");
+        Path file = dir.resolve("refused.mcap");
+        Map<String, String> about = new HashMap<>();
+        about.put("command", null); // a metadata value the format cannot hold
+        org.junit.jupiter.api.Assertions.assertThrows(RuntimeException.class, () -> McapRecorder.start(file, about));
+        assertEquals(List.of(), openHandlesOf(file), "the file is closed again");
+    }
+
+    private static List<Path> openHandlesOf(Path file) throws java.io.IOException {
+        Path real = file.toRealPath();
+        List<Path> open = new ArrayList<>();
+        try (var fds = Files.list(Path.of("/proc/self/fd"))) {
+            for (Path fd : fds.toList()) {
+                try {
+                    if (Files.readSymbolicLink(fd).equals(real)) {
+                        open.add(fd);
+                    }
+                } catch (java.io.IOException | UnsupportedOperationException gone) {
+                    // closed meanwhile, or not a link
+                }
+            }
+        }
+        return open;
+    }
+
+    @Test
     void theFileUsesFoxglovesSchemasWhereFoxgloveHasThem(@TempDir Path dir) throws Exception {
         Path file = dir.resolve("run.mcap");
         try (McapRecorder r = McapRecorder.start(file, Map.of())) {

@@ -74,7 +74,7 @@ class ConsoleServerTest {
 
     @BeforeEach
     void start() throws Exception {
-        server = ConsoleServer.start(view, controls, "127.0.0.1", 0);
+        server = ConsoleServer.start(view, controls, "127.0.0.1", 0, io.robomw.api.spi.FailurePolicy.logging());
     }
 
     @AfterEach

@@ -84,6 +84,12 @@ final class AiboCommandPlatform extends HighLevelCommandPlatform {
         }
     }
 
+    /** The URBI writer has written everything queued so far (a stop's {@code stop} and stop text among it). */
+    @Override
+    protected java.util.concurrent.CompletableFuture<Void> sentSoFar() {
+        return connection.written();
+    }
+
     @Override
     protected void stop(Run run) {
         String tag = tags.remove(run);

@@ -91,6 +91,18 @@ final class UrbiConnection implements AutoCloseable {
     private Thread reader;
     private Thread writer;
     private long lastReopen;
+    /** Guards the counts below and the waiters: what was queued, and how much of it the writer has settled. */
+    private final Object progress = new Object();
+    /** Commands queued so far. */
+    private long queued;
+    /** Commands the writer has written (or, once the link was lost, dropped) so far: always a prefix of those queued. */
+    private long settled;
+    /** Callers waiting for the commands queued before them to be written, each with that count. */
+    private final List<Written> waiters = new java.util.ArrayList<>();
+
+    /** A caller of {@link #written()}, waiting until {@code upTo} commands have been written. */
+    private record Written(long upTo, CompletableFuture<Void> future) {
+    }
 
     /**
      * @param robot        the robot's name, for thread names and messages
@@ -203,11 +215,71 @@ final class UrbiConnection implements AutoCloseable {
         if (down.get() || !running || closing) {
             return false;
         }
-        boolean queued = outbox.offer(bytes);
-        if (!queued) {
+        boolean offered;
+        synchronized (progress) {
+            offered = outbox.offer(bytes);
+            if (offered) {
+                queued++;
+            }
+        }
+        if (!offered) {
             LOG.warn("robot '{}': {} commands are waiting for {}; refused one", robot, OUTBOX, describe());
         }
-        return queued;
+        return offered;
+    }
+
+    /**
+     * @return completes once the writer has written every command queued before this call to the
+     *         link (at once if none waits); fails with an {@link IOException} if the link is down or
+     *         is lost first, or the session closes
+     */
+    CompletableFuture<Void> written() {
+        synchronized (progress) {
+            if (down.get() || !running) {
+                return CompletableFuture.failedFuture(new IOException(describe() + " is down"));
+            }
+            if (settled >= queued) {
+                return CompletableFuture.completedFuture(null);
+            }
+            CompletableFuture<Void> f = new CompletableFuture<>();
+            waiters.add(new Written(queued, f));
+            return f;
+        }
+    }
+
+    /** One more queued command was written (or dropped: {@code written} false); completes the waiters it settles. */
+    private void settled(boolean written) {
+        List<CompletableFuture<Void>> done = null;
+        synchronized (progress) {
+            if (settled < queued) {
+                settled++; // not past what was queued: a reopen may have settled the command this one was, already
+            }
+            if (written && !waiters.isEmpty()) {
+                for (java.util.Iterator<Written> i = waiters.iterator(); i.hasNext(); ) {
+                    Written w = i.next();
+                    if (w.upTo() <= settled) {
+                        i.remove();
+                        if (done == null) {
+                            done = new java.util.ArrayList<>(2);
+                        }
+                        done.add(w.future());
+                    }
+                }
+            }
+        }
+        if (done != null) {
+            done.forEach(f -> f.complete(null));
+        }
+    }
+
+    /** Fails every waiter: what they wait for will not be written. */
+    private void failWaiters(IOException why) {
+        List<Written> failed;
+        synchronized (progress) {
+            failed = List.copyOf(waiters);
+            waiters.clear();
+        }
+        failed.forEach(w -> w.future().completeExceptionally(why));
     }
 
     /**
@@ -254,11 +326,14 @@ final class UrbiConnection implements AutoCloseable {
                     continue;
                 }
                 if (down.get()) {
+                    settled(false);
                     continue;
                 }
                 try {
                     communicator.send(next);
+                    settled(true);
                 } catch (IOException e) {
+                    settled(false);
                     if (running) {
                         markDown(e);
                     }
@@ -334,6 +409,7 @@ final class UrbiConnection implements AutoCloseable {
     private void markDown(IOException cause) {
         if (down.compareAndSet(false, true)) {
             lastReopen = 0;
+            failWaiters(cause);
             LOG.warn("robot '{}': lost {}: {}", robot, describe(), cause.getMessage());
             try {
                 events.lost(cause);
@@ -356,7 +432,10 @@ final class UrbiConnection implements AutoCloseable {
             LOG.debug("robot '{}': reopening {} failed: {}", robot, describe(), e.getMessage());
             return;
         }
-        outbox.clear();
+        synchronized (progress) {
+            outbox.clear(); // dropped, with the old connection
+            settled = queued;
+        }
         decoder.reset();
         down.set(false);
         LOG.info("robot '{}': reconnected {}", robot, describe());
@@ -387,6 +466,7 @@ final class UrbiConnection implements AutoCloseable {
         communicator.close();
         join(writer, 2000);
         join(reader, 2000);
+        failWaiters(new IOException(describe() + " was closed"));
     }
 
     private static void join(Thread t, long millis) {

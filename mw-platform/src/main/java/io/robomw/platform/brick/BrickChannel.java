@@ -8,8 +8,6 @@ import io.robomw.platform.link.SerialLink;
 import io.robomw.platform.link.SerialSettings;
 import io.robomw.platform.link.TcpClientLink;
 import io.robomw.platform.link.WireLog;
-import org.slf4j.Logger;
-import org.slf4j.LoggerFactory;
 
 import java.io.IOException;
 import java.nio.file.Path;
@@ -19,16 +17,18 @@ import java.util.concurrent.locks.ReentrantLock;
 /**
  * The request/reply channel to one brick, shared by its driver's motor and sensor platforms: one
  * exchange at a time (a brick answers in order), every reply awaited with a timeout, a lost link
- * reported by the exception of the exchange that found it, and reopened by a later exchange (at
- * most every {@link #REOPEN_INTERVAL}), so a brick that comes back is used again without a
- * restart.
+ * reported by the exception of the exchange that found it. Whether the link is up is its owner's
+ * to keep, the brick's {@link LinkAgent}: an exchange that fails tells it, an exchange while the
+ * link is not up fails at once naming the robot, and the agent reopens the link (at most every
+ * {@link #REOPEN_INTERVAL}), so a brick that comes back is used again without a restart. A channel
+ * without an owner (a test's) just tries the link as it is.
  *
  * <p>Thread-safe: exchanges from the link thread and from program threads (sensor reads) are
- * serialised by a fair lock.
+ * serialised by a fair lock, which each waits for with a deadline (the reply timeout plus the time
+ * the exchange under way is expected to take): a waiter never blocks for ever behind a stuck
+ * exchange ({@link ChannelBusyException}).
  */
 public final class BrickChannel implements AutoCloseable {
-
-    private static final Logger LOG = LoggerFactory.getLogger(BrickChannel.class);
 
     /** Shortest time between two attempts to reopen a lost link. */
     public static final Duration REOPEN_INTERVAL = Duration.ofMillis(500);
@@ -43,8 +43,8 @@ public final class BrickChannel implements AutoCloseable {
     private final Communicator communicator;
     private final Duration replyTimeout;
     private final ReentrantLock lock = new ReentrantLock(true);
-    private boolean down;
-    private long lastAttempt;
+    /** The link agent that keeps the link's state, once one owns this channel. */
+    private volatile Owner owner;
     /**
      * The least time the first exchange on a newly opened channel waits for its replies: a brick
      * just connected (a Bluetooth link still being set up, an emulator whose process has only just
@@ -111,6 +111,32 @@ public final class BrickChannel implements AutoCloseable {
         return communicator.describe();
     }
 
+    /** What a channel tells, and asks, the one that keeps its link's state: its {@link LinkAgent}. */
+    interface Owner {
+        /**
+         * @throws IOException (a {@link LinkLostException} naming the robot and the link) if the link
+         *                     is not up: the exchange is not tried
+         */
+        void ensureUp() throws IOException;
+
+        /**
+         * An exchange failed: the link counts as lost.
+         *
+         * @param cause what it failed with
+         */
+        void lost(IOException cause);
+    }
+
+    /** @param o the link agent that keeps the link's state from now on */
+    void ownedBy(Owner o) {
+        owner = o;
+    }
+
+    /** @return the robot's name */
+    public String robot() {
+        return robot;
+    }
+
     /** @return the communicator, for drivers that read replies themselves inside {@link #exchange} */
     public Communicator communicator() {
         return communicator;
@@ -143,20 +169,25 @@ public final class BrickChannel implements AutoCloseable {
      * @throws IOException if the link is down (and could not be reopened yet) or failed during the exchange
      */
     public <T> T exchange(Exchange<T> exchange) throws IOException {
-        lock.lock();
+        Owner o = owner;
+        if (o != null) {
+            o.ensureUp();
+        }
+        acquire();
         try {
-            ensureOpen();
             long started = LINK_TIME.nanoTime();
             exchangeStartedAt = started;
             exchanging = true;
             try {
-                Duration timeout = answered ? replyTimeout : max(replyTimeout, FIRST_REPLY_TIMEOUT);
+                Duration timeout = replyTimeoutNow();
                 T result = exchange.run(communicator, timeout);
                 answered = true;
                 exchangeTime.sample(LINK_TIME.nanoTime() - started);
                 return result;
             } catch (IOException e) {
-                markDown(e);
+                if (o != null) {
+                    o.lost(e);
+                }
                 throw e;
             } finally {
                 exchanging = false;
@@ -166,27 +197,50 @@ public final class BrickChannel implements AutoCloseable {
         }
     }
 
-    private void ensureOpen() throws IOException {
-        if (!down) {
-            return;
-        }
-        long now = LINK_TIME.nanoTime();
-        if (now - lastAttempt < REOPEN_INTERVAL.toNanos()) {
-            throw new LinkLostException(communicator.describe(), "link to robot '" + robot + "' is down; next reopen attempt within "
-                    + REOPEN_INTERVAL.toMillis() + " ms");
-        }
-        lastAttempt = now;
-        communicator.reopen();
-        down = false;
-        LOG.info("robot '{}': reopened {}", robot, communicator.describe());
+    /** How long a reply is awaited now: longer on a channel that has not answered yet. */
+    private Duration replyTimeoutNow() {
+        return answered ? replyTimeout : max(replyTimeout, FIRST_REPLY_TIMEOUT);
     }
 
-    private void markDown(IOException e) {
-        if (!down) {
-            LOG.warn("robot '{}': link {} failed: {}", robot, communicator.describe(), e.getMessage());
+    /**
+     * Takes the channel, waiting at most the reply timeout plus the time the exchange under way is
+     * expected to take still (at least another reply timeout): an exchange under way ends by its
+     * own timeouts, so a waiter is never held longer than it could take.
+     *
+     * @throws ChannelBusyException naming the robot and the link, if the wait runs out
+     * @throws java.io.InterruptedIOException if the waiting thread is interrupted
+     */
+    private void acquire() throws IOException {
+        long timeout = replyTimeoutNow().toNanos();
+        long wait = timeout + Math.max(timeout, nanosUntilFree());
+        boolean locked;
+        try {
+            locked = lock.tryLock(wait, java.util.concurrent.TimeUnit.NANOSECONDS);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            java.io.InterruptedIOException i = new java.io.InterruptedIOException("robot '" + robot + "': interrupted while waiting for "
+                    + communicator.describe());
+            i.initCause(e);
+            throw i;
         }
-        down = true;
-        lastAttempt = LINK_TIME.nanoTime();
+        if (!locked) {
+            throw new ChannelBusyException(robot, communicator.describe(), Duration.ofNanos(wait));
+        }
+    }
+
+    /**
+     * Closes and opens the link again, under the channel's lock (an exchange under way ends first,
+     * or this waits as an exchange does); the owner calls it while the link is down.
+     *
+     * @throws IOException if the link cannot be opened, or the channel stays busy
+     */
+    public void reopen() throws IOException {
+        acquire();
+        try {
+            communicator.reopen();
+        } finally {
+            lock.unlock();
+        }
     }
 
     /** Closes the link. */

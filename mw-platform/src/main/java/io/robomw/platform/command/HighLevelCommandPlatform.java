@@ -2,6 +2,7 @@ package io.robomw.platform.command;
 
 import io.robomw.api.Clock;
 import io.robomw.api.RobotException;
+import io.robomw.api.RobotLinkException;
 import io.robomw.api.spi.CommandPriority;
 import io.robomw.api.spi.HighLevelCommand;
 import io.robomw.platform.exec.Container;
@@ -11,6 +12,7 @@ import java.util.Locale;
 import java.util.Map;
 import java.util.Set;
 import java.util.TreeSet;
+import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.atomic.AtomicLong;
 
@@ -245,10 +247,43 @@ public abstract class HighLevelCommandPlatform {
      *         them for one cycle so that no normal command queued in the same cycle starts again
      */
     public Container stopContainer() {
+        return stopContainer(new CompletableFuture<>());
+    }
+
+    /**
+     * {@link #stopContainer()}, telling when the stops are on the wire.
+     *
+     * @param handed completed once everything the driver sent up to the stop (the stops of the
+     *               commands it ended) has been written to the link ({@link #sentSoFar}); failed
+     *               with a {@link RobotLinkException} naming the robot if it could not be
+     * @return the container
+     */
+    public Container stopContainer(CompletableFuture<Void> handed) {
         return Container.builder("stop")
                 .requires(new TreeSet<>(groups))
                 .priority(CommandPriority.SAFETY)
+                // After the holders' end actions sent their stops (they end before a newcomer starts).
+                .action(now -> sentSoFar().whenComplete((v, e) -> {
+                    if (e == null) {
+                        handed.complete(null);
+                    } else {
+                        handed.completeExceptionally(new RobotLinkException("robot '" + robot + "': its stop could not be written to the link: "
+                                + e.getMessage(), e));
+                    }
+                }))
                 .logic(now -> true)
                 .build();
+    }
+
+    /**
+     * What a stop waits for: completes once everything {@link #start}, {@link #refresh} and
+     * {@link #stop} sent so far has been written to the link; fails if the link is down or is lost
+     * first. The default (a platform without a link of its own, such as a simulator's, whose
+     * commands act within the cycle) is done at once. Called on the execution action thread.
+     *
+     * @return the future
+     */
+    protected CompletableFuture<Void> sentSoFar() {
+        return CompletableFuture.completedFuture(null);
     }
 }

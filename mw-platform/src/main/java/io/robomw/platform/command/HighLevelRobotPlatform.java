@@ -56,7 +56,7 @@ public final class HighLevelRobotPlatform implements RobotPlatform, HighLevelPla
         this.config = config;
         this.commands = commands;
         this.link = link;
-        this.actionThread = new ExecutionActionThread(config.robotName(), config.clock(), config.cyclePeriod());
+        this.actionThread = new ExecutionActionThread(config.robotName(), config.clock(), config.cyclePeriod(), config.failures());
         for (SensorChannel channel : config.sensors()) {
             sensors.put(channel.name(), sensorPlatform.createSensor(channel));
         }
@@ -129,9 +129,27 @@ public final class HighLevelRobotPlatform implements RobotPlatform, HighLevelPla
                 + "' moves by its firmware's own commands; it has no motors for '" + command.name() + "' to turn"));
     }
 
+    /**
+     * Ends every running command, each with its stop.
+     *
+     * @return completes once those stops are written to the link; fails with
+     *         {@link RobotLinkException} naming the robot if the link is down or fails first, or the
+     *         platform is closed. The stop is queued all the same.
+     */
     @Override
     public CompletableFuture<Void> stopAll() {
-        return actionThread.submit(commands.stopContainer());
+        CompletableFuture<Void> handed = new CompletableFuture<>();
+        if (linkDown) {
+            handed.completeExceptionally(new RobotLinkException("robot '" + config.robotName()
+                    + "': its stop was not written: the link is down", null));
+        }
+        actionThread.submit(commands.stopContainer(handed)).whenComplete((v, e) -> {
+            if (e != null && !(e instanceof io.robomw.api.CommandPreemptedException)) {
+                handed.completeExceptionally(new RobotLinkException("robot '" + config.robotName() + "': its stop could not be handed to the robot: "
+                        + e.getMessage(), e));
+            }
+        });
+        return handed;
     }
 
     @Override

@@ -4,10 +4,10 @@ import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
-import io.robomw.platform.LinkThreading;
 import io.robomw.platform.PlatformCheck;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.SerialSettings;
+import io.robomw.platform.motor.MotorPlatform;
 
 import java.io.IOException;
 import java.time.Duration;
@@ -48,9 +48,10 @@ public final class Ev3PlatformProvider implements PlatformProvider {
                 SerialSettings.of(115200, 8, SerialSettings.Parity.NONE, 1), TCP_PORT, timeout);
         try {
             Ev3Brick brick = new Ev3Brick(config.robotName(), channel);
-            Ev3MotorPlatform motors = new Ev3MotorPlatform(config, brick);
-            motors.clearCounts();
-            return new BrickPlatform(config, motors, new Ev3SensorPlatform(motors, brick), LinkThreading.OWN_THREAD, channel).start();
+            Ev3MotorDriver driver = new Ev3MotorDriver(config, brick);
+            driver.clearCounts();
+            MotorPlatform motors = new MotorPlatform(config, driver);
+            return new BrickPlatform(config, motors, new Ev3SensorPlatform(motors, brick), channel, null).start();
         } catch (IOException | RuntimeException e) {
             channel.close();
             throw e;

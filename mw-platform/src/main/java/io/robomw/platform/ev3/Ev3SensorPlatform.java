@@ -4,7 +4,7 @@ import io.robomw.api.RobotException;
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.SensorType;
 import io.robomw.api.spi.SensorChannel;
-import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
 import org.slf4j.Logger;
@@ -55,7 +55,7 @@ public final class Ev3SensorPlatform extends SensorPlatform {
      * @param motors the motor platform (for tachometers)
      * @param brick  the brick
      */
-    public Ev3SensorPlatform(GenericMotorPlatform motors, Ev3Brick brick) {
+    public Ev3SensorPlatform(MotorPlatform motors, Ev3Brick brick) {
         super(motors);
         this.brick = brick;
     }

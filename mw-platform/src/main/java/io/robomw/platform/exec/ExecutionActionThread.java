@@ -5,6 +5,9 @@ import io.robomw.api.CommandPreemptedException;
 import io.robomw.api.RobotException;
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.spi.CommandPriority;
+import io.robomw.api.spi.FailurePolicy;
+import io.robomw.api.spi.IdleStrategy;
+import io.robomw.api.spi.OwnerThread;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -17,8 +20,6 @@ import java.util.Set;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.atomic.AtomicLong;
-import java.util.concurrent.atomic.AtomicReference;
-import java.util.concurrent.locks.LockSupport;
 
 /**
  * The paper's execution action thread: a real-time repository of containers, cycled at a fixed
@@ -39,36 +40,53 @@ import java.util.concurrent.locks.LockSupport;
  *   rules.</li>
  *   <li><b>Watchdog:</b> a container with a watchdog timeout ends when it has run that long
  *   without being refreshed or replaced.</li>
+ *   <li><b>Cancel:</b> a container whose caller cancels its future (an interrupted or timed-out
+ *   wait) ends at the next cycle as interrupted, so its end action stops its motors; one cancelled
+ *   before it started never runs.</li>
  *   <li><b>Link failure:</b> after {@link #linkFailed}, every container ends with
  *   {@link RobotLinkException} and runs its end action (stopping its motors).</li>
  * </ul>
  *
  * <h2>Threads</h2>
- * {@link #submit}, {@link #refresh} and {@link #linkFailed} may be called from any thread. Everything else happens
- * in {@link #cycle()}, called either by the thread {@link #start()} creates (named
- * {@code <robot>-action}, paced by the wall clock) or, with a simulated clock, by the simulation,
- * never by both. Action objects, logic objects, end actions and cycle listeners all run on the
- * cycling thread, one at a time; they must not block. What they throw (an exception, or an error a
- * driver or an agent's code can cause: a {@link LinkageError}, an {@link AssertionError}, a
- * {@link StackOverflowError}) ends their container with it, is logged and counted, and the loop
+ * {@link #submit}, {@link #refresh}, {@link #linkFailed} and {@link #driverFailed} may be called
+ * from any thread, and wake the cycling thread. Everything else happens in {@link #cycle()}, called
+ * either by the {@link OwnerThread} {@link #start()} starts (named {@code <robot>-action}, for a
+ * platform that runs its own threads: {@link io.robomw.api.spi.Cycling#OWN_THREADS}) or by the
+ * platform's owner (a simulation stepping its world), never by both. The thread's idle strategy
+ * is fed by each cycle's work: while containers run it cycles at the period; a robot with nothing
+ * to do sleeps until something is submitted (it does not wake a hundred times a second for
+ * nothing). Action objects, logic objects, end actions and cycle listeners all run on the cycling
+ * thread, one at a time; they must not block.
+ *
+ * <h2>Failures</h2>
+ * What one unit of work throws (a container's action, logic or end action, a refresh, a cycle
+ * listener) goes to the injected {@link FailurePolicy}: one it can survive (an exception, or an
+ * error a driver or an agent's code can cause: a {@link LinkageError}, an {@link AssertionError},
+ * a {@link StackOverflowError}) is reported and counted, ends its container with it, and the loop
  * goes on.
  *
  * <h2>When the thread itself dies</h2>
- * Any other {@link Throwable} that reaches the loop (an {@link OutOfMemoryError}, an internal
- * error, a bug here) ends the thread, never silently, as Agrona's {@code AgentRunner} handles its
- * agents' failures: it is logged and counted; every container ends with a
- * {@link RobotException} naming it and runs its end action, and the cycle listeners run once more,
- * so the motor platform hands the last stop to its link before the thread exits; the failure
- * listeners are told; and the thread is marked failed: later commands fail at once with an error
- * that says so ({@link #failure()}). {@link #close()} waits until the thread has really ended.
+ * Any other {@link Throwable} (an {@link OutOfMemoryError}, an internal error of the VM) ends the
+ * thread, never silently, as Agrona's {@code AgentRunner} ends an agent, but for motors
+ * ({@link OwnerThread.Duty#onDeath}): every container ends with a {@link RobotException} naming it
+ * and runs its end action, and the cycle listeners run once more, so the motor platform hands the
+ * last stop to its link before the thread exits; the failure listeners are told; the policy hears
+ * of the death; and the thread is marked failed: later commands fail at once with an error that
+ * says so ({@link #failure()}). {@link #close()} waits until the thread has really ended.
  */
 public final class ExecutionActionThread implements AutoCloseable {
 
     private static final Logger LOG = LoggerFactory.getLogger(ExecutionActionThread.class);
 
+    /** How long the cycling thread sleeps, at most, while it has nothing to do and nobody wakes it. */
+    static final Duration IDLE_WAIT = Duration.ofSeconds(1);
+
     private final String robot;
+    /** The cycling thread's name, under which failures are reported. */
+    private final String role;
     private final Clock clock;
     private final long periodNanos;
+    private final FailurePolicy failures;
     // The queue, guarded by this object's own monitor (no lock object of its own: one object less
     // for each cycle to bring into the cache): the containers submitted and not yet admitted, in the
     // order of their tickets, the refresh slots and their places, and the ticket counter.
@@ -95,12 +113,12 @@ public final class ExecutionActionThread implements AutoCloseable {
     private final List<java.util.function.Consumer<RobotException>> failureListeners = new CopyOnWriteArrayList<>();
     /** Why the cycling thread died, once it has. */
     private volatile RobotException failure;
-    private final AtomicReference<Thread> thread = new AtomicReference<>();
+    /** The thread {@link #start} started, or {@code null} while its owner cycles it. */
+    private volatile OwnerThread runner;
     /** Written only by the cycling thread (one at a time), with release semantics. */
     private volatile long cycles;
     private final AtomicLong overruns = new AtomicLong();
     private final AtomicLong errors = new AtomicLong();
-    private volatile boolean running;
     private volatile boolean closed;
     private volatile Set<String> inUse = Set.of();
 
@@ -109,19 +127,38 @@ public final class ExecutionActionThread implements AutoCloseable {
     private final List<Container> active = new ArrayList<>();
     private final List<Container> scratch = new ArrayList<>();
     private boolean holdersChanged;
+    /** The slowest step of the cycle under way, when it is timed: whose, what kind, how long. */
+    private String slowestStep;
+    private String slowestKind;
+    private long slowestNanos;
 
     /**
+     * @param robot    the robot's name, for the thread's name and messages
+     * @param clock    the clock cycles are timed with
+     * @param period   the cycle period (10 ms for the default 100 Hz)
+     * @param failures where what the cycles catch is reported ({@link io.robomw.api.spi.PlatformConfig#failures()})
+     */
+    public ExecutionActionThread(String robot, Clock clock, Duration period, FailurePolicy failures) {
+        if (period.isZero() || period.isNegative()) {
+            throw new IllegalArgumentException("cycle period must be > 0, got " + period);
+        }
+        this.robot = robot;
+        this.role = robot + "-action";
+        this.clock = clock;
+        this.periodNanos = period.toNanos();
+        this.failures = java.util.Objects.requireNonNull(failures, "failures");
+    }
+
+    /**
+     * An execution action thread that reports what it catches to a {@link FailurePolicy#logging()
+     * logging policy} of its own (tests; a platform passes its configuration's policy).
+     *
      * @param robot  the robot's name, for the thread's name and messages
      * @param clock  the clock cycles are timed with
      * @param period the cycle period (10 ms for the default 100 Hz)
      */
     public ExecutionActionThread(String robot, Clock clock, Duration period) {
-        if (period.isZero() || period.isNegative()) {
-            throw new IllegalArgumentException("cycle period must be > 0, got " + period);
-        }
-        this.robot = robot;
-        this.clock = clock;
-        this.periodNanos = period.toNanos();
+        this(robot, clock, period, FailurePolicy.logging());
     }
 
     /** @return the cycle period */
@@ -138,7 +175,8 @@ public final class ExecutionActionThread implements AutoCloseable {
      * Queues a container; it starts at the next cycle, subject to the clash rules.
      *
      * @param container the container
-     * @return its completion future
+     * @return its completion future; cancelling it ends the container at the next cycle as
+     *         interrupted (its end action stops its motors), or drops it if it has not started
      */
     public CompletableFuture<Void> submit(Container container) {
         RobotException failed = failure;
@@ -157,7 +195,16 @@ public final class ExecutionActionThread implements AutoCloseable {
             queuedContainers++;
             anyIncoming = true;
         }
+        wake();
         return container.completion();
+    }
+
+    /** Wakes the cycling thread from an idle wait, if it has one: there is work. */
+    private void wake() {
+        OwnerThread r = runner;
+        if (r != null) {
+            r.wake();
+        }
     }
 
     /**
@@ -192,6 +239,7 @@ public final class ExecutionActionThread implements AutoCloseable {
                 slot.queued = true;
                 slot.put(values);
                 anyIncoming = true;
+                wake();
             } else if (slot.ticket == lastTicket) {
                 slot.put(values); // the newest refresh replaces the one queued just before it
             } else {
@@ -227,6 +275,7 @@ public final class ExecutionActionThread implements AutoCloseable {
     public void linkFailed(String link, Throwable cause) {
         LINK_FAILURE.compareAndSet(this, null, new RobotLinkException("robot '" + robot + "': link " + link + " failed: " + cause.getMessage()
                 + "; its motors were stopped", cause));
+        wake();
     }
 
     /**
@@ -259,6 +308,7 @@ public final class ExecutionActionThread implements AutoCloseable {
             Refusal now = was == null ? new Refusal(cause, throughCycle)
                     : new Refusal(was.cause(), Math.max(was.throughCycle(), throughCycle));
             if (DRIVER_FAILURE.compareAndSet(this, was, now)) {
+                wake();
                 return;
             }
         }
@@ -321,8 +371,10 @@ public final class ExecutionActionThread implements AutoCloseable {
      *   up to the cycle it names) with that refusal.</li>
      *   <li>Admit queued containers and refresh slots in the order they were submitted, applying
      *   the clash and refresh rules, and start each admitted one (its action objects run); what an
-     *   action submits meanwhile is admitted in this cycle too.</li>
-     *   <li>End containers whose watchdog expired.</li>
+     *   action submits meanwhile is admitted in this cycle too. A container whose caller cancelled
+     *   its future before it started is dropped.</li>
+     *   <li>End, as interrupted (their end actions stop their motors), containers whose caller
+     *   cancelled their future, and those whose watchdog expired.</li>
      *   <li>Evaluate the logic objects of every running container; end those whose logic all holds.</li>
      *   <li>Run the cycle listeners.</li>
      * </ol>
@@ -331,6 +383,9 @@ public final class ExecutionActionThread implements AutoCloseable {
      */
     public int cycle() {
         long start = clock.nanoTime();
+        // On its own thread a cycle's steps are timed, so an overrun names the slowest (WPILib's epochs).
+        boolean timed = runner != null;
+        slowestNanos = 0;
         RobotLinkException failure = linkFailure == null ? null : (RobotLinkException) LINK_FAILURE.getAndSet(this, null);
         if (failure != null) {
             for (Container c : snapshot()) {
@@ -351,46 +406,96 @@ public final class ExecutionActionThread implements AutoCloseable {
             if (next == null) {
                 break;
             }
+            long t0 = timed ? clock.nanoTime() : 0;
             if (next instanceof Container c) {
+                if (c.completion().isCancelled()) {
+                    continue; // its caller cancelled it before it started: it never runs
+                }
                 admit(c, start);
+                if (timed) {
+                    epoch(c.name(), "admission", t0);
+                }
             } else {
                 admit((RefreshSlot) next, start);
+                if (timed) {
+                    epoch(((RefreshSlot) next).name(), "refresh", t0);
+                }
             }
         }
         if (active.size() == 1) {
             // One container (a robot's running drive): nothing to copy, as ending it ends the loop.
             Container c = active.get(0);
-            if (!watchdog(c, start)) {
+            long t0 = timed ? clock.nanoTime() : 0;
+            if (!cancelled(c) && !watchdog(c, start)) {
                 evaluate(c, start);
+            }
+            if (timed) {
+                epoch(c.name(), "logic", t0);
             }
         } else {
             for (Container c : snapshot()) {
-                watchdog(c, start);
+                if (!cancelled(c)) {
+                    watchdog(c, start);
+                }
             }
             for (Container c : snapshot()) {
+                long t0 = timed ? clock.nanoTime() : 0;
                 evaluate(c, start);
+                if (timed) {
+                    epoch(c.name(), "logic", t0);
+                }
             }
         }
+        long listenersStarted = timed ? clock.nanoTime() : 0;
         for (Runnable listener : cycleListeners) {
             try {
                 listener.run();
-            } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
-                errors.incrementAndGet();
-                LOG.error("robot '{}': a cycle listener failed", robot, e);
+            } catch (Throwable t) {
+                survive("a cycle listener", t);
             }
+        }
+        if (timed) {
+            epoch("the cycle listeners (the hand-off to the link)", null, listenersStarted);
         }
         if (holdersChanged) {
             inUse = holders.actuators();
             holdersChanged = false;
         }
         CYCLES.setRelease(this, cycles + 1);
-        if (thread.get() != null && clock.nanoTime() - start > periodNanos) { // overruns of its own thread; a simulation's cycles take what they take
+        if (runner != null && clock.nanoTime() - start > periodNanos) { // overruns of its own thread; a simulation's cycles take what they take
             long n = overruns.incrementAndGet();
             if (Long.bitCount(n) == 1) {
-                LOG.warn("robot '{}': execution action thread overran its {} µs period ({} overruns so far)", robot, periodNanos / 1000, n);
+                LOG.warn("robot '{}': execution action thread overran its {} µs period ({} overruns so far); its slowest step was {} ({} µs)",
+                        robot, periodNanos / 1000, n, slowestKind == null ? slowestStep : "the " + slowestKind + " of '" + slowestStep + "'",
+                        slowestNanos / 1000);
             }
         }
         return active.size();
+    }
+
+    /** Keeps the slowest step of this cycle: a container's name and what it did, timed since {@code t0}. */
+    private void epoch(String step, String kind, long t0) {
+        long took = clock.nanoTime() - t0;
+        if (took > slowestNanos) {
+            slowestNanos = took;
+            slowestStep = step;
+            slowestKind = kind;
+        }
+    }
+
+    /**
+     * Ends a container whose caller cancelled its future (an interrupted or timed-out wait): as
+     * interrupted, so its end action stops its motors.
+     *
+     * @return whether it did
+     */
+    private boolean cancelled(Container c) {
+        if (!c.completion().isCancelled()) {
+            return false;
+        }
+        LOG.debug("robot '{}': '{}' was cancelled by its caller; ending it", robot, c.name());
+        finish(c, true, null);
+        return true;
     }
 
     /**
@@ -413,8 +518,8 @@ public final class ExecutionActionThread implements AutoCloseable {
         boolean done;
         try {
             done = c.evaluate(now);
-        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
-            fail(c, e);
+        } catch (Throwable t) {
+            fail(c, t);
             return;
         }
         if (done) {
@@ -476,17 +581,16 @@ public final class ExecutionActionThread implements AutoCloseable {
             try {
                 holder.restartWatchdog(now);
                 slot.handler().refresh(slot.taken, now);
-            } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
-                fail(holder, e);
+            } catch (Throwable t) {
+                fail(holder, t);
             }
             return;
         }
         Container c;
         try {
             c = slot.handler().container(slot.taken);
-        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
-            errors.incrementAndGet();
-            LOG.error("robot '{}': command '{}' failed", robot, slot.name(), e);
+        } catch (Throwable t) {
+            survive("command '" + slot.name() + "'", t);
             return;
         }
         admit(c, now);
@@ -535,9 +639,13 @@ public final class ExecutionActionThread implements AutoCloseable {
                 try {
                     holder.refresh(now, c);
                     c.completion().complete(null);
-                } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
-                    c.completion().completeExceptionally(e);
-                    fail(holder, e);
+                } catch (Throwable t) {
+                    try {
+                        survive("command '" + c.name() + "'", t);
+                    } finally {
+                        c.completion().completeExceptionally(t);
+                    }
+                    finish(holder, true, t);
                 }
                 return;
             }
@@ -562,15 +670,26 @@ public final class ExecutionActionThread implements AutoCloseable {
         active.add(c);
         try {
             c.start(now);
-        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
-            fail(c, e);
+        } catch (Throwable t) {
+            fail(c, t);
         }
     }
 
-    private void fail(Container c, Throwable e) {
+    /** One container's unit of work failed: the policy hears of it (and re-throws what the thread cannot survive), the container ends with it. */
+    private void fail(Container c, Throwable t) {
+        survive("command '" + c.name() + "'", t);
+        finish(c, true, t);
+    }
+
+    /**
+     * Reports what one unit of work threw to the failure policy, and counts it; re-throws a
+     * failure the thread cannot survive, so the loop ends ({@link #died}).
+     *
+     * @param what the unit of work, for the report ("command 'move'")
+     */
+    private void survive(String what, Throwable t) {
         errors.incrementAndGet();
-        LOG.error("robot '{}': command '{}' failed", robot, c.name(), e);
-        finish(c, true, e);
+        failures.surviveOrRethrow(role + ", " + what, t);
     }
 
     /** Removes the container first, so an end action that submits or fails cannot see it again. */
@@ -582,16 +701,19 @@ public final class ExecutionActionThread implements AutoCloseable {
             holders.remove(actuator, c);
         }
         holdersChanged = true;
+        Throwable endFailed = null;
         try {
             c.end(interrupted);
-        } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
-            errors.incrementAndGet();
-            LOG.error("robot '{}': end action of '{}' failed", robot, c.name(), e);
+        } catch (Throwable t) {
+            endFailed = t;
         }
         if (cause == null) {
             c.completion().complete(null);
         } else {
             c.completion().completeExceptionally(cause);
+        }
+        if (endFailed != null) {
+            survive("the end action of '" + c.name() + "'", endFailed);
         }
     }
 
@@ -615,56 +737,55 @@ public final class ExecutionActionThread implements AutoCloseable {
     }
 
     /**
-     * Starts the real-time thread that cycles at the period, on this thread's clock (a platform
-     * whose owner cycles it, a simulation, never calls this). Only once.
+     * Starts the real-time thread that cycles at the period, on this thread's clock, for a
+     * platform that runs its own threads ({@link io.robomw.api.spi.Cycling#OWN_THREADS}; a platform
+     * whose owner cycles it, a simulation, never calls this). While containers run it cycles once
+     * a period; with none, it sleeps until a submit, a refresh, a link failure, a refusal or
+     * {@link #close()} wakes it. Only once.
      *
      * @throws IllegalStateException if the thread was already started
      */
     public void start() {
-        Thread t = new Thread(this::loop, robot + "-action");
-        if (!thread.compareAndSet(null, t)) {
-            throw new IllegalStateException("the execution action thread of '" + robot + "' was already started");
-        }
-        running = true;
-        t.setDaemon(true);
-        t.setPriority(Thread.MAX_PRIORITY);
-        t.start();
+        start(IDLE_WAIT);
     }
 
-    private void loop() {
-        try {
-            long next = clock.nanoTime();
-            while (running) {
-                cycle();
-                next += periodNanos;
-                long now = clock.nanoTime();
-                if (next < now) {
-                    next = now;
-                }
-                while (running && (now = clock.nanoTime()) < next) {
-                    LockSupport.parkNanos(this, next - now);
-                }
-            }
-        } catch (Throwable t) {
-            died(t);
+    /**
+     * {@link #start()}, with the longest sleep of an idle thread nobody wakes.
+     *
+     * @param idleWait how long the thread sleeps, at most, after a cycle with nothing to do
+     */
+    synchronized void start(Duration idleWait) {
+        if (runner != null) {
+            throw new IllegalStateException("the execution action thread of '" + robot + "' was already started");
+        }
+        runner = OwnerThread.start(role, Thread.MAX_PRIORITY, new Cycler(),
+                IdleStrategy.periodic(clock, Duration.ofNanos(periodNanos), idleWait), failures);
+    }
+
+    /** The cycling thread's duty: a cycle per round; its work is what runs or waits to. */
+    private final class Cycler implements OwnerThread.Duty {
+        @Override
+        public int doWork() {
+            int running = cycle();
+            return anyIncoming || linkFailure != null || driverFailure != null ? running + 1 : running;
+        }
+
+        @Override
+        public void onDeath(Throwable failure) {
+            died(failure);
         }
     }
 
     /**
      * The cycling thread cannot go on: stops every motor it can, says why, and marks the robot
-     * failed. Runs on the dying thread; must not throw.
+     * failed. Runs on the dying thread; must not throw. (The failure policy hears of the death from
+     * the thread's runner.)
      */
     void died(Throwable t) {
         errors.incrementAndGet();
         RobotException why = new RobotException("robot '" + robot + "': its execution action thread died of " + t
                 + "; every command was stopped", t);
         FAILURE.compareAndSet(this, null, why);
-        running = false;
-        try {
-            LOG.error("robot '{}': the execution action thread died; stopping every command and marking the robot failed", robot, t);
-        } catch (Throwable ignored) {
-            // logging itself failed (out of memory): the rest must still happen
-        }
         for (Container c : List.copyOf(active)) {
             try {
                 finish(c, true, why);
@@ -692,8 +813,9 @@ public final class ExecutionActionThread implements AutoCloseable {
     }
 
     /**
-     * Stops the thread (waiting for its current cycle), then ends every container, queued or
-     * running, as interrupted. Idempotent.
+     * Stops the thread (waiting until it has really ended: a cycle blocked on something is
+     * interrupted), then ends every container, queued or running, as interrupted, and runs the
+     * cycle listeners once more (the motor platform hands the stops to its link). Idempotent.
      */
     @Override
     public void close() {
@@ -701,54 +823,30 @@ public final class ExecutionActionThread implements AutoCloseable {
             return;
         }
         closed = true;
-        running = false;
-        Thread t = thread.get();
-        if (t != null && t != Thread.currentThread()) {
-            awaitEnd(t);
+        OwnerThread r = runner;
+        if (r != null) {
+            r.close(); // on the cycling thread itself (an end action closing the robot) it only ends the loop
         }
         RobotException closing = new RobotException("robot '" + robot + "' was closed");
         for (Container c; (c = takeQueued()) != null; ) {
             c.completion().completeExceptionally(closing);
         }
         for (Container c : List.copyOf(active)) {
-            finish(c, true, closing);
+            try {
+                finish(c, true, closing);
+            } catch (Throwable t) {
+                c.completion().completeExceptionally(closing); // the policy was told, and re-threw what nobody survives
+            }
         }
         for (Runnable listener : cycleListeners) {
             try {
                 listener.run();
-            } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+            } catch (Throwable t) {
                 errors.incrementAndGet();
-                LOG.error("robot '{}': a cycle listener failed while closing", robot, e);
-            }
-        }
-    }
-
-    /**
-     * Waits until the cycling thread has really ended, as Agrona's {@code AgentRunner.close} does:
-     * joins, and if it has not ended, interrupts it (a cycle blocked on something) and joins again,
-     * saying so every few seconds. Containers are only ended after, on this thread, so nothing
-     * runs on two threads at once.
-     */
-    private void awaitEnd(Thread t) {
-        boolean interrupted = false;
-        long waited = 0;
-        while (t.isAlive()) {
-            LockSupport.unpark(t);
-            try {
-                t.join(CLOSE_JOIN_MILLIS);
-            } catch (InterruptedException e) {
-                interrupted = true;
-            }
-            if (t.isAlive()) {
-                waited += CLOSE_JOIN_MILLIS;
-                t.interrupt();
-                if (waited % 5_000 == 0) {
-                    LOG.warn("robot '{}': still waiting for its execution action thread to end ({} ms so far)", robot, waited);
+                if (FailurePolicy.survivable(t)) {
+                    failures.survived(role + ", a cycle listener while closing", t);
                 }
             }
-        }
-        if (interrupted) {
-            Thread.currentThread().interrupt();
         }
     }
 
@@ -830,7 +928,4 @@ public final class ExecutionActionThread implements AutoCloseable {
             throw new ExceptionInInitializerError(e);
         }
     }
-
-    /** How long {@link #close()} joins the cycling thread before it interrupts it and joins again. */
-    private static final long CLOSE_JOIN_MILLIS = 1_000;
 }

@@ -6,15 +6,12 @@ import org.slf4j.LoggerFactory;
 import java.io.IOException;
 import java.time.Duration;
 import java.util.Arrays;
-import java.util.List;
 import java.util.Objects;
-import java.util.concurrent.CopyOnWriteArrayList;
-import java.util.concurrent.atomic.AtomicBoolean;
 
 /**
  * A brick driver's one door to its {@link Link}: sends frames, receives bytes with deadlines,
- * reads length-driven frames whole, reopens a dropped link, tells {@link LinkListener}s when the
- * link drops and comes back, and optionally records every byte in a {@link WireLog}.
+ * reads length-driven frames whole, reopens a dropped link, and optionally records every byte in a
+ * {@link WireLog}.
  *
  * <h2>Frames over streams</h2>
  * A serial port or TCP stream does not keep frame boundaries: a pty read may return half a frame,
@@ -23,9 +20,9 @@ import java.util.concurrent.atomic.AtomicBoolean;
  * requested count stay in the link for the next call.
  *
  * <h2>Lost and restored</h2>
- * A {@link LinkLostException} from the link marks the link lost and is rethrown; listeners hear
- * of it once. The link counts as restored when {@link #reopen()} succeeds or when a later send or
- * receive moves bytes again; listeners hear of that once too.
+ * A {@link LinkLostException} from the link is rethrown (and noted in the wire log); the
+ * communicator keeps no state of the link's own: whether the link is up is its owner's to say
+ * (a brick's link agent, which reopens it with {@link #reopen()}).
  *
  * <h2>Threads</h2>
  * One thread may {@link #send} while another {@link #receive}s; at most one thread sends and at
@@ -43,8 +40,6 @@ public final class Communicator implements AutoCloseable {
 
     private final Link link;
     private final WireLog wireLog;
-    private final List<LinkListener> listeners = new CopyOnWriteArrayList<>();
-    private final AtomicBoolean lost = new AtomicBoolean();
     private final Object lifecycle = new Object();
     private final byte[] receiveBuffer = new byte[RECEIVE_CHUNK_BYTES];
 
@@ -74,16 +69,6 @@ public final class Communicator implements AutoCloseable {
         return link.describe();
     }
 
-    /** @param listener told of every drop and restore from now on */
-    public void addListener(LinkListener listener) {
-        listeners.add(Objects.requireNonNull(listener, "listener"));
-    }
-
-    /** @param listener no longer told */
-    public void removeListener(LinkListener listener) {
-        listeners.remove(listener);
-    }
-
     /**
      * Opens the link if it is not open.
      *
@@ -96,23 +81,24 @@ public final class Communicator implements AutoCloseable {
     }
 
     /**
-     * Closes and opens the link again, e.g. after a {@link LinkLostException}, and reports the
-     * link restored if it had been lost.
+     * Closes and opens the link again, e.g. after a {@link LinkLostException}.
      *
-     * @throws IOException if the link cannot be opened; it stays closed and, if it was lost, lost
+     * @throws IOException if the link cannot be opened; it stays closed
      */
     public void reopen() throws IOException {
         synchronized (lifecycle) {
             link.close();
             link.open();
             LOG.debug("reopened {}", link.describe());
+            if (wireLog != null) {
+                wireLog.note("reopened " + link.describe());
+            }
         }
-        markRestored();
     }
 
-    /** @return whether the link is open and has not been lost since it was last (re)opened or moved bytes */
+    /** @return whether the link is open ({@link Link#isOpen()}): a lost link stays open until it is closed or reopened */
     public boolean isOpen() {
-        return link.isOpen() && !lost.get();
+        return link.isOpen();
     }
 
     /**
@@ -127,13 +113,12 @@ public final class Communicator implements AutoCloseable {
         try {
             link.write(data, 0, data.length);
         } catch (LinkLostException e) {
-            markLost(e);
+            noteLost(e);
             throw e;
         }
         if (wireLog != null) {
             wireLog.sent(data, 0, data.length);
         }
-        markRestored();
     }
 
     /**
@@ -188,51 +173,19 @@ public final class Communicator implements AutoCloseable {
         try {
             n = link.read(buf, off, len, Duration.ofNanos(deadline.remainingNanos()));
         } catch (LinkLostException e) {
-            markLost(e);
+            noteLost(e);
             throw e;
         }
-        if (n > 0) {
-            if (wireLog != null) {
-                wireLog.received(buf, off, n);
-            }
-            markRestored();
+        if (n > 0 && wireLog != null) {
+            wireLog.received(buf, off, n);
         }
         return n;
     }
 
-    private void markLost(IOException cause) {
-        if (!lost.compareAndSet(false, true)) {
-            return;
-        }
-        String name = link.describe();
-        LOG.warn("{}", cause.getMessage());
+    /** Notes a loss in the wire log, where the bytes around it are. */
+    private void noteLost(IOException cause) {
         if (wireLog != null) {
             wireLog.note("link lost: " + cause.getMessage());
-        }
-        for (LinkListener listener : listeners) {
-            try {
-                listener.onLinkLost(name, cause);
-            } catch (RuntimeException e) {
-                LOG.warn("{}: a link listener failed in onLinkLost", name, e);
-            }
-        }
-    }
-
-    private void markRestored() {
-        if (!lost.compareAndSet(true, false)) {
-            return;
-        }
-        String name = link.describe();
-        LOG.info("{}: link restored", name);
-        if (wireLog != null) {
-            wireLog.note("link restored: " + name);
-        }
-        for (LinkListener listener : listeners) {
-            try {
-                listener.onLinkRestored(name);
-            } catch (RuntimeException e) {
-                LOG.warn("{}: a link listener failed in onLinkRestored", name, e);
-            }
         }
     }
 

@@ -7,8 +7,9 @@
  *       {@link io.robomw.platform.link.TcpClientLink} and
  *       {@link io.robomw.platform.link.TcpServerLink}.</li>
  *   <li>{@link io.robomw.platform.link.Communicator}: sends, receives with deadlines, reads
- *       length-driven frames whole, reopens, reports lost and restored links, and writes a
- *       {@link io.robomw.platform.link.WireLog}.</li>
+ *       length-driven frames whole, reopens, and writes a {@link io.robomw.platform.link.WireLog};
+ *       whether a brick's link is up is kept in one place, its link agent
+ *       ({@code io.robomw.platform.brick.LinkAgent}).</li>
  *   <li>{@link io.robomw.platform.link.PseudoTerminal}: an in-process pty pair, so an emulator can
  *       stand in for a serial brick with nothing installed.</li>
  * </ul>

@@ -1,7 +1,7 @@
 package io.robomw.platform.motor;
 
 /**
- * What one motor should be doing, as {@link GenericMotorPlatform#runImpl} hands it to a driver.
+ * What one motor should be doing, as the {@link MotorPlatform} hands it to a driver ({@link MotorDriver#send}).
  *
  * @param port             the motor port
  * @param degreesPerSecond signed speed; 0 stops the motor

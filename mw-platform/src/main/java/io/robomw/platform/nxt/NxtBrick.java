@@ -69,12 +69,52 @@ public final class NxtBrick {
      * @throws NxtException if the brick answered with an error status
      */
     public byte[] request(byte[] telegram, int replyLength, int port) throws IOException {
-        byte[] reply = requestAllowing(telegram, replyLength, port);
-        int status = reply[NxtTelegram.STATUS_OFFSET] & 0xFF;
-        if (status != NxtStatus.SUCCESS) {
-            throw new NxtException(robot, telegram[1] & 0xFF, port, status, telegram);
-        }
+        Request request = new Request(telegram, replyLength, port);
+        byte[] reply = requestAllowing(request);
+        checkStatus(request, reply);
         return reply;
+    }
+
+    /**
+     * @param request a telegram sent
+     * @param reply   its reply
+     * @throws NxtException naming the robot, the command, the port, the status and the telegram, if
+     *                      the status is not success
+     */
+    public void checkStatus(Request request, byte[] reply) {
+        int status = NxtTelegram.status(reply);
+        if (status != NxtStatus.SUCCESS) {
+            throw new NxtException(robot, NxtTelegram.opcode(request.telegram()), request.port(), status, request.telegram());
+        }
+    }
+
+    /**
+     * Checks every reply of a pipelined batch, in order.
+     *
+     * @param requests the telegrams sent
+     * @param replies  their replies, as many
+     * @throws NxtException naming the first command the brick refused
+     */
+    public void checkStatus(java.util.List<Request> requests, java.util.List<byte[]> replies) {
+        for (int i = 0; i < replies.size(); i++) {
+            checkStatus(requests.get(i), replies.get(i));
+        }
+    }
+
+    /**
+     * Decodes a successful GETOUTPUTSTATE reply; a reply carrying a code the firmware does not have
+     * means the link lost its framing.
+     *
+     * @param reply the reply
+     * @return what it reports
+     * @throws LinkLostException naming the link, if the reply does not decode
+     */
+    public NxtTelegram.OutputReading outputReading(byte[] reply) throws LinkLostException {
+        try {
+            return NxtTelegram.outputReading(reply);
+        } catch (IllegalArgumentException e) {
+            throw new LinkLostException(channel.describe(), e.getMessage() + "; the link lost its framing", e);
+        }
     }
 
     /**
@@ -128,7 +168,7 @@ public final class NxtBrick {
     public static final int PIPELINE_BYTES = 128;
 
     private byte[] readReply(io.robomw.platform.link.Communicator c, java.time.Duration timeout, Request request) throws IOException {
-        int opcode = request.telegram()[1] & 0xFF;
+        int opcode = NxtTelegram.opcode(request.telegram());
         byte[] prefix = c.receiveExactly(2, timeout);
         int length = LittleEndian.u16(prefix, 0);
         if (length < NxtTelegram.STATUS_REPLY || length > NxtTelegram.MAX_LENGTH) {
@@ -136,12 +176,11 @@ public final class NxtBrick {
                     + " bytes; the link lost its framing");
         }
         byte[] reply = c.receiveExactly(length, timeout);
-        if ((reply[0] & 0xFF) != NxtTelegram.REPLY || (reply[1] & 0xFF) != opcode) {
+        if ((reply[NxtTelegram.TYPE_OFFSET] & 0xFF) != NxtTelegram.REPLY || NxtTelegram.opcode(reply) != opcode) {
             throw new LinkLostException(channel.describe(), String.format("expected a reply to %s, got %02X %02X; the link lost its framing",
-                    NxtTelegram.name(opcode), reply[0] & 0xFF, reply[1] & 0xFF));
+                    NxtTelegram.name(opcode), reply[NxtTelegram.TYPE_OFFSET] & 0xFF, NxtTelegram.opcode(reply)));
         }
-        int status = reply[NxtTelegram.STATUS_OFFSET] & 0xFF;
-        if (status == NxtStatus.SUCCESS && length != request.replyLength()) {
+        if (NxtTelegram.status(reply) == NxtStatus.SUCCESS && length != request.replyLength()) {
             throw new LinkLostException(channel.describe(), NxtTelegram.name(opcode) + " reply is " + length + " bytes, expected " + request.replyLength());
         }
         return reply;
@@ -157,12 +196,7 @@ public final class NxtBrick {
      */
     public java.util.List<byte[]> requestAll(java.util.List<Request> requests) throws IOException {
         java.util.List<byte[]> replies = pipeline(requests);
-        for (int i = 0; i < replies.size(); i++) {
-            int status = replies.get(i)[NxtTelegram.STATUS_OFFSET] & 0xFF;
-            if (status != NxtStatus.SUCCESS) {
-                throw new NxtException(robot, requests.get(i).telegram()[1] & 0xFF, requests.get(i).port(), status, requests.get(i).telegram());
-            }
-        }
+        checkStatus(requests, replies);
         return replies;
     }
 
@@ -177,10 +211,13 @@ public final class NxtBrick {
      * @throws IOException if the link failed or lost its framing
      */
     public byte[] requestAllowing(byte[] telegram, int replyLength, int port) throws IOException {
-        Request request = new Request(telegram, replyLength, port);
+        return requestAllowing(new Request(telegram, replyLength, port));
+    }
+
+    private byte[] requestAllowing(Request request) throws IOException {
         return channel.exchange((c, timeout) -> {
             long sent = BrickChannel.LINK_TIME.nanoTime();
-            c.send(NxtTelegram.withLengthPrefix(telegram));
+            c.send(NxtTelegram.withLengthPrefix(request.telegram()));
             byte[] reply = readReply(c, timeout, request);
             roundTrip.sample(BrickChannel.LINK_TIME.nanoTime() - sent);
             return reply;
@@ -192,7 +229,8 @@ public final class NxtBrick {
      * @throws IOException if the link failed
      */
     public int batteryMillivolts() throws IOException {
-        return LittleEndian.u16(request(NxtTelegram.getBatteryLevel(), NxtTelegram.GETBATTERYLEVEL_REPLY, -1), 3);
+        return LittleEndian.u16(request(NxtTelegram.getBatteryLevel(), NxtTelegram.GETBATTERYLEVEL_REPLY, -1),
+                NxtTelegram.DATA_OFFSET + NxtTelegram.BATTERY_MILLIVOLTS);
     }
 
     /**
@@ -202,7 +240,8 @@ public final class NxtBrick {
      * @throws IOException if the link failed
      */
     public long keepAlive() throws IOException {
-        return LittleEndian.u32(request(NxtTelegram.keepAlive(), NxtTelegram.KEEPALIVE_REPLY, -1), 3);
+        return LittleEndian.u32(request(NxtTelegram.keepAlive(), NxtTelegram.KEEPALIVE_REPLY, -1),
+                NxtTelegram.DATA_OFFSET + NxtTelegram.SLEEP_LIMIT_MILLIS);
     }
 
     /**

@@ -4,10 +4,10 @@ import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
-import io.robomw.platform.LinkThreading;
 import io.robomw.platform.PlatformCheck;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.SerialSettings;
+import io.robomw.platform.motor.MotorPlatform;
 
 import java.io.IOException;
 import java.time.Duration;
@@ -37,7 +37,7 @@ public final class NxtPlatformProvider implements PlatformProvider {
     @Override
     public List<String> check(PlatformConfig config) {
         return new PlatformCheck(config).connectionHasOneOf("port", "host")
-                .motorPorts(NxtMotorPlatform::outputPort)
+                .motorPorts(NxtMotorDriver::outputPort)
                 .sensors(NxtSensorPlatform::inputPort, NxtSensorPlatform.SUPPORTED, "the NXT", null)
                 .problems();
     }
@@ -49,9 +49,10 @@ public final class NxtPlatformProvider implements PlatformProvider {
                 SerialSettings.of(115200, 8, SerialSettings.Parity.NONE, 1), 0, timeout);
         try {
             NxtBrick brick = new NxtBrick(config.robotName(), channel);
-            NxtMotorPlatform motors = new NxtMotorPlatform(config, brick);
-            motors.resetCounters();
-            return new BrickPlatform(config, motors, new NxtSensorPlatform(motors, brick), LinkThreading.OWN_THREAD, channel).start();
+            NxtMotorDriver driver = new NxtMotorDriver(config, brick);
+            driver.resetCounters();
+            MotorPlatform motors = new MotorPlatform(config, driver);
+            return new BrickPlatform(config, motors, new NxtSensorPlatform(motors, brick), channel, null).start();
         } catch (IOException | RuntimeException e) {
             channel.close();
             throw e;

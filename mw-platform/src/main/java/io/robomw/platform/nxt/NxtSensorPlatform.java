@@ -4,7 +4,7 @@ import io.robomw.platform.brick.LittleEndian;
 import io.robomw.platform.link.Deadline;
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.spi.SensorChannel;
-import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
 
@@ -41,7 +41,7 @@ public final class NxtSensorPlatform extends SensorPlatform {
      * @param motors the motor platform (for tachometers)
      * @param brick  the brick
      */
-    public NxtSensorPlatform(GenericMotorPlatform motors, NxtBrick brick) {
+    public NxtSensorPlatform(MotorPlatform motors, NxtBrick brick) {
         super(motors);
         this.brick = brick;
     }
@@ -78,8 +78,8 @@ public final class NxtSensorPlatform extends SensorPlatform {
 
     /** Which value of a GETINPUTVALUES reply a sensor reports. */
     private enum Field {
-        NORMALIZED(10),
-        SCALED(12);
+        NORMALIZED(NxtTelegram.DATA_OFFSET + NxtTelegram.IN_NORMALIZED),
+        SCALED(NxtTelegram.DATA_OFFSET + NxtTelegram.IN_SCALED);
 
         private final int offset;
 
@@ -102,7 +102,7 @@ public final class NxtSensorPlatform extends SensorPlatform {
         do {
             byte[] reply = brick.request(NxtTelegram.getInputValues(port), NxtTelegram.GETINPUTVALUES_REPLY, port);
             reads++;
-            if (reply[4] != 0) {
+            if (reply[NxtTelegram.DATA_OFFSET + NxtTelegram.IN_VALID] != 0) {
                 return reply;
             }
         } while (!deadline.expired());
@@ -120,10 +120,10 @@ public final class NxtSensorPlatform extends SensorPlatform {
             do {
                 polls++;
                 byte[] status = brick.requestAllowing(NxtTelegram.lsGetStatus(port), NxtTelegram.LSGETSTATUS_REPLY, port);
-                int s = status[2] & 0xFF;
-                if (s == NxtStatus.SUCCESS && (status[3] & 0xFF) >= 1) {
+                int s = NxtTelegram.status(status);
+                if (s == NxtStatus.SUCCESS && (status[NxtTelegram.DATA_OFFSET + NxtTelegram.LS_BYTES_READY] & 0xFF) >= 1) {
                     byte[] data = brick.request(NxtTelegram.lsRead(port), NxtTelegram.LSREAD_REPLY, port);
-                    return (double) (data[4] & 0xFF);
+                    return (double) (data[NxtTelegram.DATA_OFFSET + NxtTelegram.LS_DATA] & 0xFF);
                 }
                 if (s != NxtStatus.PENDING && s != NxtStatus.SUCCESS) {
                     throw new NxtException(brick.robot(), NxtTelegram.LSGETSTATUS, port, s);

@@ -3,23 +3,32 @@ package io.robomw.platform.nxt;
 import io.robomw.platform.brick.LittleEndian;
 /**
  * The NXT's LCP direct-command telegrams, byte for byte (LEGO Bluetooth Developer Kit; firmware
- * {@code c_cmd.c}). Every multi-byte field is little-endian.
+ * {@code c_cmd.c}; shared/protocols §1). Every multi-byte field is little-endian; every offset a
+ * driver reads or writes is a constant here.
  *
  * <pre>
  * serial/Bluetooth:  [len_lo][len_hi] [type][opcode][payload ...]     len = bytes after the prefix, at most 64
- * request type:      0x00 direct, reply wanted    0x80 direct, no reply
- *                    0x01 system, reply wanted    0x81 system, no reply
- * reply:             [0x02][opcode][status][data ...]                  status 0x00 = success
+ * request:           [type][opcode][payload ...]          TYPE_OFFSET 0, OPCODE_OFFSET 1, PAYLOAD_OFFSET 2
+ *                    type 0x00 direct, reply wanted    0x80 direct, no reply
+ *                         0x01 system, reply wanted    0x81 system, no reply
+ * reply:             [0x02][opcode][status][data ...]     STATUS_OFFSET 2, DATA_OFFSET 3; status 0x00 = success
  *
- * SETOUTPUTSTATE 0x04  port u8, power s8, mode u8, regulation u8, turn s8, run_state u8, tacho_limit u32
- * GETOUTPUTSTATE 0x06  port u8  -> port, power, mode, regulation, turn, run_state, tacho_limit u32,
- *                                  tacho_count s32, block_tacho_count s32, rotation_count s32   (25 bytes)
+ * An output's state (SETOUTPUTSTATE's payload, GETOUTPUTSTATE's reply data), offsets OUT_*:
+ *   +0 port u8 | +1 power s8 | +2 mode u8 | +3 regulation u8 | +4 turn_ratio s8 | +5 run_state u8 | +6 tacho_limit u32
+ *   GETOUTPUTSTATE only: +10 tacho_count s32 | +14 block_tacho_count s32 | +18 rotation_count s32       (reply 25 bytes)
+ * An input's values (GETINPUTVALUES's reply data), offsets IN_*:
+ *   +0 port u8 | +1 valid u8 | +2 calibrated u8 | +3 type u8 | +4 mode u8 | +5 raw u16 | +7 normalized u16
+ *   | +9 scaled s16 | +11 calibrated s16                                                                (reply 16 bytes)
+ *
+ * SETOUTPUTSTATE 0x04  an output's state (the first seven fields)
+ * GETOUTPUTSTATE 0x06  port u8  -> an output's state, and its counts
  * SETINPUTMODE   0x05  port u8, sensor_type u8, sensor_mode u8
- * GETINPUTVALUES 0x07  port u8  -> port, valid, calibrated, type, mode, raw u16, normalized u16,
- *                                  scaled s16, calibrated s16                                   (16 bytes)
+ * GETINPUTVALUES 0x07  port u8  -> an input's values
  * LSWRITE        0x0F  port u8, tx_len u8, rx_len u8, tx_data[tx_len]
  * LSGETSTATUS    0x0E  port u8  -> bytes_ready u8                                              (4 bytes)
  * LSREAD         0x10  port u8  -> bytes_read u8, data[16]                                     (20 bytes)
+ * GETBATTERYLEVEL 0x0B          -> millivolts u16                                              (5 bytes)
+ * KEEPALIVE      0x0D           -> sleep time limit u32, ms                                    (7 bytes)
  * RESETMOTORPOSITION 0x0A  port u8, relative bool (1: block tacho count, 0: rotation count)
  * UPDATE_RESET_COUNT 0x21  port u8   (tacho count and tacho-limit target; firmware 1.29 and later)
  * </pre>
@@ -97,8 +106,59 @@ public final class NxtTelegram {
     /** Length of a reply that carries only a status. */
     public static final int STATUS_REPLY = 3;
 
+    /** Offset of the type byte in a telegram or reply. */
+    public static final int TYPE_OFFSET = 0;
+    /** Offset of the opcode in a telegram or reply. */
+    public static final int OPCODE_OFFSET = 1;
+    /** Offset of a request's payload. */
+    public static final int PAYLOAD_OFFSET = 2;
     /** Offset of the status byte in a reply. */
     public static final int STATUS_OFFSET = 2;
+    /** Offset of a reply's data, after its status. */
+    public static final int DATA_OFFSET = 3;
+
+    /** An output's state, from SETOUTPUTSTATE's payload or GETOUTPUTSTATE's reply data: the port. */
+    public static final int OUT_PORT = 0;
+    /** ...the power, s8. */
+    public static final int OUT_POWER = 1;
+    /** ...the mode bits. */
+    public static final int OUT_MODE = 2;
+    /** ...the regulation mode. */
+    public static final int OUT_REGULATION = 3;
+    /** ...the turn ratio, s8. */
+    public static final int OUT_TURN_RATIO = 4;
+    /** ...the run state. */
+    public static final int OUT_RUN_STATE = 5;
+    /** ...the tacho limit, u32. */
+    public static final int OUT_TACHO_LIMIT = 6;
+    /** GETOUTPUTSTATE only: the tacho count, s32 (since the last UPDATE_RESET_COUNT). */
+    public static final int OUT_TACHO_COUNT = 10;
+    /** GETOUTPUTSTATE only: the block tacho count, s32 (the synchronised pair's). */
+    public static final int OUT_BLOCK_TACHO_COUNT = 14;
+    /** GETOUTPUTSTATE only: the rotation count, s32 (the encoder, since RESETMOTORPOSITION absolute). */
+    public static final int OUT_ROTATION_COUNT = 18;
+
+    /** An input's values, in GETINPUTVALUES's reply data: the port. */
+    public static final int IN_PORT = 0;
+    /** ...whether the values are valid (0 until the firmware has set the sensor up after SETINPUTMODE). */
+    public static final int IN_VALID = 1;
+    /** ...the raw A/D value, u16. */
+    public static final int IN_RAW = 5;
+    /** ...the normalized value 0..1023, u16. */
+    public static final int IN_NORMALIZED = 7;
+    /** ...the scaled value (by the sensor mode), s16. */
+    public static final int IN_SCALED = 9;
+
+    /** LSGETSTATUS's reply data: the bytes ready, u8. */
+    public static final int LS_BYTES_READY = 0;
+    /** LSREAD's reply data: the bytes read, u8, then the 16 data bytes. */
+    public static final int LS_BYTES_READ = 0;
+    /** LSREAD's reply data: the first data byte. */
+    public static final int LS_DATA = 1;
+    /** GETBATTERYLEVEL's reply data: millivolts, u16. */
+    public static final int BATTERY_MILLIVOLTS = 0;
+    /** KEEPALIVE's reply data: the sleep time limit, ms, u32. */
+    public static final int SLEEP_LIMIT_MILLIS = 0;
 
     /** Motor mode bits. */
     public static final int MODE_MOTORON = 0x01;
@@ -150,26 +210,65 @@ public final class NxtTelegram {
     }
 
     /**
-     * @param reply   whether a reply is wanted
-     * @param port    0 = A, 1 = B, 2 = C, 0xFF = all
-     * @param power   -100..100
-     * @param mode    mode bits
-     * @param regulation regulation mode
-     * @param turnRatio -100..100
-     * @param runState run state
-     * @param tachoLimit degrees, 0 = forever
-     * @return the telegram
+     * @param reply whether a reply is wanted
+     * @param state the output's new state
+     * @return SETOUTPUTSTATE
      */
-    public static byte[] setOutputState(boolean reply, int port, int power, int mode, int regulation, int turnRatio, int runState, long tachoLimit) {
+    public static byte[] setOutputState(boolean reply, OutputState state) {
         byte[] t = header(reply, SETOUTPUTSTATE, 10);
-        t[2] = (byte) port;
-        t[3] = (byte) power;
-        t[4] = (byte) mode;
-        t[5] = (byte) regulation;
-        t[6] = (byte) turnRatio;
-        t[7] = (byte) runState;
-        LittleEndian.putU32(t, 8, tachoLimit);
+        t[PAYLOAD_OFFSET + OUT_PORT] = (byte) state.port();
+        t[PAYLOAD_OFFSET + OUT_POWER] = (byte) state.power();
+        t[PAYLOAD_OFFSET + OUT_MODE] = (byte) state.modeBits();
+        t[PAYLOAD_OFFSET + OUT_REGULATION] = (byte) state.regulation().code();
+        t[PAYLOAD_OFFSET + OUT_TURN_RATIO] = (byte) state.turnRatio();
+        t[PAYLOAD_OFFSET + OUT_RUN_STATE] = (byte) state.runState().code();
+        LittleEndian.putU32(t, PAYLOAD_OFFSET + OUT_TACHO_LIMIT, state.tachoLimit());
         return t;
+    }
+
+    /**
+     * A GETOUTPUTSTATE reply: the output's state and its three counts.
+     *
+     * @param state           the state, as SETOUTPUTSTATE would set it
+     * @param tachoCount      degrees since the last UPDATE_RESET_COUNT
+     * @param blockTachoCount degrees since the last RESETMOTORPOSITION relative
+     * @param rotationCount   degrees since the last RESETMOTORPOSITION absolute: the encoder
+     */
+    public record OutputReading(OutputState state, int tachoCount, int blockTachoCount, int rotationCount) {
+    }
+
+    /**
+     * @param reply a successful GETOUTPUTSTATE reply ({@value #GETOUTPUTSTATE_REPLY} bytes, without the prefix)
+     * @return what it reports
+     * @throws IllegalArgumentException naming the field if the reply is too short or carries a code
+     *                                  the firmware does not have
+     */
+    public static OutputReading outputReading(byte[] reply) {
+        if (reply.length < GETOUTPUTSTATE_REPLY) {
+            throw new IllegalArgumentException("a GETOUTPUTSTATE reply is " + GETOUTPUTSTATE_REPLY + " bytes, got " + reply.length);
+        }
+        int d = DATA_OFFSET;
+        OutputState state = new OutputState(reply[d + OUT_PORT] & 0xFF, reply[d + OUT_POWER],
+                OutputState.Mode.fromBits(reply[d + OUT_MODE] & 0xFF), OutputState.Regulation.fromCode(reply[d + OUT_REGULATION] & 0xFF),
+                reply[d + OUT_TURN_RATIO], OutputState.RunState.fromCode(reply[d + OUT_RUN_STATE] & 0xFF), LittleEndian.u32(reply, d + OUT_TACHO_LIMIT));
+        return new OutputReading(state, LittleEndian.s32(reply, d + OUT_TACHO_COUNT), LittleEndian.s32(reply, d + OUT_BLOCK_TACHO_COUNT),
+                LittleEndian.s32(reply, d + OUT_ROTATION_COUNT));
+    }
+
+    /**
+     * @param telegramOrReply a telegram or a reply, without its length prefix
+     * @return its opcode
+     */
+    public static int opcode(byte[] telegramOrReply) {
+        return telegramOrReply[OPCODE_OFFSET] & 0xFF;
+    }
+
+    /**
+     * @param reply a reply, without its length prefix
+     * @return its status byte ({@link NxtStatus})
+     */
+    public static int status(byte[] reply) {
+        return reply[STATUS_OFFSET] & 0xFF;
     }
 
     /**
@@ -178,7 +277,7 @@ public final class NxtTelegram {
      */
     public static byte[] getOutputState(int port) {
         byte[] t = header(true, GETOUTPUTSTATE, 1);
-        t[2] = (byte) port;
+        t[PAYLOAD_OFFSET] = (byte) port;
         return t;
     }
 
@@ -190,8 +289,8 @@ public final class NxtTelegram {
      */
     public static byte[] resetMotorPosition(boolean reply, int port, boolean relative) {
         byte[] t = header(reply, RESETMOTORPOSITION, 2);
-        t[2] = (byte) port;
-        t[3] = (byte) (relative ? 1 : 0);
+        t[PAYLOAD_OFFSET] = (byte) port;
+        t[PAYLOAD_OFFSET + 1] = (byte) (relative ? 1 : 0);
         return t;
     }
 
@@ -204,9 +303,9 @@ public final class NxtTelegram {
      */
     public static byte[] setInputMode(boolean reply, int port, int type, int mode) {
         byte[] t = header(reply, SETINPUTMODE, 3);
-        t[2] = (byte) port;
-        t[3] = (byte) type;
-        t[4] = (byte) mode;
+        t[PAYLOAD_OFFSET] = (byte) port;
+        t[PAYLOAD_OFFSET + 1] = (byte) type;
+        t[PAYLOAD_OFFSET + 2] = (byte) mode;
         return t;
     }
 
@@ -216,7 +315,7 @@ public final class NxtTelegram {
      */
     public static byte[] getInputValues(int port) {
         byte[] t = header(true, GETINPUTVALUES, 1);
-        t[2] = (byte) port;
+        t[PAYLOAD_OFFSET] = (byte) port;
         return t;
     }
 
@@ -227,7 +326,7 @@ public final class NxtTelegram {
      */
     public static byte[] updateResetCount(boolean reply, int port) {
         byte[] t = header(reply, UPDATE_RESET_COUNT, 1);
-        t[2] = (byte) port;
+        t[PAYLOAD_OFFSET] = (byte) port;
         return t;
     }
 
@@ -243,10 +342,10 @@ public final class NxtTelegram {
             throw new IllegalArgumentException("an I²C transaction moves at most 16 bytes each way, got tx=" + tx.length + " rx=" + rxLength);
         }
         byte[] t = header(reply, LSWRITE, 3 + tx.length);
-        t[2] = (byte) port;
-        t[3] = (byte) tx.length;
-        t[4] = (byte) rxLength;
-        System.arraycopy(tx, 0, t, 5, tx.length);
+        t[PAYLOAD_OFFSET] = (byte) port;
+        t[PAYLOAD_OFFSET + 1] = (byte) tx.length;
+        t[PAYLOAD_OFFSET + 2] = (byte) rxLength;
+        System.arraycopy(tx, 0, t, PAYLOAD_OFFSET + 3, tx.length);
         return t;
     }
 
@@ -256,7 +355,7 @@ public final class NxtTelegram {
      */
     public static byte[] lsGetStatus(int port) {
         byte[] t = header(true, LSGETSTATUS, 1);
-        t[2] = (byte) port;
+        t[PAYLOAD_OFFSET] = (byte) port;
         return t;
     }
 
@@ -266,7 +365,7 @@ public final class NxtTelegram {
      */
     public static byte[] lsRead(int port) {
         byte[] t = header(true, LSREAD, 1);
-        t[2] = (byte) port;
+        t[PAYLOAD_OFFSET] = (byte) port;
         return t;
     }
 
@@ -288,15 +387,15 @@ public final class NxtTelegram {
      */
     public static byte[] playTone(boolean reply, int hertz, int millis) {
         byte[] t = header(reply, PLAYTONE, 4);
-        LittleEndian.putU16(t, 2, hertz);
-        LittleEndian.putU16(t, 4, millis);
+        LittleEndian.putU16(t, PAYLOAD_OFFSET, hertz);
+        LittleEndian.putU16(t, PAYLOAD_OFFSET + 2, millis);
         return t;
     }
 
     private static byte[] header(boolean reply, int opcode, int payload) {
-        byte[] t = new byte[2 + payload];
-        t[0] = (byte) (reply ? DIRECT : DIRECT_NO_REPLY);
-        t[1] = (byte) opcode;
+        byte[] t = new byte[PAYLOAD_OFFSET + payload];
+        t[TYPE_OFFSET] = (byte) (reply ? DIRECT : DIRECT_NO_REPLY);
+        t[OPCODE_OFFSET] = (byte) opcode;
         return t;
     }
 

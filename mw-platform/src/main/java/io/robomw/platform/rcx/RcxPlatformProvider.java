@@ -4,9 +4,9 @@ import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
-import io.robomw.platform.LinkThreading;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.SerialSettings;
+import io.robomw.platform.motor.MotorPlatform;
 
 import java.io.IOException;
 import java.time.Duration;
@@ -37,9 +37,10 @@ public final class RcxPlatformProvider implements PlatformProvider {
         try {
             RcxBrick brick = new RcxBrick(config.robotName(), channel, echo);
             brick.alive();
-            RcxMotorPlatform motors = new RcxMotorPlatform(config, brick);
-            motors.setUp();
-            return new BrickPlatform(config, motors, new RcxSensorPlatform(motors, brick), LinkThreading.OWN_THREAD, channel).start();
+            RcxMotorDriver driver = new RcxMotorDriver(config, brick);
+            driver.setUp();
+            MotorPlatform motors = new MotorPlatform(config, driver);
+            return new BrickPlatform(config, motors, new RcxSensorPlatform(motors, brick), channel, null).start();
         } catch (IOException | RuntimeException e) {
             channel.close();
             throw e;

@@ -2,7 +2,7 @@ package io.robomw.platform.rcx;
 
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.spi.SensorChannel;
-import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
 
@@ -29,7 +29,7 @@ public final class RcxSensorPlatform extends SensorPlatform {
      * @param motors the motor platform (for tachometers)
      * @param brick  the brick
      */
-    public RcxSensorPlatform(GenericMotorPlatform motors, RcxBrick brick) {
+    public RcxSensorPlatform(MotorPlatform motors, RcxBrick brick) {
         super(motors);
         this.brick = brick;
     }

@@ -3,7 +3,7 @@ package io.robomw.platform.sensor;
 import io.robomw.api.ReturnType;
 import io.robomw.api.SensorType;
 import io.robomw.api.spi.SensorChannel;
-import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.motor.MotorPlatform;
 
 import java.io.IOException;
 import java.util.concurrent.CompletableFuture;
@@ -15,12 +15,12 @@ import java.util.concurrent.CompletableFuture;
  */
 public abstract class SensorPlatform {
 
-    private final GenericMotorPlatform motors;
+    private final MotorPlatform motors;
 
     /**
      * @param motors the motor platform whose encoders {@link #selectMotorSensor} reads
      */
-    protected SensorPlatform(GenericMotorPlatform motors) {
+    protected SensorPlatform(MotorPlatform motors) {
         this.motors = java.util.Objects.requireNonNull(motors, "motors");
     }
 

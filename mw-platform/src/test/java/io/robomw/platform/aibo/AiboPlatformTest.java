@@ -177,4 +177,20 @@ class AiboPlatformTest {
         assertNotNull(server.awaitLine("stop " + walk.group(1) + ",", WAIT_MS), "the walk is stopped by its tag");
         assertNotNull(server.awaitLine("x\\d+\\+end: \\{ robot\\.stop\\(\\) \\},", WAIT_MS), "then the robot is told to stand");
     }
+
+    @Test
+    void stopAllCompletesOnceTheWalksStopIsWrittenAndAWalkAfterItIsAdmitted() throws Exception {
+        FakeUrbiServer server = server(line -> line.startsWith("o") ? FakeUrbiServer.endsEverything("0").apply(line) : List.of());
+        HighLevelRobotPlatform dog = open(server, 0);
+        CompletableFuture<Void> walking = dog.execute(walk("robot.walk(2, 0.1)"));
+        Matcher walk = server.awaitLine("(c\\d+)\\+end: .*", WAIT_MS);
+        assertNotNull(walk);
+
+        dog.stopAll().get(WAIT_MS, TimeUnit.MILLISECONDS);
+
+        assertInstanceOf(io.robomw.api.CommandPreemptedException.class, failure(walking));
+        assertNotNull(server.awaitLine("stop " + walk.group(1) + ",", WAIT_MS), "the walk's stop was written");
+        dog.execute(walk("robot.walk(0.5, 0.1)"));
+        assertNotNull(server.awaitLine("c\\d+\\+end: \\{ robot\\.walk\\(0\\.5, 0\\.1\\) \\},", WAIT_MS), "the walk after the stop is sent, not held by 'stop'");
+    }
 }

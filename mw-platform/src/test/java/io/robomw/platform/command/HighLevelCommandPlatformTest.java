@@ -43,6 +43,9 @@ class HighLevelCommandPlatformTest {
     private static final class RecordingPlatform extends HighLevelCommandPlatform {
         final List<String> sent = new ArrayList<>();
         final List<Run> runs = new ArrayList<>();
+        /** What a stop waits for: everything sent so far written to the link. */
+        CompletableFuture<Void> written = CompletableFuture.completedFuture(null);
+        final List<String> asked = new ArrayList<>();
 
         RecordingPlatform(ManualClock clock) {
             super("dog", clock);
@@ -62,6 +65,12 @@ class HighLevelCommandPlatformTest {
         @Override
         protected void stop(Run run) {
             sent.add("stop " + run.command().text() + (run.command().stopText().isEmpty() ? "" : " then " + run.command().stopText()));
+        }
+
+        @Override
+        protected CompletableFuture<Void> sentSoFar() {
+            asked.add("after " + sent.size() + " sent");
+            return written;
         }
 
         void done(int i) {
@@ -224,5 +233,30 @@ class HighLevelCommandPlatformTest {
 
         assertInstanceOf(RobotLinkException.class, failure(f));
         assertEquals("stop robot.walk(0.5, 0.1) then robot.stop()", platform.sent.get(platform.sent.size() - 1));
+    }
+
+    @Test
+    void aStopCompletesOnceTheStopsOfTheCommandsItEndedAreWrittenToTheLink() throws Exception {
+        submit(walk("robot.walk(1, 0.1)", 10));
+        cycle(1);
+        platform.written = new CompletableFuture<>();
+        CompletableFuture<Void> handed = new CompletableFuture<>();
+        thread.submit(platform.stopContainer(handed));
+        cycle(1);
+        assertEquals(List.of("start robot.walk(1, 0.1)", "stop robot.walk(1, 0.1) then robot.stop()"), platform.sent);
+        assertEquals(List.of("after 2 sent"), platform.asked, "the stop waits for what was sent up to the walk's stop");
+        assertFalse(handed.isDone(), "not while the link has not written it");
+        platform.written.complete(null);
+        handed.get(0, TimeUnit.SECONDS);
+    }
+
+    @Test
+    void aStopWhoseStopsTheLinkCannotWriteFailsNamingTheRobot() {
+        platform.written = CompletableFuture.failedFuture(new IOException("tcp 127.0.0.1:54000 is down"));
+        CompletableFuture<Void> handed = new CompletableFuture<>();
+        thread.submit(platform.stopContainer(handed));
+        cycle(1);
+        RobotLinkException e = assertInstanceOf(RobotLinkException.class, failure(handed));
+        assertTrue(e.getMessage().contains("robot 'dog'") && e.getMessage().contains("is down"), e.getMessage());
     }
 }

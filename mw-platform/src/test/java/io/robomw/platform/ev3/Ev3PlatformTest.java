@@ -11,6 +11,7 @@ import io.robomw.api.spi.PlatformServices;
 import io.robomw.api.spi.SensorChannel;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.Communicator;
+import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.motor.MotorState;
 import io.robomw.platform.sensor.Sensor;
 import org.junit.jupiter.api.Test;
@@ -69,12 +70,12 @@ class Ev3PlatformTest {
     @ParameterizedTest(name = "{0} deg/s -> {1} %")
     @CsvSource({"1050, 100", "2000, 100", "525, 50", "-315, -30", "307.9, 29", "3, 1", "-3, -1", "0, 0"})
     void shouldTurnDegreesPerSecondIntoRegulatedSpeedPercent(double degreesPerSecond, int percent) {
-        assertEquals(percent, Ev3MotorPlatform.speedPercent(degreesPerSecond));
+        assertEquals(percent, Ev3MotorDriver.speedPercent(degreesPerSecond));
     }
 
     @Test
     void shouldSendLimitedMovesAsStepSpeedInOneCommandSoBothWheelsStartTogether() {
-        Ev3Command c = Ev3MotorPlatform.commandFor(List.of(
+        Ev3Command c = Ev3MotorDriver.commandFor(List.of(
                 new MotorState("B", 307.0, 1023.4, MotorState.StopMode.BRAKE),
                 new MotorState("C", -307.0, 1023.4, MotorState.StopMode.BRAKE)));
         assertEquals("AE 00 02 1D 00 82 FF 03 00 01 AE 00 04 23 00 82 FF 03 00 01", hex(c.code()));
@@ -84,13 +85,13 @@ class Ev3PlatformTest {
 
     @Test
     void shouldSendContinuousRunAsSpeedThenStart() {
-        Ev3Command c = Ev3MotorPlatform.commandFor(List.of(new MotorState("A", -420, Double.POSITIVE_INFINITY, MotorState.StopMode.BRAKE)));
+        Ev3Command c = Ev3MotorDriver.commandFor(List.of(new MotorState("A", -420, Double.POSITIVE_INFINITY, MotorState.StopMode.BRAKE)));
         assertEquals("A5 00 01 81 D8 A6 00 01", hex(c.code()));
     }
 
     @Test
     void shouldSendStopBrakingOrCoasting() {
-        Ev3Command c = Ev3MotorPlatform.commandFor(List.of(MotorState.stopped("D", MotorState.StopMode.BRAKE),
+        Ev3Command c = Ev3MotorDriver.commandFor(List.of(MotorState.stopped("D", MotorState.StopMode.BRAKE),
                 MotorState.stopped("B", MotorState.StopMode.COAST)));
         assertEquals("A3 00 08 01 A3 00 02 00", hex(c.code()));
     }
@@ -98,7 +99,7 @@ class Ev3PlatformTest {
     @Test
     void shouldRefuseMotorPortsTheEv3DoesNotHave() throws IOException {
         Ev3Brick brick = brick(Ev3PlatformTest::emptyReply);
-        IllegalArgumentException e = assertThrows(IllegalArgumentException.class, () -> new Ev3MotorPlatform(config(List.of("B", "E")), brick));
+        IllegalArgumentException e = assertThrows(IllegalArgumentException.class, () -> new Ev3MotorDriver(config(List.of("B", "E")), brick));
         assertTrue(e.getMessage().contains("'E'"), e.getMessage());
     }
 
@@ -108,8 +109,9 @@ class Ev3PlatformTest {
         LittleEndian.putU32(counts, 0, 360);
         LittleEndian.putU32(counts, 4, -90);
         Ev3Brick brick = brick(f -> replyWithGlobals(f, counts));
-        Ev3MotorPlatform motors = new Ev3MotorPlatform(config(List.of("B", "C")), brick);
-        motors.pollFeedback();
+        Ev3MotorDriver driver = new Ev3MotorDriver(config(List.of("B", "C")), brick);
+        MotorPlatform motors = new MotorPlatform(config(List.of("B", "C")), driver);
+        driver.poll(motors.feedback());
         assertEquals("0D 00 2A 00 00 08 00 B3 00 01 60 B3 00 02 64", hex(link.written().get(0)));
         assertEquals(360, motors.motorDegrees("B"));
         assertEquals(-90, motors.motorDegrees("C"));
@@ -118,15 +120,15 @@ class Ev3PlatformTest {
     @Test
     void shouldClearCountsOfAllMotorsInOneInstruction() throws IOException {
         Ev3Brick brick = brick(Ev3PlatformTest::emptyReply);
-        new Ev3MotorPlatform(config(List.of("B", "C")), brick).clearCounts();
+        new Ev3MotorDriver(config(List.of("B", "C")), brick).clearCounts();
         assertEquals("08 00 2A 00 00 00 00 B2 00 06", hex(link.written().get(0)));
     }
 
     @Test
-    void shouldRunStatesThroughRunImplAsOneRequest() throws IOException {
+    void shouldSendStatesAsOneRequest() throws IOException {
         Ev3Brick brick = brick(Ev3PlatformTest::emptyReply);
-        Ev3MotorPlatform motors = new Ev3MotorPlatform(config(List.of("B", "C")), brick);
-        motors.runImpl(List.of(MotorState.stopped("B", MotorState.StopMode.BRAKE)));
+        Ev3MotorDriver driver = new Ev3MotorDriver(config(List.of("B", "C")), brick);
+        driver.send(List.of(MotorState.stopped("B", MotorState.StopMode.BRAKE)), new MotorPlatform(config(List.of("B", "C")), driver).feedback());
         assertEquals("09 00 2A 00 00 00 00 A3 00 02 01", hex(link.written().get(0)));
     }
 
@@ -164,7 +166,7 @@ class Ev3PlatformTest {
         byte[] cm = new byte[4];
         LittleEndian.putF32(cm, 0, 43.3f);
         Ev3Brick brick = brick(f -> replyWithGlobals(f, cm));
-        Ev3SensorPlatform sensors = new Ev3SensorPlatform(new Ev3MotorPlatform(config(List.of()), brick), brick);
+        Ev3SensorPlatform sensors = new Ev3SensorPlatform(new MotorPlatform(config(List.of()), new Ev3MotorDriver(config(List.of()), brick)), brick);
         Sensor sonar = sensors.createSensor(channel(SensorType.SONAR, "S4", Map.of()));
         assertEquals("0D 00 2A 00 00 04 00 99 1D 00 03 1E 00 01 60", hex(link.written().get(0)));
         assertEquals(43.3, sonar.readRaw().get(), 1e-5);
@@ -176,7 +178,7 @@ class Ev3PlatformTest {
         byte[] mm = new byte[4];
         LittleEndian.putU32(mm, 0, 433);
         Ev3Brick brick = brick(f -> replyWithGlobals(f, mm));
-        Ev3SensorPlatform sensors = new Ev3SensorPlatform(new Ev3MotorPlatform(config(List.of()), brick), brick);
+        Ev3SensorPlatform sensors = new Ev3SensorPlatform(new MotorPlatform(config(List.of()), new Ev3MotorDriver(config(List.of()), brick)), brick);
         Sensor sonar = sensors.createSensor(channel(SensorType.SONAR, "4", Map.of("ev3_value", "raw")));
         assertEquals("0D 00 2A 00 00 04 00 99 1C 00 03 1E 00 01 60", hex(link.written().get(0)));
         assertEquals(433, sonar.readRaw().get());
@@ -187,7 +189,7 @@ class Ev3PlatformTest {
         byte[] nan = new byte[4];
         LittleEndian.putF32(nan, 0, Float.NaN);
         Ev3Brick brick = brick(f -> replyWithGlobals(f, nan));
-        Ev3SensorPlatform sensors = new Ev3SensorPlatform(new Ev3MotorPlatform(config(List.of()), brick), brick);
+        Ev3SensorPlatform sensors = new Ev3SensorPlatform(new MotorPlatform(config(List.of()), new Ev3MotorDriver(config(List.of()), brick)), brick);
         Sensor touch = sensors.createSensor(channel(SensorType.TOUCH, "S2", Map.of()));
         ExecutionException e = assertThrows(ExecutionException.class, () -> touch.readRaw().get());
         assertInstanceOf(RobotException.class, e.getCause());
@@ -197,7 +199,7 @@ class Ev3PlatformTest {
     @Test
     void shouldRefuseInputPortsTheEv3DoesNotHave() throws IOException {
         Ev3Brick brick = brick(Ev3PlatformTest::emptyReply);
-        Ev3SensorPlatform sensors = new Ev3SensorPlatform(new Ev3MotorPlatform(config(List.of()), brick), brick);
+        Ev3SensorPlatform sensors = new Ev3SensorPlatform(new MotorPlatform(config(List.of()), new Ev3MotorDriver(config(List.of()), brick)), brick);
         IllegalArgumentException e = assertThrows(IllegalArgumentException.class, () -> sensors.createSensor(channel(SensorType.TOUCH, "S5", Map.of())));
         assertTrue(e.getMessage().contains("'S5'"), e.getMessage());
     }

@@ -26,16 +26,22 @@ class BatchHandOverTest {
     private static final int MIN_BATCHES = 1_000;
 
     /** Records whether a batch ever carried one wheel without the other. */
-    static final class PairedMotors extends GenericMotorPlatform {
+    static final class PairedMotors implements MotorDriver {
         final AtomicInteger batches = new AtomicInteger();
         final AtomicReference<String> split = new AtomicReference<>();
 
-        PairedMotors() {
-            super("paired", new ManualClock(), List.of("B", "C"));
+        @Override
+        public LinkTiming timing() {
+            return LinkTiming.NONE;
         }
 
         @Override
-        protected void runImpl(List<MotorState> motors) {
+        public int poll(FeedbackSink feedback) {
+            return 0;
+        }
+
+        @Override
+        public void send(List<MotorState> motors, FeedbackSink feedback) {
             batches.incrementAndGet();
             if (motors.size() != 2) {
                 split.compareAndSet(null, "a batch of " + motors);
@@ -48,15 +54,16 @@ class BatchHandOverTest {
 
     @Test
     void shouldHandBothWheelsOfACycleToTheLinkSideTogether() throws Exception {
-        PairedMotors motors = new PairedMotors();
+        PairedMotors driver = new PairedMotors();
         ManualClock clock = new ManualClock();
+        MotorPlatform motors = new MotorPlatform("paired", clock, List.of("B", "C"), Duration.ofMillis(10), driver);
         ExecutionActionThread action = new ExecutionActionThread("paired", clock, Duration.ofMillis(10));
         action.addCycleListener(motors::flushOutputs);
         AtomicBoolean running = new AtomicBoolean(true);
         Thread link = new Thread(() -> {
             while (running.get()) {
                 try {
-                    motors.serviceLink();
+                    motors.linkSide().service();
                 } catch (java.io.IOException e) {
                     throw new IllegalStateException(e);
                 }
@@ -68,7 +75,7 @@ class BatchHandOverTest {
             // machine the link thread may get the processor seldom while this one cycles, and it is
             // the hand-overs that happen, not the cycles run, that can show a split batch.
             long deadline = System.nanoTime() + Duration.ofSeconds(60).toNanos();
-            for (int i = 1; (i <= 50_000 || motors.batches.get() < MIN_BATCHES) && motors.split.get() == null
+            for (int i = 1; (i <= 50_000 || driver.batches.get() < MIN_BATCHES) && driver.split.get() == null
                     && System.nanoTime() < deadline; i++) {
                 action.submit(motors.container(MotorCommand.of("drive", List.of(MotorTarget.run("B", i), MotorTarget.run("C", i)))));
                 action.cycle();
@@ -78,7 +85,7 @@ class BatchHandOverTest {
             running.set(false);
             link.join(5000);
         }
-        assertEquals(null, motors.split.get(), "every batch carried both wheels of one cycle");
-        assertTrue(motors.batches.get() >= MIN_BATCHES, "the link side took many batches within a minute: " + motors.batches.get());
+        assertEquals(null, driver.split.get(), "every batch carried both wheels of one cycle");
+        assertTrue(driver.batches.get() >= MIN_BATCHES, "the link side took many batches within a minute: " + driver.batches.get());
     }
 }

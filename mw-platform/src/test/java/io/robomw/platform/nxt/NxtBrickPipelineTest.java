@@ -103,7 +103,7 @@ class NxtBrickPipelineTest {
     }
 
     private static NxtBrick.Request setOutput(int port) {
-        return new NxtBrick.Request(NxtTelegram.setOutputState(true, port, 50, 7, 1, 0, NxtTelegram.RUN_RUNNING, 360),
+        return new NxtBrick.Request(NxtTelegram.setOutputState(true, OutputState.running(port, 50, OutputState.Regulation.SPEED, 360)),
                 NxtTelegram.STATUS_REPLY, port);
     }
 

@@ -88,9 +88,9 @@ class RcxPacketTest {
 
     @Test
     void shouldMapSpeedsToTheNearestPowerStep() {
-        assertEquals(7, RcxMotorPlatform.powerStep(600));
-        assertEquals(0, RcxMotorPlatform.powerStep(10));
-        assertEquals(2, RcxMotorPlatform.powerStep(-205), "0.10 m/s on 56 mm wheels: 205 °/s, step 2 turns at 225 °/s");
-        assertEquals(225, RcxMotorPlatform.speedAt(2), 1e-9);
+        assertEquals(7, RcxMotorDriver.powerStep(600));
+        assertEquals(0, RcxMotorDriver.powerStep(10));
+        assertEquals(2, RcxMotorDriver.powerStep(-205), "0.10 m/s on 56 mm wheels: 205 °/s, step 2 turns at 225 °/s");
+        assertEquals(225, RcxMotorDriver.speedAt(2), 1e-9);
     }
 }

@@ -1,5 +1,7 @@
 package io.robomw.sim.emulator;
 
+import io.robomw.api.spi.FailurePolicy;
+import io.robomw.api.spi.OwnerThread;
 import io.robomw.platform.ThrottledWarnings;
 import io.robomw.platform.link.Link;
 import io.robomw.platform.link.LinkLostException;
@@ -19,7 +21,7 @@ import java.util.concurrent.atomic.AtomicLong;
  * firmware does, and its motors and sensors are the simulated robot's.
  *
  * <h2>Two threads, one firmware state</h2>
- * The I/O thread ({@code emulator-<kind>-<robot>}) reads telegrams, delimited by the brick's
+ * The I/O thread ({@code emulator-<kind>-<robot>}, an {@link OwnerThread}) reads telegrams, delimited by the brick's
  * {@link Framing} (by default a 2-byte little-endian length, as on Bluetooth serial links), and
  * answers them from the firmware state
  * ({@link #handle}). The simulation thread calls {@link #step} after every world step: it applies
@@ -29,6 +31,14 @@ import java.util.concurrent.atomic.AtomicLong;
  *
  * <p>Bad input never stops it: a zero, oversized or truncated frame is dropped with a log line and
  * counted, and the emulator goes on reading; a TCP client that leaves makes room for the next.
+ *
+ * <h2>Failures</h2>
+ * The I/O thread hands what it catches to the simulation's {@link FailurePolicy} (a
+ * {@linkplain FailurePolicy#logging() logging} one for an emulator bound to none): a telegram whose
+ * handling fails is reported and dropped, and the emulator goes on; a failure of the link is
+ * reported and the next telegram is awaited; a link closed under it (its delayed-link threads
+ * died) ends the emulator as {@link #close()} does. A failure nothing survives ends the thread
+ * cleanly: the link is closed (its driver sees it drop) and the motors stop at the next step.
  */
 public abstract class BrickEmulator implements Emulator {
 
@@ -52,7 +62,11 @@ public abstract class BrickEmulator implements Emulator {
     private volatile io.robomw.sim.Simulation simulation;
     /** When the telegram being handled arrived; touched by the I/O thread only. */
     private long frameArrivalNanos;
-    private Thread thread;
+    /** Whether the telegram being read has begun; touched by the I/O thread only. */
+    private boolean frameStarted;
+    private volatile OwnerThread thread;
+    /** The policy the I/O thread reports to, set when it starts. */
+    private volatile FailurePolicy failurePolicy;
 
     /**
      * @param kind     the brick, for thread names and logs ({@code nxt}, {@code ev3})
@@ -236,83 +250,133 @@ public abstract class BrickEmulator implements Emulator {
             throw new IllegalStateException("the " + kind + " emulator of '" + robot.robot().name() + "' is already serving on " + link.describe());
         }
         LinkModel model = linkModel();
-        link = model.isNone() ? endpoint : new DelayedLink(endpoint, model);
+        FailurePolicy failures = failures();
+        failurePolicy = failures;
+        link = model.isNone() ? endpoint : new DelayedLink(endpoint, model, failures);
         running = true;
-        thread = new Thread(this::serve, "emulator-" + kind + "-" + robot.robot().name());
-        thread.setDaemon(true);
-        thread.start();
+        thread = OwnerThread.start(role(), Thread.NORM_PRIORITY, new Serving(), EmulatorThreads.BACK_OFF, failures);
         LOG.info("{} emulator for '{}' serving on {}", kind, robot.robot().name(), link.describe());
     }
 
-    private void serve() {
-        boolean[] started = new boolean[1];
-        Framing.Reader reader = n -> {
-            byte[] buf = new byte[n];
-            boolean ok = readFully(buf, 0, n, started[0] ? FRAME_DEADLINE : null);
-            started[0] = true;
-            return ok ? buf : null;
-        };
-        while (running) {
-            try {
-                started[0] = false;
-                byte[] frame;
-                try {
-                    frame = framing.read(reader);
-                } catch (Framing.MalformedFrameException e) {
-                    drop(e.getMessage());
-                    drain();
-                    continue;
-                }
-                if (frame == null) {
-                    if (started[0] && running) {
-                        drop("truncated telegram: its bytes did not all arrive within " + FRAME_DEADLINE.toMillis() + " ms");
-                    }
-                    continue;
-                }
-                Link l = link;
-                frameArrivalNanos = l instanceof DelayedLink d ? d.lastDeliveredAt() : System.nanoTime();
-                byte[] reply;
-                try {
-                    reply = handle(frame);
-                } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
-                    drop("telegram " + hex(frame) + " could not be handled: " + e);
-                    continue;
-                }
-                served.incrementAndGet();
-                if (reply != null) {
-                    byte[] out = framing.encode(reply);
-                    link.write(out, 0, out.length);
-                }
-            } catch (LinkLostException e) {
-                if (!running) {
-                    return;
-                }
-                LOG.info("{} emulator for '{}': peer left ({}); waiting for the next", kind, robot.robot().name(), e.getMessage());
-            } catch (IOException e) {
-                if (!running) {
-                    return;
-                }
-                LOG.warn("{} emulator for '{}': {}", kind, robot.robot().name(), e.toString());
+    /** @return the I/O thread's name, which its failures are reported under */
+    private String role() {
+        return "emulator-" + kind + "-" + robot.robot().name();
+    }
+
+    /** @return the policy the emulator's threads report to: its simulation's, or a logging one */
+    protected FailurePolicy failures() {
+        io.robomw.sim.Simulation s = simulation;
+        return s == null ? FailurePolicy.logging() : s.failures();
+    }
+
+    /** The I/O thread's duty: a telegram a round; dying, it stops serving as {@link #close()} does. */
+    private final class Serving implements OwnerThread.Duty {
+        @Override
+        public int doWork() throws IOException {
+            return serveOne();
+        }
+
+        @Override
+        public void onDeath(Throwable failure) {
+            closed = true;
+            running = false;
+            Link l = link;
+            if (l != null) {
+                l.close(); // the driver sees the link drop; the motors stop at the next step
             }
         }
+    }
+
+    /** The reader {@link #framing} reads a telegram with: its first byte for a poll interval, the rest within the frame deadline. */
+    private final Framing.Reader reader = n -> {
+        byte[] buf = new byte[n];
+        return readFully(buf, 0, n, frameStarted ? FRAME_DEADLINE : null) ? buf : null;
+    };
+
+    /**
+     * One round of the I/O thread: reads a telegram (waiting at most a poll interval for its first
+     * byte) and answers it.
+     *
+     * @return 1 (a telegram was answered or dropped, or the poll interval passed); 0 once the
+     *         emulator stopped (the round ends the loop)
+     * @throws IOException if the link failed (reported; the next round reads on)
+     */
+    private int serveOne() throws IOException {
+        if (!running) {
+            OwnerThread t = thread;
+            if (t != null) {
+                t.close(); // on its own thread: ends the loop after this round
+            }
+            return 0;
+        }
+        try {
+            frameStarted = false;
+            byte[] frame;
+            try {
+                frame = framing.read(reader);
+            } catch (Framing.MalformedFrameException e) {
+                drop(e.getMessage());
+                drain();
+                return 1;
+            }
+            if (frame == null) {
+                if (frameStarted && running) {
+                    drop("truncated telegram: its bytes did not all arrive within " + FRAME_DEADLINE.toMillis() + " ms");
+                }
+                return 1;
+            }
+            Link l = link;
+            frameArrivalNanos = l instanceof DelayedLink d ? d.lastDeliveredAt() : System.nanoTime();
+            byte[] reply;
+            try {
+                reply = handle(frame);
+            } catch (Throwable e) {
+                failurePolicy.surviveOrRethrow(role() + ": telegram " + hex(frame), e);
+                drop("telegram " + hex(frame) + " could not be handled: " + e);
+                return 1;
+            }
+            served.incrementAndGet();
+            if (reply != null) {
+                byte[] out = framing.encode(reply);
+                link.write(out, 0, out.length);
+            }
+        } catch (LinkLostException e) {
+            if (running) {
+                LOG.info("{} emulator for '{}': peer left ({}); waiting for the next", kind, robot.robot().name(), e.getMessage());
+            }
+        } catch (IOException e) {
+            if (!running) {
+                return 1;
+            }
+            if (!link.isOpen()) {
+                LOG.warn("{} emulator for '{}': its link {} was closed under it ({}); the emulator stops", kind, robot.robot().name(),
+                        link.describe(), e.getMessage());
+                closed = true;
+                running = false;
+                return 1;
+            }
+            throw e;
+        }
+        return 1;
     }
 
     /**
      * Reads exactly n bytes.
      *
-     * @param deadline for the whole read, or {@code null} to wait as long as the emulator runs for
-     *                 the first byte (then the frame deadline applies)
+     * @param deadline for the whole read, or {@code null} to wait one poll interval for the first
+     *                 byte (then the frame deadline applies)
      * @return false if the deadline passed, or the emulator stopped, before n bytes came
      */
     private boolean readFully(byte[] buf, int off, int n, Duration deadline) throws IOException {
-        long end = deadline == null ? Long.MAX_VALUE : System.nanoTime() + deadline.toNanos();
+        long end = System.nanoTime() + (deadline == null ? POLL : deadline).toNanos();
         int got = 0;
         while (got < n && running) {
             if (System.nanoTime() > end) {
                 return false;
             }
             int r = link.read(buf, off + got, n - got, POLL);
-            if (r > 0 && got == 0 && deadline == null) {
+            if (r > 0 && !frameStarted) {
+                frameStarted = true;
                 end = System.nanoTime() + FRAME_DEADLINE.toNanos();
             }
             got += Math.max(0, r);
@@ -381,12 +445,9 @@ public abstract class BrickEmulator implements Emulator {
         if (l != null) {
             l.close();
         }
-        if (thread != null) {
-            try {
-                thread.join(2000);
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-            }
+        OwnerThread t = thread;
+        if (t != null) {
+            t.close();
         }
     }
 }

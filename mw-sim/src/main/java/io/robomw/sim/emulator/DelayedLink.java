@@ -1,5 +1,7 @@
 package io.robomw.sim.emulator;
 
+import io.robomw.api.spi.FailurePolicy;
+import io.robomw.api.spi.OwnerThread;
 import io.robomw.platform.link.Link;
 import io.robomw.platform.link.LinkLostException;
 import org.slf4j.Logger;
@@ -35,7 +37,10 @@ import java.util.concurrent.locks.ReentrantLock;
  * for that peer are dropped, and the pump goes on reading, which accepts the next peer.
  *
  * <p>Threads: one thread may read while another writes, as {@link Link} allows; the pump and
- * sender threads ({@code <link>-in}, {@code <link>-out}) end on {@link #close()}.
+ * sender threads ({@code <link>-in}, {@code <link>-out}, {@link OwnerThread}s) end on
+ * {@link #close()}. They hand what they catch to the {@link FailurePolicy}: a survivable failure of
+ * one read or one write is reported and the thread goes on; one nothing survives ends it cleanly,
+ * and closes the link, so its reader gets an error naming the failure instead of silence.
  */
 final class DelayedLink implements Link {
 
@@ -52,8 +57,8 @@ final class DelayedLink implements Link {
     private final Condition outboundChanged = lock.newCondition();
     private final Deque<Chunk> inbound = new ArrayDeque<>();
     private final Deque<Chunk> outbound = new ArrayDeque<>();
-    private final Thread pump;
-    private final Thread sender;
+    private final OwnerThread pump;
+    private final OwnerThread sender;
     private final byte[] inlineBuffer = new byte[CHUNK_BYTES];
     private long inboundWireFree;
     private long outboundWireFree;
@@ -61,6 +66,8 @@ final class DelayedLink implements Link {
     /** When the last bytes read from the real link were put on the modelled one. */
     private volatile long lastInboundAt;
     private volatile boolean closed;
+    /** What killed the pump or the sender, once one died. */
+    private volatile Throwable death;
 
     /**
      * Bytes whose first starts arriving at {@code startAt}, each taking {@code byteNanos}, or (with
@@ -82,10 +89,11 @@ final class DelayedLink implements Link {
     /**
      * Starts the pump and sender threads over an open link, if the model has latency.
      *
-     * @param inner the real link, open
-     * @param model how slow to make it
+     * @param inner    the real link, open
+     * @param model    how slow to make it
+     * @param failures where the pump and the sender report what they catch
      */
-    DelayedLink(Link inner, LinkModel model) {
+    DelayedLink(Link inner, LinkModel model, FailurePolicy failures) {
         this.inner = inner;
         this.model = model;
         this.byteNanos = model.transmissionNanos(1);
@@ -95,12 +103,12 @@ final class DelayedLink implements Link {
             this.sender = null;
             return;
         }
-        this.pump = new Thread(this::pump, inner.describe() + "-in");
-        this.sender = new Thread(this::send, inner.describe() + "-out");
-        pump.setDaemon(true);
-        sender.setDaemon(true);
-        pump.start();
-        sender.start();
+        Pump in = new Pump();
+        Sender out = new Sender();
+        this.pump = OwnerThread.start(inner.describe() + "-in", Thread.NORM_PRIORITY, in, EmulatorThreads.BACK_OFF, failures);
+        in.self = pump;
+        this.sender = OwnerThread.start(inner.describe() + "-out", Thread.NORM_PRIORITY, out, EmulatorThreads.BACK_OFF, failures);
+        out.self = sender;
     }
 
     /** @return when byte {@code index} of a chunk has arrived */
@@ -123,20 +131,43 @@ final class DelayedLink implements Link {
         return new Chunk(bytes, start + model.latency().toNanos(), null);
     }
 
-    private void pump() {
-        byte[] buf = new byte[CHUNK_BYTES];
-        while (!closed) {
+    /**
+     * Ends the loop of the thread running a duty once the link is closed (by {@link #close()}, or
+     * because the other thread died), from that thread itself.
+     *
+     * @return whether the link is closed
+     */
+    private boolean endedWithTheLink(OwnerThread self) {
+        if (!closed) {
+            return false;
+        }
+        if (self != null) { // null only in the moment before start() returned it
+            self.close();
+        }
+        return true;
+    }
+
+    /** Reads what the driver writes off the real link at once, and stamps it. */
+    private final class Pump implements OwnerThread.Duty {
+        private final byte[] buf = new byte[CHUNK_BYTES];
+        private volatile OwnerThread self;
+
+        /** @return 1: bytes were read, the peer left, or the poll interval passed; 0 once the link is closed */
+        @Override
+        public int doWork() throws IOException {
+            if (endedWithTheLink(self)) {
+                return 0;
+            }
             try {
                 int n = inner.read(buf, 0, buf.length, PUMP_POLL);
-                if (n <= 0) {
-                    continue;
-                }
-                lock.lock();
-                try {
-                    inbound.add(onWire(Arrays.copyOf(buf, n), true));
-                    inboundChanged.signalAll();
-                } finally {
-                    lock.unlock();
+                if (n > 0) {
+                    lock.lock();
+                    try {
+                        inbound.add(onWire(Arrays.copyOf(buf, n), true));
+                        inboundChanged.signalAll();
+                    } finally {
+                        lock.unlock();
+                    }
                 }
             } catch (LinkLostException e) {
                 lock.lock();
@@ -148,32 +179,43 @@ final class DelayedLink implements Link {
                     lock.unlock();
                 }
             } catch (IOException e) {
-                if (!closed) {
-                    LOG.debug("{}: the link closed under the pump: {}", inner.describe(), e.getMessage());
+                if (closed) {
+                    return 0;
                 }
-                return;
+                throw e;
             }
+            return 1;
+        }
+
+        @Override
+        public void onDeath(Throwable failure) {
+            died(failure);
         }
     }
 
-    private void send() {
-        while (!closed) {
+    /** Puts the emulator's replies on the real link when they would arrive. */
+    private final class Sender implements OwnerThread.Duty {
+
+        /** The longest the sender waits for a reply to send before it looks at whether the link closed. */
+        private static final long IDLE_WAIT_NANOS = PUMP_POLL.toNanos();
+        private volatile OwnerThread self;
+
+        /** @return 1: a reply was sent, or one was waited for; 0 once the link is closed */
+        @Override
+        public int doWork() throws IOException, InterruptedException {
+            if (endedWithTheLink(self)) {
+                return 0;
+            }
             Chunk next;
             lock.lock();
             try {
                 next = outbound.peekFirst();
-                long wait = next == null ? Long.MAX_VALUE : dueAt(next, next.bytes.length - 1) - System.nanoTime();
+                long wait = next == null ? IDLE_WAIT_NANOS : dueAt(next, next.bytes.length - 1) - System.nanoTime();
                 if (next == null || wait > 0) {
-                    if (next == null) {
-                        outboundChanged.await();
-                    } else {
-                        outboundChanged.awaitNanos(wait);
-                    }
-                    continue;
+                    outboundChanged.awaitNanos(Math.min(wait, IDLE_WAIT_NANOS));
+                    return 1;
                 }
                 outbound.pollFirst();
-            } catch (InterruptedException e) {
-                return;
             } finally {
                 lock.unlock();
             }
@@ -184,7 +226,39 @@ final class DelayedLink implements Link {
                     LOG.debug("{}: a delayed reply could not be sent: {}", inner.describe(), e.getMessage());
                 }
             }
+            return 1;
         }
+
+        @Override
+        public void onDeath(Throwable failure) {
+            died(failure);
+        }
+    }
+
+    /**
+     * The pump or the sender died: the link closes, reads end with an error naming why, and the
+     * other thread ends its loop at its next round. Must not throw.
+     */
+    private void died(Throwable failure) {
+        if (death == null) {
+            death = failure;
+        }
+        closed = true;
+        inner.close();
+        lock.lock();
+        try {
+            inboundChanged.signalAll();
+            outboundChanged.signalAll();
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    /** @return the exception a read or write on the closed link throws: naming what killed a thread of it, if one died */
+    private IOException closedError() {
+        Throwable d = death;
+        return d == null ? new IOException(describe() + " is closed")
+                : new IOException(describe() + " is closed: its pump or sender thread died of " + d, d);
     }
 
     @Override
@@ -200,7 +274,7 @@ final class DelayedLink implements Link {
     @Override
     public void write(byte[] data, int off, int len) throws IOException {
         if (closed) {
-            throw new IOException(describe() + " is closed");
+            throw closedError();
         }
         if (inline) {
             Chunk c = onWire(Arrays.copyOfRange(data, off, off + len), false);
@@ -220,7 +294,7 @@ final class DelayedLink implements Link {
     @Override
     public int read(byte[] buf, int off, int len, Duration timeout) throws IOException {
         if (closed) {
-            throw new IOException(describe() + " is closed");
+            throw closedError();
         }
         return inline ? readInline(buf, off, len, timeout) : readQueued(buf, off, len, timeout);
     }
@@ -246,7 +320,7 @@ final class DelayedLink implements Link {
         try {
             while (true) {
                 if (closed) {
-                    throw new IOException(describe() + " is closed");
+                    throw closedError();
                 }
                 Chunk head = inbound.peekFirst();
                 long now = System.nanoTime();
@@ -328,15 +402,7 @@ final class DelayedLink implements Link {
         } finally {
             lock.unlock();
         }
-        sender.interrupt();
-        for (Thread t : new Thread[]{pump, sender}) {
-            if (t != Thread.currentThread()) {
-                try {
-                    t.join(2000);
-                } catch (InterruptedException e) {
-                    Thread.currentThread().interrupt();
-                }
-            }
-        }
+        pump.close();
+        sender.close();
     }
 }

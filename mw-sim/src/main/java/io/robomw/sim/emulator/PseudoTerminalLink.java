@@ -10,6 +10,7 @@ import java.time.Duration;
 final class PseudoTerminalLink implements Link {
 
     private final PseudoTerminal pty;
+    private volatile boolean closed;
 
     PseudoTerminalLink(PseudoTerminal pty) {
         this.pty = pty;
@@ -21,7 +22,7 @@ final class PseudoTerminalLink implements Link {
 
     @Override
     public boolean isOpen() {
-        return true;
+        return !closed;
     }
 
     @Override
@@ -42,6 +43,7 @@ final class PseudoTerminalLink implements Link {
 
     @Override
     public void close() {
+        closed = true;
         pty.close();
     }
 }

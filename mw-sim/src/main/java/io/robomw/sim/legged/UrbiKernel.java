@@ -15,8 +15,6 @@ import io.robomw.sim.legged.UrbiParser.Ref;
 import io.robomw.sim.legged.UrbiParser.Statement;
 import io.robomw.sim.legged.UrbiParser.Stop;
 import io.robomw.sim.legged.UrbiParser.Str;
-import org.slf4j.Logger;
-import org.slf4j.LoggerFactory;
 
 import java.util.ArrayDeque;
 import java.util.ArrayList;
@@ -75,8 +73,6 @@ import java.util.function.LongSupplier;
  */
 public final class UrbiKernel {
 
-    private static final Logger LOG = LoggerFactory.getLogger(UrbiKernel.class);
-
     /** Statements a session may have waiting. */
     public static final int MAX_PENDING = 1024;
     /** Jobs a session may have running, nested ones included. */
@@ -128,6 +124,7 @@ public final class UrbiKernel {
     private final Quadruped dog;
     private final Sensors sensors;
     private final LongSupplier nanos;
+    private final io.robomw.api.spi.FailurePolicy failures;
     private final long startNanos;
     private final List<Session> sessions = new CopyOnWriteArrayList<>();
     private boolean motorsOn;
@@ -139,6 +136,18 @@ public final class UrbiKernel {
      * @param nanos   the server's clock (the world's)
      */
     public UrbiKernel(String robot, Quadruped dog, Sensors sensors, LongSupplier nanos) {
+        this(robot, dog, sensors, nanos, io.robomw.api.spi.FailurePolicy.logging());
+    }
+
+    /**
+     * @param robot    the robot's name, for logs
+     * @param dog      the gait and joints
+     * @param sensors  the sensor devices
+     * @param nanos    the server's clock (the world's)
+     * @param failures where a session's failure in a step is reported (the session is closed)
+     */
+    public UrbiKernel(String robot, Quadruped dog, Sensors sensors, LongSupplier nanos, io.robomw.api.spi.FailurePolicy failures) {
+        this.failures = java.util.Objects.requireNonNull(failures, "failures");
         this.robot = robot;
         this.dog = dog;
         this.sensors = sensors;
@@ -178,14 +187,16 @@ public final class UrbiKernel {
 
     /**
      * Runs one step: every session's queued statements start (unless held by a sequential one)
-     * and every running job advances. On the thread that steps the dog.
+     * and every running job advances. On the thread that steps the dog. What a session's step
+     * throws concerns that session: if survivable, it is reported to the failure policy, the
+     * client is told, and the session is closed (its jobs stop); otherwise it ends the step.
      */
     public void step() {
         for (Session s : sessions) {
             try {
                 s.step();
-            } catch (RuntimeException e) {
-                LOG.error("robot '{}': URBI session {} failed; it is closed", robot, s.name, e);
+            } catch (Throwable e) {
+                failures.surviveOrRethrow("urbi-" + robot + ": " + s.name, e);
                 s.emit("", Kind.ERROR, "internal error: " + e + "; this session is closed");
                 s.close();
             }

@@ -6,8 +6,19 @@ import java.util.regex.Pattern;
 /**
  * Cuts an URBI client's byte stream into top-level statements: text up to a terminator
  * ({@code ;} {@code ,} {@code |} {@code &}) that is outside braces, parentheses, strings and
- * comments. A decoder of bytes from outside: whatever it is fed, it neither throws nor grows
- * without bound.
+ * comments ({@code //}, {@code /* *}{@code /} and {@code #} to the end of the line, as the URBI
+ * kernel's command queue skips them). A decoder of bytes from outside: whatever it is fed, it
+ * neither throws nor grows without bound.
+ *
+ * <h2>The emergency escape {@code $$}</h2>
+ * As in the URBI 1.x kernel ({@code UCommandQueue::popCommand} in {@code ucommandqueue.cc}, and
+ * {@code UConnection::received}, which then clears its receive queue): two dollar signs outside a
+ * string and a comment, at any depth of braces and parentheses, abandon the statement being read
+ * and everything received with them after them, silently; cutting starts afresh with the next
+ * bytes the client sends. A statement held open by an unclosed brace, whose text would otherwise
+ * swallow everything the client sends after it, can so be abandoned by the client. Statements
+ * completed before the {@code $$} stand. The two must come in one read, as the kernel looks for
+ * the second only among the bytes it has received; the bytes of a binary value are not scanned.
  *
  * <ul>
  *   <li>A statement longer than {@code maxStatementBytes} is reported and skipped up to the next
@@ -53,6 +64,7 @@ public final class UrbiStatementSplitter {
     private boolean skipToNewline;
     private long binaryRemaining;
     private char previous;
+    private long escapes;
 
     /** A splitter with the default limit. */
     public UrbiStatementSplitter() {
@@ -77,11 +89,16 @@ public final class UrbiStatementSplitter {
      */
     public void feed(byte[] buf, int off, int len, Listener listener) {
         java.util.Objects.checkFromIndexSize(off, len, buf.length);
-        for (int i = off; i < off + len; i++) {
+        int end = off + len;
+        for (int i = off; i < end; i++) {
             int b = buf[i] & 0xFF;
             if (binaryRemaining > 0) {
                 binaryRemaining--;
                 continue;
+            }
+            if (b == '$' && i + 1 < end && buf[i + 1] == '$' && !inString && !lineComment && !blockComment) {
+                emergencyEscape();
+                return; // the kernel clears its whole receive queue: what came after the $$ goes too
             }
             if (skipToNewline) {
                 if (b == '\n') {
@@ -144,6 +161,7 @@ public final class UrbiStatementSplitter {
                     append(c, listener);
                 }
             }
+            case '#' -> lineComment = true;
             case '{', '(' -> {
                 depth++;
                 append(c, listener);
@@ -193,6 +211,19 @@ public final class UrbiStatementSplitter {
             binaryRemaining = Long.parseLong(m.group(1));
         }
         listener.statement(statement, terminator);
+    }
+
+    /** The emergency escape: the statement being read is abandoned, and cutting starts afresh. */
+    private void emergencyEscape() {
+        reset();
+        skipToNewline = false;
+        previous = ' ';
+        escapes++;
+    }
+
+    /** @return how many times the client used the emergency escape {@code $$} */
+    public long escapes() {
+        return escapes;
     }
 
     private void reset() {

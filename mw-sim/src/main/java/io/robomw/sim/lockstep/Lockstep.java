@@ -17,6 +17,10 @@ import java.util.concurrent.locks.LockSupport;
  * <p>Completions that wake programs are deferred to the end of each step ({@link #defer}), so a
  * program never runs while a step is half done.
  *
+ * <p>When the thread that steps the world dies ({@link #fail}), every wait on a simulator future,
+ * from a registered program or from any other thread, ends at once with the failure, and so does
+ * every later one: nothing waits for simulated time that will never come.
+ *
  * <p>Thread-safe: program threads report blocking and waking; one driver thread (the one stepping
  * the world) waits for all of them, and alone calls {@link #beginStep} and {@link #endStep}.
  */
@@ -25,8 +29,12 @@ public final class Lockstep {
     private final Map<Thread, ProgramState> programs = new ConcurrentHashMap<>();
     /** Completions deferred to the end of the step; the worker threads add to it at once (lock-free). */
     private final java.util.Queue<Runnable> deferred = new java.util.concurrent.ConcurrentLinkedQueue<>();
+    /** The simulator futures being waited on now, by any thread (so that {@link #fail} can end the waits). */
+    private final java.util.Set<SimFuture<?>> waitedOn = ConcurrentHashMap.newKeySet();
     private volatile Thread driver;
     private volatile boolean stepping;
+    /** Why simulated time stopped for good, once it has. */
+    private volatile RobotException failure;
 
     /** What the driver knows of one program thread. */
     private static final class ProgramState {
@@ -117,7 +125,17 @@ public final class Lockstep {
         driver = thread;
     }
 
-    void blocking(CompletableFuture<?> future) {
+    /**
+     * The calling thread is about to wait for a simulator future. Registered first, checked second
+     * (as {@link #fail} sets the failure first and ends the registered waits second), so a wait
+     * that begins while the world dies is ended by one or the other.
+     */
+    void blocking(SimFuture<?> future) {
+        waitedOn.add(future);
+        RobotException failed = failure;
+        if (failed != null) {
+            future.completeExceptionally(failed);
+        }
         ProgramState s = programs.get(Thread.currentThread());
         if (s == null) {
             return;
@@ -126,7 +144,8 @@ public final class Lockstep {
         wakeDriver();
     }
 
-    void woke() {
+    void woke(SimFuture<?> future) {
+        waitedOn.remove(future);
         ProgramState s = programs.get(Thread.currentThread());
         if (s != null) {
             s.blockedOn = null;
@@ -134,11 +153,34 @@ public final class Lockstep {
     }
 
     /**
+     * Simulated time has stopped for good (the thread stepping the world died): every wait on a
+     * simulator future ends now with {@code why}, and every later one at once. Idempotent: the
+     * first failure is kept.
+     *
+     * @param why the error the waiting programs get, naming what happened
+     */
+    public void fail(RobotException why) {
+        if (failure == null) {
+            failure = why;
+        }
+        RobotException first = failure;
+        for (SimFuture<?> f : waitedOn) {
+            f.completeExceptionally(first);
+        }
+        wakeDriver();
+    }
+
+    /** @return why simulated time stopped for good, if it did */
+    public java.util.Optional<RobotException> failure() {
+        return java.util.Optional.ofNullable(failure);
+    }
+
+    /**
      * @return whether the calling thread is a registered program, or the world is being stepped
      *         by some driver, so that a blocking wait on a simulator future can end
      */
     boolean canWait() {
-        return programs.containsKey(Thread.currentThread()) || driver != null;
+        return failure != null || programs.containsKey(Thread.currentThread()) || driver != null;
     }
 
     private void wakeDriver() {

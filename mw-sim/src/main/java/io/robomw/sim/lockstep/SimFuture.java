@@ -10,7 +10,9 @@ import java.util.concurrent.TimeoutException;
 /**
  * A future of the simulator: a program thread blocking on it tells the {@link Lockstep} that it
  * waits for simulated time. Futures derived from it ({@code thenApply}, {@code whenComplete}...)
- * are {@code SimFuture}s too, so the Configuration Layer's conversions keep the property.
+ * are {@code SimFuture}s too, so the Configuration Layer's conversions keep the property. Once
+ * the world's stepping thread has died ({@link Lockstep#fail}), a wait on one ends at once with
+ * that failure.
  *
  * @param <T> the value type
  */
@@ -37,7 +39,7 @@ public final class SimFuture<T> extends CompletableFuture<T> {
         try {
             return super.get();
         } finally {
-            lockstep.woke();
+            lockstep.woke(this);
         }
     }
 
@@ -51,7 +53,7 @@ public final class SimFuture<T> extends CompletableFuture<T> {
         try {
             return super.get(timeout, unit);
         } finally {
-            lockstep.woke();
+            lockstep.woke(this);
         }
     }
 
@@ -65,7 +67,7 @@ public final class SimFuture<T> extends CompletableFuture<T> {
         try {
             return super.join();
         } finally {
-            lockstep.woke();
+            lockstep.woke(this);
         }
     }
 

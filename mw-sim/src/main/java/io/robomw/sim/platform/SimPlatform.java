@@ -1,6 +1,7 @@
 package io.robomw.sim.platform;
 
 import io.robomw.api.Clock;
+import io.robomw.api.Futures;
 import io.robomw.api.spi.HighLevelCommand;
 import io.robomw.api.spi.HighLevelPlatform;
 import io.robomw.api.spi.MotorCommand;
@@ -15,7 +16,8 @@ import java.util.concurrent.CompletionException;
  * A simulated robot's platform as the Configuration Layer sees it: the standard
  * {@link io.robomw.platform.BrickPlatform} (or, for a legged robot, a
  * {@link io.robomw.platform.command.HighLevelRobotPlatform}), with its futures turned into
- * {@link SimFuture}s so a program blocking on them lets simulated time advance.
+ * {@link SimFuture}s so a program blocking on them lets simulated time advance; cancelling one
+ * cancels the platform's own, which ends its command at the next cycle.
  */
 class SimPlatform implements RobotPlatform {
 
@@ -123,6 +125,8 @@ class SimPlatform implements RobotPlatform {
                 f.completeExceptionally(e instanceof CompletionException && e.getCause() != null ? e.getCause() : e);
             }
         }));
-        return f;
+        // Cancelling what the program holds (an interrupted or timed-out wait) ends the command: the
+        // platform's cycle brakes its motors.
+        return Futures.cancelling(f, inner);
     }
 }

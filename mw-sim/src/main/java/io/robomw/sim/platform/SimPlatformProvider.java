@@ -4,8 +4,8 @@ import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
-import io.robomw.platform.LinkThreading;
 import io.robomw.platform.command.HighLevelRobotPlatform;
+import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.sim.SimMotors;
 import io.robomw.sim.SimWorld;
 
@@ -54,8 +54,8 @@ public final class SimPlatformProvider implements PlatformProvider {
             world.attach(motors.robot(), platform.actionThread());
             return new SimPlatform.HighLevel(platform, world.lockstep());
         }
-        SimMotorPlatform motorPlatform = new SimMotorPlatform(config, motors);
-        BrickPlatform platform = new BrickPlatform(config, motorPlatform, new SimSensorPlatform(motorPlatform, motors), LinkThreading.INLINE, null);
+        MotorPlatform motorPlatform = new MotorPlatform(config, new SimMotorDriver(config, motors));
+        BrickPlatform platform = new BrickPlatform(config, motorPlatform, new SimSensorPlatform(motorPlatform, motors), null, null);
         world.attach(motors.robot(), platform.actionThread());
         return new SimPlatform(platform, world.lockstep());
     }

@@ -1,7 +1,7 @@
 package io.robomw.sim.platform;
 
 import io.robomw.api.spi.SensorChannel;
-import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
 import io.robomw.sim.SimMotors;
@@ -14,7 +14,7 @@ final class SimSensorPlatform extends SensorPlatform {
 
     private final SimMotors robot;
 
-    SimSensorPlatform(GenericMotorPlatform motors, SimMotors robot) {
+    SimSensorPlatform(MotorPlatform motors, SimMotors robot) {
         super(motors);
         this.robot = robot;
     }

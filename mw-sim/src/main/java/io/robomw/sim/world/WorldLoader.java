@@ -1,14 +1,19 @@
 package io.robomw.sim.world;
 
 import io.robomw.api.Pose;
+import io.robomw.config.description.Body;
+import io.robomw.config.description.DescriptionException;
+import io.robomw.config.description.RobotDescriptionLoader;
 import io.robomw.config.yaml.MappingReader;
 import io.robomw.config.yaml.YamlDocument;
 
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.ArrayList;
+import java.util.HashMap;
 import java.util.HashSet;
 import java.util.List;
+import java.util.Map;
 import java.util.Optional;
 import java.util.Set;
 
@@ -39,7 +44,11 @@ import java.util.Set;
  * home: { latitude: 50.15, longitude: -5.07, altitude: 0 }   # the origin on Earth
  * </pre>
  *
- * Robot paths are relative to the world file. Stateless.
+ * Robot paths are relative to the world file. A robot must start clear of the walls, the obstacles
+ * and the other robots (by the body its robot file gives it); one that overlaps something is a
+ * problem at its place in the file, naming both (see {@link Placements}); the check runs once the
+ * file has no other problem, and skips a robot whose file cannot be read (opening it reports why).
+ * Stateless.
  */
 public final class WorldLoader {
 
@@ -113,8 +122,12 @@ public final class WorldLoader {
             p.finish();
         }
         List<WorldDescription.Obstacle> obstacles = new ArrayList<>();
+        Placements placements = new Placements();
+        List<Runnable> placing = new ArrayList<>(); // once every value is known to be valid
         for (MappingReader o : root.mappingList("obstacles")) {
-            obstacle(o).ifPresent(obstacles::add);
+            Optional<WorldDescription.Obstacle> obstacle = obstacle(o);
+            obstacle.ifPresent(obstacles::add);
+            obstacle.ifPresent(ob -> placing.add(() -> place(placements, ob, o)));
         }
         List<WorldDescription.FloorPatch> patches = new ArrayList<>();
         for (MappingReader p : root.mappingList("floor")) {
@@ -126,6 +139,7 @@ public final class WorldLoader {
         }
         List<WorldDescription.RobotPlacement> robots = new ArrayList<>();
         Set<String> names = new HashSet<>();
+        Map<Path, Optional<Body>> bodies = new HashMap<>();
         Path dir = file.toAbsolutePath().getParent();
         for (MappingReader r : root.mappingList("robots")) {
             String robotFile = r.requireText("robot");
@@ -146,10 +160,20 @@ public final class WorldLoader {
             r.finish();
             if (Double.isFinite(x) && Double.isFinite(y)) {
                 robots.add(new WorldDescription.RobotPlacement(robotPath, robotName, new Pose(x, y, heading)));
+                Optional<Body> body = bodies.computeIfAbsent(robotPath, WorldLoader::body);
+                body.ifPresent(b -> placing.add(() -> placements.robot("robot '" + robotName + "'", r.path(), r.mark(), b.length(), b.width(),
+                        x, y, heading)));
             }
         }
         WorldDescription.Surroundings surroundings = surroundings(root);
         root.finish();
+        if (root.problems().isEmpty()) {
+            placing.forEach(Runnable::run);
+            if (walls) {
+                walls(placements, root.mark("arena"), width, height, thickness);
+            }
+            placements.check(root.problems());
+        }
         root.problems().throwIfAny();
         return new WorldDescription(name, width, height, walls, thickness, floor, obstacles, patches, robots, seed, physicsHz, trajectories,
                 engine, file.toString(), surroundings);
@@ -215,6 +239,40 @@ public final class WorldLoader {
         double y = m.number("y", 0, rule, v -> Math.abs(v) <= 50);
         m.finish();
         return new double[]{Double.isFinite(x) ? x : 0, Double.isFinite(y) ? y : 0};
+    }
+
+    /** @return the body a robot file gives its robot, or empty if the file cannot be read (opening it says why) */
+    private static Optional<Body> body(Path robotFile) {
+        try {
+            return Optional.of(new RobotDescriptionLoader().load(robotFile).body());
+        } catch (DescriptionException e) {
+            return Optional.empty();
+        }
+    }
+
+    /** The arena's walls, as the simulated world builds them: boxes of the wall's thickness just outside the arena. */
+    private static void walls(Placements placements, org.yaml.snakeyaml.error.Mark arena, double w, double h, double t) {
+        placements.box("the arena's bottom wall (y < 0)", "arena", arena, w / 2, -t / 2, w + 2 * t, t, 0);
+        placements.box("the arena's top wall (y > " + w(h) + ")", "arena", arena, w / 2, h + t / 2, w + 2 * t, t, 0);
+        placements.box("the arena's left wall (x < 0)", "arena", arena, -t / 2, h / 2, t, h, 0);
+        placements.box("the arena's right wall (x > " + w(w) + ")", "arena", arena, w + t / 2, h / 2, t, h, 0);
+    }
+
+    /** @return a length as a message writes it, without needless decimals */
+    private static String w(double metres) {
+        return java.math.BigDecimal.valueOf(metres).stripTrailingZeros().toPlainString();
+    }
+
+    private static void place(Placements placements, WorldDescription.Obstacle obstacle, MappingReader o) {
+        String path = o.path();
+        if (obstacle instanceof WorldDescription.Box b) {
+            placements.box(String.format(java.util.Locale.ROOT, "the box at (%s, %s)", w(b.x()), w(b.y())), path, o.mark(),
+                    b.x(), b.y(), b.width(), b.height(), b.angle());
+        } else if (obstacle instanceof WorldDescription.Circle c) {
+            placements.circle(String.format(java.util.Locale.ROOT, "the circle at (%s, %s)", w(c.x()), w(c.y())), path, o.mark(), c.x(), c.y(), c.radius());
+        } else if (obstacle instanceof WorldDescription.Polygon p) {
+            placements.polygon("the polygon", path, o.mark(), p.points());
+        }
     }
 
     private Optional<WorldDescription.Obstacle> obstacle(MappingReader o) {

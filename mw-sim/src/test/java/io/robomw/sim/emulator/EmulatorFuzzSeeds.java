@@ -37,7 +37,7 @@ public final class EmulatorFuzzSeeds {
         Path platformResources = Path.of(args.length > 1 ? args[1] : "../mw-platform/src/test/resources");
         write("nxt", EmulatorRequestsFuzzTest.nxt(), List.of(
                 NxtTelegram.withLengthPrefix(NxtTelegram.getInputValues(0)),
-                NxtTelegram.withLengthPrefix(NxtTelegram.setOutputState(true, 1, 75, 0x07, 0x01, 0, 0x20, 360)),
+                NxtTelegram.withLengthPrefix(NxtTelegram.setOutputState(true, io.robomw.platform.nxt.OutputState.running(1, 75, io.robomw.platform.nxt.OutputState.Regulation.SPEED, 360))),
                 NxtTelegram.withLengthPrefix(NxtTelegram.getOutputState(2)),
                 NxtTelegram.withLengthPrefix(NxtTelegram.lsWrite(true, 3, 1, (byte) 0x02, (byte) 0x42)),
                 NxtTelegram.withLengthPrefix(NxtTelegram.getBatteryLevel())),

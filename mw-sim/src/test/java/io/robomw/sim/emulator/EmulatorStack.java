@@ -181,11 +181,7 @@ public final class EmulatorStack<E extends Emulator> implements AutoCloseable {
      * @param what      the condition, for the failure
      */
     public void awaitTrue(BooleanSupplier condition, Duration deadline, String what) {
-        long end = System.nanoTime() + deadline.toNanos();
-        while (!condition.getAsBoolean()) {
-            assertTrue(System.nanoTime() < end, what + " within " + deadline.toMillis() + " ms; robot at " + truePose());
-            java.util.concurrent.locks.LockSupport.parkNanos(1_000_000);
-        }
+        io.robomw.testkit.Await.until(what, deadline, condition, () -> "; robot at " + truePose());
     }
 
     /** Waits until half a simulated second has passed (the world runs on), failing after 5 s. */

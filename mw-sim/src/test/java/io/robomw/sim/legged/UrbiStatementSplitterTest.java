@@ -116,4 +116,68 @@ class UrbiStatementSplitterTest {
 
         assertEquals(List.of("x\uFFFD\uFFFD;"), out);
     }
+
+    @Test
+    void shouldAbandonAStatementHeldOpenByABraceAtTheEmergencyEscapeAndCutAfreshAfterIt() {
+        UrbiStatementSplitter s = new UrbiStatementSplitter();
+        feed(s, "p1: ping; h1: { robot.walk(0.3, 0.1); (x1: ping;");
+        assertTrue(s.midStatement(), "the brace holds the statement open: the ping is part of it");
+
+        feed(s, "$$\n");
+
+        assertFalse(s.midStatement());
+        feed(s, "x2: ping;");
+        assertEquals(List.of("p1: ping;", "x2: ping;"), out, "the held statement was abandoned, the next one cut as usual");
+        assertEquals(List.of(), errors, "silently, as the kernel does");
+        assertEquals(1, s.escapes());
+    }
+
+    @Test
+    void shouldDropWhatCameAfterTheEscapeInTheSameReadAndKeepWhatEndedBeforeIt() {
+        UrbiStatementSplitter s = new UrbiStatementSplitter();
+
+        feed(s, "p1: ping; { robot.sit(); $$ x3: ping; x4: ping;");
+        feed(s, "x5: ping;");
+
+        assertEquals(List.of("p1: ping;", "x5: ping;"), out, "the kernel clears its whole receive queue at the escape");
+    }
+
+    @Test
+    void shouldNotTakeDollarsInAStringOrACommentForTheEscape() {
+        UrbiStatementSplitter s = new UrbiStatementSplitter();
+
+        feed(s, "x = \"a$$b\"; // $$ here\np1: ping; /* $$ */ p2: ping; # $$ there\np3: ping;");
+
+        assertEquals(List.of("x = \"a$$b\";", "p1: ping;", "p2: ping;", "p3: ping;"), out);
+        assertEquals(0, s.escapes());
+    }
+
+    @Test
+    void shouldTakeOneDollarAndTwoSplitBetweenReadsAsText() {
+        UrbiStatementSplitter s = new UrbiStatementSplitter();
+
+        feed(s, "x = a$b; { y $");
+        feed(s, "$ z };");
+
+        assertEquals(List.of("x = a$b;", "{ y $$ z };"), out, "the kernel looks for the second $ among the bytes received with the first");
+        assertEquals(0, s.escapes());
+    }
+
+    @Test
+    void shouldNotScanTheBytesOfABinaryValueForTheEscape() {
+        UrbiStatementSplitter s = new UrbiStatementSplitter();
+
+        feed(s, "speaker.val = BIN 4 raw;a$$b ping;");
+
+        assertEquals(List.of("speaker.val = BIN 4 raw;", "ping;"), out);
+    }
+
+    @Test
+    void shouldSkipAHashCommentToTheEndOfItsLine() {
+        UrbiStatementSplitter s = new UrbiStatementSplitter();
+
+        feed(s, "# motoroff; robot.walk(1, 0.1);\nping;");
+
+        assertEquals(List.of("ping;"), out);
+    }
 }

@@ -54,7 +54,7 @@ class AgentHostBadInputIT {
 
     private static void hostStillServesAgents() throws Exception {
         try (AgentHost home = AgentHost.builder("bad-input-home").clusterKey(AgentTripIT.KEY).start()) {
-            assertEquals(List.of("guarded"), home.sendAgent(host.address(), new VisitorAgent()).result().get(30, TimeUnit.SECONDS));
+            assertEquals(List.of("guarded"), home.agency().sendAgent(host.address(), new VisitorAgent()).result().get(30, TimeUnit.SECONDS));
         }
     }
 

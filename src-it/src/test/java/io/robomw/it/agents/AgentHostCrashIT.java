@@ -1,7 +1,7 @@
 package io.robomw.it.agents;
 
+import io.robomw.testkit.Await;
 import io.robomw.agents.host.AgentHost;
-import io.robomw.agents.host.AgentInfo;
 import io.robomw.api.AgentRef;
 import io.robomw.examples.agents.PatrolAgent;
 import org.junit.jupiter.api.AfterEach;
@@ -16,7 +16,6 @@ import java.util.concurrent.TimeUnit;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
-import static org.junit.jupiter.api.Assertions.fail;
 
 /**
  * A durable agent host is killed (kill -9) while agents are at it and on their way to it; started
@@ -57,17 +56,16 @@ class AgentHostCrashIT {
             PatrolAgent agent = new PatrolAgent(0.1);
             agent.itinerary().addStop(a.address()).addStop(b.address()).addStop(c.address())
                     .retry(120, Duration.ofMillis(250)); // long enough for b to come back
-            refs.add(home.startTrip(agent));
+            refs.add(home.agency().startTrip(agent));
         }
         // Kill b once it holds agents (they drive there for about a second each).
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(60);
-        List<AgentInfo> atB = List.of();
-        while (atB.isEmpty()) {
-            if (System.nanoTime() > deadline) {
-                fail("no agent reached b within 60 s");
+        Await.until("an agent reaches b", Duration.ofSeconds(60), () -> {
+            try {
+                return !AgentHost.list(b.address(), AgentTripIT.KEY, false).isEmpty();
+            } catch (java.io.IOException e) {
+                throw new java.io.UncheckedIOException(e);
             }
-            atB = AgentHost.list(b.address(), AgentTripIT.KEY, false);
-        }
+        });
         b.kill();
         b.restart();
         assertTrue(b.log().contains("resumed"), "b resumed agents from its store:\n" + b.log());

@@ -81,7 +81,7 @@ class AgentTripIT {
         PatrolAgent agent = new PatrolAgent(0.2);
         hosts.forEach(h -> agent.itinerary().addStop(h.address()));
         List<Serializable> reports = new ArrayList<>();
-        AgentRef ref = home.startTrip(agent);
+        AgentRef ref = home.agency().startTrip(agent);
         ref.addReportListener(reports::add);
         @SuppressWarnings("unchecked")
         List<PatrolAgent.Visit> visits = (List<PatrolAgent.Visit>) ref.result().get(60, TimeUnit.SECONDS);
@@ -110,7 +110,7 @@ class AgentTripIT {
     @Test
     void dispatchClonesRunsBothClonesInParallelAndReturnsBothResults() throws Exception {
         Map<String, Long> firstReport = new ConcurrentHashMap<>();
-        List<AgentRef> refs = home.dispatchClones(new SquareSurveyAgent(0.25), hosts.get(0).address(), hosts.get(1).address());
+        List<AgentRef> refs = home.agency().dispatchClones(new SquareSurveyAgent(0.25), hosts.get(0).address(), hosts.get(1).address());
         for (AgentRef r : refs) {
             r.addReportListener(v -> firstReport.putIfAbsent(r.id().toString(), System.nanoTime()));
         }

@@ -1,5 +1,6 @@
 package io.robomw.it.agents;
 
+import io.robomw.testkit.Await;
 import io.robomw.agents.host.AgentHost;
 import io.robomw.agents.host.trip.ChatCaller;
 import io.robomw.agents.host.trip.ChatResponder;
@@ -68,7 +69,7 @@ class BrokerClusterIT {
     @Test
     void agentsOnTwoHostsTalkByHostNameThroughTheBrokerAndTheClusterIsListedFromItsPresence() throws Exception {
         assertTrue(a.messaging().startsWith("mqtt://"), a.messaging());
-        AgentRef responder = home.sendAgent(b.address(), new ChatResponder());
+        AgentRef responder = home.agency().sendAgent(b.address(), new ChatResponder());
         CompletableFuture<Void> ready = new CompletableFuture<>();
         responder.addReportListener(r -> {
             if ("ready".equals(r)) {
@@ -77,19 +78,22 @@ class BrokerClusterIT {
         });
         ready.get(WAIT.toSeconds(), TimeUnit.SECONDS);
         String expected = responder.id() + " " + ChatResponder.class.getName();
-        String out = "";
-        long deadline = System.nanoTime() + WAIT.toNanos();
-        while (!out.contains(expected) && System.nanoTime() < deadline) {
-            // a host announces its agents once a second: list again until the responder shows
+        java.util.concurrent.atomic.AtomicReference<String> listed = new java.util.concurrent.atomic.AtomicReference<>("");
+        // a host announces its agents once a second: list again until the responder shows
+        Await.until("mw agents lists the responder", WAIT, () -> {
             try (MwProcess list = MwProcess.start("bc-agents", "agents", "--cluster", broker.address())) {
                 assertEquals(0, list.waitFor(WAIT));
-                out = list.output();
+                listed.set(list.output());
+            } catch (Exception e) {
+                throw new AssertionError(e);
             }
-        }
+            return listed.get().contains(expected);
+        }, listed::get);
+        String out = listed.get();
         assertTrue(out.contains("2 agent hosts at " + broker.address()), out);
         assertTrue(out.contains("bc-a  online  " + a.address()) && out.contains("bc-b  online  " + b.address()), out);
         assertTrue(out.contains(expected), out);
-        AgentRef caller = home.sendAgent(a.address(), new ChatCaller("bc-b"));
+        AgentRef caller = home.agency().sendAgent(a.address(), new ChatCaller("bc-b"));
         assertEquals("pong from bc-b", caller.result().get(WAIT.toSeconds(), TimeUnit.SECONDS));
         assertEquals("heard news from bc-a", responder.result().get(WAIT.toSeconds(), TimeUnit.SECONDS));
 

@@ -1,7 +1,7 @@
 package io.robomw.it.agents;
 
+import io.robomw.testkit.Await;
 import io.robomw.agents.messaging.MessagingNode;
-import io.robomw.agents.messaging.PresenceRecord;
 import io.robomw.agents.messaging.mqtt.BrokerDirectory;
 import io.robomw.it.messaging.PeerProcess;
 import io.robomw.it.mqtt.Broker;
@@ -58,29 +58,19 @@ class BrokerEventsIT {
     /** Waits until the host logged a line about the event (a retry while the home is away, or its delivery). */
     private static void awaitLog(HostProcess host, String regex) throws Exception {
         java.util.regex.Pattern p = java.util.regex.Pattern.compile(regex);
-        long deadline = System.nanoTime() + WAIT.toNanos();
-        while (!p.matcher(host.log()).find()) {
-            if (System.nanoTime() > deadline) {
-                throw new AssertionError("host log has no line matching '" + regex + "' within " + WAIT);
+        Await.until("a line of the host's log matches '" + regex + "'", WAIT, () -> {
+            try {
+                return p.matcher(host.log()).find();
+            } catch (java.io.IOException e) {
+                throw new java.io.UncheckedIOException(e);
             }
-            java.util.concurrent.locks.LockSupport.parkNanos(100_000_000); // a log poll, not a wait for an event of this JVM
-        }
+        });
     }
 
     private static void awaitPresence(Broker broker, String node, boolean online) throws Exception {
-        long deadline = System.nanoTime() + WAIT.toNanos();
         try (BrokerDirectory d = BrokerDirectory.open(broker.address(), Duration.ofSeconds(10))) {
-            while (true) {
-                for (PresenceRecord p : d.records()) {
-                    if (p.node().equals(node) && p.online() == online) {
-                        return;
-                    }
-                }
-                if (System.nanoTime() > deadline) {
-                    throw new AssertionError("no " + (online ? "online" : "offline") + " presence of " + node + " within " + WAIT + ": " + d.records());
-                }
-                d.awaitQuiet(Duration.ofSeconds(1));
-            }
+            Await.until((online ? "an online" : "an offline") + " presence of " + node, WAIT,
+                    () -> d.records().stream().anyMatch(p -> p.node().equals(node) && p.online() == online), () -> String.valueOf(d.records()));
         }
     }
 

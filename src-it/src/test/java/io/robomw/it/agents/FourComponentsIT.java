@@ -1,5 +1,6 @@
 package io.robomw.it.agents;
 
+import io.robomw.testkit.Await;
 import io.robomw.agents.host.AgentHost;
 import io.robomw.agents.host.trip.ChatCaller;
 import io.robomw.agents.host.trip.ChatResponder;
@@ -70,7 +71,7 @@ class FourComponentsIT {
 
     /** Sends an agent from the test's home and waits for a report it gives when ready. */
     private static AgentRef sendAndAwaitReport(String host, io.robomw.api.Agent agent, String report) throws Exception {
-        AgentRef ref = home.sendAgent(host, agent);
+        AgentRef ref = home.agency().sendAgent(host, agent);
         List<Serializable> reports = new CopyOnWriteArrayList<>();
         CompletableFuture<Void> ready = new CompletableFuture<>();
         ref.addReportListener(r -> {
@@ -89,22 +90,23 @@ class FourComponentsIT {
 
     /** Publishes through the program every 200 ms until the listener has heard (pub/sub is fire and forget). */
     private static String publishUntilHeard(PeerProcess program, String command, AgentRef listener) throws Exception {
-        long deadline = System.nanoTime() + WAIT.toNanos();
-        while (System.nanoTime() < deadline) {
-            program.ask(command, "PUBLISHED");
+        Await.until("the listener hears a publication", WAIT, () -> {
             try {
-                return (String) listener.result().get(200, TimeUnit.MILLISECONDS);
+                program.ask(command, "PUBLISHED");
+                return listener.result().get(200, TimeUnit.MILLISECONDS) != null;
             } catch (TimeoutException notYet) {
-                // not heard yet: publish again
+                return false; // not heard yet: publish again
+            } catch (Exception e) {
+                throw new AssertionError(e);
             }
-        }
-        return fail("the listener heard nothing within " + WAIT + " of publications");
+        });
+        return (String) listener.result().get(WAIT.toMillis(), TimeUnit.MILLISECONDS);
     }
 
     @Test
     void twoAgentsOnTwoHostsExchangeARequestReplyAndAPublicationOnAProtectedTopicByHostName() throws Exception {
         AgentRef responder = sendAndAwaitReport(b.address(), new ChatResponder(), "ready");
-        AgentRef caller = home.sendAgent(a.address(), new ChatCaller("fc-b"));
+        AgentRef caller = home.agency().sendAgent(a.address(), new ChatCaller("fc-b"));
         assertEquals("pong from fc-b", caller.result().get(WAIT.toSeconds(), TimeUnit.SECONDS));
         assertEquals("heard news from fc-a", responder.result().get(WAIT.toSeconds(), TimeUnit.SECONDS));
     }

@@ -27,7 +27,7 @@ public final class HomeProgram {
         PrintStream out = new PrintStream(System.out, true, StandardCharsets.UTF_8);
         try (AgentHost home = AgentHost.builder("be-home").clusterKey(AgentTripIT.KEY).messaging(args[0]).start()) {
             out.println("READY " + home.address());
-            AgentRef ref = home.sendAgent(args[1], new ListenerAgent("poke", null));
+            AgentRef ref = home.agency().sendAgent(args[1], new ListenerAgent("poke", null));
             ref.addReportListener(r -> out.println("REPORT " + r));
             ref.result().whenComplete((v, e) -> out.println(e == null ? "RESULT " + v : "FAILED " + e));
             out.println("SENT " + ref.id());

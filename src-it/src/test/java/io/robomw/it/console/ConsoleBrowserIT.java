@@ -134,8 +134,8 @@ class ConsoleBrowserIT {
     @Order(2)
     void agentsAppearAtTheHostsTheyAreAtAndTheRobotMovesOnTheMap() throws Exception {
         double[] before = robotOnMap("nxt");
-        survey = home.sendAgent(hostAddress("alpha"), new SquareSurveyAgent(0.4));
-        AgentRef lingering = home.sendAgent(hostAddress("beta"), lingering(40));
+        survey = home.agency().sendAgent(hostAddress("alpha"), new SquareSurveyAgent(0.4));
+        AgentRef lingering = home.agency().sendAgent(hostAddress("beta"), lingering(40));
         waitFor("the survey agent listed at alpha", () -> !hostCard("alpha").findElements(agentSelector(survey)).isEmpty());
         waitFor("the lingering agent listed at beta", () -> !hostCard("beta").findElements(agentSelector(lingering)).isEmpty());
         assertTrue(read(() -> hostCard("beta").findElement(agentSelector(lingering)).getText()).contains("LingeringAgent"));
@@ -154,7 +154,7 @@ class ConsoleBrowserIT {
     @Test
     @Order(3)
     void theRetractButtonBringsAnAgentHome() throws Exception {
-        AgentRef lingering = home.sendAgent(hostAddress("beta"), lingering(200));
+        AgentRef lingering = home.agency().sendAgent(hostAddress("beta"), lingering(200));
         waitFor("the agent listed at beta", () -> !hostCard("beta").findElements(agentSelector(lingering)).isEmpty());
         By retract = By.cssSelector(".host[data-host=beta] [data-agent='" + lingering.id() + "'] button[data-action=retract]");
         waitFor("its retract button is enabled", () -> browser.findElement(retract).isEnabled());
@@ -172,7 +172,7 @@ class ConsoleBrowserIT {
     @Test
     @Order(4)
     void aHostThatGoesAwayIsShownDownWithItsAgentsStaleAndComesBack() throws Exception {
-        AgentRef lingering = home.sendAgent(hostAddress("beta"), lingering(200));
+        AgentRef lingering = home.agency().sendAgent(hostAddress("beta"), lingering(200));
         waitFor("the agent listed at beta", () -> !hostCard("beta").findElements(agentSelector(lingering)).isEmpty());
         beta.kill();
         waitFor("beta shown down", () -> hostCard("beta").getAttribute("data-up").equals("false"));

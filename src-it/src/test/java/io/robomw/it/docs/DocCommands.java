@@ -1,5 +1,6 @@
 package io.robomw.it.docs;
 
+import io.robomw.cli.ShellWords;
 import io.robomw.it.StdoutLines;
 import io.robomw.it.demo.MwProcess;
 
@@ -168,48 +169,16 @@ final class DocCommands implements AutoCloseable {
         if (line.startsWith("./mw ") || line.equals("./mw")) {
             List<String> argv = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
                     "-Dmw.home=" + MwProcess.CHECKOUT, "-cp", String.join(File.pathSeparator, classPath), "io.robomw.cli.Mw"));
-            argv.addAll(words(line.substring(4).strip()));
+            argv.addAll(ShellWords.split(line.substring(4).strip()));
             return argv;
         }
         if (line.startsWith("mvn ")) {
             List<String> argv = new ArrayList<>(List.of("mvn"));
             argv.addAll(mavenOptions);
-            argv.addAll(words(line.substring(4).strip()));
+            argv.addAll(ShellWords.split(line.substring(4).strip()));
             return argv;
         }
         return List.of("bash", "-c", line);
-    }
-
-    /** Splits a command's arguments as a shell would for the plain words and quotes docs use. */
-    private static List<String> words(String s) {
-        List<String> words = new ArrayList<>();
-        StringBuilder w = new StringBuilder();
-        char quote = 0;
-        boolean any = false;
-        for (char c : s.toCharArray()) {
-            if (quote != 0) {
-                if (c == quote) {
-                    quote = 0;
-                } else {
-                    w.append(c);
-                }
-            } else if (c == '\'' || c == '"') {
-                quote = c;
-                any = true;
-            } else if (Character.isWhitespace(c)) {
-                if (w.length() > 0 || any) {
-                    words.add(w.toString());
-                    w.setLength(0);
-                    any = false;
-                }
-            } else {
-                w.append(c);
-            }
-        }
-        if (w.length() > 0 || any) {
-            words.add(w.toString());
-        }
-        return words;
     }
 
     private static void stop(Process p) throws InterruptedException {

@@ -1,5 +1,6 @@
 package io.robomw.it.messaging;
 
+import io.robomw.testkit.Await;
 import io.robomw.agents.messaging.MessagingNode;
 import io.robomw.api.Message;
 import io.robomw.api.MessagingException;
@@ -120,13 +121,7 @@ abstract class PointToPointIT {
     }
 
     static void waitUntil(java.util.function.BooleanSupplier condition) {
-        long deadline = System.nanoTime() + WAIT.toNanos();
-        while (!condition.getAsBoolean()) {
-            if (System.nanoTime() > deadline) {
-                throw new AssertionError("condition not met within " + WAIT);
-            }
-            java.util.concurrent.locks.LockSupport.parkNanos(5_000_000);
-        }
+        Await.until("the condition", WAIT, condition);
     }
 
     /** Subscribes this JVM to the peer's publications on {@code topic}. */

@@ -1,5 +1,6 @@
 package io.robomw.it.mqtt;
 
+import io.robomw.testkit.Await;
 import io.robomw.it.StdoutLines;
 import org.junit.jupiter.api.Assumptions;
 
@@ -220,20 +221,22 @@ public final class Broker implements AutoCloseable {
     }
 
     private void awaitListening(Path log) {
-        long deadline = System.nanoTime() + START.toNanos();
-        while (System.nanoTime() < deadline) {
-            try (Socket s = new Socket()) {
-                s.connect(new InetSocketAddress(InetAddress.getLoopbackAddress(), port), 500);
-                return;
-            } catch (IOException e) {
-                if (!process.isAlive()) {
-                    fail("mosquitto ended at start (log: " + log + ")");
+        try {
+            Await.until("mosquitto listens on " + port + " (log: " + log + ")", START, () -> {
+                try (Socket s = new Socket()) {
+                    s.connect(new InetSocketAddress(InetAddress.getLoopbackAddress(), port), 500);
+                    return true;
+                } catch (IOException e) {
+                    if (!process.isAlive()) {
+                        fail("mosquitto ended at start (log: " + log + ")");
+                    }
+                    return false;
                 }
-                java.util.concurrent.locks.LockSupport.parkNanos(50_000_000); // a port poll, not a wait for an event
-            }
+            });
+        } catch (AssertionError e) {
+            stop();
+            throw e;
         }
-        stop();
-        fail("mosquitto did not listen on " + port + " within " + START + " (log: " + log + ")");
     }
 
     /**

@@ -1,5 +1,6 @@
 package io.robomw.it.mqtt;
 
+import io.robomw.testkit.Await;
 import io.robomw.agents.messaging.MessagingNode;
 import io.robomw.agents.messaging.PresenceRecord;
 import io.robomw.agents.messaging.mqtt.BrokerDirectory;
@@ -238,19 +239,13 @@ abstract class BrokerMessagingIT {
 
     /** Reads the presences until the node's has the wanted status (a will comes after the keep-alive runs out). */
     private PresenceRecord awaitPresence(String node, boolean online) throws Exception {
-        long deadline = System.nanoTime() + WAIT.toNanos();
         try (BrokerDirectory d = BrokerDirectory.open(broker.address(), Duration.ofSeconds(10))) {
-            while (true) {
-                for (PresenceRecord p : d.records()) {
-                    if (p.node().equals(node) && p.online() == online) {
-                        return p;
-                    }
-                }
-                if (System.nanoTime() > deadline) {
-                    throw new AssertionError("no " + (online ? "online" : "offline") + " presence of " + node + " within " + WAIT + ": " + d.records());
-                }
-                d.awaitQuiet(Duration.ofSeconds(1));
-            }
+            java.util.concurrent.atomic.AtomicReference<PresenceRecord> found = new java.util.concurrent.atomic.AtomicReference<>();
+            Await.until((online ? "an online" : "an offline") + " presence of " + node, WAIT, () -> {
+                d.records().stream().filter(p -> p.node().equals(node) && p.online() == online).findFirst().ifPresent(found::set);
+                return found.get() != null;
+            }, () -> String.valueOf(d.records()));
+            return found.get();
         }
     }
 

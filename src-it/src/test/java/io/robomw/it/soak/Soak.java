@@ -108,7 +108,7 @@ final class Soak implements AutoCloseable {
         // Warm-up: the agent's code reaches every host, the links are made, the JITs have seen the hop path.
         List<AgentRef> warm = new ArrayList<>();
         for (int i = 0; i < 4; i++) {
-            warm.add(home.startTrip(agent(System.currentTimeMillis(), i)));
+            warm.add(home.agency().startTrip(agent(System.currentTimeMillis(), i)));
         }
         for (AgentRef r : warm) {
             r.result().get(2, TimeUnit.MINUTES);
@@ -145,7 +145,7 @@ final class Soak implements AutoCloseable {
         for (int i = 0; i < plan.agents(); i++) {
             int first = i;
             launches.add(launchers.submit(() -> {
-                AgentRef ref = home.startTrip(agent(endAt, first));
+                AgentRef ref = home.agency().startTrip(agent(endAt, first));
                 Map<String, Set<String>> byKey = new ConcurrentHashMap<>();
                 reports.put(ref, byKey);
                 ref.addReportListener(v -> {

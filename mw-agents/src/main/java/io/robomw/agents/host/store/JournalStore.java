@@ -248,6 +248,7 @@ public final class JournalStore implements AgentStore {
             recoveredEvents = List.copyOf(events.values());
             compact();
             deleteUnheldSpoolFiles();
+            deleteUnfinishedArchives(archives);
         } catch (IOException | RuntimeException e) {
             // A journal this store refuses must not keep the directory locked (a host retrying, or another, could not open it).
             try {
@@ -431,19 +432,33 @@ public final class JournalStore implements AgentStore {
         }
     }
 
+    /** Deletes the archives a killed process was writing (their {@code .jar} was never moved into place). */
+    private static void deleteUnfinishedArchives(Path archives) throws IOException {
+        try (var unfinished = Files.newDirectoryStream(archives, "*.tmp")) {
+            for (Path p : unfinished) {
+                Files.deleteIfExists(p);
+            }
+        }
+    }
+
     @Override
     public void putArchive(CodeArchive archive) throws IOException {
         Path file = archives.resolve(archive.digest().hex() + ".jar");
         if (!Files.exists(file)) {
-            Path tmp = archives.resolve(archive.digest().hex() + ".tmp");
-            try (FileChannel c = FileChannel.open(tmp, StandardOpenOption.CREATE, StandardOpenOption.WRITE, StandardOpenOption.TRUNCATE_EXISTING)) {
-                ByteBuffer b = ByteBuffer.wrap(archive.bytes());
-                while (b.hasRemaining()) {
-                    c.write(b);
+            // A file of its own for each writer: two agents of the same code may bring its archive at once.
+            Path tmp = Files.createTempFile(archives, archive.digest().hex() + "-", ".tmp");
+            try {
+                try (FileChannel c = FileChannel.open(tmp, StandardOpenOption.WRITE, StandardOpenOption.TRUNCATE_EXISTING)) {
+                    ByteBuffer b = ByteBuffer.wrap(archive.bytes());
+                    while (b.hasRemaining()) {
+                        c.write(b);
+                    }
+                    c.force(true);
                 }
-                c.force(true);
+                Files.move(tmp, file, StandardCopyOption.ATOMIC_MOVE, StandardCopyOption.REPLACE_EXISTING);
+            } finally {
+                Files.deleteIfExists(tmp);
             }
-            Files.move(tmp, file, StandardCopyOption.ATOMIC_MOVE, StandardCopyOption.REPLACE_EXISTING);
         }
         archiveCache.putIfAbsent(archive.digest(), archive);
     }

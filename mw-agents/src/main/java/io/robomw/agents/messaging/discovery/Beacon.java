@@ -2,6 +2,7 @@ package io.robomw.agents.messaging.discovery;
 
 import io.robomw.agents.messaging.Address;
 import io.robomw.agents.messaging.MessagingNode;
+import io.robomw.agents.net.OwnerThreads;
 import io.robomw.agents.messaging.MessagingSettings;
 import io.robomw.agents.messaging.PresenceRecord;
 import org.slf4j.Logger;
@@ -63,13 +64,10 @@ public final class Beacon implements AutoCloseable {
             throw new IllegalArgumentException("a beacon goes to a multicast group (multicast://239.255.77.77:7447), not " + group);
         }
         MessagingNode announcer = MessagingNode.builder(node.name()).settings(MessagingSettings.defaults()).bind(group).build();
-        ScheduledExecutorService timer = Executors.newSingleThreadScheduledExecutor(r -> {
-            Thread t = new Thread(r, "mw-beacon-" + node.name());
-            t.setDaemon(true);
-            return t;
-        });
+        ScheduledExecutorService timer = Executors.newSingleThreadScheduledExecutor(
+                r -> OwnerThreads.thread("mw-beacon-" + node.name(), r, node.failures()));
         Beacon b = new Beacon(node, announcer, timer, period);
-        timer.scheduleAtFixedRate(() -> b.announce(true), 0, period.toMillis(), TimeUnit.MILLISECONDS);
+        timer.scheduleAtFixedRate(OwnerThreads.rounds(node.failures(), () -> b.announce(true)), 0, period.toMillis(), TimeUnit.MILLISECONDS);
         return b;
     }
 

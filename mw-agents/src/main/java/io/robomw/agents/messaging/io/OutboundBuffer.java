@@ -109,7 +109,9 @@ public final class OutboundBuffer {
         Thread t = threads.newThread(() -> {
             try {
                 writeLoop(out);
-            } catch (IOException e) {
+            } catch (Throwable e) {
+                // the link ends with its writer, whatever ended it; what is not an I/O failure also
+                // ends the thread, which reports it (the threads' factory)
                 close();
                 lock.lock();
                 try {
@@ -117,7 +119,13 @@ public final class OutboundBuffer {
                 } finally {
                     lock.unlock();
                 }
-                onError.accept(e);
+                onError.accept(e instanceof IOException io ? io : new IOException("the writer of " + peer + " failed: " + e, e));
+                if (e instanceof RuntimeException r) {
+                    throw r;
+                }
+                if (e instanceof Error err) {
+                    throw err;
+                }
             }
         });
         writerThread = t;

@@ -470,7 +470,8 @@ final class BrokerSession implements Link, Endpoint {
                 context.dropped(DropReason.MALFORMED, address + " topic " + t, "a " + bytes.length + "-byte message that is not a RoboMW frame");
             }
         } catch (Throwable e) {
-            LOG.warn("node '{}': a message from broker {} on {} could not be handled: {}", context.nodeName(), address, p.getTopic(), e.toString(), e);
+            context.failures().surviveOrRethrow(Thread.currentThread().getName(), e);
+            LOG.warn("node '{}': a message from broker {} on {} could not be handled: {}", context.nodeName(), address, p.getTopic(), e.toString());
         } finally {
             if (p.getQos() != MqttQos.AT_MOST_ONCE) {
                 p.acknowledge();

@@ -49,7 +49,7 @@ final class RmiEndpoint implements Endpoint, FrameEndpoint {
         this.registry = registry;
         this.ownRegistry = ownRegistry;
         this.expiry = Executors.newSingleThreadScheduledExecutor(context.threads("rmi-sessions-" + address.port()));
-        expiry.scheduleWithFixedDelay(this::expire, 5, 5, TimeUnit.SECONDS);
+        expiry.scheduleWithFixedDelay(io.robomw.agents.net.OwnerThreads.rounds(context.failures(), this::expire), 5, 5, TimeUnit.SECONDS);
     }
 
     @Override

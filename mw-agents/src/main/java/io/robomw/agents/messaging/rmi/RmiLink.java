@@ -124,9 +124,12 @@ final class RmiLink implements Link {
             }
             try {
                 FrameBatches.deliver(frames, this, context);
-            } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
-                LOG.error("node '{}': frames from {} could not be handled ({})", context.nodeName(), address, e.toString(), e);
-                fail("frames could not be handled: " + e);
+            } catch (Throwable e) {
+                try {
+                    context.failures().surviveOrRethrow(Thread.currentThread().getName(), e);
+                } finally {
+                    fail("frames could not be handled: " + e);
+                }
                 return;
             }
         }

@@ -4,7 +4,6 @@ import io.robomw.agents.messaging.MessagingNode;
 import io.robomw.api.Agency;
 import io.robomw.api.Messaging;
 import io.robomw.api.Capability;
-import io.robomw.api.Message;
 import io.robomw.api.Futures;
 import io.robomw.api.MessagingException;
 import io.robomw.api.Pose;
@@ -18,12 +17,16 @@ import io.robomw.api.SensorType;
 import io.robomw.api.UnsupportedActionException;
 import io.robomw.api.spi.AgencyComponent;
 
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
 import java.io.Serializable;
 import java.time.Duration;
 import java.util.EnumSet;
 import java.util.List;
 import java.util.Set;
 import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.CancellationException;
 import java.util.concurrent.CompletionException;
 
 /**
@@ -35,6 +38,11 @@ import java.util.concurrent.CompletionException;
  * answer in time (the reply timeout, plus the motion's own duration) or the link closes, the call
  * fails with {@link RobotLinkException}, like a local robot whose link failed.
  *
+ * <p>The verbs keep their contracts across the link: cancelling the future of a remote motion
+ * (which a blocking verb does when its wait is interrupted or passes its deadline) ends the command
+ * on the serving host, so an interrupted {@code move} does not drive on; {@link #stop()} returns once
+ * the serving robot's own {@code stop()} has returned (the stop is on the wire to its hardware).
+ *
  * <p>Messaging calls go through the local node, which is connected to the serving host's node:
  * publications reach that host's subscribers (its agents), and its publications reach this
  * program. Agents are sent through this program's own agency (an in-process home, as for a
@@ -42,6 +50,8 @@ import java.util.concurrent.CompletionException;
  * remote robot keeps running, and motions already started finish there. Thread-safe.
  */
 public final class RemoteRobot implements Robot {
+
+    private static final Logger LOG = LoggerFactory.getLogger(RemoteRobot.class);
 
     private final MessagingNode node;
     private final boolean ownsNode;
@@ -101,17 +111,17 @@ public final class RemoteRobot implements Robot {
 
     @Override
     public CompletableFuture<Void> moveAsync(double distance, double speed) {
-        return call(new RobotCall.Move(distance, speed)).thenApply(v -> null);
+        return motion(call(new RobotCall.Move(distance, speed)));
     }
 
     @Override
     public CompletableFuture<Void> turnAsync(double radians, double speed) {
-        return call(new RobotCall.Turn(radians, speed)).thenApply(v -> null);
+        return motion(call(new RobotCall.Turn(radians, speed)));
     }
 
     @Override
     public CompletableFuture<Void> arcAsync(double radius, double angle, double speed) {
-        return call(new RobotCall.Arc(radius, angle, speed)).thenApply(v -> null);
+        return motion(call(new RobotCall.Arc(radius, angle, speed)));
     }
 
     @Override
@@ -126,24 +136,26 @@ public final class RemoteRobot implements Robot {
 
     @Override
     public CompletableFuture<Void> changeAltitudeAsync(double metres, double speed) {
-        return call(new RobotCall.ChangeAltitude(metres, speed)).thenApply(v -> null);
+        return motion(call(new RobotCall.ChangeAltitude(metres, speed)));
     }
 
     @Override
     public CompletableFuture<Void> performAsync(String action, double... args) {
-        return call(new RobotCall.Perform(action, args.clone())).thenApply(v -> null);
+        return motion(call(new RobotCall.Perform(action, args.clone())));
     }
 
     // ---- Perception ----
 
     @Override
     public CompletableFuture<Double> getValueAsync(Position position, SensorType type, ReturnType returnType) {
-        return call(new RobotCall.GetValue(position, type, returnType)).thenApply(v -> (Double) v);
+        CompletableFuture<Serializable> read = call(new RobotCall.GetValue(position, type, returnType));
+        return Futures.cancelling(read.thenApply(v -> (Double) v), read);
     }
 
     @Override
     public CompletableFuture<Double> getValueAsync(String sensorName, ReturnType returnType) {
-        return call(new RobotCall.GetValueByName(sensorName, returnType)).thenApply(v -> (Double) v);
+        CompletableFuture<Serializable> read = call(new RobotCall.GetValueByName(sensorName, returnType));
+        return Futures.cancelling(read.thenApply(v -> (Double) v), read);
     }
 
     @Override
@@ -188,16 +200,27 @@ public final class RemoteRobot implements Robot {
         return call(info.name(), call);
     }
 
+    /** @return a motion call's future as the verb's, cancelling which cancels the call (and so the command on the serving host) */
+    private static CompletableFuture<Void> motion(CompletableFuture<Serializable> call) {
+        return Futures.cancelling(call.thenApply(v -> null), call);
+    }
+
+    /**
+     * Sends a call and returns the future of its result. Cancelling that future (which a blocking
+     * verb does when its wait ends early: interrupted, or past its deadline) sends a
+     * {@link RobotCall.Cancel} for it, and the serving host cancels the robot's own future: the
+     * command ends there, its motors brake.
+     */
     private CompletableFuture<Serializable> call(String robotName, RobotCall call) {
         RobotException callSite = new RobotException("remote call " + call + " to robot '" + robotName + "' at " + host);
         Duration timeout = node.settings().replyTimeout().plus(call.expectedDuration());
-        CompletableFuture<Message> reply;
+        MessagingNode.Request request;
         try {
-            reply = node.request(robotName, host, password, topic, call, RobotProtocol.CALL, timeout);
+            request = node.startRequest(robotName, host, password, topic, call, RobotProtocol.CALL, timeout);
         } catch (MessagingException e) {
             return CompletableFuture.failedFuture(new RobotLinkException("robot '" + robotName + "' at " + host + " cannot be reached: " + e.getMessage(), e));
         }
-        return reply.handle((m, e) -> {
+        CompletableFuture<Serializable> result = request.reply().handle((m, e) -> {
             if (e != null) {
                 Throwable cause = e instanceof CompletionException && e.getCause() != null ? e.getCause() : e;
                 throw new RobotLinkException("robot '" + robotName + "' at " + host + " did not answer " + call + ": " + cause.getMessage(), cause);
@@ -215,5 +238,27 @@ public final class RemoteRobot implements Robot {
             }
             return r.value();
         });
+        result.whenComplete((v, e) -> {
+            if (e instanceof CancellationException) {
+                cancelRemote(robotName, call, request);
+            }
+        });
+        return result;
+    }
+
+    /** Tells the serving host to end a call whose caller stopped waiting; its reply is not awaited. */
+    private void cancelRemote(String robotName, RobotCall call, MessagingNode.Request request) {
+        request.reply().cancel(false);
+        try {
+            node.startRequest(robotName, host, password, topic, new RobotCall.Cancel(request.correlationId()), RobotProtocol.CALL,
+                    node.settings().replyTimeout()).reply().whenComplete((m, e) -> {
+                        if (e != null) {
+                            LOG.warn("robot '{}' at {}: the cancel of {} was not answered ({}); the command may go on there", robotName, host, call,
+                                    e.getMessage());
+                        }
+                    });
+        } catch (MessagingException e) {
+            LOG.warn("robot '{}' at {}: cannot cancel {} there ({}); the command may go on there", robotName, host, call, e.getMessage());
+        }
     }
 }

@@ -1,5 +1,6 @@
 package io.robomw.agents.messaging.robot;
 
+import io.robomw.api.Futures;
 import io.robomw.api.Pose;
 import io.robomw.api.Position;
 import io.robomw.api.ReturnType;
@@ -14,7 +15,9 @@ import java.util.concurrent.CompletableFuture;
 /**
  * One call of a remote robot's verbs, as it travels from {@link RemoteRobot} to
  * {@link RobotServer}. Each call knows how to run itself on the served robot and how long it may
- * take (so the client's wait is bounded by the motion, not by a guess).
+ * take (so the client's wait is bounded by the motion, not by a guess). A motion's future keeps
+ * the verbs' contract: cancelling it ends the robot's command, which is what {@link Cancel} does
+ * for a caller whose wait ended early.
  */
 public sealed interface RobotCall extends Serializable {
 
@@ -43,7 +46,7 @@ public sealed interface RobotCall extends Serializable {
     record Move(double distance, double speed) implements RobotCall {
         @Override
         public CompletableFuture<Serializable> run(Robot robot) {
-            return robot.moveAsync(distance, speed).thenApply(v -> null);
+            return motion(robot.moveAsync(distance, speed));
         }
 
         @Override
@@ -56,7 +59,7 @@ public sealed interface RobotCall extends Serializable {
     record Turn(double radians, double speed) implements RobotCall {
         @Override
         public CompletableFuture<Serializable> run(Robot robot) {
-            return robot.turnAsync(radians, speed).thenApply(v -> null);
+            return motion(robot.turnAsync(radians, speed));
         }
 
         @Override
@@ -69,12 +72,26 @@ public sealed interface RobotCall extends Serializable {
     record Arc(double radius, double angle, double speed) implements RobotCall {
         @Override
         public CompletableFuture<Serializable> run(Robot robot) {
-            return robot.arcAsync(radius, angle, speed).thenApply(v -> null);
+            return motion(robot.arcAsync(radius, angle, speed));
         }
 
         @Override
         public Duration expectedDuration() {
             return seconds(radius * angle, speed);
+        }
+    }
+
+    /**
+     * Ends a call still running on the served robot (a motion whose caller's wait ended early:
+     * interrupted, or past its deadline): the motion's future is cancelled, so its command ends
+     * and its motors brake. The result is whether the call was still running.
+     *
+     * @param call the correlation id of the call to end
+     */
+    record Cancel(java.util.UUID call) implements RobotCall {
+        @Override
+        public CompletableFuture<Serializable> run(Robot robot) {
+            throw new IllegalStateException("a cancel is handled by the robot's server, which knows its running calls");
         }
     }
 
@@ -100,7 +117,7 @@ public sealed interface RobotCall extends Serializable {
     record ChangeAltitude(double metres, double speed) implements RobotCall {
         @Override
         public CompletableFuture<Serializable> run(Robot robot) {
-            return robot.changeAltitudeAsync(metres, speed).thenApply(v -> null);
+            return motion(robot.changeAltitudeAsync(metres, speed));
         }
 
         @Override
@@ -113,7 +130,7 @@ public sealed interface RobotCall extends Serializable {
     record Perform(String action, double[] args) implements RobotCall {
         @Override
         public CompletableFuture<Serializable> run(Robot robot) {
-            return robot.performAsync(action, args).thenApply(v -> null);
+            return motion(robot.performAsync(action, args));
         }
     }
 
@@ -149,6 +166,11 @@ public sealed interface RobotCall extends Serializable {
             robot.resetPose(new Pose(x, y, heading));
             return CompletableFuture.completedFuture(null);
         }
+    }
+
+    /** @return a motion's future as a call's result, cancelling which cancels the motion's own (its command ends) */
+    private static CompletableFuture<Serializable> motion(CompletableFuture<Void> command) {
+        return Futures.cancelling(command.thenApply(v -> null), command);
     }
 
     private static Duration seconds(double amount, double speed) {

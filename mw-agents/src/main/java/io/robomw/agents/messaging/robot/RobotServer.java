@@ -8,14 +8,20 @@ import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 import java.io.Serializable;
+import java.util.Map;
+import java.util.UUID;
 import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.ConcurrentHashMap;
 
 /**
  * Serves a local {@link Robot} to remote callers ({@link RemoteRobot},
  * {@code Robots.remote("tcp://host:port/name")}): answers each {@link RobotCall} on the robot's
  * topic with a {@link RobotReply} once the robot has done it. Motions run asynchronously, so the
  * messaging thread is never held while a robot moves; concurrent callers follow the robot's own
- * rules (most recent motion wins).
+ * rules (most recent motion wins). A caller whose wait ends early cancels its call
+ * ({@link RobotCall.Cancel}): the robot's future is cancelled, which ends its command. A
+ * {@code stop()} is answered once the robot's own {@code stop()} has returned (the stop is on the
+ * wire to its hardware).
  *
  * <p>The node must allow the calls' classes: build it with {@link RobotProtocol#forServer}.
  * Close the server to stop serving; the node and the robot stay open.
@@ -28,6 +34,8 @@ public final class RobotServer implements AutoCloseable {
     private final Robot robot;
     private final String topic;
     private final MessageListener listener = this::onCall;
+    /** The calls still running, by the correlation id of their request, for {@link RobotCall.Cancel}. */
+    private final Map<UUID, CompletableFuture<Serializable>> running = new ConcurrentHashMap<>();
 
     private RobotServer(MessagingNode node, Robot robot) {
         this.node = node;
@@ -64,19 +72,38 @@ public final class RobotServer implements AutoCloseable {
                     + (m.payload() == null ? "null" : m.payload().getClass().getName()))), "failed");
             return;
         }
-        CompletableFuture<Serializable> done;
-        try {
-            done = call.run(robot);
-        } catch (RuntimeException e) {
-            done = CompletableFuture.failedFuture(e);
-        }
-        done.whenComplete((value, failure) -> {
-            RobotReply reply = failure == null ? new RobotReply(value, null) : new RobotReply(null, RobotFailures.travelling(failure));
-            try {
-                node.replyMessage(m, reply, failure == null ? "ok" : "failed");
-            } catch (RuntimeException e) {
-                LOG.warn("robot '{}': cannot answer {} from '{}': {}", robot.name(), call, m.sender(), e.getMessage());
+        if (call instanceof RobotCall.Cancel cancel) {
+            CompletableFuture<Serializable> target = running.get(cancel.call());
+            boolean wasRunning = target != null && target.cancel(true);
+            if (wasRunning) {
+                LOG.info("robot '{}': a call of '{}' was cancelled by its caller (its wait ended early); its command ends", robot.name(), m.sender());
             }
-        });
+            reply(m, call, wasRunning, null);
+            return;
+        }
+        CompletableFuture<Serializable> done = run(call);
+        if (!done.isDone()) {
+            UUID id = m.correlationId();
+            running.put(id, done);
+            done.whenComplete((v, e) -> running.remove(id, done));
+        }
+        done.whenComplete((value, failure) -> reply(m, call, value, failure));
+    }
+
+    private CompletableFuture<Serializable> run(RobotCall call) {
+        try {
+            return call.run(robot);
+        } catch (RuntimeException e) {
+            return CompletableFuture.failedFuture(e);
+        }
+    }
+
+    private void reply(Message m, RobotCall call, Serializable value, Throwable failure) {
+        RobotReply reply = failure == null ? new RobotReply(value, null) : new RobotReply(null, RobotFailures.travelling(failure));
+        try {
+            node.replyMessage(m, reply, failure == null ? "ok" : "failed");
+        } catch (RuntimeException e) {
+            LOG.warn("robot '{}': cannot answer {} from '{}': {}", robot.name(), call, m.sender(), e.getMessage());
+        }
     }
 }

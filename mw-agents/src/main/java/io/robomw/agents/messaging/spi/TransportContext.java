@@ -62,8 +62,15 @@ public interface TransportContext {
     void closed(Channel channel);
 
     /**
+     * @return where what a transport's threads catch goes: a failure of one unit of their work (a
+     *         frame, a connection) as survived, what ends a thread as its death
+     */
+    io.robomw.api.spi.FailurePolicy failures();
+
+    /**
      * @param role what the threads do, for example {@code tcp-read-127.0.0.1:7000}
-     * @return a factory of daemon threads named after the node and the role
+     * @return a factory of daemon threads named after the node and the role, which report whatever
+     *         ends them to {@link #failures()}
      */
     ThreadFactory threads(String role);
 }

@@ -1,8 +1,6 @@
 package io.robomw.agents.messaging.tcp;
 
 import io.robomw.agents.messaging.PeerLimits;
-import org.slf4j.Logger;
-import org.slf4j.LoggerFactory;
 
 import java.util.Set;
 import java.util.concurrent.ConcurrentHashMap;
@@ -29,7 +27,6 @@ import java.util.concurrent.TimeUnit;
  */
 final class ConnectionTimeouts implements AutoCloseable {
 
-    private static final Logger LOG = LoggerFactory.getLogger(ConnectionTimeouts.class);
 
     /** What the timer watches: a connection's reading progress, and how to end it. */
     interface Watched {
@@ -66,15 +63,18 @@ final class ConnectionTimeouts implements AutoCloseable {
 
     /**
      * @param limits  the timeouts
-     * @param threads makes the timer thread (started at once)
+     * @param threads  makes the timer thread (started at once)
+     * @param failures where a failed check goes (the next period checks again)
      */
-    ConnectionTimeouts(PeerLimits limits, ThreadFactory threads) {
+    ConnectionTimeouts(PeerLimits limits, ThreadFactory threads, io.robomw.api.spi.FailurePolicy failures) {
         this.firstFrameNanos = limits.firstFrameTimeout().toNanos();
         this.idleNanos = limits.idleTimeout().toNanos();
         this.periodNanos = Math.max(TimeUnit.MILLISECONDS.toNanos(10),
                 Math.min(TimeUnit.SECONDS.toNanos(1), Math.min(firstFrameNanos, idleNanos) / 10));
         this.timer = Executors.newSingleThreadScheduledExecutor(threads);
-        timer.scheduleWithFixedDelay(this::check, periodNanos, periodNanos, TimeUnit.NANOSECONDS);
+        // A throw out of a fixed-delay task would cancel it without a word, and the node's timeouts would stop
+        // being enforced: each round's failure is reported and the next period checks again.
+        timer.scheduleWithFixedDelay(io.robomw.agents.net.OwnerThreads.rounds(failures, this::check), periodNanos, periodNanos, TimeUnit.NANOSECONDS);
     }
 
     /**
@@ -103,26 +103,19 @@ final class ConnectionTimeouts implements AutoCloseable {
     }
 
     private void check() {
-        try {
-            long now = System.nanoTime();
-            watched.forEach((c, seen) -> {
-                long p = c.progress();
-                if (p != seen.progress) {
-                    seen.progress = p;
-                    seen.sinceNanos = now;
-                } else if ((p & 1) == 0) {
-                    long limit = p == 0 ? firstFrameNanos : idleNanos;
-                    if (now - seen.sinceNanos >= limit) {
-                        watched.remove(c);
-                        c.timedOut(p == 0, limit);
-                    }
+        long now = System.nanoTime();
+        watched.forEach((c, seen) -> {
+            long p = c.progress();
+            if (p != seen.progress) {
+                seen.progress = p;
+                seen.sinceNanos = now;
+            } else if ((p & 1) == 0) {
+                long limit = p == 0 ? firstFrameNanos : idleNanos;
+                if (now - seen.sinceNanos >= limit) {
+                    watched.remove(c);
+                    c.timedOut(p == 0, limit);
                 }
-            });
-        } catch (Throwable e) {
-            // A throw out of a fixed-delay task cancels it without a word, and the node's timeouts
-            // would stop being enforced: log any failure and let the next period check again.
-            LOG.error("checking connection timeouts failed (checked again in {} ms): {}",
-                    TimeUnit.NANOSECONDS.toMillis(periodNanos), e.toString(), e);
-        }
+            }
+        });
     }
 }

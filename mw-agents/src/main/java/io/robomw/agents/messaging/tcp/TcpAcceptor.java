@@ -96,10 +96,13 @@ final class TcpAcceptor implements Endpoint {
             TcpConnection c;
             try {
                 c = new TcpConnection(s, address, peer, context, open, timeouts, accepted::decrementAndGet);
-            } catch (IOException | RuntimeException | LinkageError e) {
+            } catch (Throwable e) {
                 accepted.decrementAndGet();
-                LOG.warn("node '{}': connection from {} failed: {}", context.nodeName(), peer, e.toString());
                 closeQuietly(s);
+                if (!(e instanceof IOException)) {
+                    context.failures().surviveOrRethrow(Thread.currentThread().getName(), e);
+                }
+                LOG.warn("node '{}': connection from {} failed: {}", context.nodeName(), peer, e.toString());
                 continue;
             }
             c.start();

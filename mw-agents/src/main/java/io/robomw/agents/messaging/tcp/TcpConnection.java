@@ -243,7 +243,7 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
                 context.dropped(DropReason.TIMED_OUT, peer, "no TLS handshake within " + limits.firstFrameTimeout().toMillis()
                         + " ms; closing this connection");
             }
-        } catch (FrameException | IOException | RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
+        } catch (Throwable e) {
             ended(e);
         } finally {
             close();
@@ -359,9 +359,12 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
                 progress.lazySet(++p);
             }
             return true;
-        } catch (FrameException | IOException | RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
-            ended(e);
-            close();
+        } catch (Throwable e) {
+            try {
+                ended(e);
+            } finally {
+                close();
+            }
             return false;
         } finally {
             if ((p & 1) == 1 && !toReader) {
@@ -396,6 +399,11 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
     }
 
     /** Counts and logs why reading this connection ended (the caller closes it). */
+    /**
+     * Says why the connection ends: what the peer sent or the socket did, counted and logged; any
+     * other failure is reported to the node's failure policy (the node goes on without this
+     * connection), and one no thread survives is re-thrown.
+     */
     private void ended(Throwable e) {
         if (e instanceof FrameException f) {
             context.dropped(f.reason(), peer, f.getMessage() + "; closing this connection");
@@ -411,7 +419,8 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
                 LOG.warn("node '{}': connection {} failed: {}", context.nodeName(), peer, e.toString());
             }
         } else {
-            LOG.error("node '{}': reading from {} failed ({}); closing this connection, the node goes on", context.nodeName(), peer, e.toString(), e);
+            context.failures().surviveOrRethrow(Thread.currentThread().getName(), e);
+            LOG.warn("node '{}': reading from {} failed ({}); closing this connection, the node goes on", context.nodeName(), peer, e.toString());
         }
     }
 

@@ -31,7 +31,7 @@ final class TcpTransport implements Transport {
 
     TcpTransport(TransportContext context) {
         this.context = context;
-        this.timeouts = new ConnectionTimeouts(context.settings().limits(), context.threads("tcp-timeouts"));
+        this.timeouts = new ConnectionTimeouts(context.settings().limits(), context.threads("tcp-timeouts"), context.failures());
     }
 
     @Override

@@ -136,9 +136,10 @@ public final class DatagramPort implements AutoCloseable {
             }
             try {
                 context.onFrame(datagram, 0, datagram.length, peerOf.apply(from));
-            } catch (RuntimeException | LinkageError | AssertionError | StackOverflowError e) {
-                LOG.error("node '{}': a datagram from {} on {} could not be handled ({}); dropped, the node goes on", context.nodeName(), from, label,
-                        e.toString(), e);
+            } catch (Throwable e) {
+                context.failures().surviveOrRethrow(Thread.currentThread().getName(), e);
+                LOG.warn("node '{}': a datagram from {} on {} could not be handled ({}); dropped, the node goes on", context.nodeName(), from, label,
+                        e.toString());
             }
         }
     }

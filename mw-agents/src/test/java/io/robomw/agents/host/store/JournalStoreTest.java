@@ -170,6 +170,39 @@ class JournalStoreTest {
         return n;
     }
 
+    @Test
+    void theSameArchiveBroughtByManyAgentsAtOnceIsStoredOnceAndNoneIsRefused() throws Exception {
+        byte[] code = new byte[256 * 1024];
+        new java.util.Random(3).nextBytes(code);
+        io.robomw.agents.host.code.CodeArchive archive = io.robomw.agents.host.code.CodeArchive.of(code);
+        try (JournalStore s = JournalStore.open(dir)) {
+            java.util.concurrent.ExecutorService writers = java.util.concurrent.Executors.newFixedThreadPool(8);
+            try {
+                java.util.concurrent.CountDownLatch go = new java.util.concurrent.CountDownLatch(1);
+                List<java.util.concurrent.Future<?>> puts = new java.util.ArrayList<>();
+                for (int i = 0; i < 8; i++) {
+                    puts.add(writers.submit(() -> {
+                        go.await();
+                        s.putArchive(archive);
+                        return null;
+                    }));
+                }
+                go.countDown();
+                for (java.util.concurrent.Future<?> p : puts) {
+                    p.get(30, java.util.concurrent.TimeUnit.SECONDS);
+                }
+            } finally {
+                writers.shutdownNow();
+            }
+        }
+        try (var files = Files.list(dir.resolve("archives"))) {
+            assertEquals(List.of(archive.digest().hex() + ".jar"), files.map(f -> f.getFileName().toString()).toList(), "one archive, no leftovers");
+        }
+        try (JournalStore again = JournalStore.open(dir)) {
+            assertArrayEquals(code, again.archive(archive.digest()).orElseThrow().bytes());
+        }
+    }
+
     private static void accept(AgentStore s, UUID id, long hop, byte[] image) throws Exception {
         byte[] framed = new byte[image.length + 3];
         System.arraycopy(image, 0, framed, 2, image.length);

@@ -4,11 +4,11 @@ import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
-import io.robomw.platform.LinkThreading;
 import io.robomw.platform.PlatformCheck;
 import io.robomw.platform.ft.FtMotors;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.SerialSettings;
+import io.robomw.platform.motor.MotorPlatform;
 
 import java.io.IOException;
 import java.time.Duration;
@@ -66,9 +66,9 @@ public final class IntelligentInterfacePlatformProvider implements PlatformProvi
                 SerialSettings.of(IntelligentInterfaceTelegram.BAUD, 8, SerialSettings.Parity.NONE, 1), 0, timeout);
         try {
             IntelligentInterfaceInputs inputs = new IntelligentInterfaceInputs(config.clock());
-            IntelligentInterfaceMotorPlatform motors = new IntelligentInterfaceMotorPlatform(config, channel, inputs);
+            MotorPlatform motors = new MotorPlatform(config, new IntelligentInterfaceMotorDriver(config, channel, inputs));
             return new BrickPlatform(config, motors, new IntelligentInterfaceSensorPlatform(config.robotName(), motors, inputs),
-                    LinkThreading.OWN_THREAD, channel).start();
+                    channel, null).start();
         } catch (IOException | RuntimeException e) {
             channel.close();
             throw e;

@@ -2,7 +2,7 @@ package io.robomw.platform.ft.intelligent;
 
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.spi.SensorChannel;
-import io.robomw.platform.motor.GenericMotorPlatform;
+import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
 
@@ -29,7 +29,7 @@ public final class IntelligentInterfaceSensorPlatform extends SensorPlatform {
      * @param motors the motor platform
      * @param inputs the inputs the motor platform publishes
      */
-    public IntelligentInterfaceSensorPlatform(String robot, GenericMotorPlatform motors, IntelligentInterfaceInputs inputs) {
+    public IntelligentInterfaceSensorPlatform(String robot, MotorPlatform motors, IntelligentInterfaceInputs inputs) {
         super(motors);
         this.robot = robot;
         this.inputs = inputs;

@@ -4,10 +4,10 @@ import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.PlatformProvider;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.platform.BrickPlatform;
-import io.robomw.platform.LinkThreading;
 import io.robomw.platform.PlatformCheck;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.SerialSettings;
+import io.robomw.platform.motor.MotorPlatform;
 
 import java.io.IOException;
 import java.time.Duration;
@@ -58,13 +58,14 @@ public final class TxtPlatformProvider implements PlatformProvider {
         try {
             TxtController controller = new TxtController(config.robotName(), channel);
             controller.open();
-            TxtMotorPlatform motors = new TxtMotorPlatform(config, controller);
-            motors.exchangeNow();
+            TxtMotorDriver driver = new TxtMotorDriver(config, controller);
+            MotorPlatform motors = new MotorPlatform(config, driver);
+            driver.exchangeNow(motors.feedback());
             AutoCloseable link = () -> {
                 controller.stopOnline();
                 channel.close();
             };
-            return new BrickPlatform(config, motors, new TxtSensorPlatform(motors, controller), LinkThreading.OWN_THREAD, link).start();
+            return new BrickPlatform(config, motors, new TxtSensorPlatform(motors, driver, controller), channel, link).start();
         } catch (IOException | RuntimeException e) {
             channel.close();
             throw e;

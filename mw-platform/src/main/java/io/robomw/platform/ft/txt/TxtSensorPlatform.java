@@ -2,6 +2,8 @@ package io.robomw.platform.ft.txt;
 
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.spi.SensorChannel;
+import io.robomw.platform.motor.FeedbackSink;
+import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
 
@@ -35,7 +37,8 @@ public final class TxtSensorPlatform extends SensorPlatform {
     /** How old the last exchange's inputs may be for a read to use them: 100 ms. */
     static final long FRESH_NANOS = 100_000_000L;
 
-    private final TxtMotorPlatform motors;
+    private final TxtMotorDriver driver;
+    private final FeedbackSink feedback;
     private final TxtController controller;
 
     /** A universal input mode. */
@@ -59,12 +62,14 @@ public final class TxtSensorPlatform extends SensorPlatform {
     }
 
     /**
-     * @param motors     the motor platform, which runs the exchange
+     * @param motors     the motor platform (for tachometers, and where the encoders an exchange reads go)
+     * @param driver     the motor driver, which runs the exchange
      * @param controller the TXT
      */
-    public TxtSensorPlatform(TxtMotorPlatform motors, TxtController controller) {
+    public TxtSensorPlatform(MotorPlatform motors, TxtMotorDriver driver, TxtController controller) {
         super(motors);
-        this.motors = motors;
+        this.driver = driver;
+        this.feedback = motors.feedback();
         this.controller = controller;
     }
 
@@ -107,17 +112,17 @@ public final class TxtSensorPlatform extends SensorPlatform {
     }
 
     private CompletableFuture<Double> read(String name, int input, int generation) {
-        TxtMotorPlatform.Inputs in = motors.inputs();
-        if (in == null || in.generation() < generation || motors.ageNanos(in) > FRESH_NANOS) {
+        TxtMotorDriver.Inputs in = driver.inputs();
+        if (in == null || in.generation() < generation || driver.ageNanos(in) > FRESH_NANOS) {
             try {
-                motors.exchangeNow();
+                driver.exchangeNow(feedback);
             } catch (IOException e) {
                 return CompletableFuture.failedFuture(new RobotLinkException("robot '" + controller.robot() + "': reading sensor '" + name
                         + "' on I" + (input + 1) + " failed: " + e.getMessage(), e));
             } catch (RuntimeException e) {
                 return CompletableFuture.failedFuture(e);
             }
-            in = motors.inputs();
+            in = driver.inputs();
         }
         return CompletableFuture.completedFuture((double) in.values()[input]);
     }

@@ -9,6 +9,7 @@ import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.ft.FtMotors;
 import io.robomw.platform.link.Communicator;
 import io.robomw.platform.link.Link;
+import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.motor.MotorState;
 import org.junit.jupiter.api.Test;
 
@@ -39,7 +40,7 @@ class IntelligentInterfaceLineTimingTest {
     private static final int TICKS = 16;
     private static final long LINE_HELD_MILLIS = 40;
     private static final long HOST_AWAY_MILLIS = 60;
-    private static final long WIRE = IntelligentInterfaceMotorPlatform.COMMAND_WIRE_NANOS;
+    private static final long WIRE = IntelligentInterfaceMotorDriver.COMMAND_WIRE_NANOS;
 
     /** The interface and its line; one motor, M1, with its impulse switch on E1. */
     static final class TimedInterface implements Link {
@@ -146,7 +147,14 @@ class IntelligentInterfaceLineTimingTest {
         }
     }
 
-    private static IntelligentInterfaceMotorPlatform platform(TimedInterface line) throws IOException {
+    /** The driver under test, and the motor platform its readings go to. */
+    private record Under(IntelligentInterfaceMotorDriver driver, MotorPlatform motors) {
+        double degrees() {
+            return motors.motorDegrees("M1");
+        }
+    }
+
+    private static Under platform(TimedInterface line) throws IOException {
         Communicator c = new Communicator(line);
         c.open();
         BrickChannel channel = new BrickChannel("ft-test", c, Duration.ofMillis(500));
@@ -154,18 +162,20 @@ class IntelligentInterfaceLineTimingTest {
                 new ConnectionSettings(Map.of("port", "/dev/ttyS0"), "test.yaml"),
                 List.of(new MotorChannel("M1", MotorChannel.Role.LEFT_WHEEL, TICKS, Optional.of("E1"))), List.of(),
                 Duration.ofMillis(10), Duration.ZERO, Clock.system(), PlatformServices.none(), io.robomw.api.spi.Cycling.OWN_THREADS, io.robomw.api.spi.FailurePolicy.logging());
-        return new IntelligentInterfaceMotorPlatform(config, channel, new IntelligentInterfaceInputs(config.clock()));
+        IntelligentInterfaceMotorDriver driver = new IntelligentInterfaceMotorDriver(config, channel, new IntelligentInterfaceInputs(config.clock()));
+        return new Under(driver, new MotorPlatform(config, driver));
     }
 
     /** Runs the link side, a cycle every 10 ms, until the wheel's limited rotation ended (or 20 s passed). */
-    private static void turn(IntelligentInterfaceMotorPlatform motors, double degreesPerSecond, double limit) throws IOException {
-        motors.runImpl(List.of(new MotorState("M1", degreesPerSecond, limit, MotorState.StopMode.BRAKE)));
+    private static void turn(Under under, double degreesPerSecond, double limit) throws IOException {
+        IntelligentInterfaceMotorDriver motors = under.driver();
+        motors.send(List.of(new MotorState("M1", degreesPerSecond, limit, MotorState.StopMode.BRAKE)), under.motors().feedback());
         long deadline = System.nanoTime() + Duration.ofSeconds(20).toNanos();
         int idle = 0;
         while (idle < 3 && System.nanoTime() < deadline) {
             long cycleStart = System.nanoTime();
             long before = motors.wheelCommandsOn();
-            motors.pollFeedback();
+            motors.poll(under.motors().feedback());
             idle = motors.wheelCommandsOn() == before ? idle + 1 : 0;
             LockSupport.parkNanos(Math.max(0, cycleStart + 10_000_000L - System.nanoTime()));
         }
@@ -174,11 +184,11 @@ class IntelligentInterfaceLineTimingTest {
     @Test
     void shouldNeverLeaveAWheelOnWhenTheHostStopsWatching() throws Exception {
         TimedInterface line = new TimedInterface(true);
-        IntelligentInterfaceMotorPlatform motors = platform(line);
-        turn(motors, 310, 360);
+        Under under = platform(line);
+        turn(under, 310, 360);
         assertTrue(line.writes > 20, "the link side wrote " + line.writes + " times");
         assertEquals(0, line.writesLeavingTheMotorOn, "writes that left the motor on for the host's absence");
-        assertTrue(motors.bursts() > 0);
+        assertTrue(under.driver().bursts() > 0);
     }
 
     /**
@@ -191,18 +201,18 @@ class IntelligentInterfaceLineTimingTest {
     @Test
     void shouldCountEveryTransitionAndEndEachRotationWithinHalfATickOnALoadedHost() throws Exception {
         TimedInterface line = new TimedInterface(true);
-        IntelligentInterfaceMotorPlatform motors = platform(line);
+        Under under = platform(line);
         double tick = 360.0 / TICKS;
-        motors.pollFeedback();
-        double countAtStart = motors.motorDegrees("M1");
-        turn(motors, 310, 360);
-        assertEquals(360, line.degrees, tick / 2 + IntelligentInterfaceMotorPlatform.SLOT_DEGREES, "the wheel after a turn forward");
-        assertEquals(line.degrees, motors.motorDegrees("M1") - countAtStart, tick / 2, "the driver's count against the wheel");
+        under.driver().poll(under.motors().feedback());
+        double countAtStart = under.degrees();
+        turn(under, 310, 360);
+        assertEquals(360, line.degrees, tick / 2 + IntelligentInterfaceMotorDriver.SLOT_DEGREES, "the wheel after a turn forward");
+        assertEquals(line.degrees, under.degrees() - countAtStart, tick / 2, "the driver's count against the wheel");
         double wheelThen = line.degrees;
-        double countThen = motors.motorDegrees("M1");
-        turn(motors, -310, 180);
-        assertEquals(-180, line.degrees - wheelThen, tick / 2 + IntelligentInterfaceMotorPlatform.SLOT_DEGREES, "the wheel's turn back");
-        assertEquals(line.degrees - wheelThen, motors.motorDegrees("M1") - countThen, tick / 2, "the driver's count against the wheel");
+        double countThen = under.degrees();
+        turn(under, -310, 180);
+        assertEquals(-180, line.degrees - wheelThen, tick / 2 + IntelligentInterfaceMotorDriver.SLOT_DEGREES, "the wheel's turn back");
+        assertEquals(line.degrees - wheelThen, under.degrees() - countThen, tick / 2, "the driver's count against the wheel");
     }
 
     /**
@@ -212,9 +222,9 @@ class IntelligentInterfaceLineTimingTest {
     @Test
     void shouldTurnAWheelAtItsDutyOfFullSpeedOnAQuietHost() throws Exception {
         TimedInterface line = new TimedInterface(false);
-        IntelligentInterfaceMotorPlatform motors = platform(line);
+        Under under = platform(line);
         long start = System.nanoTime();
-        turn(motors, 310, 720);
+        turn(under, 310, 720);
         double seconds = (System.nanoTime() - start) / 1e9;
         // 720° at 310°/s take 2.3 s. Allow for the idle cycles that end the loop and a busy test
         // machine, whose late cycles leave fewer bursts.

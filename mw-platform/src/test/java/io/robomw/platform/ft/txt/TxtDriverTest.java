@@ -9,8 +9,10 @@ import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.SensorChannel;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.SerialSettings;
+import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.motor.MotorState;
 import io.robomw.platform.sensor.Sensor;
+import io.robomw.testkit.Await;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
 
@@ -42,7 +44,8 @@ class TxtDriverTest {
     private FakeTxt txt;
     private BrickChannel channel;
     private TxtController controller;
-    private TxtMotorPlatform motors;
+    private TxtMotorDriver driver;
+    private MotorPlatform motors;
 
     @AfterEach
     void close() throws Exception {
@@ -65,7 +68,8 @@ class TxtDriverTest {
                 TxtProtocol.TCP_PORT, Duration.ofMillis(500));
         controller = new TxtController("txt-test", channel);
         controller.open();
-        motors = new TxtMotorPlatform(config, controller);
+        driver = new TxtMotorDriver(config, controller);
+        motors = new MotorPlatform(config, driver);
     }
 
     private void open() throws IOException {
@@ -89,8 +93,8 @@ class TxtDriverTest {
     @Test
     void shouldSendALimitedPairAsDistanceCommandsInStep() throws Exception {
         open();
-        motors.runImpl(List.of(new MotorState("M1", 310, 1023.1, BRAKE), new MotorState("M2", 310, 1023.1, BRAKE)));
-        motors.exchangeNow();
+        driver.send(List.of(new MotorState("M1", 310, 1023.1, BRAKE), new MotorState("M2", 310, 1023.1, BRAKE)), motors.feedback());
+        driver.exchangeNow(motors.feedback());
         TxtProtocol.Exchange x = txt.lastExchange();
         assertArrayEquals(new int[]{256, 0, 256, 0, 0, 0, 0, 0}, x.pwm(), "310 °/s is half of 620: PWM 256 forward");
         assertArrayEquals(new int[]{179, 179, 0, 0}, x.motorDist(), "1023.1° × 63 / 360 = 179 pulses");
@@ -101,42 +105,42 @@ class TxtDriverTest {
     @Test
     void shouldDriveReverseOnTheOddOutputWithoutALimit() throws Exception {
         open();
-        motors.runImpl(List.of(new MotorState("M2", -700, Double.POSITIVE_INFINITY, BRAKE)));
-        motors.exchangeNow();
+        driver.send(List.of(new MotorState("M2", -700, Double.POSITIVE_INFINITY, BRAKE)), motors.feedback());
+        driver.exchangeNow(motors.feedback());
         TxtProtocol.Exchange x = txt.lastExchange();
         assertArrayEquals(new int[]{0, 0, 0, 512, 0, 0, 0, 0}, x.pwm(), "beyond full speed is full power");
         assertArrayEquals(new int[4], x.motorDist());
         assertArrayEquals(new int[4], x.motorSync());
-        motors.runImpl(List.of(MotorState.stopped("M2", BRAKE)));
-        motors.exchangeNow();
+        driver.send(List.of(MotorState.stopped("M2", BRAKE)), motors.feedback());
+        driver.exchangeNow(motors.feedback());
         assertArrayEquals(new int[8], txt.lastExchange().pwm());
         assertArrayEquals(new int[]{0, 2, 0, 0}, txt.lastExchange().motorCmdId(), "a stop ends the command, as ftrobopy's stop() does");
     }
 
     @Test
     void shouldKeepTheSmallestSpeedRunning() {
-        assertEquals(1, TxtMotorPlatform.pwm(0.1));
-        assertEquals(0, TxtMotorPlatform.pwm(0));
-        assertEquals(512, TxtMotorPlatform.pwm(-620));
-        assertEquals(1, TxtMotorPlatform.distancePulses(1, TICKS));
-        assertEquals(0, TxtMotorPlatform.distancePulses(1e6, TICKS), "too far for the s16 field: no controller stop");
+        assertEquals(1, TxtMotorDriver.pwm(0.1));
+        assertEquals(0, TxtMotorDriver.pwm(0));
+        assertEquals(512, TxtMotorDriver.pwm(-620));
+        assertEquals(1, TxtMotorDriver.distancePulses(1, TICKS));
+        assertEquals(0, TxtMotorDriver.distancePulses(1e6, TICKS), "too far for the s16 field: no controller stop");
     }
 
     @Test
     void shouldSignCounterPulsesByTheDirectionDriven() throws Exception {
         open();
-        motors.exchangeNow();
-        motors.runImpl(List.of(new MotorState("M1", 310, Double.POSITIVE_INFINITY, BRAKE)));
-        motors.exchangeNow();
+        driver.exchangeNow(motors.feedback());
+        driver.send(List.of(new MotorState("M1", 310, Double.POSITIVE_INFINITY, BRAKE)), motors.feedback());
+        driver.exchangeNow(motors.feedback());
         txt.counter(0, 10);
-        motors.exchangeNow();
+        driver.exchangeNow(motors.feedback());
         assertEquals(degrees(10), motors.motorDegrees("M1"), 1e-9);
-        motors.runImpl(List.of(new MotorState("M1", -310, Double.POSITIVE_INFINITY, BRAKE)));
+        driver.send(List.of(new MotorState("M1", -310, Double.POSITIVE_INFINITY, BRAKE)), motors.feedback());
         txt.counter(0, 12);
-        motors.exchangeNow();
+        driver.exchangeNow(motors.feedback());
         assertEquals(degrees(12), motors.motorDegrees("M1"), 1e-9, "pulses before the reversal still count forward");
         txt.counter(0, 18);
-        motors.exchangeNow();
+        driver.exchangeNow(motors.feedback());
         assertEquals(degrees(6), motors.motorDegrees("M1"), 1e-9, "the counter counts up; the platform counts back");
     }
 
@@ -144,41 +148,44 @@ class TxtDriverTest {
     void shouldFollowTheCounterAcrossTheSixteenBitWrap() throws Exception {
         open();
         txt.counter(1, 32760);
-        motors.exchangeNow();
-        motors.runImpl(List.of(new MotorState("M2", 310, Double.POSITIVE_INFINITY, BRAKE)));
-        motors.exchangeNow();
+        driver.exchangeNow(motors.feedback());
+        driver.send(List.of(new MotorState("M2", 310, Double.POSITIVE_INFINITY, BRAKE)), motors.feedback());
+        driver.exchangeNow(motors.feedback());
         txt.counter(1, -32766);
-        motors.exchangeNow();
+        driver.exchangeNow(motors.feedback());
         assertEquals(degrees(10), motors.motorDegrees("M2"), 1e-9);
     }
 
     @Test
     void shouldStartCountingAgainWhenANewSessionBegins() throws Exception {
         open();
-        motors.runImpl(List.of(new MotorState("M1", 310, Double.POSITIVE_INFINITY, BRAKE)));
-        motors.exchangeNow();
+        driver.send(List.of(new MotorState("M1", 310, Double.POSITIVE_INFINITY, BRAKE)), motors.feedback());
+        driver.exchangeNow(motors.feedback());
         txt.counter(0, 20);
-        motors.exchangeNow();
+        driver.exchangeNow(motors.feedback());
         txt.dropClient();
         txt.counter(0, 3);
-        long deadline = System.nanoTime() + Duration.ofSeconds(5).toNanos();
-        int failures = 0;
-        while (true) {
+        int[] failures = new int[1];
+        Await.until("the driver reconnects", Duration.ofSeconds(5), () -> {
             try {
-                motors.exchangeNow();
-                break;
+                driver.exchangeNow(motors.feedback());
+                return true;
             } catch (IOException e) {
-                failures++;
-                assertTrue(System.nanoTime() < deadline, "the driver did not reconnect: " + e.getMessage());
-                LockSupport.parkNanos(10_000_000);
+                failures[0]++;
+                try {
+                    channel.reopen(); // what the link agent does while the link is down
+                } catch (IOException notYet) {
+                    // the next try reopens again
+                }
+                return false;
             }
-        }
-        assertTrue(failures > 0, "the dropped connection was noticed");
+        });
+        assertTrue(failures[0] > 0, "the dropped connection was noticed");
         long handshakes = txt.requestIds().stream().filter(id -> id == TxtProtocol.START_ONLINE).count();
         assertEquals(2, handshakes, "the new connection got its own handshake");
         assertEquals(degrees(20), motors.motorDegrees("M1"), 1e-9, "the restarted counter's first reading is a new base");
         txt.counter(0, 5);
-        motors.exchangeNow();
+        driver.exchangeNow(motors.feedback());
         assertEquals(degrees(22), motors.motorDegrees("M1"), 1e-9);
     }
 
@@ -186,11 +193,11 @@ class TxtDriverTest {
     void shouldLeaveTheStopToThePlatformForAWheelOnAnotherCounter() throws Exception {
         open(Optional.of("C3"), Optional.of("C1"), List.of());
         assertTrue(motors.hasEncoder("M1"));
-        motors.runImpl(List.of(new MotorState("M1", 310, 360, BRAKE), new MotorState("M2", 310, 360, BRAKE)));
-        motors.exchangeNow();
+        driver.send(List.of(new MotorState("M1", 310, 360, BRAKE), new MotorState("M2", 310, 360, BRAKE)), motors.feedback());
+        driver.exchangeNow(motors.feedback());
         assertArrayEquals(new int[4], txt.lastExchange().motorDist(), "the TXT's distance command watches Ci for Mi only");
         txt.counter(2, 7);
-        motors.exchangeNow();
+        driver.exchangeNow(motors.feedback());
         assertEquals(degrees(7), motors.motorDegrees("M1"), 1e-9, "M1 is counted on C3");
         assertEquals(0, motors.motorDegrees("M2"), 1e-9);
     }
@@ -212,7 +219,7 @@ class TxtDriverTest {
         SensorChannel sonar = sensor("sonar", SensorType.SONAR, "I2", Map.of());
         SensorChannel photo = sensor("photo", SensorType.LIGHT, "I8", Map.of("input", "resistance"));
         open(Optional.of("C1"), Optional.empty(), List.of(bumper, sonar, photo));
-        TxtSensorPlatform sensors = new TxtSensorPlatform(motors, controller);
+        TxtSensorPlatform sensors = new TxtSensorPlatform(motors, driver, controller);
         Sensor b = sensors.createSensor(bumper);
         Sensor s = sensors.createSensor(sonar);
         Sensor p = sensors.createSensor(photo);
@@ -230,7 +237,7 @@ class TxtDriverTest {
     @Test
     void shouldRefuseSensorsTheInputsCannotRead() throws Exception {
         open();
-        TxtSensorPlatform sensors = new TxtSensorPlatform(motors, controller);
+        TxtSensorPlatform sensors = new TxtSensorPlatform(motors, driver, controller);
         IOException gyro = assertThrows(IOException.class, () -> sensors.createSensor(sensor("g", SensorType.GYRO, "I1", Map.of())));
         assertTrue(gyro.getMessage().contains("GYRO"), gyro.getMessage());
         IOException port = assertThrows(IOException.class, () -> sensors.createSensor(sensor("t", SensorType.TOUCH, "S1", Map.of())));
@@ -244,7 +251,7 @@ class TxtDriverTest {
     void shouldFailAReadWithRobotLinkExceptionWhenTheTxtIsGone() throws Exception {
         SensorChannel bumper = sensor("bumper", SensorType.TOUCH, "I1", Map.of());
         open(Optional.of("C1"), Optional.empty(), List.of(bumper));
-        Sensor b = new TxtSensorPlatform(motors, controller).createSensor(bumper);
+        Sensor b = new TxtSensorPlatform(motors, driver, controller).createSensor(bumper);
         txt.close();
         long deadline = System.nanoTime() + Duration.ofSeconds(5).toNanos();
         ExecutionException e = null;

@@ -2,7 +2,10 @@ package io.robomw.sim.emulator.aibo;
 
 import io.robomw.sim.SimRobot;
 import io.robomw.sim.Simulation;
+import io.robomw.api.spi.FailurePolicy;
+import io.robomw.sim.emulator.Acceptor;
 import io.robomw.sim.emulator.Emulator;
+import io.robomw.sim.emulator.EmulatorThreads;
 import io.robomw.sim.legged.UrbiKernel;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -13,6 +16,7 @@ import java.io.OutputStream;
 import java.net.InetSocketAddress;
 import java.net.ServerSocket;
 import java.net.Socket;
+import java.net.SocketTimeoutException;
 import java.nio.charset.StandardCharsets;
 import java.util.List;
 import java.util.Locale;
@@ -40,6 +44,14 @@ import java.util.concurrent.atomic.AtomicLong;
  * <h2>Bad input</h2>
  * A line that is not URBI, an unknown device or function, a speed above the gait's limits:
  * each gets its {@code !!!} message (tagged when its tag could be read) and the session goes on.
+ *
+ * <h2>Failures</h2>
+ * The accepting thread ({@code emulator-aibo-<robot>}, an {@link io.robomw.api.spi.OwnerThread})
+ * and each client's reader and writer hand what they catch to the simulation's
+ * {@link FailurePolicy}: a failed accept is reported and the next client accepted; whatever ends a
+ * client's reader or writer other than its connection closing is reported, and that client is
+ * disconnected (its commands stop), the others served on. A client's reader waits at most half a
+ * second in one read before it looks whether its client was disconnected.
  */
 public final class AiboEmulator implements Emulator {
 
@@ -51,6 +63,8 @@ public final class AiboEmulator implements Emulator {
     public static final int MAX_CLIENTS = 8;
     /** Messages that may wait for a client. */
     public static final int OUTBOX = 8192;
+    /** The longest one read of a client waits before its reader looks whether the client was disconnected, milliseconds. */
+    private static final int READ_POLL_MILLIS = 500;
     /** The banner, one {@code ***} line each. */
     static final List<String> BANNER = List.of(
             "********************************************************",
@@ -62,6 +76,7 @@ public final class AiboEmulator implements Emulator {
 
     private final SimRobot robot;
     private final UrbiKernel kernel;
+    private final FailurePolicy failures;
     private final List<Client> clients = new CopyOnWriteArrayList<>();
     private final List<Runnable> closeActions = new CopyOnWriteArrayList<>();
     private final AtomicLong connections = new AtomicLong();
@@ -70,11 +85,12 @@ public final class AiboEmulator implements Emulator {
     private volatile ServerSocket server;
     private volatile boolean closed;
     private boolean halted;
-    private Thread acceptor;
+    private io.robomw.api.spi.OwnerThread acceptor;
 
-    private AiboEmulator(SimRobot robot) {
+    private AiboEmulator(SimRobot robot, FailurePolicy failures) {
         this.robot = robot;
         this.kernel = robot.kernel();
+        this.failures = failures;
     }
 
     /**
@@ -95,7 +111,7 @@ public final class AiboEmulator implements Emulator {
             throw new IllegalArgumentException("robot '" + robotName + "' (" + r.description().source()
                     + ") has no legged drive (drive: {type: legged}); the Aibo emulator drives a simulated quadruped");
         }
-        AiboEmulator e = new AiboEmulator(r);
+        AiboEmulator e = new AiboEmulator(r, simulation.failures());
         simulation.addStepListener(e.stepListener);
         e.closeActions.add(() -> simulation.removeStepListener(e.stepListener));
         return e;
@@ -136,45 +152,38 @@ public final class AiboEmulator implements Emulator {
             s.close();
             throw new IOException("cannot listen on " + bindAddress + ":" + port + ": " + e.getMessage(), e);
         }
+        try {
+            acceptor = Acceptor.start("emulator-aibo-" + robot.name(), s, this::accepted, failures);
+        } catch (IOException e) {
+            s.close();
+            throw e;
+        }
         server = s;
-        acceptor = new Thread(() -> accept(s), "emulator-aibo-" + robot.name());
-        acceptor.setDaemon(true);
-        acceptor.start();
         LOG.info("aibo emulator for '{}' serving URBI on {}", robot.name(), describe());
         return s.getLocalPort();
     }
 
-    private void accept(ServerSocket s) {
-        while (!s.isClosed()) {
-            Socket socket;
-            try {
-                socket = s.accept();
-            } catch (IOException e) {
-                if (!s.isClosed()) {
-                    LOG.warn("aibo emulator for '{}': accept failed: {}", robot.name(), e.toString());
-                }
-                continue;
-            }
-            if (clients.size() >= MAX_CLIENTS) {
-                refusedWarnings.warn("aibo emulator for '{}': refused {}: {} clients already", robot.name(), socket.getRemoteSocketAddress(), MAX_CLIENTS);
-                quietly(socket);
-                continue;
-            }
-            try {
-                socket.setTcpNoDelay(true);
-                Client c = new Client(socket, connections.incrementAndGet());
-                clients.add(c);
-                c.start();
-            } catch (IOException | RuntimeException e) {
-                LOG.warn("aibo emulator for '{}': could not serve {}: {}", robot.name(), socket.getRemoteSocketAddress(), e.toString());
-                quietly(socket);
-            }
+    /** A client connected: served if there is room, else refused. On the accepting thread. */
+    private void accepted(Socket socket) throws IOException {
+        if (clients.size() >= MAX_CLIENTS) {
+            refusedWarnings.warn("aibo emulator for '{}': refused {}: {} clients already", robot.name(), socket.getRemoteSocketAddress(), MAX_CLIENTS);
+            quietly(socket);
+            return;
         }
+        socket.setTcpNoDelay(true);
+        Client c = new Client(socket, connections.incrementAndGet());
+        clients.add(c);
+        c.start();
     }
 
     /** @return clients connected now */
     public int clientCount() {
         return clients.size();
+    }
+
+    /** @return bytes received from every client since it started */
+    public long bytesReceived() {
+        return bytesIn.get();
     }
 
     /** @return clients served since it started */
@@ -207,11 +216,7 @@ public final class AiboEmulator implements Emulator {
             c.close();
         }
         if (acceptor != null) {
-            try {
-                acceptor.join(2000);
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-            }
+            acceptor.close();
         }
     }
 
@@ -259,11 +264,21 @@ public final class AiboEmulator implements Emulator {
             }
         }
 
+        /** The client's reader: until its connection closes; any other end is reported, and it is disconnected. */
         private void read() {
             byte[] buf = new byte[4096];
             try (InputStream in = socket.getInputStream()) {
-                int n;
-                while (open && (n = in.read(buf)) > 0) {
+                socket.setSoTimeout(READ_POLL_MILLIS);
+                while (open) {
+                    int n;
+                    try {
+                        n = in.read(buf);
+                    } catch (SocketTimeoutException e) {
+                        continue; // nothing for a while: look whether the client was disconnected, and read on
+                    }
+                    if (n < 0) {
+                        break;
+                    }
                     bytesIn.addAndGet(n);
                     session.submit(buf, 0, n);
                 }
@@ -271,13 +286,14 @@ public final class AiboEmulator implements Emulator {
                 if (open) {
                     LOG.debug("aibo emulator for '{}': {}: {}", robot.name(), name, e.toString());
                 }
-            } catch (RuntimeException e) {
-                LOG.error("aibo emulator for '{}': reading {} failed; disconnecting it", robot.name(), name, e);
+            } catch (Throwable t) {
+                EmulatorThreads.ended(failures, Thread.currentThread().getName(), t);
             } finally {
                 close();
             }
         }
 
+        /** The client's writer: until its connection closes and its messages are sent; any other end is reported, and it is disconnected. */
         private void write() {
             try (OutputStream out = socket.getOutputStream()) {
                 while (open || !outbox.isEmpty()) {
@@ -293,6 +309,8 @@ public final class AiboEmulator implements Emulator {
                 LOG.debug("aibo emulator for '{}': writing to {}: {}", robot.name(), name, e.toString());
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
+            } catch (Throwable t) {
+                EmulatorThreads.ended(failures, Thread.currentThread().getName(), t);
             } finally {
                 close();
             }

@@ -7,7 +7,7 @@ import io.robomw.config.description.SensorSpec;
 import io.robomw.platform.ev3.Ev3CodeReader;
 import io.robomw.platform.ev3.Ev3Device;
 import io.robomw.platform.ev3.Ev3Frame;
-import io.robomw.platform.ev3.Ev3MotorPlatform;
+import io.robomw.platform.ev3.Ev3MotorDriver;
 import io.robomw.platform.ev3.Ev3Opcode;
 import io.robomw.platform.ev3.Ev3Ports;
 import io.robomw.platform.ev3.Ev3Reply;
@@ -40,7 +40,7 @@ import java.util.concurrent.atomic.AtomicLong;
  * (unknown error).
  *
  * <h2>Motors A..D</h2>
- * Regulated speed S turns a motor at S % of {@link Ev3MotorPlatform#DEGREES_PER_SECOND_AT_FULL_SPEED}
+ * Regulated speed S turns a motor at S % of {@link Ev3MotorDriver#DEGREES_PER_SECOND_AT_FULL_SPEED}
  * (the driver's constant). opOUTPUT_STEP_SPEED runs until the tacho has moved STEP1 + STEP2 + STEP3
  * degrees (ramping up over STEP1 and down over STEP3), slowing in its last simulation step so it
  * lands on the target, then stops; opOUTPUT_READY holds its command until then.
@@ -258,7 +258,7 @@ public final class Ev3Emulator extends BrickEmulator {
     }
 
     private static double degreesPerSecond(int speedPercent) {
-        return speedPercent / 100.0 * Ev3MotorPlatform.DEGREES_PER_SECOND_AT_FULL_SPEED;
+        return speedPercent / 100.0 * Ev3MotorDriver.DEGREES_PER_SECOND_AT_FULL_SPEED;
     }
 
     /**
@@ -399,7 +399,7 @@ public final class Ev3Emulator extends BrickEmulator {
             case OUTPUT_START -> forEach(nos(vm), o -> o.run = Run.RUNNING);
             case OUTPUT_READ -> {
                 Output o = outputs[outputNumber(vm)];
-                vm.store8((int) Math.round(o.commanded / Ev3MotorPlatform.DEGREES_PER_SECOND_AT_FULL_SPEED * 100));
+                vm.store8((int) Math.round(o.commanded / Ev3MotorDriver.DEGREES_PER_SECOND_AT_FULL_SPEED * 100));
                 vm.store32((int) Math.round(o.count()));
             }
             case OUTPUT_TEST -> vm.store8(busy(nos(vm), Set.of(Run.RUNNING, Run.STEPPING)) ? 1 : 0);
@@ -602,7 +602,7 @@ public final class Ev3Emulator extends BrickEmulator {
         return switch (mode) {
             case 0 -> o.count();
             case 1 -> o.count() / 360;
-            default -> o.commanded / Ev3MotorPlatform.DEGREES_PER_SECOND_AT_FULL_SPEED * 100;
+            default -> o.commanded / Ev3MotorDriver.DEGREES_PER_SECOND_AT_FULL_SPEED * 100;
         };
     }
 

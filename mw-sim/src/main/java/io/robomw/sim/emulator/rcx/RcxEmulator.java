@@ -4,7 +4,7 @@ import io.robomw.api.SensorType;
 import io.robomw.config.description.DifferentialDrive;
 import io.robomw.config.description.RobotDescription;
 import io.robomw.config.description.SensorSpec;
-import io.robomw.platform.rcx.RcxMotorPlatform;
+import io.robomw.platform.rcx.RcxMotorDriver;
 import io.robomw.platform.rcx.RcxPacket;
 import io.robomw.sim.SimMotors;
 import io.robomw.sim.Simulation;
@@ -28,7 +28,7 @@ import java.util.List;
  *   again, but it is not run again (senders flip the toggle bit, 0x08, to send a command twice);</li>
  *   <li><b>motors</b> A, B, C: Set motor power (steps 0..7, from a constant), Set motor direction
  *   (forward, reverse, flip), Set motor on/off (on, off braking, float); a motor that is on turns
- *   at (power + 1) / 8 of {@link RcxMotorPlatform#DEGREES_PER_SECOND_AT_FULL_POWER}; at power-up
+ *   at (power + 1) / 8 of {@link RcxMotorDriver#DEGREES_PER_SECOND_AT_FULL_POWER}; at power-up
  *   every motor floats, forward, at power 7;</li>
  *   <li><b>sensors</b> S1..S3: the description's sensor on that input, and the rotation sensor
  *   of any wheel that names it as its {@code counter:}. Set sensor type and Set sensor mode
@@ -71,7 +71,7 @@ public final class RcxEmulator extends BrickEmulator {
 
     /** One motor output. */
     private static final class Output {
-        int power = RcxMotorPlatform.POWER_STEPS - 1;
+        int power = RcxMotorDriver.POWER_STEPS - 1;
         boolean forward = true;
         int state = RcxPacket.FLOAT;
     }
@@ -351,7 +351,7 @@ public final class RcxEmulator extends BrickEmulator {
                     continue;
                 }
                 Output o = outputs[i];
-                double speed = o.state == RcxPacket.ON ? RcxMotorPlatform.speedAt(o.power) : 0;
+                double speed = o.state == RcxPacket.ON ? RcxMotorDriver.speedAt(o.power) : 0;
                 robot.command(motorPort[i], o.forward ? speed : -speed);
             }
             for (Input in : inputs) {

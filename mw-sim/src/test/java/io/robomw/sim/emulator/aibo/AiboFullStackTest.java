@@ -11,6 +11,7 @@ import io.robomw.sim.SimRobot;
 import io.robomw.sim.emulator.EmulatorStack;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
+import io.robomw.testkit.Await;
 import org.junit.jupiter.api.io.TempDir;
 
 import java.io.BufferedReader;
@@ -212,6 +213,55 @@ class AiboFullStackTest {
                     () -> assertTrue(all.contains("] !!! syntax error: '}' closes nothing"), all),
                     () -> assertTrue(all.contains(":x4] *** pong time="), all),
                     () -> assertTrue(all.matches("(?s).*\\[\\d{8}:x5] 0\\.000000.*"), all));
+        }
+    }
+
+    /**
+     * The URBI kernel's emergency escape, over the emulator's socket: a statement held open by an
+     * unclosed brace takes in everything the client sends after it, until the client sends
+     * {@code $$}, which abandons it; the connection then goes on as before. (The kernel also drops
+     * what it received in the same read after the {@code $$}, so the client here sends on only
+     * once the emulator has read it.)
+     */
+    @Test
+    void shouldAbandonAStatementHeldOpenByABraceAtTheEmergencyEscapeAndGoOn() throws Exception {
+        stack = new EmulatorStack<>(dir, robotTemplate(), "aibo", AiboEmulator::bind);
+        stack.world(3, 1.0);
+        AiboEmulator emulator = stack.newEmulator();
+        int port = emulator.startOnTcp("127.0.0.1", 0);
+        stack.sim().startRealTime(2);
+        Pose start = stack.truePose();
+        try (Socket raw = new Socket(InetAddress.getLoopbackAddress(), port)) {
+            raw.setSoTimeout(10_000);
+            BufferedReader in = new BufferedReader(new InputStreamReader(raw.getInputStream(), StandardCharsets.UTF_8));
+            OutputStream out = raw.getOutputStream();
+            long sent = 0;
+            for (String chunk : new String[]{"motoron; h1: { robot.walk(0.3, 0.1);\n", "x1: ping;\n", "$$\n"}) {
+                byte[] bytes = chunk.getBytes(StandardCharsets.US_ASCII);
+                out.write(bytes);
+                out.flush();
+                sent += bytes.length;
+                long expected = sent;
+                Await.until("the emulator read '" + chunk.strip() + "'", Duration.ofSeconds(10), () -> emulator.bytesReceived() == expected);
+            }
+            stack.awaitHalfASimulatedSecond();
+
+            out.write("x2: ping;\nx3: headPan.val;\n".getBytes(StandardCharsets.US_ASCII));
+            out.flush();
+
+            StringBuilder seen = new StringBuilder();
+            String line;
+            while ((line = in.readLine()) != null && !line.contains(":x3]")) {
+                seen.append(line).append('\n');
+            }
+            String all = seen + String.valueOf(line);
+            assertAll(
+                    () -> assertTrue(all.contains(":x2] *** pong time="), "the connection went on after the escape: " + all),
+                    () -> assertTrue(all.matches("(?s).*\\[\\d{8}:x3] 0\\.000000.*"), all),
+                    () -> assertTrue(!all.contains(":x1]") && !all.contains(":h1]") && !all.contains("!!!"),
+                            "the held statement, its ping with it, was abandoned silently: " + all),
+                    () -> assertTrue(!dog().quadruped().walking() && stack.truePose().distanceTo(start) < 0.005,
+                            "the abandoned walk never ran: " + stack.truePose()));
         }
     }
 

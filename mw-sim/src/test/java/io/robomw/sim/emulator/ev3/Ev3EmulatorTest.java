@@ -7,6 +7,7 @@ import io.robomw.platform.ev3.Ev3Frame;
 import io.robomw.platform.ev3.Ev3Reply;
 import io.robomw.platform.motor.MotorState;
 import io.robomw.sim.Simulation;
+import io.robomw.testkit.Await;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -213,11 +214,10 @@ class Ev3EmulatorTest {
             CompletableFuture<String> reply = CompletableFuture.supplyAsync(() -> send(frame), io);
             // Step until the reply comes, bounded in wall-clock time: stepping a fixed span of
             // simulated time could end before the I/O thread has even delivered the command.
-            long deadline = System.nanoTime() + Duration.ofSeconds(20).toNanos();
-            while (!reply.isDone() && System.nanoTime() < deadline) {
+            Await.until("the command was released when the motor arrived", Duration.ofSeconds(20), () -> {
                 sim.runFor(Duration.ofMillis(20));
-            }
-            assertTrue(reply.isDone(), "the command was released when the motor arrived");
+                return reply.isDone();
+            });
             assertEquals("03 00 2A 00 02", reply.get());
             assertEquals(90, count(1), 1);
             assertTrue(sim.world().time() - start > 90 / 52.5, "a 90 degree step at speed 5 takes more than 1.7 s; took " + (sim.world().time() - start));

@@ -84,7 +84,7 @@ public final class TxtEmulator extends BrickEmulator {
     private final int ticksPerRevolution;
     private final List<Socket> i2cPeers = new CopyOnWriteArrayList<>();
     private volatile ServerSocket i2cServer;
-    private Thread i2cThread;
+    private io.robomw.api.spi.OwnerThread i2cThread;
     // Guarded by firmware:
     private final int[] motorMode = {1, 1, 1, 1};
     private final int[] inputMode = new int[TxtProtocol.INPUTS];
@@ -204,9 +204,7 @@ public final class TxtEmulator extends BrickEmulator {
             throw e;
         }
         i2cServer = server;
-        i2cThread = new Thread(() -> acceptI2c(server), "emulator-ft-txt-i2c-" + robot().robot().name());
-        i2cThread.setDaemon(true);
-        i2cThread.start();
+        i2cThread = io.robomw.sim.emulator.Acceptor.start("emulator-ft-txt-i2c-" + robot().robot().name(), server, this::heldI2c, failures());
         return port;
     }
 
@@ -233,20 +231,10 @@ public final class TxtEmulator extends BrickEmulator {
 
     private static final int FREE_PAIR_ATTEMPTS = 20;
 
-    /** Accepts I²C clients and holds them open until the emulator closes; the protocol there is unspecified. */
-    private void acceptI2c(ServerSocket server) {
-        while (!server.isClosed()) {
-            try {
-                Socket peer = server.accept();
-                i2cPeers.add(peer);
-                LOG.debug("ft-txt emulator for '{}': I²C client {} connected (held, not answered)", robot().robot().name(),
-                        peer.getRemoteSocketAddress());
-            } catch (IOException e) {
-                if (!server.isClosed()) {
-                    LOG.warn("ft-txt emulator for '{}': I²C accept failed: {}", robot().robot().name(), e.toString());
-                }
-            }
-        }
+    /** An I²C client connected: held open until the emulator closes, not answered (the protocol there is unspecified). */
+    private void heldI2c(Socket peer) {
+        i2cPeers.add(peer);
+        LOG.debug("ft-txt emulator for '{}': I²C client {} connected (held, not answered)", robot().robot().name(), peer.getRemoteSocketAddress());
     }
 
     /** @return the I²C port it also listens on, or -1 if it was not started with {@link #startOnTcpPair} */
@@ -472,11 +460,7 @@ public final class TxtEmulator extends BrickEmulator {
             }
             i2cPeers.clear();
             if (i2cThread != null) {
-                try {
-                    i2cThread.join(2000);
-                } catch (InterruptedException e) {
-                    Thread.currentThread().interrupt();
-                }
+                i2cThread.close();
             }
         }
         super.close();

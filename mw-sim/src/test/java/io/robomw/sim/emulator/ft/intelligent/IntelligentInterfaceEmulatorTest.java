@@ -10,6 +10,7 @@ import io.robomw.platform.link.SerialLink;
 import io.robomw.platform.link.SerialSettings;
 import io.robomw.testkit.BusyThreads;
 import io.robomw.sim.emulator.EmulatorStack;
+import io.robomw.testkit.Await;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.BeforeEach;
 import org.junit.jupiter.api.Test;
@@ -20,11 +21,10 @@ import java.nio.file.Path;
 import java.time.Duration;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.TimeUnit;
-import java.util.concurrent.locks.LockSupport;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
-import static org.junit.jupiter.api.Assertions.fail;
 
 /**
  * The real Intelligent Interface driver over a real pseudo-terminal through jSerialComm, against
@@ -131,15 +131,10 @@ public class IntelligentInterfaceEmulatorTest {
         start(2.5, 2);
         assertEquals(0.0, robot.getValue(Position.FRONT, SensorType.TOUCH, ReturnType.BOOLEAN));
         CompletableFuture<Void> move = robot.moveAsync(0.5, 0.1);
-        long deadline = System.nanoTime() + Duration.ofSeconds(20).toNanos();
-        while (robot.getValue(Position.FRONT, SensorType.TOUCH, ReturnType.BOOLEAN) == 0.0) {
-            if (System.nanoTime() > deadline) {
-                fail("the bumper never read pressed; robot at " + truePose());
-            }
-            LockSupport.parkNanos(5_000_000);
-        }
+        Await.until("the bumper reads pressed", Duration.ofSeconds(20),
+                () -> robot.getValue(Position.FRONT, SensorType.TOUCH, ReturnType.BOOLEAN) == 1.0, () -> "; robot at " + stack.truePose());
         robot.stop();
-        assertTrue(move.isDone() || move.handle((v, e) -> e).get(5, TimeUnit.SECONDS) != null);
+        assertThrows(Exception.class, () -> move.get(5, TimeUnit.SECONDS), "the blocked move ended by the stop");
         assertTrue(truePose().x() + 0.10 <= 3.005, "at the wall, not through it: " + truePose());
     }
 
@@ -219,15 +214,9 @@ public class IntelligentInterfaceEmulatorTest {
             link.write(request, 0, request.length);
             byte[] reply = new byte[1];
             assertEquals(1, link.read(reply, 0, 1, Duration.ofSeconds(2)));
-            long deadline = sent + Duration.ofSeconds(2).toNanos();
-            while (!stack.emulator().motorsOn()) {
-                assertTrue(System.nanoTime() < deadline, "the motors should have started");
-                LockSupport.parkNanos(1_000_000);
-            }
-            while (stack.emulator().motorsOn()) {
-                assertTrue(System.nanoTime() < deadline, "the interface should stop its motors about 300 ms after the last command");
-                LockSupport.parkNanos(1_000_000);
-            }
+            Await.until("the motors started", Duration.ofSeconds(2), () -> stack.emulator().motorsOn());
+            Await.until("the interface stopped its motors about 300 ms after the last command", Duration.ofSeconds(2),
+                    () -> !stack.emulator().motorsOn());
             long off = System.nanoTime() - sent;
             assertTrue(off >= Duration.ofMillis(290).toNanos(), "not before 300 ms: " + off / 1_000_000 + " ms");
             assertEquals(1, stack.emulator().watchdogTrips());

@@ -2,6 +2,7 @@ package io.robomw.sim.emulator.ft.txt;
 
 import io.robomw.platform.ft.txt.TxtProtocol;
 import io.robomw.sim.Simulation;
+import io.robomw.testkit.Await;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -15,7 +16,6 @@ import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.util.Set;
-import java.util.concurrent.locks.LockSupport;
 import java.util.function.Predicate;
 
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
@@ -23,14 +23,38 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
-import static org.junit.jupiter.api.Assertions.fail;
 
 /**
  * The TXT emulator message by message over a raw socket on 127.0.0.1: every reply of the table
  * by id and size, framing by id, the counters, distance commands, input modes and link loss,
- * with the robot in a world running at four times real time.
+ * with the robot in a world running at four times real time. The real driver against the
+ * emulator is {@link io.robomw.sim.emulator.EmulatorContractTest}.
  */
-class TxtEmulatorProtocolTest {
+public class TxtEmulatorProtocolTest {
+
+    /**
+     * A two-wheeled TXT robot file whose {@code %s} is the inside of its {@code connection: { }}
+     * block. Encoder resolution: the fischertechnik encoder motor gives 63 pulses per motor turn
+     * (63⅓ really; the description takes 63), so on 56 mm wheels one pulse is π × 56 mm ÷ 63 =
+     * 2.79 mm of wheel travel (5.7° of motor rotation), and a turn on the spot with a 112 mm track
+     * is resolved to 2.86° of heading per pulse of one wheel.
+     */
+    public static final String ROBOT = """
+            name: txt-1
+            platform: ft-txt
+            connection: { %s }
+            drive:
+              wheel_diameter: 0.056
+              track_width: 0.112
+              max_speed: 0.30
+              encoder_ticks_per_revolution: 63
+              left:  { port: M1, counter: C1 }
+              right: { port: M2, counter: C2 }
+            body: { length: 0.20, width: 0.15, mass: 0.6, friction: 0.8 }
+            sensors:
+              - { name: bumper, type: touch, position: front, port: I1 }
+              - { name: sonar, type: sonar, position: front, port: I2, conversion: { scale: 0.01 } }
+            """;
 
     @TempDir
     Path dir;
@@ -55,7 +79,7 @@ class TxtEmulatorProtocolTest {
 
     /** The robot at (x, 1.5) facing the wall at x = 3, the emulator bound to it, not yet serving. */
     private void world(double x) throws IOException {
-        Files.writeString(dir.resolve("body.yaml"), TxtEmulatorTest.ROBOT.formatted("host: 127.0.0.1, port: 1"));
+        Files.writeString(dir.resolve("body.yaml"), ROBOT.formatted("host: 127.0.0.1, port: 1"));
         Files.writeString(dir.resolve("world.yaml"), """
                 name: txt-protocol
                 arena: { width: 3, height: 3 }
@@ -105,17 +129,16 @@ class TxtEmulatorProtocolTest {
     /** Repeats an exchange (which also keeps the link alive) until its reply satisfies the condition. */
     private TxtProtocol.ExchangeReply exchangeUntil(int[] pwm, int[] dist, int[] motorCmdId, int[] counterCmdId,
                                                     Predicate<TxtProtocol.ExchangeReply> done, String what) throws IOException {
-        long deadline = System.nanoTime() + Duration.ofSeconds(10).toNanos();
-        while (true) {
-            TxtProtocol.ExchangeReply r = exchange(pwm, dist, motorCmdId, counterCmdId);
-            if (done.test(r)) {
-                return r;
+        TxtProtocol.ExchangeReply[] last = new TxtProtocol.ExchangeReply[1];
+        Await.until(what, Duration.ofSeconds(10), () -> {
+            try {
+                last[0] = exchange(pwm, dist, motorCmdId, counterCmdId);
+            } catch (IOException e) {
+                throw new java.io.UncheckedIOException(e);
             }
-            if (System.nanoTime() > deadline) {
-                fail(what + " did not happen; last reply " + r);
-            }
-            LockSupport.parkNanos(5_000_000);
-        }
+            return done.test(last[0]);
+        }, () -> "; last reply " + last[0]);
+        return last[0];
     }
 
     @Test
@@ -140,17 +163,18 @@ class TxtEmulatorProtocolTest {
         start(1.0);
         client.getOutputStream().write(new byte[]{(byte) 0xA6, 0x40, 0x2A, (byte) 0x88, 0, 0, 0, 0});
         client.setSoTimeout(200);
-        long deadline = System.nanoTime() + Duration.ofSeconds(5).toNanos();
-        byte[] reply = null;
-        while (reply == null) {
-            assertTrue(System.nanoTime() < deadline, "no answer after the unknown message");
+        byte[][] reply = new byte[1][];
+        Await.until("an answer after the unknown message", Duration.ofSeconds(5), () -> {
             try {
-                reply = request(TxtProtocol.queryStatus(), TxtProtocol.QUERY_STATUS_REPLY_LENGTH);
+                reply[0] = request(TxtProtocol.queryStatus(), TxtProtocol.QUERY_STATUS_REPLY_LENGTH);
+                return true;
             } catch (SocketTimeoutException e) {
-                // the emulator was still draining the bad input: our request went with it; ask again
+                return false; // the emulator was still draining the bad input: our request went with it; ask again
+            } catch (IOException e) {
+                throw new java.io.UncheckedIOException(e);
             }
-        }
-        assertEquals(TxtProtocol.QUERY_STATUS_REPLY, TxtProtocol.messageId(reply));
+        });
+        assertEquals(TxtProtocol.QUERY_STATUS_REPLY, TxtProtocol.messageId(reply[0]));
         assertTrue(emulator.framesDropped() >= 1);
     }
 
@@ -219,22 +243,19 @@ class TxtEmulatorProtocolTest {
     void shouldStopTheMotorsWhenTheClientFallsSilent() throws Exception {
         start(0.5);
         exchange(new int[]{512, 0, 512, 0, 0, 0, 0, 0}, new int[4], new int[4], new int[4]);
-        long deadline = System.nanoTime() + Duration.ofSeconds(10).toNanos();
-        double last = Double.NaN;
-        double lastTime = 0;
-        while (true) {
+        double[] lastX = {Double.NaN};
+        double[] movedAt = {0};
+        Await.until("the robot stood still for 0.2 simulated seconds: the motors stopped without messages", Duration.ofSeconds(10), () -> {
             double x = sim.world().robot("txt-1").pose().x();
             double t = sim.world().time();
-            if (x == last && t > lastTime + 0.2) {
-                break;
+            if (x != lastX[0]) {
+                lastX[0] = x;
+                movedAt[0] = t;
+                return false;
             }
-            if (x != last) {
-                last = x;
-                lastTime = t;
-            }
-            assertTrue(System.nanoTime() < deadline, "the motors kept running without messages");
-            LockSupport.parkNanos(5_000_000);
-        }
+            return t > movedAt[0] + 0.2;
+        });
+        double last = lastX[0];
         assertTrue(last > 0.5, "it had been driving");
         assertTrue(last < 2.5, "it stopped by itself, not at the wall (x = 2.9): " + last);
     }

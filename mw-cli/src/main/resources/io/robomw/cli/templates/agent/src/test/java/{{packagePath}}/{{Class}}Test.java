@@ -23,7 +23,7 @@ class {{Class}}Test {
             sim.startRealTime(4);
             try (AgentHost robotHost = AgentHost.builder("robot-host").port(0).robot(sim.robot("bot")).clusterKey(key).noMessaging().start();
                  AgentHost home = AgentHost.builder("home").port(0).clusterKey(key).noMessaging().start()) {
-                AgentRef ref = home.dispatchClones(new {{Class}}(0.2), robotHost.address()).get(0);
+                AgentRef ref = home.agency().dispatchClones(new {{Class}}(0.2), robotHost.address()).get(0);
                 Object result = ref.result().get(60, TimeUnit.SECONDS);
                 List<?> stops = (List<?>) result;
                 assertEquals(1, stops.size(), String.valueOf(stops));

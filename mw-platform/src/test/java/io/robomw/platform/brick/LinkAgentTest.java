@@ -1,0 +1,216 @@
+package io.robomw.platform.brick;
+
+import io.robomw.api.Clock;
+import io.robomw.api.RobotLinkException;
+import io.robomw.api.spi.ConnectionSettings;
+import io.robomw.api.spi.Cycling;
+import io.robomw.api.spi.FailurePolicy;
+import io.robomw.api.spi.MotorChannel;
+import io.robomw.api.spi.MotorCommand;
+import io.robomw.api.spi.MotorTarget;
+import io.robomw.api.spi.PlatformConfig;
+import io.robomw.api.spi.PlatformServices;
+import io.robomw.api.spi.SensorChannel;
+import io.robomw.platform.BrickPlatform;
+import io.robomw.platform.link.Communicator;
+import io.robomw.platform.link.Link;
+import io.robomw.platform.link.LinkLostException;
+import io.robomw.platform.motor.FeedbackSink;
+import io.robomw.platform.motor.LinkTiming;
+import io.robomw.platform.motor.MotorDriver;
+import io.robomw.platform.motor.MotorPlatform;
+import io.robomw.platform.motor.MotorState;
+import io.robomw.platform.sensor.Sensor;
+import io.robomw.platform.sensor.SensorPlatform;
+import io.robomw.testkit.Await;
+import io.robomw.testkit.LogLines;
+import org.junit.jupiter.api.AfterEach;
+import org.junit.jupiter.api.Test;
+
+import java.io.IOException;
+import java.time.Duration;
+import java.util.List;
+import java.util.Map;
+import java.util.concurrent.BlockingQueue;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.ExecutionException;
+import java.util.concurrent.LinkedBlockingQueue;
+import java.util.concurrent.TimeUnit;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertInstanceOf;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+/**
+ * The link agent on its own thread and the wall clock, over a channel to a brick that can be
+ * unplugged: one link state, changed by whichever thread's exchange finds the link lost, one log
+ * line per change; while down, every command is stopped, new ones are refused and exchanges fail at
+ * once naming the robot; the agent alone reopens the link, and then everything works again.
+ */
+class LinkAgentTest {
+
+    /** A brick that echoes every byte written to it, and can be unplugged (a Bluetooth link out of range). */
+    static final class PluggableBrick implements Link {
+        private final BlockingQueue<Byte> echo = new LinkedBlockingQueue<>();
+        volatile boolean unplugged;
+        private volatile boolean open;
+
+        @Override
+        public void open() throws IOException {
+            if (unplugged) {
+                throw new IOException("no such device: the brick is out of range");
+            }
+            echo.clear();
+            open = true;
+        }
+
+        @Override
+        public boolean isOpen() {
+            return open;
+        }
+
+        @Override
+        public void write(byte[] data, int off, int len) throws IOException {
+            if (unplugged) {
+                throw new LinkLostException(describe(), "write failed: the port hung up");
+            }
+            for (int i = off; i < off + len; i++) {
+                echo.add(data[i]);
+            }
+        }
+
+        @Override
+        public int read(byte[] buf, int off, int len, Duration timeout) throws IOException {
+            if (unplugged) {
+                throw new LinkLostException(describe(), "read failed: the port hung up");
+            }
+            try {
+                Byte b = echo.poll(timeout.toNanos(), TimeUnit.NANOSECONDS);
+                if (b == null) {
+                    return 0;
+                }
+                buf[off] = b;
+                return 1;
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+                throw new IOException("interrupted", e);
+            }
+        }
+
+        @Override
+        public String describe() {
+            return "pluggable brick";
+        }
+
+        @Override
+        public void close() {
+            open = false;
+        }
+    }
+
+    /** Sends one byte per motor state (1 running, 0 stopped) and reads its echo; polls with one byte. */
+    static final class EchoMotors implements MotorDriver {
+        final List<List<MotorState>> sent = new CopyOnWriteArrayList<>();
+        private final BrickChannel channel;
+
+        EchoMotors(BrickChannel channel) {
+            this.channel = channel;
+        }
+
+        @Override
+        public LinkTiming timing() {
+            return LinkTiming.NONE;
+        }
+
+        @Override
+        public void send(List<MotorState> motors, FeedbackSink feedback) throws IOException {
+            byte[] bytes = new byte[motors.size()];
+            for (int i = 0; i < bytes.length; i++) {
+                bytes[i] = (byte) (motors.get(i).running() ? 1 : 0);
+            }
+            ping(bytes);
+            sent.add(List.copyOf(motors));
+        }
+
+        @Override
+        public int poll(FeedbackSink feedback) throws IOException {
+            ping(new byte[] {7});
+            return 0;
+        }
+
+        void ping(byte[] bytes) throws IOException {
+            channel.exchange((c, timeout) -> {
+                c.send(bytes);
+                return c.receiveExactly(bytes.length, timeout);
+            });
+        }
+    }
+
+    private final PluggableBrick brick = new PluggableBrick();
+    private BrickChannel channel;
+    private EchoMotors motors;
+    private BrickPlatform platform;
+
+    private void open() throws IOException {
+        Communicator c = new Communicator(brick);
+        c.open();
+        channel = new BrickChannel("pluggable", c, Duration.ofMillis(300));
+        motors = new EchoMotors(channel);
+        PlatformConfig config = new PlatformConfig("pluggable", "fake", new ConnectionSettings(Map.of(), "test"),
+                List.of(MotorChannel.actuator("B"), MotorChannel.actuator("C")), List.of(), Duration.ofMillis(10), Duration.ZERO, Clock.system(),
+                PlatformServices.none(), Cycling.OWN_THREADS, FailurePolicy.logging());
+        MotorPlatform motorPlatform = new MotorPlatform(config, motors);
+        SensorPlatform sensors = new SensorPlatform(motorPlatform) {
+            @Override
+            public Sensor createSensor(SensorChannel s) {
+                return () -> CompletableFuture.completedFuture(0.0);
+            }
+        };
+        platform = new BrickPlatform(config, motorPlatform, sensors, channel, null).start();
+    }
+
+    @AfterEach
+    void close() {
+        if (platform != null) {
+            platform.close();
+        }
+    }
+
+    private static MotorCommand driveForever() {
+        return MotorCommand.of("drive", List.of(MotorTarget.rotate("B", 1e9, 360), MotorTarget.rotate("C", 1e9, 360)));
+    }
+
+    @Test
+    void aLinkLostOnAnyThreadIsDownOnceStopsEveryCommandAndIsReopenedByTheAgentAlone() throws Exception {
+        try (LogLines log = new LogLines()) {
+            open();
+            CompletableFuture<Void> drive = platform.run(driveForever());
+            Await.until("the motors were started", Duration.ofSeconds(10), () -> !motors.sent.isEmpty());
+
+            brick.unplugged = true;
+            // A program's exchange (a sensor read) finds the link lost first, or the agent's poll does.
+            assertThrows(IOException.class, () -> motors.ping(new byte[] {9}));
+            Await.until("the link is down", Duration.ofSeconds(10), () -> platform.linkState() == LinkState.DOWN);
+            RobotLinkException stopped = assertInstanceOf(RobotLinkException.class,
+                    assertThrows(ExecutionException.class, () -> drive.get(10, TimeUnit.SECONDS)).getCause());
+            assertTrue(stopped.getMessage().contains("robot 'pluggable'"), stopped.getMessage());
+
+            LinkLostException refused = assertThrows(LinkLostException.class, () -> motors.ping(new byte[] {9}));
+            assertTrue(refused.getMessage().contains("robot 'pluggable'") && refused.getMessage().contains("down"), refused.getMessage());
+            ExecutionException later = assertThrows(ExecutionException.class, () -> platform.run(driveForever()).get(10, TimeUnit.SECONDS));
+            assertTrue(later.getCause().getMessage().contains("is down"), later.getCause().getMessage());
+
+            brick.unplugged = false;
+            Await.until("the agent reopened the link", Duration.ofSeconds(10), () -> platform.linkState() == LinkState.UP);
+            int before = motors.sent.size();
+            CompletableFuture<Void> again = platform.run(driveForever());
+            Await.until("the motors run again", Duration.ofSeconds(10), () -> motors.sent.size() > before);
+            again.cancel(true);
+
+            // The tests log warnings only: the return's line is at info level.
+            assertEquals(1, log.containing("pluggable brick").size(), "one line for the loss, from one place: " + log.containing("pluggable brick"));
+        }
+    }
+}
