@@ -53,10 +53,8 @@ final class Autopilot {
     interface Announcer extends BiConsumer<Severity, String> {
     }
 
-    private static final double POSITION_GAIN = 1.0;
-    private static final double CLIMB_GAIN = 1.5;
-    private static final double YAW_GAIN = 2.0;
-    private static final double STOPPING_ACCELERATION = 2.5;
+    private static final double POSITION_GAIN = io.robomw.sim.vehicle.Guidance.POSITION_GAIN;
+    private static final double YAW_GAIN = io.robomw.sim.vehicle.Guidance.YAW_GAIN;
     private static final double TAKEOFF_REACHED = 0.1;
     private static final double OFFBOARD_STREAM_SECONDS = 1.0;
     private static final double OFFBOARD_MAX_GAP = 0.5;

@@ -128,6 +128,22 @@ class MavlinkDriverTest {
     }
 
     @Test
+    void aLostLinkFailsTheRunningCommandAndTheVehiclesOwnFailsafeActs() throws Exception {
+        HighLevelPlatform p = open("boat", Optional.empty());
+        CompletableFuture<Void> going = p.execute(command("move", Map.of("distance", 15.0, "speed", 1.0, "acceptance_radius", 0.5), 15));
+        io.robomw.testkit.Await.until("the boat under way", Duration.ofSeconds(20), () -> vehicle("boat").surge() > 0.5);
+        emulator.close(); // the vehicle goes silent: no HEARTBEAT for 3 s is a lost link
+        ExecutionException e = assertThrows(ExecutionException.class, () -> going.get(20, TimeUnit.SECONDS));
+        io.robomw.api.RobotLinkException lost = assertInstanceOf(io.robomw.api.RobotLinkException.class, e.getCause());
+        assertTrue(lost.getMessage().contains("no HEARTBEAT from vehicle 1 for 3000 ms"), lost.getMessage());
+        ExecutionException refused = assertThrows(ExecutionException.class,
+                () -> p.execute(command("turn", Map.of("angle", 1.0, "speed", 0.5), 2)).get(10, TimeUnit.SECONDS));
+        assertInstanceOf(io.robomw.api.RobotLinkException.class, refused.getCause(), "new commands are refused while the link is down");
+        io.robomw.testkit.Await.until("the boat stopped (the emulator's last act: hold)", Duration.ofSeconds(20),
+                () -> Math.abs(vehicle("boat").surge()) < 0.1);
+    }
+
+    @Test
     void theDriverSailsABoatAndItCannotTakeOff() throws Exception {
         HighLevelPlatform p = open("boat", Optional.empty());
         double x0 = vehicle("boat").x();
