@@ -56,8 +56,13 @@ async def main(url, kind):
         telemetry = TelemetryAsync(system)
 
         async def ned():
-            p = await telemetry.position_velocity_ned()
-            return p.position
+            """The local position, once MAVSDK has one (before LOCAL_POSITION_NED it reports NaN)."""
+            end = time.monotonic() + 20
+            while True:
+                p = (await telemetry.position_velocity_ned()).position
+                if not math.isnan(p.north_m) or time.monotonic() > end:
+                    return p
+                await asyncio.sleep(0.2)
 
         try:
             await action.arm()
