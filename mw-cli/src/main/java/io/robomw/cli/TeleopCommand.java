@@ -2,6 +2,7 @@ package io.robomw.cli;
 
 import io.robomw.api.Robot;
 import io.robomw.api.RobotException;
+import io.robomw.api.UnsupportedActionException;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 import picocli.CommandLine.Command;
@@ -16,6 +17,8 @@ import java.io.PrintWriter;
 import java.time.Duration;
 import java.util.Locale;
 import java.util.concurrent.Callable;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicReference;
 
 /**
@@ -101,7 +104,8 @@ final class TeleopCommand implements Callable<Integer> {
         AtomicReference<Velocity> wanted = new AtomicReference<>(Velocity.STOP);
         AtomicReference<Double> climb = new AtomicReference<>();
         AtomicReference<Throwable> failure = new AtomicReference<>();
-        Thread sender = new Thread(() -> send(robot, wanted, climb, failure, out), "mw-teleop-" + robot.name());
+        CountDownLatch quit = new CountDownLatch(1);
+        Thread sender = new Thread(() -> send(robot, wanted, climb, failure, quit, out), "mw-teleop-" + robot.name());
         sender.setDaemon(true);
         out.printf("teleop %s: w/s forward/backward, a/d turn, q/e curve, r/f up/down, space stop, +/- speed, x quit%n", robot.name());
         out.flush();
@@ -144,7 +148,9 @@ final class TeleopCommand implements Callable<Integer> {
                 }
             }
         } finally {
-            sender.interrupt();
+            // The sender ends after the command it is sending (never interrupted inside one: an
+            // interrupted verb cancels its command and reports a failure, which a quit is not).
+            quit.countDown();
             sender.join(refresh.toMillis() * 10 + 2000);
             robot.stop();
         }
@@ -174,10 +180,10 @@ final class TeleopCommand implements Callable<Integer> {
 
     /** The sending thread: owns the robot's motion while teleop runs; any failure stops the robot and ends the keys' loop. */
     private void send(Robot robot, AtomicReference<Velocity> wanted, AtomicReference<Double> climb, AtomicReference<Throwable> failure,
-                      PrintWriter out) {
+                      CountDownLatch quit, PrintWriter out) {
         boolean moving = false;
         try {
-            while (!Thread.currentThread().isInterrupted()) {
+            while (quit.getCount() > 0) {
                 Double metres = climb.getAndSet(null);
                 if (metres != null) {
                     if (moving) {
@@ -188,7 +194,7 @@ final class TeleopCommand implements Callable<Integer> {
                         robot.changeAltitude(metres, climbRate);
                         out.printf(Locale.ROOT, "%s %.2f m; pose %s%n", metres > 0 ? "climbed" : "descended", Math.abs(metres),
                                 RobotCommand.text(robot.pose()));
-                    } catch (io.robomw.api.UnsupportedActionException e) {
+                    } catch (UnsupportedActionException e) {
                         out.println(Mw.oneLine(e));
                     }
                     out.flush();
@@ -201,7 +207,9 @@ final class TeleopCommand implements Callable<Integer> {
                     robot.stop();
                     moving = false;
                 }
-                Thread.sleep(refresh.toMillis());
+                if (quit.await(refresh.toMillis(), TimeUnit.MILLISECONDS)) {
+                    break;
+                }
             }
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
