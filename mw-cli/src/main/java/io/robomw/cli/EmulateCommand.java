@@ -92,8 +92,13 @@ final class EmulateCommand implements Callable<Integer> {
     private Integer udpPort;
 
     @Option(names = "--signing-key-file", paramLabel = "FILE", description = "mavlink: a file holding the signing passphrase (its SHA-256 is the key, as MAVProxy's"
-            + " 'signing setup'): everything is signed, and unsigned commands are ignored")
+            + " 'signing setup'; default: the " + Secrets.MAVLINK_SIGNING_ENV + " environment variable, else unsigned): everything is signed,"
+            + " and unsigned commands are ignored")
     private Path signingKeyFile;
+
+    /** A passphrase given as an option's value would show in {@code ps}: refused, naming the file option. */
+    @Option(names = "--signing-key", hidden = true, converter = Secrets.RefusedSigningKey.class)
+    private String refusedSigningKey;
 
     @Spec
     private CommandSpec spec;
@@ -278,16 +283,13 @@ final class EmulateCommand implements Callable<Integer> {
             return 2;
         }
         io.robomw.platform.mavlink.wire.SigningKey key = null;
-        if (signingKeyFile != null) {
-            try {
-                key = io.robomw.platform.mavlink.wire.SigningKey.fromPassphrase(
-                        new io.robomw.api.spi.SecretRef(io.robomw.api.spi.SecretRef.Kind.FILE, signingKeyFile.toString(), "--signing-key-file")
-                                .read(System::getenv));
-            } catch (IllegalStateException e) {
-                sim.close();
-                err.println(e.getMessage());
-                return 2;
-            }
+        try {
+            key = Secrets.read(signingKeyFile, "--signing-key-file", Secrets.MAVLINK_SIGNING_ENV)
+                    .map(io.robomw.platform.mavlink.wire.SigningKey::fromPassphrase).orElse(null);
+        } catch (IllegalStateException e) {
+            sim.close();
+            err.println(e.getMessage());
+            return 2;
         }
         io.robomw.platform.mavlink.link.MavlinkEndpoint target = null;
         if (gcs == null && udpPort == null) {
@@ -326,7 +328,7 @@ final class EmulateCommand implements Callable<Integer> {
             }
             if (target != null) {
                 java.net.InetSocketAddress from = emulator.sendTo(new java.net.InetSocketAddress(target.host(), target.port()));
-                out.println("sending to udp://" + target.host() + ":" + target.port() + " from udp://127.0.0.1:" + from.getPort());
+                out.println("sending to udp://" + target.host() + ":" + target.port() + " from udp://" + from.getAddress().getHostAddress() + ":" + from.getPort());
             }
             out.flush();
             err.printf("mavlink emulator (%s) for robot '%s' of %s%s; Ctrl-C stops it%n", emulator.dialect(), robot, world,

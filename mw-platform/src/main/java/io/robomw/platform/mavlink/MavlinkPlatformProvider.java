@@ -13,6 +13,8 @@ import io.robomw.platform.mavlink.wire.FrameEncoder;
 import io.robomw.platform.mavlink.wire.SignatureCheck;
 import io.robomw.platform.mavlink.wire.Signer;
 import io.robomw.platform.mavlink.wire.SigningKey;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
 
 import java.io.IOException;
 import java.nio.file.Path;
@@ -31,7 +33,9 @@ import java.util.Optional;
  * <p>Connection keys:
  * <ul>
  *   <li>{@code link}: where the vehicle is, as MAVSDK writes it: {@code udpin://HOST:PORT} (listen;
- *   the default is {@value #DEFAULT_LINK}, where SITL's {@code --out} and radio bridges send),
+ *   the default is {@value #DEFAULT_LINK}, this machine only, where SITL's {@code --out} sends;
+ *   {@code udpin://0.0.0.0:14550} listens on every interface, for a radio bridge or a vehicle on the
+ *   network, and is logged as a warning without signing),
  *   {@code udpout://HOST:PORT}, {@code serial:///dev/ttyUSB0:57600};</li>
  *   <li>{@code system_id}, {@code component_id}: this ground station's (default 255 and 190, as
  *   MAVProxy and Mission Planner);</li>
@@ -46,8 +50,15 @@ import java.util.Optional;
  */
 public final class MavlinkPlatformProvider implements PlatformProvider {
 
-    /** The default link: listen on the ground station port every MAVLink tool knows. */
-    public static final String DEFAULT_LINK = "udpin://0.0.0.0:14550";
+    private static final Logger LOG = LoggerFactory.getLogger(MavlinkPlatformProvider.class);
+
+    /**
+     * The default link: listen on the ground station port every MAVLink tool knows, on loopback
+     * (where SITL's default {@code --out} sends); a vehicle elsewhere needs the address named.
+     */
+    public static final String DEFAULT_LINK = "udpin://127.0.0.1:14550";
+    /** Connection keys that would hold a signing secret inline: refused, naming the keys to use. */
+    private static final List<String> INLINE_SECRETS = List.of("signing_key", "signing_passphrase", "signing_secret");
     /** Default {@code connect_timeout_ms}. */
     public static final int DEFAULT_CONNECT_MS = 10_000;
 
@@ -71,6 +82,13 @@ public final class MavlinkPlatformProvider implements PlatformProvider {
         if (config.connection().text("signing_key_file").isPresent() && config.connection().text("signing_key_env").isPresent()) {
             problems.add(config.source() + ": give connection.signing_key_file or connection.signing_key_env, not both");
         }
+        for (String inline : INLINE_SECRETS) {
+            if (config.connection().text(inline).isPresent()) {
+                problems.add(config.source() + ": connection." + inline + " is not taken: a secret does not go in a robot file; put the signing"
+                        + " passphrase in a file only you can read and give connection.signing_key_file, or name an environment variable"
+                        + " with connection.signing_key_env");
+            }
+        }
         problems.addAll(MavlinkVehicle.checkSensors(config.sensors(), config.source()));
         return problems;
     }
@@ -88,6 +106,10 @@ public final class MavlinkPlatformProvider implements PlatformProvider {
         if (key.isPresent()) {
             encoder.signWith(new Signer(key.get(), config.connection().integer("signing_link_id", 0), InstantSource.system()));
             check = new SignatureCheck(key.get(), InstantSource.system());
+        }
+        if (key.isEmpty() && !endpoint.local()) {
+            LOG.warn("robot '{}' ({}): the MAVLink link {} reaches beyond this machine and is not signed: anyone on that network can command"
+                    + " the vehicle; give connection.signing_key_file (docs/security.md)", config.robotName(), config.source(), endpoint);
         }
         MavlinkLink link = endpoint.open(System::nanoTime);
         GroundStation gcs = new GroundStation(config.robotName(), link, encoder, check, config.connection().integer("vehicle_system_id", 0),

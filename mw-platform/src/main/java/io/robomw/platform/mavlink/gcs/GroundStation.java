@@ -27,6 +27,7 @@ import java.util.Objects;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicLong;
 import java.util.function.LongSupplier;
 
 /**
@@ -87,6 +88,9 @@ public final class GroundStation implements AutoCloseable {
     private final MavlinkLink link;
     private final FrameEncoder encoder;
     private final SignatureCheck check;
+    /** Frames dropped by the signature check (written by the receiver, read by the waiting caller). */
+    private final AtomicLong dropped = new AtomicLong();
+    private volatile SignatureCheck.Verdict lastDropped;
     private final LongSupplier nanos;
     private final int wantedSystem;
     private final Telemetry telemetry = new Telemetry();
@@ -152,7 +156,7 @@ public final class GroundStation implements AutoCloseable {
             if (!found.await(within.toMillis(), TimeUnit.MILLISECONDS)) {
                 throw new IOException("robot '" + robot + "': no vehicle HEARTBEAT on " + link.describe() + " within " + within.toMillis()
                         + " ms" + (wantedSystem > 0 ? " from system " + wantedSystem : "")
-                        + "; is the vehicle (or its telemetry radio, or SITL's --out) sending there?");
+                        + droppedSummary() + "; is the vehicle (or its telemetry radio, or SITL's --out) sending there?");
             }
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
@@ -303,10 +307,22 @@ public final class GroundStation implements AutoCloseable {
         listener.lost(e);
     }
 
+    /** @return what signing dropped while no vehicle was found, for the message that says so; empty when nothing was */
+    private String droppedSummary() {
+        long n = dropped.get();
+        return n == 0 ? "" : " (" + n + " frames dropped by signing, the last " + lastDropped
+                + ": does the vehicle sign with the same passphrase as signing_key_file or signing_key_env?)";
+    }
+
     private void received(Frame f, SocketAddress from) {
-        if (check != null && check.check(f) != SignatureCheck.Verdict.ACCEPTED) {
-            warnings.warn("robot '{}': dropped {} from {}: not signed with the key", robot, f, from);
-            return;
+        if (check != null) {
+            SignatureCheck.Verdict verdict = check.check(f);
+            if (verdict != SignatureCheck.Verdict.ACCEPTED) {
+                dropped.incrementAndGet();
+                lastDropped = verdict;
+                warnings.warn("robot '{}': dropped {} from {}: {}", robot, f, from, verdict);
+                return;
+            }
         }
         long now = nanos.getAsLong();
         if (vehicleSystem < 0) {

@@ -1,7 +1,9 @@
 package io.robomw.platform.mavlink.link;
 
 import java.io.IOException;
+import java.net.InetAddress;
 import java.net.InetSocketAddress;
+import java.net.UnknownHostException;
 import java.util.Locale;
 import java.util.Objects;
 import java.util.function.LongSupplier;
@@ -11,7 +13,9 @@ import java.util.regex.Pattern;
 /**
  * Where a MAVLink link goes, in MAVSDK's connection-URL forms:
  * <ul>
- *   <li>{@code udpin://HOST:PORT}: listen on that address (a ground station's {@code udpin://0.0.0.0:14550});</li>
+ *   <li>{@code udpin://HOST:PORT}: listen on that address ({@code udpin://127.0.0.1:14550} on this machine,
+ *   {@code udpin://0.0.0.0:14550} on every interface); the address is never implied: MAVSDK's
+ *   {@code udp://:PORT} (every interface) is refused, naming both forms;</li>
  *   <li>{@code udpout://HOST:PORT} (also {@code udp://HOST:PORT}, as SITL's {@code --out} writes it):
  *   send to that address from a free port;</li>
  *   <li>{@code serial:///dev/ttyUSB0} or {@code serial:///dev/ttyUSB0:57600}: a serial port, at
@@ -64,7 +68,13 @@ public record MavlinkEndpoint(Kind kind, String host, int port, String device, i
             String host = m.group(2).replace("[", "").replace("]", "");
             int port = Integer.parseInt(m.group(3));
             Kind kind = m.group(1).toLowerCase(Locale.ROOT).equals("udpin") ? Kind.UDP_LISTEN : Kind.UDP_SEND;
-            return new MavlinkEndpoint(kind, host.isEmpty() ? "0.0.0.0" : host, port, "", 0);
+            if (host.isEmpty()) {
+                // MAVSDK's udp://:14540 listens on every interface; RoboMW listens beyond this machine only when told so.
+                throw new IllegalArgumentException("'" + url + "' names no address: write udpin://127.0.0.1:" + port + " to listen on this machine,"
+                        + " udpin://0.0.0.0:" + port + " to listen on every interface (anyone on the network may then command the vehicle"
+                        + " unless it signs), or udpout://HOST:" + port + " to send to a vehicle");
+            }
+            return new MavlinkEndpoint(kind, host, port, "", 0);
         }
         m = SERIAL.matcher(u);
         if (m.matches()) {
@@ -88,6 +98,18 @@ public record MavlinkEndpoint(Kind kind, String host, int port, String device, i
             case UDP_SEND -> UdpMavlinkLink.sendTo(new InetSocketAddress(host, port), nanos);
             case SERIAL -> SerialMavlinkLink.open(device, baud);
         };
+    }
+
+    /** @return whether this link can be reached only from this machine (a UDP loopback address or a serial port) */
+    public boolean local() {
+        if (kind == Kind.SERIAL) {
+            return true;
+        }
+        try {
+            return InetAddress.getByName(host).isLoopbackAddress();
+        } catch (UnknownHostException e) {
+            return false;
+        }
     }
 
     @Override

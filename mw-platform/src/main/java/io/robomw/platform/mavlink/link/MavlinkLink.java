@@ -49,7 +49,7 @@ public interface MavlinkLink extends AutoCloseable {
      */
     int receive(Duration timeout, FrameSink sink) throws IOException;
 
-    /** @return the link for messages, {@code "udp listening on 0.0.0.0:14550"} */
+    /** @return the link for messages, {@code "udp listening on 127.0.0.1:14550"} */
     String describe();
 
     /** Releases the socket or port. Idempotent; never throws. */

@@ -155,4 +155,17 @@ class MavlinkLinksTest {
         IllegalArgumentException e = assertThrows(IllegalArgumentException.class, () -> MavlinkEndpoint.parse("tcp://1.2.3.4:5760"));
         assertTrue(e.getMessage().contains("tcp://1.2.3.4:5760") && e.getMessage().contains("udpin://"), e.getMessage());
     }
+
+    @Test
+    void anEndpointNamesItsAddressAndSaysWhetherItStaysOnThisMachine() {
+        IllegalArgumentException e = assertThrows(IllegalArgumentException.class, () -> MavlinkEndpoint.parse("udp://:14540"));
+        assertTrue(e.getMessage().contains("udpin://127.0.0.1:14540") && e.getMessage().contains("udpin://0.0.0.0:14540"), e.getMessage());
+        assertThrows(IllegalArgumentException.class, () -> MavlinkEndpoint.parse("udpin://:14550"));
+        assertTrue(MavlinkEndpoint.parse("udpin://127.0.0.1:14550").local());
+        assertTrue(MavlinkEndpoint.parse("udpout://[::1]:14550").local());
+        assertTrue(MavlinkEndpoint.parse("serial:///dev/ttyUSB0").local());
+        assertFalse(MavlinkEndpoint.parse("udpin://0.0.0.0:14550").local());
+        assertFalse(MavlinkEndpoint.parse("udpout://192.0.2.7:14550").local());
+        assertTrue(MavlinkEndpoint.parse(io.robomw.platform.mavlink.MavlinkPlatformProvider.DEFAULT_LINK).local(), "the driver's default link stays on loopback");
+    }
 }

@@ -15,16 +15,20 @@ import io.robomw.api.spi.RobotPlatform;
 import io.robomw.api.spi.SensorChannel;
 import io.robomw.config.description.VehicleDrive;
 import io.robomw.platform.mavlink.MavlinkPlatformProvider;
+import io.robomw.platform.mavlink.wire.SigningKey;
 import io.robomw.sim.Simulation;
 import io.robomw.sim.vehicle.SimVehicle;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
 
 import java.io.IOException;
 import java.net.InetAddress;
 import java.net.InetSocketAddress;
+import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
+import java.util.HashMap;
 import java.util.List;
 import java.util.Map;
 import java.util.Optional;
@@ -52,19 +56,32 @@ class MavlinkDriverTest {
     private MavlinkEmulator emulator;
     private RobotPlatform platform;
 
+    @TempDir
+    Path dir;
+
     private HighLevelPlatform open(String robot, Optional<VehicleDrive.Autopilot> dialect) throws IOException {
+        InetSocketAddress at = emulate(robot, dialect, Optional.empty());
+        platform = new MavlinkPlatformProvider().open(config(robot, at, Map.of()));
+        return (HighLevelPlatform) platform;
+    }
+
+    private InetSocketAddress emulate(String robot, Optional<VehicleDrive.Autopilot> dialect, Optional<SigningKey> key) throws IOException {
         sim = Simulation.load(HARBOUR, Set.of(robot));
         emulator = MavlinkEmulator.bind(sim, robot, dialect, FailurePolicy.logging());
+        key.ifPresent(emulator::signing);
         InetSocketAddress at = emulator.listen(new InetSocketAddress(InetAddress.getLoopbackAddress(), 0));
         sim.startRealTime(1);
-        PlatformConfig config = new PlatformConfig(robot, "mavlink",
-                new ConnectionSettings(Map.of("link", "udpout://127.0.0.1:" + at.getPort(), "connect_timeout_ms", 10_000), "test " + robot + ".yaml"),
+        return at;
+    }
+
+    private static PlatformConfig config(String robot, InetSocketAddress at, Map<String, Object> more) {
+        Map<String, Object> connection = new HashMap<>(Map.of("link", "udpout://127.0.0.1:" + at.getPort(), "connect_timeout_ms", 10_000));
+        connection.putAll(more);
+        return new PlatformConfig(robot, "mavlink", new ConnectionSettings(connection, "test " + robot + ".yaml"),
                 List.of(), List.of(new SensorChannel("below", SensorType.LASER, "distance:down", Map.of()),
                 new SensorChannel("volts", SensorType.RANGE, "battery:volts", Map.of())),
                 Duration.ofMillis(20), Duration.ofMillis(500), Clock.system(), PlatformServices.none(), Cycling.OWN_THREADS,
                 FailurePolicy.logging());
-        platform = new MavlinkPlatformProvider().open(config);
-        return (HighLevelPlatform) platform;
     }
 
     @AfterEach
@@ -156,5 +173,26 @@ class MavlinkDriverTest {
         ExecutionException e = assertThrows(ExecutionException.class, () -> takeoff.get(10, TimeUnit.SECONDS));
         RobotException refused = assertInstanceOf(RobotException.class, e.getCause());
         assertTrue(refused.getMessage().contains("cannot take off"), refused.getMessage());
+    }
+
+    @Test
+    void aSignedVehicleIsDrivenWithThePassphraseFromAFileAndNeverWithAnotherOrInline() throws Exception {
+        InetSocketAddress at = emulate("copter", Optional.empty(), Optional.of(SigningKey.fromPassphrase("harbour pilots")));
+        Files.writeString(dir.resolve("wrong.key"), "not the pilots' passphrase\n");
+        MavlinkPlatformProvider provider = new MavlinkPlatformProvider();
+        IOException wrong = assertThrows(IOException.class, () -> provider.open(
+                config("copter", at, Map.of("signing_key_file", dir.resolve("wrong.key").toString(), "connect_timeout_ms", 3_000))).close());
+        assertTrue(wrong.getMessage().contains("copter") && wrong.getMessage().contains("WRONG_SIGNATURE"), "the failure names the robot and the signature: " + wrong.getMessage());
+
+        List<String> inline = provider.check(config("copter", at, Map.of("signing_key", "harbour pilots")));
+        assertTrue(inline.stream().anyMatch(p -> p.contains("signing_key is not taken") && p.contains("signing_key_file")
+                && !p.contains("harbour pilots")), "an inline passphrase is refused without being repeated: " + inline);
+
+        Files.writeString(dir.resolve("pilots.key"), "harbour pilots\n");
+        platform = provider.open(config("copter", at, Map.of("signing_key_file", dir.resolve("pilots.key").toString())));
+        HighLevelPlatform p = (HighLevelPlatform) platform;
+        run(p, command("takeoff", Map.of("altitude", 1.5), 6));
+        assertEquals(1.5, vehicle("copter").z(), 0.3, "signed commands fly the signed vehicle");
+        run(p, command("land", Map.of(), 8));
     }
 }
