@@ -1,5 +1,6 @@
 package io.robomw.sim.vehicle;
 
+import io.robomw.api.Capability;
 import io.robomw.api.Pose;
 import io.robomw.api.Position;
 import io.robomw.api.ReturnType;
@@ -76,6 +77,12 @@ class VehicleRobotTest {
             assertThrows(UnsupportedActionException.class, boat::landAsync);
             UnsupportedActionException wheels = assertThrows(UnsupportedActionException.class, () -> nxt.takeOffAsync(1));
             assertTrue(wheels.getMessage().contains("nxt"), wheels.getMessage());
+            UnsupportedActionException climb = assertThrows(UnsupportedActionException.class, () -> nxt.changeAltitudeAsync(0.5, 0.2));
+            assertTrue(climb.getMessage().contains("nxt"), "a wheeled robot cannot climb: " + climb.getMessage());
+            // capabilities() says why: the boat is built for water, not air; the copter for air
+            assertTrue(boat.can(Capability.WATER) && !boat.can(Capability.AIR), "boat: " + boat.capabilities());
+            assertTrue(!nxt.can(Capability.AIR), "nxt: " + nxt.capabilities());
+            assertTrue(sim.robot("copter").can(Capability.AIR), "copter: " + sim.robot("copter").capabilities());
             assertThrows(UnsupportedActionException.class, () -> boat.moveAsync(1, 5), "above drive.max_speed");
             Pose[] after = new Pose[1];
             sim.run(Duration.ofMinutes(2), () -> {
