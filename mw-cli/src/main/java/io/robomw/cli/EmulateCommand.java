@@ -1,6 +1,10 @@
 package io.robomw.cli;
 
+import io.robomw.api.spi.FailurePolicy;
 import io.robomw.config.description.DescriptionException;
+import io.robomw.config.description.VehicleDrive;
+import io.robomw.platform.mavlink.link.MavlinkEndpoint;
+import io.robomw.platform.mavlink.wire.SigningKey;
 import io.robomw.sim.Simulation;
 import io.robomw.sim.emulator.BrickEmulator;
 import io.robomw.sim.emulator.Emulator;
@@ -9,6 +13,7 @@ import io.robomw.sim.emulator.aibo.AiboEmulator;
 import io.robomw.sim.emulator.ev3.Ev3Emulator;
 import io.robomw.sim.emulator.ft.intelligent.IntelligentInterfaceEmulator;
 import io.robomw.sim.emulator.ft.txt.TxtEmulator;
+import io.robomw.sim.emulator.mavlink.MavlinkEmulator;
 import io.robomw.sim.emulator.nxt.NxtEmulator;
 import io.robomw.sim.emulator.rcx.RcxEmulator;
 import picocli.CommandLine.Command;
@@ -18,9 +23,12 @@ import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
 
 import java.io.PrintWriter;
+import java.net.InetSocketAddress;
 import java.nio.file.Path;
 import java.time.Duration;
+import java.util.Locale;
 import java.util.Map;
+import java.util.Optional;
 import java.util.Set;
 import java.util.concurrent.Callable;
 import java.util.concurrent.CountDownLatch;
@@ -46,7 +54,7 @@ final class EmulateCommand implements Callable<Integer> {
                     return b;
                 }
             }
-            String near = value.replace('_', '-').toLowerCase(java.util.Locale.ROOT);
+            String near = value.replace('_', '-').toLowerCase(Locale.ROOT);
             String hint = java.util.Arrays.stream(Brick.values()).anyMatch(b -> b.platform.equals(near)) ? "did you mean '" + near + "'? " : "";
             throw new picocli.CommandLine.TypeConversionException("unknown brick '" + value + "'; " + hint + "emulated bricks: "
                     + String.join(", ", java.util.Arrays.stream(Brick.values()).map(b -> b.platform).toList()));
@@ -267,10 +275,10 @@ final class EmulateCommand implements Callable<Integer> {
      * Prints {@code udp://ADDRESS} lines, the world runs in real time, Ctrl-C stops it.
      */
     private Integer emulateVehicle(Simulation sim, PrintWriter out, PrintWriter err) throws Exception {
-        java.util.Optional<io.robomw.config.description.VehicleDrive.Autopilot> dialect = java.util.Optional.empty();
+        Optional<VehicleDrive.Autopilot> dialect = Optional.empty();
         if (autopilot != null) {
             try {
-                dialect = java.util.Optional.of(io.robomw.config.description.VehicleDrive.Autopilot.valueOf(autopilot.toUpperCase(java.util.Locale.ROOT)));
+                dialect = Optional.of(VehicleDrive.Autopilot.valueOf(autopilot.toUpperCase(Locale.ROOT)));
             } catch (IllegalArgumentException e) {
                 sim.close();
                 err.println("--autopilot must be ardupilot or px4, got '" + autopilot + "'");
@@ -282,36 +290,36 @@ final class EmulateCommand implements Callable<Integer> {
             err.println("--latency, --baud, --tcp and --write-robot are for bricks; the mavlink emulator serves UDP (--udp, --gcs)");
             return 2;
         }
-        io.robomw.platform.mavlink.wire.SigningKey key = null;
+        SigningKey key = null;
         try {
             key = Secrets.read(signingKeyFile, "--signing-key-file", Secrets.MAVLINK_SIGNING_ENV)
-                    .map(io.robomw.platform.mavlink.wire.SigningKey::fromPassphrase).orElse(null);
+                    .map(SigningKey::fromPassphrase).orElse(null);
         } catch (IllegalStateException e) {
             sim.close();
             err.println(e.getMessage());
             return 2;
         }
-        io.robomw.platform.mavlink.link.MavlinkEndpoint target = null;
+        MavlinkEndpoint target = null;
         if (gcs == null && udpPort == null) {
             gcs = "udp://127.0.0.1:14550";
         }
         if (gcs != null) {
             try {
-                target = io.robomw.platform.mavlink.link.MavlinkEndpoint.parse(gcs);
+                target = MavlinkEndpoint.parse(gcs);
             } catch (IllegalArgumentException e) {
                 sim.close();
                 err.println("--gcs: " + e.getMessage());
                 return 2;
             }
-            if (target.kind() != io.robomw.platform.mavlink.link.MavlinkEndpoint.Kind.UDP_SEND) {
+            if (target.kind() != MavlinkEndpoint.Kind.UDP_SEND) {
                 sim.close();
                 err.println("--gcs takes the ground station's address, udp://HOST:PORT, got '" + gcs + "'");
                 return 2;
             }
         }
-        io.robomw.sim.emulator.mavlink.MavlinkEmulator emulator;
+        MavlinkEmulator emulator;
         try {
-            emulator = io.robomw.sim.emulator.mavlink.MavlinkEmulator.bind(sim, robot, dialect, io.robomw.api.spi.FailurePolicy.logging());
+            emulator = MavlinkEmulator.bind(sim, robot, dialect, FailurePolicy.logging());
         } catch (IllegalArgumentException e) {
             sim.close();
             err.println(e.getMessage());
@@ -323,11 +331,11 @@ final class EmulateCommand implements Callable<Integer> {
                 emulator.signing(key);
             }
             if (udpPort != null) {
-                java.net.InetSocketAddress at = emulator.listen(new java.net.InetSocketAddress("127.0.0.1", udpPort));
+                InetSocketAddress at = emulator.listen(new InetSocketAddress("127.0.0.1", udpPort));
                 out.println("udp://127.0.0.1:" + at.getPort());
             }
             if (target != null) {
-                java.net.InetSocketAddress from = emulator.sendTo(new java.net.InetSocketAddress(target.host(), target.port()));
+                InetSocketAddress from = emulator.sendTo(new InetSocketAddress(target.host(), target.port()));
                 out.println("sending to udp://" + target.host() + ":" + target.port() + " from udp://" + from.getAddress().getHostAddress() + ":" + from.getPort());
             }
             out.flush();
