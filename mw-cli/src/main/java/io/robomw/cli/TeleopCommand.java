@@ -132,7 +132,9 @@ final class TeleopCommand implements Callable<Integer> {
                 };
                 if (key == 'r' || key == PAGE_UP || key == 'f' || key == PAGE_DOWN) {
                     wanted.set(Velocity.STOP);
-                    climb.set((key == 'r' || key == PAGE_UP ? 1 : -1) * climbStep * scale);
+                    // keys typed while a climb is being flown add up: r r is two steps, r f none
+                    double step = (key == 'r' || key == PAGE_UP ? 1 : -1) * climbStep * scale;
+                    climb.accumulateAndGet(step, (pending, more) -> pending == null ? more : pending + more);
                     continue;
                 }
                 if (key == '+' || key == '-') {
@@ -185,7 +187,7 @@ final class TeleopCommand implements Callable<Integer> {
         try {
             while (quit.getCount() > 0) {
                 Double metres = climb.getAndSet(null);
-                if (metres != null) {
+                if (metres != null && metres != 0) {
                     if (moving) {
                         robot.stop();
                         moving = false;
