@@ -316,7 +316,7 @@ public final class SimWorld implements AutoCloseable {
         }
         int body = physics.addBody(b.length(), b.width(), b.mass(), b.friction(), start.x(), start.y(), start.heading());
         SimRobot robot = new SimRobot(robots.size(), name, description, physics, body, this.description.seed(), clock::nanoTime,
-                this.description.trajectories(), failures);
+                this.description.trajectories(), failures, this.description.surroundings());
         robots.add(robot);
         cycled = java.util.Arrays.copyOf(cycled, robots.size());
         byName.put(name, robot);
