@@ -141,6 +141,9 @@ public final class BrokerDirectory implements AutoCloseable {
         d.windowStore = windowFile == null ? io.robomw.agents.messaging.security.ReplayStore.memoryOnly()
                 : io.robomw.agents.messaging.security.ReplayStore.in(windowFile, PresenceWindow.KEEP);
         d.window = new PresenceWindow(a.endpoint() + "/" + d.topics.prefix(), d.windowStore);
+        if (seal != null) {
+            d.windowStore.floor(0); // opens the window's file now, not while the first presence is being read
+        }
         try {
             d.client.connectWith().cleanStart(true).send().get(timeout.toMillis(), TimeUnit.MILLISECONDS);
             d.client.subscribeWith().topicFilter(d.topics.everyPresence()).qos(MqttQos.AT_LEAST_ONCE).send()
@@ -256,6 +259,7 @@ public final class BrokerDirectory implements AutoCloseable {
             return;
         }
         String client = MqttTopics.unescape(t.substring(topics.presencePrefix().length()));
+        lastChange = System.nanoTime(); // a presence is being read: not quiet yet
         byte[] bytes = p.getPayloadAsBytes();
         if (bytes.length == 0) {
             byClient.remove(client);
