@@ -110,7 +110,7 @@ public final class AgentHost implements AutoCloseable {
         this.storeDir = b.storeDir;
         this.stopGrace = b.stopGrace;
         this.endpointSpin = b.endpointSpin;
-        this.state = new HostState(this, b.name, b.robot, new StateCodec(b.allowed, b.maxStateBytes), (int) b.callTimeout.toMillis(),
+        this.state = new HostState(new Place(), b.name, b.robot, new StateCodec(b.allowed, b.maxStateBytes), (int) b.callTimeout.toMillis(),
                 b.runnerSpin, b.failures);
         this.robot = new RobotTurns(b.name, b.robot);
         this.code = new CodeLoaders(state);
@@ -648,22 +648,8 @@ public final class AgentHost implements AutoCloseable {
         return state.address;
     }
 
-    /** Takes the robot for the calling agent's stop (waiting for the agent that has it), unless it already has it. */
-    Robot claimRobot(HostedAgent h) {
-        Robot r = robot.claim(h);
-        h.drives = r != null;
-        return r;
-    }
 
-    /** @return the agent host address of a host an agent here names (its address, or its name as messages use it) */
-    String hostAddressOf(String nameOrAddress, HostedAgent h) {
-        return messaging.hostAddress(nameOrAddress, h);
-    }
 
-    /** @return an agent's view of this host's messaging node */
-    Messaging messagingFor(HostedAgent h) {
-        return messaging.forAgent(h);
-    }
 
     /** @return where this host's messaging node receives (empty when it has none), as agents and {@code mw host} give it */
     public List<String> messagingAddresses() {
@@ -759,15 +745,7 @@ public final class AgentHost implements AutoCloseable {
         return home;
     }
 
-    /** A clone an agent here makes of itself, sent with its own plan; this host is its home. */
-    AgentRef cloneOf(HostedAgent parent, Itinerary plan) {
-        return home.cloneOf(parent, plan);
-    }
 
-    /** An agent here sends a value home. */
-    void report(HostedAgent h, Serializable value) {
-        owed.report(h, value);
-    }
 
     // ---- asking another host ----
 
@@ -801,6 +779,51 @@ public final class AgentHost implements AutoCloseable {
     public static List<AgentInfo> list(String address, ClusterKey key, boolean useTls) throws IOException {
         try (HostClient client = new HostClient(key, useTls, 10_000)) {
             return client.agents(address);
+        }
+    }
+
+    /** What this host gives the agents at it ({@link HostContext}): the facade's parts, not the facade. */
+    private final class Place implements AgentPlace {
+        @Override
+        public String name() {
+            return name;
+        }
+
+        @Override
+        public String address() {
+            return state.address;
+        }
+
+        @Override
+        public Robot claimRobot(HostedAgent h) {
+            Robot r = robot.claim(h);
+            h.drives = r != null;
+            return r;
+        }
+
+        @Override
+        public Messaging messagingFor(HostedAgent h) {
+            return messaging.forAgent(h);
+        }
+
+        @Override
+        public String hostAddressOf(String nameOrAddress, HostedAgent h) {
+            return messaging.hostAddress(nameOrAddress, h);
+        }
+
+        @Override
+        public AgentRef cloneOf(HostedAgent parent, Itinerary plan) {
+            return home.cloneOf(parent, plan);
+        }
+
+        @Override
+        public void report(HostedAgent h, Serializable value) {
+            owed.report(h, value);
+        }
+
+        @Override
+        public Agency agency() {
+            return home;
         }
     }
 

@@ -91,6 +91,10 @@ final class AgentRequests {
     private Reply routeToAgent(AgentHandle handle, Op op, byte[] body) throws PeerException {
         String location = handle.location();
         for (int i = 0; i < MAX_ROUTE_HOPS; i++) {
+            if (i > 0 && handle.ended()) {
+                // it came home (retracted, disposed, done) while the call chased it
+                return Reply.of(Reply.Status.GONE, "agent " + handle.id() + " has ended its trip");
+            }
             Reply r = peers.call(location, op, body);
             if (r.status() != Reply.Status.MOVED) {
                 return r;

@@ -85,6 +85,11 @@ final class Calls implements HostEndpoint.Handler {
 
     /** Where an agent went, for calls that arrive after it left. */
     private Reply whereIs(UUID id) {
+        AgentHandle sentFromHere = host.handles.get(id);
+        if (sentFromHere != null && sentFromHere.ended()) {
+            // its home, after its trip ended: not "moved" to where it went last (which would send a chasing call back here)
+            return Reply.of(Reply.Status.GONE, "agent " + id + " has ended its trip (" + sentFromHere.status() + " at " + sentFromHere.location() + ")");
+        }
         String to = host.forwardOf(id);
         return to != null ? Reply.of(Reply.Status.MOVED, to) : Reply.of(Reply.Status.GONE, "agent " + id + " is not at host " + host.name);
     }

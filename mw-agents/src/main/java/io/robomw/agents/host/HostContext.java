@@ -13,10 +13,10 @@ import java.util.UUID;
 /** An agent's view of the host it is at. */
 final class HostContext implements AgentContext {
 
-    private final AgentHost host;
+    private final AgentPlace host;
     private final HostedAgent hosted;
 
-    HostContext(AgentHost host, HostedAgent hosted) {
+    HostContext(AgentPlace host, HostedAgent hosted) {
         this.host = host;
         this.hosted = hosted;
     }

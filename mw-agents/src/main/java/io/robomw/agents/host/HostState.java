@@ -58,7 +58,7 @@ final class HostState {
     final ExecutorService requests;
     /** Where whatever the host's threads catch goes; its pools' threads report what ends them there. */
     final FailurePolicy failures;
-    private final AgentHost facade;
+    private final AgentPlace place;
     private final AtomicInteger refused = new AtomicInteger();
     /** How many refusals a second are logged; a flood of them (a peer that sends garbage with a valid session) logs no more. */
     static final int REFUSALS_LOGGED_PER_SECOND = 10;
@@ -80,9 +80,9 @@ final class HostState {
     /**
      * @param runnerSpin how long an idle runner thread spins for the next agent before it parks ({@link SpinHandoff})
      */
-    HostState(AgentHost facade, String name, Robot robot, StateCodec codec, int timeoutMillis, java.time.Duration runnerSpin,
+    HostState(AgentPlace place, String name, Robot robot, StateCodec codec, int timeoutMillis, java.time.Duration runnerSpin,
               FailurePolicy failures) {
-        this.facade = facade;
+        this.place = place;
         this.failures = failures;
         this.name = name;
         this.robot = robot;
@@ -97,7 +97,7 @@ final class HostState {
 
     /** @return a new context for an agent here, to attach to it before one of its callbacks */
     HostContext contextOf(HostedAgent h) {
-        return new HostContext(facade, h);
+        return new HostContext(place, h);
     }
 
     /**
