@@ -1,5 +1,8 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.net.WireCode;
+import io.robomw.agents.net.WireCodes;
+
 import java.nio.ByteBuffer;
 import java.nio.charset.StandardCharsets;
 import java.util.UUID;
@@ -31,19 +34,21 @@ import java.util.UUID;
 record AgentEvent(UUID id, long seq, Kind kind, String location, byte[] payload) {
 
     /** What happened. Each kind travels as its {@link #code()}, never as its position here. */
-    enum Kind {
-        /** The agent arrived at {@code location}. Code 0. */
+    enum Kind implements WireCode {
+        /** The agent arrived at {@code location}. */
         ARRIVED(0),
-        /** The agent sent a value home. Code 1. */
+        /** The agent sent a value home. */
         REPORT(1),
-        /** The trip ended; the payload is the result. Code 2. */
+        /** The trip ended; the payload is the result. */
         RESULT(2),
-        /** The trip ended in failure; the payload says why. Code 3. */
+        /** The trip ended in failure; the payload says why. */
         FAILED(3),
-        /** The agent was disposed of. Code 4. */
+        /** The agent was disposed of. */
         DISPOSED(4),
-        /** The trip's visits, owed just before the event that ends it. Code 5. */
+        /** The trip's visits, owed just before the event that ends it. */
         VISITS(5);
+
+        private static final WireCodes<Kind> CODES = WireCodes.of(Kind.class, "event kind");
 
         private final int code;
 
@@ -52,7 +57,8 @@ record AgentEvent(UUID id, long seq, Kind kind, String location, byte[] payload)
         }
 
         /** @return the kind's code on the wire and in the store */
-        int code() {
+        @Override
+        public int code() {
             return code;
         }
 
@@ -62,15 +68,7 @@ record AgentEvent(UUID id, long seq, Kind kind, String location, byte[] payload)
          * @throws IllegalArgumentException naming the code if no kind has it
          */
         static Kind fromCode(int code) {
-            return switch (code) {
-                case 0 -> ARRIVED;
-                case 1 -> REPORT;
-                case 2 -> RESULT;
-                case 3 -> FAILED;
-                case 4 -> DISPOSED;
-                case 5 -> VISITS;
-                default -> throw new IllegalArgumentException("unknown event kind code " + code + " (known: 0-5: ARRIVED, REPORT, RESULT, FAILED, DISPOSED, VISITS)");
-            };
+            return CODES.get(code);
         }
     }
 

@@ -1,5 +1,8 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.net.WireCode;
+import io.robomw.agents.net.WireCodes;
+
 import io.robomw.agents.host.code.CodeArchive;
 import io.robomw.agents.host.code.StateCodec;
 
@@ -55,11 +58,13 @@ record AgentImage(UUID id, long hop, Kind kind, boolean fromHome, String home, C
     private static final int KIND_MASK = 0x0f;
 
     /** Why an agent travels. Each kind travels as its {@link #code()}, never as its position here. */
-    enum Kind {
-        /** To its next stop. Code 0. */
+    enum Kind implements WireCode {
+        /** To its next stop. */
         TRIP(0),
-        /** Home, retracted: its state completes the retract. Code 1. */
+        /** Home, retracted: its state completes the retract. */
         HOMECOMING(1);
+
+        private static final WireCodes<Kind> CODES = WireCodes.of(Kind.class, "agent image kind");
 
         private final int code;
 
@@ -68,7 +73,8 @@ record AgentImage(UUID id, long hop, Kind kind, boolean fromHome, String home, C
         }
 
         /** @return the kind's code in the image's first byte */
-        int code() {
+        @Override
+        public int code() {
             return code;
         }
 
@@ -78,11 +84,7 @@ record AgentImage(UUID id, long hop, Kind kind, boolean fromHome, String home, C
          * @throws IllegalArgumentException naming the code if no kind has it
          */
         static Kind fromCode(int code) {
-            return switch (code) {
-                case 0 -> TRIP;
-                case 1 -> HOMECOMING;
-                default -> throw new IllegalArgumentException("unknown agent image kind code " + code + " (known: 0 TRIP, 1 HOMECOMING)");
-            };
+            return CODES.get(code);
         }
     }
 

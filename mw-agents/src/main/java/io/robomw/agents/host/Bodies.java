@@ -1,5 +1,8 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.net.WireCode;
+import io.robomw.agents.net.WireCodes;
+
 import io.robomw.agents.host.code.CodeArchive;
 import io.robomw.api.AgentStatus;
 import io.robomw.api.Itinerary;
@@ -85,40 +88,58 @@ final class Bodies {
 
     // ---- agent status codes ----
 
-    /** A LIST reply's status code for an active agent whose retract is pending. */
-    static final int RETRACT_PENDING = 7;
-    /** A LIST reply's status code for an active agent whose dispose is pending. */
-    static final int DISPOSE_PENDING = 8;
-
-    /** @return the code of a status in a LIST reply */
-    static int statusCode(AgentStatus status) {
-        return switch (status) {
-            case CREATED -> 0;
-            case ACTIVE -> 1;
-            case IN_TRANSIT -> 2;
-            case COMPLETED -> 3;
-            case DISPOSED -> 4;
-            case RETRACTED -> 5;
-            case FAILED -> 6;
-        };
-    }
-
     /**
-     * @param code a status code as read (unsigned)
-     * @return its status
-     * @throws IllegalArgumentException naming the code if no status has it
+     * An agent's status as a LIST reply gives it: its {@link AgentStatus}, or an active agent whose
+     * retract or dispose is pending. Each travels as its code, written once here.
      */
-    static AgentStatus status(int code) {
-        return switch (code) {
-            case 0 -> AgentStatus.CREATED;
-            case 1 -> AgentStatus.ACTIVE;
-            case 2 -> AgentStatus.IN_TRANSIT;
-            case 3 -> AgentStatus.COMPLETED;
-            case 4 -> AgentStatus.DISPOSED;
-            case 5 -> AgentStatus.RETRACTED;
-            case 6 -> AgentStatus.FAILED;
-            default -> throw new IllegalArgumentException("unknown agent status code " + code + " (known: 0-8)");
-        };
+    enum Listed implements WireCode {
+        CREATED(0, AgentStatus.CREATED, AgentInfo.Pending.NONE),
+        ACTIVE(1, AgentStatus.ACTIVE, AgentInfo.Pending.NONE),
+        IN_TRANSIT(2, AgentStatus.IN_TRANSIT, AgentInfo.Pending.NONE),
+        COMPLETED(3, AgentStatus.COMPLETED, AgentInfo.Pending.NONE),
+        DISPOSED(4, AgentStatus.DISPOSED, AgentInfo.Pending.NONE),
+        RETRACTED(5, AgentStatus.RETRACTED, AgentInfo.Pending.NONE),
+        FAILED(6, AgentStatus.FAILED, AgentInfo.Pending.NONE),
+        /** Active, its retract pending. */
+        RETRACT_PENDING(7, AgentStatus.ACTIVE, AgentInfo.Pending.RETRACT),
+        /** Active, its dispose pending. */
+        DISPOSE_PENDING(8, AgentStatus.ACTIVE, AgentInfo.Pending.DISPOSE);
+
+        private static final WireCodes<Listed> CODES = WireCodes.of(Listed.class, "agent status");
+
+        private final int code;
+        final AgentStatus status;
+        final AgentInfo.Pending pending;
+
+        Listed(int code, AgentStatus status, AgentInfo.Pending pending) {
+            this.code = code;
+            this.status = status;
+            this.pending = pending;
+        }
+
+        @Override
+        public int code() {
+            return code;
+        }
+
+        /** @return how a LIST reply gives an agent's status and what is pending */
+        static Listed of(AgentStatus status, AgentInfo.Pending pending) {
+            for (Listed l : values()) {
+                if (l.status == status && l.pending == pending) {
+                    return l;
+                }
+            }
+            return of(status, AgentInfo.Pending.NONE);
+        }
+
+        /**
+         * @param code a status code as read (unsigned)
+         * @return its listed status
+         * @throws IllegalArgumentException naming the code if none has it
+         */
+        static Listed fromCode(int code) {
+            return CODES.get(code);
+        }
     }
 
     // ---- LIST ----
@@ -133,8 +154,7 @@ final class Bodies {
                 out.writeLong(a.id().getMostSignificantBits());
                 out.writeLong(a.id().getLeastSignificantBits());
                 out.writeUTF(a.className());
-                out.writeByte(a.pending() == AgentInfo.Pending.RETRACT ? RETRACT_PENDING : a.pending() == AgentInfo.Pending.DISPOSE ? DISPOSE_PENDING
-                        : statusCode(a.status()));
+                out.writeByte(Listed.of(a.status(), a.pending()).code());
                 out.writeLong(a.hop());
                 out.writeUTF(a.home());
             }
@@ -161,18 +181,15 @@ final class Bodies {
             for (int i = 0; i < n; i++) {
                 UUID id = new UUID(in.readLong(), in.readLong());
                 String cls = in.readUTF();
-                int code = in.readUnsignedByte();
-                AgentStatus status;
-                AgentInfo.Pending pending = code == RETRACT_PENDING ? AgentInfo.Pending.RETRACT
-                        : code == DISPOSE_PENDING ? AgentInfo.Pending.DISPOSE : AgentInfo.Pending.NONE;
+                Listed listed;
                 try {
-                    status = pending != AgentInfo.Pending.NONE ? AgentStatus.ACTIVE : status(code);
+                    listed = Listed.fromCode(in.readUnsignedByte());
                 } catch (IllegalArgumentException e) {
                     throw new IOException("host " + from + " listed agent " + id + " with an " + e.getMessage(), e);
                 }
                 long hop = in.readLong();
                 String home = in.readUTF();
-                out.add(new AgentInfo(id, cls, status, hop, home, pending));
+                out.add(new AgentInfo(id, cls, listed.status, hop, home, listed.pending));
             }
             if (in.available() > 0) {
                 throw new IOException("host " + from + " sent a LIST reply with " + in.available() + " bytes after its " + n + " agents");

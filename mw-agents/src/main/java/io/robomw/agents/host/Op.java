@@ -1,32 +1,37 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.net.WireCode;
+import io.robomw.agents.net.WireCodes;
+
 /**
  * The operations of {@link AgentHostRemote#call}. Each travels as its {@link #code()} in the
  * request's operation byte (the table is in {@link Session}), never as its position here.
  */
-enum Op {
-    /** An agent hops to this host. Code 0. */
+enum Op implements WireCode {
+    /** An agent hops to this host. */
     TRANSFER(0),
-    /** The code archive a transfer needs. Code 1. */
+    /** The code archive a transfer needs. */
     PUT_ARCHIVE(1),
-    /** List the agents here. Code 2. */
+    /** List the agents here. */
     LIST(2),
-    /** Something for an agent's home: arrival, report, result, end. Code 3. */
+    /** Something for an agent's home: arrival, report, result, end. */
     EVENT(3),
-    /** A message for an agent here. Code 4. */
+    /** A message for an agent here. */
     MESSAGE(4),
-    /** Send an agent here home. Code 5. */
+    /** Send an agent here home. */
     RETRACT(5),
-    /** End an agent's trip here. Code 6. */
+    /** End an agent's trip here. */
     DISPOSE(6),
-    /** Say who this host is: name, robot, messaging addresses, the hosts it knows ({@link HostDescription}). Code 7. */
+    /** Say who this host is: name, robot, messaging addresses, the hosts it knows ({@link HostDescription}). */
     DESCRIBE(7),
-    /** What a watcher (a console) sees: the host, its agents and itineraries, recent events ({@link HostWatch}). Code 8. */
+    /** What a watcher (a console) sees: the host, its agents and itineraries, recent events ({@link HostWatch}). */
     WATCH(8),
-    /** List the reports and results this host owes homes and has not delivered ({@link OwedDelivery}). Code 9. */
+    /** List the reports and results this host owes homes and has not delivered ({@link OwedDelivery}). */
     OWED(9),
-    /** Drop owed deliveries ({@link OwedSelector}); the reply lists the ones dropped. Code 10. */
+    /** Drop owed deliveries ({@link OwedSelector}); the reply lists the ones dropped. */
     DROP_OWED(10);
+
+    private static final WireCodes<Op> CODES = WireCodes.of(Op.class, "operation");
 
     private final int code;
 
@@ -35,7 +40,8 @@ enum Op {
     }
 
     /** @return the operation's code on the wire */
-    int code() {
+    @Override
+    public int code() {
         return code;
     }
 
@@ -45,20 +51,6 @@ enum Op {
      * @throws IllegalArgumentException naming the code if no operation has it
      */
     static Op fromCode(int code) {
-        return switch (code) {
-            case 0 -> TRANSFER;
-            case 1 -> PUT_ARCHIVE;
-            case 2 -> LIST;
-            case 3 -> EVENT;
-            case 4 -> MESSAGE;
-            case 5 -> RETRACT;
-            case 6 -> DISPOSE;
-            case 7 -> DESCRIBE;
-            case 8 -> WATCH;
-            case 9 -> OWED;
-            case 10 -> DROP_OWED;
-            default -> throw new IllegalArgumentException("unknown operation code " + code
-                    + " (this host knows 0-10: TRANSFER, PUT_ARCHIVE, LIST, EVENT, MESSAGE, RETRACT, DISPOSE, DESCRIBE, WATCH, OWED, DROP_OWED)");
-        };
+        return CODES.get(code);
     }
 }

@@ -1,5 +1,8 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.net.WireCode;
+import io.robomw.agents.net.WireCodes;
+
 import java.nio.charset.StandardCharsets;
 
 /**
@@ -14,23 +17,25 @@ record Reply(Status status, byte[] body) {
      * Outcomes of a call. Each travels as its {@link #code()} in the reply's status byte (the table
      * is in {@link Session}), never as its position here.
      */
-    enum Status {
-        /** Done. Code 0. */
+    enum Status implements WireCode {
+        /** Done. */
         OK(0),
-        /** The transfer names an archive this host lacks: send it, then the transfer again. Code 1. */
+        /** The transfer names an archive this host lacks: send it, then the transfer again. */
         NEED_ARCHIVE(1),
-        /** Already done before (a retried transfer); counts as done. Code 2. */
+        /** Already done before (a retried transfer); counts as done. */
         DUPLICATE(2),
-        /** Refused; the body says why. Code 3. */
+        /** Refused; the body says why. */
         REFUSED(3),
-        /** The agent has moved on; the body is where to. Code 4. */
+        /** The agent has moved on; the body is where to. */
         MOVED(4),
-        /** No such agent here. Code 5. */
+        /** No such agent here. */
         GONE(5),
-        /** The agent did not handle the message. Code 6. */
+        /** The agent did not handle the message. */
         NOT_HANDLED(6),
-        /** The session is unknown (the host restarted): authenticate again. Code 7, sent alone and without a MAC. */
+        /** The session is unknown (the host restarted): authenticate again. Sent alone and without a MAC. */
         UNKNOWN_SESSION(7);
+
+        private static final WireCodes<Status> CODES = WireCodes.of(Status.class, "reply status");
 
         private final int code;
 
@@ -39,7 +44,8 @@ record Reply(Status status, byte[] body) {
         }
 
         /** @return the status's code on the wire */
-        int code() {
+        @Override
+        public int code() {
             return code;
         }
 
@@ -49,17 +55,7 @@ record Reply(Status status, byte[] body) {
          * @throws IllegalArgumentException naming the code if no status has it
          */
         static Status fromCode(int code) {
-            return switch (code) {
-                case 0 -> OK;
-                case 1 -> NEED_ARCHIVE;
-                case 2 -> DUPLICATE;
-                case 3 -> REFUSED;
-                case 4 -> MOVED;
-                case 5 -> GONE;
-                case 6 -> NOT_HANDLED;
-                case 7 -> UNKNOWN_SESSION;
-                default -> throw new IllegalArgumentException("unknown reply status code " + code + " (known: 0-7)");
-            };
+            return CODES.get(code);
         }
     }
 
