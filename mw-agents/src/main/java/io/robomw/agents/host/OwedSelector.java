@@ -1,5 +1,6 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.protocol.Bodies;
 import io.robomw.agents.net.WireCode;
 import io.robomw.agents.net.WireCodes;
 

@@ -298,7 +298,7 @@ class AgentHostTest {
                 visits.stream().map(io.robomw.api.Itinerary.Visit::outcome).toList(), visits.toString());
         String failed = visits.get(0).detail();
         assertTrue(failed.startsWith("io.robomw.agents.host.NoRobotException: agent host a (" + a.address() + ") has no robot"), failed);
-        assertTrue(failed.contains("\tat io.robomw.agents.host.HostContext.robot"), "the remote stack trace: " + failed);
+        assertTrue(failed.contains("\tat io.robomw.agents.host.visit.HostContext.robot"), "the remote stack trace: " + failed);
         assertEquals("rmi://127.0.0.1:1/nobody", visits.get(1).host());
         assertTrue(visits.get(1).detail().contains("Connection refused"), visits.get(1).detail());
     }

@@ -1,5 +1,6 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.ops.HostWatch;
 import io.robomw.agents.host.trip.VisitorAgent;
 import io.robomw.testkit.Await;
 import io.robomw.api.AgentRef;

@@ -1,6 +1,6 @@
 package io.robomw.it.security;
 
-import io.robomw.agents.host.AgentHostRemote;
+import io.robomw.agents.host.rmi.AgentHostRemote;
 import io.robomw.it.agents.HostProcess;
 import io.robomw.it.demo.MwProcess;
 import org.junit.jupiter.api.Test;
