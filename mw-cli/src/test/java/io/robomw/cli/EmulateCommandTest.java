@@ -162,7 +162,7 @@ class EmulateCommandTest {
                 arena: { width: 3, height: 3 }
                 robots:
                   - { robot: %s, name: rcx, x: 1.0, y: 1.5, heading: 0 }
-                """.formatted(RCX_ROBOT));
+                """.formatted(beside(RCX_ROBOT)));
         start("emulate", "rcx", "--world", dir.resolve("world.yaml").toString(), "--robot", "rcx", "--latency", "30ms", "--baud", "0");
         String device = lines.poll(30, TimeUnit.SECONDS);
         assertNotNull(device, "mw emulate started with --latency 30ms");
@@ -176,7 +176,7 @@ class EmulateCommandTest {
                 arena: { width: 3, height: 3 }
                 robots:
                   - { robot: %s, name: rcx, x: 1.0, y: 1.5, heading: 0 }
-                """.formatted(RCX_ROBOT));
+                """.formatted(beside(RCX_ROBOT)));
         CliRun run = CliRun.mw("emulate", "rcx", "--world", dir.resolve("world.yaml").toString(), "--robot", "rcx", "--latency", "40");
         assertEquals(2, run.status(), run.toString());
         assertTrue(run.err().contains("--latency 40s is longer than any link's (at most 10s); give a unit: --latency 40ms"), run.err());

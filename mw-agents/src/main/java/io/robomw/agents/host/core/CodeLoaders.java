@@ -1,6 +1,5 @@
 package io.robomw.agents.host.core;
 
-import io.robomw.agents.host.AgentHost;
 import io.robomw.agents.host.protocol.Bodies;
 import io.robomw.agents.host.protocol.Reply;
 import io.robomw.agents.host.code.ArchiveClassLoader;
@@ -66,7 +65,7 @@ public final class CodeLoaders {
         synchronized (loaders) {
             l = loaders.get(digest);
             if (l == null) {
-                l = new ArchiveClassLoader(archive.get(), AgentHost.class.getClassLoader());
+                l = new ArchiveClassLoader(archive.get(), CodeLoaders.class.getClassLoader());
                 loaders.put(digest, l);
             }
         }
@@ -95,7 +94,7 @@ public final class CodeLoaders {
                     + " (tampered with or corrupted)");
         }
         try {
-            ArchiveClassLoader checked = new ArchiveClassLoader(archive, AgentHost.class.getClassLoader());
+            ArchiveClassLoader checked = new ArchiveClassLoader(archive, CodeLoaders.class.getClassLoader());
             host.store.putArchive(archive);
             synchronized (loaders) {
                 loaders.putIfAbsent(archive.digest(), checked); // the transfer that asked for it follows: no second read of the jar

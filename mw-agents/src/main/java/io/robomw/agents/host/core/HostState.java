@@ -1,6 +1,5 @@
 package io.robomw.agents.host.core;
 
-import io.robomw.agents.host.AgentHost;
 import io.robomw.agents.host.home.AgentHandle;
 import io.robomw.agents.host.messaging.HostMessaging;
 import io.robomw.agents.host.protocol.FrameBuffers;
@@ -29,11 +28,11 @@ import java.util.concurrent.ThreadFactory;
 import java.util.concurrent.atomic.AtomicInteger;
 
 /**
- * What the parts of one {@link AgentHost} share: who the host is, where it keeps agents, the
+ * What the parts of one {@link io.robomw.agents.host.AgentHost} share: who the host is, where it keeps agents, the
  * agents here ({@link #hosted}) and the ones sent from here ({@link #handles}), where agents went
  * from here, and its two thread pools (agents' stops; the home's requests of its agents).
  *
- * <p>{@link #store} and {@link #address} are set once by {@link AgentHost}'s start, before the
+ * <p>{@link #store} and {@link #address} are set once by {@link io.robomw.agents.host.AgentHost}'s start, before the
  * host takes calls or resumes agents; the rest is fixed at construction or thread-safe.
  */
 public final class HostState {
@@ -84,7 +83,7 @@ public final class HostState {
     };
     public AgentStore store;
     public String address;
-    /** The host's messaging; set by {@link AgentHost} before the host takes calls. */
+    /** The host's messaging; set by {@link io.robomw.agents.host.AgentHost} before the host takes calls. */
     public HostMessaging messaging;
     public volatile boolean closed;
 

@@ -1,7 +1,5 @@
 package io.robomw.agents.host.rmi;
 
-import io.robomw.agents.host.AgentHost;
-import io.robomw.agents.host.AgentHostBuilder;
 import io.robomw.agents.host.ClusterKey;
 import io.robomw.agents.host.HostDescription;
 import io.robomw.agents.host.ops.HostWatch;
@@ -57,7 +55,7 @@ import java.util.Arrays;
  * <p>Peers of this build propose 4; a host of this build takes 2, 3 and 4 (peers of builds before
  * 4 are served as before: their own sessions are not bound). A host of a build before 4 refuses
  * it, naming its versions; a peer of this build then gives up with an error saying so, unless it
- * was told to talk to older builds ({@link AgentHostBuilder#olderHosts()}): it then
+ * was told to talk to older builds ({@link io.robomw.agents.host.AgentHostBuilder#olderHosts()}): it then
  * authenticates again with 3 (and 2 if that is refused too) and proposes 4 again after it loses the
  * connection. A peer never falls back on its own: the refusal is not authenticated, so a relay
  * could forge one to talk it down to an unbound version. Any other version is refused with a
