@@ -1,6 +1,6 @@
 package io.robomw.cli;
 
-import io.robomw.agents.host.HostClient;
+import io.robomw.agents.host.ops.HostClient;
 import picocli.CommandLine.Mixin;
 import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Parameters;

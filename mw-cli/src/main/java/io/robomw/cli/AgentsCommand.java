@@ -2,7 +2,7 @@ package io.robomw.cli;
 
 import io.robomw.agents.host.AgentInfo;
 import io.robomw.agents.host.ClusterKey;
-import io.robomw.agents.host.HostClient;
+import io.robomw.agents.host.ops.HostClient;
 import io.robomw.agents.host.OwedDelivery;
 import io.robomw.agents.host.OwedSelector;
 import io.robomw.agents.messaging.PresenceRecord;

@@ -118,7 +118,7 @@ final class DispatchCommand implements Callable<Integer> {
             return;
         }
         long deadline = System.nanoTime() + waitHosts.toNanos();
-        try (io.robomw.agents.host.HostClient client = new io.robomw.agents.host.HostClient(cluster.keyOrTlsOnly(), cluster.tls() != null, 5_000)) {
+        try (io.robomw.agents.host.ops.HostClient client = new io.robomw.agents.host.ops.HostClient(cluster.keyOrTlsOnly(), cluster.tls() != null, 5_000)) {
             for (String host : first) {
                 boolean said = false;
                 while (true) {

@@ -1,6 +1,7 @@
 package io.robomw.cli;
 
 import io.robomw.agents.host.AgentHost;
+import io.robomw.agents.host.AgentHostBuilder;
 import io.robomw.agents.host.ClusterKey;
 import io.robomw.agents.messaging.MessagingNode;
 import io.robomw.agents.messaging.MessagingSettings;
@@ -213,7 +214,7 @@ final class HostCommand implements Callable<Integer> {
                 // the served robot's callers prove themselves with their certificates: the node takes only mutual TLS
                 settings = settings.withTls(cluster.tls());
             }
-            AgentHost.Builder builder = AgentHost.builder(name).bind(bind).port(port).robot(robot).clusterKey(cluster.key()).tls(cluster.tls())
+            AgentHostBuilder builder = AgentHost.builder(name).bind(bind).port(port).robot(robot).clusterKey(cluster.key()).tls(cluster.tls())
                     .store(store).allow(allow).messagingSettings(settings).callTimeout(callTimeout)
                     .deliveryPolicy(io.robomw.agents.host.DeliveryPolicy.defaults().withExpiry(owedExpiry).withMaxBackoff(owedMaxBackoff));
             builder.wire(!noWire).wirePort(wirePort);

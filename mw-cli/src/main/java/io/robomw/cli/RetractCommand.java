@@ -1,6 +1,6 @@
 package io.robomw.cli;
 
-import io.robomw.agents.host.HostClient;
+import io.robomw.agents.host.ops.HostClient;
 import picocli.CommandLine.Command;
 
 import java.io.IOException;

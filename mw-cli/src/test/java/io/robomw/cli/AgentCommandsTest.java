@@ -166,7 +166,7 @@ class AgentCommandsTest {
         assertFalse(run.out().contains("at io.robomw"), "no stack trace without --verbose: " + run.out());
 
         Run verbose = dispatch("--verbose", "--agent", RobotAgent.class.getName(), a.address());
-        assertTrue(verbose.out().contains("at io.robomw.agents.host.HostContext.robot"), "the remote trace with --verbose: " + verbose.out());
+        assertTrue(verbose.out().contains("at io.robomw.agents.host.visit.HostContext.robot"), "the remote trace with --verbose: " + verbose.out());
     }
 
     @Test

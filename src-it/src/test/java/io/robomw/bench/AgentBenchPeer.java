@@ -1,6 +1,7 @@
 package io.robomw.bench;
 
 import io.robomw.agents.host.AgentHost;
+import io.robomw.agents.host.AgentHostBuilder;
 import io.robomw.agents.host.ClusterKey;
 
 import java.io.BufferedReader;
@@ -21,26 +22,26 @@ import java.nio.file.Path;
 public final class AgentBenchPeer {
 
     static final ClusterKey KEY = ClusterKey.fromPassphrase("robomw agent benchmark");
-    /** The system property that sets both hosts' runner spin in µs ({@code AgentHost.Builder.runnerSpin}); unset: the default. */
+    /** The system property that sets both hosts' runner spin in µs ({@code AgentHostBuilder.runnerSpin}); unset: the default. */
     static final String RUNNER_SPIN = "agent.bench.runnerSpinMicros";
 
-    /** The system property that sets both hosts' endpoint spin in µs ({@code AgentHost.Builder.endpointSpin}); unset: the default. */
+    /** The system property that sets both hosts' endpoint spin in µs ({@code AgentHostBuilder.endpointSpin}); unset: the default. */
     static final String ENDPOINT_SPIN = "agent.bench.endpointSpinMicros";
 
     /** The system property that turns both hosts' agent wire off ({@code false}: protocol version 2, every call over RMI); unset: on. */
     static final String WIRE = "agent.bench.wire";
 
-    /** The system property that sets both hosts' wire reply spin in µs ({@code AgentHost.Builder.wireSpin}); unset: the default. */
+    /** The system property that sets both hosts' wire reply spin in µs ({@code AgentHostBuilder.wireSpin}); unset: the default. */
     static final String WIRE_SPIN = "agent.bench.wireSpinMicros";
 
-    /** The system property that sets both hosts' wire read spin in µs ({@code AgentHost.Builder.wireReadSpin}); unset: the default. */
+    /** The system property that sets both hosts' wire read spin in µs ({@code AgentHostBuilder.wireReadSpin}); unset: the default. */
     static final String WIRE_READ_SPIN = "agent.bench.wireReadSpinMicros";
 
     /** The properties above, passed on to host B's JVM. */
     static final java.util.List<String> PROPERTIES = java.util.List.of(RUNNER_SPIN, ENDPOINT_SPIN, WIRE, WIRE_SPIN, WIRE_READ_SPIN);
 
     /** @return the builder with the spins of {@value #RUNNER_SPIN}, {@value #ENDPOINT_SPIN} and {@value #WIRE_SPIN} and the wire of {@value #WIRE}, where set */
-    static AgentHost.Builder spin(AgentHost.Builder b) {
+    static AgentHostBuilder spin(AgentHostBuilder b) {
         String wire = System.getProperty(WIRE);
         if (wire != null) {
             b.wire(Boolean.parseBoolean(wire.trim()));
@@ -73,7 +74,7 @@ public final class AgentBenchPeer {
      */
     public static void main(String[] args) throws Exception {
         PrintStream out = new PrintStream(System.out, true, StandardCharsets.UTF_8);
-        AgentHost.Builder b = spin(AgentHost.builder("bench-b").bind("127.0.0.1").clusterKey(KEY));
+        AgentHostBuilder b = spin(AgentHost.builder("bench-b").bind("127.0.0.1").clusterKey(KEY));
         if (args.length > 1 && args[0].equals("durable")) {
             b.store(Path.of(args[1]));
         }

@@ -1,6 +1,7 @@
 package io.robomw.bench;
 
 import io.robomw.agents.host.AgentHost;
+import io.robomw.agents.host.AgentHostBuilder;
 import io.robomw.agents.host.code.StateCodec;
 import io.robomw.api.Agent;
 import io.robomw.api.AgentRef;
@@ -284,7 +285,7 @@ public final class AgentBenchmark {
         }
         try (PeerProcess b = PeerProcess.start("agent-bench-b-" + name, AgentBenchPeer.class.getName(), peerJvm, peerArgs)) {
             String far = b.expect("ADDRESS", PeerProcess.COMMAND).substring("ADDRESS ".length());
-            AgentHost.Builder builder = AgentBenchPeer.spin(AgentHost.builder("bench-a").bind("127.0.0.1").clusterKey(AgentBenchPeer.KEY));
+            AgentHostBuilder builder = AgentBenchPeer.spin(AgentHost.builder("bench-a").bind("127.0.0.1").clusterKey(AgentBenchPeer.KEY));
             if (durable) {
                 builder.store(dirA);
             }

@@ -1,5 +1,32 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.core.Calls;
+import io.robomw.agents.host.core.CodeLoaders;
+import io.robomw.agents.host.core.HostState;
+import io.robomw.agents.host.home.AgentRequests;
+import io.robomw.agents.host.home.Home;
+import io.robomw.agents.host.home.OwedEvents;
+import io.robomw.agents.host.messaging.HostMessaging;
+import io.robomw.agents.host.ops.HostClient;
+import io.robomw.agents.host.protocol.Bodies;
+import io.robomw.agents.host.protocol.Op;
+import io.robomw.agents.host.protocol.Reply;
+import io.robomw.agents.host.rmi.AgentHostRemote;
+import io.robomw.agents.host.rmi.HostConnections;
+import io.robomw.agents.host.rmi.HostEndpoint;
+import io.robomw.agents.host.rmi.HostSockets;
+import io.robomw.agents.host.rmi.Peers;
+import io.robomw.agents.host.rmi.Session;
+import io.robomw.agents.host.visit.AgentPlace;
+import io.robomw.agents.host.visit.HopSender;
+import io.robomw.agents.host.visit.HostContext;
+import io.robomw.agents.host.visit.HostedAgent;
+import io.robomw.agents.host.visit.Recovery;
+import io.robomw.agents.host.visit.RobotTurns;
+import io.robomw.agents.host.visit.SpinHandoff;
+import io.robomw.agents.host.visit.Transfers;
+import io.robomw.agents.host.visit.Trips;
+import io.robomw.agents.host.wire.WireServer;
 import io.robomw.agents.host.code.StateCodec;
 import io.robomw.agents.host.store.JournalStore;
 import io.robomw.agents.host.store.MemoryStore;
@@ -58,14 +85,23 @@ import java.util.concurrent.TimeUnit;
  * through {@link StateCodec}'s filter (the agent's own archive, an allow-list, size and depth
  * limits); archives are checked against their SHA-256.
  *
- * <p><b>Parts.</b> This class starts and stops the host and is its public face; the work is done
- * by package-private parts that share a {@link HostState}: {@link Calls} serves the verified calls
- * ({@link HostEndpoint} checks them), {@link Transfers} takes agents in, {@link Trips} runs their
- * stops and sends them on through {@link HopSender}, {@link Home} and {@link AgentRequests} are
- * the home side of the agents sent from here, {@link OwedEvents} tells homes what happened,
- * {@link Recovery} resumes what the store held, {@link CodeLoaders} keeps agents' code,
- * {@link Peers} calls other hosts, {@link RobotTurns} lends the robot to one stop at a time, and
- * {@link Bodies} lays out the call bodies.
+ * <p><b>Parts.</b> This class starts and stops the host and is its public face
+ * ({@link AgentHostBuilder} sets it up); its parts are in sub-packages by job, public only so that
+ * they can call each other (no other module may use them: {@code InternalPackagesTest}):
+ * <ul>
+ *   <li>{@code host.protocol}: the layouts and codes of calls, replies, agent images and events;</li>
+ *   <li>{@code host.security}: the MACs and tags of calls and wire frames;</li>
+ *   <li>{@code host.rmi}: authenticated calls, served ({@link HostEndpoint}) and made ({@link Peers});</li>
+ *   <li>{@code host.wire}: the agent wire (protocol version 3) that carries hops and calls;</li>
+ *   <li>{@code host.core}: what the parts share ({@link HostState}), the verified calls'
+ *       dispatch ({@link Calls}), agents' code ({@link CodeLoaders}), and what watchers see;</li>
+ *   <li>{@code host.visit}: the agents visiting here: taken in ({@link Transfers}), run stop by
+ *       stop and sent on ({@link Trips}), resumed after a restart ({@link Recovery});</li>
+ *   <li>{@code host.home}: the agents sent from here ({@link Home}) and the deliveries owed to
+ *       homes ({@link OwedEvents});</li>
+ *   <li>{@code host.messaging}: the host's messaging node, as agents and other hosts see it;</li>
+ *   <li>{@code host.ops}: asking and watching hosts from outside ({@code mw agents}, the console).</li>
+ * </ul>
  */
 public final class AgentHost implements AutoCloseable {
 
@@ -101,7 +137,7 @@ public final class AgentHost implements AutoCloseable {
     private WireServer wireServer;
     private Registry registry;
 
-    private AgentHost(Builder b) {
+    AgentHost(AgentHostBuilder b) {
         this.name = b.name;
         this.bind = b.bind;
         this.requestedPort = b.port;
@@ -110,7 +146,7 @@ public final class AgentHost implements AutoCloseable {
         this.storeDir = b.storeDir;
         this.stopGrace = b.stopGrace;
         this.endpointSpin = b.endpointSpin;
-        this.state = new HostState(this, b.name, b.robot, new StateCodec(b.allowed, b.maxStateBytes), (int) b.callTimeout.toMillis(),
+        this.state = new HostState(new Place(), b.name, b.robot, new StateCodec(b.allowed, b.maxStateBytes), (int) b.callTimeout.toMillis(),
                 b.runnerSpin, b.failures);
         this.robot = new RobotTurns(b.name, b.robot);
         this.code = new CodeLoaders(state);
@@ -138,350 +174,8 @@ public final class AgentHost implements AutoCloseable {
      * @param name the host's name, under which it is bound in its RMI registry
      * @return a builder
      */
-    public static Builder builder(String name) {
-        return new Builder(name);
-    }
-
-    /** Settings of an agent host. */
-    public static final class Builder {
-        private final String name;
-        private String bind = "127.0.0.1";
-        private int port;
-        private Robot robot;
-        private String messagingAddress;
-        private MessagingSettings messagingSettings = MessagingSettings.defaults();
-        private boolean withMessaging = true;
-        private MessagingNode node;
-        private boolean ownsNode;
-        private ClusterKey key;
-        private TlsSettings tls;
-        private Path storeDir;
-        private List<String> allowed = List.of();
-        private long maxStateBytes = 64L << 20;
-        private Duration callTimeout = Duration.ofSeconds(30);
-        private Duration stopGrace = Duration.ofSeconds(5);
-        private Duration runnerSpin = SpinHandoff.defaultSpin();
-        private Duration endpointSpin = Duration.ZERO;
-        private DeliveryPolicy delivery = DeliveryPolicy.defaults();
-        private boolean wire = true;
-        private int wirePort;
-        private Duration wireSpin = SpinHandoff.defaultWireSpin();
-        private Duration wireReadSpin = Duration.ZERO;
-        private boolean version2Only;
-        private boolean olderHosts;
-        private WireServer.Limits wireLimits;
-        private java.util.concurrent.ThreadFactory wireThreads;
-        private FailurePolicy failures = FailurePolicy.logging();
-
-        private Builder(String name) {
-            if (name == null || !name.matches("[A-Za-z0-9._-]+")) {
-                throw new IllegalArgumentException("'" + name + "' is not a host name: use letters, digits, '.', '_' and '-'");
-            }
-            this.name = name;
-        }
-
-        /** @param address the address to listen on and to be known by (default 127.0.0.1) @return this */
-        public Builder bind(String address) {
-            this.bind = Objects.requireNonNull(address);
-            return this;
-        }
-
-        /** @param port the RMI registry port; 0 (the default) picks a free one @return this */
-        public Builder port(int port) {
-            this.port = port;
-            return this;
-        }
-
-        /** @param robot the robot agents here drive, or {@code null} for none @return this */
-        public Builder robot(Robot robot) {
-            this.robot = robot;
-            return this;
-        }
-
-        /**
-         * Where the host's own messaging node receives; without this (and without
-         * {@link #noMessaging()}) it receives at {@code tcp://BIND:0}, a free port on the host's
-         * bind address. Agents here use it through {@code context().messaging()}.
-         *
-         * @param address a messaging address, for example {@code tcp://127.0.0.1:7000}
-         * @return this
-         */
-        public Builder messaging(String address) {
-            this.messagingAddress = Objects.requireNonNull(address, "address");
-            this.withMessaging = true;
-            return this;
-        }
-
-        /** @param settings the settings of the host's own messaging node (its allow-list, timeouts, TLS) @return this */
-        public Builder messagingSettings(MessagingSettings settings) {
-            this.messagingSettings = Objects.requireNonNull(settings, "settings");
-            return this;
-        }
-
-        /**
-         * Agents here use this node (which the caller keeps and closes) instead of one of the host's own.
-         *
-         * @param node the node
-         * @return this
-         */
-        public Builder messagingNode(MessagingNode node) {
-            this.node = Objects.requireNonNull(node, "node");
-            this.withMessaging = true;
-            return this;
-        }
-
-        /** The host gives its agents no messaging (a home that only receives results). @return this */
-        public Builder noMessaging() {
-            this.withMessaging = false;
-            this.node = null;
-            return this;
-        }
-
-        /**
-         * @param policy where whatever the host's threads catch goes (default
-         *               {@link FailurePolicy#logging()}): its agent runners (an agent's callback that
-         *               throws fails its stop, and is reported as survived; an error no thread
-         *               survives ends the agent's trip, naming it and this host, and the runner, while
-         *               the host serves on), its agent wire's accept and connection loops, its
-         *               deliveries to homes, and its own messaging node's threads
-         * @return this
-         */
-        public Builder failures(FailurePolicy policy) {
-            this.failures = Objects.requireNonNull(policy, "policy");
-            return this;
-        }
-
-        /** @param key the cluster key every peer must prove @return this */
-        public Builder clusterKey(ClusterKey key) {
-            this.key = key;
-            return this;
-        }
-
-        /** @param tls mutual TLS for the RMI endpoint, or {@code null} @return this */
-        public Builder tls(TlsSettings tls) {
-            this.tls = tls;
-            return this;
-        }
-
-        /** @param dir keep accepted agents durably in this directory (a journal), surviving a kill @return this */
-        public Builder store(Path dir) {
-            this.storeDir = dir;
-            return this;
-        }
-
-        /** Keeps agents in memory only (the default): fast, lost if the host is killed. @return this */
-        public Builder memoryStore() {
-            this.storeDir = null;
-            return this;
-        }
-
-        /** @param classNames classes agent state may hold besides the agent's own code and JDK value types @return this */
-        public Builder allow(List<String> classNames) {
-            this.allowed = List.copyOf(classNames);
-            return this;
-        }
-
-        /** @param bytes the largest agent state (and array in it) accepted @return this */
-        public Builder maxStateBytes(long bytes) {
-            this.maxStateBytes = bytes;
-            return this;
-        }
-
-        /** @param timeout how long a call to another host may take @return this */
-        public Builder callTimeout(Duration timeout) {
-            this.callTimeout = timeout;
-            return this;
-        }
-
-        /**
-         * @param policy how reports and results owed to homes that do not answer are retried, and
-         *               after how long they are given up (default {@link DeliveryPolicy#defaults()})
-         * @return this
-         */
-        public Builder deliveryPolicy(DeliveryPolicy policy) {
-            this.delivery = Objects.requireNonNull(policy, "policy");
-            return this;
-        }
-
-        /**
-         * @param grace how long {@link AgentHost#close()} lets the stops running then finish before it
-         *              interrupts them (default 5 s); with a durable store an interrupted stop is
-         *              resumed after it at the next start, not run again
-         * @return this
-         */
-        public Builder stopGrace(Duration grace) {
-            if (grace.isNegative()) {
-                throw new IllegalArgumentException("stop grace " + grace + " is negative: it is how long running stops may finish when the host closes");
-            }
-            this.stopGrace = grace;
-            return this;
-        }
-
-        /**
-         * @param spin how long a runner thread with nothing to do spins for the next agent before it
-         *             parks (default 150 µs; zero, the default on a machine with one processor, never
-         *             spins): an agent handed to a spinning runner starts at once, where waking a parked
-         *             thread takes tens of microseconds on a virtual machine. Bounded: a runner spins at
-         *             most this long after each stop, then parks
-         * @return this
-         */
-        public Builder runnerSpin(Duration spin) {
-            if (spin.isNegative() || spin.compareTo(Duration.ofMillis(10)) > 0) {
-                throw new IllegalArgumentException("runner spin " + spin + " must be between 0 and 10 ms: a spinning runner holds a processor");
-            }
-            this.runnerSpin = spin;
-            return this;
-        }
-
-        /**
-         * @param spin how long a connection thread of the host's endpoint spins for the next call
-         *             before it blocks reading (default 0: never; plain sockets only)
-         * @return this
-         */
-        public Builder endpointSpin(Duration spin) {
-            if (spin.isNegative() || spin.compareTo(Duration.ofMillis(10)) > 0) {
-                throw new IllegalArgumentException("endpoint spin " + spin + " must be between 0 and 10 ms: a spinning connection thread holds a processor");
-            }
-            this.endpointSpin = spin;
-            return this;
-        }
-
-        /**
-         * @param on whether the host takes transfers on its agent wire (agent protocol version 3,
-         *           docs/agents.md "Wire and store formats"; the default) and sends them on other
-         *           hosts' wires; off, every call goes over RMI (version 2) and no wire port is opened
-         * @return this
-         */
-        public Builder wire(boolean on) {
-            this.wire = on;
-            return this;
-        }
-
-        /**
-         * @param port the port of the host's agent wire, on its bind address; 0 (the default) picks a
-         *             free one. The host names it to each peer when the peer authenticates, so only a
-         *             firewall needs to know it (a peer that cannot reach it sends over RMI)
-         * @return this
-         */
-        public Builder wirePort(int port) {
-            if (port < 0 || port > 65535) {
-                throw new IllegalArgumentException("wire port " + port + " is not a TCP port");
-            }
-            this.wirePort = port;
-            return this;
-        }
-
-        /**
-         * @param spin how long a transfer this host sends on the agent wire spins (yielding the
-         *             processor) for the acknowledgement before it blocks reading it (default 50 µs;
-         *             zero, the default on a machine with one processor, never spins; plain connections only)
-         * @return this
-         */
-        public Builder wireSpin(Duration spin) {
-            if (spin.isNegative() || spin.compareTo(Duration.ofMillis(10)) > 0) {
-                throw new IllegalArgumentException("wire spin " + spin + " must be between 0 and 10 ms: a spinning sender holds a processor");
-            }
-            this.wireSpin = spin;
-            return this;
-        }
-
-        /**
-         * @param spin how long a connection thread of the host's agent wire spins (yielding the
-         *             processor) for the next transfer before it blocks reading (default 0: never;
-         *             plain connections only)
-         * @return this
-         */
-        public Builder wireReadSpin(Duration spin) {
-            if (spin.isNegative() || spin.compareTo(Duration.ofMillis(10)) > 0) {
-                throw new IllegalArgumentException("wire read spin " + spin + " must be between 0 and 10 ms: a spinning connection thread holds a processor");
-            }
-            this.wireReadSpin = spin;
-            return this;
-        }
-
-        /**
-         * Lets this host's links talk to hosts of builds before agent protocol version 4 (for a
-         * cluster upgraded host by host): a link to a host that refuses version 4 authenticates with
-         * version 3, or 2, whose authentication does not bind the channel, so a relay between the two
-         * hosts goes unnoticed (docs/security.md). Off by default: such a link fails, saying why.
-         *
-         * @return this
-         */
-        public Builder olderHosts() {
-            this.olderHosts = true;
-            return this;
-        }
-
-        /** For tests of mixed versions: the host acts as one of a build before the agent wire (protocol version 2 only, no wire). */
-        Builder version2Only() {
-            this.version2Only = true;
-            return this;
-        }
-
-        /** For tests: what makes the agent wire's connection threads (one that fails, to see the wire end cleanly). */
-        Builder wireThreads(java.util.concurrent.ThreadFactory factory) {
-            this.wireThreads = factory;
-            return this;
-        }
-
-        /** For tests: the agent wire's limits. */
-        Builder wireLimits(WireServer.Limits limits) {
-            this.wireLimits = limits;
-            return this;
-        }
-
-        /**
-         * Starts the host: opens its store, resumes the agents it holds, and binds its RMI endpoint.
-         *
-         * @return the running host
-         * @throws IOException if the store or the port cannot be used
-         */
-        public AgentHost start() throws IOException {
-            if (key == null && tls == null) {
-                throw new IllegalStateException("agent host " + name + " needs a cluster key or TLS: a host must only trust authenticated peers");
-            }
-            if (key == null) {
-                key = ClusterKey.tlsOnly();
-            }
-            String atBroker = null;
-            if (withMessaging && node == null) {
-                try {
-                    String address = messagingAddress != null ? messagingAddress : "tcp://" + (bind.contains(":") ? "[" + bind + "]" : bind) + ":0";
-                    MessagingNode.Builder nb = MessagingNode.builder(name).settings(messagingSettings).failures(failures);
-                    if (address.startsWith("mqtt://") || address.startsWith("mqtts://")) {
-                        atBroker = address; // joined once the host's address is known (HostMessaging.joinWhenStarted)
-                    } else {
-                        nb.bind(address);
-                    }
-                    node = nb.build();
-                    ownsNode = true;
-                } catch (MessagingException e) {
-                    throw new IOException("agent host " + name + " cannot start its messaging node: " + e.getMessage(), e);
-                }
-            }
-            AgentHost host;
-            try {
-                host = new AgentHost(this);
-            } catch (RuntimeException e) {
-                if (ownsNode) {
-                    node.close();
-                }
-                throw e;
-            }
-            if (atBroker != null) {
-                host.messaging.joinWhenStarted(atBroker);
-            }
-            try {
-                host.open();
-            } catch (io.robomw.api.MessagingException e) {
-                host.close();
-                throw new IOException("agent host " + name + " cannot start its messaging node: " + e.getMessage(), e);
-            } catch (IOException | RuntimeException e) {
-                host.close();
-                throw e;
-            }
-            return host;
-        }
+    public static AgentHostBuilder builder(String name) {
+        return new AgentHostBuilder(name);
     }
 
     /**
@@ -499,7 +193,13 @@ public final class AgentHost implements AutoCloseable {
 
     // ---- life ----
 
-    private void open() throws IOException {
+    /** Joins the broker of a messaging address at {@code mqtt://} once the host's own address is known. */
+    void joinWhenStarted(String broker) {
+        messaging.joinWhenStarted(broker);
+    }
+
+    /** Opens the store, binds the endpoints, resumes what the store held: the builder's last step. */
+    void open() throws IOException {
         state.store = storeDir == null ? new MemoryStore() : JournalStore.open(storeDir);
         InetAddress bindAddress = InetAddress.getByName(bind);
         SSLContext ssl = tls == null ? null : tls.context();
@@ -648,22 +348,8 @@ public final class AgentHost implements AutoCloseable {
         return state.address;
     }
 
-    /** Takes the robot for the calling agent's stop (waiting for the agent that has it), unless it already has it. */
-    Robot claimRobot(HostedAgent h) {
-        Robot r = robot.claim(h);
-        h.drives = r != null;
-        return r;
-    }
 
-    /** @return the agent host address of a host an agent here names (its address, or its name as messages use it) */
-    String hostAddressOf(String nameOrAddress, HostedAgent h) {
-        return messaging.hostAddress(nameOrAddress, h);
-    }
 
-    /** @return an agent's view of this host's messaging node */
-    Messaging messagingFor(HostedAgent h) {
-        return messaging.forAgent(h);
-    }
 
     /** @return where this host's messaging node receives (empty when it has none), as agents and {@code mw host} give it */
     public List<String> messagingAddresses() {
@@ -759,15 +445,7 @@ public final class AgentHost implements AutoCloseable {
         return home;
     }
 
-    /** A clone an agent here makes of itself, sent with its own plan; this host is its home. */
-    AgentRef cloneOf(HostedAgent parent, Itinerary plan) {
-        return home.cloneOf(parent, plan);
-    }
 
-    /** An agent here sends a value home. */
-    void report(HostedAgent h, Serializable value) {
-        owed.report(h, value);
-    }
 
     // ---- asking another host ----
 
@@ -801,6 +479,51 @@ public final class AgentHost implements AutoCloseable {
     public static List<AgentInfo> list(String address, ClusterKey key, boolean useTls) throws IOException {
         try (HostClient client = new HostClient(key, useTls, 10_000)) {
             return client.agents(address);
+        }
+    }
+
+    /** What this host gives the agents at it ({@link HostContext}): the facade's parts, not the facade. */
+    private final class Place implements AgentPlace {
+        @Override
+        public String name() {
+            return name;
+        }
+
+        @Override
+        public String address() {
+            return state.address;
+        }
+
+        @Override
+        public Robot claimRobot(HostedAgent h) {
+            Robot r = robot.claim(h);
+            h.drives = r != null;
+            return r;
+        }
+
+        @Override
+        public Messaging messagingFor(HostedAgent h) {
+            return messaging.forAgent(h);
+        }
+
+        @Override
+        public String hostAddressOf(String nameOrAddress, HostedAgent h) {
+            return messaging.hostAddress(nameOrAddress, h);
+        }
+
+        @Override
+        public AgentRef cloneOf(HostedAgent parent, Itinerary plan) {
+            return home.cloneOf(parent, plan);
+        }
+
+        @Override
+        public void report(HostedAgent h, Serializable value) {
+            owed.report(h, value);
+        }
+
+        @Override
+        public Agency agency() {
+            return home;
         }
     }
 

@@ -17,7 +17,7 @@ import java.time.Duration;
 public record DeliveryPolicy(Duration expiry, Duration maxBackoff, Duration logInterval) {
 
     /** The first pause after a failed try; each next one doubles, up to {@link #maxBackoff}. */
-    static final Duration FIRST_BACKOFF = Duration.ofMillis(100);
+    public static final Duration FIRST_BACKOFF = Duration.ofMillis(100);
 
     /** Checks the durations: each must be positive. */
     public DeliveryPolicy {

@@ -1,5 +1,9 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.protocol.Bodies;
+import io.robomw.agents.net.WireCode;
+import io.robomw.agents.net.WireCodes;
+
 import java.util.Objects;
 import java.util.UUID;
 
@@ -15,13 +19,15 @@ import java.util.UUID;
 public record OwedSelector(Kind kind, UUID agent, String home) {
 
     /** What a selector selects by. Each travels as its {@link #code()}. */
-    public enum Kind {
-        /** Every owed delivery. Code 0. */
+    public enum Kind implements WireCode {
+        /** Every owed delivery. */
         ALL(0),
-        /** The deliveries of one agent. Code 1. */
+        /** The deliveries of one agent. */
         AGENT(1),
-        /** The deliveries owed to one home. Code 2. */
+        /** The deliveries owed to one home. */
         HOME(2);
+
+        private static final WireCodes<Kind> CODES = WireCodes.of(Kind.class, "owed-delivery selector");
 
         private final int code;
 
@@ -30,6 +36,7 @@ public record OwedSelector(Kind kind, UUID agent, String home) {
         }
 
         /** @return the kind's code in a DROP_OWED body */
+        @Override
         public int code() {
             return code;
         }
@@ -40,12 +47,7 @@ public record OwedSelector(Kind kind, UUID agent, String home) {
          * @throws IllegalArgumentException naming the code if no kind has it
          */
         public static Kind fromCode(int code) {
-            return switch (code) {
-                case 0 -> ALL;
-                case 1 -> AGENT;
-                case 2 -> HOME;
-                default -> throw new IllegalArgumentException("unknown owed-delivery selector code " + code + " (known: 0 ALL, 1 AGENT, 2 HOME)");
-            };
+            return CODES.get(code);
         }
     }
 

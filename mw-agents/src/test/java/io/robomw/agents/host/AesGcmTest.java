@@ -1,5 +1,8 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.security.AesGcm;
+import io.robomw.agents.host.security.FrameTag;
+import io.robomw.agents.host.wire.WireFrames;
 import org.junit.jupiter.api.Test;
 
 import javax.crypto.Cipher;

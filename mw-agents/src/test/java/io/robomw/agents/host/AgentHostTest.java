@@ -43,7 +43,7 @@ class AgentHostTest {
         VisitorAgent agent = new VisitorAgent();
         agent.itinerary().addStop(a.address()).addStop(b.address()).addStop(a.address());
         AgentRef ref = home.agency().startTrip(agent);
-        Serializable result = ref.result().get(10, TimeUnit.SECONDS);
+        Serializable result = ref.result().get(60, TimeUnit.SECONDS);
         assertEquals(List.of("a", "b", "a"), result);
         assertEquals(AgentStatus.COMPLETED, ref.status());
         assertEquals(a.address(), ref.location());
@@ -63,7 +63,7 @@ class AgentHostTest {
         ref.sendMessage("release", Duration.ofSeconds(5));
         await(() -> "b".equals(safeWhere(ref)));
         ref.sendMessage("release", Duration.ofSeconds(5));
-        ref.result().get(10, TimeUnit.SECONDS);
+        ref.result().get(60, TimeUnit.SECONDS);
         // The listener was added after the trip began, so "at a" may have come before it; nothing may come out of order.
         assertTrue(reports.equals(List.of("at a", "at b")) || reports.equals(List.of("at b")), "reports in order: " + reports);
     }
@@ -76,8 +76,8 @@ class AgentHostTest {
         List<AgentRef> refs = home.agency().dispatchClones(new VisitorAgent(), a.address(), b.address());
         assertEquals(2, refs.size());
         assertNotEquals(refs.get(0).id(), refs.get(1).id());
-        assertEquals(List.of("a"), refs.get(0).result().get(10, TimeUnit.SECONDS));
-        assertEquals(List.of("b"), refs.get(1).result().get(10, TimeUnit.SECONDS));
+        assertEquals(List.of("a"), refs.get(0).result().get(60, TimeUnit.SECONDS));
+        assertEquals(List.of("b"), refs.get(1).result().get(60, TimeUnit.SECONDS));
     }
 
     @Test
@@ -88,7 +88,7 @@ class AgentHostTest {
         AgentException e = assertThrows(AgentException.class, () -> ref.sendMessage("dance", Duration.ofSeconds(5)));
         assertInstanceOf(NotHandledException.class, e);
         ref.sendMessage("release", Duration.ofSeconds(5));
-        ref.result().get(10, TimeUnit.SECONDS);
+        ref.result().get(60, TimeUnit.SECONDS);
     }
 
     @Test
@@ -105,7 +105,7 @@ class AgentHostTest {
             safeSend(ref, "release");
             return retracted.isDone();
         });
-        Agent back = retracted.get(10, TimeUnit.SECONDS);
+        Agent back = retracted.get(60, TimeUnit.SECONDS);
         assertEquals(List.of("a"), ((VisitorAgent) back).visited());
         assertEquals(AgentStatus.RETRACTED, ref.status());
     }
@@ -118,10 +118,10 @@ class AgentHostTest {
         VisitorAgent agent = new VisitorAgent().holdUntilReleased();
         agent.itinerary().addStop(a.address()).addStop(b.address());
         AgentRef ref = home.agency().startTrip(agent);
-        await(() -> "a".equals(safeWhere(ref))); // at a, holding (20 s unless released or interrupted)
+        await(() -> "a".equals(safeWhere(ref))); // at a, holding (120 s unless released or interrupted)
         ref.dispose();
         // Not released: the dispose interrupts the agent's work, which ends at once.
-        Exception e = assertThrows(Exception.class, () -> ref.result().get(10, TimeUnit.SECONDS));
+        Exception e = assertThrows(Exception.class, () -> ref.result().get(60, TimeUnit.SECONDS));
         assertTrue(e.getCause().getMessage().contains("disposed"), e.getCause().getMessage());
         assertEquals(AgentStatus.DISPOSED, ref.status());
     }
@@ -131,11 +131,11 @@ class AgentHostTest {
         AgentHost home = host("home");
         AgentHost a = host("a");
         AgentHost b = host("b");
-        VisitorAgent agent = new VisitorAgent().holdUntilReleased(); // blocks its stop for 20 s unless released or interrupted
+        VisitorAgent agent = new VisitorAgent().holdUntilReleased(); // blocks its stop for 120 s unless released or interrupted
         agent.itinerary().addStop(a.address()).addStop(b.address());
         AgentRef ref = home.agency().startTrip(agent);
         await(() -> "a".equals(safeWhere(ref)));
-        Agent back = ref.retract().get(10, TimeUnit.SECONDS); // never released: the retract must not wait for the 20 s
+        Agent back = ref.retract().get(60, TimeUnit.SECONDS); // never released: the retract must not wait for the 120 s hold (60 s is patience for a loaded machine)
         assertEquals(List.of("a"), ((VisitorAgent) back).visited());
         assertEquals(AgentStatus.RETRACTED, ref.status());
     }
@@ -148,7 +148,7 @@ class AgentHostTest {
         AgentRef ref = home.agency().sendAgent(a.address(), new io.robomw.agents.host.trip.DrivingAgent());
         await(() -> robot.moves.size() == 1);
         ref.dispose();
-        Exception e = assertThrows(Exception.class, () -> ref.result().get(10, TimeUnit.SECONDS));
+        Exception e = assertThrows(Exception.class, () -> ref.result().get(60, TimeUnit.SECONDS));
         assertTrue(e.getCause().getMessage().contains("disposed"), e.getCause().getMessage());
         assertTrue(robot.moves.get(0).isCancelled(), "the agent's command was cancelled (its motors brake)");
         assertTrue(robot.stopEntered.await(10, TimeUnit.SECONDS), "the robot was stopped");
@@ -169,7 +169,7 @@ class AgentHostTest {
                 "mw agents sees it too");
         assertTrue(!retracted.isDone(), "the agent has not returned from its callback yet");
         ref.sendOnewayMessage("release");
-        Agent back = retracted.get(10, TimeUnit.SECONDS);
+        Agent back = retracted.get(60, TimeUnit.SECONDS);
         assertInstanceOf(io.robomw.agents.host.trip.StubbornAgent.class, back);
         assertEquals(AgentStatus.RETRACTED, ref.status());
     }
@@ -179,11 +179,11 @@ class AgentHostTest {
         AgentHost home = host("home");
         AgentHost a = host("a");
         AgentHost b = host("lab-b");
-        assertEquals(List.of("lab-b"), home.agency().sendAgent(b.address(), new VisitorAgent()).result().get(10, TimeUnit.SECONDS),
+        assertEquals(List.of("lab-b"), home.agency().sendAgent(b.address(), new VisitorAgent()).result().get(60, TimeUnit.SECONDS),
                 "the home has met lab-b");
         // a has never met lab-b: it asks the agent's home where the host of that name is
         AgentRef ref = home.agency().sendAgent(a.address(), new io.robomw.agents.host.trip.HopByNameAgent("lab-b"));
-        assertEquals(List.of("a", "lab-b"), ref.result().get(10, TimeUnit.SECONDS));
+        assertEquals(List.of("a", "lab-b"), ref.result().get(60, TimeUnit.SECONDS));
         assertEquals(b.address(), ref.location());
     }
 
@@ -192,7 +192,7 @@ class AgentHostTest {
         AgentHost home = host("home");
         AgentHost a = host("a");
         AgentRef ref = home.agency().sendAgent(a.address(), new io.robomw.agents.host.trip.HopByNameAgent("nowhere"));
-        assertThrows(Exception.class, () -> ref.result().get(10, TimeUnit.SECONDS));
+        assertThrows(Exception.class, () -> ref.result().get(60, TimeUnit.SECONDS));
         String detail = ref.history().get(0).detail();
         assertTrue(detail.contains("no agent host named 'nowhere' is known at " + a.address()), detail);
     }
@@ -204,7 +204,7 @@ class AgentHostTest {
         VisitorAgent agent = new VisitorAgent();
         agent.itinerary().addStop(a.address()).addStop("rmi://127.0.0.1:1/nobody").addStop(a.address());
         AgentRef ref = home.agency().startTrip(agent);
-        assertEquals(List.of("a", "a"), ref.result().get(10, TimeUnit.SECONDS));
+        assertEquals(List.of("a", "a"), ref.result().get(60, TimeUnit.SECONDS));
     }
 
     @Test
@@ -216,7 +216,7 @@ class AgentHostTest {
         assertTrue(e.getMessage().contains("refused"), e.getMessage());
         assertTrue(a.refused() >= 1);
         AgentHost home = host("home");
-        assertEquals(List.of("a"), home.agency().sendAgent(a.address(), new VisitorAgent()).result().get(10, TimeUnit.SECONDS));
+        assertEquals(List.of("a"), home.agency().sendAgent(a.address(), new VisitorAgent()).result().get(60, TimeUnit.SECONDS));
     }
 
     @Test
@@ -227,7 +227,7 @@ class AgentHostTest {
         hosts.add(a);
         VisitorAgent agent = new VisitorAgent().payload(300_000);
         agent.itinerary().addStop(a.address()).addStop(home.address()).addStop(a.address()).addStop(home.address());
-        assertEquals(List.of("a", "home", "a", "home"), home.agency().startTrip(agent).result().get(10, TimeUnit.SECONDS));
+        assertEquals(List.of("a", "home", "a", "home"), home.agency().startTrip(agent).result().get(60, TimeUnit.SECONDS));
         // The result can be home before host a has read home's acknowledgement of the last hop there
         // (home runs the stop as soon as it has stored the agent): a lists it IN_TRANSIT until then.
         Await.until("host a no longer lists the agent once the hop home is acknowledged", Duration.ofSeconds(10), () -> a.agents().isEmpty());
@@ -277,7 +277,7 @@ class AgentHostTest {
             safeSend(ref, "release");
             return retracted.isDone();
         });
-        assertEquals(List.of("a"), ((VisitorAgent) retracted.get(10, TimeUnit.SECONDS)).visited());
+        assertEquals(List.of("a"), ((VisitorAgent) retracted.get(60, TimeUnit.SECONDS)).visited());
         int port = HostAddress.parse(home.address()).port();
         home.close();
         AgentHost again = AgentHost.builder("home").clusterKey(KEY).port(port).store(dir.resolve("home")).start();
@@ -292,13 +292,13 @@ class AgentHostTest {
         VisitorAgent agent = new VisitorAgent();
         agent.itinerary().addStop(a.address(), ctx -> ctx.robot()).addStop("rmi://127.0.0.1:1/nobody").addStop(a.address());
         AgentRef ref = home.agency().startTrip(agent);
-        assertEquals(List.of("a"), ref.result().get(10, TimeUnit.SECONDS));
+        assertEquals(List.of("a"), ref.result().get(60, TimeUnit.SECONDS));
         List<io.robomw.api.Itinerary.Visit> visits = ref.history();
         assertEquals(List.of(io.robomw.api.Itinerary.Outcome.FAILED, io.robomw.api.Itinerary.Outcome.UNREACHABLE, io.robomw.api.Itinerary.Outcome.DONE),
                 visits.stream().map(io.robomw.api.Itinerary.Visit::outcome).toList(), visits.toString());
         String failed = visits.get(0).detail();
         assertTrue(failed.startsWith("io.robomw.agents.host.NoRobotException: agent host a (" + a.address() + ") has no robot"), failed);
-        assertTrue(failed.contains("\tat io.robomw.agents.host.HostContext.robot"), "the remote stack trace: " + failed);
+        assertTrue(failed.contains("\tat io.robomw.agents.host.visit.HostContext.robot"), "the remote stack trace: " + failed);
         assertEquals("rmi://127.0.0.1:1/nobody", visits.get(1).host());
         assertTrue(visits.get(1).detail().contains("Connection refused"), visits.get(1).detail());
     }
@@ -315,7 +315,7 @@ class AgentHostTest {
             throw new StackOverflowError("agent code in trouble");
         }).addStop(a.address());
         AgentRef ref = home.agency().startTrip(agent);
-        assertEquals(List.of("a"), ref.result().get(10, TimeUnit.SECONDS));
+        assertEquals(List.of("a"), ref.result().get(60, TimeUnit.SECONDS));
         List<io.robomw.api.Itinerary.Visit> visits = ref.history();
         assertEquals(List.of(io.robomw.api.Itinerary.Outcome.FAILED, io.robomw.api.Itinerary.Outcome.FAILED, io.robomw.api.Itinerary.Outcome.DONE),
                 visits.stream().map(io.robomw.api.Itinerary.Visit::outcome).toList(), visits.toString());
@@ -340,7 +340,7 @@ class AgentHostTest {
         }).addStop(a.address());
         AgentRef ref = home.agency().startTrip(doomed);
 
-        Exception e = assertThrows(Exception.class, () -> ref.result().get(10, TimeUnit.SECONDS));
+        Exception e = assertThrows(Exception.class, () -> ref.result().get(60, TimeUnit.SECONDS));
         String why = e.getCause().getMessage();
         assertTrue(why.contains("agent " + ref.id()) && why.contains("died at host a (" + a.address() + ")")
                 && why.contains("java.lang.InternalError: the VM is in trouble"), why);
@@ -352,7 +352,7 @@ class AgentHostTest {
 
         VisitorAgent next = new VisitorAgent();
         next.itinerary().addStop(a.address()).addStop(a.address());
-        assertEquals(List.of("a", "a"), home.agency().startTrip(next).result().get(10, TimeUnit.SECONDS), "the host serves on");
+        assertEquals(List.of("a", "a"), home.agency().startTrip(next).result().get(60, TimeUnit.SECONDS), "the host serves on");
         assertEquals(1, failures.deaths().size(), failures.reports().toString());
     }
 
@@ -365,7 +365,7 @@ class AgentHostTest {
         assertEquals(List.of("rmi://127.0.0.1:1/nobody"), List.copyOf(e.unsent().keySet()));
         assertTrue(e.unsent().get("rmi://127.0.0.1:1/nobody").contains("Connection refused"), e.unsent().toString());
         assertEquals(1, e.sent().size());
-        assertEquals(List.of("a"), e.sent().get(0).result().get(10, TimeUnit.SECONDS));
+        assertEquals(List.of("a"), e.sent().get(0).result().get(60, TimeUnit.SECONDS));
     }
 
     @Test
@@ -374,7 +374,7 @@ class AgentHostTest {
         AgentHost a = host("a");
         VisitorAgent agent = new VisitorAgent();
         agent.itinerary().addStop(a.address(), ctx -> ctx.setResult("task ran at " + ctx.hostName()));
-        assertEquals("task ran at a", home.agency().startTrip(agent).result().get(10, TimeUnit.SECONDS));
+        assertEquals("task ran at a", home.agency().startTrip(agent).result().get(60, TimeUnit.SECONDS));
     }
 
     private static String safeWhere(AgentRef ref) {

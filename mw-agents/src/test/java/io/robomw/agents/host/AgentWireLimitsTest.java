@@ -1,5 +1,14 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.protocol.Op;
+import io.robomw.agents.host.protocol.Reply;
+import io.robomw.agents.host.rmi.HostEndpoint;
+import io.robomw.agents.host.rmi.HostSockets;
+import io.robomw.agents.host.rmi.PeerLink;
+import io.robomw.agents.host.rmi.Session;
+import io.robomw.agents.host.security.FrameTag;
+import io.robomw.agents.host.wire.WireFrames;
+import io.robomw.agents.host.wire.WireServer;
 import io.robomw.testkit.Await;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.BeforeEach;

@@ -1,5 +1,11 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.protocol.Op;
+import io.robomw.agents.host.protocol.Reply;
+import io.robomw.agents.host.rmi.HostSockets;
+import io.robomw.agents.host.rmi.PeerException;
+import io.robomw.agents.host.rmi.PeerLink;
+import io.robomw.agents.host.rmi.Session;
 import io.robomw.agents.host.trip.VisitorAgent;
 import io.robomw.agents.messaging.TestKeys;
 import org.junit.jupiter.api.Test;
@@ -29,7 +35,7 @@ class AgentWireTest {
     @RegisterExtension
     final StartedHosts hosts = new StartedHosts();
 
-    private AgentHost start(AgentHost.Builder b) throws Exception {
+    private AgentHost start(AgentHostBuilder b) throws Exception {
         return hosts.start(b);
     }
 

@@ -1,5 +1,13 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.protocol.Frame;
+import io.robomw.agents.host.protocol.Op;
+import io.robomw.agents.host.protocol.Reply;
+import io.robomw.agents.host.rmi.HostEndpoint;
+import io.robomw.agents.host.rmi.PeerLink;
+import io.robomw.agents.host.rmi.Session;
+import io.robomw.agents.host.rmi.Target;
+import io.robomw.agents.host.security.CallAuthenticator;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.ValueSource;

@@ -1,5 +1,10 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.protocol.FrameBuffers;
+import io.robomw.agents.host.security.FrameTag;
+import io.robomw.agents.host.wire.WireFrames;
+import io.robomw.agents.host.wire.WireReader;
+import io.robomw.agents.host.wire.WireWriter;
 import io.robomw.agents.host.trip.ResizingAgent;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.extension.RegisterExtension;
@@ -205,7 +210,7 @@ class FrameReuseTest {
         assertTrue(a.wireFramesServed() >= 4 * 4 && b.wireFramesServed() >= 4 * 3, "the hops went on the wire: " + a.wireFramesServed() + " " + b.wireFramesServed());
     }
 
-    private AgentHost start(AgentHost.Builder builder) throws Exception {
+    private AgentHost start(AgentHostBuilder builder) throws Exception {
         return hosts.start(builder);
     }
 }

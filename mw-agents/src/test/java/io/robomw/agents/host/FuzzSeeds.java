@@ -1,5 +1,11 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.core.HostActivity;
+import io.robomw.agents.host.protocol.AgentEvent;
+import io.robomw.agents.host.protocol.AgentImage;
+import io.robomw.agents.host.protocol.Bodies;
+import io.robomw.agents.host.protocol.Op;
+import io.robomw.agents.host.wire.WireFrames;
 import io.robomw.agents.host.code.CodeArchive;
 import io.robomw.agents.host.code.StateCodec;
 import io.robomw.agents.host.store.AgentStore;

@@ -1,5 +1,8 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.rmi.AgentHostRemote;
+import io.robomw.agents.host.rmi.HostSockets;
+import io.robomw.agents.host.rmi.Session;
 import io.robomw.testkit.LogLines;
 import io.robomw.agents.host.code.CodeArchive;
 import org.junit.jupiter.api.Test;

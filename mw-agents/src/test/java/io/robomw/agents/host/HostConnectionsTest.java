@@ -1,5 +1,6 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.rmi.HostConnections;
 import org.junit.jupiter.api.Test;
 
 import java.io.Closeable;

@@ -1,5 +1,18 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.ops.HostWatch;
+import io.robomw.agents.host.protocol.AgentEvent;
+import io.robomw.agents.host.protocol.AgentImage;
+import io.robomw.agents.host.protocol.Bodies;
+import io.robomw.agents.host.protocol.Op;
+import io.robomw.agents.host.protocol.Reply;
+import io.robomw.agents.host.rmi.HostEndpoint;
+import io.robomw.agents.host.rmi.HostSockets;
+import io.robomw.agents.host.rmi.PeerLink;
+import io.robomw.agents.host.rmi.Session;
+import io.robomw.agents.host.wire.WireFrames;
+import io.robomw.agents.host.wire.WireReader;
+import io.robomw.agents.host.wire.WireWriter;
 import com.code_intelligence.jazzer.api.FuzzedDataProvider;
 import com.code_intelligence.jazzer.junit.FuzzTest;
 import org.junit.jupiter.api.AfterAll;

@@ -34,7 +34,7 @@ class HostMessagingTest {
         return host(AgentHost.builder(name).clusterKey(KEY));
     }
 
-    private AgentHost host(AgentHost.Builder b) throws Exception {
+    private AgentHost host(AgentHostBuilder b) throws Exception {
         return hosts.start(b);
     }
 

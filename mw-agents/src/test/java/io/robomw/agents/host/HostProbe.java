@@ -1,5 +1,10 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.protocol.AgentImage;
+import io.robomw.agents.host.protocol.Op;
+import io.robomw.agents.host.protocol.Reply;
+import io.robomw.agents.host.rmi.HostSockets;
+import io.robomw.agents.host.rmi.PeerLink;
 import io.robomw.agents.host.code.CodeArchive;
 import io.robomw.agents.host.code.CodeSources;
 import io.robomw.agents.host.code.StateCodec;

@@ -1,5 +1,7 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.rmi.HostConnections;
+import io.robomw.agents.host.rmi.HostSockets;
 import org.junit.jupiter.api.Test;
 
 import java.io.BufferedInputStream;

@@ -1,5 +1,6 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.ops.HostWatch;
 import io.robomw.agents.host.trip.VisitorAgent;
 import io.robomw.testkit.Await;
 import io.robomw.api.AgentRef;
@@ -80,8 +81,8 @@ class HostWatchTest {
         assertTrue(events.stream().anyMatch(e -> e.kind().equals("arrived") && e.agent().equals(ref.id())), "arrival: " + events);
         assertTrue(events.stream().anyMatch(e -> e.kind().equals("report") && e.detail().equals("at a")), "report text: " + events);
 
+        // a retract means now: the agent's wait for "release" is interrupted, no message needed
         assertEquals(a.address(), watch.retract(a.address(), ref.id()));
-        ref.sendMessage("release", Duration.ofSeconds(5));
         Await.until("the agent is home, retracted", WITHIN, () -> ref.status() == AgentStatus.RETRACTED);
         Await.until("a tells the watcher it went home", WITHIN, () -> {
             HostWatch.Snapshot later = poll(watch);

@@ -1,5 +1,9 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.ops.HostClient;
+import io.robomw.agents.host.ops.HostWatch;
+import io.robomw.agents.host.protocol.AgentImage;
+import io.robomw.agents.host.protocol.Op;
 import io.robomw.agents.host.code.CodeArchive;
 import io.robomw.agents.host.trip.VisitorAgent;
 import io.robomw.testkit.Await;
@@ -37,7 +41,7 @@ class OwedDeliveryTest {
     @TempDir
     Path dir;
 
-    private AgentHost started(AgentHost.Builder b) throws Exception {
+    private AgentHost started(AgentHostBuilder b) throws Exception {
         return hosts.start(b.clusterKey(KEY));
     }
 

@@ -1,5 +1,11 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.protocol.Op;
+import io.robomw.agents.host.protocol.Reply;
+import io.robomw.agents.host.rmi.AgentHostRemote;
+import io.robomw.agents.host.rmi.HostSockets;
+import io.robomw.agents.host.rmi.PeerLink;
+import io.robomw.agents.host.rmi.Session;
 import org.junit.jupiter.api.Test;
 
 import java.rmi.AccessException;

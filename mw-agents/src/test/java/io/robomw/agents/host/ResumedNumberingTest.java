@@ -30,7 +30,7 @@ class ResumedNumberingTest {
     @TempDir
     Path dir;
 
-    private AgentHost started(AgentHost.Builder b) throws Exception {
+    private AgentHost started(AgentHostBuilder b) throws Exception {
         return hosts.start(b.clusterKey(KEY));
     }
 

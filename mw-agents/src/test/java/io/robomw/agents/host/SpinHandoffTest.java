@@ -1,5 +1,6 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.visit.SpinHandoff;
 import io.robomw.testkit.Await;
 import org.junit.jupiter.api.Test;
 

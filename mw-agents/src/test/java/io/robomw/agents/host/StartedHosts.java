@@ -21,7 +21,7 @@ public final class StartedHosts implements AfterEachCallback {
      * @return the host it started, closed after the test
      * @throws Exception if the host did not start
      */
-    public AgentHost start(AgentHost.Builder builder) throws Exception {
+    public AgentHost start(AgentHostBuilder builder) throws Exception {
         return add(builder.start());
     }
 

@@ -1,5 +1,9 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.protocol.Bodies;
+import io.robomw.agents.host.core.HostState;
+import io.robomw.agents.host.protocol.AgentEvent;
+import io.robomw.agents.host.protocol.Op;
 import io.robomw.agents.host.code.CodeArchive;
 import io.robomw.agents.host.trip.VisitorAgent;
 import io.robomw.testkit.LogLines;

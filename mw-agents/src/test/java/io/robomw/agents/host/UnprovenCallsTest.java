@@ -1,5 +1,9 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.rmi.AgentHostRemote;
+import io.robomw.agents.host.rmi.HostEndpoint;
+import io.robomw.agents.host.rmi.HostSockets;
+import io.robomw.agents.host.rmi.Session;
 import io.robomw.agents.host.code.CodeArchive;
 import org.junit.jupiter.api.Test;
 

@@ -1,5 +1,13 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.rmi.HostEndpoint;
+import io.robomw.agents.host.protocol.AgentEvent;
+import io.robomw.agents.host.protocol.AgentImage;
+import io.robomw.agents.host.protocol.Bodies;
+import io.robomw.agents.host.protocol.Frame;
+import io.robomw.agents.host.protocol.Op;
+import io.robomw.agents.host.protocol.Reply;
+import io.robomw.agents.host.rmi.Session;
 import io.robomw.agents.host.code.CodeArchive;
 import io.robomw.api.AgentStatus;
 import org.junit.jupiter.api.Test;

@@ -1,5 +1,8 @@
 package io.robomw.agents.host;
 
+import io.robomw.agents.host.rmi.Session;
+import io.robomw.agents.host.security.FrameTag;
+import io.robomw.agents.host.wire.WireFrames;
 import java.io.ByteArrayOutputStream;
 import java.io.IOException;
 import java.io.OutputStream;

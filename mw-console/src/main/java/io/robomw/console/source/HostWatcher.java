@@ -2,7 +2,7 @@ package io.robomw.console.source;
 
 import io.robomw.api.spi.FailurePolicy;
 import io.robomw.agents.host.ClusterKey;
-import io.robomw.agents.host.HostWatch;
+import io.robomw.agents.host.ops.HostWatch;
 import io.robomw.console.observe.HostView;
 import io.robomw.console.observe.Observation;
 import io.robomw.console.observe.Observer;

@@ -1,6 +1,6 @@
 package io.robomw.it.security;
 
-import io.robomw.agents.host.AgentHostRemote;
+import io.robomw.agents.host.rmi.AgentHostRemote;
 import io.robomw.agents.host.ClusterKey;
 import io.robomw.agents.host.HostProbe;
 import io.robomw.agents.host.code.CodeArchive;

@@ -1,5 +1,8 @@
 package io.robomw.agents.host.store;
 
+import io.robomw.agents.net.WireCode;
+import io.robomw.agents.net.WireCodes;
+
 import io.robomw.agents.host.code.CodeArchive;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -137,7 +140,7 @@ public final class JournalStore implements AgentStore {
     private static final int MIN_PAYLOAD = 1 + 16 + 8;
 
     /** The kinds of records, each written as its {@link #code()} (the table is in the class javadoc). */
-    enum RecordType {
+    enum RecordType implements WireCode {
         /** An agent accepted; its image. */
         ACCEPTED(1),
         /** Its stop's work begun. */
@@ -157,6 +160,8 @@ public final class JournalStore implements AgentStore {
         /** It is being sent on; its image after the stop is in a spool file (from version 4). */
         DEPARTING_SPOOLED(9);
 
+        private static final WireCodes<RecordType> CODES = WireCodes.of(RecordType.class, "record type");
+
         private final int code;
 
         RecordType(int code) {
@@ -164,7 +169,8 @@ public final class JournalStore implements AgentStore {
         }
 
         /** @return the record type's code in the journal */
-        int code() {
+        @Override
+        public int code() {
             return code;
         }
 
@@ -174,18 +180,7 @@ public final class JournalStore implements AgentStore {
          * @throws IllegalArgumentException naming the code if no type has it
          */
         static RecordType fromCode(int code) {
-            return switch (code) {
-                case 1 -> ACCEPTED;
-                case 2 -> STARTED;
-                case 3 -> DEPARTING;
-                case 4 -> DEPARTED;
-                case 5 -> EVENT_PENDING;
-                case 6 -> EVENT_DELIVERED;
-                case 7 -> SEEN;
-                case 8 -> EVENT_SEQ;
-                case 9 -> DEPARTING_SPOOLED;
-                default -> throw new IllegalArgumentException("unknown record type code " + code + " (known: 1-9)");
-            };
+            return CODES.get(code);
         }
     }
 

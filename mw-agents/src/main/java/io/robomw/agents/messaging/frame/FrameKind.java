@@ -1,12 +1,15 @@
 package io.robomw.agents.messaging.frame;
 
+import io.robomw.agents.net.WireCode;
+import io.robomw.agents.net.WireCodes;
+
 import io.robomw.agents.messaging.DropReason;
 
 /**
  * What a frame is for. Each kind travels as its {@link #code()} in the frame's {@code KIND} byte
  * (the table is in {@link FrameCodec}), never as its position here.
  */
-public enum FrameKind {
+public enum FrameKind implements WireCode {
     /** A point-to-point message ({@code sendMessage}); may be answered. */
     MESSAGE(1),
     /** The answer to a {@link #MESSAGE}, carrying its correlation id. */
@@ -25,6 +28,8 @@ public enum FrameKind {
      */
     KEEPALIVE(7);
 
+    private static final WireCodes<FrameKind> CODES = WireCodes.of(FrameKind.class, "frame kind");
+
     private final int code;
 
     FrameKind(int code) {
@@ -32,6 +37,7 @@ public enum FrameKind {
     }
 
     /** @return the wire code */
+    @Override
     public int code() {
         return code;
     }
@@ -42,15 +48,6 @@ public enum FrameKind {
      * @throws FrameException ({@link DropReason#MALFORMED}) naming the code if no kind has it
      */
     public static FrameKind fromCode(int code) throws FrameException {
-        return switch (code) {
-            case 1 -> MESSAGE;
-            case 2 -> REPLY;
-            case 3 -> ERROR;
-            case 4 -> PUBLISH;
-            case 5 -> SUBSCRIBE;
-            case 6 -> UNSUBSCRIBE;
-            case 7 -> KEEPALIVE;
-            default -> throw new FrameException(DropReason.MALFORMED, "unknown frame kind code " + code + " (known: 1-7)");
-        };
+        return CODES.find(code).orElseThrow(() -> new FrameException(DropReason.MALFORMED, CODES.unknown(code)));
     }
 }
