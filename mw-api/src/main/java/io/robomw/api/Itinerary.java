@@ -80,12 +80,12 @@ public final class Itinerary implements Serializable {
          * @throws InvalidObjectException if no policy has that code
          */
         static UnreachablePolicy fromCode(int code) throws InvalidObjectException {
-            return switch (code) {
-                case 0 -> SKIP;
-                case 1 -> RETRY;
-                case 2 -> RETURN_HOME;
-                default -> throw new InvalidObjectException("unknown unreachable-policy code " + code + " in an itinerary (known: 0 SKIP, 1 RETRY, 2 RETURN_HOME)");
-            };
+            for (UnreachablePolicy p : values()) {
+                if (p.code == code) {
+                    return p;
+                }
+            }
+            throw new InvalidObjectException("unknown unreachable-policy code " + code + " in an itinerary (known: " + known(values(), UnreachablePolicy::code) + ")");
         }
     }
 
@@ -129,18 +129,29 @@ public final class Itinerary implements Serializable {
 
         /** @return the outcome of a code, or {@code null} if none has it */
         static Outcome lookup(int code) {
-            return switch (code) {
-                case 0 -> DONE;
-                case 1 -> FAILED;
-                case 2 -> UNREACHABLE;
-                case 3 -> INTERRUPTED;
-                default -> null;
-            };
+            for (Outcome o : values()) {
+                if (o.code == code) {
+                    return o;
+                }
+            }
+            return null;
         }
 
         static String unknown(int code) {
-            return "unknown visit-outcome code " + code + " in an itinerary (known: 0 DONE, 1 FAILED, 2 UNREACHABLE, 3 INTERRUPTED)";
+            return "unknown visit-outcome code " + code + " in an itinerary (known: " + known(values(), Outcome::code) + ")";
         }
+    }
+
+    /** The codes of an enum's constants as an error message lists them: "0 A, 1 B, ...". Each code is written once, in its constant. */
+    private static <E extends Enum<E>> String known(E[] constants, java.util.function.ToIntFunction<E> code) {
+        StringBuilder b = new StringBuilder();
+        for (E e : constants) {
+            if (b.length() > 0) {
+                b.append(", ");
+            }
+            b.append(code.applyAsInt(e)).append(' ').append(e.name());
+        }
+        return b.toString();
     }
 
     /**
