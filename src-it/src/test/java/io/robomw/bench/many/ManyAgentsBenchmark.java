@@ -38,10 +38,12 @@ import java.util.stream.Stream;
  *   there between its own start and end of recording; hops per second is the sum over the hosts of
  *   each one's hops over its own window.</li>
  *   <li>Then every agent is told to go home: each must end its trip at home within 2 minutes
- *   (lost = N − home).</li>
- *   <li>Parked agents: live heap of the second host after two full collections, then N agents sent
- *   there that wait (RoboMW: the stop's work blocks on a latch; JADE: a cyclic behaviour blocked
- *   for a message), the live heap again: the difference / N.</li>
+ *   (lost = N − home; RoboMW's sample fails if one is lost, JADE's reports it). Latencies of 10 s
+ *   and more fall in the histogram's last bucket: a p99 of 10,020,000 µs means "10 s or more".</li>
+ *   <li>Parked agents, first, on the fresh JVMs: N / 20 agents (at least 10) sent to the second host
+ *   to wait there (RoboMW: the stop's work blocks on a latch; JADE: a cyclic behaviour blocked for a
+ *   message) load the classes and open the sessions; then the second host's live heap after two
+ *   full collections, N more agents, the live heap again: the difference / N. Then they are let go.</li>
  * </ol>
  *
  * <p>Prints {@code BENCH many.<system>.<figure>} lines for bench/all's report. Arguments:
@@ -172,6 +174,19 @@ public final class ManyAgentsBenchmark {
         start();
         String jar = system.equals("robomw") ? jar().toString() : null;
         PeerProcess home = peers.get(0);
+        // Parked agents first, on fresh JVMs (after the hop phase, idle runner threads ending made the live heap fall meanwhile):
+        // a warm-up batch loads the classes and opens the sessions, then the live heap before and after N more.
+        PeerProcess parking = peers.get(1);
+        int warmParked = Math.max(10, agents / 20);
+        park(home, parking, jar, warmParked, warmParked);
+        long before = Long.parseLong(parking.ask("HEAP", "HEAP", Duration.ofMinutes(1)).substring(5));
+        park(home, parking, jar, agents, warmParked + agents);
+        long after = Long.parseLong(parking.ask("HEAP", "HEAP", Duration.ofMinutes(1)).substring(5));
+        double perParked = (after - before) / (double) agents;
+        parking.ask("RELEASE " + (warmParked + agents), "RELEASED", Duration.ofMinutes(2));
+        say(String.format(Locale.ROOT, "%s: %d agents waiting at one host (after %d more to warm up): live heap %.1f → %.1f MiB, %.0f bytes per agent",
+                system, agents, warmParked, before / 1048576.0, after / 1048576.0, perParked));
+        Thread.sleep(2000); // RoboMW's released agents end their trips
         String launch = "LAUNCH " + agents + (jar == null ? "" : " " + jar) + " " + String.join(" ", names);
         home.ask(launch, "LAUNCHED", Duration.ofMinutes(2));
         say("%s: %d agents launched among %d hosts; warm-up %d s".formatted(system, agents, hosts, warmup));
@@ -212,23 +227,7 @@ public final class ManyAgentsBenchmark {
         int lost = agents - home0[0];
         say(String.format(Locale.ROOT, "%s: %,d hops in %.1f s: %,.0f hops/s, p50 %.0f µs, p99 %.0f µs, CPU of the %d JVMs %.1f µs per hop; home %d of %d (%d trips failed), lost %d",
                 system, hops, window, perSecond, p50, p99, hosts, cpuPerHop, home0[0], agents, home0[1], lost));
-        PeerProcess parking = peers.get(1);
-        long before = Long.parseLong(parking.ask("HEAP", "HEAP", Duration.ofMinutes(1)).substring(5));
-        home.ask("PARK " + agents + (jar == null ? "" : " " + jar) + " " + names.get(1), "PARKING", Duration.ofMinutes(2));
-        long deadline = System.nanoTime() + HOME.toNanos();
-        int parked = 0;
-        while (System.nanoTime() < deadline && (parked = Integer.parseInt(parking.ask("PARKED", "PARKED").substring(7))) < agents) {
-            Thread.sleep(200);
-        }
-        if (parked < agents) {
-            throw new IllegalStateException("only " + parked + " of " + agents + " agents arrived at " + names.get(1) + " to wait within " + HOME);
-        }
-        long after = Long.parseLong(parking.ask("HEAP", "HEAP", Duration.ofMinutes(1)).substring(5));
-        double perParked = (after - before) / (double) agents;
-        parking.ask("RELEASE", "RELEASED");
-        String load1 = load();
-        say(String.format(Locale.ROOT, "%s: %d agents waiting at one host: live heap %.1f → %.1f MiB, %.0f bytes per agent; load average %s before, %s after",
-                system, agents, before / 1048576.0, after / 1048576.0, perParked, load0, load1));
+        say("%s: load average %s before, %s after".formatted(system, load0, load()));
         String id = "many." + system + ".";
         System.out.println(line(id + "hops-per-s", perSecond, "hops/s"));
         System.out.println(line(id + "p50", p50, "µs"));
@@ -236,8 +235,22 @@ public final class ManyAgentsBenchmark {
         System.out.println(line(id + "cpu-per-hop", cpuPerHop, "µs"));
         System.out.println(line(id + "heap-per-parked", perParked, "bytes"));
         System.out.println(line(id + "lost", lost, "agents"));
-        if (lost != 0 || home0[1] != 0) {
+        // RoboMW must bring every agent home; what JADE loses is a figure of the baseline, not a failure of the harness.
+        if (system.equals("robomw") && (lost != 0 || home0[1] != 0)) {
             throw new IllegalStateException(lost + " of " + agents + " agents not home within " + HOME + ", " + home0[1] + " trips failed");
+        }
+    }
+
+    /** Sends {@code n} agents to wait at the parking host and waits until {@code total} wait there. */
+    private void park(PeerProcess home, PeerProcess parking, String jar, int n, int total) throws InterruptedException {
+        home.ask("PARK " + n + (jar == null ? "" : " " + jar) + " " + names.get(1), "PARKING", Duration.ofMinutes(2));
+        long deadline = System.nanoTime() + HOME.toNanos();
+        int parked = 0;
+        while (System.nanoTime() < deadline && (parked = Integer.parseInt(parking.ask("PARKED", "PARKED").substring(7))) < total) {
+            Thread.sleep(200);
+        }
+        if (parked < total) {
+            throw new IllegalStateException("only " + parked + " of " + total + " agents arrived at " + names.get(1) + " to wait within " + HOME);
         }
     }
 

@@ -40,8 +40,8 @@ import java.util.concurrent.atomic.AtomicInteger;
  *   <li>{@code STOP}: agents go home at their next stop; {@code STOPPING}.</li>
  *   <li>{@code HOME}: {@code HOME n failed} (agents home, trips that failed).</li>
  *   <li>{@code PARK N JAR TARGET} (RoboMW) or {@code PARK N TARGET} (JADE): sends N agents to wait at
- *   TARGET; {@code PARKING N}. {@code PARKED}: {@code PARKED n} waiting here. {@code RELEASE}: lets
- *   them end; {@code RELEASED}.</li>
+ *   TARGET; {@code PARKING N}. {@code PARKED}: {@code PARKED n} waiting here. {@code RELEASE N}: lets
+ *   them end (JADE: kills {@code parked-0} to {@code parked-N-1} here); {@code RELEASED}.</li>
  *   <li>{@code HEAP}: {@code HEAP bytes}, the heap in use after two full collections.</li>
  * </ul>
  */
@@ -56,6 +56,8 @@ public final class ManyAgentsPeer {
     private final List<URLClassLoader> loaders = new ArrayList<>();
     private AgentHost host;
     private AgentContainer container;
+    /** JADE: the parked agents made so far ({@code parked-0}, {@code parked-1}, ...). */
+    private int parkedNames;
 
     private ManyAgentsPeer(PrintStream out) {
         this.out = out;
@@ -112,10 +114,7 @@ public final class ManyAgentsPeer {
             case "HOME" -> "HOME " + HopLog.counter(HopLog.HOME).get() + " " + failed.get();
             case "PARK" -> park(Integer.parseInt(c[1]), c);
             case "PARKED" -> "PARKED " + HopLog.counter(HopLog.PARKED).get();
-            case "RELEASE" -> {
-                ((CountDownLatch) System.getProperties().get(HopLog.GATE)).countDown();
-                yield "RELEASED";
-            }
+            case "RELEASE" -> release(Integer.parseInt(c[1]));
             case "HEAP" -> "HEAP " + liveHeap();
             default -> "ERR unknown command " + String.join(" ", c);
         };
@@ -151,10 +150,25 @@ public final class ManyAgentsPeer {
             }
         } else {
             for (int i = 0; i < n; i++) {
-                container.createNewAgent("parked-" + i, JadeParkedAgent.class.getName(), new Object[] {c[2]}).start();
+                container.createNewAgent("parked-" + parkedNames++, JadeParkedAgent.class.getName(), new Object[] {c[2]}).start();
             }
         }
         return "PARKING " + n;
+    }
+
+    /** Lets the agents waiting here end: RoboMW's stop's work returns (its trip ends here); JADE's first {@code n} parked agents are killed. */
+    private String release(int n) {
+        ((CountDownLatch) System.getProperties().get(HopLog.GATE)).countDown();
+        if (container != null) {
+            for (int i = 0; i < n; i++) {
+                try {
+                    container.getAgent("parked-" + i).kill();
+                } catch (Exception e) {
+                    System.err.println("parked-" + i + " could not be killed: " + e);
+                }
+            }
+        }
+        return "RELEASED";
     }
 
     /** Counts the agent home when its trip ends with the result expected, as failed otherwise. */
