@@ -43,7 +43,9 @@ import java.util.stream.Stream;
  *   <li>Parked agents, first, on the fresh JVMs: N / 20 agents (at least 10) sent to the second host
  *   to wait there (RoboMW: the stop's work blocks on a latch; JADE: a cyclic behaviour blocked for a
  *   message) load the classes and open the sessions; then the second host's live heap after two
- *   full collections, N more agents, the live heap again: the difference / N. Then they are let go.</li>
+ *   full collections, N more agents, the live heap again: the difference / N. Then RoboMW's are let
+ *   go (their trips end there); JADE's stay, idle, through the hop phase (killing them one by one
+ *   took minutes on a loaded machine; an idle JADE agent takes no processor time).</li>
  * </ol>
  *
  * <p>Prints {@code BENCH many.<system>.<figure>} lines for bench/all's report. Arguments:
@@ -183,7 +185,7 @@ public final class ManyAgentsBenchmark {
         park(home, parking, jar, agents, warmParked + agents);
         long after = Long.parseLong(parking.ask("HEAP", "HEAP", Duration.ofMinutes(1)).substring(5));
         double perParked = (after - before) / (double) agents;
-        parking.ask("RELEASE " + (warmParked + agents), "RELEASED", Duration.ofMinutes(2));
+        parking.ask("RELEASE", "RELEASED");
         say(String.format(Locale.ROOT, "%s: %d agents waiting at one host (after %d more to warm up): live heap %.1f → %.1f MiB, %.0f bytes per agent",
                 system, agents, warmParked, before / 1048576.0, after / 1048576.0, perParked));
         Thread.sleep(2000); // RoboMW's released agents end their trips

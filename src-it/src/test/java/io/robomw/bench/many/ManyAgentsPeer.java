@@ -40,8 +40,8 @@ import java.util.concurrent.atomic.AtomicInteger;
  *   <li>{@code STOP}: agents go home at their next stop; {@code STOPPING}.</li>
  *   <li>{@code HOME}: {@code HOME n failed} (agents home, trips that failed).</li>
  *   <li>{@code PARK N JAR TARGET} (RoboMW) or {@code PARK N TARGET} (JADE): sends N agents to wait at
- *   TARGET; {@code PARKING N}. {@code PARKED}: {@code PARKED n} waiting here. {@code RELEASE N}: lets
- *   them end (JADE: kills {@code parked-0} to {@code parked-N-1} here); {@code RELEASED}.</li>
+ *   TARGET; {@code PARKING N}. {@code PARKED}: {@code PARKED n} waiting here. {@code RELEASE}: lets
+ *   RoboMW's end (JADE's stay, idle); {@code RELEASED}.</li>
  *   <li>{@code HEAP}: {@code HEAP bytes}, the heap in use after two full collections.</li>
  * </ul>
  */
@@ -114,7 +114,7 @@ public final class ManyAgentsPeer {
             case "HOME" -> "HOME " + HopLog.counter(HopLog.HOME).get() + " " + failed.get();
             case "PARK" -> park(Integer.parseInt(c[1]), c);
             case "PARKED" -> "PARKED " + HopLog.counter(HopLog.PARKED).get();
-            case "RELEASE" -> release(Integer.parseInt(c[1]));
+            case "RELEASE" -> release();
             case "HEAP" -> "HEAP " + liveHeap();
             default -> "ERR unknown command " + String.join(" ", c);
         };
@@ -156,18 +156,13 @@ public final class ManyAgentsPeer {
         return "PARKING " + n;
     }
 
-    /** Lets the agents waiting here end: RoboMW's stop's work returns (its trip ends here); JADE's first {@code n} parked agents are killed. */
-    private String release(int n) {
+    /**
+     * Lets RoboMW's agents waiting here end (their stop's work returns; their trips end here).
+     * JADE's stay, idle (a thread each, blocked): killing a thousand JADE agents one by one took
+     * more than 2 minutes on a loaded machine, and an idle JADE agent takes no processor time.
+     */
+    private String release() {
         ((CountDownLatch) System.getProperties().get(HopLog.GATE)).countDown();
-        if (container != null) {
-            for (int i = 0; i < n; i++) {
-                try {
-                    container.getAgent("parked-" + i).kill();
-                } catch (Exception e) {
-                    System.err.println("parked-" + i + " could not be killed: " + e);
-                }
-            }
-        }
         return "RELEASED";
     }
 
