@@ -38,10 +38,10 @@ public final class AgentBenchPeer {
     static final String WIRE_READ_SPIN = "agent.bench.wireReadSpinMicros";
 
     /** The properties above, passed on to host B's JVM. */
-    static final java.util.List<String> PROPERTIES = java.util.List.of(RUNNER_SPIN, ENDPOINT_SPIN, WIRE, WIRE_SPIN, WIRE_READ_SPIN);
+    public static final java.util.List<String> PROPERTIES = java.util.List.of(RUNNER_SPIN, ENDPOINT_SPIN, WIRE, WIRE_SPIN, WIRE_READ_SPIN);
 
     /** @return the builder with the spins of {@value #RUNNER_SPIN}, {@value #ENDPOINT_SPIN} and {@value #WIRE_SPIN} and the wire of {@value #WIRE}, where set */
-    static AgentHostBuilder spin(AgentHostBuilder b) {
+    public static AgentHostBuilder spin(AgentHostBuilder b) {
         String wire = System.getProperty(WIRE);
         if (wire != null) {
             b.wire(Boolean.parseBoolean(wire.trim()));

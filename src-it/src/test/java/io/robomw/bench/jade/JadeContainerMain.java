@@ -58,29 +58,7 @@ public final class JadeContainerMain {
         int platformPort = Integer.parseInt(args[2]);
         int localPort = main ? platformPort : Integer.parseInt(args[3]);
 
-        // The same as the command line -host 127.0.0.1 -port P -local-host 127.0.0.1 -local-port Q
-        // -nomtp -services ..., plus two things -local-host does not do: bind the JICP server
-        // socket to local-host only (JADE binds it to the wildcard address otherwise), and no
-        // main-container detection (on by default in a main container: a MulticastSocket on the
-        // wildcard address, port 1199, joined to 239.255.10.99 on the default interface).
-        jade.util.leap.Properties p = new jade.util.leap.Properties();
-        p.setProperty(Profile.MAIN, String.valueOf(main));
-        p.setProperty(Profile.MAIN_HOST, LOOPBACK);
-        p.setProperty(Profile.MAIN_PORT, String.valueOf(platformPort));
-        p.setProperty(Profile.LOCAL_HOST, LOOPBACK);
-        p.setProperty(Profile.LOCAL_PORT, String.valueOf(localPort));
-        p.setProperty(Profile.NO_MTP, "true");
-        p.setProperty(Profile.GUI, "false");
-        p.setProperty(Profile.SERVICES, SERVICES);
-        p.setProperty(Profile.CONTAINER_NAME, name);
-        p.setProperty(Profile.PLATFORM_ID, "robomw-jade-bench");
-        p.setProperty("jade_imtp_leap_JICP_JICPServer_acceptlocalhostonly", "true");
-        p.setProperty("detect-main", "false");
-
-        Runtime runtime = Runtime.instance();
-        runtime.setCloseVM(false);
-        Profile profile = new ProfileImpl(p);
-        AgentContainer container = main ? runtime.createMainContainer(profile) : runtime.createAgentContainer(profile);
+        AgentContainer container = startContainer(main, name, platformPort, localPort);
         if (container == null) {
             out.println("ERR container " + name + " did not start (see its log)");
             System.exit(1);
@@ -110,6 +88,41 @@ public final class JadeContainerMain {
             // the driver is gone: end as on exit
         }
         shutdown(container, worker);
+    }
+
+    /**
+     * Starts this JVM's container on loopback (see the class comment).
+     *
+     * @param main         whether it is the main container
+     * @param name         its name
+     * @param platformPort the main container's port
+     * @param localPort    this container's port (the main container's: {@code platformPort})
+     * @return the container, or {@code null} if JADE could not start it
+     */
+    public static AgentContainer startContainer(boolean main, String name, int platformPort, int localPort) {
+        // The same as the command line -host 127.0.0.1 -port P -local-host 127.0.0.1 -local-port Q
+        // -nomtp -services ..., plus two things -local-host does not do: bind the JICP server
+        // socket to local-host only (JADE binds it to the wildcard address otherwise), and no
+        // main-container detection (on by default in a main container: a MulticastSocket on the
+        // wildcard address, port 1199, joined to 239.255.10.99 on the default interface).
+        jade.util.leap.Properties p = new jade.util.leap.Properties();
+        p.setProperty(Profile.MAIN, String.valueOf(main));
+        p.setProperty(Profile.MAIN_HOST, LOOPBACK);
+        p.setProperty(Profile.MAIN_PORT, String.valueOf(platformPort));
+        p.setProperty(Profile.LOCAL_HOST, LOOPBACK);
+        p.setProperty(Profile.LOCAL_PORT, String.valueOf(localPort));
+        p.setProperty(Profile.NO_MTP, "true");
+        p.setProperty(Profile.GUI, "false");
+        p.setProperty(Profile.SERVICES, SERVICES);
+        p.setProperty(Profile.CONTAINER_NAME, name);
+        p.setProperty(Profile.PLATFORM_ID, "robomw-jade-bench");
+        p.setProperty("jade_imtp_leap_JICP_JICPServer_acceptlocalhostonly", "true");
+        p.setProperty("detect-main", "false");
+
+        Runtime runtime = Runtime.instance();
+        runtime.setCloseVM(false);
+        Profile profile = new ProfileImpl(p);
+        return main ? runtime.createMainContainer(profile) : runtime.createAgentContainer(profile);
     }
 
     private static String measure(AgentContainer container, String agent, String[] c) {
@@ -153,7 +166,7 @@ public final class JadeContainerMain {
     }
 
     /** JADE logs through java.util.logging: only warnings and worse, on stderr. */
-    private static void quietLogging() {
+    public static void quietLogging() {
         Logger root = LogManager.getLogManager().getLogger("");
         root.setLevel(Level.WARNING);
         for (Handler h : root.getHandlers()) {

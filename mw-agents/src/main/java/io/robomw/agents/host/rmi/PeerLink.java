@@ -59,6 +59,8 @@ public final class PeerLink {
     private final javax.net.ssl.SSLContext wireTls;
     private final int timeoutMillis;
     private final java.util.ArrayDeque<WireChannel> idleWires = new java.util.ArrayDeque<>();
+    /** One permit per wire connection the link may have in use ({@link #MAX_WIRES}). */
+    private final java.util.concurrent.Semaphore wires = new java.util.concurrent.Semaphore(MAX_WIRES, true);
     private AgentHostRemote stub;
     private Session session;
     /** The host's agent wire port for the session, 0 when it offered none. */
@@ -75,8 +77,17 @@ public final class PeerLink {
 
     /** How long transfers go over RMI after the host's agent wire could not be reached. */
     static final long WIRE_RETRY_MILLIS = 30_000;
-    /** The most idle wire connections a link keeps. */
-    static final int MAX_IDLE_WIRES = 4;
+    /**
+     * The most wire connections a link has open at once: a transfer that finds them all busy waits
+     * for one (up to the link's timeout) instead of opening another. Without a bound, a thousand
+     * agents leaving at once opened a connection each (a HELLO round trip, a server thread, a
+     * backlog slot at the host) and then closed all but the idle ones kept: on a loaded machine the
+     * host's accept backlog overflowed, connects timed out, the link fell back to RMI for 30 s and
+     * RMI opened a connection per call, past the host's limit (docs/benchmarks.md, "Many agents at once").
+     */
+    static final int MAX_WIRES = 8;
+    /** The most idle wire connections a link keeps: as many as it may have open, so a burst reuses them. */
+    static final int MAX_IDLE_WIRES = MAX_WIRES;
     /** An idle wire connection older than this is closed rather than used (the host closes idle ones after 2 minutes). */
     static final long WIRE_STALE_NANOS = 60_000_000_000L;
 
@@ -263,6 +274,23 @@ public final class PeerLink {
      *                       or the host refused the frame
      */
     private Reply callOnWire(Session s, int port, int opCode, String op, Frame frame) throws PeerException {
+        try {
+            if (!wires.tryAcquire(timeoutMillis, java.util.concurrent.TimeUnit.MILLISECONDS)) {
+                return null; // every connection stayed busy for the whole timeout: this call goes over RMI, the wire stays in use
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            throw new PeerException("interrupted while waiting for an agent wire connection to host " + address + " (the " + op + " was not sent)", false, e);
+        }
+        try {
+            return callOnWireHeld(s, port, opCode, op, frame);
+        } finally {
+            wires.release();
+        }
+    }
+
+    /** {@link #callOnWire} with a permit of {@link #wires} held. */
+    private Reply callOnWireHeld(Session s, int port, int opCode, String op, Frame frame) throws PeerException {
         WireChannel ch = idleWire(s);
         if (ch == null) {
             try {
