@@ -38,6 +38,8 @@ import java.util.concurrent.atomic.AtomicLong;
  *   <tr><td>{@code /<ns>/range/<sensor>}</td><td>{@code sensor_msgs/msg/Range}</td><td>each range finder (sonar, infra-red, laser, range),
  *   read in metres at its rate</td></tr>
  *   <tr><td>{@code /<ns>/joint_states}</td><td>{@code sensor_msgs/msg/JointState}</td><td>the joint sensors (a legged robot's), radians</td></tr>
+ *   <tr><td>{@code /<ns>/battery_state}</td><td>{@code sensor_msgs/msg/BatteryState}</td><td>a battery sensor (a vehicle's): {@code percentage} 0 to 1
+ *   ({@code /<ns>/battery_state/<sensor>} each, for several)</td></tr>
  * </table>
  * and its pose in {@code /tf} ({@link TransformFeed}). Nothing is read while a topic has no
  * subscriber. A robot without odometry (its {@code pose()} is unsupported) publishes none, unless
@@ -99,6 +101,7 @@ public final class RobotNode implements AutoCloseable {
         n.odom.onDemand(wanted -> n.poseFeed.demand(!n.noOdometry && (wanted || n.tfWanted)));
         Interfaces types = graph.interfaces();
         List<SensorInfo> joints = new ArrayList<>();
+        List<SensorInfo> batteries = new ArrayList<>();
         double jointHz = 0;
         for (SensorInfo s : robot.robot().sensors()) {
             SensorGeometry g = robot.geometry(s);
@@ -111,7 +114,18 @@ public final class RobotNode implements AutoCloseable {
             } else if (s.type() == SensorType.JOINT) {
                 joints.add(s);
                 jointHz = Math.max(jointHz, sensorRate.applyAsDouble(g));
+            } else if (s.type() == SensorType.BATTERY) {
+                batteries.add(s);
             }
+        }
+        for (SensorInfo s : batteries) {
+            // one battery: battery_state, as ROS drivers name it; several: one topic each, by sensor name
+            String name = batteries.size() == 1 ? "/battery_state" : "/battery_state/" + Graph.namespace(s.name());
+            Topic t = graph.declare(n.node + name, types.message("sensor_msgs/msg/BatteryState"), false);
+            t.addPublisher(n.node);
+            Periodic p = new Periodic(threads, sensorRate.applyAsDouble(robot.geometry(s)), n.batteryReader(s, t), "rosbridge " + n.ns + " " + s.name());
+            n.feeds.add(p);
+            t.onDemand(p::demand);
         }
         if (!joints.isEmpty()) {
             Topic t = graph.declare(n.node + "/joint_states", types.message("sensor_msgs/msg/JointState"), false);
@@ -243,6 +257,31 @@ public final class RobotNode implements AutoCloseable {
                     failed("sensor " + s.name(), e);
                 } else {
                     topic.publish(RosMessages.range(clock.instant(), frame, g.radiation().code(), g.fieldOfView(), g.minRange(), g.maxRange(), metres));
+                }
+            });
+        };
+    }
+
+    private Runnable batteryReader(SensorInfo s, Topic topic) {
+        AtomicBoolean inFlight = new AtomicBoolean();
+        return () -> {
+            if (!inFlight.compareAndSet(false, true)) {
+                return;
+            }
+            CompletableFuture<Double> reading;
+            try {
+                reading = robot.robot().getValueAsync(s.name(), ReturnType.PERCENT);
+            } catch (RuntimeException e) {
+                inFlight.set(false);
+                failed("sensor " + s.name(), e);
+                return;
+            }
+            reading.whenComplete((percent, e) -> {
+                inFlight.set(false);
+                if (e != null) {
+                    failed("sensor " + s.name(), e);
+                } else {
+                    topic.publish(RosMessages.batteryState(clock.instant(), ns + "/base_link", percent / 100.0, s.name()));
                 }
             });
         };

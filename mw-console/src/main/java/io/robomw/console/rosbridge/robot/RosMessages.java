@@ -164,6 +164,35 @@ final class RosMessages {
     }
 
     /**
+     * {@code sensor_msgs/msg/BatteryState} with what a RoboMW battery sensor gives: the charge left
+     * as {@code percentage} (0 to 1, as the message wants it) and {@code present}; what is not
+     * measured is NaN (null on JSON) or unknown (0), as the message's own comments ask.
+     *
+     * @param stamp    when read
+     * @param frame    the robot's body frame
+     * @param fraction the charge left, 0 to 1
+     * @param location the sensor's name
+     * @return the message
+     */
+    static ObjectNode batteryState(Instant stamp, String frame, double fraction, String location) {
+        ObjectNode m = NODES.objectNode();
+        m.set("header", header(stamp, frame));
+        for (String unmeasured : new String[] {"voltage", "temperature", "current", "charge", "capacity", "design_capacity"}) {
+            m.put(unmeasured, Float.NaN);
+        }
+        m.put("percentage", (float) fraction);
+        m.put("power_supply_status", 0);
+        m.put("power_supply_health", 0);
+        m.put("power_supply_technology", 0);
+        m.put("present", true);
+        m.putPOJO("cell_voltage", NumberSequence.ofFloats(Primitive.FLOAT32));
+        m.putPOJO("cell_temperature", NumberSequence.ofFloats(Primitive.FLOAT32));
+        m.put("location", location);
+        m.put("serial_number", "");
+        return m;
+    }
+
+    /**
      * @param pose a pose
      * @return it as a {@code geometry_msgs/msg/Pose}-shaped position and heading, for logs and tests
      */
