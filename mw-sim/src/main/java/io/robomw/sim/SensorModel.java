@@ -72,6 +72,9 @@ public final class SensorModel {
     private final double height;
     private final char axis;
     private volatile double latest;
+    /** Each ray's direction on the body (from forwards), its cosine and sine. */
+    private final double[] rayCos;
+    private final double[] raySin;
 
     SensorModel(SensorSpec spec, Body body, long seed) {
         this.spec = spec;
@@ -97,6 +100,13 @@ public final class SensorModel {
         this.headMounted = mountOption.equals("head");
         this.height = number(o, "height", 0.2, 0, MAX_MOUNT);
         this.axis = axisOf(spec, o);
+        this.rayCos = new double[rays];
+        this.raySin = new double[rays];
+        for (int i = 0; i < rays; i++) {
+            double a = rays == 1 ? mountAngle : mountAngle - beamWidth / 2 + beamWidth * i / (rays - 1);
+            rayCos[i] = Math.cos(a);
+            raySin[i] = Math.sin(a);
+        }
         if (!(maxRange > minRange)) {
             throw new IllegalArgumentException("sensor '" + spec.name() + "': option 'max_range' (" + maxRange + ") must be above 'min_range' ("
                     + minRange + ")");
@@ -314,6 +324,87 @@ public final class SensorModel {
             value += gaussian() * noise;
         }
         latest = Math.min(maxRange, Math.max(minRange, value));
+    }
+
+    /**
+     * Adds the rays of a range sensor to a robot's batch (their origins, directions and range), for
+     * {@link #finishRange} once they are cast.
+     *
+     * @param batch   the robot's rays so far
+     * @param x       robot centre x
+     * @param y       robot centre y
+     * @param heading robot heading
+     * @param c       {@code Math.cos(heading)}
+     * @param s       {@code Math.sin(heading)}
+     * @param pan     the head's pan, radians
+     */
+    void addRays(RayBatch batch, double x, double y, double heading, double c, double s, double pan) {
+        double ox = x + mountX * c - mountY * s;
+        double oy = y + mountX * s + mountY * c;
+        if (headMounted) {
+            double centre = heading + mountAngle + pan;
+            for (int i = 0; i < rays; i++) {
+                double a = rays == 1 ? centre : centre - beamWidth / 2 + beamWidth * i / (rays - 1);
+                batch.add(ox, oy, Math.cos(a), Math.sin(a), maxRange);
+            }
+            return;
+        }
+        // each ray's direction on the body, turned by the heading: no sine or cosine per ray
+        for (int i = 0; i < rays; i++) {
+            double u = rayCos[i];
+            double v = raySin[i];
+            batch.add(ox, oy, c * u - s * v, s * u + c * v, maxRange);
+        }
+    }
+
+    /**
+     * Takes the sample from this sensor's rays once they are cast: as {@link #sampleRange} does.
+     *
+     * @param hits  the distances of the batch's rays (+∞: nothing within range)
+     * @param first the index of this sensor's first ray in the batch
+     * @param tilt  the head's tilt, radians, positive up
+     */
+    void finishRange(double[] hits, int first, double tilt) {
+        double floor = headMounted && tilt < -1e-3 ? height / Math.tan(-tilt) : Double.POSITIVE_INFINITY;
+        double best = Double.POSITIVE_INFINITY;
+        for (int i = 0; i < rays; i++) {
+            best = Math.min(best, hits[first + i]);
+        }
+        best = Math.min(best, floor);
+        double value = Double.isInfinite(best) || best > maxRange ? maxRange : best;
+        if (noise > 0) {
+            value += gaussian() * noise;
+        }
+        latest = Math.min(maxRange, Math.max(minRange, value));
+    }
+
+    /** A robot's rays of one sensing pass, cast together ({@link io.robomw.sim.sensing.RangeIndex#castRays}); one per thread. */
+    static final class RayBatch {
+        double[] ox = new double[16];
+        double[] oy = new double[16];
+        double[] dx = new double[16];
+        double[] dy = new double[16];
+        double[] maxRange = new double[16];
+        double[] hits = new double[16];
+        int count;
+
+        void add(double x, double y, double ux, double uy, double range) {
+            if (count == ox.length) {
+                int m = 2 * count;
+                ox = java.util.Arrays.copyOf(ox, m);
+                oy = java.util.Arrays.copyOf(oy, m);
+                dx = java.util.Arrays.copyOf(dx, m);
+                dy = java.util.Arrays.copyOf(dy, m);
+                maxRange = java.util.Arrays.copyOf(maxRange, m);
+                hits = new double[m];
+            }
+            ox[count] = x;
+            oy[count] = y;
+            dx[count] = ux;
+            dy[count] = uy;
+            maxRange[count] = range;
+            count++;
+        }
     }
 
     private double gaussian() {

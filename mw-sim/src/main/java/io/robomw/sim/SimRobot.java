@@ -74,20 +74,12 @@ public final class SimRobot {
     private double lastVy;
     private final double[] accel = {0, 0, Quadruped.GRAVITY};
     private int contactQuadrants;
-    private double lastX;
-    private double lastY;
-    private double lastHeading;
-    private double turned;
     private int contactSides;
-    // The true pose, in three fields rather than a new Pose each step: a step stores no reference
-    // into this long-lived object (each such store costs G1 a card to refine, and at 10,000 robots
-    // and 50 Hz those cards cost more processor time than the robots' own work). The world's
-    // threads read the fields directly; other threads read them through poseVersion (a sequence
-    // lock: odd while they are written), in pose().
-    private double poseX;
-    private double poseY;
-    private double poseHeading;
-    private int poseVersion;
+    // The true pose, the angle turned and the drive motors' encoders and speeds live in the world's
+    // arrays (RobotStates, at this robot's index), not in fields: a step then touches no object of a
+    // plain robot at all, and stores no reference into this long-lived one (each such store costs G1
+    // a card to refine). Other threads read the pose through its sequence lock there, in pose().
+    private final RobotStates states;
 
     /** A read waiting for the robot's next cycle. */
     private record PendingRead(SensorModel sensor, SimFuture<Double> future) {
@@ -95,8 +87,9 @@ public final class SimRobot {
 
     SimRobot(int index, String name, RobotDescription description, Physics physics, int body, long seed,
              java.util.function.LongSupplier nanos, io.robomw.sim.world.WorldDescription.TrajectorySettings trajectorySettings,
-             io.robomw.api.spi.FailurePolicy failures) {
+             io.robomw.api.spi.FailurePolicy failures, RobotStates states) {
         this.index = index;
+        this.states = states;
         this.trajectory = new Trajectory(trajectorySettings);
         this.name = name;
         this.description = description;
@@ -126,11 +119,25 @@ public final class SimRobot {
         this.hasAccel = acc;
         this.quadruped = description.leggedDrive().map(d -> new Quadruped(d, seed * 0x9E3779B97F4A7C15L + index * 7_919L + 17)).orElse(null);
         this.kernel = quadruped == null ? null : new UrbiKernel(name, quadruped, this::urbiSensor, nanos, failures);
-        readPose();
-        lastX = physics.x(body);
-        lastY = physics.y(body);
-        lastHeading = poseHeading;
-        trajectory.add(lastX, lastY);
+        states.add(index);
+        states.body[index] = body;
+        states.trajectory[index] = trajectory;
+        if (kinematics != null) {
+            DifferentialDrive d = kinematics.drive();
+            states.track[index] = d.trackWidth();
+            states.degreesPerMetre[index] = kinematics.motorDegreesPerMetre();
+            states.signLeft[index] = d.left().reversed() ? -1 : 1;
+            states.signRight[index] = d.right().reversed() ? -1 : 1;
+            states.maxSpeed[index] = d.maxSpeed();
+        }
+        states.plain[index] = kinematics != null && quadruped == null && !hasTouch && !hasAccel && actuatorIndex.length == 0;
+        states.setPose(index, physics.x(body), physics.y(body), physics.heading(body), physics.cos(body), physics.sin(body));
+        trajectory.add(physics.x(body), physics.y(body));
+    }
+
+    /** @return whether the world steps this robot from its arrays alone ({@link RobotStates}) */
+    boolean plain() {
+        return states.plain[index];
     }
 
     /** @return its index in the world */
@@ -155,32 +162,32 @@ public final class SimRobot {
      * @return where it is now (true pose, not odometry)
      */
     public Pose pose() {
-        while (true) {
-            int version = (int) POSE_VERSION.getAcquire(this);
-            double x = poseX;
-            double y = poseY;
-            double heading = poseHeading;
-            java.lang.invoke.VarHandle.loadLoadFence();
-            if ((version & 1) == 0 && (int) POSE_VERSION.getOpaque(this) == version) {
-                return new Pose(x, y, heading);
-            }
-            Thread.onSpinWait(); // a step is writing it: three stores
-        }
+        return states.pose(index);
     }
 
     /** @return its true x now; the world's threads only (others: {@link #pose()}) */
     double x() {
-        return poseX;
+        return states.x[index];
     }
 
     /** @return its true y now; the world's threads only */
     double y() {
-        return poseY;
+        return states.y[index];
     }
 
     /** @return its true heading now, in (-π, π]; the world's threads only */
     double heading() {
-        return poseHeading;
+        return states.heading[index];
+    }
+
+    /** @return the cosine of its heading now, as its body's physics gives it; the world's threads only */
+    double cosHeading() {
+        return states.cos[index];
+    }
+
+    /** @return the sine of its heading now; the world's threads only */
+    double sinHeading() {
+        return states.sin[index];
     }
 
     /** @return the path it has driven, sampled as the world's {@code trajectory} settings say (bounded) */
@@ -224,7 +231,26 @@ public final class SimRobot {
         if (i < 0) {
             throw new IllegalArgumentException("simulated robot '" + name + "' has no motor on port " + port);
         }
-        commanded[i] = degreesPerSecond;
+        command(i, degreesPerSecond);
+    }
+
+    /**
+     * @param portIndex        a motor's index ({@link #motorPortIndex})
+     * @param degreesPerSecond the commanded motor speed
+     */
+    void command(int portIndex, double degreesPerSecond) {
+        if (portIndex == leftIndex) {
+            states.commandLeft[index] = degreesPerSecond;
+        } else if (portIndex == rightIndex) {
+            states.commandRight[index] = degreesPerSecond;
+        } else {
+            commanded[portIndex] = degreesPerSecond;
+        }
+    }
+
+    /** @return a motor's commanded speed, degrees per second */
+    private double commanded(int portIndex) {
+        return portIndex == leftIndex ? states.commandLeft[index] : portIndex == rightIndex ? states.commandRight[index] : commanded[portIndex];
     }
 
     /**
@@ -233,7 +259,7 @@ public final class SimRobot {
      */
     double motorDegrees(String port) {
         int i = portIndex(port);
-        return i < 0 ? 0.0 : motorDegrees[i];
+        return i < 0 ? 0.0 : motorDegrees(i);
     }
 
     /**
@@ -241,7 +267,7 @@ public final class SimRobot {
      * @return its encoder, degrees
      */
     double motorDegrees(int portIndex) {
-        return motorDegrees[portIndex];
+        return portIndex == leftIndex ? states.encoderLeft[index] : portIndex == rightIndex ? states.encoderRight[index] : motorDegrees[portIndex];
     }
 
     /** @return a motor port's index, or -1 */
@@ -265,6 +291,10 @@ public final class SimRobot {
      */
     void halt() {
         java.util.Arrays.fill(commanded, 0);
+        if (kinematics != null) {
+            states.commandLeft[index] = 0;
+            states.commandRight[index] = 0;
+        }
         if (quadruped != null) {
             quadruped.stop();
         }
@@ -279,20 +309,12 @@ public final class SimRobot {
             v = quadruped.linearVelocity();
             w = quadruped.angularVelocity();
         } else if (kinematics != null) {
-            DifferentialDrive d = kinematics.drive();
-            double max = d.maxSpeed();
-            double vl = clamp(kinematics.wheelMetres(commanded[leftIndex], d.left().reversed()), max);
-            double vr = clamp(kinematics.wheelMetres(commanded[rightIndex], d.right().reversed()), max);
-            v = (vl + vr) / 2;
-            w = (vr - vl) / d.trackWidth();
+            states.drive(index, physics);
+            return;
         } else {
             return;
         }
         physics.drive(body, v, w);
-    }
-
-    private static double clamp(double v, double max) {
-        return Math.max(-max, Math.min(max, v));
     }
 
     /**
@@ -312,37 +334,19 @@ public final class SimRobot {
         }
         if (physics.atRest(body) && !hasTouch) {
             if (recordTrajectory) {
-                trajectory.add(lastX, lastY);
+                trajectory.add(states.x[index], states.y[index]);
             }
             return;
         }
-        readPose();
-        double x = poseX;
-        double y = poseY;
-        double heading = poseHeading;
-        double dTheta = Pose.normalize(heading - lastHeading);
-        turned += dTheta;
-        if (kinematics != null) {
-            DifferentialDrive d = kinematics.drive();
-            double mid = lastHeading + dTheta / 2;
-            double ds = (x - lastX) * Math.cos(mid) + (y - lastY) * Math.sin(mid);
-            double left = ds - dTheta * d.trackWidth() / 2;
-            double right = ds + dTheta * d.trackWidth() / 2;
-            double dpm = kinematics.motorDegreesPerMetre();
-            motorDegrees[leftIndex] += (d.left().reversed() ? -left : left) * dpm;
-            motorDegrees[rightIndex] += (d.right().reversed() ? -right : right) * dpm;
-        }
+        states.advance(index, physics, kinematics != null);
         for (int a : actuatorIndex) {
             motorDegrees[a] += commanded[a] * dt;
         }
-        lastX = x;
-        lastY = y;
-        lastHeading = heading;
         if (hasTouch) {
             contactSides = contacts();
         }
         if (recordTrajectory) {
-            trajectory.add(x, y);
+            trajectory.add(states.x[index], states.y[index]);
         }
     }
 
@@ -418,34 +422,6 @@ public final class SimRobot {
             return 0;
         }
         return Math.toRadians(quadruped.joint("neck").angle() + quadruped.joint("headTilt").angle());
-    }
-
-    /** Takes the body's pose from the physics, as {@code new Pose(x, y, atan2(sin, cos))} would hold it. */
-    private void readPose() {
-        double x = physics.x(body);
-        double y = physics.y(body);
-        double heading = Math.atan2(physics.sin(body), physics.cos(body));
-        if (!Double.isFinite(x) || !Double.isFinite(y) || !Double.isFinite(heading)) {
-            new Pose(x, y, heading); // throws, saying which values are not numbers
-        }
-        heading = Pose.normalize(heading);
-        int version = poseVersion;
-        POSE_VERSION.setOpaque(this, version + 1);
-        java.lang.invoke.VarHandle.storeStoreFence();
-        poseX = x;
-        poseY = y;
-        poseHeading = heading;
-        POSE_VERSION.setRelease(this, version + 2);
-    }
-
-    private static final java.lang.invoke.VarHandle POSE_VERSION;
-
-    static {
-        try {
-            POSE_VERSION = java.lang.invoke.MethodHandles.lookup().findVarHandle(SimRobot.class, "poseVersion", int.class);
-        } catch (ReflectiveOperationException e) {
-            throw new ExceptionInInitializerError(e);
-        }
     }
 
     private static final int FRONT = 1;
@@ -527,8 +503,8 @@ public final class SimRobot {
             case RANGE -> sensor.latest();
             case CONTACT -> touching(sensor) ? 1.0 : 0.0;
             case FLOOR -> world.floorAt(sensorX(sensor), sensorY(sensor), sensor.spec().type() == io.robomw.api.SensorType.COLOR);
-            case HEADING -> poseHeading;
-            case TURNED -> turned;
+            case HEADING -> states.heading[index];
+            case TURNED -> states.turned[index];
             case SILENCE -> 0.0;
             case TACHO -> Math.toRadians(motorDegrees(sensor.spec().port()));
             case ACCELERATION -> accel[switch (sensor.axis()) {
@@ -571,10 +547,12 @@ public final class SimRobot {
     }
 
     private double sensorX(SensorModel s) {
-        return poseX + s.mountX() * Math.cos(poseHeading) - s.mountY() * Math.sin(poseHeading);
+        double h = states.heading[index];
+        return states.x[index] + s.mountX() * Math.cos(h) - s.mountY() * Math.sin(h);
     }
 
     private double sensorY(SensorModel s) {
-        return poseY + s.mountX() * Math.sin(poseHeading) + s.mountY() * Math.cos(poseHeading);
+        double h = states.heading[index];
+        return states.y[index] + s.mountX() * Math.sin(h) + s.mountY() * Math.cos(h);
     }
 }

@@ -162,7 +162,7 @@ public final class SwarmBenchmark {
             long cpu0 = processCpuNanos();
             long steppingCpu0 = threadCpuNanos();
             long[] machine0 = machineTicks();
-            w.profile(io.robomw.api.Clock.system());
+            w.profile(io.robomw.api.Clock.system(), true);
             double sim0 = w.time();
             long t0 = System.nanoTime();
             end = t0 + Math.round(measure * 1e9);
@@ -185,6 +185,7 @@ public final class SwarmBenchmark {
             long steppingCpu = threadCpuNanos() - steppingCpu0;
             long[] machine1 = machineTicks();
             long[] phases = w.phaseNanos();
+            long[] parts = w.robotPartNanos();
             w.profile(null);
             String placed = placement == null ? "(not watched; --placement)" : placement.stop();
             double rtf = simSeconds / wall;
@@ -196,9 +197,19 @@ public final class SwarmBenchmark {
                 inWorld += ns;
                 p.append(String.format(Locale.ROOT, "%s %.1f µs, ", phase.name().toLowerCase(Locale.ROOT), ns / 1e3 / stepsTaken));
             }
-            p.append(String.format(Locale.ROOT, "controller and rest %.1f µs", ((now - t0) - inWorld) / 1e3 / stepsTaken));
+            p.append(String.format(Locale.ROOT, "step listeners and rest %.1f µs", ((now - t0) - inWorld) / 1e3 / stepsTaken));
+            StringBuilder q = new StringBuilder();
+            long partsTotal = 0;
+            for (SimWorld.RobotPart part : SimWorld.RobotPart.values()) {
+                long ns = parts[part.ordinal()];
+                partsTotal += ns;
+                q.append(String.format(Locale.ROOT, "%s %.1f µs (%.0f ns a robot), ", part.name().toLowerCase(Locale.ROOT), ns / 1e3 / stepsTaken,
+                        ns / (double) stepsTaken / n));
+            }
+            q.append(String.format(Locale.ROOT, "in all %.1f µs", partsTotal / 1e3 / stepsTaken));
             System.out.printf(Locale.ROOT, "SAMPLE N=%d %s: %.2f× real time over %.1f s wall (%d steps); per second: %s%n", n, key, rtf, wall, stepsTaken, perSecond);
-            System.out.println("  per step: " + p);
+            System.out.println("  per step (wall): " + p);
+            System.out.println("  per step, the robots' parts (processor time, every thread; timed on every " + 8 + "th robot): " + q);
             System.out.printf(Locale.ROOT, "  CPU per step: %.1f µs for the process (%.2f processors busy on average), %.1f µs on the stepping thread; %d threads%n",
                     cpu / 1e3 / stepsTaken, cpu / 1e9 / wall, steppingCpu / 1e3 / stepsTaken, threads);
             if (machine0 != null && machine1 != null) {
@@ -224,6 +235,13 @@ public final class SwarmBenchmark {
                 System.out.println(line(prefix + "step-per-robot", physicsSeconds * 1e6 / stepsTaken / n, "µs"));
                 System.out.println(line(prefix + "heap-per-robot", heapPerRobot / 1024.0, "KiB"));
             }
+            // where a step's time goes: the physics (wall time of the stepping thread and its workers) and the
+            // robots' parts (processor time summed over the threads), milliseconds per step
+            System.out.println(line(id + ".ms.physics", phases[SimWorld.Phase.PHYSICS.ordinal()] / 1e6 / stepsTaken, "ms"));
+            for (SimWorld.RobotPart part : SimWorld.RobotPart.values()) {
+                System.out.println(line(id + ".ms." + part.name().toLowerCase(Locale.ROOT), parts[part.ordinal()] / 1e6 / stepsTaken, "ms"));
+            }
+            System.out.println(line(id + ".ms.cpu", cpu / 1e6 / stepsTaken, "ms"));
         } finally {
             deleteTree(dir);
         }
