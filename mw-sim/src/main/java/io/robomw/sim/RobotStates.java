@@ -56,13 +56,37 @@ final class RobotStates {
     /** Whether the robot is stepped here entirely. */
     boolean[] plain = new boolean[0];
     Trajectory[] trajectory = new Trajectory[0];
+    /** Per robot: where its range sensors' samples start in {@link #ranges}. */
+    int[] rangeStart = new int[0];
+    /** Every robot's range sensors' last samples, metres, robot after robot (read by viewers as of some step). */
+    double[] ranges = new double[0];
+    private int rangesUsed;
 
     /**
-     * Makes room for robot {@code i} (robots are added in index order).
+     * Makes room for robot {@code i} (robots are added in index order, each once).
      *
-     * @param i the new robot's index
+     * @param i           the new robot's index
+     * @param rangeCount  how many range sensors it has
      */
-    void add(int i) {
+    void add(int i, int rangeCount) {
+        grow(i);
+        rangeStart[i] = rangesUsed;
+        if (rangesUsed + rangeCount > ranges.length) {
+            ranges = Arrays.copyOf(ranges, Math.max(rangesUsed + rangeCount, 2 * ranges.length));
+        }
+        rangesUsed += rangeCount;
+    }
+
+    /**
+     * @param i a robot's index
+     * @param k one of its range sensors, by its place among them
+     * @return the sensor's last sample, metres
+     */
+    double range(int i, int k) {
+        return ranges[rangeStart[i] + k];
+    }
+
+    private void grow(int i) {
         if (i < capacity) {
             return;
         }
@@ -86,6 +110,7 @@ final class RobotStates {
         maxSpeed = Arrays.copyOf(maxSpeed, m);
         plain = Arrays.copyOf(plain, m);
         trajectory = Arrays.copyOf(trajectory, m);
+        rangeStart = Arrays.copyOf(rangeStart, m);
         capacity = m;
     }
 

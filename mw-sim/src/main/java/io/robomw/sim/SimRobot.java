@@ -49,20 +49,23 @@ public final class SimRobot {
     private final Physics physics;
     /** Its body's number in {@link #physics}. */
     private final int body;
-    private final Physics.ContactSink touchPoint = this::touchPoint;
+    /** Where its contact points go, if it has a touch sensor or legs; else {@code null}. */
+    private final Physics.ContactSink touchPoint;
     private int touchedSides;
     private int touchedQuadrants;
+    /** What every robot of its robot file shares: kinematics, motor ports, sensor models. */
+    private final RobotModel model;
     private final DifferentialKinematics kinematics;
-    /** The motor ports, in the description's order: a robot has a few, and a scan is cheaper than a map. */
-    private final String[] ports;
+    /** Its actuators' commanded speeds and encoders, by motor port index (the drive's two motors are in the world's arrays). */
     private final double[] commanded;
     private final double[] motorDegrees;
     private final int leftIndex;
     private final int rightIndex;
     private final int[] actuatorIndex;
-    private final Map<String, SensorModel> sensors = new LinkedHashMap<>();
-    private final List<SensorModel> rangeSensors = new ArrayList<>();
-    private final Queue<PendingRead> reads = new ConcurrentLinkedQueue<>();
+    /** Per range sensor (by its place among them): the generator of its noise, if any sensor is noisy; else {@code null}. */
+    private final java.util.SplittableRandom[] noise;
+    /** Reads waiting for the next cycle, made at the first read. */
+    private volatile Queue<PendingRead> reads;
     /** Set after a read is queued, cleared before the queue is drained: a cycle without reads looks no further. */
     private volatile boolean readsPending;
     private final Trajectory trajectory;
@@ -72,7 +75,8 @@ public final class SimRobot {
     private final UrbiKernel kernel;
     private double lastVx;
     private double lastVy;
-    private final double[] accel = {0, 0, Quadruped.GRAVITY};
+    /** Its acceleration in its own frame, if it has an accelerometer or legs; else {@code null}. */
+    private final double[] accel;
     private int contactQuadrants;
     private int contactSides;
     // The true pose, the angle turned and the drive motors' encoders and speeds live in the world's
@@ -87,39 +91,40 @@ public final class SimRobot {
 
     SimRobot(int index, String name, RobotDescription description, Physics physics, int body, long seed,
              java.util.function.LongSupplier nanos, io.robomw.sim.world.WorldDescription.TrajectorySettings trajectorySettings,
-             io.robomw.api.spi.FailurePolicy failures, RobotStates states) {
+             io.robomw.api.spi.FailurePolicy failures, RobotStates states, RobotModel model) {
         this.index = index;
+        this.model = model;
         this.states = states;
         this.trajectory = new Trajectory(trajectorySettings);
         this.name = name;
         this.description = description;
         this.physics = physics;
         this.body = body;
-        this.kinematics = description.drive().map(DifferentialKinematics::new).orElse(null);
-        List<String> ports = description.motorPorts();
-        this.ports = ports.toArray(String[]::new);
-        commanded = new double[ports.size()];
-        motorDegrees = new double[ports.size()];
-        leftIndex = description.drive().map(d -> portIndex(d.left().port())).orElse(-1);
-        rightIndex = description.drive().map(d -> portIndex(d.right().port())).orElse(-1);
-        actuatorIndex = description.actuators().stream().mapToInt(a -> portIndex(a.port())).toArray();
-        int i = 0;
-        boolean touch = false;
-        boolean acc = false;
-        for (SensorSpec s : description.sensors()) {
-            SensorModel m = new SensorModel(s, description.body(), seed * 0x9E3779B97F4A7C15L + index * 1_000_003L + i++);
-            sensors.put(s.name(), m);
-            if (m.kind() == SensorModel.Kind.RANGE) {
-                rangeSensors.add(m);
+        this.kinematics = model.kinematics;
+        boolean actuators = model.actuatorIndex.length > 0;
+        commanded = actuators ? new double[model.ports.length] : NO_MOTORS;
+        motorDegrees = actuators ? new double[model.ports.length] : NO_MOTORS;
+        leftIndex = model.leftIndex;
+        rightIndex = model.rightIndex;
+        actuatorIndex = model.actuatorIndex;
+        if (model.noisy) {
+            noise = new java.util.SplittableRandom[model.rangeSensors.size()];
+            for (int i = 0; i < model.sensors.size(); i++) {
+                SensorModel m = model.sensors.get(i);
+                if (m.rangeIndex() >= 0 && m.noisy()) {
+                    noise[m.rangeIndex()] = new java.util.SplittableRandom(seed * 0x9E3779B97F4A7C15L + index * 1_000_003L + i);
+                }
             }
-            touch |= m.kind() == SensorModel.Kind.CONTACT;
-            acc |= m.kind() == SensorModel.Kind.ACCELERATION;
+        } else {
+            noise = null;
         }
-        this.hasTouch = touch;
-        this.hasAccel = acc;
+        this.hasTouch = model.hasTouch;
+        this.hasAccel = model.hasAccel;
         this.quadruped = description.leggedDrive().map(d -> new Quadruped(d, seed * 0x9E3779B97F4A7C15L + index * 7_919L + 17)).orElse(null);
+        this.touchPoint = hasTouch || quadruped != null ? this::touchPoint : null;
+        this.accel = hasAccel || quadruped != null ? new double[] {0, 0, Quadruped.GRAVITY} : null;
         this.kernel = quadruped == null ? null : new UrbiKernel(name, quadruped, this::urbiSensor, nanos, failures);
-        states.add(index);
+        states.add(index, model.rangeSensors.size());
         states.body[index] = body;
         states.trajectory[index] = trajectory;
         if (kinematics != null) {
@@ -195,14 +200,29 @@ public final class SimRobot {
         return trajectory;
     }
 
-    /** @return its sensors' models, by name */
+    /** @return its sensors' models, by name (shared by every robot of its robot file) */
     public Map<String, SensorModel> sensors() {
-        return sensors;
+        return model.byName;
     }
 
-    /** @return its range sensors */
+    /** @return its range sensors' models (shared by every robot of its robot file), in the order of {@link SensorModel#rangeIndex()} */
     public List<SensorModel> rangeSensors() {
-        return rangeSensors;
+        return model.rangeSensors;
+    }
+
+    /**
+     * Any thread (a viewer gets the sample of some step).
+     *
+     * @param sensor one of its range sensors
+     * @return its last sample, metres
+     */
+    public double latest(SensorModel sensor) {
+        return states.range(index, sensor.rangeIndex());
+    }
+
+    /** @return the generator of a range sensor's noise (by its place among them), or {@code null} */
+    java.util.SplittableRandom noise(int rangeIndex) {
+        return noise == null ? null : noise[rangeIndex];
     }
 
     /** @return its body's number in the world's physics */
@@ -277,13 +297,10 @@ public final class SimRobot {
 
     /** @return a motor port's index, or -1 */
     private int portIndex(String port) {
-        for (int i = 0; i < ports.length; i++) {
-            if (ports[i].equals(port)) {
-                return i;
-            }
-        }
-        return -1;
+        return model.portIndex(port);
     }
+
+    private static final double[] NO_MOTORS = new double[0];
 
     /**
      * Sets every motor to rest and the body's velocities to match, when the world halts (its
@@ -400,9 +417,9 @@ public final class SimRobot {
         }
         Double max = AiboDevices.DISTANCE_MAX_MM.get(device);
         if (max != null) {
-            for (SensorModel m : rangeSensors) {
+            for (SensorModel m : model.rangeSensors) {
                 if (m.spec().port().equals(device)) {
-                    return OptionalDouble.of(Math.min(max, m.latest() * 1000));
+                    return OptionalDouble.of(Math.min(max, latest(m) * 1000));
                 }
             }
             return OptionalDouble.of(max);
@@ -462,8 +479,23 @@ public final class SimRobot {
      * @param future completed with the raw value
      */
     void requestRead(SensorModel sensor, SimFuture<Double> future) {
-        reads.add(new PendingRead(sensor, future));
+        Queue<PendingRead> q = reads;
+        if (q == null) {
+            READS.compareAndSet(this, null, new ConcurrentLinkedQueue<PendingRead>());
+            q = reads;
+        }
+        q.add(new PendingRead(sensor, future));
         readsPending = true;
+    }
+
+    private static final java.lang.invoke.VarHandle READS;
+
+    static {
+        try {
+            READS = java.lang.invoke.MethodHandles.lookup().findVarHandle(SimRobot.class, "reads", Queue.class);
+        } catch (ReflectiveOperationException e) {
+            throw new ExceptionInInitializerError(e);
+        }
     }
 
     /**
@@ -500,7 +532,7 @@ public final class SimRobot {
      */
     double siValue(SensorModel sensor, SimWorld world) {
         return switch (sensor.kind()) {
-            case RANGE -> sensor.latest();
+            case RANGE -> latest(sensor);
             case CONTACT -> touching(sensor) ? 1.0 : 0.0;
             case FLOOR -> world.floorAt(sensorX(sensor), sensorY(sensor), sensor.spec().type() == io.robomw.api.SensorType.COLOR);
             case HEADING -> states.heading[index];

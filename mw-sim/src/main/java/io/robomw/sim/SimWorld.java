@@ -74,6 +74,8 @@ public final class SimWorld implements AutoCloseable {
     private final List<SimRobot> robots = new ArrayList<>();
     /** What the robots change at every step, in arrays by robot index. */
     private final RobotStates states = new RobotStates();
+    /** What the robots read from one robot file share. */
+    private final Map<RobotModel.Key, RobotModel> models = new java.util.HashMap<>();
     private final Map<String, SimRobot> byName = new LinkedHashMap<>();
     private final RangeIndex rangeIndex;
     private final long stepNanos;
@@ -344,8 +346,9 @@ public final class SimWorld implements AutoCloseable {
             checkSwarmBody(name, description);
         }
         int body = physics.addBody(b.length(), b.width(), b.mass(), b.friction(), start.x(), start.y(), start.heading());
+        RobotModel model = models.computeIfAbsent(RobotModel.Key.of(description), k -> new RobotModel(description, physicsHz));
         SimRobot robot = new SimRobot(robots.size(), name, description, physics, body, this.description.seed(), clock::nanoTime,
-                this.description.trajectories(), failures, states);
+                this.description.trajectories(), failures, states, model);
         robots.add(robot);
         cycled = java.util.Arrays.copyOf(cycled, robots.size());
         bodyLength = java.util.Arrays.copyOf(bodyLength, robots.size());
@@ -422,6 +425,18 @@ public final class SimWorld implements AutoCloseable {
      */
     public SimRobot robot(String name) {
         return byName.get(name);
+    }
+
+    /**
+     * A range sensor's last sample, without touching the robot's object: for controllers that work
+     * robot by robot in the world's pass ({@link #addRobotController}).
+     *
+     * @param robot a robot's index
+     * @param k     one of its range sensors, by its place among them ({@link SensorModel#rangeIndex()})
+     * @return the sensor's last sample, metres
+     */
+    public double rangeReading(int robot, int k) {
+        return states.range(robot, k);
     }
 
     /** @return the world's rigid-body physics */
@@ -831,18 +846,22 @@ public final class SimWorld implements AutoCloseable {
         if (sensors.isEmpty()) {
             return;
         }
-        double x = r.x();
-        double y = r.y();
-        double heading = r.heading();
-        double c = r.cosHeading();
-        double s = r.sinHeading();
+        int i = r.index();
+        RobotStates st = states;
+        double x = st.x[i];
+        double y = st.y[i];
+        double heading = st.heading[i];
+        double c = st.cos[i];
+        double s = st.sin[i];
         double pan = r.headPan();
         double tilt = r.headTilt();
+        double[] ranges = st.ranges;
+        int start = st.rangeStart[i];
         if (rangeMethod != RangeMethod.GRID) {
             for (int k = 0; k < sensors.size(); k++) {
                 SensorModel m = sensors.get(k);
-                if (step < 0 || step % m.everySteps(physicsHz) == 0) {
-                    m.sampleRange(rayCaster, r.index(), x, y, heading, c, s, pan, tilt);
+                if (step < 0 || step % m.everySteps() == 0) {
+                    ranges[start + k] = m.sampleRange(rayCaster, i, x, y, heading, c, s, pan, tilt, r.noise(k));
                 }
             }
             return;
@@ -852,16 +871,16 @@ public final class SimWorld implements AutoCloseable {
         batch.count = 0;
         for (int k = 0; k < sensors.size(); k++) {
             SensorModel m = sensors.get(k);
-            if (step < 0 || step % m.everySteps(physicsHz) == 0) {
+            if (step < 0 || step % m.everySteps() == 0) {
                 m.addRays(batch, x, y, heading, c, s, pan);
             }
         }
-        rangeIndex.castRays(batch.ox, batch.oy, batch.dx, batch.dy, batch.maxRange, batch.count, r.index(), batch.hits);
+        rangeIndex.castRays(batch.ox, batch.oy, batch.dx, batch.dy, batch.maxRange, batch.count, i, batch.hits);
         int first = 0;
         for (int k = 0; k < sensors.size(); k++) {
             SensorModel m = sensors.get(k);
-            if (step < 0 || step % m.everySteps(physicsHz) == 0) {
-                m.finishRange(batch.hits, first, tilt);
+            if (step < 0 || step % m.everySteps() == 0) {
+                ranges[start + k] = m.finishRange(batch.hits, first, tilt, r.noise(k));
                 first += m.rays();
             }
         }
@@ -876,7 +895,7 @@ public final class SimWorld implements AutoCloseable {
             java.util.TreeSet<Long> periods = new java.util.TreeSet<>();
             for (SimRobot r : robots) {
                 for (SensorModel s : r.rangeSensors()) {
-                    periods.add(s.everySteps(description.physicsHz()));
+                    periods.add(s.everySteps());
                 }
             }
             sensingPeriods = periods.stream().mapToLong(Long::longValue).toArray();

@@ -63,7 +63,7 @@ public final class SimSource implements AutoCloseable {
             Pose p = r.pose();
             observer.observe(new Observation.RobotPose(t, r.name(), p.x(), p.y(), p.heading(), true));
             for (SensorModel s : r.rangeSensors()) {
-                observer.observe(new Observation.SensorReading(t, r.name(), s.spec().name(), s.latest(), "m"));
+                observer.observe(new Observation.SensorReading(t, r.name(), s.spec().name(), r.latest(s), "m"));
             }
         }
     }
