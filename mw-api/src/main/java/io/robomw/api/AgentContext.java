@@ -56,9 +56,13 @@ public interface AgentContext extends Agency {
     /**
      * Goes to {@code host} next: inserts a stop there (its work is {@link Agent#run()}) before the
      * rest of the itinerary. The agent leaves when the current callback returns; this method does
-     * not block.
+     * not block (it may ask the agent's home or the hosts known here where a host of that name is).
      *
-     * @param host the host's address
+     * @param host the host's address ({@code rmi://host:port/name}), or its name as messages use it
+     *             (a host this one knows: its agents' homes and stops, the hosts those know, the hosts
+     *             announced at a broker it is at)
+     * @throws IllegalArgumentException if it is neither an address nor the name of a host known here
+     *                                  or at the agent's home (the message lists the hosts known)
      */
     void dispatch(String host);
 
@@ -76,6 +80,19 @@ public interface AgentContext extends Agency {
      * the result goes home, whatever stops remain.
      */
     void dispose();
+
+    /**
+     * Whether an operator asked this agent to leave (a retract or a dispose): its callback's thread
+     * has been interrupted, and the request takes effect when the callback returns. An agent that
+     * works in a loop without blocking calls polls this (or {@link Thread#interrupted()}) and
+     * returns soon; the host waits for it (Java cannot end a thread that ignores its interrupt) and
+     * says so after 5 s.
+     *
+     * @return whether it should return from its callback now
+     */
+    default boolean leaving() {
+        return Thread.currentThread().isInterrupted();
+    }
 
     /**
      * Sets the result the agent brings home at the end of its trip; the last value set wins.

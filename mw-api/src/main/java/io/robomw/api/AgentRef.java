@@ -54,14 +54,43 @@ public interface AgentRef {
     void addReportListener(Consumer<Serializable> listener);
 
     /**
-     * Brings the agent home (after Aglets' {@code retractAglet}): it finishes the callback it is
-     * in, stops travelling, and its state comes home. Returns at once.
+     * Like {@link #addReportListener(Consumer)}, and also tells where each value was sent from:
+     * the address of the host the agent was at when it sent it (for a clone, the host it had
+     * travelled to, not the one it was first sent to).
+     *
+     * @param listener called with the host's address and the value
+     */
+    default void onReport(java.util.function.BiConsumer<String, Serializable> listener) {
+        addReportListener(v -> listener.accept(location(), v));
+    }
+
+    /**
+     * Brings the agent home (after Aglets' {@code retractAglet}): the callback it is in is
+     * interrupted (its thread's interrupt: a blocking verb ends its command and throws, a wait
+     * ends; {@link AgentContext#leaving()} tells an agent that polls), its host stops the robot's
+     * command if it drives, and once the callback returns it stops travelling and its state comes
+     * home. Returns at once.
      *
      * @return completes with the agent as it was when it stopped
      */
     CompletableFuture<Agent> retract();
 
-    /** Disposes of the agent wherever it is: its trip ends after the callback it is in. Returns at once. */
+    /**
+     * Asks nothing: completes with the agent as it was when it stopped, once it has come home
+     * retracted, whoever asked for it ({@link #retract()} of this handle, {@code mw retract}, another
+     * program); fails when its trip ends otherwise.
+     *
+     * @return the retracted agent's state, when it comes
+     */
+    default CompletableFuture<Agent> whenRetracted() {
+        return CompletableFuture.failedFuture(new AgentException("this handle of agent " + id() + " does not follow retractions"));
+    }
+
+    /**
+     * Disposes of the agent wherever it is: as {@link #retract()}, the callback it is in is
+     * interrupted and the robot's command stopped; its trip ends there once the callback returns.
+     * Returns at once.
+     */
     void dispose();
 
     /**

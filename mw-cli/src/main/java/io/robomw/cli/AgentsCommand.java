@@ -114,7 +114,8 @@ final class AgentsCommand implements Callable<Integer> {
             }
             return true;
         } catch (IOException | IllegalArgumentException e) {
-            err.printf("mw agents: %s: %s%n", host, Mw.oneLine(e));
+            // One line per host that does not answer, with the listing: which, since when we know, and why.
+            out.printf("%s%s  DOWN  (no answer at %s)  %s%n", in, host, Instant.now().truncatedTo(java.time.temporal.ChronoUnit.SECONDS), why(host, e));
             return false;
         } finally {
             out.flush();
@@ -122,14 +123,18 @@ final class AgentsCommand implements Callable<Integer> {
     }
 
     private int listCluster(PrintWriter out, PrintWriter err, OwedSelector drop) throws IOException {
+        Optional<ClusterKey> key = cluster.keyIfAny();
         List<PresenceRecord> all;
-        try {
-            all = BrokerDirectory.read(broker, wait);
+        long ignored;
+        // With the cluster key, only what the cluster's hosts signed is listed; anything else is ignored and counted.
+        try (BrokerDirectory d = BrokerDirectory.open(broker, wait, null, key.map(ClusterKey::presenceSeal).orElse(null))) {
+            d.awaitQuiet(wait);
+            all = d.records();
+            ignored = d.ignored();
         } catch (IOException | IllegalArgumentException e) {
             err.println("mw agents: " + Mw.oneLine(e));
             return 2;
         }
-        Optional<ClusterKey> key = cluster.keyIfAny();
         if (drop != null && key.isEmpty()) {
             err.println("mw agents: --drop-owed asks each host: give the cluster key (--key-file FILE or " + ClusterOptions.KEY_VARIABLE + ")");
             return 2;
@@ -139,8 +144,8 @@ final class AgentsCommand implements Callable<Integer> {
         int unreachable = 0;
         try (HostClient client = key.map(this::client).orElse(null)) {
             for (PresenceRecord p : agentHosts) {
-                out.printf("%s  %s  %s  robot %s  since %s%n", p.host(), p.online() ? "online" : "offline", p.hostAddress(),
-                        p.robots().isEmpty() ? "none" : String.join(",", p.robots()), p.time());
+                out.printf("%s  %s  %s  robot %s%s%n", p.host(), p.online() ? "online" : "offline since " + p.time().truncatedTo(java.time.temporal.ChronoUnit.SECONDS),
+                        p.hostAddress(), robot(client, p), p.online() ? "" : "  (it left the broker" + (p.agents().isEmpty() ? ")" : "; last listed agents below)"));
                 for (String a : p.agents()) {
                     out.printf("    %s%n", a);
                 }
@@ -150,7 +155,11 @@ final class AgentsCommand implements Callable<Integer> {
             }
         }
         if (key.isEmpty() && !agentHosts.isEmpty()) {
-            out.println("(give the cluster key, --key-file FILE or " + ClusterOptions.KEY_VARIABLE + ", to list the deliveries each host owes)");
+            out.println("(unverified: give the cluster key, --key-file FILE or " + ClusterOptions.KEY_VARIABLE
+                    + ", to list only what the cluster's hosts signed and the deliveries each host owes)");
+        }
+        if (ignored > 0) {
+            out.printf("%d presence record%s ignored: unsigned, or not signed with this cluster key%n", ignored, ignored == 1 ? "" : "s");
         }
         List<PresenceRecord> others = all.stream().filter(p -> p.host() == null && p.online()).toList();
         if (!others.isEmpty()) {
@@ -162,6 +171,32 @@ final class AgentsCommand implements Callable<Integer> {
         out.flush();
         err.flush();
         return unreachable == 0 ? 0 : 1;
+    }
+
+    /**
+     * @return the robot a host drives: asked of the host (its DESCRIBE) when the command has the key
+     *         and the host is online, else the robots its presence says it serves, else what is unknown
+     */
+    private static String robot(HostClient client, PresenceRecord p) {
+        if (client != null && p.online()) {
+            try {
+                String r = client.describe(p.hostAddress()).robot();
+                return r.isEmpty() ? "none" : r;
+            } catch (IOException e) {
+                // said below, when the host is asked what it owes
+            }
+        }
+        if (!p.robots().isEmpty()) {
+            return String.join(",", p.robots());
+        }
+        return client == null ? "? (served robots only; give the cluster key to ask the host)" : "?";
+    }
+
+    /** @return why a host did not answer, in words: the connection's own reason, without RMI's wrapping */
+    private static String why(String host, Exception e) {
+        String text = Mw.oneLine(e);
+        String prefix = "cannot reach agent host " + host + ": ";
+        return text.startsWith(prefix) ? text.substring(prefix.length()) : text;
     }
 
     private static OwedSelector selector(String text) {
@@ -181,9 +216,9 @@ final class AgentsCommand implements Callable<Integer> {
     private static void printAgents(PrintWriter out, String host, List<AgentInfo> agents) {
         out.printf("%d agent%s at %s%n", agents.size(), agents.size() == 1 ? "" : "s", host);
         if (!agents.isEmpty()) {
-            out.printf("  %-36s  %-10s  %4s  %-40s  %s%n", "ID", "STATUS", "HOP", "CLASS", "HOME");
+            out.printf("  %-36s  %-25s  %4s  %-40s  %s%n", "ID", "STATUS", "HOP", "CLASS", "HOME");
             for (AgentInfo a : agents) {
-                out.printf("  %-36s  %-10s  %4d  %-40s  %s%n", a.id(), a.status(), a.hop(), a.className(), a.home());
+                out.printf("  %-36s  %-25s  %4d  %-40s  %s%n", a.id(), a.state(), a.hop(), a.className(), a.home());
             }
         }
     }

@@ -1,5 +1,7 @@
 package io.robomw.cli;
 
+import io.robomw.agents.messaging.mqtt.BrokerCredentials;
+import io.robomw.cli.broker.BrokerUser;
 import io.robomw.cli.broker.EmbeddedBroker;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
@@ -25,8 +27,16 @@ final class BrokerCommand implements Callable<Integer> {
     @Option(names = "--port", defaultValue = "1883", description = "port to listen on (default ${DEFAULT-VALUE}; 0 picks a free one)")
     int port;
 
-    @Option(names = "--bind", defaultValue = "127.0.0.1", description = "address to listen on (default ${DEFAULT-VALUE}; this broker lets every client in)")
+    @Option(names = "--bind", defaultValue = "127.0.0.1", description = "address to listen on (default ${DEFAULT-VALUE}: this machine only)")
     String bind;
+
+    @Option(names = "--credentials", paramLabel = "FILE", description = "the broker's user and password (username=, password=); generated on first"
+            + " start, readable by you only (default: ~/.robomw/broker.credentials, which mw commands read for brokers on this machine)")
+    Path credentials;
+
+    @Option(names = "--anonymous", description = "let every client in, with no user and no access rules (as Mosquitto's allow_anonymous true):"
+            + " for a closed lab network only")
+    boolean anonymous;
 
     @Option(names = "--data", paramLabel = "DIR", description = "keep sessions and queued messages here, across restarts; default: a fresh directory removed at exit")
     Path data;
@@ -38,16 +48,29 @@ final class BrokerCommand implements Callable<Integer> {
     public Integer call() throws Exception {
         PrintWriter out = spec.commandLine().getOut();
         PrintWriter err = spec.commandLine().getErr();
-        if (!InetAddress.getByName(bind).isLoopbackAddress()) {
-            err.println("mw broker: listening on " + bind + ": every client that reaches it gets in (no passwords); for a network of robots,"
-                    + " prefer a broker with users and access rules (docs/messaging.md)");
+        if (anonymous && credentials != null) {
+            err.println("mw broker: --anonymous and --credentials contradict each other; give one");
+            return 2;
         }
+        BrokerUser user = null;
         EmbeddedBroker broker;
         try {
-            broker = EmbeddedBroker.start(bind, port, data);
+            if (anonymous) {
+                err.println("mw broker: WARNING: --anonymous: every client that reaches " + bind + " gets in and may read and write everything"
+                        + (InetAddress.getByName(bind).isLoopbackAddress() ? " (every user of this machine)" : " (every machine that reaches it)"));
+            } else {
+                user = BrokerUser.loadOrGenerate(credentials != null ? credentials : BrokerCredentials.defaultFile());
+            }
+            broker = EmbeddedBroker.start(bind, port, data, user);
         } catch (IOException e) {
             err.println("mw broker: " + e.getMessage());
             return 2;
+        }
+        if (user != null && user.generated()) {
+            out.printf("mqtt broker user %s, password %s: generated and saved in %s (readable by you only); mw commands on this machine read it,"
+                    + " other clients give it (mosquitto_sub -u %s -P ...). It is printed this once.%n", user.name(), user.password(), user.file(), user.name());
+        } else if (user != null) {
+            out.printf("mqtt broker user %s (credentials in %s)%n", user.name(), user.file());
         }
         out.printf("mqtt broker ready at %s (data: %s)%n", broker.address(), data == null ? "removed at exit" : broker.dataDirectory());
         out.flush();

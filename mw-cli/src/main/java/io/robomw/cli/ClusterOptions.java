@@ -27,8 +27,13 @@ final class ClusterOptions {
     @Option(names = "--tls-truststore", paramLabel = "FILE", description = "PKCS#12 store of the peers to trust (default: the key store)")
     Path trustStore;
 
-    @Option(names = "--tls-password", description = "password of both stores", defaultValue = "")
-    String storePassword;
+    @Option(names = "--tls-password-file", paramLabel = "FILE", description = "file holding the password of both stores (default: the "
+            + Secrets.TLS_PASSWORD_ENV + " environment variable, else none)")
+    Path storePasswordFile;
+
+    /** Refused: a secret on the command line shows in ps. */
+    @Option(names = "--tls-password", hidden = true, converter = Secrets.RefusedTlsPassword.class)
+    String refusedStorePassword;
 
     ClusterKey key() throws IOException {
         ClusterKeyLookup lookup = ClusterKeyLookup.ofThisProcess();
@@ -60,12 +65,13 @@ final class ClusterOptions {
         return k == null ? ClusterKey.tlsOnly() : k;
     }
 
-        TlsSettings tls() {
+    TlsSettings tls() {
         if (keyStore == null) {
             return null;
         }
         // The client side of RMI uses the JVM's default TLS context: point it at the same stores.
         Path trust = trustStore == null ? keyStore : trustStore;
+        String storePassword = Secrets.read(storePasswordFile, "--tls-password-file", Secrets.TLS_PASSWORD_ENV).orElse("");
         System.setProperty("javax.net.ssl.keyStore", keyStore.toString());
         System.setProperty("javax.net.ssl.keyStorePassword", storePassword);
         System.setProperty("javax.net.ssl.trustStore", trust.toString());

@@ -31,7 +31,7 @@ final class ConsoleCommand implements Callable<Integer> {
     @Option(names = "--bind", defaultValue = "127.0.0.1", description = "address the page listens on (default ${DEFAULT-VALUE}: this machine only)")
     String bind;
 
-    @Option(names = "--port", defaultValue = "8080", description = "the page's port (default ${DEFAULT-VALUE}; 0 picks a free one)")
+    @Option(names = "--port", defaultValue = "8080", description = "the page's port (default ${DEFAULT-VALUE}, or a free one when it is taken; 0 picks a free one)")
     int port;
 
     @Option(names = "--record", paramLabel = "FILE.mcap", description = "also record what the console sees (Foxglove opens it; mw replay plays it)")
@@ -47,7 +47,8 @@ final class ConsoleCommand implements Callable<Integer> {
     public Integer call() throws Exception {
         PrintWriter out = spec.commandLine().getOut();
         Console.Builder b = foxglove.apply(watch.apply(Console.builder("mw " + String.join(" ", spec.commandLine().getParseResult().originalArgs())))
-                .page(bind, port).record(record));
+                .page(bind, PagePort.choose(bind, port, spec.commandLine().getParseResult().hasMatchedOption("--port"), spec.commandLine().getErr(),
+                        "mw console")).record(record));
         return Waiting.runUntilStopped(b, out, spec.commandLine().getErr(), "mw console");
     }
 

@@ -143,6 +143,19 @@ final class DemoCommand implements Callable<Integer> {
             return 2;
         }
         Path logDir = logs != null ? Files.createDirectories(logs) : Files.createTempDirectory("mw-demo-");
+        // The demo's table is for people: what the libraries in this JVM log (brokers, emulators, the home)
+        // goes to demo.log beside the hosts' logs instead of interleaving with it on the terminal.
+        java.io.PrintStream terminal = System.err;
+        try (java.io.PrintStream log = new java.io.PrintStream(Files.newOutputStream(logDir.resolve("demo.log"), java.nio.file.StandardOpenOption.CREATE,
+                java.nio.file.StandardOpenOption.APPEND), true, java.nio.charset.StandardCharsets.UTF_8)) {
+            System.setErr(log);
+            return run(root, worldFile, jar, logDir);
+        } finally {
+            System.setErr(terminal);
+        }
+    }
+
+    private Integer run(Path root, Path worldFile, Path jar, Path logDir) throws Exception {
         Path keyFile = logDir.resolve("cluster.key");
         byte[] secret = new byte[24];
         new SecureRandom().nextBytes(secret);
@@ -303,7 +316,7 @@ final class DemoCommand implements Callable<Integer> {
                 // the JVM is shutting down (Ctrl-C after the demo): the hook is running
             }
         }
-        step("stopped %s, the virtual robots and the world; done in %.1f s (host logs in %s)", hostsWord(names.size()),
+        step("stopped %s, the virtual robots and the world; done in %.1f s (logs in %s: the hosts' and demo.log)", hostsWord(names.size()),
                 (System.nanoTime() - started) / 1e9, logDir);
         return 0;
     }

@@ -67,6 +67,10 @@ final class DispatchCommand implements Callable<Integer> {
     @Option(names = "--timeout", defaultValue = "PT2M", description = "how long to wait for results: 30s, 2m, ISO-8601... (default ${DEFAULT-VALUE})")
     Duration timeout;
 
+    @Option(names = "--wait-hosts", defaultValue = "30s", paramLabel = "DURATION",
+            description = "how long to wait for a host that does not answer yet (it may be starting: mw host ... & just before) before sending to it (default ${DEFAULT-VALUE}; 0: not at all)")
+    Duration waitHosts;
+
     @Option(names = "--bind", defaultValue = "127.0.0.1", description = "address of this command's own home host, where results arrive (default ${DEFAULT-VALUE})")
     String bind;
 
@@ -91,6 +95,7 @@ final class DispatchCommand implements Callable<Integer> {
             Agent agent = instantiate(code);
             try (AgentHost home = AgentHost.builder("dispatch-" + ProcessHandle.current().pid()).bind(bind).clusterKey(cluster.key())
                     .tls(cluster.tls()).start()) {
+                awaitHosts(clone ? hosts : hosts.subList(0, 1), err);
                 return dispatch(home, agent, out, err);
             }
         } catch (AgentException | IllegalArgumentException | java.io.IOException e) {
@@ -99,6 +104,43 @@ final class DispatchCommand implements Callable<Integer> {
                 e.printStackTrace(err);
             }
             return 2;
+        }
+    }
+
+    /**
+     * Waits (up to {@code --wait-hosts}) for the hosts the agents go to first to answer: a host
+     * started in the background a moment before ({@code mw host ... &} pasted with this command)
+     * refuses connections until it serves. A host that answers, refuses this peer, or still does not
+     * answer at the deadline is sent to as it is (the summary then says what happened).
+     */
+    private void awaitHosts(List<String> first, PrintWriter err) throws java.io.IOException {
+        if (waitHosts.isZero()) {
+            return;
+        }
+        long deadline = System.nanoTime() + waitHosts.toNanos();
+        try (io.robomw.agents.host.HostClient client = new io.robomw.agents.host.HostClient(cluster.keyOrTlsOnly(), cluster.tls() != null, 5_000)) {
+            for (String host : first) {
+                boolean said = false;
+                while (true) {
+                    try {
+                        client.describe(host);
+                        break;
+                    } catch (java.io.IOException | RuntimeException e) {
+                        String why = Mw.oneLine(e);
+                        boolean notYet = why.contains("cannot connect to") || why.contains("timed out") || why.contains("Connection refused");
+                        if (!notYet || System.nanoTime() - deadline > 0) {
+                            break;
+                        }
+                        if (!said) {
+                            err.println("mw dispatch: waiting up to " + Durations.format(waitHosts) + " for " + host + " to answer (" + why
+                                    + "); a host started just before answers once it prints 'ready at'");
+                            err.flush();
+                            said = true;
+                        }
+                        java.util.concurrent.locks.LockSupport.parkNanos(200_000_000L); // the host starting: nothing to be woken by
+                    }
+                }
+            }
         }
     }
 
@@ -134,22 +176,27 @@ final class DispatchCommand implements Callable<Integer> {
                 out.printf("sent %s %s to %s%n", agentClass, ref.id(), clone ? s.label() : String.join(" -> ", hosts));
                 out.flush();
             }
-            ref.addReportListener(v -> {
+            // Each line says where the agent was when it sent it (a clone travels on from its first host).
+            String who = sent.size() > 1 ? " " + ref.id().toString().substring(0, 8) : "";
+            ref.onReport((at, v) -> {
                 synchronized (out) {
-                    out.printf("[%s] %s%n", s.label(), v);
+                    out.printf("[%s%s] %s%n", at, who, v);
                     out.flush();
                 }
             });
             done.add(ref.result().handle((Serializable result, Throwable failure) -> {
                 synchronized (out) {
-                    if (failure != null) {
-                        out.printf("[%s] FAILED: %s%n", s.label(), Mw.oneLine(failure.getCause() != null ? failure.getCause() : failure));
+                    io.robomw.api.Agent back = ref.status() == io.robomw.api.AgentStatus.RETRACTED ? ref.whenRetracted().getNow(null) : null;
+                    if (back != null) {
+                        out.printf("[%s%s] RETRACTED: its state came home:%n%s%n", ref.location(), who, ResultText.state(back, "  "));
+                    } else if (failure != null) {
+                        out.printf("[%s%s] FAILED: %s%n", ref.location(), who, Mw.oneLine(failure.getCause() != null ? failure.getCause() : failure));
                     } else {
-                        out.printf("[%s] result from %s:%n%s%n", s.label(), ref.location(), ResultText.format(result, "  "));
+                        out.printf("[%s%s] result:%n%s%n", ref.location(), who, ResultText.format(result, "  "));
                     }
                     out.flush();
                 }
-                return failure == null;
+                return failure == null || ref.status() == io.robomw.api.AgentStatus.RETRACTED;
             }));
         }
         // Ctrl-C while agents travel: say what keeps going and how to stop the hosts owing this home their results.

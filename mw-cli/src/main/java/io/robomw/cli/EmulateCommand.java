@@ -70,9 +70,13 @@ final class EmulateCommand implements Callable<Integer> {
             + " ready for Robots.open, mw host --robot or mw robot")
     private Path writeRobot;
 
-    @Option(names = "--latency", paramLabel = "MS", description = "delay of every telegram on the link, each way, milliseconds "
-            + "(default: the brick's usual link: 15 for the NXT and EV3 over Bluetooth, 0 for the serial bricks, 1 for the TXT)")
-    private Integer latencyMillis;
+    /** The longest link latency taken: a bare number is seconds, so a longer one is most likely milliseconds meant. */
+    static final Duration MAX_LATENCY = Duration.ofSeconds(10);
+
+    @Option(names = "--latency", paramLabel = "DURATION", description = "delay of every telegram on the link, each way, a duration as every time option"
+            + " takes it (15ms; a bare number is seconds; at most 10s) (default: the brick's usual link: 15ms for the NXT and EV3 over Bluetooth,"
+            + " 0 for the serial bricks, 1ms for the TXT)")
+    private Duration latency;
 
     @Option(names = "--baud", paramLabel = "N", description = "the link's byte rate in baud, 0 for none (default: the brick's usual link: "
             + "115200 for Bluetooth, 9600 for the Intelligent Interface, 2400 for the RCX's IR tower)")
@@ -145,12 +149,14 @@ final class EmulateCommand implements Callable<Integer> {
             String linkText = "";
             if (emulator instanceof BrickEmulator b) {
                 LinkModel link = b.linkModel();
-                if (latencyMillis != null) {
-                    if (latencyMillis < 0) {
-                        err.println("--latency must be 0 or more milliseconds, got " + latencyMillis);
+                if (latency != null) {
+                    if (latency.compareTo(MAX_LATENCY) > 0) {
+                        // A bare number is seconds, as for every time option; --latency 40 once meant 40 ms.
+                        err.println("--latency " + Durations.format(latency) + " is longer than any link's (at most " + Durations.format(MAX_LATENCY)
+                                + "); give a unit: --latency " + latency.toSeconds() + "ms");
                         return 2;
                     }
-                    link = link.withLatency(Duration.ofMillis(latencyMillis));
+                    link = link.withLatency(latency);
                 }
                 if (baud != null) {
                     if (baud < 0) {
@@ -161,7 +167,7 @@ final class EmulateCommand implements Callable<Integer> {
                 }
                 b.linkModel(link);
                 linkText = ", link: " + link;
-            } else if (latencyMillis != null || baud != null) {
+            } else if (latency != null || baud != null) {
                 err.println("--latency and --baud model a brick's link; the " + brick + " emulator serves on TCP as it is");
                 return 2;
             }

@@ -1,6 +1,7 @@
 package io.robomw.cli;
 
 import io.robomw.agents.host.AgentHost;
+import io.robomw.agents.host.ClusterKey;
 import io.robomw.agents.messaging.MessagingNode;
 import io.robomw.agents.messaging.MessagingSettings;
 import io.robomw.agents.messaging.robot.RobotProtocol;
@@ -90,8 +91,21 @@ final class HostCommand implements Callable<Integer> {
             + " a host whose node is at a broker (--messaging or --serve mqtt://...) announces there already")
     String announce;
 
-    @Option(names = "--serve-password", description = "password callers of --serve must give")
-    String servePassword;
+    @Option(names = "--serve-password-file", paramLabel = "FILE", description = "file holding the password callers of --serve must give (default: the "
+            + Secrets.SERVE_PASSWORD_ENV + " environment variable); --serve needs it, or mutual TLS (--tls-keystore), or --serve-insecure")
+    Path servePasswordFile;
+
+    @Option(names = "--serve-insecure", description = "serve the robot (--serve) without a password: anyone who reaches the address can drive it;"
+            + " for a closed lab network only (logged as a warning)")
+    boolean serveInsecure;
+
+    /** Refused: a secret on the command line shows in ps. */
+    @Option(names = "--serve-password", hidden = true, converter = Secrets.RefusedServePassword.class)
+    String refusedServePassword;
+
+    @Option(names = "--older-hosts", description = "talk to agent hosts of builds before agent protocol version 4, whose authentication does not bind the"
+            + " address it was meant for (a relay between the hosts goes unnoticed): for a cluster being upgraded")
+    boolean olderHosts;
 
     @Option(names = "--owed-expiry", paramLabel = "DURATION", defaultValue = "PT24H",
             description = "give up a report or result owed to a home that does not answer after this long (ISO-8601, default ${DEFAULT-VALUE}); mw agents lists what is owed")
@@ -100,6 +114,11 @@ final class HostCommand implements Callable<Integer> {
     @Option(names = "--owed-max-backoff", paramLabel = "DURATION", defaultValue = "PT30S",
             description = "the longest pause between tries to deliver to a home that does not answer (default ${DEFAULT-VALUE})")
     java.time.Duration owedMaxBackoff;
+
+    @Option(names = "--call-timeout", paramLabel = "DURATION", defaultValue = "30s",
+            description = "how long a call to another host may take, its connection included (default ${DEFAULT-VALUE}): a hop to a host that does not answer"
+                    + " fails after this long and the agent's itinerary decides what next (retry, skip, go home)")
+    java.time.Duration callTimeout;
 
     @Option(names = "--record", paramLabel = "FILE.mcap", description = "record this host's agents (arrivals, stops, reports, results) and its robot (commands, pose, sensors) into an MCAP file")
     Path record;
@@ -138,6 +157,7 @@ final class HostCommand implements Callable<Integer> {
                 sim.startRealTime(speed);
                 robot = sim.robot(worldRobot);
             } else if (robotFile != null) {
+                AwaitedFile.await(robotFile, err, "mw host");
                 PlatformServices services = connection.isEmpty() ? PlatformServices.none()
                         : PlatformServices.none().with(ConnectionOverride.class, new ConnectionOverride(connection));
                 robot = Robots.open(robotFile, services);
@@ -167,12 +187,39 @@ final class HostCommand implements Callable<Integer> {
                     robot = console.recordCommands(robot);
                 }
             }
+            String servePassword = serve == null ? null : Secrets.read(servePasswordFile, "--serve-password-file", Secrets.SERVE_PASSWORD_ENV).orElse(null);
+            boolean serveOverTls = serve != null && cluster.tls() != null && (serve.startsWith("tcp://") || serve.startsWith("rmi://"));
+            if (serve != null && servePassword == null && !serveOverTls && !serveInsecure) {
+                err.println("mw host: --serve " + serve + " would let anyone who reaches it drive robot " + robot.name() + ": give --serve-password-file"
+                        + " FILE (or " + Secrets.SERVE_PASSWORD_ENV + "), serve over mutual TLS (--tls-keystore, a tcp:// or rmi:// address),"
+                        + " or --serve-insecure for a lab network that wants it (docs/security.md)");
+                closeAll(open);
+                return 2;
+            }
+            if (serve != null && serveInsecure && servePassword != null) {
+                err.println("mw host: --serve-insecure and a serve password contradict each other; give one");
+                closeAll(open);
+                return 2;
+            }
+            if (callTimeout.compareTo(java.time.Duration.ofMillis(100)) < 0) {
+                err.println("--call-timeout " + Durations.format(callTimeout) + " is too short: a call to another host needs at least 100ms");
+                closeAll(open);
+                return 2;
+            }
+            rmiHostName(bind);
             MessagingSettings settings = serve == null ? MessagingSettings.defaults() : RobotProtocol.forServer(MessagingSettings.defaults());
             settings = settings.withLimits(settings.limits().withMaxConnections(maxConnections));
+            if (serveOverTls && servePassword == null && !serveInsecure) {
+                // the served robot's callers prove themselves with their certificates: the node takes only mutual TLS
+                settings = settings.withTls(cluster.tls());
+            }
             AgentHost.Builder builder = AgentHost.builder(name).bind(bind).port(port).robot(robot).clusterKey(cluster.key()).tls(cluster.tls())
-                    .store(store).allow(allow).messagingSettings(settings)
+                    .store(store).allow(allow).messagingSettings(settings).callTimeout(callTimeout)
                     .deliveryPolicy(io.robomw.agents.host.DeliveryPolicy.defaults().withExpiry(owedExpiry).withMaxBackoff(owedMaxBackoff));
             builder.wire(!noWire).wirePort(wirePort);
+            if (olderHosts) {
+                builder.olderHosts();
+            }
             if (noMessaging) {
                 builder.noMessaging();
             } else if (messaging != null) {
@@ -196,12 +243,20 @@ final class HostCommand implements Callable<Integer> {
                 }
                 servingNode = node;
                 served = node.bind(serve) + "/" + robot.name();
-                open.add(0, RobotServer.serve(node, robot, servePassword));
+                if (serveInsecure) {
+                    err.println("mw host: WARNING: robot " + robot.name() + " is served at " + served + " WITHOUT A PASSWORD (--serve-insecure):"
+                            + " anyone who can reach that address can drive it");
+                    err.flush();
+                    open.add(0, RobotServer.serveInsecure(node, robot));
+                } else {
+                    open.add(0, RobotServer.serve(node, robot, servePassword));
+                }
             }
             MessagingNode presenceNode = host.messagingNode().orElse(servingNode);
             boolean atBroker = host.messagingAddresses().stream().anyMatch(m -> m.startsWith("mqtt"));
             if (announce != null || atBroker) {
-                open.add(0, HostPresence.start(host, announce, presenceNode));
+                ClusterKey key = cluster.key();
+                open.add(0, HostPresence.start(host, announce, presenceNode, key == null ? null : key.presenceSeal()));
             }
             if (presenceNode != null) {
                 open.add(0, beacon.announce(presenceNode));
@@ -241,6 +296,18 @@ final class HostCommand implements Callable<Integer> {
             }
             closeAll(open);
             return 2;
+        }
+    }
+
+    /**
+     * RMI stubs carry the exporting machine's name (its first address, often 127.0.0.1 in a
+     * container or namespace) unless {@code java.rmi.server.hostname} says otherwise; RMI names
+     * that in its errors. One host per JVM here: its stubs carry its bind address, unless the
+     * property was given ({@code MW_JAVA_OPTS}) or the host binds every interface.
+     */
+    private static void rmiHostName(String bind) {
+        if (System.getProperty("java.rmi.server.hostname") == null && !bind.equals("0.0.0.0") && !bind.equals("::")) {
+            System.setProperty("java.rmi.server.hostname", bind);
         }
     }
 

@@ -35,17 +35,24 @@ final class HostPresence implements AutoCloseable {
      * @param host   the agent host
      * @param broker a broker to announce at besides those the node is at already, or {@code null}
      * @param node   the host's messaging node (or the node serving its robot), or {@code null} when it has none
+     * @param seal   signs what it announces (the cluster key's), or {@code null} for a host without a key (TLS alone)
      * @return the running announcement
      */
-    static HostPresence start(AgentHost host, String broker, MessagingNode node) {
+    static HostPresence start(AgentHost host, String broker, MessagingNode node, io.robomw.agents.messaging.security.PresenceSeal seal) {
         boolean own = node == null;
         if (own) {
-            node = MessagingNode.builder(host.name()).settings(MessagingSettings.defaults()).bind(broker).build();
-        } else if (broker != null) {
-            node.bind(broker);
+            node = MessagingNode.builder(host.name()).settings(MessagingSettings.defaults()).build();
         }
         MessagingNode announcing = node;
+        // The host first, then the broker: the presence the node leaves as its will there (published when
+        // the host is gone without closing, as after kill -9) is made when it joins, and must name the host.
+        if (seal != null) {
+            announcing.presence().seal(seal);
+        }
         announcing.presence().host(host.name(), host.address());
+        if (broker != null) {
+            announcing.bind(broker);
+        }
         ScheduledExecutorService refresh = Executors.newSingleThreadScheduledExecutor(
                 r -> OwnerThreads.thread("mw-host-presence-" + host.name(), r, announcing.failures()));
         // a failed announcement is reported to the node's failure policy, and the next one comes

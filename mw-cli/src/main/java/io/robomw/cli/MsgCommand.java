@@ -22,8 +22,13 @@ final class MsgCommand {
 
     /** Options every msg subcommand has. */
     static final class Common {
-        @Option(names = "--password", description = "the topic's password (HMAC-SHA256); default: an open topic")
-        String password;
+        @Option(names = "--password-file", paramLabel = "FILE", description = "file holding the topic's password (messages signed, payloads encrypted);"
+                + " default: the " + Secrets.TOPIC_PASSWORD_ENV + " environment variable, else an open topic")
+        Path passwordFile;
+
+        /** Refused: a secret on the command line shows in ps. */
+        @Option(names = "--password", hidden = true, converter = Secrets.RefusedTopicPassword.class)
+        String refusedPassword;
 
         @Option(names = "--name", description = "this node's name (default: ${DEFAULT-VALUE})", defaultValue = "mw-msg")
         String name;
@@ -34,8 +39,18 @@ final class MsgCommand {
         @Option(names = "--tls-truststore", description = "PKCS#12 store of the peers to trust (with --tls-keystore)")
         Path trustStore;
 
-        @Option(names = "--tls-password", description = "password of both stores", defaultValue = "")
-        String storePassword;
+        @Option(names = "--tls-password-file", paramLabel = "FILE", description = "file holding the password of both stores (default: the "
+                + Secrets.TLS_PASSWORD_ENV + " environment variable, else none)")
+        Path storePasswordFile;
+
+        /** Refused: a secret on the command line shows in ps. */
+        @Option(names = "--tls-password", hidden = true, converter = Secrets.RefusedTlsPassword.class)
+        String refusedStorePassword;
+
+        /** @return the topic's password, from the file or the environment; {@code null} for an open topic */
+        String password() {
+            return Secrets.read(passwordFile, "--password-file", Secrets.TOPIC_PASSWORD_ENV).orElse(null);
+        }
 
         @Option(names = "--max-connections", paramLabel = "N", defaultValue = "128",
                 description = "connections a bound address accepts at once; one more is refused, told why (default ${DEFAULT-VALUE})")
@@ -45,6 +60,7 @@ final class MsgCommand {
             MessagingSettings s = MessagingSettings.defaults();
             s = s.withLimits(s.limits().withMaxConnections(maxConnections));
             if (keyStore != null) {
+                String storePassword = Secrets.read(storePasswordFile, "--tls-password-file", Secrets.TLS_PASSWORD_ENV).orElse("");
                 s = s.withTls(new TlsSettings(keyStore, storePassword, trustStore == null ? keyStore : trustStore, storePassword));
             }
             return s;

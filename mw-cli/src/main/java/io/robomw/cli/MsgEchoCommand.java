@@ -92,7 +92,7 @@ final class MsgEchoCommand implements Callable<Integer> {
         });
         try (MessagingNode node = MessagingNode.builder(common.name).settings(common.settings()).build();
              AutoCloseable announced = beacon.announce(node)) {
-            node.addMessageListener(topic, common.password, m -> {
+            node.addMessageListener(topic, common.password(), m -> {
                 rate.arrived(System.nanoTime());
                 if (!noMessages) {
                     synchronized (out) {
@@ -104,7 +104,7 @@ final class MsgEchoCommand implements Callable<Integer> {
                     done.countDown();
                 }
             });
-            node.subscribeMessage(topic, common.password);
+            node.subscribeMessage(topic, common.password());
             for (String p : publishers) {
                 if (MsgCommand.isGroup(p) || p.startsWith("mqtt")) {
                     node.bind(p);

@@ -97,12 +97,13 @@ final class MsgPubCommand implements Callable<Integer> {
                 }
                 LockSupport.parkNanos(10_000_000);
             }
+            String password = common.password();
             long period = (long) (1e9 / rate);
             long next = System.nanoTime();
             long reached = 0;
             for (long i = 0; count == 0 || i < count; i++) {
                 int subscribers = node.subscriberCount(topic);
-                node.publishMessage(topic, text, function, common.password);
+                node.publishMessage(topic, text, function, password);
                 reached += subscribers;
                 out.println("published #" + (i + 1) + ": " + text + (countable ? " (" + (subscribers == 1 ? "1 subscriber" : subscribers + " subscribers") + ")" : ""));
                 out.flush();

@@ -51,7 +51,7 @@ final class MsgSendCommand implements Callable<Integer> {
     @Override
     public Integer call() {
         try (MessagingNode node = MessagingNode.builder(common.name).settings(common.settings()).build()) {
-            UUID id = node.sendMessage(receiver, address, common.password, topic, text, function);
+            UUID id = node.sendMessage(receiver, address, common.password(), topic, text, function);
             spec.commandLine().getOut().println("sent " + id + " to '" + receiver + "' at " + address);
             if (noReply) {
                 return 0;

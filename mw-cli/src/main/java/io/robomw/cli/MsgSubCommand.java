@@ -54,7 +54,7 @@ final class MsgSubCommand implements Callable<Integer> {
         CountDownLatch done = new CountDownLatch(count == 0 ? 1 : (int) Math.min(count, Integer.MAX_VALUE));
         try (MessagingNode node = MessagingNode.builder(common.name).settings(common.settings()).build();
              AutoCloseable announced = beacon.announce(node)) {
-            node.addMessageListener(topic, common.password, m -> {
+            node.addMessageListener(topic, common.password(), m -> {
                 synchronized (out) {
                     out.println(MsgCommand.describe(m));
                     out.flush();
@@ -70,7 +70,7 @@ final class MsgSubCommand implements Callable<Integer> {
                     done.countDown();
                 }
             });
-            node.subscribeMessage(topic, common.password);
+            node.subscribeMessage(topic, common.password());
             if (bind || MsgCommand.isGroup(address)) {
                 node.bind(address);
             } else {

@@ -93,6 +93,13 @@ final class ReadyRobotFile {
         if (parent != null) {
             Files.createDirectories(parent);
         }
-        Files.write(target, out, StandardCharsets.UTF_8);
+        // Whole or not at all: a command waiting for the file (AwaitedFile) never reads half of it.
+        Path partial = Files.createTempFile(parent != null ? parent : Path.of("."), "." + target.getFileName(), ".part");
+        try {
+            Files.write(partial, out, StandardCharsets.UTF_8);
+            Files.move(partial, target, java.nio.file.StandardCopyOption.REPLACE_EXISTING, java.nio.file.StandardCopyOption.ATOMIC_MOVE);
+        } finally {
+            Files.deleteIfExists(partial);
+        }
     }
 }

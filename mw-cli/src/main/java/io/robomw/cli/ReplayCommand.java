@@ -25,9 +25,10 @@ import java.util.concurrent.atomic.AtomicBoolean;
 /**
  * {@code mw replay FILE.mcap}: plays a recording into the console's page (and, with {@code --png},
  * into a picture; with {@code --foxglove}, to Foxglove live, in recorded time), at the recorded
- * pace times {@code --speed}. The page stays up after the replay until Ctrl-C;
- * {@code --no-console} only draws the picture (or serves Foxglove) and exits when done (when
- * Ctrl-C ends Foxglove's).
+ * pace times {@code --speed}. Without {@code --png} the page stays up after the replay until
+ * Ctrl-C; with {@code --png} the command draws the picture and exits, as a command that writes a
+ * file does, unless {@code --console} asks for the page too. {@code --no-console} with
+ * {@code --foxglove} serves Foxglove only (until Ctrl-C).
  */
 @Command(name = "replay", mixinStandardHelpOptions = true,
         description = {"Plays an MCAP recording (mw record, --record) back into the console's page and/or a PNG.",
@@ -46,8 +47,11 @@ final class ReplayCommand implements Callable<Integer> {
     @Option(names = "--width", defaultValue = "1000", description = "width of the PNG, pixels (default ${DEFAULT-VALUE})")
     int width;
 
-    @Option(names = "--no-console", description = "no page: only the picture (needs --png or --foxglove); exits when done")
+    @Option(names = "--no-console", description = "no page: only the picture or Foxglove (needs --png or --foxglove); the default with --png")
     boolean noConsole;
+
+    @Option(names = "--console", description = "with --png: show the replay in the page too, kept up until Ctrl-C (without --png the page is the default)")
+    boolean withConsole;
 
     @picocli.CommandLine.Mixin
     FoxgloveOption foxglove;
@@ -55,7 +59,7 @@ final class ReplayCommand implements Callable<Integer> {
     @Option(names = "--bind", defaultValue = "127.0.0.1", description = "address the page listens on (default ${DEFAULT-VALUE})")
     String bind;
 
-    @Option(names = "--port", defaultValue = "8080", description = "the page's port (default ${DEFAULT-VALUE}; 0 picks a free one)")
+    @Option(names = "--port", defaultValue = "8080", description = "the page's port (default ${DEFAULT-VALUE}, or a free one when it is taken; 0 picks a free one)")
     int port;
 
     @Spec
@@ -71,6 +75,11 @@ final class ReplayCommand implements Callable<Integer> {
         if (noConsole && png == null && !foxglove.on()) {
             throw new CommandLine.ParameterException(spec.commandLine(), "--no-console leaves nothing to show: add --png FILE or --foxglove");
         }
+        if (noConsole && withConsole) {
+            throw new CommandLine.ParameterException(spec.commandLine(), "--console and --no-console contradict each other; give one");
+        }
+        // The page when asked for, or when nothing else shows the replay: --png alone writes its file and exits.
+        boolean page = withConsole || (!noConsole && png == null);
         ReplayPicture picture = new ReplayPicture();
         Console console = null;
         FoxgloveServer live = null;
@@ -88,8 +97,8 @@ final class ReplayCommand implements Callable<Integer> {
         }, "mw-replay-shutdown");
         Runtime.getRuntime().addShutdownHook(hook);
         try {
-            if (!noConsole) {
-                console = Console.builder("mw replay " + file + (speed == 1 ? "" : " at " + speed + "x")).page(bind, port).start();
+            if (page) {
+                console = Console.builder("mw replay " + file + (speed == 1 ? "" : " at " + speed + "x")).page(bind, PagePort.choose(bind, port, spec.commandLine().getParseResult().hasMatchedOption("--port"), err, "mw replay")).start();
                 out.println("console at " + console.pageAddress().orElseThrow());
                 out.flush();
             }

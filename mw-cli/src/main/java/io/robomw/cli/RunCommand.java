@@ -53,6 +53,12 @@ final class RunCommand implements Callable<Integer> {
             err.flush();
             return Mw.USER_ERROR;
         }
+        for (String a : args) {
+            // a robot or world file named as an argument may still be being written by a command started just before
+            if ((a.endsWith(".yaml") || a.endsWith(".yml")) && !a.contains("://")) {
+                AwaitedFile.await(Path.of(a), err, "mw run");
+            }
+        }
         List<String> command = new ArrayList<>();
         command.add(Path.of(System.getProperty("java.home"), "bin", "java").toString());
         command.addAll(javaOptions);

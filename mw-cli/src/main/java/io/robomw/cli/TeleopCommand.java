@@ -16,6 +16,8 @@ import java.io.PrintWriter;
 import java.time.Duration;
 import java.util.Locale;
 import java.util.concurrent.Callable;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicReference;
 
 /**
@@ -86,7 +88,8 @@ final class TeleopCommand implements Callable<Integer> {
     int drive(Robot robot, InputStream keys, PrintWriter out) throws IOException, InterruptedException {
         AtomicReference<Velocity> wanted = new AtomicReference<>(Velocity.STOP);
         AtomicReference<Throwable> failure = new AtomicReference<>();
-        Thread sender = new Thread(() -> send(robot, wanted, failure), "mw-teleop-" + robot.name());
+        CountDownLatch quit = new CountDownLatch(1);
+        Thread sender = new Thread(() -> send(robot, wanted, failure, quit), "mw-teleop-" + robot.name());
         sender.setDaemon(true);
         out.printf("teleop %s: w/s forward/backward, a/d turn, q/e curve, space stop, +/- speed, x quit%n", robot.name());
         out.flush();
@@ -124,7 +127,9 @@ final class TeleopCommand implements Callable<Integer> {
                 }
             }
         } finally {
-            sender.interrupt();
+            // The sender ends after the command it is sending (never interrupted inside one: an
+            // interrupted verb cancels its command and reports a failure, which a quit is not).
+            quit.countDown();
             sender.join(refresh.toMillis() * 10 + 2000);
             robot.stop();
         }
@@ -149,10 +154,10 @@ final class TeleopCommand implements Callable<Integer> {
     }
 
     /** The sending thread: owns the robot's motion while teleop runs; any failure stops the robot and ends the keys' loop. */
-    private void send(Robot robot, AtomicReference<Velocity> wanted, AtomicReference<Throwable> failure) {
+    private void send(Robot robot, AtomicReference<Velocity> wanted, AtomicReference<Throwable> failure, CountDownLatch quit) {
         boolean moving = false;
         try {
-            while (!Thread.currentThread().isInterrupted()) {
+            while (quit.getCount() > 0) {
                 Velocity v = wanted.get();
                 if (v.moving()) {
                     robot.drive(v.linear(), v.angular());
@@ -161,7 +166,9 @@ final class TeleopCommand implements Callable<Integer> {
                     robot.stop();
                     moving = false;
                 }
-                Thread.sleep(refresh.toMillis());
+                if (quit.await(refresh.toMillis(), TimeUnit.MILLISECONDS)) {
+                    break;
+                }
             }
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();

@@ -55,10 +55,13 @@ final class TripSummary {
         for (Sent s : sent) {
             AgentRef ref = s.ref();
             boolean home = ref.result().isDone();
+            Verdict verdict = verdict(ref);
             if (home) {
-                out.printf("  [%s] agent %s %s at %s%n", s.label(), ref.id(), ref.status(), ref.location());
+                out.printf("  %-10s [%s] agent %s %s %s%s%n", verdict, s.label(), ref.id(), verdict == Verdict.RETRACTED ? "came home from" : "ended at",
+                        ref.location(), skipped(ref));
             } else {
-                out.printf("  [%s] agent %s: no result within %s; last seen %s at %s%n", s.label(), ref.id(), timeout, ref.status(), ref.location());
+                out.printf("  %-10s [%s] agent %s: no result within %s; last seen %s at %s%n", verdict, s.label(), ref.id(), timeout, ref.status(),
+                        ref.location());
             }
             for (Itinerary.Visit v : ref.history()) {
                 printVisit(out, v);
@@ -67,7 +70,53 @@ final class TripSummary {
                 out.println("    (its last host did not say how its stops went)");
             }
         }
-        unsent.forEach((host, why) -> out.printf("  [%s] not sent%n    %-11s  %s: %s%n", host, "UNREACHABLE", host, flat(why)));
+        unsent.forEach((host, why) -> out.printf("  %-10s [%s]%n    %-11s  %s: %s%n", "NOT-SENT", host, "UNREACHABLE", host, flat(why)));
+    }
+
+    /** What happened to an agent, the first word of its summary line. */
+    enum Verdict {
+        /** Its result came home and every stop was done. */
+        COMPLETED,
+        /** Its result came home, but a stop was unreachable or interrupted (its host stopped or crashed). */
+        INCOMPLETE,
+        /** Its trip failed, or a stop failed. */
+        FAILED,
+        /** It was retracted: its state came home. */
+        RETRACTED,
+        /** It was disposed of. */
+        DISPOSED,
+        /** No result within the time-out: it may still be travelling. */
+        OUT
+    }
+
+    static Verdict verdict(AgentRef ref) {
+        if (!ref.result().isDone()) {
+            return Verdict.OUT;
+        }
+        if (ref.status() == io.robomw.api.AgentStatus.RETRACTED) {
+            return Verdict.RETRACTED;
+        }
+        if (ref.status() == io.robomw.api.AgentStatus.DISPOSED) {
+            return Verdict.DISPOSED;
+        }
+        if (ref.result().isCompletedExceptionally() || ref.history().stream().anyMatch(v -> v.outcome() == Itinerary.Outcome.FAILED)) {
+            return Verdict.FAILED;
+        }
+        return ref.history().stream().allMatch(v -> v.outcome() == Itinerary.Outcome.DONE) ? Verdict.COMPLETED : Verdict.INCOMPLETE;
+    }
+
+    /** @return ", 1 stop interrupted, 2 unreachable", or nothing when no stop was skipped */
+    private static String skipped(AgentRef ref) {
+        long interrupted = ref.history().stream().filter(v -> v.outcome() == Itinerary.Outcome.INTERRUPTED).count();
+        long unreachable = ref.history().stream().filter(v -> v.outcome() == Itinerary.Outcome.UNREACHABLE).count();
+        StringBuilder b = new StringBuilder();
+        if (interrupted > 0) {
+            b.append(", ").append(interrupted).append(interrupted == 1 ? " stop" : " stops").append(" interrupted");
+        }
+        if (unreachable > 0) {
+            b.append(", ").append(unreachable).append(interrupted > 0 ? "" : unreachable == 1 ? " stop" : " stops").append(" unreachable");
+        }
+        return b.toString();
     }
 
     private void printVisit(PrintWriter out, Itinerary.Visit v) {

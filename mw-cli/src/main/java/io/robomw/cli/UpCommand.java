@@ -94,7 +94,7 @@ final class UpCommand implements java.util.concurrent.Callable<Integer> {
                 List<String> command = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
                         "-Dmw.home=" + System.getProperty("mw.home", "."), "-cp", DistributionClassPath.with(List.of()), Mw.class.getName()));
                 e.args().forEach(a -> command.add(a.replace("${run}", run.toString())));
-                Process p = new ProcessBuilder(command).directory(dir.toFile()).start();
+                Process p = new ProcessBuilder(ownSession(command)).directory(dir.toFile()).start();
                 CompletableFuture<Void> ready = new CompletableFuture<>();
                 CompletableFuture<Void> output = new CompletableFuture<>();
                 // Standard output decides readiness; standard error (logs, errors) is shown the same way.
@@ -201,6 +201,13 @@ final class UpCommand implements java.util.concurrent.Callable<Integer> {
         }
         for (int i = all.size() - 1; i >= 0; i--) {
             Process p = all.get(i).process();
+            String name = all.get(i).entry().name();
+            if (p.isAlive()) {
+                synchronized (out) {
+                    out.println("[mw up] stopping " + name);
+                    out.flush();
+                }
+            }
             p.destroy();
             try {
                 if (!p.waitFor(15, TimeUnit.SECONDS)) {
@@ -208,6 +215,10 @@ final class UpCommand implements java.util.concurrent.Callable<Integer> {
                     p.waitFor(10, TimeUnit.SECONDS);
                 }
                 all.get(i).output().get(5, TimeUnit.SECONDS);
+                synchronized (out) {
+                    out.println("[mw up] " + name + " stopped (exit status " + p.exitValue() + ")");
+                    out.flush();
+                }
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
                 p.destroyForcibly();
@@ -221,6 +232,26 @@ final class UpCommand implements java.util.concurrent.Callable<Integer> {
                 out.flush();
             }
         }
+    }
+
+    /** Where setsid is, if this system has it (util-linux). */
+    private static final Path SETSID = Path.of("/usr/bin/setsid");
+
+    /**
+     * Runs a process in a session (and process group) of its own, where the system can: Ctrl-C at
+     * the terminal then reaches {@code mw up} alone, which stops its processes last first, as
+     * {@code ros2 launch} does, instead of every process at once (a host then saw its brick's
+     * emulator vanish under it). {@code setsid} runs the command in place (no fork: the process is
+     * the JVM, which {@link Process#destroy()} reaches).
+     */
+    static List<String> ownSession(List<String> command) {
+        if (!java.nio.file.Files.isExecutable(SETSID)) {
+            return command;
+        }
+        List<String> c = new ArrayList<>(command.size() + 1);
+        c.add(SETSID.toString());
+        c.addAll(command);
+        return c;
     }
 
     private static void deleteTree(Path dir) {

@@ -10,6 +10,7 @@ import io.robomw.testkit.Await;
 import io.robomw.cli.agents.HelloAgent;
 import io.robomw.cli.agents.NoDefaultConstructorAgent;
 import io.robomw.cli.agents.RobotAgent;
+import io.robomw.cli.agents.TouringAgent;
 import org.junit.jupiter.api.BeforeEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.extension.RegisterExtension;
@@ -54,7 +55,8 @@ class AgentCommandsTest {
         key = Files.writeString(dir.resolve("cluster.key"), "agent commands test");
         jar = dir.resolve("agents.jar");
         try (JarOutputStream out = new JarOutputStream(Files.newOutputStream(jar))) {
-            for (Class<?> c : List.of(HelloAgent.class, RobotAgent.class, NoDefaultConstructorAgent.class)) {
+            for (Class<?> c : List.of(HelloAgent.class, RobotAgent.class, NoDefaultConstructorAgent.class, TouringAgent.class,
+                    io.robomw.cli.agents.HoldingAgent.class)) {
                 String entry = c.getName().replace('.', '/') + ".class";
                 out.putNextEntry(new JarEntry(entry));
                 try (var in = c.getClassLoader().getResourceAsStream(entry)) {
@@ -80,7 +82,7 @@ class AgentCommandsTest {
     }
 
     private Run dispatch(String... rest) {
-        List<String> args = new ArrayList<>(List.of("dispatch", "--key-file", key.toString(), "--jar", jar.toString(), "--timeout", "PT30S"));
+        List<String> args = new ArrayList<>(List.of("dispatch", "--key-file", key.toString(), "--jar", jar.toString(), "--timeout", "PT30S", "--wait-hosts", "1s"));
         args.addAll(List.of(rest));
         return mw(args.toArray(String[]::new));
     }
@@ -94,12 +96,53 @@ class AgentCommandsTest {
         assertTrue(run.out().contains("[" + a.address() + "] hello from a"), run.out());
         assertTrue(run.out().contains("visited a"), run.out());
         String summary = run.out().substring(run.out().indexOf("summary:"));
-        assertTrue(summary.contains("COMPLETED at " + a.address()), summary);
+        assertTrue(summary.matches("(?s).*\\n  COMPLETED  \\[" + java.util.regex.Pattern.quote(a.address()) + "\\] agent \\S+ ended at "
+                + java.util.regex.Pattern.quote(a.address()) + "\\n.*"), summary);
+        assertTrue(summary.contains("  NOT-SENT   [" + DEAD_HOST + "]"), summary);
         assertTrue(summary.contains("DONE         " + a.address()), summary);
         assertTrue(summary.matches("(?s).*UNREACHABLE  " + java.util.regex.Pattern.quote(DEAD_HOST) + ": .*Connection refused.*"), summary);
         // The command ends once its home has replied to the calls that brought the results; host a reads
         // that reply a moment later. Had the home closed first, the result would stay owed, retried.
         Await.until("host a owes nothing once the command has ended: " + a.owed(), Duration.ofSeconds(10), () -> a.owed().isEmpty());
+    }
+
+    @Test
+    void reportsAndResultsArePrefixedWithTheHostTheCloneWasAtNotItsFirstHost() throws Exception {
+        AgentHost a = host("a");
+        AgentHost b = host("b");
+        Run run = dispatch("--agent", TouringAgent.class.getName(), "--arg", b.address(), "--clone", a.address());
+        assertEquals(0, run.status(), run.toString());
+        assertTrue(run.out().contains("[" + a.address() + "] hello from a"), run.out());
+        assertTrue(run.out().contains("[" + b.address() + "] hello from b"), "the report sent from b is prefixed with b: " + run.out());
+        assertTrue(run.out().contains("[" + b.address() + "] result:\n  last at b"), "and so is the result: " + run.out());
+    }
+
+    @Test
+    void aTripWithASkippedStopIsNotSummarisedAsCompleted() throws Exception {
+        AgentHost a = host("a");
+        Run run = dispatch("--agent", HelloAgent.class.getName(), a.address(), DEAD_HOST, a.address());
+        String summary = run.out().substring(run.out().indexOf("summary:"));
+        assertTrue(summary.contains("\n  INCOMPLETE [agent "), "the first word says a stop was skipped: " + summary);
+        assertTrue(summary.contains("ended at " + a.address() + ", 1 stop unreachable"), summary);
+    }
+
+    @Test
+    void anAgentRetractedMidStopComesHomeAtOnceAndDispatchShowsItsState() throws Exception {
+        AgentHost a = host("a");
+        java.util.concurrent.CompletableFuture<Run> dispatching = java.util.concurrent.CompletableFuture.supplyAsync(
+                () -> dispatch("--agent", io.robomw.cli.agents.HoldingAgent.class.getName(), a.address()));
+        Await.until("the agent works at a", Duration.ofSeconds(30), () -> !a.agents().isEmpty());
+        UUID id = a.agents().get(0).id();
+        Run retract = mw("retract", "--key-file", key.toString(), id.toString(), a.address());
+        assertEquals(0, retract.status(), retract.toString());
+        // The agent sleeps a minute; the retract interrupts it, so its state is home long before mw dispatch's 30 s time-out.
+        Run run = dispatching.get(60, java.util.concurrent.TimeUnit.SECONDS);
+        assertEquals(0, run.status(), run.toString());
+        assertTrue(run.out().contains("[" + a.address() + "] RETRACTED: its state came home:\n  " + io.robomw.cli.agents.HoldingAgent.class.getName()
+                + "\n    began: at a"), run.out());
+        String summary = run.out().substring(run.out().indexOf("summary:"));
+        assertTrue(summary.matches("(?s).*\\n  RETRACTED  \\[agent \\S+\\] agent \\S+ came home from " + java.util.regex.Pattern.quote(a.address()) + "\\n.*"),
+                summary);
     }
 
     @Test
@@ -178,7 +221,9 @@ class AgentCommandsTest {
         Run partly = mw("agents", "--key-file", key.toString(), a.address(), DEAD_HOST);
         assertEquals(1, partly.status(), partly.toString());
         assertTrue(partly.out().contains("0 agents at " + a.address()), partly.out());
-        assertTrue(partly.err().startsWith("mw agents: " + DEAD_HOST + ": "), partly.err());
+        String down = partly.out().lines().filter(l -> l.startsWith(DEAD_HOST)).findFirst().orElse("");
+        assertTrue(down.matches(java.util.regex.Pattern.quote(DEAD_HOST) + "  DOWN  \\(no answer at \\d{4}-\\d\\d-\\d\\dT[0-9:]+Z\\)  cannot connect to 127\\.0\\.0\\.1:1: Connection refused"),
+                "one line for the host that is down: which, when, why, in words (no RMI text): " + partly.out());
     }
 
     @Test

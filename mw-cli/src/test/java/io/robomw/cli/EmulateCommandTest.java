@@ -79,11 +79,17 @@ class EmulateCommandTest {
             public void close() {
             }
         };
-        CommandLine cl = new CommandLine(new Mw());
+        CommandLine cl = Mw.commandLine(); // as the launcher runs it: its converters (durations) and handlers
         cl.setOut(new PrintWriter(out, true));
         cl.setErr(new PrintWriter(new StringWriter(), true));
         command = new Thread(() -> cl.execute(args), "mw-emulate-under-test");
         command.start();
+    }
+
+    /** @return the robot file's name, copied beside the test's world: a world may name robot files in its own tree only (issue 37) */
+    private String beside(Path robot) throws java.io.IOException {
+        Files.copy(robot, dir.resolve(robot.getFileName()), java.nio.file.StandardCopyOption.REPLACE_EXISTING);
+        return robot.getFileName().toString();
     }
 
     @Test
@@ -93,7 +99,7 @@ class EmulateCommandTest {
                 arena: { width: 3, height: 3 }
                 robots:
                   - { robot: %s, name: txt, x: 1.0, y: 1.5, heading: 0 }
-                """.formatted(TXT_ROBOT));
+                """.formatted(beside(TXT_ROBOT)));
         start("emulate", "ft-txt", "--world", dir.resolve("world.yaml").toString(), "--robot", "txt", "--tcp", "0");
         String where = lines.poll(30, TimeUnit.SECONDS);
         assertNotNull(where, "mw emulate printed where it serves");
@@ -116,7 +122,7 @@ class EmulateCommandTest {
                 arena: { width: 3, height: 3 }
                 robots:
                   - { robot: %s, name: rcx, x: 1.0, y: 1.5, heading: 0 }
-                """.formatted(RCX_ROBOT));
+                """.formatted(beside(RCX_ROBOT)));
         start("emulate", "rcx", "--world", dir.resolve("world.yaml").toString(), "--robot", "rcx", "--latency", "0", "--baud", "0");
         String device = lines.poll(30, TimeUnit.SECONDS);
         assertNotNull(device, "mw emulate printed the device");
@@ -147,5 +153,32 @@ class EmulateCommandTest {
 
     private static byte[] id(long messageId) {
         return ByteBuffer.allocate(4).order(ByteOrder.LITTLE_ENDIAN).putInt((int) messageId).array();
+    }
+
+    @Test
+    void latencyIsADurationAsEveryOtherTimeOption() throws Exception {
+        Files.writeString(dir.resolve("world.yaml"), """
+                name: rcx-world
+                arena: { width: 3, height: 3 }
+                robots:
+                  - { robot: %s, name: rcx, x: 1.0, y: 1.5, heading: 0 }
+                """.formatted(RCX_ROBOT));
+        start("emulate", "rcx", "--world", dir.resolve("world.yaml").toString(), "--robot", "rcx", "--latency", "30ms", "--baud", "0");
+        String device = lines.poll(30, TimeUnit.SECONDS);
+        assertNotNull(device, "mw emulate started with --latency 30ms");
+        assertTrue(device.startsWith("/dev/"), device);
+    }
+
+    @Test
+    void aBareLatencyLongerThanAnyLinkIsRefusedAskingForAUnit() throws Exception {
+        Files.writeString(dir.resolve("world.yaml"), """
+                name: rcx-world
+                arena: { width: 3, height: 3 }
+                robots:
+                  - { robot: %s, name: rcx, x: 1.0, y: 1.5, heading: 0 }
+                """.formatted(RCX_ROBOT));
+        CliRun run = CliRun.mw("emulate", "rcx", "--world", dir.resolve("world.yaml").toString(), "--robot", "rcx", "--latency", "40");
+        assertEquals(2, run.status(), run.toString());
+        assertTrue(run.err().contains("--latency 40s is longer than any link's (at most 10s); give a unit: --latency 40ms"), run.err());
     }
 }

@@ -34,6 +34,18 @@ class MsgCommandTest {
         return new Run(status, out.toString(), err.toString());
     }
 
+    /** @return a file holding a topic password (mw msg takes it from a file, never from an option's value) */
+    private static String passwordFile(String password) {
+        try {
+            java.nio.file.Path f = java.nio.file.Files.createTempFile("mw-msg-password-", "");
+            f.toFile().deleteOnExit();
+            java.nio.file.Files.writeString(f, password);
+            return f.toString();
+        } catch (IOException e) {
+            throw new java.io.UncheckedIOException(e);
+        }
+    }
+
     private static int freeTcpPort() throws IOException {
         try (ServerSocket s = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
             return s.getLocalPort();
@@ -55,10 +67,11 @@ class MsgCommandTest {
     void sendPrintsTheEchoOfABoundSubscriber() throws Exception {
         String address = "tcp://127.0.0.1:" + freeTcpPort();
         CompletableFuture<Run> sub = CompletableFuture.supplyAsync(() -> mw("msg", "sub", address, "cmd", "--bind", "--echo",
-                "--password", "pw", "--count", "1", "--timeout", "20"));
+                "--password-file", passwordFile("pw"), "--count", "1", "--timeout", "20"));
+        String pw = passwordFile("pw");
         AtomicReference<Run> sent = new AtomicReference<>();
         Await.until("the subscriber is reachable", Duration.ofSeconds(20), () -> {
-            sent.set(mw("msg", "send", address, "*", "cmd", "ping", "--password", "pw", "--timeout", "5"));
+            sent.set(mw("msg", "send", address, "*", "cmd", "ping", "--password-file", pw, "--timeout", "5"));
             return !sent.get().err().contains("cannot reach");
         });
         Run send = sent.get();
@@ -103,10 +116,11 @@ class MsgCommandTest {
     void sendSaysTheReceiverRefusedAWrongOrMissingPassword() throws Exception {
         String address = "tcp://127.0.0.1:" + freeTcpPort();
         CompletableFuture<Run> sub = CompletableFuture.supplyAsync(() -> mw("msg", "sub", address, "cmd", "--bind", "--echo",
-                "--password", "right", "--count", "1", "--timeout", "20s"));
+                "--password-file", passwordFile("right"), "--count", "1", "--timeout", "20s"));
+        String wrongPassword = passwordFile("wrong");
         AtomicReference<Run> sent = new AtomicReference<>();
         Await.until("the subscriber is reachable", Duration.ofSeconds(20), () -> {
-            sent.set(mw("msg", "send", address, "*", "cmd", "ping", "--password", "wrong", "--timeout", "5s"));
+            sent.set(mw("msg", "send", address, "*", "cmd", "ping", "--password-file", wrongPassword, "--timeout", "5s"));
             return !sent.get().err().contains("cannot reach");
         });
         Run wrong = sent.get();
@@ -115,7 +129,7 @@ class MsgCommandTest {
         Run missing = mw("msg", "send", address, "*", "cmd", "ping", "--timeout", "5s");
         assertEquals(1, missing.status());
         assertTrue(missing.err().contains("the message had no password"), missing.err());
-        assertEquals(0, mw("msg", "send", address, "*", "cmd", "ping", "--password", "right").status());
+        assertEquals(0, mw("msg", "send", address, "*", "cmd", "ping", "--password-file", passwordFile("right")).status());
         assertEquals(0, sub.get(20, TimeUnit.SECONDS).status());
     }
 

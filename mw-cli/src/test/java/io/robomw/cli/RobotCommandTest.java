@@ -70,7 +70,7 @@ class RobotCommandTest {
         try (Robot local = Robots.open(Path.of(instantFile()));
              MessagingNode server = MessagingNode.builder("host").settings(RobotProtocol.forServer(MessagingSettings.defaults()))
                      .bind("tcp://127.0.0.1:0").build()) {
-            RobotServer.serve(server, local, null);
+            RobotServer.serveInsecure(server, local);
             String address = server.address("tcp") + "/instant-1";
             CliRun move = CliRun.mw("robot", address, "move", "0.5", "0.2");
             assertEquals(0, move.status(), move.err());

@@ -10,11 +10,11 @@ import io.robomw.platform.ft.intelligent.IntelligentInterfaceTelegram;
 import io.robomw.platform.ft.txt.TxtController;
 import io.robomw.platform.ft.txt.TxtProtocol;
 import io.robomw.platform.link.Communicator;
-import io.robomw.platform.link.Link;
 import io.robomw.platform.nxt.NxtBrick;
 import io.robomw.platform.nxt.NxtTelegram;
 import io.robomw.platform.rcx.RcxBrick;
 import io.robomw.platform.rcx.RcxPacket;
+import io.robomw.platform.testkit.ScriptedLink;
 
 import java.io.IOException;
 import java.time.Duration;
@@ -33,51 +33,9 @@ class BrickRepliesFuzzTest {
 
     private static final Duration REPLY_TIMEOUT = Duration.ofMillis(1);
 
-    /** A link whose far end sends {@code bytes} and then nothing; what is written to it is dropped. */
-    private static final class ReplyLink implements Link {
-        private final byte[] bytes;
-        private int at;
-        private boolean open;
-
-        ReplyLink(byte[] bytes) {
-            this.bytes = bytes;
-        }
-
-        @Override
-        public void open() {
-            open = true;
-        }
-
-        @Override
-        public boolean isOpen() {
-            return open;
-        }
-
-        @Override
-        public void write(byte[] data, int off, int len) {
-        }
-
-        @Override
-        public int read(byte[] buf, int off, int len, Duration timeout) {
-            int n = Math.min(len, bytes.length - at);
-            System.arraycopy(bytes, at, buf, off, n);
-            at += n;
-            return n;
-        }
-
-        @Override
-        public String describe() {
-            return "fuzzed brick";
-        }
-
-        @Override
-        public void close() {
-            open = false;
-        }
-    }
-
     private static BrickChannel channel(byte[] bytes) throws IOException {
-        Communicator c = new Communicator(new ReplyLink(bytes));
+        // The far end sends the bytes and then nothing, at once: a silent brick times out without waiting.
+        Communicator c = new Communicator(new ScriptedLink().named("fuzzed brick").timingOutAtOnce().deliver(bytes));
         c.open();
         return new BrickChannel("fuzzbot", c, REPLY_TIMEOUT);
     }

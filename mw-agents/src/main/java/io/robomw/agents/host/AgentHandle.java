@@ -31,9 +31,12 @@ final class AgentHandle implements AgentRef {
     final ClassLoader loader;
     private final CompletableFuture<Serializable> result = new CompletableFuture<>();
     private final CompletableFuture<Agent> retracted = new CompletableFuture<>();
-    private final List<Consumer<Serializable>> reportListeners = new CopyOnWriteArrayList<>();
+    private final List<java.util.function.BiConsumer<String, Serializable>> reportListeners = new CopyOnWriteArrayList<>();
+    /** A report and the host it was sent from. */
+    private record Report(String host, Serializable value) {
+    }
     /** Reports that came before the first listener was added (at most {@link #MAX_EARLY_REPORTS}); guarded by this handle. */
-    private java.util.ArrayDeque<Serializable> earlyReports = new java.util.ArrayDeque<>();
+    private java.util.ArrayDeque<Report> earlyReports = new java.util.ArrayDeque<>();
     private final java.util.Set<Long> reportsSeen = java.util.concurrent.ConcurrentHashMap.newKeySet();
     private volatile List<io.robomw.api.Itinerary.Visit> history = List.of();
     private volatile String location;
@@ -72,18 +75,23 @@ final class AgentHandle implements AgentRef {
     /** The first listener added also gets, first, the reports that came before it (the agent may report before its sender could add one). */
     @Override
     public void addReportListener(Consumer<Serializable> listener) {
+        onReport((host, value) -> listener.accept(value));
+    }
+
+    @Override
+    public void onReport(java.util.function.BiConsumer<String, Serializable> listener) {
         synchronized (this) {
             if (earlyReports != null) {
-                earlyReports.forEach(v -> tell(listener, v));
+                earlyReports.forEach(r -> tell(listener, r.host(), r.value()));
                 earlyReports = null;
             }
             reportListeners.add(listener);
         }
     }
 
-    private void tell(Consumer<Serializable> l, Serializable value) {
+    private void tell(java.util.function.BiConsumer<String, Serializable> l, String host, Serializable value) {
         try {
-            l.accept(value);
+            l.accept(host, value);
         } catch (RuntimeException e) {
             LOG.warn("report listener of agent {} threw {}", id, e.toString());
         }
@@ -96,6 +104,11 @@ final class AgentHandle implements AgentRef {
                 retracted.completeExceptionally(e);
             }
         });
+        return retracted;
+    }
+
+    @Override
+    public CompletableFuture<Agent> whenRetracted() {
         return retracted;
     }
 
@@ -172,7 +185,12 @@ final class AgentHandle implements AgentRef {
         }
     }
 
-    void report(long seq, Serializable value) {
+    /**
+     * @param seq   the report's number in the agent's trip (a report delivered twice is told once)
+     * @param host  the host the agent sent it from
+     * @param value the value
+     */
+    void report(long seq, String host, Serializable value) {
         if (!reportsSeen.add(seq)) {
             return;
         }
@@ -181,12 +199,12 @@ final class AgentHandle implements AgentRef {
                 if (earlyReports.size() == MAX_EARLY_REPORTS) {
                     earlyReports.removeFirst();
                 }
-                earlyReports.addLast(value);
+                earlyReports.addLast(new Report(host, value));
                 return;
             }
         }
-        for (Consumer<Serializable> l : reportListeners) {
-            tell(l, value);
+        for (java.util.function.BiConsumer<String, Serializable> l : reportListeners) {
+            tell(l, host, value);
         }
     }
 

@@ -94,6 +94,7 @@ public final class AgentHost implements AutoCloseable {
     private final Duration wireSpin;
     private final Duration wireReadSpin;
     private final boolean version2Only;
+    private final boolean olderHosts;
     private final WireServer.Limits wireLimits;
     private final java.util.concurrent.ThreadFactory wireThreads;
     private HostEndpoint endpoint;
@@ -118,11 +119,13 @@ public final class AgentHost implements AutoCloseable {
         this.wireSpin = b.wireSpin;
         this.wireReadSpin = b.wireReadSpin;
         this.version2Only = b.version2Only;
+        this.olderHosts = b.olderHosts || b.version2Only;
         this.wireLimits = b.wireLimits != null ? b.wireLimits : WireServer.Limits.of(b.maxStateBytes, b.callTimeout);
         this.wireThreads = b.wireThreads;
         Peers peers = new Peers(state, key, tls != null, this::serveSelf);
         this.peers = peers;
         this.messaging = new HostMessaging(state, peers, b.node, b.node != null && b.ownsNode);
+        messaging.given(b.messagingAddress);
         state.messaging = messaging;
         this.owed = new OwedEvents(state, peers, b.delivery);
         this.trips = new Trips(state, new HopSender(state, peers), owed, robot, b.delivery.expiry());
@@ -165,6 +168,7 @@ public final class AgentHost implements AutoCloseable {
         private Duration wireSpin = SpinHandoff.defaultWireSpin();
         private Duration wireReadSpin = Duration.ZERO;
         private boolean version2Only;
+        private boolean olderHosts;
         private WireServer.Limits wireLimits;
         private java.util.concurrent.ThreadFactory wireThreads;
         private FailurePolicy failures = FailurePolicy.logging();
@@ -395,6 +399,19 @@ public final class AgentHost implements AutoCloseable {
             return this;
         }
 
+        /**
+         * Lets this host's links talk to hosts of builds before agent protocol version 4 (for a
+         * cluster upgraded host by host): a link to a host that refuses version 4 authenticates with
+         * version 3, or 2, whose authentication does not bind the channel, so a relay between the two
+         * hosts goes unnoticed (docs/security.md). Off by default: such a link fails, saying why.
+         *
+         * @return this
+         */
+        public Builder olderHosts() {
+            this.olderHosts = true;
+            return this;
+        }
+
         /** For tests of mixed versions: the host acts as one of a build before the agent wire (protocol version 2 only, no wire). */
         Builder version2Only() {
             this.version2Only = true;
@@ -426,10 +443,17 @@ public final class AgentHost implements AutoCloseable {
             if (key == null) {
                 key = ClusterKey.tlsOnly();
             }
+            String atBroker = null;
             if (withMessaging && node == null) {
                 try {
-                    node = MessagingNode.builder(name).settings(messagingSettings).failures(failures)
-                            .bind(messagingAddress != null ? messagingAddress : "tcp://" + (bind.contains(":") ? "[" + bind + "]" : bind) + ":0").build();
+                    String address = messagingAddress != null ? messagingAddress : "tcp://" + (bind.contains(":") ? "[" + bind + "]" : bind) + ":0";
+                    MessagingNode.Builder nb = MessagingNode.builder(name).settings(messagingSettings).failures(failures);
+                    if (address.startsWith("mqtt://") || address.startsWith("mqtts://")) {
+                        atBroker = address; // joined once the host's address is known (HostMessaging.joinWhenStarted)
+                    } else {
+                        nb.bind(address);
+                    }
+                    node = nb.build();
                     ownsNode = true;
                 } catch (MessagingException e) {
                     throw new IOException("agent host " + name + " cannot start its messaging node: " + e.getMessage(), e);
@@ -444,8 +468,14 @@ public final class AgentHost implements AutoCloseable {
                 }
                 throw e;
             }
+            if (atBroker != null) {
+                host.messaging.joinWhenStarted(atBroker);
+            }
             try {
                 host.open();
+            } catch (io.robomw.api.MessagingException e) {
+                host.close();
+                throw new IOException("agent host " + name + " cannot start its messaging node: " + e.getMessage(), e);
             } catch (IOException | RuntimeException e) {
                 host.close();
                 throw e;
@@ -473,10 +503,13 @@ public final class AgentHost implements AutoCloseable {
         state.store = storeDir == null ? new MemoryStore() : JournalStore.open(storeDir);
         InetAddress bindAddress = InetAddress.getByName(bind);
         SSLContext ssl = tls == null ? null : tls.context();
-        HostSockets.Server serverSockets = new HostSockets.Server(bindAddress, ssl, counters, endpointSpin.toNanos());
+        long maxCall = state.codec.maxBytes() + (1 << 20);
+        HostConnections connections = new HostConnections(name, maxCall);
+        HostSockets.Server serverSockets = new HostSockets.Server(bindAddress, ssl, counters, connections, endpointSpin.toNanos());
         HostSockets.Client clientSockets = new HostSockets.Client(bind, tls != null, state.timeoutMillis);
-        endpoint = new HostEndpoint(name, key, calls, version2Only ? Session.PROTOCOL_VERSION : Session.WIRE_VERSION, state.failures);
+        endpoint = new HostEndpoint(name, key, calls, version2Only ? Session.PROTOCOL_VERSION : Session.BOUND_VERSION, state.failures, connections);
         peers.wire(ssl, wireSpin, version2Only, !wire);
+        peers.olderHosts(olderHosts);
         if (wire) {
             wireServer = new WireServer(endpoint, bindAddress, wirePort, ssl, wireLimits, state.failures);
             wireServer.readSpin(wireReadSpin);
@@ -487,13 +520,12 @@ public final class AgentHost implements AutoCloseable {
             wireServer.countBytesIn(counters);
             endpoint.wirePort(wireServer.port());
         }
-        long maxCall = state.codec.maxBytes() + (1 << 20);
         ObjectInputFilter onlyBytes = info -> {
             if (info.arrayLength() > maxCall || info.depth() > 2) {
                 return ObjectInputFilter.Status.REJECTED;
             }
-            if (info.arrayLength() > HostEndpoint.UNPROVEN_MAX_BYTES && !endpoint.callerProved()) {
-                // before a peer at that address has proved the cluster key, only small calls
+            if (info.arrayLength() >= 0 && !connections.mayRead(info.arrayLength())) {
+                // before a call on this connection has proved the cluster key, only small calls; and all calls being read within a budget
                 return ObjectInputFilter.Status.REJECTED;
             }
             Class<?> c = info.serialClass();
@@ -503,8 +535,10 @@ public final class AgentHost implements AutoCloseable {
         for (int attempt = 0; ; attempt++) {
             int tryPort = port != 0 ? port : freePort(bindAddress);
             try {
+                endpoint.address(bindAddress, tryPort);
                 registry = LocateRegistry.createRegistry(tryPort, clientSockets, serverSockets);
                 AgentHostRemote stub = (AgentHostRemote) UnicastRemoteObject.exportObject(endpoint, tryPort, clientSockets, serverSockets, onlyBytes);
+                // In-process: the registry refuses every change from outside (HostSockets hides callers' addresses from RMI).
                 registry.rebind(name, stub);
                 port = tryPort;
                 break;
@@ -616,7 +650,14 @@ public final class AgentHost implements AutoCloseable {
 
     /** Takes the robot for the calling agent's stop (waiting for the agent that has it), unless it already has it. */
     Robot claimRobot(HostedAgent h) {
-        return robot.claim(h);
+        Robot r = robot.claim(h);
+        h.drives = r != null;
+        return r;
+    }
+
+    /** @return the agent host address of a host an agent here names (its address, or its name as messages use it) */
+    String hostAddressOf(String nameOrAddress, HostedAgent h) {
+        return messaging.hostAddress(nameOrAddress, h);
     }
 
     /** @return an agent's view of this host's messaging node */

@@ -56,6 +56,8 @@ import java.util.UUID;
  * <tr><td>4</td><td>DISPOSED</td></tr>
  * <tr><td>5</td><td>RETRACTED</td></tr>
  * <tr><td>6</td><td>FAILED</td></tr>
+ * <tr><td>7</td><td>ACTIVE, retract pending ({@link AgentInfo.Pending#RETRACT}: its callback was interrupted and has not returned)</td></tr>
+ * <tr><td>8</td><td>ACTIVE, dispose pending ({@link AgentInfo.Pending#DISPOSE})</td></tr>
  * </table>
  *
  * <table>
@@ -82,6 +84,11 @@ final class Bodies {
     }
 
     // ---- agent status codes ----
+
+    /** A LIST reply's status code for an active agent whose retract is pending. */
+    static final int RETRACT_PENDING = 7;
+    /** A LIST reply's status code for an active agent whose dispose is pending. */
+    static final int DISPOSE_PENDING = 8;
 
     /** @return the code of a status in a LIST reply */
     static int statusCode(AgentStatus status) {
@@ -110,7 +117,7 @@ final class Bodies {
             case 4 -> AgentStatus.DISPOSED;
             case 5 -> AgentStatus.RETRACTED;
             case 6 -> AgentStatus.FAILED;
-            default -> throw new IllegalArgumentException("unknown agent status code " + code + " (known: 0-6)");
+            default -> throw new IllegalArgumentException("unknown agent status code " + code + " (known: 0-8)");
         };
     }
 
@@ -126,7 +133,8 @@ final class Bodies {
                 out.writeLong(a.id().getMostSignificantBits());
                 out.writeLong(a.id().getLeastSignificantBits());
                 out.writeUTF(a.className());
-                out.writeByte(statusCode(a.status()));
+                out.writeByte(a.pending() == AgentInfo.Pending.RETRACT ? RETRACT_PENDING : a.pending() == AgentInfo.Pending.DISPOSE ? DISPOSE_PENDING
+                        : statusCode(a.status()));
                 out.writeLong(a.hop());
                 out.writeUTF(a.home());
             }
@@ -155,14 +163,16 @@ final class Bodies {
                 String cls = in.readUTF();
                 int code = in.readUnsignedByte();
                 AgentStatus status;
+                AgentInfo.Pending pending = code == RETRACT_PENDING ? AgentInfo.Pending.RETRACT
+                        : code == DISPOSE_PENDING ? AgentInfo.Pending.DISPOSE : AgentInfo.Pending.NONE;
                 try {
-                    status = status(code);
+                    status = pending != AgentInfo.Pending.NONE ? AgentStatus.ACTIVE : status(code);
                 } catch (IllegalArgumentException e) {
                     throw new IOException("host " + from + " listed agent " + id + " with an " + e.getMessage(), e);
                 }
                 long hop = in.readLong();
                 String home = in.readUTF();
-                out.add(new AgentInfo(id, cls, status, hop, home));
+                out.add(new AgentInfo(id, cls, status, hop, home, pending));
             }
             if (in.available() > 0) {
                 throw new IOException("host " + from + " sent a LIST reply with " + in.available() + " bytes after its " + n + " agents");

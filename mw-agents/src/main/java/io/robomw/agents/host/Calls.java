@@ -181,7 +181,44 @@ final class Calls implements HostEndpoint.Handler {
         } else {
             h.disposeRequested = true;
         }
-        LOG.info("host {}: {} requested for agent {}; it takes effect when its current callback returns", host.name, op, id);
+        h.leaveAskedAt = System.currentTimeMillis();
+        Thread interrupted = h.interruptWork();
+        if (interrupted == null) {
+            h.leaveAskedAt = 0;
+            LOG.info("host {}: {} requested for agent {}; it takes effect before its next callback", host.name, op, id);
+            return Reply.ok();
+        }
+        // An operator means now (as the Aglets runtime stops an aglet's threads when it leaves): the
+        // callback is interrupted, the robot's current command stopped, and the agent leaves once it returns.
+        LOG.info("host {}: {} requested for agent {}; its callback is interrupted{} and the {} takes effect when it returns", host.name, op, id,
+                h.drives ? " and the robot's command stopped" : "", op);
+        if (h.drives && host.robot != null) {
+            java.util.concurrent.CompletableFuture.runAsync(() -> stopRobotFor(h, op), host.requests);
+        }
+        java.util.concurrent.CompletableFuture.delayedExecutor(LEAVE_GRACE.toMillis(), java.util.concurrent.TimeUnit.MILLISECONDS, host.requests)
+                .execute(() -> overGrace(h, op, interrupted));
         return Reply.ok();
+    }
+
+    /** How long an interrupted callback may take to return before the host says it does not answer its interrupt (and interrupts it again). */
+    static final java.time.Duration LEAVE_GRACE = java.time.Duration.ofSeconds(5);
+
+    private void stopRobotFor(HostedAgent h, Op op) {
+        try {
+            host.robot.stop();
+        } catch (RuntimeException e) {
+            LOG.warn("host {}: cannot stop robot {} for the {} of agent {}: {}", host.name, host.robot.name(), op, h.id, e.getMessage());
+        }
+    }
+
+    /** The grace is over: if the callback still runs, say so once, with where it is, and interrupt it again. */
+    private void overGrace(HostedAgent h, Op op, Thread thread) {
+        if (h.interruptWork() != thread) {
+            return; // it returned (or another callback runs now)
+        }
+        StackTraceElement[] at = thread.getStackTrace();
+        String where = at.length == 0 ? "?" : java.util.Arrays.stream(at).limit(3).map(String::valueOf).collect(java.util.stream.Collectors.joining(" < "));
+        LOG.warn("host {}: agent {} ({}) has not returned from its callback {} after the {} interrupted it (at {}); interrupted again. The {} takes"
+                + " effect when it returns: Java cannot end a thread that ignores interrupts", host.name, h.id, h.className, LEAVE_GRACE, op, where, op);
     }
 }

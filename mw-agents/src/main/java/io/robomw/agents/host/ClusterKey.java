@@ -58,6 +58,14 @@ public final class ClusterKey {
     }
 
     /**
+     * @return the seal of the cluster's presence records at a broker: a key derived from this one
+     *         ({@code "robomw-presence"}), so what hosts announce there can be told from a stranger's
+     */
+    public io.robomw.agents.messaging.security.PresenceSeal presenceSeal() {
+        return io.robomw.agents.messaging.security.PresenceSeal.of(mac("robomw-presence".getBytes(java.nio.charset.StandardCharsets.UTF_8)));
+    }
+
+    /**
      * For hosts that authenticate peers by mutual TLS alone: a fixed, public key, so the
      * challenge/response proves nothing and the TLS certificates do all the work. Never use it
      * without TLS.

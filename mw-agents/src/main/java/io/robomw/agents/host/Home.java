@@ -192,7 +192,7 @@ final class Home implements Agency {
                     return Reply.ok();
                 }
                 if (e.kind() == AgentEvent.Kind.REPORT) {
-                    h.report(e.seq(), value);
+                    h.report(e.seq(), e.location(), value);
                 } else {
                     h.completed(e.location(), value);
                 }
@@ -220,7 +220,7 @@ final class Home implements Agency {
             // Seen, so a repeat of this transfer is a duplicate; not held: the agent is back with its handle, not hosted here.
             host.store.accepted(image.id(), image.hop(), new byte[0], 0, 0);
             host.store.departed(image.id(), image.hop() + 1);
-            handle.retracted(peer, agent);
+            handle.retracted(handle.location(), agent); // where it was last: the host that sent it home (peer is only its name)
             return Reply.ok();
         } catch (StateRejectedException | IOException e) {
             return host.refuse("refused homecoming agent " + image.id() + " from peer '" + peer + "': " + e.getMessage());

@@ -53,6 +53,10 @@ final class HopSender {
             if (a > 0 && !pause(it.retryBackoff().toMillis())) {
                 break;
             }
+            if (a > 0 && (h.retractRequested || h.disposeRequested)) {
+                why = (h.retractRequested ? "retracted" : "disposed of") + " while it waited to reach " + target + " (" + why + ")";
+                break;
+            }
             try {
                 transfer(image, raw, target);
                 arrivedElsewhere(h, image, target);
@@ -62,6 +66,10 @@ final class HopSender {
                 break;
             } catch (PeerException e) {
                 why = e.getMessage();
+                if (!e.delivered() && a + 1 < attempts) {
+                    LOG.warn("host {}: agent {} cannot reach its next stop {} (attempt {} of {}): {}; trying again in {} ms", host.name, h.id, target, a + 1,
+                            attempts, why, it.retryBackoff().toMillis());
+                }
                 if (e.delivered()) {
                     // It may be there already: only that host may have it, so ask it until it answers.
                     if (resendUntilAnswered(image, raw, target)) {

@@ -61,14 +61,19 @@ final class HostContext implements AgentContext {
     }
 
     @Override
-    public void dispatch(String address) {
-        HostAddress.parse(address);
-        hosted.agent.itinerary().insertNext(address, null);
+    public void dispatch(String host) {
+        // a host's name works as messages do (hosts that met, or met at a broker): resolved here, now
+        hosted.agent.itinerary().insertNext(this.host.hostAddressOf(host, hosted), null);
     }
 
     @Override
     public AgentRef cloneAgent(Itinerary itinerary) {
         return host.cloneOf(hosted, itinerary);
+    }
+
+    @Override
+    public boolean leaving() {
+        return hosted.retractRequested || hosted.disposeRequested || Thread.currentThread().isInterrupted();
     }
 
     @Override

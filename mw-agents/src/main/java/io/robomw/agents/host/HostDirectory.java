@@ -122,9 +122,38 @@ final class HostDirectory {
             }
             return messagingOf(a.toString(), describe).orElse(host);
         }
-        Optional<String> byName = byName(host, describe);
+        return addressOfName(host, home, describe).flatMap(a -> messagingOf(a, describe)).orElseThrow(() -> new MessagingException(
+                "no agent host named '" + host + "' is known here (known: " + known().stream().map(HostDescription.Known::name).toList()
+                        + "); give its address (rmi://HOST:PORT/" + host + ") or its messaging address (tcp://...)"));
+    }
+
+    /**
+     * The agent host address of a host given by name (as messages reach hosts by name), for an
+     * agent's hop: {@code context().dispatch("lab-b")}, or a stop added by name.
+     *
+     * @param nameOrAddress an agent host's name, or its address ({@code rmi://host:port/name})
+     * @param home          the asking agent's home, asked about names this host does not know, or {@code null}
+     * @param describe      how other hosts are asked
+     * @return its agent host address
+     * @throws IllegalArgumentException when it is neither an agent host address nor the name of a host known here or at the home
+     */
+    String hostAddress(String nameOrAddress, String home, Describer describe) {
+        if (nameOrAddress.contains("://")) {
+            return HostAddress.parse(nameOrAddress).toString();
+        }
+        if (!nameOrAddress.matches("[A-Za-z0-9._-]+")) {
+            throw new IllegalArgumentException("'" + nameOrAddress + "' is neither an agent host address (rmi://host:port/name) nor a host name");
+        }
+        return addressOfName(nameOrAddress, home, describe).orElseThrow(() -> new IllegalArgumentException("no agent host named '" + nameOrAddress
+                + "' is known at " + self + " (known: " + known().stream().map(HostDescription.Known::name).toList() + "); give its address (rmi://HOST:PORT/"
+                + nameOrAddress + ")"));
+    }
+
+    /** The agent host address of a name: known here, or learnt from the agent's home or the hosts known (each described in turn). */
+    private Optional<String> addressOfName(String name, String home, Describer describe) {
+        Optional<String> byName = byName(name);
         if (byName.isPresent()) {
-            return byName.get();
+            return byName;
         }
         List<String> askNext = new ArrayList<>();
         if (home != null && !home.equals(self)) {
@@ -133,17 +162,15 @@ final class HostDirectory {
         askNext.addAll(addresses());
         for (String peer : askNext) {
             tryDescribe(peer, describe);
-            byName = byName(host, describe);
+            byName = byName(name);
             if (byName.isPresent()) {
-                return byName.get();
+                return byName;
             }
         }
-        throw new MessagingException("no agent host named '" + host + "' is known here (known: "
-                + known().stream().map(HostDescription.Known::name).toList()
-                + "); give its address (rmi://HOST:PORT/" + host + ") or its messaging address (tcp://...)");
+        return Optional.empty();
     }
 
-    private Optional<String> byName(String name, Describer describe) {
+    private Optional<String> byName(String name) {
         List<String> matching;
         synchronized (byAddress) {
             matching = byAddress.values().stream().filter(e -> e.name().equals(name)).map(KnownHost::address).toList();
@@ -151,7 +178,7 @@ final class HostDirectory {
         if (matching.size() > 1) {
             throw new MessagingException("more than one agent host is named '" + name + "': " + matching + "; give the address of the one you mean");
         }
-        return matching.isEmpty() ? Optional.empty() : messagingOf(matching.get(0), describe);
+        return matching.isEmpty() ? Optional.empty() : Optional.of(matching.get(0));
     }
 
     /** The messaging address of a known or new agent host, describing it if its messaging is not known yet. */

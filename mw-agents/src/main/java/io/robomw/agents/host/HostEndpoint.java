@@ -9,10 +9,9 @@ import io.robomw.agents.net.ThrottledWarnings;
 import java.io.ByteArrayInputStream;
 import java.io.DataInputStream;
 import java.io.IOException;
+import java.net.InetAddress;
 import java.nio.ByteBuffer;
 import java.nio.charset.StandardCharsets;
-import java.rmi.server.RemoteServer;
-import java.rmi.server.ServerNotActiveException;
 import java.security.MessageDigest;
 import java.security.SecureRandom;
 import java.time.Duration;
@@ -52,8 +51,8 @@ final class HostEndpoint implements AgentHostRemote {
     record Peer(String name, Session session, String clientHost) {
     }
 
-    /** The largest byte array a call may carry from a client host none of whose peers has proved the cluster key. */
-    static final int UNPROVEN_MAX_BYTES = 64 * 1024;
+    /** The largest byte array a call may carry on a connection that has not proved the cluster key ({@link HostConnections}). */
+    static final int UNPROVEN_MAX_BYTES = HostConnections.UNPROVEN_MAX_BYTES;
 
     private final String hostName;
     private final ClusterKey key;
@@ -66,33 +65,51 @@ final class HostEndpoint implements AgentHostRemote {
     private final ThrottledWarnings droppedCalls = new ThrottledWarnings(LOG, Duration.ofSeconds(1));
 
     private final FailurePolicy failures;
-    /** The highest protocol version this endpoint takes: {@link Session#WIRE_VERSION}, or 2 to act as a host of a build before it. */
+    /** The highest protocol version this endpoint takes: {@link Session#BOUND_VERSION}, or a lower one to act as a host of a build before it. */
     private final int highestVersion;
+    /** The state of the RMI connections calls come on, or {@code null} for an endpoint called directly (tests). */
+    private final HostConnections connections;
     /** The port of the host's agent wire ({@link WireServer}), 0 while it has none. */
     private volatile int wirePort;
+    /** The host's RMI address, which version-4 peers must have meant to reach; {@code null} until it is exported. */
+    private volatile InetAddress bindAddress;
+    private volatile int port;
 
     HostEndpoint(String hostName, ClusterKey key, Handler handler) {
-        this(hostName, key, handler, Session.WIRE_VERSION);
+        this(hostName, key, handler, Session.BOUND_VERSION);
     }
 
     /**
-     * @param highestVersion {@link Session#WIRE_VERSION}, or {@link Session#PROTOCOL_VERSION} for an
-     *                       endpoint that refuses version 3 as builds before the agent wire do (tests of mixed versions)
+     * @param highestVersion {@link Session#BOUND_VERSION}, or a lower version for an endpoint that
+     *                       refuses the versions above it as older builds do (tests of mixed versions)
      */
     HostEndpoint(String hostName, ClusterKey key, Handler handler, int highestVersion) {
-        this(hostName, key, handler, highestVersion, FailurePolicy.logging());
+        this(hostName, key, handler, highestVersion, FailurePolicy.logging(), null);
     }
 
     /**
-     * @param failures where a failure of the handler, other than a refusal, goes: the call is
-     *                 refused and the thread serving it goes on
+     * @param highestVersion as above
+     * @param failures       where a failure of the handler, other than a refusal, goes: the call is
+     *                       refused and the thread serving it goes on
+     * @param connections    the state of the RMI connections calls come on: which proved the key, where they come from
+     *                       ({@code null} for an endpoint called directly, in tests)
      */
-    HostEndpoint(String hostName, ClusterKey key, Handler handler, int highestVersion, FailurePolicy failures) {
+    HostEndpoint(String hostName, ClusterKey key, Handler handler, int highestVersion, FailurePolicy failures, HostConnections connections) {
         this.hostName = hostName;
         this.key = key;
         this.handler = handler;
         this.highestVersion = highestVersion;
         this.failures = failures;
+        this.connections = connections;
+    }
+
+    /**
+     * @param bind the address the host's RMI endpoint listens on
+     * @param port its port: a version-4 peer's target must be this address (any of this machine's for the wildcard address) and port
+     */
+    void address(InetAddress bind, int port) {
+        this.bindAddress = bind;
+        this.port = port;
     }
 
     /** @return the peers' sessions kept now (for tests: one per link that authenticated) */
@@ -142,20 +159,30 @@ final class HostEndpoint implements AgentHostRemote {
 
     @Override
     public byte[] authenticate(byte[] request) {
+        try {
+            return authenticated(request);
+        } finally {
+            if (connections != null) {
+                connections.callDone();
+            }
+        }
+    }
+
+    private byte[] authenticated(byte[] request) {
         String peer = "?";
         try {
             DataInputStream in = new DataInputStream(new ByteArrayInputStream(request));
             int version = in.readUnsignedByte();
-            if (version != Session.PROTOCOL_VERSION && (version != Session.WIRE_VERSION || highestVersion < Session.WIRE_VERSION)) {
+            if (!takes(version)) {
                 return refuse(peer, "it speaks agent protocol version " + version + (version == 0 ? " or 1 (a build before 2026-11-24)" : "")
-                        + "; this host speaks " + (highestVersion < Session.WIRE_VERSION ? "version " + Session.PROTOCOL_VERSION
-                                : "versions " + Session.PROTOCOL_VERSION + " and " + Session.WIRE_VERSION) + ": run the same RoboMW on both");
+                        + "; this host speaks " + spoken() + ": run the same RoboMW on both");
             }
             int authenticator = in.readUnsignedByte();
             peer = in.readUTF();
             if (!CallAuthenticator.known(authenticator)) {
                 return refuse(peer, CallAuthenticator.unknown(authenticator));
             }
+            Target target = version >= Session.BOUND_VERSION ? Target.read(in) : null;
             byte[] terms = Session.terms(version, authenticator);
             byte[] hostNonce = in.readNBytes(32);
             byte[] clientNonce = in.readNBytes(32);
@@ -172,21 +199,36 @@ final class HostEndpoint implements AgentHostRemote {
             }
             byte[] hostNameBytes = hostName.getBytes(StandardCharsets.UTF_8);
             byte[] peerName = peer.getBytes(StandardCharsets.UTF_8);
-            if (!MessageDigest.isEqual(proof, Session.clientProof(key, terms, hostNameBytes, peerName, hostNonce, clientNonce))) {
+            byte[] expected = target == null ? Session.clientProof(key, terms, hostNameBytes, peerName, hostNonce, clientNonce)
+                    : Session.clientProof(key, terms, hostNameBytes, peerName, hostNonce, clientNonce, target);
+            if (!MessageDigest.isEqual(proof, expected)) {
                 return refuse(peer, "wrong cluster key");
+            }
+            if (target != null) {
+                InetAddress bind = bindAddress;
+                if (bind == null || !target.reaches(bind, port)) {
+                    // The proof is genuine but was made for another address: whoever passed it on stands between the peer and this host.
+                    return refuse(peer, "it meant to reach " + hostName + " at " + target + ", but this host is at "
+                            + (bind == null ? "no address yet" : new Target(bind, port).toString())
+                            + ": something between them (a relay, a rewritten registry entry) passed its authentication on; not serving it");
+                }
             }
             long id = random.nextLong();
             if (sessions.size() >= MAX_SESSIONS) {
                 sessions.remove(sessions.keySet().iterator().next());
             }
             sessions.put(id, new Peer(peer, new Session(id, Session.sessionKey(key, terms, hostNonce, clientNonce), authenticator), clientHost()));
+            if (connections != null) {
+                connections.proven();
+            }
             LOG.debug("host {}: peer {} ({}) authenticated, protocol version {}", hostName, peer, clientHost(), version);
-            if (version == Session.WIRE_VERSION) {
+            if (version >= Session.WIRE_VERSION) {
                 // The wire takes frames tagged with AES-GCM only: a session of another authenticator gets port 0 (none).
                 int port = authenticator == CallAuthenticator.AES_256_GCM ? wirePort : 0;
                 byte[] offer = {(byte) (port >>> 8), (byte) port};
-                return ByteBuffer.allocate(1 + 8 + 32 + 2).put(Session.AUTH_ACCEPTED).putLong(id)
-                        .put(Session.hostProof(key, terms, hostNameBytes, peerName, hostNonce, clientNonce, offer)).put(offer).array();
+                byte[] hostProof = target == null ? Session.hostProof(key, terms, hostNameBytes, peerName, hostNonce, clientNonce, offer)
+                        : Session.hostProof(key, terms, hostNameBytes, peerName, hostNonce, clientNonce, offer, target);
+                return ByteBuffer.allocate(1 + 8 + 32 + 2).put(Session.AUTH_ACCEPTED).putLong(id).put(hostProof).put(offer).array();
             }
             return ByteBuffer.allocate(1 + 8 + 32).put(Session.AUTH_ACCEPTED).putLong(id)
                     .put(Session.hostProof(key, terms, hostNameBytes, peerName, hostNonce, clientNonce)).array();
@@ -194,6 +236,23 @@ final class HostEndpoint implements AgentHostRemote {
             return refuse(peer, "malformed authentication request of " + (request == null ? 0 : request.length) + " bytes ("
                     + (e instanceof java.io.EOFException ? "it ends early" : e.getMessage() == null ? e.getClass().getSimpleName() : e.getMessage()) + ")");
         }
+    }
+
+    /** @return whether this endpoint takes a peer of that protocol version */
+    private boolean takes(int version) {
+        return version >= Session.PROTOCOL_VERSION && version <= highestVersion;
+    }
+
+    /** @return the versions this endpoint takes, for a refusal */
+    private String spoken() {
+        if (highestVersion == Session.PROTOCOL_VERSION) {
+            return "version " + Session.PROTOCOL_VERSION;
+        }
+        StringBuilder b = new StringBuilder("versions ");
+        for (int v = Session.PROTOCOL_VERSION; v <= highestVersion; v++) {
+            b.append(v).append(v == highestVersion ? "" : v == highestVersion - 1 ? " and " : ", ");
+        }
+        return b.toString();
     }
 
     private byte[] refuse(String peer, String why) {
@@ -208,6 +267,16 @@ final class HostEndpoint implements AgentHostRemote {
 
     @Override
     public byte[] call(byte[] request) {
+        try {
+            return served(request);
+        } finally {
+            if (connections != null) {
+                connections.callDone();
+            }
+        }
+    }
+
+    private byte[] served(byte[] request) {
         if (request == null || request.length < Session.HEADER + Session.MAC) {
             refused.increment();
             droppedCalls.warn("host {}: dropped a call of {} bytes from {}: too short", hostName, request == null ? 0 : request.length, clientHost());
@@ -236,6 +305,9 @@ final class HostEndpoint implements AgentHostRemote {
             refused.increment();
             droppedCalls.warn("host {}: dropped a replayed call (sequence {}) from peer '{}' at {}", hostName, seq, peer.name(), clientHost());
             return new byte[0];
+        }
+        if (connections != null) {
+            connections.proven();
         }
         return peer.session().reply(seq, serve(peer, opCode, request, Session.HEADER, request.length - Session.MAC - Session.HEADER, clientHost()));
     }
@@ -270,30 +342,8 @@ final class HostEndpoint implements AgentHostRemote {
         }
     }
 
-    /**
-     * Whether the client host of the RMI call being read has a peer that proved the cluster key.
-     * Called by the deserialization filter while a call's arguments are read, before anything is
-     * authenticated: until a peer has proved the key, its host may send only small arrays (an
-     * authentication request is about a hundred bytes), so nobody without the key can make the
-     * host allocate large ones.
-     *
-     * @return whether large call arguments are allowed from it
-     */
-    boolean callerProved() {
-        String host = clientHost();
-        for (Peer p : sessions.values()) {
-            if (p.clientHost().equals(host)) {
-                return true;
-            }
-        }
-        return false;
-    }
-
-    private static String clientHost() {
-        try {
-            return RemoteServer.getClientHost();
-        } catch (ServerNotActiveException e) {
-            return "this process";
-        }
+    /** @return where the call in hand comes from (the host's sockets hide it from RMI, so RMI's own answer would be 0.0.0.0) */
+    private String clientHost() {
+        return connections == null ? "this process" : connections.currentRemote();
     }
 }

@@ -59,6 +59,27 @@ final class HostMessaging implements AutoCloseable {
         this.ownsNode = ownsNode;
     }
 
+    /** The messaging address as given, with its options (a broker's credentials file), or {@code null}. */
+    private volatile String given;
+
+    /** @param address the messaging address the host was given, options and all, or {@code null} */
+    void given(String address) {
+        this.given = address;
+    }
+
+    /** @return the bound broker address with the options it was given (its credentials), if it is the one given */
+    private String withOptions(String bound) {
+        String g = given;
+        try {
+            if (g != null && io.robomw.agents.messaging.Address.parse(g).endpoint().equals(io.robomw.agents.messaging.Address.parse(bound).endpoint())) {
+                return g;
+            }
+        } catch (IllegalArgumentException e) {
+            // not an address: the bound one
+        }
+        return bound;
+    }
+
     /**
      * Lets agent events travel through the brokers the node is at ({@link BrokerEvents}).
      *
@@ -68,6 +89,21 @@ final class HostMessaging implements AutoCloseable {
     void events(ClusterKey key, java.util.function.BiFunction<String, byte[], Reply> handler) {
         this.eventsKey = key;
         this.onEvent = handler;
+    }
+
+    /** A broker the host's own node joins once the host knows its address, or {@code null}. */
+    private volatile String deferredBroker;
+
+    /**
+     * The host's own node joins this broker only in {@link #started()}, once its presence names the
+     * host: the presence it leaves there as its will (the offline version, published when the host
+     * is gone without closing, as after kill -9) is made when it joins, so it must already name the
+     * host, or {@code mw agents --cluster} would not see the host go offline.
+     *
+     * @param broker an {@code mqtt://} or {@code mqtts://} address
+     */
+    void joinWhenStarted(String broker) {
+        this.deferredBroker = broker;
     }
 
     /** Called once the host knows its own address, before it takes calls. */
@@ -81,10 +117,17 @@ final class HostMessaging implements AutoCloseable {
             brokerEvents.receive(onEvent);
         }
         if (node != null) {
+            if (eventsKey != null) {
+                // what the node announces at a broker is signed with the cluster key; presences not signed with it are ignored
+                node.presence().seal(eventsKey.presenceSeal());
+            }
             node.presence().host(host.name, host.address);
+            if (deferredBroker != null) {
+                node.bind(deferredBroker);
+            }
             for (String broker : addresses()) {
                 if (broker.startsWith("mqtt://") || broker.startsWith("mqtts://")) {
-                    watchBroker(broker);
+                    watchBroker(broker, withOptions(broker));
                 }
             }
         }
@@ -94,11 +137,14 @@ final class HostMessaging implements AutoCloseable {
      * Learns the agent hosts announced at a broker the node is at, as they come and go, so that
      * agents here can address them by name (through the broker: hosts found there may be out of
      * reach otherwise).
+     *
+     * @param broker      the broker as the node is bound to it (events to hosts announced there go through it)
+     * @param withOptions the same with the options it was given (its credentials), to read the presences with
      */
-    private void watchBroker(String broker) {
+    private void watchBroker(String broker, String withOptions) {
         try {
-            io.robomw.agents.messaging.mqtt.BrokerDirectory d = io.robomw.agents.messaging.mqtt.BrokerDirectory.open(broker,
-                    node.settings().connectTimeout(), node.settings().tls());
+            io.robomw.agents.messaging.mqtt.BrokerDirectory d = io.robomw.agents.messaging.mqtt.BrokerDirectory.open(withOptions,
+                    node.settings().connectTimeout(), node.settings().tls(), eventsKey == null ? null : eventsKey.presenceSeal());
             brokerDirectories.add(d);
             d.onPresence(p -> {
                 if (p.host() != null && !p.hostAddress().equals(host.address)) {
@@ -139,6 +185,19 @@ final class HostMessaging implements AutoCloseable {
     /** @return where the node receives; empty without one */
     List<String> addresses() {
         return node == null ? List.of() : node.boundAddresses().stream().map(Object::toString).toList();
+    }
+
+    /**
+     * @param nameOrAddress an agent host's name or address
+     * @param h             the agent asking (its home is asked about names this host does not know)
+     * @return the host's agent host address
+     * @throws IllegalArgumentException when no host of that name is known
+     */
+    String hostAddress(String nameOrAddress, HostedAgent h) {
+        if (nameOrAddress.equals(host.name)) {
+            return host.address;
+        }
+        return directory.hostAddress(nameOrAddress, h.home, peers::describe);
     }
 
     /** @return an agent's view of the node, made on first use and released when the agent leaves */

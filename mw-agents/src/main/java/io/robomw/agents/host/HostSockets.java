@@ -12,6 +12,7 @@ import java.io.Serializable;
 import java.net.InetAddress;
 import java.net.ServerSocket;
 import java.net.Socket;
+import java.net.SocketException;
 import java.rmi.server.RMIClientSocketFactory;
 import java.rmi.server.RMIServerSocketFactory;
 import java.util.Objects;
@@ -20,7 +21,13 @@ import java.util.concurrent.atomic.LongAdder;
 /**
  * Socket factories of an agent host's RMI endpoint. The server listens on the one address it was
  * given, counts the bytes its accepted connections carry (for the wire-bytes benchmark and
- * {@code mw agents}), and with TLS requires a client certificate. The client side travels in the
+ * {@code mw agents}), keeps its connections within {@link HostConnections}' limits (which
+ * connection proved the key, the oldest idle one makes way, a first byte within 5 s), and with TLS
+ * requires a client certificate. Its sockets do not tell RMI the client's address (RMI sees
+ * {@code 0.0.0.0}, "origin unknown"), so the JDK's registry refuses every {@code bind},
+ * {@code rebind} and {@code unbind} that does not come from the host's own process (the host binds
+ * its name in-process); the host knows the address itself ({@link HostConnections#currentRemote}).
+ * The client side travels in the
  * host's stub: it connects to the host's own address, sets TCP_NODELAY and a read timeout (so a
  * hung host fails a call instead of blocking it forever), and with TLS uses the JVM's default
  * context ({@code javax.net.ssl.*} properties).
@@ -31,10 +38,10 @@ final class HostSockets {
     }
 
     /**
-     * Connections a host's plain RMI endpoint keeps open at once; one more is closed as soon as it
-     * is accepted (RMI peers reuse a few connections each: hundreds held open are an attack).
+     * Connections a host's RMI endpoint keeps open at once ({@link HostConnections#MAX_CONNECTIONS}); one more makes
+     * the oldest that proved nothing make way, or is closed as soon as it is accepted if every open one has proved the key.
      */
-    static final int MAX_CONNECTIONS = 256;
+    static final int MAX_CONNECTIONS = HostConnections.MAX_CONNECTIONS;
 
     /** Bytes read and written by a host's accepted connections, and the connections open and refused. */
     static final class Counters {
@@ -49,20 +56,28 @@ final class HostSockets {
         private final InetAddress bindAddress;
         private final SSLContext tls;
         private final Counters counters;
+        private final HostConnections connections;
         private final long readSpinNanos;
 
         Server(InetAddress bindAddress, SSLContext tls, Counters counters) {
-            this(bindAddress, tls, counters, 0);
+            this(bindAddress, tls, counters, new HostConnections("endpoint", 0), 0);
         }
 
         /**
+         * @param connections   the limits and state of the accepted connections
          * @param readSpinNanos how long a connection thread spins for the next call before it blocks in a read (0: never)
          */
-        Server(InetAddress bindAddress, SSLContext tls, Counters counters, long readSpinNanos) {
+        Server(InetAddress bindAddress, SSLContext tls, Counters counters, HostConnections connections, long readSpinNanos) {
             this.bindAddress = bindAddress;
             this.tls = tls;
             this.counters = counters;
+            this.connections = connections;
             this.readSpinNanos = readSpinNanos;
+        }
+
+        /** @return the state of the connections it accepts */
+        HostConnections connections() {
+            return connections;
         }
 
         @Override
@@ -70,18 +85,20 @@ final class HostSockets {
             // Plain and TLS endpoints alike accept through the counting socket, so the connection
             // limit holds for both; a TLS connection is layered over the counted one once accepted
             // (its handshake runs on RMI's connection thread, at the first read).
-            return RmiSocketSetup.listen(() -> new CountingServerSocket(counters, tls, readSpinNanos), null, bindAddress, port);
+            return RmiSocketSetup.listen(() -> new CountingServerSocket(counters, connections, tls, readSpinNanos), null, bindAddress, port);
         }
     }
 
     /** A server socket whose connections count their bytes, at most {@link #MAX_CONNECTIONS} at a time, TLS ones too. */
     private static final class CountingServerSocket extends ServerSocket {
         private final Counters counters;
+        private final HostConnections connections;
         private final SSLContext tls;
         private final long readSpinNanos;
 
-        CountingServerSocket(Counters counters, SSLContext tls, long readSpinNanos) throws IOException {
+        CountingServerSocket(Counters counters, HostConnections connections, SSLContext tls, long readSpinNanos) throws IOException {
             this.counters = counters;
+            this.connections = connections;
             this.tls = tls;
             this.readSpinNanos = readSpinNanos;
         }
@@ -89,14 +106,16 @@ final class HostSockets {
         @Override
         public Socket accept() throws IOException {
             while (true) {
-                CountingSocket s = new CountingSocket(counters, tls == null ? readSpinNanos : 0);
+                CountingSocket s = new CountingSocket(counters, connections, tls == null ? readSpinNanos : 0);
                 implAccept(s);
-                if (counters.open.incrementAndGet() > MAX_CONNECTIONS) {
-                    counters.open.decrementAndGet();
+                HostConnections.Connection c = connections.admit(s.remote(), s);
+                if (c == null) {
                     counters.refused.increment();
                     s.closeUncounted();
                     continue;
                 }
+                s.connection = c;
+                counters.open.incrementAndGet();
                 s.setTcpNoDelay(true);
                 if (tls == null) {
                     return s;
@@ -104,7 +123,7 @@ final class HostSockets {
                 try {
                     // closing the TLS socket closes the counted one (autoClose), which gives the slot back
                     javax.net.ssl.SSLSocket ssl = (javax.net.ssl.SSLSocket) tls.getSocketFactory()
-                            .createSocket(s, s.getInetAddress().getHostAddress(), s.getPort(), true);
+                            .createSocket(s, s.realAddress().getHostAddress(), s.getPort(), true);
                     ssl.setUseClientMode(false);
                     ssl.setNeedClientAuth(true);
                     return ssl;
@@ -118,19 +137,64 @@ final class HostSockets {
 
     private static final class CountingSocket extends Socket {
         private final Counters counters;
+        private final HostConnections connections;
         private final long readSpinNanos;
         private final java.util.concurrent.atomic.AtomicBoolean closed = new java.util.concurrent.atomic.AtomicBoolean();
+        /** Its state among the endpoint's connections; set once admitted, before RMI sees it. */
+        private volatile HostConnections.Connection connection;
+        /** The read timeout RMI asked for, applied once the first byte came. */
+        private volatile int timeoutMillis;
         private InputStream in;
 
-        CountingSocket(Counters counters, long readSpinNanos) {
+        CountingSocket(Counters counters, HostConnections connections, long readSpinNanos) {
             this.counters = counters;
+            this.connections = connections;
             this.readSpinNanos = readSpinNanos;
+        }
+
+        /**
+         * None, to RMI: RMI then takes the client to be at {@code 0.0.0.0}, from where the JDK's
+         * registry takes no {@code bind}, {@code rebind} or {@code unbind} ("origin unknown"), while
+         * lookups go on. The host knows the address from {@link #realAddress()}.
+         */
+        @Override
+        public InetAddress getInetAddress() {
+            return null;
+        }
+
+        /** @return the client's address */
+        InetAddress realAddress() {
+            return super.getInetAddress();
+        }
+
+        /** @return the client's address and port, for the log */
+        String remote() {
+            InetAddress a = super.getInetAddress();
+            return (a == null ? "?" : a.getHostAddress()) + ":" + getPort();
+        }
+
+        @Override
+        public void setSoTimeout(int timeout) throws SocketException {
+            timeoutMillis = timeout;
+            if (in == null || ((ReadAhead) in).sawByte) {
+                super.setSoTimeout(timeout);
+            }
+        }
+
+        /** Reads with the first-byte deadline until a byte came, then with RMI's timeout. */
+        void firstByteDeadline(boolean on) throws SocketException {
+            int rmi = timeoutMillis;
+            int first = (int) HostConnections.FIRST_BYTE.toMillis();
+            super.setSoTimeout(on ? (rmi > 0 ? Math.min(rmi, first) : first) : rmi);
         }
 
         @Override
         public synchronized void close() throws IOException {
             if (closed.compareAndSet(false, true)) {
                 counters.open.decrementAndGet();
+                if (connection != null) {
+                    connections.closed(connection);
+                }
             }
             super.close();
         }
@@ -147,7 +211,7 @@ final class HostSockets {
         @Override
         public synchronized InputStream getInputStream() throws IOException {
             if (in == null) {
-                in = new ReadAhead(super.getInputStream(), counters, readSpinNanos);
+                in = new ReadAhead(this, super.getInputStream(), counters, readSpinNanos);
             }
             return in;
         }
@@ -195,14 +259,17 @@ final class HostSockets {
      * One per connection; RMI reads it from one thread at a time.
      */
     private static final class ReadAhead extends InputStream {
+        private final CountingSocket owner;
         private final InputStream socket;
         private final Counters counters;
         private final long readSpinNanos;
         private final byte[] ahead = new byte[READ_AHEAD_BYTES];
         private int pos;
         private int limit;
+        private volatile boolean sawByte;
 
-        ReadAhead(InputStream socket, Counters counters, long readSpinNanos) {
+        ReadAhead(CountingSocket owner, InputStream socket, Counters counters, long readSpinNanos) {
+            this.owner = owner;
             this.socket = socket;
             this.counters = counters;
             this.readSpinNanos = readSpinNanos;
@@ -213,6 +280,14 @@ final class HostSockets {
             if (pos < limit) {
                 return true;
             }
+            HostConnections.Connection c = owner.connection;
+            if (c != null) {
+                // RMI reads and serves a connection's calls on one thread: the filter and the endpoint ask it which connection
+                owner.connections.reading(c);
+            }
+            if (!sawByte) {
+                return fillFirst(c);
+            }
             if (readSpinNanos > 0) {
                 spinUntilReadable(socket, readSpinNanos);
             }
@@ -220,6 +295,30 @@ final class HostSockets {
             if (n <= 0) {
                 return false;
             }
+            counters.in.add(n);
+            pos = 0;
+            limit = n;
+            return true;
+        }
+
+        /** The connection's first read: a connection that sends nothing within the first-byte deadline is closed. */
+        private boolean fillFirst(HostConnections.Connection c) throws IOException {
+            owner.firstByteDeadline(true);
+            int n;
+            try {
+                n = socket.read(ahead, 0, ahead.length);
+            } catch (java.net.SocketTimeoutException e) {
+                if (c != null) {
+                    owner.connections.silent(c);
+                }
+                owner.close();
+                throw e;
+            }
+            if (n <= 0) {
+                return false;
+            }
+            sawByte = true;
+            owner.firstByteDeadline(false);
             counters.in.add(n);
             pos = 0;
             limit = n;

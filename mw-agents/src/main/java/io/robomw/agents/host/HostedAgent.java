@@ -32,6 +32,12 @@ final class HostedAgent {
     volatile boolean startStored;
     /** The length of its image when it last travelled, to size the frame it is written into next. */
     volatile int imageSize;
+    /** The runner thread while one of its callbacks (onArrival, the stop's work) runs, else {@code null}; guarded by this object. */
+    private Thread working;
+    /** Whether it took the host's robot during the callback running now. */
+    volatile boolean drives;
+    /** When an operator's retract or dispose was asked while a callback ran (ms since the epoch), 0 if not. */
+    volatile long leaveAskedAt;
     /** Its view of the host's messaging, once it asked for it; guarded by this object. */
     AgentMessaging messaging;
 
@@ -47,11 +53,42 @@ final class HostedAgent {
         this.imageSize = image.stateLength() + 64;
     }
 
+    /** Its callbacks run on the calling thread from now until {@link #rested()}. */
+    synchronized void working() {
+        working = Thread.currentThread();
+        drives = false;
+    }
+
+    /**
+     * Its callbacks have returned: the runner thread is no longer its own, and an interrupt meant for
+     * the agent (a retract or dispose that came as the callback returned) is cleared, so that it
+     * cannot reach the hop that follows or the runner's next agent.
+     */
+    synchronized void rested() {
+        working = null;
+        drives = false;
+        Thread.interrupted();
+    }
+
+    /**
+     * Interrupts the callback running now (the cooperative interrupt of a retract or dispose).
+     *
+     * @return the thread interrupted, or {@code null} if no callback of the agent runs
+     */
+    synchronized Thread interruptWork() {
+        if (working != null) {
+            working.interrupt();
+        }
+        return working;
+    }
+
     String shortId() {
         return id.toString().substring(0, 8);
     }
 
     AgentInfo info() {
-        return new AgentInfo(id, className, status, hop, home);
+        AgentInfo.Pending pending = status != AgentStatus.ACTIVE || leaveAskedAt == 0 ? AgentInfo.Pending.NONE
+                : retractRequested ? AgentInfo.Pending.RETRACT : disposeRequested ? AgentInfo.Pending.DISPOSE : AgentInfo.Pending.NONE;
+        return new AgentInfo(id, className, status, hop, home, pending);
     }
 }

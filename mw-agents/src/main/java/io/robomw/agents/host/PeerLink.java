@@ -26,11 +26,14 @@ import java.util.concurrent.atomic.AtomicLong;
  * restarted) is made again once per call; a failed call drops the stub so the next call looks it
  * up afresh. Thread-safe: calls from several threads share the session.
  *
- * <p><b>Versions.</b> It proposes agent protocol version 3 ({@link Session#WIRE_VERSION}); a host
- * that takes it names its agent wire's port, and transfers then go there ({@link WireChannel},
- * a few connections kept per link, one call at a time each), every other call over RMI. A host of
- * a build before the wire refuses version 3: the link authenticates again with version 2 and makes
- * every call over RMI until it loses the connection (then it proposes 3 again). A wire it cannot
+ * <p><b>Versions.</b> It proposes agent protocol version 4 ({@link Session#BOUND_VERSION}): its
+ * authentication names the address it meant to reach (the host's RMI address, resolved), so a
+ * host behind a relay refuses it and the link fails saying so. A host that takes it names its
+ * agent wire's port, and transfers then go there ({@link WireChannel}, a few connections kept per
+ * link, one call at a time each), every other call over RMI. A host of a build before version 4
+ * refuses it; the link then fails saying so, unless it may talk to older builds
+ * ({@link #olderHosts()}): it then authenticates again with version 3 (and 2 if that is refused,
+ * every call over RMI) until it loses the connection (then it proposes 4 again). A wire it cannot
  * connect to (a firewall that lets only the RMI port through) sends that transfer over RMI, and the
  * next ones for {@value #WIRE_RETRY_MILLIS} ms.
  */
@@ -51,8 +54,10 @@ final class PeerLink {
     private Session session;
     /** The host's agent wire port for the session, 0 when it offered none. */
     private int wirePort;
-    /** The protocol version to propose: 3, or 2 after a host refused 3 (until the link is dropped). */
-    private int proposeVersion = Session.WIRE_VERSION;
+    /** The protocol version to propose: 4, or 3 or 2 after a host refused the higher ones (only with {@link #olderHosts}; until the link is dropped). */
+    private int proposeVersion = Session.BOUND_VERSION;
+    /** Whether it may fall back to versions before 4, which do not bind the channel. */
+    private boolean olderHosts;
     /** Until when (System.nanoTime) transfers go over RMI because the wire could not be reached; 0: not. */
     private volatile long wireDownUntil;
     /** How long a reply may spin before it blocks, ns. */
@@ -100,6 +105,14 @@ final class PeerLink {
 
     void wireSpin(java.time.Duration spin) {
         this.wireSpinNanos = spin.toNanos();
+    }
+
+    /**
+     * Lets the link fall back to agent protocol versions 3 and 2 with a host that refuses 4 (a
+     * build before it): those do not bind the channel, so a relay goes unnoticed.
+     */
+    synchronized void olderHosts() {
+        olderHosts = true;
     }
 
     /** For tests: proposes only version 2, as peers of builds before the agent wire do. */
@@ -194,7 +207,7 @@ final class PeerLink {
                 raw = remote.call(frame.exact());
             } catch (RemoteException e) {
                 drop();
-                if (attempt == 0 && refusedAsUnproven(e)) {
+                if (attempt < 3 && refusedAsUnproven(e)) {
                     // The host restarted and forgot that this host proved the key: it reads only
                     // small calls from it until it authenticates again (HostEndpoint.UNPROVEN_MAX_BYTES).
                     continue;
@@ -316,13 +329,13 @@ final class PeerLink {
         }
     }
 
-    /** Forgets the stub and session (and proposes version 3 again: the host may have been upgraded); the next call connects again. */
+    /** Forgets the stub and session (and proposes version 4 again: the host may have been upgraded); the next call connects again. */
     synchronized void drop() {
         stub = null;
         session = null;
         closeIdleWires();
-        if (proposeVersion == Session.PROTOCOL_VERSION && !version2Only) {
-            proposeVersion = Session.WIRE_VERSION;
+        if (proposeVersion != Session.BOUND_VERSION && !version2Only) {
+            proposeVersion = Session.BOUND_VERSION;
         }
     }
 
@@ -344,11 +357,19 @@ final class PeerLink {
                 stub = (AgentHostRemote) registry.lookup(address.name());
             }
             String refusal = authenticate(proposeVersion, attempt);
-            if (refusal != null && proposeVersion == Session.WIRE_VERSION && refusal.contains("protocol version " + Session.WIRE_VERSION)) {
-                // A host of a build before the agent wire: version 2, every call over RMI.
-                LOG.info("{}: host {} does not speak agent protocol version {} ({}); using version {} over RMI", selfName, address, Session.WIRE_VERSION,
-                        refusal, Session.PROTOCOL_VERSION);
-                proposeVersion = Session.PROTOCOL_VERSION;
+            while (refusal != null && proposeVersion > Session.PROTOCOL_VERSION && refusal.contains("protocol version " + proposeVersion + ";")) {
+                // A host of an older build. The refusal is not authenticated: a relay could forge it to talk the link down to a
+                // version that does not bind the channel, so the link goes down only when told it may.
+                if (proposeVersion == Session.BOUND_VERSION && !olderHosts) {
+                    stub = null;
+                    throw new PeerException("host " + address + " does not speak agent protocol version " + Session.BOUND_VERSION + " (" + refusal
+                            + "): it is a build older than this one, whose authentication does not name the address it was meant for, so a relay"
+                            + " between the hosts would go unnoticed; upgrade it, or let this host talk to older builds (mw host --older-hosts,"
+                            + " AgentHost.Builder.olderHosts())", false, null);
+                }
+                int lower = proposeVersion - 1;
+                LOG.info("{}: host {} does not speak agent protocol version {} ({}); using version {}", selfName, address, proposeVersion, refusal, lower);
+                proposeVersion = lower;
                 refusal = authenticate(proposeVersion, attempt);
             }
             if (refusal != null) {
@@ -381,6 +402,7 @@ final class PeerLink {
         random.nextBytes(clientNonce);
         byte[] hostName = address.name().getBytes(StandardCharsets.UTF_8);
         byte[] peerName = selfName.getBytes(StandardCharsets.UTF_8);
+        Target target = version >= Session.BOUND_VERSION ? Target.of(address) : null;
         ByteArrayOutputStream req = new ByteArrayOutputStream();
         DataOutputStream out = new DataOutputStream(req);
         int authenticator = CallAuthenticator.DEFAULT;
@@ -388,14 +410,19 @@ final class PeerLink {
         out.writeByte(version);
         out.writeByte(authenticator);
         out.writeUTF(selfName);
+        if (target != null) {
+            out.write(target.bytes());
+        }
         out.write(hostNonce);
         out.write(clientNonce);
-        out.write(Session.clientProof(key, terms, hostName, peerName, hostNonce, clientNonce));
+        out.write(target == null ? Session.clientProof(key, terms, hostName, peerName, hostNonce, clientNonce)
+                : Session.clientProof(key, terms, hostName, peerName, hostNonce, clientNonce, target));
         byte[] answer = stub.authenticate(req.toByteArray());
         if (answer.length == 0 || answer[0] != Session.AUTH_ACCEPTED) {
             return answer.length > 1 ? new String(answer, 1, answer.length - 1, StandardCharsets.UTF_8) : "no reason given";
         }
-        int expected = 1 + 8 + 32 + (version == Session.WIRE_VERSION ? 2 : 0);
+        boolean offers = version >= Session.WIRE_VERSION;
+        int expected = 1 + 8 + 32 + (offers ? 2 : 0);
         if (answer.length != expected) {
             stub = null;
             throw new PeerException("host " + address + " answered the authentication with " + answer.length + " bytes; version " + version
@@ -405,10 +432,10 @@ final class PeerLink {
         long id = b.getLong();
         byte[] proof = new byte[32];
         b.get(proof);
-        byte[] offer = new byte[version == Session.WIRE_VERSION ? 2 : 0];
+        byte[] offer = new byte[offers ? 2 : 0];
         b.get(offer);
-        byte[] expectedProof = version == Session.WIRE_VERSION
-                ? Session.hostProof(key, terms, hostName, peerName, hostNonce, clientNonce, offer)
+        byte[] expectedProof = target != null ? Session.hostProof(key, terms, hostName, peerName, hostNonce, clientNonce, offer, target)
+                : offers ? Session.hostProof(key, terms, hostName, peerName, hostNonce, clientNonce, offer)
                 : Session.hostProof(key, terms, hostName, peerName, hostNonce, clientNonce);
         if (!MessageDigest.isEqual(proof, expectedProof)) {
             stub = null;
@@ -426,7 +453,8 @@ final class PeerLink {
     private PeerException failure(String op, Exception e) {
         boolean delivered = !(e instanceof ConnectException || e instanceof ConnectIOException || e instanceof NoSuchObjectException
                 || e instanceof NotBoundException || e instanceof UnknownHostException);
-        String what = e instanceof NotBoundException ? "nothing is bound as '" + address.name() + "' there" : String.valueOf(e.getMessage());
+        String what = e instanceof NotBoundException ? "nothing is bound as '" + address.name() + "' there"
+                : io.robomw.agents.net.RmiSocketSetup.reason(e);
         return new PeerException("cannot reach agent host " + address + (delivered ? " (the " + op + " may have reached it)" : "") + ": " + what, delivered, e);
     }
 

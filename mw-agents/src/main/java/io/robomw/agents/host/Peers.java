@@ -23,6 +23,7 @@ final class Peers {
     private volatile java.time.Duration wireSpin = java.time.Duration.ZERO;
     private volatile boolean version2Only;
     private volatile boolean wireOff;
+    private volatile boolean olderHosts;
 
     /**
      * @param host the host calling
@@ -99,6 +100,11 @@ final class Peers {
         this.wireOff = off;
     }
 
+    /** @param allowed whether links may fall back to agent protocol versions before 4 (unbound channels) with hosts that refuse 4 */
+    void olderHosts(boolean allowed) {
+        this.olderHosts = allowed;
+    }
+
     /** Closes the links' idle wire connections. */
     void close() {
         links.values().forEach(PeerLink::close);
@@ -115,6 +121,9 @@ final class Peers {
             }
             if (wireOff) {
                 l.wireOff();
+            }
+            if (olderHosts) {
+                l.olderHosts();
             }
             return l;
         });

@@ -34,7 +34,14 @@ final class RobotTurns {
         if (robot != null && !lock.isHeldByCurrentThread()) {
             if (!lock.tryLock()) {
                 LOG.info("host {}: agent {} waits for the robot, which another agent's stop is using", hostName, h.id);
-                lock.lock();
+                try {
+                    lock.lockInterruptibly();
+                } catch (InterruptedException e) {
+                    // a retract or dispose: the agent stops waiting for the robot
+                    Thread.currentThread().interrupt();
+                    throw new io.robomw.api.RobotException("agent " + h.id + " was interrupted waiting for the robot of host " + hostName
+                            + " (a retract or dispose)", e);
+                }
             }
         }
         return robot;

@@ -12,16 +12,20 @@ import java.util.Arrays;
  *
  * <pre>
  * authentication request [version 1][authenticator 1][peer name: u16 length, UTF-8][host nonce 32][client nonce 32][client proof 32]
+ *                        version 4: [4][authenticator 1][peer name: u16 length, UTF-8][target][host nonce 32][client nonce 32][client proof 32]
+ * target                 [address length 1: 4 or 16][the address the peer meant to reach][its port 2]   (the host's RMI address)
  * authentication answer  [0][session id 8][host proof 32]  or  [1][reason, UTF-8]
- *                        version 3: [0][session id 8][host proof 32][wire port 2]   (port 0: the host takes no transfers on the wire)
+ *                        versions 3 and 4: [0][session id 8][host proof 32][wire port 2]   (port 0: the host takes no transfers on the wire)
  * request  [session id 8][seq 8][op 1][body][mac 16]      mac over everything before it
  * reply    [status 1][body][mac 16]                       mac also covers the request's seq
  * unknown session reply  [status 7]                       alone, without a MAC (the host lost the session)
  *
  * terms        = [version 1][authenticator 1]
  * client proof = HMAC-SHA256(cluster key, "robomw-agent-client", terms, host name, peer name, host nonce, client nonce)
+ *                version 4: HMAC-SHA256(cluster key, "robomw-agent-client", terms, host name, peer name, host nonce, client nonce, target)
  * host proof   = HMAC-SHA256(cluster key, "robomw-agent-host", terms, host name, peer name, host nonce, client nonce)
  *                version 3: HMAC-SHA256(cluster key, "robomw-agent-host", terms, host name, peer name, host nonce, client nonce, wire port 2)
+ *                version 4: HMAC-SHA256(cluster key, "robomw-agent-host", terms, host name, peer name, host nonce, client nonce, wire port 2, target)
  * session key  = HMAC-SHA256(cluster key, "robomw-agent-session", terms, host nonce, client nonce)
  *                (ClusterKey.mac: every part prefixed with its length, a u32)
  * </pre>
@@ -30,13 +34,22 @@ import java.util.Arrays;
  * before 2026-11-24) had neither that byte nor the authenticator's, and its proofs and session key
  * did not cover them. Version {@value #PROTOCOL_VERSION} makes every call over RMI; version
  * {@value #WIRE_VERSION} also carries transfers on the agent wire ({@link WireFrames}), whose port
- * the host's answer names. Peers of this build propose 3; a host of this build takes 2 and 3 (a
- * peer of version 2 is served over RMI as before); a host of a build before the wire refuses 3,
- * naming its version, and a peer of this build then authenticates again with 2 and makes every
- * call over RMI (and proposes 3 again after it loses the connection: the host may have been
- * upgraded). Any other version is refused with a reason naming both (a version-1 request reads as
- * version 0: its name's length comes first), and so are the authenticator codes of
- * {@link CallAuthenticator} a host does not know. The terms are
+ * the host's answer names. Version {@value #BOUND_VERSION} is version 3 with the <b>channel
+ * bound</b>: the request names the address the peer meant to reach (its <i>target</i>: the IP
+ * address and port of the host's RMI address as the peer resolved it), both proofs cover it, and
+ * the host refuses a target that is not its own address. A relay that passes a peer's calls on to
+ * a real host (a registry entry rewritten, an address the peer was given) is thus refused by the
+ * host, and the peer is told so; it cannot rewrite the target without breaking the proof.
+ *
+ * <p>Peers of this build propose 4; a host of this build takes 2, 3 and 4 (peers of builds before
+ * 4 are served as before: their own sessions are not bound). A host of a build before 4 refuses
+ * it, naming its versions; a peer of this build then gives up with an error saying so, unless it
+ * was told to talk to older builds ({@link AgentHost.Builder#olderHosts()}): it then
+ * authenticates again with 3 (and 2 if that is refused too) and proposes 4 again after it loses the
+ * connection. A peer never falls back on its own: the refusal is not authenticated, so a relay
+ * could forge one to talk it down to an unbound version. Any other version is refused with a
+ * reason naming both (a version-1 request reads as version 0: its name's length comes first), and
+ * so are the authenticator codes of {@link CallAuthenticator} a host does not know. The terms are
  * inside both proofs and the session key, so neither side can be talked into other terms than the
  * peer proposed.
  *
@@ -94,6 +107,11 @@ final class Session {
      * port, which the host's proof covers.
      */
     static final int WIRE_VERSION = 3;
+    /**
+     * Agent protocol version 4: version 3 with the channel bound (the request's target, inside both
+     * proofs, must be the host's own address). What peers of this build propose.
+     */
+    static final int BOUND_VERSION = 4;
     static final int HEADER = 8 + 8 + 1;
     /** The first byte of an authentication answer that accepts the peer. */
     static final byte AUTH_ACCEPTED = 0;
@@ -148,6 +166,17 @@ final class Session {
      */
     static byte[] hostProof(ClusterKey k, byte[] terms, byte[] hostName, byte[] peerName, byte[] hostNonce, byte[] clientNonce, byte[] offer) {
         return k.mac(HOST, terms, hostName, peerName, hostNonce, clientNonce, offer);
+    }
+
+    /** The peer's proof in a version-4 request: it also covers the target, the address the peer meant to reach. */
+    static byte[] clientProof(ClusterKey k, byte[] terms, byte[] hostName, byte[] peerName, byte[] hostNonce, byte[] clientNonce, Target target) {
+        return k.mac(CLIENT, terms, hostName, peerName, hostNonce, clientNonce, target.bytes());
+    }
+
+    /** The host's proof in a version-4 answer: the offer and the target the host checked. */
+    static byte[] hostProof(ClusterKey k, byte[] terms, byte[] hostName, byte[] peerName, byte[] hostNonce, byte[] clientNonce, byte[] offer,
+            Target target) {
+        return k.mac(HOST, terms, hostName, peerName, hostNonce, clientNonce, offer, target.bytes());
     }
 
     static byte[] sessionKey(ClusterKey k, byte[] terms, byte[] hostNonce, byte[] clientNonce) {

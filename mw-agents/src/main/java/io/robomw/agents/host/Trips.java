@@ -88,6 +88,7 @@ final class Trips {
                 if (marked) {
                     HostContext ctx = host.contextOf(h);
                     h.agent.attach(ctx);
+                    h.working();
                     try {
                         h.agent.onArrival();
                         Itinerary.Task task = it.currentStop().map(Itinerary.Stop::task).orElse(null);
@@ -102,9 +103,19 @@ final class Trips {
                         // Whatever the agent's code throws that a thread survives (an exception, a LinkageError, a
                         // StackOverflowError...) fails its stop, not the host; any other ends its trip (below).
                         host.failures.surviveOrRethrow(role, e);
-                        LOG.warn("host {}: agent {} ({}) failed at its stop: {}", host.name, h.id, h.className, e.toString());
-                        it.record(stopHost, Itinerary.Outcome.FAILED, StackTraces.of(e));
+                        if (h.leaveAskedAt != 0) {
+                            // A retract or dispose interrupted the work: the stop was cut short on purpose, not failed.
+                            LOG.info("host {}: agent {} ({}) ended its stop on the {} interrupt: {}", host.name, h.id, h.className,
+                                    h.retractRequested ? "retract" : "dispose", e.toString());
+                            it.record(stopHost, Itinerary.Outcome.INTERRUPTED, (h.retractRequested ? "retracted" : "disposed of") + " by the operator while"
+                                    + " its work ran at " + host.name + ": " + e);
+                        } else {
+                            LOG.warn("host {}: agent {} ({}) failed at its stop: {}", host.name, h.id, h.className, e.toString());
+                            it.record(stopHost, Itinerary.Outcome.FAILED, StackTraces.of(e));
+                        }
                         host.activity.record(h.id, h.className, HostActivity.STOP_FAILED, host.address, e.toString());
+                    } finally {
+                        h.rested();
                     }
                 }
             }
@@ -165,6 +176,14 @@ final class Trips {
         if (d.delivered()) {
             return; // HopSender removed it from the agents here when the next host acknowledged
         }
+        if (h.retractRequested && !host.closed) {
+            goHome(h); // retracted while it waited to hop
+            return;
+        }
+        if (h.disposeRequested && !host.closed) {
+            finish(h, AgentEvent.Kind.DISPOSED);
+            return;
+        }
         if (!host.closed) {
             LOG.info("host {}: agent {} ends its trip here: {}", host.name, h.id, d.reason());
             finish(h, AgentEvent.Kind.RESULT);
@@ -182,11 +201,28 @@ final class Trips {
         Itinerary it = h.agent.itinerary();
         List<String> unreachable = new ArrayList<>();
         while (!host.closed) {
+            if (h.retractRequested || h.disposeRequested) {
+                return new Departure(false, null, "an operator asked it to " + (h.retractRequested ? "go home" : "end its trip"));
+            }
             Optional<Itinerary.Stop> next = it.goToNext();
             if (next.isEmpty()) {
                 return new Departure(false, null, unreachable.isEmpty() ? "its itinerary is done" : "no further stop could be reached: " + String.join("; ", unreachable));
             }
             String target = next.get().host();
+            if (!target.contains("://")) {
+                // a stop named by its host's name, as messages name hosts: resolved at the host that sends the agent there
+                try {
+                    target = host.messaging.hostAddress(target, h);
+                } catch (RuntimeException e) {
+                    it.record(target, Itinerary.Outcome.UNREACHABLE, e.getMessage());
+                    unreachable.add(target + " (" + e.getMessage() + ")");
+                    LOG.warn("host {}: agent {} cannot go to {}: {}", host.name, h.id, target, e.getMessage());
+                    if (it.unreachablePolicy() == Itinerary.UnreachablePolicy.RETURN_HOME) {
+                        return new Departure(false, null, "its stop " + target + " could not be found and its policy is to return home");
+                    }
+                    continue;
+                }
+            }
             try {
                 h.agent.onDispatching();
             } catch (Throwable e) {

@@ -15,7 +15,10 @@ public enum DropReason {
     MISSING_MAC,
     /** The HMAC did not verify: the sender used another password, or the frame was changed. */
     BAD_MAC,
-    /** An authenticated frame that was already received (same source and message number). */
+    /**
+     * An authenticated frame that was already received (same source and message number), also before
+     * the node restarted ({@link io.robomw.agents.messaging.security.ReplayStore}).
+     */
     REPLAYED,
     /** An authenticated frame whose timestamp is further from this host's clock than allowed. */
     STALE,
@@ -36,5 +39,10 @@ public enum DropReason {
      * A connection delivered no whole frame within the first-frame or idle timeout (it stopped in the
      * middle of a frame, trickled bytes, or never spoke); it was closed.
      */
-    TIMED_OUT
+    TIMED_OUT,
+    /**
+     * A frame whose payload is sealed (encrypted under a topic's password) on a topic this node
+     * registered without a password: it cannot be read here.
+     */
+    ENCRYPTED
 }

@@ -17,7 +17,8 @@ import java.util.concurrent.atomic.AtomicLong;
 /**
  * Makes a node's outgoing frames: numbers them (the node's random source id and a message
  * number, which together are also the correlation id of a new request), stamps the time,
- * encodes the payload, checks the frame size and signs frames of password-protected topics.
+ * encodes the payload, checks the frame size, and for password-protected topics seals the payload
+ * (AES-256-GCM, {@link io.robomw.agents.messaging.security.PayloadSealer}) and signs the frame.
  * Thread-safe.
  */
 final class FrameFactory {
@@ -31,15 +32,18 @@ final class FrameFactory {
     private final AtomicLong numbers = new AtomicLong();
     private final PayloadCodec payloads;
     private final FrameMac mac;
+    private final io.robomw.agents.messaging.security.PayloadSealer sealer;
     private final int maxFrameSize;
     /** UTF-8 of the names this node sends (its own, topics, functions, receivers): the same few, over and over. */
     private final NameBytes names = new NameBytes();
 
-    FrameFactory(String node, long source, PayloadCodec payloads, FrameMac mac, int maxFrameSize) {
+    FrameFactory(String node, long source, PayloadCodec payloads, FrameMac mac, io.robomw.agents.messaging.security.PayloadSealer sealer,
+            int maxFrameSize) {
         this.node = node;
         this.source = source;
         this.payloads = payloads;
         this.mac = mac;
+        this.sealer = sealer;
         this.maxFrameSize = maxFrameSize;
     }
 
@@ -82,9 +86,10 @@ final class FrameFactory {
         } catch (IllegalArgumentException e) {
             throw new MessagingException("node '" + node + "' cannot send on topic '" + topic + "': " + e.getMessage(), e);
         }
+        byte[] body = key == null ? payload.bytes() : sealer.seal(key, source, number, payload.bytes());
         Frame f = new Frame(kind, 0, source, number, correlationId, nowMicros(), node, receiver, topic,
-                function == null ? "" : function, payload.type(), payload.bytes(), key != null);
-        byte[] bytes = FrameCodec.encode(f, key != null, names);
+                function == null ? "" : function, payload.type(), body, key != null);
+        byte[] bytes = FrameCodec.encode(f, key != null, key != null, names);
         if (bytes.length > maxFrameSize) {
             throw new MessagingException("node '" + node + "': a frame on topic '" + topic + "' would be " + bytes.length
                     + " bytes, above the maximum frame size of " + maxFrameSize + "; send less, or raise maxFrameSize on both sides");

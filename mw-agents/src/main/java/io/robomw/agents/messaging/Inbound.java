@@ -20,13 +20,16 @@ import org.slf4j.LoggerFactory;
 import javax.crypto.SecretKey;
 import java.io.Serializable;
 import java.time.Instant;
+import java.util.List;
 
 /**
  * What a node does with each received frame, in this order: decode it; ignore its own frames
  * (multicast loops them back); count datagram losses; then by kind: record a (un)subscription;
  * or find the topic (or, for a reply, the request), check the receiver's name, authenticate
- * (HMAC, freshness, replay) if the topic has a password, deserialize the payload through the
- * allow-list, and deliver it. Every refusal is counted and logged; refused requests get an
+ * (HMAC, freshness, replay, also across restarts) if the topic has a password, open its sealed
+ * payload (AES-256-GCM under the password; a sealed payload on a topic registered without one is
+ * dropped as {@link DropReason#ENCRYPTED}), deserialize the payload through the allow-list, and
+ * deliver it. Every refusal is counted and logged; refused requests get an
  * {@link FrameKind#ERROR} answer when it is safe to tell: a request with a missing or wrong
  * password is told so (nothing more), a stale or replayed frame is not answered.
  *
@@ -40,6 +43,8 @@ final class Inbound {
     private final NodeCounters counters;
     private final LossDetector losses;
     private final ReplayGuard replays = new ReplayGuard();
+    private final io.robomw.agents.messaging.security.ReplayStore store;
+    private final io.robomw.agents.messaging.security.PayloadSealer sealer;
     /** Per reading thread; a topic's name decoded from a frame is the very String the topic is registered under, when it is. */
     private final ThreadLocal<NameCache> names;
     private final FrameMac mac;
@@ -49,9 +54,12 @@ final class Inbound {
     private final long maxSkewMicros;
     private final FailurePolicy failures;
 
-    Inbound(MessagingNode node, NodeCounters counters, FrameMac mac, PayloadCodec payloads, MessagingSettings settings, FailurePolicy failures) {
+    Inbound(MessagingNode node, NodeCounters counters, FrameMac mac, PayloadCodec payloads, MessagingSettings settings, FailurePolicy failures,
+            io.robomw.agents.messaging.security.PayloadSealer sealer, io.robomw.agents.messaging.security.ReplayStore store) {
         this.node = node;
         this.failures = failures;
+        this.sealer = sealer;
+        this.store = store;
         this.counters = counters;
         this.losses = new LossDetector(counters);
         this.mac = mac;
@@ -116,10 +124,10 @@ final class Inbound {
     private void onMessage(Frame f, byte[] buf, int offset, int length, Channel from) throws FrameException {
         boolean request = f.kind() == FrameKind.MESSAGE;
         LocalTopics.Topic topic = node.topics().get(f.topic());
-        if (topic == null || (!request && !topic.subscribed)) {
+        if (topic == null || (!request && !topic.subscribed) || (request && topic.listeners.isEmpty())) {
             if (request && !from.isGroup()) {
                 counters.drop(DropReason.NO_LISTENER, from.peer(), "message for topic '" + f.topic() + "', which nobody here listens to");
-                refuse(f, from, "no listener for topic '" + f.topic() + "' at node '" + node.name() + "'");
+                refuse(f, from, "no listener for topic '" + f.topic() + "' at node '" + node.name() + "'" + siblings(f.topic()));
             } else {
                 counters.dropQuietly(DropReason.NO_LISTENER);
             }
@@ -147,9 +155,20 @@ final class Inbound {
             }
             return;
         }
+        byte[] body;
+        try {
+            body = opened(topic.key, f, buf, offset);
+        } catch (FrameException e) {
+            counters.drop(e.reason(), from.peer(), e.getMessage());
+            if (request && !from.isGroup() && e.reason() == DropReason.ENCRYPTED) {
+                refuse(f, from, "refused by node '" + node.name() + "': topic '" + f.topic() + "' has no password here, and the message was"
+                        + " encrypted under one");
+            }
+            return;
+        }
         Serializable payload;
         try {
-            payload = payloads.decode(f.payloadType(), f.payload());
+            payload = payloads.decode(f.payloadType(), body);
         } catch (PayloadRejectedException e) {
             counters.drop(DropReason.REJECTED_CLASS, from.peer(), "topic '" + f.topic() + "' from '" + f.sender() + "': " + e.getMessage());
             if (request) {
@@ -198,7 +217,7 @@ final class Inbound {
         }
         Serializable payload;
         try {
-            payload = payloads.decode(f.payloadType(), f.payload());
+            payload = payloads.decode(f.payloadType(), opened(f.authenticated() ? sent.key() : null, f, buf, offset));
         } catch (PayloadRejectedException e) {
             counters.drop(DropReason.REJECTED_CLASS, from.peer(), "reply on topic '" + f.topic() + "' from '" + f.sender() + "': " + e.getMessage());
             return;
@@ -225,10 +244,55 @@ final class Inbound {
             throw new FrameException(DropReason.STALE, "frame from '" + f.sender() + "' is timestamped " + instant(f.timestampMicros())
                     + ", further than " + maxSkewMicros / 1_000_000 + " s from this host's clock");
         }
+        // Only requests and publications are kept across restarts: a reply is taken only for a request sent from here, so a
+        // replayed one finds none (UNSOLICITED_REPLY), restart or not.
+        boolean kept = f.kind() == FrameKind.MESSAGE || f.kind() == FrameKind.PUBLISH;
+        if (kept && f.messageNumber() <= store.floor(f.source())) {
+            throw new FrameException(DropReason.REPLAYED, "frame " + f.messageNumber() + " of source " + Long.toHexString(f.source())
+                    + " from '" + f.sender() + "' was already received, before this node restarted");
+        }
         if (!replays.accept(f.source(), f.messageNumber())) {
             throw new FrameException(DropReason.REPLAYED, "frame " + f.messageNumber() + " of source " + Long.toHexString(f.source())
                     + " from '" + f.sender() + "' was already received");
         }
+        if (kept) {
+            store.record(f.source(), f.messageNumber(), System.currentTimeMillis());
+        }
+    }
+
+    /**
+     * @param key the topic's key, or {@code null} if this node has none for it
+     * @return the frame's payload, opened if it is sealed
+     * @throws FrameException if it is sealed and this node has no key for it, or it does not open under the key
+     */
+    private byte[] opened(SecretKey key, Frame f, byte[] buf, int offset) throws FrameException {
+        if (!FrameCodec.sealed(buf, offset)) {
+            return f.payload();
+        }
+        if (key == null) {
+            throw new FrameException(DropReason.ENCRYPTED, "topic '" + f.topic() + "' from '" + f.sender() + "' is encrypted under a password;"
+                    + " this node registered it without one (give the password to addMessageListener/subscribeMessage)");
+        }
+        byte[] plain = sealer.open(key, f.source(), f.messageNumber(), f.payload());
+        if (plain == null) {
+            throw new FrameException(DropReason.BAD_MAC, "the payload on topic '" + f.topic() + "' from '" + f.sender() + "' does not decrypt");
+        }
+        return plain;
+    }
+
+    /**
+     * @return the topics here under the same first level as a topic nobody listens to ("; topics
+     *         under 'robot/' here: robot/sim-1"), so that a sender who misspelled a robot's or
+     *         agent's name learns the right ones; empty for a topic without levels
+     */
+    private String siblings(String topic) {
+        int slash = topic.indexOf('/');
+        if (slash <= 0) {
+            return "";
+        }
+        String level = topic.substring(0, slash + 1);
+        List<String> near = node.topics().names().stream().filter(t -> t.startsWith(level) && t.length() > level.length()).limit(20).toList();
+        return near.isEmpty() ? "; no topic under '" + level + "' here" : "; topics under '" + level + "' here: " + String.join(", ", near);
     }
 
     private void refuse(Frame f, Channel from, String why) {

@@ -54,6 +54,38 @@ final class LocalTopics {
     }
 
     /**
+     * Registers a listener (and the topic, with that key, if it was new), atomically with
+     * {@link #unlisten}: a topic is never forgotten while a listener is being added to it.
+     *
+     * @param topic    a topic
+     * @param key      the key of the password given, or {@code null}
+     * @param listener the listener
+     * @throws MessagingException if the topic is registered with another password (or without one)
+     */
+    void listen(String topic, SecretKey key, MessageListener listener) {
+        topics.compute(topic, (name, t) -> {
+            Topic topicNow = t != null ? t : new Topic(name, key);
+            requireKey(topicNow, key);
+            topicNow.listeners.add(listener);
+            return topicNow;
+        });
+    }
+
+    /**
+     * Removes a listener; a topic left with no listener and no subscription is forgotten, so that
+     * it is no longer listed ({@code mw topics}) and a message to it is refused at once.
+     *
+     * @param topic    a topic
+     * @param listener the listener
+     */
+    void unlisten(String topic, MessageListener listener) {
+        topics.computeIfPresent(topic, (name, t) -> {
+            t.listeners.remove(listener);
+            return t.listeners.isEmpty() && !t.subscribed ? null : t;
+        });
+    }
+
+    /**
      * @param topic a topic
      * @param key   the key a sender used
      * @throws MessagingException if the topic is registered here with another password

@@ -3,6 +3,8 @@ package io.robomw.agents.messaging;
 import io.robomw.agents.messaging.frame.Frame;
 import io.robomw.agents.messaging.frame.FrameKind;
 import io.robomw.agents.messaging.security.FrameMac;
+import io.robomw.agents.messaging.security.PayloadSealer;
+import io.robomw.agents.messaging.security.ReplayStore;
 import io.robomw.agents.messaging.security.PayloadCodec;
 import io.robomw.agents.messaging.security.TopicKeys;
 import io.robomw.agents.messaging.spi.Channel;
@@ -26,6 +28,7 @@ import java.io.IOException;
 import java.io.Serializable;
 import java.security.SecureRandom;
 import java.time.Duration;
+import java.nio.file.Path;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Map;
@@ -81,7 +84,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     }
 
     /** A request this node sent, for routing and checking its reply. */
-    record Sent(String host, SecretKey key) {
+    record Sent(String host, String topic, SecretKey key) {
     }
 
     private final String name;
@@ -118,10 +121,16 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     private final ScheduledExecutorService housekeeping;
     private final Context context = new Context();
     private final Presence presence;
+    private final ReplayStore replayStore;
     private volatile boolean closed;
     private volatile boolean joinedGroup;
 
-    private MessagingNode(String name, MessagingSettings settings, ClassLoader classLoader, FailurePolicy failures) {
+    /** @return where nodes keep their replay windows unless told otherwise: {@code ~/.robomw/replay} */
+    public static Path defaultReplayDirectory() {
+        return Path.of(System.getProperty("user.home"), ".robomw", "replay");
+    }
+
+    private MessagingNode(String name, MessagingSettings settings, ClassLoader classLoader, FailurePolicy failures, ReplayStore store) {
         this.name = name;
         this.settings = settings;
         this.failures = failures;
@@ -130,10 +139,12 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         this.counters = new NodeCounters(name);
         PayloadCodec payloads = new PayloadCodec(settings.allowList(), classLoader);
         FrameMac mac = new FrameMac();
-        this.frames = new FrameFactory(name, id, payloads, mac, settings.maxFrameSize());
+        PayloadSealer sealer = new PayloadSealer();
+        this.replayStore = store;
+        this.frames = new FrameFactory(name, id, payloads, mac, sealer, settings.maxFrameSize());
         this.topics = new LocalTopics(name);
         this.remoteSubscribers = new RemoteSubscribers(settings.limits());
-        this.inbound = new Inbound(this, counters, mac, payloads, settings, failures);
+        this.inbound = new Inbound(this, counters, mac, payloads, settings, failures, sealer, store);
         this.links = new Links(name, this::transport, this::linkOpened);
         this.presence = new Presence(name, this::boundAddresses);
         for (TransportProvider p : ServiceLoader.load(TransportProvider.class, MessagingNode.class.getClassLoader())) {
@@ -162,6 +173,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         private FailurePolicy failures = FailurePolicy.logging();
         private final List<String> binds = new ArrayList<>();
         private final List<String> connects = new ArrayList<>();
+        private Path replayDirectory = defaultReplayDirectory();
 
         private Builder(String name) {
             if (name == null || name.isBlank()) {
@@ -192,6 +204,20 @@ public final class MessagingNode implements Messaging, AutoCloseable {
             return this;
         }
 
+        /**
+         * Where the node keeps its replay window across restarts ({@link ReplayStore}, a file named
+         * after the node): by default {@code ~/.robomw/replay}; {@code null} keeps it in memory only
+         * (a replay of a frame taken before a restart is then refused only once it is older than
+         * the allowed clock skew).
+         *
+         * @param dir the folder, or {@code null}
+         * @return this builder
+         */
+        public Builder replayDirectory(Path dir) {
+            this.replayDirectory = dir;
+            return this;
+        }
+
         /** @param address where to receive: tcp, udp, rmi (listen) or multicast (join) @return this builder */
         public Builder bind(String address) {
             binds.add(address);
@@ -209,7 +235,11 @@ public final class MessagingNode implements Messaging, AutoCloseable {
          * @throws MessagingException if an address cannot be bound (a connect that fails is retried in the background)
          */
         public MessagingNode build() {
-            MessagingNode node = new MessagingNode(name, settings, classLoader == null ? MessagingNode.class.getClassLoader() : classLoader, failures);
+            ReplayStore store = replayDirectory == null ? ReplayStore.memoryOnly()
+                    // a frame taken now may carry a timestamp up to the skew ahead, so it is stale only twice the skew from now
+                    : ReplayStore.in(ReplayStore.fileFor(replayDirectory, name), settings.maxClockSkew().multipliedBy(2));
+            MessagingNode node = new MessagingNode(name, settings, classLoader == null ? MessagingNode.class.getClassLoader() : classLoader, failures,
+                    store);
             try {
                 for (String b : binds) {
                     node.bind(b);
@@ -444,7 +474,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         }
         refuseWaitOnDeliveryThread(sent.host());
         return await(sent.host(), replies.await(sent.host(), r -> r.message().correlationId().equals(correlationId)), timeout,
-                () -> "no reply to " + correlationId + " from " + sent.host() + " within " + timeout);
+                () -> "no reply to " + correlationId + " on topic '" + sent.topic() + "' from " + sent.host() + " within " + timeout);
     }
 
     @Override
@@ -529,15 +559,13 @@ public final class MessagingNode implements Messaging, AutoCloseable {
     @Override
     public void addMessageListener(String topic, String password, MessageListener listener) {
         Objects.requireNonNull(listener, "listener");
-        topics.register(requireTopic(topic), keys.key(topic, password)).listeners.add(listener);
+        topics.listen(requireTopic(topic), keys.key(topic, password), listener);
     }
 
+    /** Removes a listener; once a topic has no listener left (and is not subscribed to), the node forgets it: it is not announced, and messages to it are refused. */
     @Override
     public void removeMessageListener(String topic, MessageListener listener) {
-        LocalTopics.Topic t = topics.get(topic);
-        if (t != null) {
-            t.listeners.remove(listener);
-        }
+        topics.unlisten(topic, listener);
     }
 
     /** Closes every link, endpoint, transport and thread. Idempotent. */
@@ -567,6 +595,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
             }
         }
         connections.clear();
+        replayStore.close();
     }
 
     @Override
@@ -638,7 +667,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         Address address = links.parse(host);
         Link link = links.link(address);
         FrameFactory.Made made = frames.message(kind, receiver, topic, object, function, key);
-        return new Outgoing(link, frames.correlationId(made.number()), made.bytes(), new Sent(links.key(address), key));
+        return new Outgoing(link, frames.correlationId(made.number()), made.bytes(), new Sent(links.key(address), topic, key));
     }
 
     private void transmit(Outgoing out) {

@@ -23,6 +23,7 @@ public final class Presence {
     private volatile String host;
     private volatile String hostAddress;
     private volatile List<String> agents = List.of();
+    private volatile io.robomw.agents.messaging.security.PresenceSeal seal;
 
     Presence(String node, Supplier<List<Address>> addresses) {
         this.node = node;
@@ -80,6 +81,24 @@ public final class Presence {
         String h = host;
         String ha = hostAddress;
         return new PresenceRecord(node, true, Instant.now(), client, sessionExpirySeconds, messaging, ha == null ? null : h, ha, List.copyOf(robots), agents);
+    }
+
+    /**
+     * Signs what the node announces from now on (an agent host gives its node the seal of its cluster key).
+     *
+     * @param seal the cluster's seal
+     */
+    public void seal(io.robomw.agents.messaging.security.PresenceSeal seal) {
+        this.seal = seal;
+        changed();
+    }
+
+    /**
+     * @param record a record of this node
+     * @return its stored form, signed when the node has a seal
+     */
+    public byte[] encode(PresenceRecord record) {
+        return record.encode(seal);
     }
 
     /** @param listener told (on the changing thread) whenever what is announced changes */

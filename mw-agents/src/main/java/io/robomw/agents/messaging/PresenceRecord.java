@@ -14,7 +14,7 @@ import java.util.List;
  * <p>Stored format, version {@value #VERSION}: UTF-8 text, one field a line, {@code KEY VALUE},
  * in this order; at most {@value #MAX_BYTES} bytes. Values never contain a line break.
  * <pre>
- * robomw-presence 1
+ * robomw-presence 2
  * node NAME
  * status online|offline
  * time 2026-11-24T10:15:30.123Z        (when this version was made)
@@ -24,9 +24,12 @@ import java.util.List;
  * host NAME AGENT-HOST-ADDRESS          (zero or one: the agent host the node belongs to)
  * robot NAME                            (zero or more: robots it serves, Robots.remote)
  * agent DESCRIPTION                     (zero or more: agents on its host, "ID CLASS STATUS")
+ * sig SIGNATURE                         (zero or one, last: PresenceSeal's HMAC-SHA256 over every byte before this line)
  * </pre>
- * Decoding refuses another version, an unknown key, a missing field and an oversized record,
- * naming what is wrong.
+ * Version 2 added the {@code sig} line; version 1 records (no signature) are still read. Decoding
+ * refuses another version, an unknown key, a missing field, a {@code sig} line that is not the
+ * last and an oversized record, naming what is wrong. Readers with the cluster's
+ * {@link PresenceSeal} take only records it signed ({@link #decodeSealed}).
  *
  * @param node      the node's name
  * @param online    whether it is up
@@ -43,8 +46,10 @@ import java.util.List;
 public record PresenceRecord(String node, boolean online, Instant time, String client, long sessionExpirySeconds, List<String> messaging, String host,
                              String hostAddress, List<String> robots, List<String> agents) {
 
-    /** The version this class reads and writes. */
-    public static final int VERSION = 1;
+    /** The version this class writes (it also reads version 1, which had no signature). */
+    public static final int VERSION = 2;
+    /** The key of the signature line. */
+    public static final String SIGNATURE_KEY = "sig";
     /** The first line's key. */
     public static final String MAGIC = "robomw-presence";
     /** The largest record accepted. */
@@ -80,7 +85,43 @@ public record PresenceRecord(String node, boolean online, Instant time, String c
         return new PresenceRecord(node, false, now, client, sessionExpirySeconds, messaging, host, hostAddress, robots, agents);
     }
 
-    /** @return the stored format */
+    /**
+     * @param seal the cluster's seal, or {@code null} for an unsigned record
+     * @return the stored format, signed with the seal
+     */
+    public byte[] encode(io.robomw.agents.messaging.security.PresenceSeal seal) {
+        byte[] unsigned = encode();
+        if (seal == null) {
+            return unsigned;
+        }
+        byte[] line = (SIGNATURE_KEY + " " + seal.sign(unsigned) + "\n").getBytes(StandardCharsets.UTF_8);
+        byte[] out = java.util.Arrays.copyOf(unsigned, unsigned.length + line.length);
+        System.arraycopy(line, 0, out, unsigned.length, line.length);
+        return out;
+    }
+
+    /**
+     * Decodes a record and checks its signature.
+     *
+     * @param bytes a stored record
+     * @param where where it came from, for the error
+     * @param seal  the cluster's seal
+     * @return the record, or empty if it is unsigned or not signed with the seal's key (to be ignored and counted)
+     * @throws IllegalArgumentException naming what is wrong if it is not a presence record at all
+     */
+    public static java.util.Optional<PresenceRecord> decodeSealed(byte[] bytes, String where, io.robomw.agents.messaging.security.PresenceSeal seal) {
+        PresenceRecord record = decode(bytes, where);
+        String text = new String(bytes, StandardCharsets.UTF_8);
+        int at = text.lastIndexOf("\n" + SIGNATURE_KEY + " ");
+        if (at < 0) {
+            return java.util.Optional.empty();
+        }
+        byte[] signed = text.substring(0, at + 1).getBytes(StandardCharsets.UTF_8);
+        String signature = text.substring(at + 2 + SIGNATURE_KEY.length()).strip();
+        return seal.verify(signed, signature) ? java.util.Optional.of(record) : java.util.Optional.empty();
+    }
+
+    /** @return the stored format, unsigned */
     public byte[] encode() {
         StringBuilder b = new StringBuilder(256);
         b.append(MAGIC).append(' ').append(VERSION).append('\n');
@@ -114,9 +155,9 @@ public record PresenceRecord(String node, boolean online, Instant time, String c
             throw new IllegalArgumentException(where + ": presence of " + bytes.length + " bytes, above " + MAX_BYTES);
         }
         String[] lines = new String(bytes, StandardCharsets.UTF_8).split("\n", -1);
-        if (lines.length == 0 || !lines[0].equals(MAGIC + " " + VERSION)) {
+        if (lines.length == 0 || !lines[0].equals(MAGIC + " " + VERSION) && !lines[0].equals(MAGIC + " 1")) {
             String first = lines.length == 0 ? "" : lines[0];
-            throw new IllegalArgumentException(where + ": not a RoboMW presence of version " + VERSION + " (first line '"
+            throw new IllegalArgumentException(where + ": not a RoboMW presence of version 1 or " + VERSION + " (first line '"
                     + (first.length() > 40 ? first.substring(0, 40) + "..." : first) + "')");
         }
         String node = null;
@@ -170,6 +211,11 @@ public record PresenceRecord(String node, boolean online, Instant time, String c
                 }
                 case "robot" -> robots.add(value);
                 case "agent" -> agents.add(value);
+                case SIGNATURE_KEY -> {
+                    if (i < lines.length - 2 || (i == lines.length - 2 && !lines[i + 1].isEmpty())) {
+                        throw new IllegalArgumentException(where + ": line " + (i + 1) + ": the signature must be the last line");
+                    }
+                }
                 default -> throw new IllegalArgumentException(where + ": line " + (i + 1) + ": unknown key '" + key + "' in a presence of version " + VERSION);
             }
         }

@@ -54,6 +54,50 @@ public final class RmiSocketSetup {
     }
 
     /**
+     * RMI names the address a stub carries in its errors ("Connection refused to host: 127.0.0.1"),
+     * which is the exporting machine's name, not always where the factory connected; the cause it
+     * wraps is this exception, of the same kind as the socket's, and names the address tried.
+     */
+    private static IOException naming(IOException e, String host, int port, int timeoutMillis) {
+        String where = (host.contains(":") ? "[" + host + "]" : host) + ":" + port;
+        IOException named;
+        if (e instanceof java.net.SocketTimeoutException) {
+            named = new java.net.SocketTimeoutException("connecting to " + where + " timed out after " + timeoutMillis + " ms");
+        } else if (e instanceof java.net.ConnectException) {
+            named = new java.net.ConnectException("cannot connect to " + where + ": " + e.getMessage());
+        } else if (e instanceof java.net.NoRouteToHostException) {
+            named = new java.net.NoRouteToHostException("no route to " + where + ": " + e.getMessage());
+        } else if (e instanceof java.net.UnknownHostException) {
+            named = new java.net.UnknownHostException("unknown host " + host + " (port " + port + "): " + e.getMessage());
+        } else {
+            return new IOException("cannot connect to " + where + ": " + e, e);
+        }
+        named.initCause(e);
+        return named;
+    }
+
+    /**
+     * Where a failed RMI call really failed: RMI wraps the socket factory's exception in one that
+     * names the host the stub carries; this is the message of the innermost cause (which names the
+     * address the factory connected to) when there is one, else the exception's own.
+     *
+     * @param e a failure of an RMI call
+     * @return a message naming the address that failed
+     */
+    public static String reason(Throwable e) {
+        Throwable t = e;
+        while (t instanceof java.rmi.RemoteException && t.getCause() != null) {
+            t = t.getCause();
+        }
+        if (t == e) {
+            return String.valueOf(e.getMessage());
+        }
+        boolean connecting = t instanceof java.net.ConnectException || t instanceof java.net.SocketTimeoutException
+                || t instanceof java.net.NoRouteToHostException || t instanceof java.net.UnknownHostException;
+        return connecting ? t.getMessage() : t.getClass().getSimpleName() + ": " + t.getMessage();
+    }
+
+    /**
      * @param raw           an unconnected socket (its other options already set)
      * @param host          the host to connect to
      * @param port          the port
@@ -64,7 +108,12 @@ public final class RmiSocketSetup {
      */
     public static Socket connect(Socket raw, String host, int port, int timeoutMillis, boolean tls) throws IOException {
         raw.setTcpNoDelay(true);
-        raw.connect(new InetSocketAddress(host, port), timeoutMillis);
+        try {
+            raw.connect(new InetSocketAddress(host, port), timeoutMillis);
+        } catch (IOException e) {
+            raw.close();
+            throw naming(e, host, port, timeoutMillis);
+        }
         if (!tls) {
             return raw;
         }

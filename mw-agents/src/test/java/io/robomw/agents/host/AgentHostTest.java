@@ -118,12 +118,83 @@ class AgentHostTest {
         VisitorAgent agent = new VisitorAgent().holdUntilReleased();
         agent.itinerary().addStop(a.address()).addStop(b.address());
         AgentRef ref = home.agency().startTrip(agent);
+        await(() -> "a".equals(safeWhere(ref))); // at a, holding (20 s unless released or interrupted)
         ref.dispose();
-        await(() -> !a.agents().isEmpty()); // still there, holding
-        ref.sendMessage("release", Duration.ofSeconds(5));
+        // Not released: the dispose interrupts the agent's work, which ends at once.
         Exception e = assertThrows(Exception.class, () -> ref.result().get(10, TimeUnit.SECONDS));
         assertTrue(e.getCause().getMessage().contains("disposed"), e.getCause().getMessage());
         assertEquals(AgentStatus.DISPOSED, ref.status());
+    }
+
+    @Test
+    void retractInterruptsAnAgentBlockedInItsWorkAndItsStateComesHomeAtOnce() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        AgentHost b = host("b");
+        VisitorAgent agent = new VisitorAgent().holdUntilReleased(); // blocks its stop for 20 s unless released or interrupted
+        agent.itinerary().addStop(a.address()).addStop(b.address());
+        AgentRef ref = home.agency().startTrip(agent);
+        await(() -> "a".equals(safeWhere(ref)));
+        Agent back = ref.retract().get(10, TimeUnit.SECONDS); // never released: the retract must not wait for the 20 s
+        assertEquals(List.of("a"), ((VisitorAgent) back).visited());
+        assertEquals(AgentStatus.RETRACTED, ref.status());
+    }
+
+    @Test
+    void disposeOfAnAgentThatDrivesEndsItsCommandAndStopsTheRobot() throws Exception {
+        io.robomw.agents.HeldRobot robot = new io.robomw.agents.HeldRobot(); // its move never ends unless cancelled
+        AgentHost home = host("home");
+        AgentHost a = hosts.start(AgentHost.builder("a").clusterKey(KEY).robot(robot));
+        AgentRef ref = home.agency().sendAgent(a.address(), new io.robomw.agents.host.trip.DrivingAgent());
+        await(() -> robot.moves.size() == 1);
+        ref.dispose();
+        Exception e = assertThrows(Exception.class, () -> ref.result().get(10, TimeUnit.SECONDS));
+        assertTrue(e.getCause().getMessage().contains("disposed"), e.getCause().getMessage());
+        assertTrue(robot.moves.get(0).isCancelled(), "the agent's command was cancelled (its motors brake)");
+        assertTrue(robot.stopEntered.await(10, TimeUnit.SECONDS), "the robot was stopped");
+        assertEquals(List.of(io.robomw.api.Itinerary.Outcome.INTERRUPTED), ref.history().stream().map(io.robomw.api.Itinerary.Visit::outcome).toList(),
+                "the stop was cut short on purpose: " + ref.history());
+    }
+
+    @Test
+    void aRetractWhoseAgentIgnoresItsInterruptIsShownPendingAndTakesEffectWhenTheCallbackReturns() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        AgentRef ref = home.agency().sendAgent(a.address(), new io.robomw.agents.host.trip.StubbornAgent());
+        await(() -> !a.agents().isEmpty());
+        var retracted = ref.retract();
+        await(() -> a.agents().stream().anyMatch(i -> i.pending() == AgentInfo.Pending.RETRACT));
+        assertEquals("ACTIVE (retract pending)", a.agents().get(0).state());
+        assertEquals(List.of(AgentInfo.Pending.RETRACT), AgentHost.list(a.address(), KEY, false).stream().map(AgentInfo::pending).toList(),
+                "mw agents sees it too");
+        assertTrue(!retracted.isDone(), "the agent has not returned from its callback yet");
+        ref.sendOnewayMessage("release");
+        Agent back = retracted.get(10, TimeUnit.SECONDS);
+        assertInstanceOf(io.robomw.agents.host.trip.StubbornAgent.class, back);
+        assertEquals(AgentStatus.RETRACTED, ref.status());
+    }
+
+    @Test
+    void anAgentHopsToAHostGivenByNameAsMessagesDo() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        AgentHost b = host("lab-b");
+        assertEquals(List.of("lab-b"), home.agency().sendAgent(b.address(), new VisitorAgent()).result().get(10, TimeUnit.SECONDS),
+                "the home has met lab-b");
+        // a has never met lab-b: it asks the agent's home where the host of that name is
+        AgentRef ref = home.agency().sendAgent(a.address(), new io.robomw.agents.host.trip.HopByNameAgent("lab-b"));
+        assertEquals(List.of("a", "lab-b"), ref.result().get(10, TimeUnit.SECONDS));
+        assertEquals(b.address(), ref.location());
+    }
+
+    @Test
+    void anAgentHoppingToAnUnknownHostNameFailsItsStopNamingTheHostsKnown() throws Exception {
+        AgentHost home = host("home");
+        AgentHost a = host("a");
+        AgentRef ref = home.agency().sendAgent(a.address(), new io.robomw.agents.host.trip.HopByNameAgent("nowhere"));
+        assertThrows(Exception.class, () -> ref.result().get(10, TimeUnit.SECONDS));
+        String detail = ref.history().get(0).detail();
+        assertTrue(detail.contains("no agent host named 'nowhere' is known at " + a.address()), detail);
     }
 
     @Test

@@ -101,18 +101,24 @@ class AgentWireTest {
 
     @Test
     void aHostOfABuildBeforeTheWireTakesAndSendsAgentsOverRmi() throws Exception {
-        AgentHost home = start(AgentHost.builder("home").clusterKey(KEY).noMessaging());
+        AgentHost home = start(AgentHost.builder("home").clusterKey(KEY).noMessaging().olderHosts());
         AgentHost old = start(AgentHost.builder("old").clusterKey(KEY).noMessaging().version2Only());
-        AgentHost a = start(AgentHost.builder("a").clusterKey(KEY).noMessaging());
+        AgentHost a = start(AgentHost.builder("a").clusterKey(KEY).noMessaging().olderHosts());
         assertEquals(0, old.wirePort(), "a version-2 host offers no wire");
         VisitorAgent agent = new VisitorAgent().payload(100_000);
         agent.itinerary().addStop(old.address()).addStop(a.address()).addStop(home.address());
         assertEquals(List.of("old", "a", "home"), home.agency().startTrip(agent).result().get(20, TimeUnit.SECONDS));
         assertEquals(0, a.wireFramesServed(), "the version-2 host sent the agent to a over RMI");
         assertEquals(1, home.wireFramesServed(), "a sent it home on home's wire");
-        assertTrue(old.refused() >= 1, "the old host refused home's version-3 authentication, naming its version, once");
+        assertTrue(old.refused() >= 1, "the old host refused home's version-4 and 3 authentications, naming its version");
 
+        PeerLink unbound = new PeerLink(HostAddress.parse(old.address()), "probe", KEY, new HostSockets.Client("127.0.0.1", false, 10_000),
+                new SecureRandom());
+        PeerException refused = assertThrows(PeerException.class, () -> unbound.call(Op.LIST, new byte[0]),
+                "a link not told it may talk to older builds does not fall back to a version that does not bind the channel");
+        assertTrue(refused.getMessage().contains("does not speak agent protocol version 4"), refused.getMessage());
         PeerLink toOld = new PeerLink(HostAddress.parse(old.address()), "probe", KEY, new HostSockets.Client("127.0.0.1", false, 10_000), new SecureRandom());
+        toOld.olderHosts();
         assertEquals(Reply.Status.OK, toOld.call(Op.LIST, new byte[0]).status());
         assertEquals(Session.PROTOCOL_VERSION, toOld.version(), "the link fell back to version 2");
         assertEquals(0, toOld.wirePort());
@@ -123,7 +129,7 @@ class AgentWireTest {
         assertEquals(Session.PROTOCOL_VERSION, oldPeer.version(), "a host of this build takes version 2 from an old peer");
         PeerLink toNew = new PeerLink(HostAddress.parse(a.address()), "probe", KEY, new HostSockets.Client("127.0.0.1", false, 10_000), new SecureRandom());
         assertEquals(Reply.Status.OK, toNew.call(Op.LIST, new byte[0]).status());
-        assertEquals(Session.WIRE_VERSION, toNew.version());
+        assertEquals(Session.BOUND_VERSION, toNew.version());
         assertEquals(a.wirePort(), toNew.wirePort(), "the answer names the host's wire port");
     }
 
@@ -140,7 +146,7 @@ class AgentWireTest {
         assertEquals(1, home.wireFramesServed(), "a sent it home on home's wire");
         PeerLink toOff = new PeerLink(HostAddress.parse(off.address()), "probe", KEY, new HostSockets.Client("127.0.0.1", false, 10_000), new SecureRandom());
         assertEquals(Reply.Status.OK, toOff.call(Op.LIST, new byte[0]).status());
-        assertEquals(Session.WIRE_VERSION, toOff.version(), "it speaks version 3");
+        assertEquals(Session.BOUND_VERSION, toOff.version(), "it speaks version 4");
         assertEquals(0, toOff.wirePort(), "and offers no wire");
     }
 }

@@ -179,6 +179,50 @@ class CallAuthenticationTest {
         assertTrue(why.contains("unknown call authenticator code 99") && why.contains("2 AES-256-GCM tag"), why);
     }
 
+    /** A version-4 request as PeerLink makes it: the target, the address the peer meant to reach, under the proof. */
+    private byte[] boundRequest(ClusterKey key, Target target, Target signed) throws IOException {
+        byte[] hostNonce = host.challenge();
+        byte[] clientNonce = new byte[32];
+        new SecureRandom().nextBytes(clientNonce);
+        byte[] terms = Session.terms(Session.BOUND_VERSION, CallAuthenticator.AES_256_GCM);
+        ByteArrayOutputStream req = new ByteArrayOutputStream();
+        DataOutputStream out = new DataOutputStream(req);
+        out.writeByte(Session.BOUND_VERSION);
+        out.writeByte(CallAuthenticator.AES_256_GCM);
+        out.writeUTF("peer-p");
+        out.write(target.bytes());
+        out.write(hostNonce);
+        out.write(clientNonce);
+        out.write(Session.clientProof(key, terms, "host-h".getBytes(StandardCharsets.UTF_8), "peer-p".getBytes(StandardCharsets.UTF_8), hostNonce,
+                clientNonce, signed));
+        return req.toByteArray();
+    }
+
+    @Test
+    void versionFourIsTakenFromAPeerThatMeantToReachThisHost() throws IOException {
+        java.net.InetAddress loopback = java.net.InetAddress.getLoopbackAddress();
+        host.address(loopback, 1099);
+        Target here = new Target(loopback, 1099);
+        byte[] answer = host.authenticate(boundRequest(KEY, here, here));
+        assertEquals(Session.AUTH_ACCEPTED, answer[0], () -> refusal(answer));
+        assertEquals(1 + 8 + 32 + 2, answer.length, "a version-4 answer is laid out as version 3's");
+    }
+
+    @Test
+    void versionFourFromAPeerThatMeantAnotherAddressIsRefusedNamingBoth() throws IOException {
+        java.net.InetAddress loopback = java.net.InetAddress.getLoopbackAddress();
+        host.address(loopback, 1099);
+        Target relay = new Target(loopback, 4000);
+        byte[] relayed = host.authenticate(boundRequest(KEY, relay, relay));
+        assertEquals(Session.AUTH_REFUSED, relayed[0]);
+        assertTrue(refusal(relayed).contains("it meant to reach host-h at 127.0.0.1:4000, but this host is at 127.0.0.1:1099"), refusal(relayed));
+        Target here = new Target(loopback, 1099);
+        byte[] rewritten = host.authenticate(boundRequest(KEY, here, relay));
+        assertEquals(Session.AUTH_REFUSED, rewritten[0], "a relay that rewrites the target breaks the proof");
+        assertTrue(refusal(rewritten).contains("wrong cluster key"), refusal(rewritten));
+        assertEquals(List.of(), served);
+    }
+
     @Test
     void versionThreeIsTakenAndItsAnswerNamesTheWirePortUnderTheProof() throws IOException {
         host.wirePort(4242);
@@ -194,9 +238,9 @@ class CallAuthenticationTest {
 
     @Test
     void aPeerOfAnotherProtocolVersionIsRefusedNamingBoth() throws IOException {
-        Handshake h = authenticate(KEY, 4, CallAuthenticator.AES_256_GCM, CallAuthenticator.AES_256_GCM);
+        Handshake h = authenticate(KEY, 5, CallAuthenticator.AES_256_GCM, CallAuthenticator.AES_256_GCM);
         assertEquals(Session.AUTH_REFUSED, h.answer()[0]);
-        assertTrue(refusal(h.answer()).contains("version 4; this host speaks versions 2 and 3"), refusal(h.answer()));
+        assertTrue(refusal(h.answer()).contains("version 5; this host speaks versions 2, 3 and 4"), refusal(h.answer()));
         // A protocol-1 request (no version byte: the peer name's u16 length first) reads as version 0.
         ByteArrayOutputStream old = new ByteArrayOutputStream();
         DataOutputStream out = new DataOutputStream(old);

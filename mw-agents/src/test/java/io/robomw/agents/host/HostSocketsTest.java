@@ -11,6 +11,7 @@ import java.net.ServerSocket;
 import java.net.Socket;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 class HostSocketsTest {
@@ -60,31 +61,58 @@ class HostSocketsTest {
         }
     }
 
-    /** A plain endpoint keeps at most MAX_CONNECTIONS; one more is closed when accepted, and a slot comes back when one closes. */
+    /**
+     * A plain endpoint keeps at most MAX_CONNECTIONS; one more makes the oldest that has proved
+     * nothing make way (it is closed), so idle connections cannot lock peers out.
+     */
     @Test
-    void aServerSocketBeyondItsConnectionLimitClosesTheNextOneAtOnce() throws Exception {
+    void aConnectionBeyondTheLimitMakesTheOldestThatProvedNothingMakeWay() throws Exception {
         HostSockets.Counters counters = new HostSockets.Counters();
+        HostConnections connections = new HostConnections("limits", 0);
         java.util.List<Socket> held = new java.util.ArrayList<>();
-        try (ServerSocket server = new HostSockets.Server(InetAddress.getLoopbackAddress(), null, counters).createServerSocket(0)) {
+        try (ServerSocket server = new HostSockets.Server(InetAddress.getLoopbackAddress(), null, counters, connections, 0).createServerSocket(0)) {
             for (int i = 0; i < HostSockets.MAX_CONNECTIONS; i++) {
                 held.add(new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort()));
                 held.add(server.accept());
             }
-            java.util.concurrent.CompletableFuture<Socket> accepting = java.util.concurrent.CompletableFuture.supplyAsync(() -> {
-                try {
-                    return server.accept(); // closes the one beyond the limit, then waits for a slot's connection
-                } catch (java.io.IOException e) {
-                    throw new java.io.UncheckedIOException(e);
-                }
-            });
             try (Socket extra = new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort())) {
-                extra.setSoTimeout(10_000);
-                assertEquals(-1, extra.getInputStream().read(), "the connection beyond the limit was closed");
-                assertEquals(1, counters.refused.sum());
+                held.add(server.accept());
+                Socket oldest = held.get(0);
+                oldest.setSoTimeout(10_000);
+                assertEquals(-1, oldest.getInputStream().read(), "the oldest connection, which proved nothing, was closed");
+                assertEquals(1, connections.evicted());
+                assertEquals(0, counters.refused.sum(), "the new one was taken");
+                assertEquals(HostSockets.MAX_CONNECTIONS, counters.open.get());
+                assertEquals(HostSockets.MAX_CONNECTIONS, connections.open());
             }
-            held.get(1).close(); // the server side of the first connection: a slot again
-            try (Socket next = new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort())) {
-                held.add(accepting.get(10, java.util.concurrent.TimeUnit.SECONDS));
+        } finally {
+            for (Socket s : held) {
+                s.close();
+            }
+        }
+    }
+
+    /** A TLS endpoint keeps the same limit: connections are counted before their handshake, and the oldest makes way at once. */
+    @Test
+    void aTlsConnectionBeyondTheLimitMakesTheOldestThatProvedNothingMakeWay(@org.junit.jupiter.api.io.TempDir java.nio.file.Path dir) throws Exception {
+        javax.net.ssl.SSLContext tls = io.robomw.agents.messaging.TestKeys.create(dir).node().context();
+        HostSockets.Counters counters = new HostSockets.Counters();
+        HostConnections connections = new HostConnections("limits", 0);
+        java.util.List<Socket> held = new java.util.ArrayList<>();
+        try (ServerSocket server = new HostSockets.Server(InetAddress.getLoopbackAddress(), tls, counters, connections, 0).createServerSocket(0)) {
+            for (int i = 0; i < HostSockets.MAX_CONNECTIONS; i++) {
+                held.add(new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort()));
+                Socket accepted = server.accept();
+                assertTrue(accepted instanceof javax.net.ssl.SSLSocket, "a TLS endpoint hands RMI TLS sockets");
+                held.add(accepted);
+            }
+            assertEquals(HostSockets.MAX_CONNECTIONS, counters.open.get());
+            try (Socket extra = new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort())) {
+                held.add(server.accept());
+                Socket oldest = held.get(0);
+                oldest.setSoTimeout(10_000);
+                assertEquals(-1, oldest.getInputStream().read(), "the oldest connection was closed before any handshake");
+                assertEquals(1, connections.evicted());
                 assertEquals(HostSockets.MAX_CONNECTIONS, counters.open.get());
             }
         } finally {
@@ -94,41 +122,24 @@ class HostSocketsTest {
         }
     }
 
-    /** A TLS endpoint keeps the same limit: connections are counted before their handshake, and one more is closed at once. */
+    /** An accepted connection that sends nothing is closed after the first-byte deadline; RMI is not told its address (the registry then refuses changes). */
     @Test
-    void aTlsServerSocketBeyondItsConnectionLimitClosesTheNextOneAtOnce(@org.junit.jupiter.api.io.TempDir java.nio.file.Path dir) throws Exception {
-        javax.net.ssl.SSLContext tls = io.robomw.agents.messaging.TestKeys.create(dir).node().context();
+    void aConnectionThatSendsNothingIsClosedAfterTheFirstByteDeadline() throws Exception {
         HostSockets.Counters counters = new HostSockets.Counters();
-        java.util.List<Socket> held = new java.util.ArrayList<>();
-        try (ServerSocket server = new HostSockets.Server(InetAddress.getLoopbackAddress(), tls, counters).createServerSocket(0)) {
-            for (int i = 0; i < HostSockets.MAX_CONNECTIONS; i++) {
-                held.add(new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort()));
-                Socket accepted = server.accept();
-                assertTrue(accepted instanceof javax.net.ssl.SSLSocket, "a TLS endpoint hands RMI TLS sockets");
-                held.add(accepted);
-            }
-            assertEquals(HostSockets.MAX_CONNECTIONS, counters.open.get());
-            java.util.concurrent.CompletableFuture<Socket> accepting = java.util.concurrent.CompletableFuture.supplyAsync(() -> {
-                try {
-                    return server.accept();
-                } catch (java.io.IOException e) {
-                    throw new java.io.UncheckedIOException(e);
-                }
-            });
-            try (Socket extra = new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort())) {
-                extra.setSoTimeout(10_000);
-                assertEquals(-1, extra.getInputStream().read(), "the connection beyond the limit was closed before any handshake");
-                assertEquals(1, counters.refused.sum());
-            }
-            held.get(1).close(); // the TLS socket closes the counted one under it: a slot again
-            try (Socket next = new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort())) {
-                held.add(accepting.get(10, java.util.concurrent.TimeUnit.SECONDS));
-                assertEquals(HostSockets.MAX_CONNECTIONS, counters.open.get());
-            }
-        } finally {
-            for (Socket s : held) {
-                s.close();
-            }
+        HostConnections connections = new HostConnections("deadline", 0);
+        try (ServerSocket server = new HostSockets.Server(InetAddress.getLoopbackAddress(), null, counters, connections, 0).createServerSocket(0);
+             Socket silent = new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort());
+             Socket accepted = server.accept()) {
+            assertEquals(null, accepted.getInetAddress(), "RMI sees no client address");
+            accepted.setSoTimeout(120_000); // what RMI asks for: the first byte is awaited for 5 s only
+            long start = System.nanoTime();
+            assertThrows(java.net.SocketTimeoutException.class, () -> accepted.getInputStream().read());
+            long waited = (System.nanoTime() - start) / 1_000_000;
+            assertTrue(waited >= HostConnections.FIRST_BYTE.toMillis() - 100 && waited < 60_000, "closed after the deadline, not RMI's timeout: " + waited + " ms");
+            silent.setSoTimeout(10_000);
+            assertEquals(-1, silent.getInputStream().read(), "the host closed it");
+            assertEquals(1, connections.silent());
+            assertEquals(0, connections.open());
         }
     }
 

@@ -38,9 +38,13 @@ class BadInputTest {
     private final List<Object> got = new CopyOnWriteArrayList<>();
     private final SecretKey key = new TopicKeys().key("cmd", "pw");
 
+    /** Each test's own: its hand-made frames come from one fixed source, which a window kept across tests would take for replays. */
+    @org.junit.jupiter.api.io.TempDir
+    java.nio.file.Path replays;
+
     @BeforeEach
     void startServer() {
-        server = MessagingNode.builder("server").settings(MessagingSettings.defaults().withMaxFrameSize(64 * 1024))
+        server = MessagingNode.builder("server").settings(MessagingSettings.defaults().withMaxFrameSize(64 * 1024)).replayDirectory(replays)
                 .bind("tcp://127.0.0.1:0").bind("udp://127.0.0.1:0").build();
         server.addMessageListener("cmd", "pw", m -> got.add(m.payload()));
     }

@@ -20,7 +20,7 @@ class PresenceRecordTest {
     @Test
     void encodesToTheDocumentedText() {
         assertEquals("""
-                robomw-presence 1
+                robomw-presence 2
                 node ft host
                 status online
                 time 2026-11-24T10:15:30.123Z
@@ -44,8 +44,8 @@ class PresenceRecordTest {
     @Test
     void refusesOtherVersionsUnknownKeysAndMissingFieldsNamingWhere() {
         IllegalArgumentException e = assertThrows(IllegalArgumentException.class,
-                () -> PresenceRecord.decode("robomw-presence 2\nnode x\n".getBytes(StandardCharsets.UTF_8), "robomw/presence/x"));
-        assertTrue(e.getMessage().contains("robomw/presence/x") && e.getMessage().contains("version 1"), e.getMessage());
+                () -> PresenceRecord.decode("robomw-presence 3\nnode x\n".getBytes(StandardCharsets.UTF_8), "robomw/presence/x"));
+        assertTrue(e.getMessage().contains("robomw/presence/x") && e.getMessage().contains("version 1 or 2"), e.getMessage());
         e = assertThrows(IllegalArgumentException.class, () -> PresenceRecord.decode(
                 "robomw-presence 1\nnode x\nstatus online\ntime 2026-11-24T10:15:30Z\nclient c\nsession-expiry 0\ncolour red\n".getBytes(StandardCharsets.UTF_8), "p"));
         assertTrue(e.getMessage().contains("line 7") && e.getMessage().contains("colour"), e.getMessage());
@@ -53,6 +53,25 @@ class PresenceRecordTest {
         assertTrue(e.getMessage().contains("needs"), e.getMessage());
         assertThrows(IllegalArgumentException.class, () -> PresenceRecord.decode(new byte[PresenceRecord.MAX_BYTES + 1], "p"));
         assertThrows(IllegalArgumentException.class, () -> PresenceRecord.decode(new byte[]{(byte) 0xff, 0, 1}, "p"));
+    }
+
+    /** Issue 37: a reader with the cluster's seal takes only records signed with it. */
+    @Test
+    void aSealedReaderTakesOnlyRecordsSignedWithItsKey() {
+        io.robomw.agents.messaging.security.PresenceSeal cluster = io.robomw.agents.messaging.security.PresenceSeal.of(new byte[32]);
+        io.robomw.agents.messaging.security.PresenceSeal other = io.robomw.agents.messaging.security.PresenceSeal.of(new byte[] {1, 2, 3, 4, 5, 6, 7, 8,
+                9, 10, 11, 12, 13, 14, 15, 16});
+        byte[] signed = host.encode(cluster);
+        assertTrue(new String(signed, StandardCharsets.UTF_8).endsWith("\n") && new String(signed, StandardCharsets.UTF_8).contains("\nsig "));
+        assertEquals(host, PresenceRecord.decodeSealed(signed, "p", cluster).orElseThrow());
+        assertEquals(host, PresenceRecord.decode(signed, "p"), "a reader without a seal reads it too");
+        assertTrue(PresenceRecord.decodeSealed(host.encode(), "p", cluster).isEmpty(), "unsigned");
+        assertTrue(PresenceRecord.decodeSealed(host.encode(other), "p", cluster).isEmpty(), "signed with another key");
+        byte[] changed = new String(signed, StandardCharsets.UTF_8).replace("status online", "status offline").getBytes(StandardCharsets.UTF_8);
+        assertTrue(PresenceRecord.decodeSealed(changed, "p", cluster).isEmpty(), "changed after signing");
+        byte[] sigFirst = ("robomw-presence 2\nsig x\nnode x\nstatus online\ntime 2026-11-24T10:15:30Z\nclient c\nsession-expiry 0\n")
+                .getBytes(StandardCharsets.UTF_8);
+        assertThrows(IllegalArgumentException.class, () -> PresenceRecord.decode(sigFirst, "p"), "the signature comes last");
     }
 
     @Test

@@ -121,4 +121,52 @@ class SecurityTest {
                 () -> client.sendMessage("server", server.address("tcp"), null, "data", new byte[5000], "store"));
         assertTrue(e.getMessage().contains("maximum frame size of 4096"), e.getMessage());
     }
+
+    /** Issue 37: a protected topic's payloads are sealed under its password; a subscriber that registered it without one reads nothing. */
+    @Test
+    void aProtectedPublicationIsReadOnlyBySubscribersWithThePassword() {
+        MessagingNode pub = node(MessagingNode.builder("pub").bind("tcp://127.0.0.1:0"));
+        MessagingNode stranger = node(MessagingNode.builder("stranger").connect(pub.address("tcp")));
+        MessagingNode member = node(MessagingNode.builder("member").connect(pub.address("tcp")));
+        List<Object> strangerGot = new CopyOnWriteArrayList<>();
+        List<Object> memberGot = new CopyOnWriteArrayList<>();
+        stranger.addMessageListener("secret", null, m -> strangerGot.add(m.payload()));
+        stranger.subscribeMessage("secret", null);
+        member.addMessageListener("secret", "s3cret", m -> memberGot.add(m.payload()));
+        member.subscribeMessage("secret", "s3cret");
+        Await.until("the publisher sees both subscribers", WAIT, () -> pub.subscriberCount("secret") == 2);
+        pub.publishMessage("secret", "the launch code", "tell", "s3cret");
+        Await.until("the member reads it and the stranger drops it", WAIT,
+                () -> memberGot.size() == 1 && stranger.stats().dropped(DropReason.ENCRYPTED) == 1);
+        assertEquals(List.of("the launch code"), memberGot);
+        assertEquals(List.of(), strangerGot);
+    }
+
+    /** Issue 37: a receiver keeps its replay window across a restart, so a frame captured before it is refused after. */
+    @Test
+    void aRestartedReceiverRefusesAFrameItTookBeforeItsRestart(@org.junit.jupiter.api.io.TempDir java.nio.file.Path replays) throws Exception {
+        try (java.net.DatagramSocket tap = new java.net.DatagramSocket(0, java.net.InetAddress.getLoopbackAddress())) {
+            tap.setSoTimeout(10_000);
+            MessagingNode first = MessagingNode.builder("door").replayDirectory(replays).bind("udp://127.0.0.1:0").build();
+            int port = Integer.parseInt(first.address("udp").replaceAll("^.*:(\\d+).*$", "$1"));
+            List<Object> got = new CopyOnWriteArrayList<>();
+            first.addMessageListener("cmd", "s3cret", m -> got.add(m.payload()));
+            MessagingNode sender = node(MessagingNode.builder("sender"));
+            sender.sendMessage("door", "udp://127.0.0.1:" + tap.getLocalPort(), "s3cret", "cmd", "open", "go");
+            java.net.DatagramPacket captured = new java.net.DatagramPacket(new byte[65_536], 65_536);
+            tap.receive(captured);
+            byte[] frame = java.util.Arrays.copyOf(captured.getData(), captured.getLength());
+            tap.send(new java.net.DatagramPacket(frame, frame.length, java.net.InetAddress.getLoopbackAddress(), port));
+            Await.until("the receiver takes it", WAIT, () -> got.size() == 1);
+            first.close();
+
+            MessagingNode restarted = node(MessagingNode.builder("door").replayDirectory(replays).bind("udp://127.0.0.1:" + port));
+            List<Object> again = new CopyOnWriteArrayList<>();
+            restarted.addMessageListener("cmd", "s3cret", m -> again.add(m.payload()));
+            tap.send(new java.net.DatagramPacket(frame, frame.length, java.net.InetAddress.getLoopbackAddress(), port));
+            Await.until("the restarted receiver refuses the replay", WAIT, () -> restarted.stats().dropped(DropReason.REPLAYED) == 1);
+            assertEquals(List.of(), again);
+            assertTrue(java.nio.file.Files.exists(replays.resolve("door.replay")));
+        }
+    }
 }

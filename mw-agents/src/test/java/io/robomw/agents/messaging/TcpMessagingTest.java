@@ -115,4 +115,20 @@ class TcpMessagingTest {
         assertEquals(true, e.getMessage().contains("no listener for topic 'nobody'"), e.getMessage());
         assertEquals(1, server.stats().dropped(DropReason.NO_LISTENER));
     }
+
+    @Test
+    void aTopicWhoseLastListenerWasRemovedIsForgottenAndAMessageToItIsRefusedAtOnce() {
+        MessagingNode server = node(MessagingNode.builder("server").bind("tcp://127.0.0.1:0"));
+        io.robomw.api.MessageListener listener = m -> server.replyMessage(m, "here", "ok");
+        server.addMessageListener("gone", null, listener);
+        assertEquals(true, server.listenedTopics().contains("gone"));
+        server.removeMessageListener("gone", listener);
+        assertEquals(false, server.listenedTopics().contains("gone"), "no longer listed: " + server.listenedTopics());
+        MessagingNode client = node(MessagingNode.builder("client"));
+        UUID id = client.sendMessage("server", server.address("tcp"), null, "gone", 1, "say");
+        long start = System.nanoTime();
+        MessagingException e = assertThrows(MessagingException.class, () -> client.waitForReply(id, Duration.ofSeconds(30)));
+        assertEquals(true, e.getMessage().contains("no listener for topic 'gone'"), "refused, not timed out: " + e.getMessage());
+        assertEquals(true, System.nanoTime() - start < Duration.ofSeconds(20).toNanos(), "refused well before the wait's 30 s");
+    }
 }

@@ -22,9 +22,10 @@ import java.util.stream.Stream;
  * (loopback unless told otherwise) and keeps sessions and queued messages in a data directory,
  * so a broker restarted on the same directory still has them.
  *
- * <p>HiveMQ CE lets every client in (no authentication): bind it to loopback, or to a network
- * only your robots share. For a fleet, run a broker with users and access rules (Mosquitto,
- * HiveMQ, EMQX; docs/messaging.md).
+ * <p>Secure by default, as Mosquitto 2.0 is: it lets in only its user ({@link BrokerUser}, whose
+ * credentials file {@code mw} commands on this machine read), with the access rules of
+ * {@link BrokerAccess}; a broker started without a user lets every client in, and says so. For a
+ * fleet, run a broker with users and access rules (Mosquitto, HiveMQ, EMQX; docs/messaging.md).
  *
  * <p>Not thread-safe: one thread starts and closes it.
  */
@@ -58,13 +59,27 @@ public final class EmbeddedBroker implements AutoCloseable {
      * @throws IOException if it cannot listen there or cannot use the directory
      */
     public static EmbeddedBroker start(String bind, int port, Path data) throws IOException {
+        return start(bind, port, data, null);
+    }
+
+    /**
+     * Starts a broker that lets in only its user, and waits until it listens.
+     *
+     * @param bind the address to listen on, for example {@code 127.0.0.1}
+     * @param port the port; 0 picks a free one
+     * @param data where sessions and queued messages are kept, or {@code null} for a fresh directory removed on close
+     * @param user the only user let in, or {@code null} to let every client in (anonymous access, logged as a warning)
+     * @return the running broker
+     * @throws IOException if it cannot listen there or cannot use the directory
+     */
+    public static EmbeddedBroker start(String bind, int port, Path data, BrokerUser user) throws IOException {
         boolean ownsData = data == null;
         Path dir = ownsData ? Files.createTempDirectory("mw-broker-") : Files.createDirectories(data);
         IOException last = null;
         for (int attempt = 0; attempt < (port == 0 ? FREE_PORT_TRIES : 1); attempt++) {
             int p = port == 0 ? freePort(bind) : port;
             try {
-                return startOn(bind, p, dir, ownsData);
+                return startOn(bind, p, dir, ownsData, user);
             } catch (IOException e) {
                 last = e; // with a picked port, another program may have taken it meanwhile: pick again
             }
@@ -75,13 +90,19 @@ public final class EmbeddedBroker implements AutoCloseable {
         throw last;
     }
 
-    private static EmbeddedBroker startOn(String bind, int port, Path dir, boolean ownsData) throws IOException {
+    private static EmbeddedBroker startOn(String bind, int port, Path dir, boolean ownsData, BrokerUser user) throws IOException {
         Path conf = Files.createDirectories(dir.resolve("conf"));
         Path extensions = Files.createDirectories(dir.resolve("extensions"));
         Path store = Files.createDirectories(dir.resolve("data"));
         Files.writeString(conf.resolve("config.xml"), config(bind, port), StandardCharsets.UTF_8);
-        EmbeddedHiveMQ hivemq = EmbeddedHiveMQ.builder().withoutLoggingBootstrap()
-                .withConfigurationFolder(conf).withDataFolder(store).withExtensionsFolder(extensions).build();
+        var builder = EmbeddedHiveMQ.builder().withoutLoggingBootstrap()
+                .withConfigurationFolder(conf).withDataFolder(store).withExtensionsFolder(extensions);
+        if (user != null) {
+            builder = builder.withEmbeddedExtension(BrokerAccess.extension(user));
+        } else {
+            LOG.warn("MQTT broker on {}:{} lets EVERY client in (no user, no access rules)", bind, port);
+        }
+        EmbeddedHiveMQ hivemq = builder.build();
         try {
             hivemq.start().join();
         } catch (CompletionException e) {

@@ -119,7 +119,7 @@ class FourComponentsTest {
         Robot local = opened(Robots.open(Path.of(getClass().getResource("/robots/instant.yaml").toURI())));
         MessagingNode server = opened(MessagingNode.builder("server").settings(RobotProtocol.forServer(MessagingSettings.defaults()))
                 .bind("tcp://127.0.0.1:0").build());
-        opened(RobotServer.serve(server, local, null));
+        opened(RobotServer.serveInsecure(server, local));
         AgencyConfig agency = new AgencyConfig("remote-home", "127.0.0.1", 0,
                 Optional.of(new SecretRef(SecretRef.Kind.FILE, dir.resolve("cluster.key").toString(), "test")), "test");
         try (Robot remote = opened(Robots.remote(server.address("tcp") + "/instant-1", PlatformServices.none().with(AgencyConfig.class, agency)))) {

@@ -38,7 +38,7 @@ class RemoteRobotTest {
         local = Robots.open(Path.of(getClass().getResource("/robots/instant.yaml").toURI()));
         server = MessagingNode.builder("host").settings(RobotProtocol.forServer(MessagingSettings.defaults()))
                 .bind("tcp://127.0.0.1:0").bind("rmi://127.0.0.1:0/instant-1").build();
-        RobotServer.serve(server, local, null);
+        RobotServer.serveInsecure(server, local);
     }
 
     @AfterEach

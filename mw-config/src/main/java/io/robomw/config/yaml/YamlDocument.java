@@ -45,8 +45,10 @@ import java.util.Set;
  * than the limits below allow:
  *
  * <ul>
- * <li>at most {@value #MAX_FILE_BYTES} bytes (1 MiB), checked while reading, so a huge file or a
- *     device ({@code /dev/zero}) is refused after 1 MiB, not read to the end;</li>
+ * <li>a regular file only: a FIFO, a device ({@code /dev/zero}) or a socket is refused before it is
+ *     opened (opening a FIFO without a writer would wait forever);</li>
+ * <li>at most {@value #MAX_FILE_BYTES} bytes (1 MiB), checked while reading, so a huge file is
+ *     refused after 1 MiB, not read to the end;</li>
  * <li>UTF-8 text only: another encoding is refused at the first byte that is not UTF-8;</li>
  * <li>at most {@value #MAX_DEPTH} levels of nested lists and mappings;</li>
  * <li>aliases: at most {@value #MAX_COLLECTION_ALIASES} to lists or mappings, none to a value it is
@@ -80,6 +82,8 @@ public final class YamlDocument {
         byte[] bytes = null;
         if (Files.isDirectory(file)) {
             problems.add(null, "this is a directory, not a YAML file");
+        } else if (Files.exists(file) && !Files.isRegularFile(file)) {
+            problems.add(null, "this is not a regular file (a FIFO, a device or a socket): refused without reading it");
         } else {
             try (InputStream in = Files.newInputStream(file)) {
                 bytes = in.readNBytes(MAX_FILE_BYTES + 1);

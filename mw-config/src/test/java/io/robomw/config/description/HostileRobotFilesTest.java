@@ -264,13 +264,26 @@ class HostileRobotFilesTest {
     }
 
     @Test
-    void endlessDeviceIsRefusedAfterOneMebibyte() {
+    void endlessDeviceIsRefusedWithoutReadingIt() {
         Path zero = Path.of("/dev/zero");
         assertTrue(Files.exists(zero), "this test runs where /dev/zero exists (Linux, macOS)");
 
         Problem p = only(refusedFile(zero));
 
-        assertTrue(p.message().contains("larger than 1 MiB"), p::toString);
+        assertTrue(p.message().contains("not a regular file"), p::toString);
+    }
+
+    /** Issue 37: opening a FIFO nobody writes to waits forever; it is refused at once. */
+    @Test
+    void fifoIsRefusedAtOnce() throws Exception {
+        Path fifo = dir.resolve("robot.yaml");
+        Process mkfifo = new ProcessBuilder("mkfifo", fifo.toString()).start();
+        org.junit.jupiter.api.Assumptions.assumeTrue(mkfifo.waitFor(10, java.util.concurrent.TimeUnit.SECONDS) && mkfifo.exitValue() == 0,
+                "mkfifo is available (Linux, macOS)");
+
+        Problem p = java.util.concurrent.CompletableFuture.supplyAsync(() -> only(refusedFile(fifo))).get(10, java.util.concurrent.TimeUnit.SECONDS);
+
+        assertTrue(p.message().contains("not a regular file (a FIFO"), p::toString);
     }
 
     @Test

@@ -199,11 +199,20 @@ public final class FoxgloveServer implements Observer, AutoCloseable {
             connector.setHost(options.bind());
             connector.setPort(options.port());
             server.addConnector(connector);
+            io.robomw.console.server.HostCheck hosts = new io.robomw.console.server.HostCheck(options.bind(), connector::getLocalPort);
             WebSocketUpgradeHandler ws = WebSocketUpgradeHandler.from(server, container -> {
                 container.setMaxTextMessageSize(MAX_CLIENT_MESSAGE);
                 container.setMaxBinaryMessageSize(MAX_CLIENT_MESSAGE);
                 container.setIdleTimeout(Duration.ofMinutes(2));
                 container.addMapping("/*", (request, response, callback) -> {
+                    String host = request.getHeaders().get(HttpHeader.HOST);
+                    if (!hosts.allows(host)) {
+                        // a page of a site whose name was made to resolve to this machine (DNS rebinding) reads nothing
+                        LOG.warn("foxglove: refused a handshake for Host {} (this server answers to {} on port {})", host, hosts.names(),
+                                connector.getLocalPort());
+                        Response.writeError(request, response, callback, 421, "this server answers to " + hosts.names() + ", not to '" + host + "'");
+                        return null;
+                    }
                     Optional<Subprotocol> p = Subprotocol.choose(request.getSubProtocols());
                     if (p.isEmpty()) {
                         LOG.info("foxglove: refused a handshake from {} offering subprotocols {} (neither {} nor {})", Request.getRemoteAddr(request),

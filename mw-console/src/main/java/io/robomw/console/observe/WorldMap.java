@@ -95,6 +95,30 @@ public record WorldMap(String name, double width, double height, boolean walls, 
         return new WorldMap(d.name(), d.width(), d.height(), d.walls(), d.wallThickness(), d.floorBrightness(), shapes, patches, robots);
     }
 
+    /**
+     * A robot's odometry counts from where it started; on this map, a robot with a mark of its name
+     * is placed from its start pose: the start, then the odometry in the start's frame. True poses
+     * (and robots without a mark) are the map's already. The live page and replays (the page, the
+     * picture) place poses so, so a recording shows a robot where the live console showed it.
+     *
+     * @param p a pose as observed
+     * @return it in the map's frame
+     */
+    public Observation.RobotPose placed(Observation.RobotPose p) {
+        if (p.truth()) {
+            return p;
+        }
+        for (RobotMark m : robots) {
+            if (m.name().equals(p.robot())) {
+                double c = Math.cos(m.startHeading());
+                double s = Math.sin(m.startHeading());
+                return new Observation.RobotPose(p.timeNanos(), p.robot(), m.startX() + c * p.x() - s * p.y(), m.startY() + s * p.x() + c * p.y(),
+                        m.startHeading() + p.heading(), false);
+            }
+        }
+        return p;
+    }
+
     /** @return the description this map was made from, as far as drawing needs it (robot files unknown) */
     public WorldDescription description() {
         List<WorldDescription.Obstacle> obstacles = new ArrayList<>();

@@ -29,8 +29,8 @@ import java.util.Map;
  */
 public final class ReplayPicture implements Observer {
 
-    private final Map<String, List<double[]>> truth = new LinkedHashMap<>();
-    private final Map<String, List<double[]>> odometry = new LinkedHashMap<>();
+    private final Map<String, List<Observation.RobotPose>> truth = new LinkedHashMap<>();
+    private final Map<String, List<Observation.RobotPose>> odometry = new LinkedHashMap<>();
     private WorldMap world;
 
     @Override
@@ -38,10 +38,23 @@ public final class ReplayPicture implements Observer {
         if (o instanceof Observation.World w) {
             world = w.map();
         } else if (o instanceof Observation.RobotPose p) {
-            (p.truth() ? truth : odometry).computeIfAbsent(p.robot(), k -> new ArrayList<>()).add(new double[] {p.x(), p.y(), p.heading()});
+            (p.truth() ? truth : odometry).computeIfAbsent(p.robot(), k -> new ArrayList<>()).add(p);
         } else if (o instanceof Observation.Batch b) {
             b.all().forEach(this::observe);
         }
+    }
+
+    /**
+     * @return each robot's path as drawn, {x, y, heading} in the map's frame: odometry placed from
+     *         the robot's start pose on the recorded map (as the live page placed it), true poses as they are
+     */
+    synchronized Map<String, List<double[]>> paths() {
+        Map<String, List<double[]>> paths = new LinkedHashMap<>();
+        for (Map<String, List<Observation.RobotPose>> kind : List.of(odometry, truth)) {
+            kind.forEach((robot, poses) -> paths.put(robot, poses.stream().map(p -> world == null ? p : world.placed(p))
+                    .map(p -> new double[] {p.x(), p.y(), p.heading()}).toList()));
+        }
+        return paths;
     }
 
     /**
@@ -50,8 +63,7 @@ public final class ReplayPicture implements Observer {
      * @throws IOException if it cannot be written
      */
     public synchronized void write(Path file, int widthPx) throws IOException {
-        Map<String, List<double[]>> paths = new LinkedHashMap<>(odometry);
-        paths.putAll(truth);
+        Map<String, List<double[]>> paths = paths();
         double minX;
         double minY;
         double maxX;

@@ -49,6 +49,10 @@ import java.util.concurrent.TimeUnit;
  * its address ({@code http://HOST:PORT/#token=...}: in the fragment, so it is never sent in a
  * request line or a Referer); requests without it are refused. A WebSocket whose Origin is not
  * this server is refused, so another site open in the same browser cannot talk to the console.
+ * Every request must name the console itself in its {@code Host} ({@link HostCheck}): a site whose
+ * name was made to resolve to this machine (DNS rebinding) is refused before anything is served.
+ * The page's Content-Security-Policy lets it open WebSockets to the console only, and be framed by
+ * no page ({@code frame-ancestors 'none'}).
  */
 public final class ConsoleServer implements AutoCloseable {
 
@@ -75,6 +79,7 @@ public final class ConsoleServer implements AutoCloseable {
     private final ThreadPoolExecutor requests;
     private final FailurePolicy failures;
     private final Map<String, byte[]> files = new LinkedHashMap<>();
+    private final HostCheck hosts;
 
     private ConsoleServer(ConsoleView view, Controls controls, String bind, int port, FailurePolicy failures) {
         this.view = view;
@@ -109,7 +114,8 @@ public final class ConsoleServer implements AutoCloseable {
             });
         });
         ws.setHandler(new Files());
-        server.setHandler(ws);
+        this.hosts = new HostCheck(bind, this::port);
+        server.setHandler(new OwnHostOnly(ws));
         this.pusher = Executors.newSingleThreadScheduledExecutor(r -> OwnerThreads.thread("console-push", r, failures));
         this.requests = new ThreadPoolExecutor(MAX_REQUEST_THREADS, MAX_REQUEST_THREADS, 30, TimeUnit.SECONDS,
                 new ArrayBlockingQueue<>(MAX_QUEUED_REQUESTS), new OwnerThreads("console-request", failures), new ThreadPoolExecutor.AbortPolicy());
@@ -240,6 +246,25 @@ public final class ConsoleServer implements AutoCloseable {
         }
     }
 
+    /** Refuses every request whose Host is not one of the console's names, before the page or the WebSocket sees it. */
+    private final class OwnHostOnly extends Handler.Wrapper {
+        OwnHostOnly(Handler inner) {
+            super(inner);
+        }
+
+        @Override
+        public boolean handle(Request request, Response response, Callback callback) throws Exception {
+            String host = request.getHeaders().get(HttpHeader.HOST);
+            if (!hosts.allows(host)) {
+                LOG.warn("console: refused a request for Host {} (this console answers to {} on port {}; a DNS rebinding?)", host, hosts.names(), port());
+                Response.writeError(request, response, callback, 421, "this console answers to " + hosts.names() + " on port " + port()
+                        + ", not to '" + host + "'");
+                return true;
+            }
+            return super.handle(request, response, callback);
+        }
+    }
+
     /** The page's three files, and 404 for anything else. */
     private final class Files extends Handler.Abstract {
         @Override
@@ -254,7 +279,11 @@ public final class ConsoleServer implements AutoCloseable {
                     : "text/css; charset=utf-8";
             response.getHeaders().put(HttpHeader.CONTENT_TYPE, type);
             response.getHeaders().put(HttpHeader.CACHE_CONTROL, "no-cache");
-            response.getHeaders().put("Content-Security-Policy", "default-src 'self'; connect-src 'self' ws: wss:; img-src 'self' data:");
+            // The Host was checked (OwnHostOnly): the page may open WebSockets to this console and nowhere else, and no page may frame it.
+            String self = request.getHeaders().get(HttpHeader.HOST).strip();
+            response.getHeaders().put("Content-Security-Policy", "default-src 'self'; connect-src 'self' ws://" + self
+                    + "; img-src 'self' data:; frame-ancestors 'none'");
+            response.getHeaders().put("X-Frame-Options", "DENY");
             response.getHeaders().put("X-Content-Type-Options", "nosniff");
             response.write(true, ByteBuffer.wrap(files.get(file)), callback);
             return true;

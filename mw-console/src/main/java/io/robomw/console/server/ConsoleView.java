@@ -153,24 +153,9 @@ public final class ConsoleView implements Observer {
         }
     }
 
-    /**
-     * A robot's odometry counts from where it started; in a world whose map says where that was
-     * (a robot of that name), the page draws it from there: start pose, then odometry in the
-     * start's frame. True poses are the world's already.
-     */
+    /** A pose as the page draws it: odometry placed from the robot's start on the world's map ({@link WorldMap#placed}). */
     private Observation.RobotPose placed(Observation.RobotPose p) {
-        if (p.truth() || world == null) {
-            return p;
-        }
-        for (WorldMap.RobotMark m : world.robots()) {
-            if (m.name().equals(p.robot())) {
-                double c = Math.cos(m.startHeading());
-                double s = Math.sin(m.startHeading());
-                return new Observation.RobotPose(p.timeNanos(), p.robot(), m.startX() + c * p.x() - s * p.y(), m.startY() + s * p.x() + c * p.y(),
-                        m.startHeading() + p.heading(), false);
-            }
-        }
-        return p;
+        return world == null ? p : world.placed(p);
     }
 
     private void addEvent(Map<String, Object> m) {

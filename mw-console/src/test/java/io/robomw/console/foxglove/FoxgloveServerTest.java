@@ -404,4 +404,22 @@ class FoxgloveServerTest {
         assertEquals(9, time.binary().length);
         assertEquals(T0 + 123, time.le().getLong(1));
     }
+
+    /** Issue 37: a handshake naming another Host (a DNS-rebinding page) is refused before it is a session. */
+    @Test
+    void aHandshakeNamingAnotherHostIsRefused() throws Exception {
+        FoxgloveServer s = server(Teleop.NONE);
+        String handshake = "GET / HTTP/1.1\r\nHost: %s\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+                + "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\nSec-WebSocket-Protocol: foxglove.websocket.v1\r\n\r\n";
+        assertTrue(status(s.port(), handshake.formatted("rebound.example:" + s.port())).contains(" 421 "));
+        assertTrue(status(s.port(), handshake.formatted("127.0.0.1:" + s.port())).contains(" 101 "));
+    }
+
+    private static String status(int port, String request) throws java.io.IOException {
+        try (java.net.Socket socket = new java.net.Socket("127.0.0.1", port)) {
+            socket.setSoTimeout(10_000);
+            socket.getOutputStream().write(request.getBytes(java.nio.charset.StandardCharsets.US_ASCII));
+            return new java.io.BufferedReader(new java.io.InputStreamReader(socket.getInputStream(), java.nio.charset.StandardCharsets.US_ASCII)).readLine();
+        }
+    }
 }

@@ -126,7 +126,10 @@ class ConsoleServerTest {
         HttpResponse<String> page = http.send(HttpRequest.newBuilder(server.address()).build(), HttpResponse.BodyHandlers.ofString());
         assertEquals(200, page.statusCode());
         assertTrue(page.body().contains("<script src=\"console.js\">"));
-        assertTrue(page.headers().firstValue("Content-Security-Policy").orElse("").contains("default-src 'self'"));
+        String csp = page.headers().firstValue("Content-Security-Policy").orElse("");
+        assertTrue(csp.contains("default-src 'self'") && csp.contains("frame-ancestors 'none'"), csp);
+        assertTrue(csp.contains("connect-src 'self' ws://127.0.0.1:" + server.port() + ";") && !csp.matches(".*\\sws:\\s.*") && !csp.contains("wss:"),
+                "WebSockets to the console only: " + csp);
         HttpResponse<String> script = http.send(HttpRequest.newBuilder(server.address().resolve("/console.js")).build(), HttpResponse.BodyHandlers.ofString());
         assertEquals("text/javascript; charset=utf-8", script.headers().firstValue("Content-Type").orElseThrow());
         String withoutSvgNamespace = script.body().replace("\"http://www.w3.org/2000/svg\"", "");
@@ -199,6 +202,28 @@ class ConsoleServerTest {
                 .buildAsync(URI.create("ws://127.0.0.1:" + server.port() + "/live"), new Page()).join());
         WebSocketHandshakeException h = assertInstanceOf(WebSocketHandshakeException.class, e.getCause());
         assertEquals(403, h.getResponse().statusCode());
+    }
+
+    /** What a page of another site gets when its name was made to resolve to this machine (DNS rebinding): refused, page and WebSocket alike. */
+    @Test
+    void aRequestNamingAnotherHostIsRefused() throws Exception {
+        assertTrue(rawStatus("GET / HTTP/1.1\r\nHost: 127.0.0.1:" + server.port() + "\r\nConnection: close\r\n\r\n").contains(" 200 "));
+        assertTrue(rawStatus("GET / HTTP/1.1\r\nHost: localhost:" + server.port() + "\r\nConnection: close\r\n\r\n").contains(" 200 "));
+        assertTrue(rawStatus("GET / HTTP/1.1\r\nHost: rebound.example:" + server.port() + "\r\nConnection: close\r\n\r\n").contains(" 421 "));
+        assertTrue(rawStatus("GET / HTTP/1.1\r\nHost: 127.0.0.1:1\r\nConnection: close\r\n\r\n").contains(" 421 "), "another port");
+        String upgrade = rawStatus("GET /live HTTP/1.1\r\nHost: rebound.example:" + server.port() + "\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+                + "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n");
+        assertTrue(upgrade.contains(" 421 "), "no WebSocket without an Origin either: " + upgrade);
+    }
+
+    private String rawStatus(String request) throws java.io.IOException {
+        try (java.net.Socket s = new java.net.Socket("127.0.0.1", server.port())) {
+            s.setSoTimeout(10_000);
+            s.getOutputStream().write(request.getBytes(java.nio.charset.StandardCharsets.US_ASCII));
+            s.getOutputStream().flush();
+            java.io.BufferedReader r = new java.io.BufferedReader(new java.io.InputStreamReader(s.getInputStream(), java.nio.charset.StandardCharsets.US_ASCII));
+            return r.readLine();
+        }
     }
 
     private String token() {

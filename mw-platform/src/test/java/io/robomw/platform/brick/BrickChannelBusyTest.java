@@ -1,7 +1,7 @@
 package io.robomw.platform.brick;
 
 import io.robomw.platform.link.Communicator;
-import io.robomw.platform.link.Link;
+import io.robomw.platform.testkit.ScriptedLink;
 import org.junit.jupiter.api.Test;
 
 import java.time.Duration;
@@ -20,39 +20,9 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
  */
 class BrickChannelBusyTest {
 
-    /** A link that takes every write and never answers. */
-    private static final class Silent implements Link {
-        @Override
-        public void open() {
-        }
-
-        @Override
-        public boolean isOpen() {
-            return true;
-        }
-
-        @Override
-        public void write(byte[] data, int off, int len) {
-        }
-
-        @Override
-        public int read(byte[] buf, int off, int len, Duration timeout) {
-            return 0;
-        }
-
-        @Override
-        public String describe() {
-            return "silent link";
-        }
-
-        @Override
-        public void close() {
-        }
-    }
-
     @Test
     void anExchangeBehindOneThatNeverEndsGivesUpNamingTheRobotAndTheLink() throws Exception {
-        Communicator c = new Communicator(new Silent());
+        Communicator c = new Communicator(new ScriptedLink().named("silent link")); // takes every write, never answers
         c.open();
         BrickChannel channel = new BrickChannel("stuck-bot", c, Duration.ofMillis(100));
         channel.exchange((link, timeout) -> null); // answered once: later waits are the reply timeout's, not the first reply's

@@ -1,13 +1,14 @@
 package io.robomw.platform.brick;
 
 import io.robomw.platform.link.Communicator;
-import io.robomw.platform.link.Link;
 import io.robomw.platform.link.LinkTimeoutException;
+import io.robomw.platform.testkit.Answer;
+import io.robomw.platform.testkit.ScriptedLink;
 import org.junit.jupiter.api.Test;
 
 import java.io.IOException;
 import java.time.Duration;
-import java.util.concurrent.locks.LockSupport;
+import java.util.concurrent.atomic.AtomicLong;
 
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertThrows;
@@ -19,61 +20,11 @@ import static org.junit.jupiter.api.Assertions.assertThrows;
  */
 class BrickChannelFirstReplyTest {
 
-    /** A brick that answers every byte written with the same byte, {@code delayMillis} later. */
-    private static final class SlowEcho implements Link {
-        volatile long delayMillis;
-        private long dueAt = Long.MAX_VALUE;
-        private byte pending;
-        private boolean hasPending;
-
-        SlowEcho(long delayMillis) {
-            this.delayMillis = delayMillis;
-        }
-
-        @Override
-        public void open() {
-        }
-
-        @Override
-        public boolean isOpen() {
-            return true;
-        }
-
-        @Override
-        public synchronized void write(byte[] data, int off, int len) {
-            pending = data[off];
-            hasPending = true;
-            dueAt = System.nanoTime() + delayMillis * 1_000_000L;
-        }
-
-        @Override
-        public int read(byte[] buf, int off, int len, Duration timeout) {
-            long deadline = System.nanoTime() + timeout.toNanos();
-            while (true) {
-                synchronized (this) {
-                    if (hasPending && System.nanoTime() >= dueAt) {
-                        buf[off] = pending;
-                        hasPending = false;
-                        return 1;
-                    }
-                }
-                long left = deadline - System.nanoTime();
-                if (left <= 0) {
-                    return 0;
-                }
-                LockSupport.parkNanos(Math.min(left, 1_000_000L));
-            }
-        }
-
-        @Override
-        public String describe() {
-            return "slow echo";
-        }
-
-        @Override
-        public void close() {
-        }
-    }
+    /** How late the brick answers. */
+    private final AtomicLong delayMillis = new AtomicLong();
+    /** A brick that answers every byte written with the same byte, {@link #delayMillis} later. */
+    private final ScriptedLink brick = new ScriptedLink().named("slow echo")
+            .answeringWith(written -> Answer.of(new byte[]{written[0]}).after(Duration.ofMillis(delayMillis.get())));
 
     private static byte[] ping(BrickChannel channel, byte b) throws IOException {
         return channel.exchange((c, timeout) -> {
@@ -84,14 +35,14 @@ class BrickChannelFirstReplyTest {
 
     @Test
     void shouldGiveTheFirstExchangeMoreTimeThanTheReplyTimeout() throws Exception {
-        SlowEcho brick = new SlowEcho(600);
+        delayMillis.set(600);
         Communicator c = new Communicator(brick);
         c.open();
         BrickChannel channel = new BrickChannel("slow", c, Duration.ofMillis(200));
         assertArrayEquals(new byte[]{7}, ping(channel, (byte) 7), "the first answer, 600 ms late, is awaited");
-        brick.delayMillis = 5;
+        delayMillis.set(5);
         assertArrayEquals(new byte[]{8}, ping(channel, (byte) 8));
-        brick.delayMillis = 600;
+        delayMillis.set(600);
         assertThrows(LinkTimeoutException.class, () -> ping(channel, (byte) 9), "later answers wait only the reply timeout");
     }
 }

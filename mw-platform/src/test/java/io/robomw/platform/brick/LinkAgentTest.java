@@ -13,7 +13,6 @@ import io.robomw.api.spi.PlatformServices;
 import io.robomw.api.spi.SensorChannel;
 import io.robomw.platform.BrickPlatform;
 import io.robomw.platform.link.Communicator;
-import io.robomw.platform.link.Link;
 import io.robomw.platform.link.LinkLostException;
 import io.robomw.platform.motor.FeedbackSink;
 import io.robomw.platform.motor.LinkTiming;
@@ -22,6 +21,7 @@ import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.motor.MotorState;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
+import io.robomw.platform.testkit.ScriptedLink;
 import io.robomw.testkit.Await;
 import io.robomw.testkit.LogLines;
 import org.junit.jupiter.api.AfterEach;
@@ -31,11 +31,9 @@ import java.io.IOException;
 import java.time.Duration;
 import java.util.List;
 import java.util.Map;
-import java.util.concurrent.BlockingQueue;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.ExecutionException;
-import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
@@ -50,65 +48,6 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
  * once naming the robot; the agent alone reopens the link, and then everything works again.
  */
 class LinkAgentTest {
-
-    /** A brick that echoes every byte written to it, and can be unplugged (a Bluetooth link out of range). */
-    static final class PluggableBrick implements Link {
-        private final BlockingQueue<Byte> echo = new LinkedBlockingQueue<>();
-        volatile boolean unplugged;
-        private volatile boolean open;
-
-        @Override
-        public void open() throws IOException {
-            if (unplugged) {
-                throw new IOException("no such device: the brick is out of range");
-            }
-            echo.clear();
-            open = true;
-        }
-
-        @Override
-        public boolean isOpen() {
-            return open;
-        }
-
-        @Override
-        public void write(byte[] data, int off, int len) throws IOException {
-            if (unplugged) {
-                throw new LinkLostException(describe(), "write failed: the port hung up");
-            }
-            for (int i = off; i < off + len; i++) {
-                echo.add(data[i]);
-            }
-        }
-
-        @Override
-        public int read(byte[] buf, int off, int len, Duration timeout) throws IOException {
-            if (unplugged) {
-                throw new LinkLostException(describe(), "read failed: the port hung up");
-            }
-            try {
-                Byte b = echo.poll(timeout.toNanos(), TimeUnit.NANOSECONDS);
-                if (b == null) {
-                    return 0;
-                }
-                buf[off] = b;
-                return 1;
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-                throw new IOException("interrupted", e);
-            }
-        }
-
-        @Override
-        public String describe() {
-            return "pluggable brick";
-        }
-
-        @Override
-        public void close() {
-            open = false;
-        }
-    }
 
     /** Sends one byte per motor state (1 running, 0 stopped) and reads its echo; polls with one byte. */
     static final class EchoMotors implements MotorDriver {
@@ -148,7 +87,8 @@ class LinkAgentTest {
         }
     }
 
-    private final PluggableBrick brick = new PluggableBrick();
+    /** A brick that echoes what is written to it, and can be unplugged (a Bluetooth link out of range). */
+    private final ScriptedLink brick = new ScriptedLink().named("pluggable brick").answering(written -> written);
     private BrickChannel channel;
     private EchoMotors motors;
     private BrickPlatform platform;
@@ -189,7 +129,7 @@ class LinkAgentTest {
             CompletableFuture<Void> drive = platform.run(driveForever());
             Await.until("the motors were started", Duration.ofSeconds(10), () -> !motors.sent.isEmpty());
 
-            brick.unplugged = true;
+            brick.unplug();
             // A program's exchange (a sensor read) finds the link lost first, or the agent's poll does.
             assertThrows(IOException.class, () -> motors.ping(new byte[] {9}));
             Await.until("the link is down", Duration.ofSeconds(10), () -> platform.linkState() == LinkState.DOWN);
@@ -202,7 +142,7 @@ class LinkAgentTest {
             ExecutionException later = assertThrows(ExecutionException.class, () -> platform.run(driveForever()).get(10, TimeUnit.SECONDS));
             assertTrue(later.getCause().getMessage().contains("is down"), later.getCause().getMessage());
 
-            brick.unplugged = false;
+            brick.plugIn();
             Await.until("the agent reopened the link", Duration.ofSeconds(10), () -> platform.linkState() == LinkState.UP);
             int before = motors.sent.size();
             CompletableFuture<Void> again = platform.run(driveForever());

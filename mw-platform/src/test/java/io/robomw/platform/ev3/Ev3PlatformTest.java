@@ -14,6 +14,8 @@ import io.robomw.platform.link.Communicator;
 import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.motor.MotorState;
 import io.robomw.platform.sensor.Sensor;
+import io.robomw.platform.testkit.Answer;
+import io.robomw.platform.testkit.ScriptedLink;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.CsvSource;
@@ -34,14 +36,15 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 /**
  * The EV3 driver's motor and sensor platforms: what they send for each motor state and sensor,
- * checked as bytes on a hand-written fake link, and how they read the replies.
+ * checked as bytes on a scripted link, and how they read the replies.
  */
 class Ev3PlatformTest {
 
-    private FakeEv3Link link;
+    private ScriptedLink link;
 
-    private Ev3Brick brick(Function<byte[], List<byte[]>> responder) throws IOException {
-        link = new FakeEv3Link(responder);
+    /** @return a brick whose far end answers each frame written with what {@code responder} makes of it */
+    private Ev3Brick brick(Function<byte[], Answer> responder) throws IOException {
+        link = new ScriptedLink().named("ev3 link").answeringWith(responder);
         Communicator c = new Communicator(link);
         c.open();
         return new Ev3Brick("ev3-test", new BrickChannel("ev3-test", c, Duration.ofMillis(200)));
@@ -53,11 +56,11 @@ class Ev3PlatformTest {
                 Duration.ofMillis(10), Duration.ZERO, Clock.system(), PlatformServices.none(), io.robomw.api.spi.Cycling.OWN_THREADS, io.robomw.api.spi.FailurePolicy.logging());
     }
 
-    private static List<byte[]> replyWithGlobals(byte[] frame, byte[] globals) {
-        return List.of(FakeEv3Link.okReply(frame, globals));
+    private static Answer replyWithGlobals(byte[] frame, byte[] globals) {
+        return Answer.of(Ev3BrickTest.okReply(frame, globals));
     }
 
-    private static List<byte[]> emptyReply(byte[] frame) {
+    private static Answer emptyReply(byte[] frame) {
         return replyWithGlobals(frame, new byte[Ev3Frame.globalsOf(LittleEndian.u16(frame, Ev3Frame.VARS_FIELD_OFFSET))]);
     }
 
@@ -112,7 +115,7 @@ class Ev3PlatformTest {
         Ev3MotorDriver driver = new Ev3MotorDriver(config(List.of("B", "C")), brick);
         MotorPlatform motors = new MotorPlatform(config(List.of("B", "C")), driver);
         driver.poll(motors.feedback());
-        assertEquals("0D 00 2A 00 00 08 00 B3 00 01 60 B3 00 02 64", hex(link.written().get(0)));
+        assertEquals("0D 00 2A 00 00 08 00 B3 00 01 60 B3 00 02 64", hex(link.eachWrite().get(0)));
         assertEquals(360, motors.motorDegrees("B"));
         assertEquals(-90, motors.motorDegrees("C"));
     }
@@ -121,7 +124,7 @@ class Ev3PlatformTest {
     void shouldClearCountsOfAllMotorsInOneInstruction() throws IOException {
         Ev3Brick brick = brick(Ev3PlatformTest::emptyReply);
         new Ev3MotorDriver(config(List.of("B", "C")), brick).clearCounts();
-        assertEquals("08 00 2A 00 00 00 00 B2 00 06", hex(link.written().get(0)));
+        assertEquals("08 00 2A 00 00 00 00 B2 00 06", hex(link.eachWrite().get(0)));
     }
 
     @Test
@@ -129,7 +132,7 @@ class Ev3PlatformTest {
         Ev3Brick brick = brick(Ev3PlatformTest::emptyReply);
         Ev3MotorDriver driver = new Ev3MotorDriver(config(List.of("B", "C")), brick);
         driver.send(List.of(MotorState.stopped("B", MotorState.StopMode.BRAKE)), new MotorPlatform(config(List.of("B", "C")), driver).feedback());
-        assertEquals("09 00 2A 00 00 00 00 A3 00 02 01", hex(link.written().get(0)));
+        assertEquals("09 00 2A 00 00 00 00 A3 00 02 01", hex(link.eachWrite().get(0)));
     }
 
     // ---- sensors ----
@@ -168,9 +171,9 @@ class Ev3PlatformTest {
         Ev3Brick brick = brick(f -> replyWithGlobals(f, cm));
         Ev3SensorPlatform sensors = new Ev3SensorPlatform(new MotorPlatform(config(List.of()), new Ev3MotorDriver(config(List.of()), brick)), brick);
         Sensor sonar = sensors.createSensor(channel(SensorType.SONAR, "S4", Map.of()));
-        assertEquals("0D 00 2A 00 00 04 00 99 1D 00 03 1E 00 01 60", hex(link.written().get(0)));
+        assertEquals("0D 00 2A 00 00 04 00 99 1D 00 03 1E 00 01 60", hex(link.eachWrite().get(0)));
         assertEquals(43.3, sonar.readRaw().get(), 1e-5);
-        assertEquals(2, link.written().size());
+        assertEquals(2, link.writes());
     }
 
     @Test
@@ -180,7 +183,7 @@ class Ev3PlatformTest {
         Ev3Brick brick = brick(f -> replyWithGlobals(f, mm));
         Ev3SensorPlatform sensors = new Ev3SensorPlatform(new MotorPlatform(config(List.of()), new Ev3MotorDriver(config(List.of()), brick)), brick);
         Sensor sonar = sensors.createSensor(channel(SensorType.SONAR, "4", Map.of("ev3_value", "raw")));
-        assertEquals("0D 00 2A 00 00 04 00 99 1C 00 03 1E 00 01 60", hex(link.written().get(0)));
+        assertEquals("0D 00 2A 00 00 04 00 99 1C 00 03 1E 00 01 60", hex(link.eachWrite().get(0)));
         assertEquals(433, sonar.readRaw().get());
     }
 

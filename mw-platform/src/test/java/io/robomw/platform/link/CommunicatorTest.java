@@ -1,5 +1,6 @@
 package io.robomw.platform.link;
 
+import io.robomw.platform.testkit.ScriptedLink;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;

@@ -10,16 +10,14 @@ import io.robomw.api.spi.PlatformServices;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.brick.LittleEndian;
 import io.robomw.platform.link.Communicator;
-import io.robomw.platform.link.Link;
 import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.motor.MotorState;
+import io.robomw.platform.testkit.Framing;
+import io.robomw.platform.testkit.ScriptedLink;
 import org.junit.jupiter.api.Test;
 
-import java.io.ByteArrayOutputStream;
 import java.io.IOException;
 import java.time.Duration;
-import java.util.ArrayDeque;
-import java.util.Deque;
 import java.util.HexFormat;
 import java.util.List;
 import java.util.Map;
@@ -35,76 +33,32 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
  */
 class NxtMotorDriverTest {
 
-    /** Answers every telegram with success; GETOUTPUTSTATE reports the output running, at rotation count 90. */
-    static final class RecordingBrick implements Link {
-        final ByteArrayOutputStream written = new ByteArrayOutputStream();
-        private final Deque<Byte> replies = new ArrayDeque<>();
-        private boolean open;
-
-        @Override
-        public void open() {
-            open = true;
+    /** A brick that answers every telegram with success; GETOUTPUTSTATE reports the output running, at rotation count 90. */
+    private static byte[] answer(byte[] frame) {
+        int opcode = frame[2 + NxtTelegram.OPCODE_OFFSET] & 0xFF;
+        byte port = frame[2 + NxtTelegram.PAYLOAD_OFFSET];
+        byte[] reply = new byte[opcode == NxtTelegram.GETOUTPUTSTATE ? NxtTelegram.GETOUTPUTSTATE_REPLY : NxtTelegram.STATUS_REPLY];
+        reply[NxtTelegram.TYPE_OFFSET] = (byte) NxtTelegram.REPLY;
+        reply[NxtTelegram.OPCODE_OFFSET] = (byte) opcode;
+        if (opcode == NxtTelegram.GETOUTPUTSTATE) {
+            int d = NxtTelegram.DATA_OFFSET;
+            reply[d + NxtTelegram.OUT_PORT] = port;
+            reply[d + NxtTelegram.OUT_MODE] = 0x07;
+            reply[d + NxtTelegram.OUT_REGULATION] = 0x01;
+            reply[d + NxtTelegram.OUT_RUN_STATE] = 0x20;
+            LittleEndian.putU32(reply, d + NxtTelegram.OUT_ROTATION_COUNT, 90);
         }
-
-        @Override
-        public boolean isOpen() {
-            return open;
-        }
-
-        @Override
-        public void write(byte[] data, int off, int len) {
-            written.write(data, off, len);
-            for (int at = off; at < off + len; ) {
-                int length = LittleEndian.u16(data, at);
-                answer(data[at + 2 + NxtTelegram.OPCODE_OFFSET] & 0xFF, data[at + 2 + NxtTelegram.PAYLOAD_OFFSET]);
-                at += 2 + length;
-            }
-        }
-
-        private void answer(int opcode, byte port) {
-            byte[] reply = new byte[opcode == NxtTelegram.GETOUTPUTSTATE ? NxtTelegram.GETOUTPUTSTATE_REPLY : NxtTelegram.STATUS_REPLY];
-            reply[NxtTelegram.TYPE_OFFSET] = (byte) NxtTelegram.REPLY;
-            reply[NxtTelegram.OPCODE_OFFSET] = (byte) opcode;
-            if (opcode == NxtTelegram.GETOUTPUTSTATE) {
-                int d = NxtTelegram.DATA_OFFSET;
-                reply[d + NxtTelegram.OUT_PORT] = port;
-                reply[d + NxtTelegram.OUT_MODE] = 0x07;
-                reply[d + NxtTelegram.OUT_REGULATION] = 0x01;
-                reply[d + NxtTelegram.OUT_RUN_STATE] = 0x20;
-                LittleEndian.putU32(reply, d + NxtTelegram.OUT_ROTATION_COUNT, 90);
-            }
-            for (byte b : NxtTelegram.withLengthPrefix(reply)) {
-                replies.add(b);
-            }
-        }
-
-        @Override
-        public int read(byte[] buf, int off, int len, Duration timeout) {
-            int n = 0;
-            while (n < len && !replies.isEmpty()) {
-                buf[off + n++] = replies.poll();
-            }
-            return n;
-        }
-
-        @Override
-        public String describe() {
-            return "recording NXT";
-        }
-
-        @Override
-        public void close() {
-            open = false;
-        }
-
-        String takeWritten() {
-            String hex = HexFormat.of().withUpperCase().formatHex(written.toByteArray());
-            written.reset();
-            return hex;
-        }
+        return NxtTelegram.withLengthPrefix(reply);
     }
 
-    private final RecordingBrick link = new RecordingBrick();
+    private final ScriptedLink link = new ScriptedLink().named("recording NXT")
+            .framedBy(Framing.lengthPrefixed16LittleEndian()).answering(NxtMotorDriverTest::answer);
+
+    /** @return the bytes written since the last call, in hex */
+    private String takeWritten() {
+        return HexFormat.of().withUpperCase().formatHex(link.takeWritten());
+    }
+
     private final PlatformConfig config = new PlatformConfig("nxt-1", "nxt", new ConnectionSettings(Map.of("port", "/dev/rfcomm0"), "nxt.yaml"),
             List.of(new MotorChannel("B", MotorChannel.Role.LEFT_WHEEL, 0, Optional.empty()),
                     new MotorChannel("C", MotorChannel.Role.RIGHT_WHEEL, 0, Optional.empty())),
@@ -126,16 +80,16 @@ class NxtMotorDriverTest {
         assertEquals(hex("""
                 03 00 00 21 01 | 04 00 00 0A 01 01 | 03 00 00 21 02 | 04 00 00 0A 02 01
                 0C 00 00 04 01 2D 07 02 00 20 FF 03 00 00 | 0C 00 00 04 02 2D 07 02 00 20 FF 03 00 00
-                03 00 00 06 01 | 03 00 00 06 02""").replace("\n", ""), link.takeWritten(), "the move: one write, 60 bytes");
+                03 00 00 06 01 | 03 00 00 06 02""").replace("\n", ""), takeWritten(), "the move: one write, 60 bytes");
         assertEquals(90, motors.motorDegrees("B"), "the polls in the same write report the encoders");
 
         driver.send(List.of(MotorState.stopped("B", MotorState.StopMode.BRAKE), MotorState.stopped("C", MotorState.StopMode.BRAKE)),
                 motors.feedback());
         assertEquals(hex("0C 00 00 04 01 00 07 01 00 20 00 00 00 00 | 0C 00 00 04 02 00 07 01 00 20 00 00 00 00 | 03 00 00 06 01 | 03 00 00 06 02"),
-                link.takeWritten(), "the brake, and the polls of motors that settle");
+                takeWritten(), "the brake, and the polls of motors that settle");
 
         driver.send(List.of(MotorState.stopped("B", MotorState.StopMode.COAST)), motors.feedback());
-        assertEquals(hex("0C 00 00 04 01 00 00 00 00 00 00 00 00 00 | 03 00 00 06 01 | 03 00 00 06 02"), link.takeWritten(),
+        assertEquals(hex("0C 00 00 04 01 00 00 00 00 00 00 00 00 00 | 03 00 00 06 01 | 03 00 00 06 02"), takeWritten(),
                 "closing leaves the output idle");
     }
 }

@@ -3,21 +3,19 @@ package io.robomw.platform.rcx;
 import io.robomw.testkit.Await;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.Communicator;
-import io.robomw.platform.link.Link;
 import io.robomw.platform.link.LinkLostException;
 import io.robomw.platform.link.LinkTimeoutException;
+import io.robomw.platform.testkit.Answer;
+import io.robomw.platform.testkit.ScriptedLink;
 import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.ValueSource;
 
 import java.io.IOException;
 import java.io.UncheckedIOException;
 import java.time.Duration;
-import java.util.ArrayDeque;
+import java.util.Arrays;
 import java.util.Deque;
-import java.util.PriorityQueue;
-import java.util.concurrent.TimeUnit;
-import java.util.concurrent.locks.Condition;
-import java.util.concurrent.locks.ReentrantLock;
+import java.util.concurrent.ConcurrentLinkedDeque;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertThrows;
@@ -33,140 +31,40 @@ class RcxBrickLateAnswerTest {
     private static final Duration REPLY_TIMEOUT = Duration.ofMillis(150);
     private static final int BATTERY = 7_654;
 
-    /**
-     * A tower and brick that answer each packet written with its echo (if the tower echoes) and
-     * the reply, after the delay the test queued for that packet (5 ms when none is queued). Bytes
-     * come out in the order they are due; closing and reopening keeps them, as a serial port's
-     * input buffer does.
-     */
-    private static final class LateBrick implements Link {
-        private final boolean echo;
-        private final ReentrantLock lock = new ReentrantLock();
-        private final Condition changed = lock.newCondition();
-        private final PriorityQueue<long[]> due = new PriorityQueue<>((a, b) -> a[0] != b[0] ? Long.compare(a[0], b[0]) : Long.compare(a[1], b[1]));
-        private final java.util.Map<Long, byte[]> bytesOf = new java.util.HashMap<>();
-        private final Deque<Long> delaysMillis = new ArrayDeque<>();
-        private long sequence;
-        private byte[] head;
-        private int headAt;
+    /** How late the brick answers the next packets, in order; 5 ms for a packet with none queued. */
+    private final Deque<Long> delaysMillis = new ConcurrentLinkedDeque<>();
 
-        LateBrick(boolean echo) {
-            this.echo = echo;
-        }
-
-        void delayNext(long... millis) {
-            lock.lock();
-            try {
-                for (long m : millis) {
-                    delaysMillis.add(m);
-                }
-            } finally {
-                lock.unlock();
-            }
-        }
-
-        /** Puts bytes on the line now, as noise would. */
-        void noise(byte... bytes) {
-            schedule(0, bytes);
-        }
-
-        private void schedule(long delayMillis, byte[] bytes) {
-            lock.lock();
-            try {
-                long id = sequence++;
-                due.add(new long[]{System.nanoTime() + TimeUnit.MILLISECONDS.toNanos(delayMillis), id});
-                bytesOf.put(id, bytes);
-                changed.signalAll();
-            } finally {
-                lock.unlock();
-            }
-        }
-
-        @Override
-        public void open() {
-        }
-
-        @Override
-        public boolean isOpen() {
-            return true;
-        }
-
-        @Override
-        public void write(byte[] data, int off, int len) {
-            byte[] packet = java.util.Arrays.copyOfRange(data, off, off + len);
-            RcxPacket.Decoded request = RcxPacket.decode(packet);
-            int op = request.opcode();
-            byte[] data2 = new byte[RcxPacket.replyDataLength(op)];
-            if (data2.length == 2) {
-                data2[0] = (byte) BATTERY;
-                data2[1] = (byte) (BATTERY >> 8);
-            }
-            byte[] reply = RcxPacket.encode(RcxPacket.replyOpcode(op), data2);
-            long delay;
-            lock.lock();
-            try {
-                delay = delaysMillis.isEmpty() ? 5 : delaysMillis.poll();
-            } finally {
-                lock.unlock();
-            }
-            byte[] answer = echo ? concat(packet, reply) : reply;
-            schedule(delay, answer);
-        }
-
-        @Override
-        public int read(byte[] buf, int off, int len, Duration timeout) {
-            long deadline = System.nanoTime() + timeout.toNanos();
-            lock.lock();
-            try {
-                while (true) {
-                    if (head == null && !due.isEmpty() && due.peek()[0] <= System.nanoTime()) {
-                        head = bytesOf.remove(due.poll()[1]);
-                        headAt = 0;
-                    }
-                    if (head != null) {
-                        int n = Math.min(len, head.length - headAt);
-                        System.arraycopy(head, headAt, buf, off, n);
-                        headAt += n;
-                        if (headAt == head.length) {
-                            head = null;
-                        }
-                        return n;
-                    }
-                    long now = System.nanoTime();
-                    long wait = deadline - now;
-                    if (wait <= 0) {
-                        return 0;
-                    }
-                    if (!due.isEmpty()) {
-                        wait = Math.min(wait, Math.max(1, due.peek()[0] - now));
-                    }
-                    changed.awaitNanos(wait);
-                }
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-                return 0;
-            } finally {
-                lock.unlock();
-            }
-        }
-
-        @Override
-        public String describe() {
-            return "late RCX";
-        }
-
-        @Override
-        public void close() {
-        }
-
-        private static byte[] concat(byte[] a, byte[] b) {
-            byte[] out = java.util.Arrays.copyOf(a, a.length + b.length);
-            System.arraycopy(b, 0, out, a.length, b.length);
-            return out;
+    private void delayNext(long... millis) {
+        for (long m : millis) {
+            delaysMillis.add(m);
         }
     }
 
-    private static RcxBrick brick(LateBrick line, boolean echo) throws IOException {
+    /**
+     * A tower and brick that answer each packet written with its echo (if the tower echoes) and
+     * the reply, after the delay the test queued for that packet. Bytes come out in the order they
+     * are due; closing and reopening keeps them, as a serial port's input buffer does.
+     */
+    private ScriptedLink line(boolean echo) {
+        return new ScriptedLink().named("late RCX").answeringWith(packet -> {
+            int op = RcxPacket.decode(packet).opcode();
+            byte[] data = new byte[RcxPacket.replyDataLength(op)];
+            if (data.length == 2) {
+                data[0] = (byte) BATTERY;
+                data[1] = (byte) (BATTERY >> 8);
+            }
+            byte[] reply = RcxPacket.encode(RcxPacket.replyOpcode(op), data);
+            Long delay = delaysMillis.poll();
+            byte[] answer = reply;
+            if (echo) {
+                answer = Arrays.copyOf(packet, packet.length + reply.length);
+                System.arraycopy(reply, 0, answer, packet.length, reply.length);
+            }
+            return Answer.of(answer).after(Duration.ofMillis(delay == null ? 5 : delay));
+        });
+    }
+
+    private static RcxBrick brick(ScriptedLink line, boolean echo) throws IOException {
         Communicator c = new Communicator(line);
         c.open();
         RcxBrick brick = new RcxBrick("rcx-late", new BrickChannel("rcx-late", c, REPLY_TIMEOUT), echo);
@@ -196,9 +94,9 @@ class RcxBrickLateAnswerTest {
     @ParameterizedTest(name = "echoing tower: {0}")
     @ValueSource(booleans = {true, false})
     void aRequestAnsweredAfterBothAttemptsGaveUpDoesNotSpoilTheNextOne(boolean echo) throws Exception {
-        LateBrick line = new LateBrick(echo);
+        ScriptedLink line = line(echo);
         RcxBrick brick = brick(line, echo);
-        line.delayNext(400, 400);
+        delayNext(400, 400);
         assertThrows(LinkTimeoutException.class, brick::alive, "both attempts wait 150 ms, the answers take 400");
         assertEquals(BATTERY, batteryOnceReopened(brick), "the late echoes and replies of ALIVE are skipped");
         assertEquals(BATTERY, brick.batteryMillivolts(), "and the link goes on as before");
@@ -208,10 +106,10 @@ class RcxBrickLateAnswerTest {
     @ParameterizedTest(name = "echoing tower: {0}")
     @ValueSource(booleans = {true, false})
     void aFirstAttemptAnsweredDuringTheSecondLeavesNoStaleBytesBehind(boolean echo) throws Exception {
-        LateBrick line = new LateBrick(echo);
+        ScriptedLink line = line(echo);
         RcxBrick brick = brick(line, echo);
         // the first attempt's answer is due at 200 ms, after its 150 ms timeout; the second's at 210
-        line.delayNext(200, 60);
+        delayNext(200, 60);
         assertEquals(BATTERY, brick.batteryMillivolts(), "the second attempt takes the first one's answer (the same bytes)");
         assertEquals(BATTERY, brick.batteryMillivolts(), "the second attempt's own answer, still on the line, is skipped");
         brick.alive();
@@ -221,9 +119,9 @@ class RcxBrickLateAnswerTest {
     @ParameterizedTest(name = "echoing tower: {0}")
     @ValueSource(booleans = {true, false})
     void noiseWithNoRequestLateIsStillALostFraming(boolean echo) throws Exception {
-        LateBrick line = new LateBrick(echo);
+        ScriptedLink line = line(echo);
         RcxBrick brick = brick(line, echo);
-        line.noise((byte) 0x55, (byte) 0x00, (byte) 0x12);
+        line.deliver(new byte[] {0x55, 0x00, 0x12}); // noise on the line
         LinkLostException lost = assertThrows(LinkLostException.class, brick::batteryMillivolts);
         assertTrue(lost.getMessage().contains("framing") || lost.getMessage().contains("garbled"), lost.getMessage());
         assertTrue(lost.getMessage().contains("late RCX"), "names the link: " + lost.getMessage());

@@ -4,6 +4,7 @@ import io.robomw.api.Pose;
 import io.robomw.config.description.Body;
 import io.robomw.config.description.DescriptionException;
 import io.robomw.config.description.RobotDescriptionLoader;
+import io.robomw.config.yaml.FileScope;
 import io.robomw.config.yaml.MappingReader;
 import io.robomw.config.yaml.YamlDocument;
 
@@ -40,7 +41,9 @@ import java.util.Set;
  *   - { robot: ../robots/swarm-bot.yaml, count: 5000, name: bot, area: { x: 0, y: 0, width: 80, height: 80 }, seed: 7 }
  * </pre>
  *
- * Robot paths are relative to the world file. A robot must start clear of the walls, the obstacles
+ * Robot paths are relative to the world file, and must stay in its directory tree
+ * ({@link FileScope}): a world from someone else cannot make RoboMW read, and quote, files
+ * elsewhere. A robot must start clear of the walls, the obstacles
  * and the other robots (by the body its robot file gives it); one that overlaps something is a
  * problem at its place in the file, naming both (see {@link Placements}); the check runs once the
  * file has no other problem, and skips a robot whose file cannot be read (opening it reports why).
@@ -141,10 +144,14 @@ public final class WorldLoader {
         Set<String> names = new HashSet<>();
         Map<Path, Optional<Body>> bodies = new HashMap<>();
         Path dir = file.toAbsolutePath().getParent();
+        FileScope scope = FileScope.of(file);
         for (MappingReader r : root.mappingList("robots")) {
             String robotFile = r.requireText("robot");
             Path robotPath = dir.resolve(robotFile).normalize();
-            if (!robotFile.isEmpty() && !Files.isRegularFile(robotPath)) {
+            Optional<String> outside = robotFile.isEmpty() ? Optional.empty() : scope.refusal(robotPath);
+            if (outside.isPresent()) {
+                r.problem("robot", "refused: " + outside.get());
+            } else if (!robotFile.isEmpty() && !Files.isRegularFile(robotPath)) {
                 r.problem("robot", "no such robot file: " + robotPath);
             }
             String robotName = r.text("name").orElse(robotPath.getFileName().toString().replaceFirst("\\.ya?ml$", ""));
@@ -160,7 +167,8 @@ public final class WorldLoader {
             r.finish();
             if (Double.isFinite(x) && Double.isFinite(y)) {
                 robots.add(new WorldDescription.RobotPlacement(robotPath, robotName, new Pose(x, y, heading)));
-                Optional<Body> body = bodies.computeIfAbsent(robotPath, WorldLoader::body);
+                // a refused path is never read, not even for its robot's body
+                Optional<Body> body = outside.isPresent() ? Optional.empty() : bodies.computeIfAbsent(robotPath, WorldLoader::body);
                 body.ifPresent(b -> placing.add(() -> placements.robot("robot '" + robotName + "'", r.path(), r.mark(), b.length(), b.width(),
                         x, y, heading)));
             }

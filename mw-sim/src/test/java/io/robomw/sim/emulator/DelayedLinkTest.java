@@ -1,14 +1,14 @@
 package io.robomw.sim.emulator;
 
-import io.robomw.platform.link.Link;
+import io.robomw.platform.testkit.ScriptedLink;
 import org.junit.jupiter.api.Test;
 
 import java.time.Duration;
-import java.util.ArrayList;
 import java.util.List;
 
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 /**
@@ -18,55 +18,14 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
  */
 class DelayedLinkTest {
 
-    /** What the driver wrote, all at once; what the emulator wrote back, with when. */
-    static class MemoryLink implements Link {
-        final java.util.concurrent.LinkedBlockingDeque<byte[]> fromDriver = new java.util.concurrent.LinkedBlockingDeque<>();
-        final List<Long> writtenAt = new ArrayList<>();
-
-        @Override
-        public void open() {
-        }
-
-        @Override
-        public boolean isOpen() {
-            return true;
-        }
-
-        @Override
-        public synchronized void write(byte[] data, int off, int len) {
-            writtenAt.add(System.nanoTime());
-            notifyAll();
-        }
-
-        @Override
-        public int read(byte[] buf, int off, int len, Duration timeout) throws java.io.IOException {
-            byte[] next;
-            try {
-                next = fromDriver.pollFirst(timeout.toNanos(), java.util.concurrent.TimeUnit.NANOSECONDS); // a read that waits as a link's does
-            } catch (InterruptedException e) {
-                throw new java.io.IOException(e);
-            }
-            if (next == null) {
-                return 0;
-            }
-            int n = Math.min(len, next.length);
-            System.arraycopy(next, 0, buf, off, n);
-            if (n < next.length) {
-                synchronized (this) {
-                    fromDriver.addFirst(java.util.Arrays.copyOfRange(next, n, next.length));
-                }
-            }
-            return n;
-        }
-
-        @Override
-        public String describe() {
-            return "memory";
-        }
-
-        @Override
-        public void close() {
-        }
+    /**
+     * The real link under the delayed one, in memory: what the test delivers is what the driver
+     * wrote, all at once; its writes (stamped on the wall clock) are what the emulator wrote back.
+     */
+    private static ScriptedLink memory() throws java.io.IOException {
+        ScriptedLink memory = new ScriptedLink().named("memory");
+        memory.open();
+        return memory;
     }
 
     private static final LinkModel LINE = LinkModel.serial(9600, 10);
@@ -81,13 +40,11 @@ class DelayedLinkTest {
     }
 
     private static void shouldDeliverEachCommandAtItsOwnTime(LinkModel model) throws Exception {
-        MemoryLink memory = new MemoryLink();
+        ScriptedLink memory = memory();
         DelayedLink link = new DelayedLink(memory, model, io.robomw.api.spi.FailurePolicy.logging());
         try {
             long written = System.nanoTime();
-            synchronized (memory) {
-                memory.fromDriver.add(new byte[]{1, 2, 3, 4, 5, 6});
-            }
+            memory.deliver(new byte[]{1, 2, 3, 4, 5, 6});
             long perByte = model.transmissionNanos(1);
             long latency = model.latency().toNanos();
             byte[] first = new byte[2];
@@ -125,66 +82,25 @@ class DelayedLinkTest {
 
     @Test
     void shouldSendARepliesBytesAtTheLinesPaceAfterTheLatency() throws Exception {
-        MemoryLink memory = new MemoryLink();
-        LinkModel model = LINE.withLatency(Duration.ofMillis(15));
+        ScriptedLink memory = memory();
+        // A latency long beside a loaded machine's stalls: whether the second reply waited a latency
+        // of its own (half a second more) or not (its bytes' time) stays clear under load.
+        long latency = 500_000_000L;
+        LinkModel model = LINE.withLatency(Duration.ofNanos(latency));
         DelayedLink link = new DelayedLink(memory, model, io.robomw.api.spi.FailurePolicy.logging());
         try {
             long start = System.nanoTime();
             link.write(new byte[3], 0, 3);
             link.write(new byte[3], 0, 3);
-            io.robomw.testkit.Await.until("both replies sent", Duration.ofSeconds(2), () -> {
-                synchronized (memory) {
-                    return memory.writtenAt.size() == 2;
-                }
-            });
-            synchronized (memory) {
-                long first = memory.writtenAt.get(0) - start;
-                long second = memory.writtenAt.get(1) - start;
-                // Latencies overlap: the second reply follows the first by its own bytes' time.
-                assertTrue(first >= 15_000_000 + model.transmissionNanos(3), "first reply after " + first / 1e6 + " ms");
-                assertTrue(second >= 15_000_000 + model.transmissionNanos(6), "second reply after " + second / 1e6 + " ms");
-                assertTrue(second - first < 15_000_000, "the second reply waited for a latency of its own");
-            }
+            io.robomw.testkit.Await.until("both replies sent", Duration.ofSeconds(10), () -> memory.writes() == 2);
+            long first = memory.writeTimes().get(0) - start;
+            long second = memory.writeTimes().get(1) - start;
+            // Latencies overlap: the second reply follows the first by its own bytes' time.
+            assertTrue(first >= latency + model.transmissionNanos(3), "first reply after " + first / 1e6 + " ms");
+            assertTrue(second >= latency + model.transmissionNanos(6), "second reply after " + second / 1e6 + " ms");
+            assertTrue(second - first < latency, "the second reply waited for a latency of its own: " + (second - first) / 1e6 + " ms after the first");
         } finally {
             link.close();
-        }
-    }
-
-    /** A link whose reads or writes throw what the test hands it, once each. */
-    static final class FailingLink extends MemoryLink {
-        final java.util.concurrent.ConcurrentLinkedQueue<Throwable> readFailures = new java.util.concurrent.ConcurrentLinkedQueue<>();
-        final java.util.concurrent.ConcurrentLinkedQueue<RuntimeException> writeFailures = new java.util.concurrent.ConcurrentLinkedQueue<>();
-        volatile boolean closed;
-
-        @Override
-        public int read(byte[] buf, int off, int len, Duration timeout) throws java.io.IOException {
-            Throwable t = readFailures.poll();
-            if (t instanceof Error e) {
-                throw e;
-            }
-            if (t instanceof RuntimeException e) {
-                throw e;
-            }
-            return super.read(buf, off, len, timeout);
-        }
-
-        @Override
-        public synchronized void write(byte[] data, int off, int len) {
-            RuntimeException e = writeFailures.poll();
-            if (e != null) {
-                throw e;
-            }
-            super.write(data, off, len);
-        }
-
-        @Override
-        public boolean isOpen() {
-            return !closed;
-        }
-
-        @Override
-        public void close() {
-            closed = true;
         }
     }
 
@@ -192,10 +108,10 @@ class DelayedLinkTest {
 
     @Test
     void shouldCloseTheLinkAndNameTheErrorWhenItsPumpDiesOfOne() throws Exception {
-        FailingLink memory = new FailingLink();
+        ScriptedLink memory = memory();
         io.robomw.sim.RecordingFailures failures = new io.robomw.sim.RecordingFailures();
         OutOfMemoryError injected = new OutOfMemoryError("injected into the pump");
-        memory.readFailures.add(injected);
+        memory.deliverFailure(injected);
         DelayedLink link = new DelayedLink(memory, LATENT, failures);
         try {
             io.robomw.testkit.Await.until("the pump's death reported", Duration.ofSeconds(10), () -> !failures.deaths().isEmpty());
@@ -205,7 +121,7 @@ class DelayedLinkTest {
 
             assertTrue(e.getMessage().contains("OutOfMemoryError: injected into the pump"), e.getMessage());
             assertEquals(List.of(new io.robomw.sim.RecordingFailures.Report("memory-in", injected, true)), failures.reports());
-            assertTrue(memory.closed, "the real link was closed: the driver sees it drop");
+            assertFalse(memory.isOpen(), "the real link was closed: the driver sees it drop");
             org.junit.jupiter.api.Assertions.assertFalse(link.isOpen());
             io.robomw.testkit.Await.until("the pump and the sender ended", Duration.ofSeconds(10), () -> Thread.getAllStackTraces().keySet().stream()
                     .noneMatch(t -> (t.getName().equals("memory-in") || t.getName().equals("memory-out")) && t.isAlive()),
@@ -218,14 +134,14 @@ class DelayedLinkTest {
 
     @Test
     void shouldReportAFailedReadOfThePumpAndDeliverWhatComesAfterIt() throws Exception {
-        FailingLink memory = new FailingLink();
+        ScriptedLink memory = memory();
         io.robomw.sim.RecordingFailures failures = new io.robomw.sim.RecordingFailures();
         IllegalStateException injected = new IllegalStateException("one bad read");
-        memory.readFailures.add(injected);
+        memory.deliverFailure(injected);
         DelayedLink link = new DelayedLink(memory, LATENT, failures);
         try {
             io.robomw.testkit.Await.until("the failed read reported", Duration.ofSeconds(10), () -> failures.count() == 1);
-            memory.fromDriver.add(new byte[]{7, 8});
+            memory.deliver(new byte[]{7, 8});
 
             byte[] got = new byte[2];
             readExactly(link, got, 2);
@@ -239,20 +155,16 @@ class DelayedLinkTest {
 
     @Test
     void shouldReportAFailedWriteOfTheSenderAndSendTheNextReply() throws Exception {
-        FailingLink memory = new FailingLink();
+        ScriptedLink memory = memory();
         io.robomw.sim.RecordingFailures failures = new io.robomw.sim.RecordingFailures();
         LinkageError injected = new LinkageError("one bad write");
-        memory.writeFailures.add(new RuntimeException(injected));
+        memory.failNextWrite(new RuntimeException(injected));
         DelayedLink link = new DelayedLink(memory, LATENT, failures);
         try {
             link.write(new byte[]{1}, 0, 1);
             link.write(new byte[]{2}, 0, 1);
 
-            io.robomw.testkit.Await.until("the second reply sent", Duration.ofSeconds(10), () -> {
-                synchronized (memory) {
-                    return memory.writtenAt.size() == 1;
-                }
-            });
+            io.robomw.testkit.Await.until("the second reply sent", Duration.ofSeconds(10), () -> memory.writes() == 1);
             assertEquals(1, failures.count(), failures.reports().toString());
             assertEquals("memory-out", failures.reports().get(0).owner());
             org.junit.jupiter.api.Assertions.assertFalse(failures.reports().get(0).died());

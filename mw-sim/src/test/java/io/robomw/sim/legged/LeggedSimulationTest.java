@@ -33,13 +33,15 @@ class LeggedSimulationTest {
     Path dir;
 
     private Simulation world(double width, double x, double heading) throws IOException {
+        // a world may name robot files in its own tree only (issue 37): the example's robot file goes beside it
+        Files.copy(AIBO, dir.resolve("aibo.yaml"), java.nio.file.StandardCopyOption.REPLACE_EXISTING);
         Files.writeString(dir.resolve("world.yaml"), """
                 name: dog-test
                 arena: { width: %s, height: 3 }
                 seed: 11
                 robots:
                   - { robot: %s, name: aibo, x: %s, y: 1.5, heading: %s }
-                """.formatted(width, AIBO.toAbsolutePath(), x, heading));
+                """.formatted(width, "aibo.yaml", x, heading));
         return Simulation.load(dir.resolve("world.yaml"));
     }
 

@@ -102,12 +102,14 @@ class PngRendererTest {
 
     @Test
     void shouldDrawALeggedRobotWithItsLegsAndItsHead() throws Exception {
+        // a world may name robot files in its own tree only (issue 37): the example's robot file goes beside it
+        Files.copy(Path.of("../examples/robots/aibo.yaml"), dir.resolve("aibo.yaml"), java.nio.file.StandardCopyOption.REPLACE_EXISTING);
         Files.writeString(dir.resolve("dog-world.yaml"), """
                 name: dog-world
                 arena: { width: 4, height: 3 }
                 robots:
                   - { robot: %s, name: aibo, x: 2, y: 1.5, heading: 0 }
-                """.formatted(Path.of("../examples/robots/aibo.yaml").toAbsolutePath()));
+                """.formatted("aibo.yaml"));
         try (Simulation sim = Simulation.load(dir.resolve("dog-world.yaml"))) {
             BufferedImage image = PngRenderer.render(sim.world(), OPTIONS);
             ViewTransform view = WorldPainter.fit(sim.world().description(), 640, 480, OPTIONS.marginPx());

@@ -220,4 +220,49 @@ class HostileWorldFilesTest {
         assertThrows(IllegalArgumentException.class,
                 () -> new RangeIndex(0, 0, 10, 10, 1, new double[][] {{0, 0, Double.NaN, 1}}, new double[0][]));
     }
+
+    /** Issue 37: a world's {@code robot: /etc/shadow} was followed, and the file's lines came back in the error messages. */
+    @Test
+    void robotFilesOutsideTheWorldsTreeAreRefusedUnreadAndNeverQuoted() throws IOException {
+        Path project = Files.createDirectories(dir.resolve("home/project"));
+        Files.createDirectories(project.resolve("worlds"));
+        Files.createDirectories(project.resolve("robots"));
+        Files.writeString(project.resolve("robots/bot.yaml"), ROBOT);
+        Path secret = Files.writeString(dir.resolve("secret.yaml"), "root: TOPSECRET-HASH\n");
+        Files.createDirectories(project.resolve(".ssh"));
+        Files.writeString(project.resolve(".ssh/id.yaml"), "key: TOPSECRET-KEY\n");
+        Files.createSymbolicLink(project.resolve("robots/link.yaml"), secret);
+        Path world = project.resolve("worlds/world.yaml");
+        Files.writeString(world, """
+                arena: { width: 4, height: 3 }
+                robots:
+                  - { robot: ../robots/bot.yaml, name: ok, x: 1, y: 1 }
+                  - { robot: %s, name: absolute, x: 1, y: 1 }
+                  - { robot: ../../../secret.yaml, name: climbing, x: 1, y: 1 }
+                  - { robot: ../.ssh/id.yaml, name: hidden, x: 1, y: 1 }
+                  - { robot: ../robots/link.yaml, name: linked, x: 1, y: 1 }
+                """.formatted(secret));
+
+        DescriptionException e = assertTimeoutPreemptively(Duration.ofSeconds(10),
+                () -> assertThrows(DescriptionException.class, () -> Simulation.load(world).close()));
+
+        assertEquals(List.of(4, 5, 6, 7), e.problems().stream().map(Problem::line).toList(), e::getMessage);
+        assertTrue(e.problems().stream().allMatch(p -> p.message().contains("refused")), e::getMessage);
+        assertFalse(e.getMessage().contains("TOPSECRET"), "no line of another file comes back: " + e.getMessage());
+    }
+
+    @Test
+    void aWorldMayNameTheRobotFilesOfItsProject() throws IOException {
+        Path project = Files.createDirectories(dir.resolve("home/project"));
+        Files.createDirectories(project.resolve("worlds"));
+        Files.createDirectories(project.resolve("robots"));
+        Files.writeString(project.resolve("robots/bot.yaml"), ROBOT);
+        Path world = Files.writeString(project.resolve("worlds/world.yaml"), """
+                arena: { width: 4, height: 3 }
+                robots:
+                  - { robot: ../robots/bot.yaml, name: ok, x: 1, y: 1 }
+                """);
+
+        assertEquals("ok", new WorldLoader().load(world).robots().get(0).name());
+    }
 }

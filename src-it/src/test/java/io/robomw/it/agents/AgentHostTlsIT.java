@@ -22,8 +22,10 @@ class AgentHostTlsIT {
     @Test
     void agentTravelsBetweenTlsHostsAndAStrangerIsRefused() throws Exception {
         TestKeys keys = TestKeys.create(Files.createTempDirectory(Path.of("target"), "agent-tls-"));
+        Path storePassword = Files.writeString(keys.dir().resolve("store.password"), TestKeys.PASSWORD);
         String[] tls = {"--tls-keystore", keys.dir().resolve("node.p12").toAbsolutePath().toString(),
-                "--tls-truststore", keys.dir().resolve("trust.p12").toAbsolutePath().toString(), "--tls-password", TestKeys.PASSWORD};
+                "--tls-truststore", keys.dir().resolve("trust.p12").toAbsolutePath().toString(), "--tls-password-file",
+                storePassword.toAbsolutePath().toString()};
         String world = AgentTripIT.world().toString();
         try (HostProcess a = HostProcess.start("tls-a", concat(new String[] {"--world", world, "--world-robot", "sim-1", "--speed", "4"}, tls));
              HostProcess b = HostProcess.start("tls-b", concat(new String[] {"--world", world, "--world-robot", "sim-1", "--speed", "4"}, tls))) {

@@ -42,6 +42,7 @@ class FourComponentsIT {
     @TempDir
     static Path dir;
     static Path keyFile;
+    static Path robotPassword;
     static HostProcess a;
     static HostProcess b;
     static AgentHost home;
@@ -50,10 +51,11 @@ class FourComponentsIT {
     static void startHosts() throws Exception {
         assertFalse(HostProcess.middlewareOnlyClassPath().contains("test-classes"), "the hosts must not have the test agents");
         keyFile = AgentTripIT.keyFile(dir);
+        robotPassword = Files.writeString(dir.resolve("robot.password"), "four components\n");
         String world = AgentTripIT.world().toString();
         a = HostProcess.start("fc-a", "--world", world, "--world-robot", "sim-1", "--speed", "4", "--key-file", keyFile.toString());
         b = HostProcess.start("fc-b", "--world", world, "--world-robot", "sim-1", "--speed", "4", "--key-file", keyFile.toString(),
-                "--serve", "tcp://127.0.0.1:0");
+                "--serve", "tcp://127.0.0.1:0", "--serve-password-file", robotPassword.toString());
         home = AgentHost.builder("fc-home").clusterKey(AgentTripIT.KEY).start();
     }
 
@@ -152,7 +154,7 @@ class FourComponentsIT {
         Files.copy(keyFile, userHome.resolve(".robomw/cluster.key"));
         AgentRef listener = sendAndAwaitReport(b.address(), new ListenerAgent("alerts", ALERTS_PASSWORD), "listening");
         try (PeerProcess program = PeerProcess.start("fc-program-remote", RobotProgram.class.getName(),
-                List.of("-XX:+UseSerialGC", "-Duser.home=" + userHome), List.of("remote", b.served()))) {
+                List.of("-XX:+UseSerialGC", "-Duser.home=" + userHome), List.of("remote", b.served() + "?password-file=" + robotPassword))) {
             program.expect("READY sim-1", WAIT);
             program.ask("move 0.1", "MOVED", WAIT);
             String heard = publishUntilHeard(program, "publish alerts " + ALERTS_PASSWORD + " moved-remotely", listener);

@@ -79,17 +79,17 @@ public final class HostProcess implements AutoCloseable {
     }
 
     /** @return where its agent wire listens, as it printed it (HOST:PORT, or "none (--no-wire; ...)") */
-    String wire() {
+    public String wire() {
         return wire;
     }
 
     /** @return the address its messaging node receives at, as it printed it ("none (--no-messaging)" without one) */
-    String messaging() {
+    public String messaging() {
         return messaging;
     }
 
     /** @return the address its robot is served at (with --serve), for Robots.remote */
-    String served() {
+    public String served() {
         return served;
     }
 

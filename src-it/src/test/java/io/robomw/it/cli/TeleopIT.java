@@ -28,10 +28,11 @@ class TeleopIT {
     void keysDriveAServedRobot() throws Exception {
         Path key = dir.resolve("cluster.key");
         Files.writeString(key, "teleop test passphrase");
+        Path password = Files.writeString(dir.resolve("robot.password"), "teleop robot\n");
         try (MwProcess host = MwProcess.start("teleop-host", "host", "--name", "tele", "--port", "0", "--world", "examples/worlds/arena.yaml",
-                "--world-robot", "nxt", "--serve", "tcp://127.0.0.1:0", "--key-file", key.toString())) {
+                "--world-robot", "nxt", "--serve", "tcp://127.0.0.1:0", "--serve-password-file", password.toString(), "--key-file", key.toString())) {
             String served = host.await("robot nxt served at", WAIT);
-            String address = served.substring(served.lastIndexOf(' ') + 1);
+            String address = served.substring(served.lastIndexOf(' ') + 1) + "?password-file=" + password;
             Path script = dir.resolve("teleop.sh");
             Files.writeString(script, "exec '" + Path.of(System.getProperty("java.home"), "bin", "java") + "' -cp '" + MwProcess.middlewareOnlyClassPath()
                     + "' io.robomw.cli.Mw robot " + address + " teleop --speed 0.2\n");

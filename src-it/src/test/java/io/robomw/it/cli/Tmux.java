@@ -40,6 +40,11 @@ final class Tmux implements AutoCloseable {
         tmux("send-keys", "-t", session, "-l", key);
     }
 
+    /** Presses Ctrl-C: the terminal sends SIGINT to its foreground process group. */
+    void ctrlC() throws IOException, InterruptedException {
+        tmux("send-keys", "-t", session, "C-c");
+    }
+
     /** @return the screen and its scroll-back */
     String screen() throws IOException, InterruptedException {
         return tmux("capture-pane", "-p", "-t", session, "-S", "-200");

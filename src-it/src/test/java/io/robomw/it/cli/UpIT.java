@@ -14,6 +14,7 @@ import java.util.List;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
 
 /**
  * {@code mw up}: the quickstart's setup (examples/quickstart-up.yaml, with free ports and a key of
@@ -31,6 +32,38 @@ class UpIT {
     private static int freePort() throws IOException {
         try (ServerSocket s = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
             return s.getLocalPort();
+        }
+    }
+
+    @Test
+    void ctrlCAtTheTerminalStopsTheProcessesLastFirstAndOnlyMwUpGetsIt() throws Exception {
+        Path key = dir.resolve("cluster.key");
+        Files.writeString(key, "up test passphrase");
+        int nxtPort = freePort();
+        int ftPort = freePort();
+        String setup = Files.readString(MwProcess.CHECKOUT.resolve("examples/quickstart-up.yaml"))
+                .replace("worlds/arena.yaml", MwProcess.CHECKOUT.resolve("examples/worlds/arena.yaml").toString())
+                .replace("../cluster.key", key.toString())
+                .replace("--port 1099", "--port " + nxtPort).replace("--port 1100", "--port " + ftPort);
+        Path file = dir.resolve("up.yaml");
+        Files.writeString(file, setup);
+        Path script = dir.resolve("up.sh");
+        Files.writeString(script, "exec '" + Path.of(System.getProperty("java.home"), "bin", "java") + "' -Dmw.home='" + MwProcess.CHECKOUT + "' -cp '"
+                + MwProcess.middlewareOnlyClassPath() + "' io.robomw.cli.Mw up '" + file + "'\n");
+        try (Tmux terminal = new Tmux("mw-up-it-" + ProcessHandle.current().pid())) {
+            terminal.typeLine("bash " + script + "; echo UP-EXIT=$?");
+            terminal.awaitScreen("[mw up] 4 processes up", WAIT);
+            terminal.ctrlC(); // SIGINT to the terminal's foreground process group, as a person's Ctrl-C
+            terminal.awaitScreen("[mw up] stopped 4 processes", WAIT);
+            String screen = terminal.screen();
+            List<String> names = List.of("ft-host", "nxt-host", "ft-brick", "nxt-brick");
+            int last = -1;
+            for (String name : names) {
+                String stopped = "[mw up] " + name + " stopped (exit status 143)"; // SIGTERM from mw up, not the terminal's SIGINT (130)
+                int at = screen.indexOf(stopped);
+                assertTrue(at > last, "'" + stopped + "' comes after the one before, last started first:\n" + screen);
+                last = at;
+            }
         }
     }
 

@@ -66,18 +66,20 @@ class ConsoleBrowserIT {
     static void start() throws Exception {
         Path keyFile = dir.resolve("cluster.key");
         Files.writeString(keyFile, PASSPHRASE + "\n");
+        Path robotPassword = Files.writeString(dir.resolve("robot.password"), "console robot\n");
         Path world = MwProcess.CHECKOUT.resolve("examples/worlds/arena.yaml");
         int alphaPort = freePort();
         int robotPort = freePort();
         betaPort = freePort();
         alpha = MwProcess.start("console-it-alpha", "host", "--name", "alpha", "--port", String.valueOf(alphaPort), "--world", world.toString(),
-                "--world-robot", "nxt", "--serve", "tcp://127.0.0.1:" + robotPort, "--key-file", keyFile.toString());
+                "--world-robot", "nxt", "--serve", "tcp://127.0.0.1:" + robotPort, "--serve-password-file", robotPassword.toString(),
+                "--key-file", keyFile.toString());
         betaArgs = new String[] {"host", "--name", "beta", "--port", String.valueOf(betaPort), "--key-file", keyFile.toString()};
         beta = MwProcess.start("console-it-beta", betaArgs);
         alpha.await(" ready at ", WITHIN);
         beta.await(" ready at ", WITHIN);
         console = MwProcess.start("console-it-console", "console", "--host", "rmi://127.0.0.1:" + alphaPort + "/alpha",
-                "--host", "rmi://127.0.0.1:" + betaPort + "/beta", "--robot", "tcp://127.0.0.1:" + robotPort + "/nxt", "--world", world.toString(),
+                "--host", "rmi://127.0.0.1:" + betaPort + "/beta", "--robot", "tcp://127.0.0.1:" + robotPort + "/nxt?password-file=" + robotPassword, "--world", world.toString(),
                 "--port", "0", "--period-ms", "300", "--key-file", keyFile.toString(), "--record", recording().toString());
         String page = console.await("console at http://127.0.0.1:", WITHIN).replace("console at ", "").trim();
         assertTrue(page.contains("#token="), page);

@@ -44,9 +44,12 @@ class DemoIT {
     void demoSendsClonesToTheNxtAndTheFischertechnikRobotAndBringsBothResultsHome() throws Exception {
         Path png = dir.resolve("demo.png");
         try (BusyThreads load = new BusyThreads(2);
-             MwProcess demo = MwProcess.start("demo", "demo", "--png", png.toString(), "--logs", dir.resolve("logs").toString())) {
+             MwProcess demo = MwProcess.startAsOnATerminal("demo", "demo", "--png", png.toString(), "--logs", dir.resolve("logs").toString())) {
             assertEquals(0, demo.waitFor(Duration.ofMinutes(2)), demo.output());
             String out = demo.output();
+            // What a terminal shows, standard error included: the demo's lines, not the libraries' INFO lines among its tables.
+            assertTrue(out.lines().noneMatch(l -> l.contains(" INFO ")), "no library log line on the terminal:\n" + out);
+            assertTrue(Files.readString(dir.resolve("logs").resolve("demo.log")).contains(" INFO "), "they are in the demo's log");
             for (String robot : List.of("nxt", "ft")) {
                 String table = out.substring(out.indexOf("== " + robot + " ("));
                 assertTrue(table.contains("distance driven       1.600 m"), table);
@@ -142,7 +145,9 @@ class DemoIT {
             assertEquals(0, dispatch.waitFor(Duration.ofMinutes(2)), dispatch.output());
             String out = dispatch.output();
             for (String robot : List.of("nxt", "ft")) {
-                String block = out.substring(out.indexOf("] result from rmi://127.0.0.1:" + (robot.equals("nxt") ? nxtPort : ftPort)));
+                // "[HOST ID] result:" names the host the clone was at when its trip ended
+                String block = out.substring(out.indexOf("[rmi://127.0.0.1:" + (robot.equals("nxt") ? nxtPort : ftPort) + "/" + robot + " "));
+                block = block.substring(block.indexOf("] result:"));
                 assertTrue(block.contains("distanceDriven: 1.6000"), block);
                 Matcher closure = Pattern.compile("odometryClosure: ([0-9.]+)").matcher(block);
                 assertTrue(closure.find(), block);

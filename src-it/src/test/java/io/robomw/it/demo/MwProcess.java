@@ -37,13 +37,33 @@ public final class MwProcess implements AutoCloseable {
     }
 
     public static MwProcess start(String name, String... args) throws IOException {
+        return start(name, false, args);
+    }
+
+    /**
+     * Starts it with standard error merged into standard output, as a terminal shows them.
+     *
+     * @param name its name
+     * @param args the command and its options
+     * @return the process
+     */
+    public static MwProcess startAsOnATerminal(String name, String... args) throws IOException {
+        return start(name, true, args);
+    }
+
+    private static MwProcess start(String name, boolean merged, String... args) throws IOException {
         Path logs = Path.of("target", "it-logs");
         Files.createDirectories(logs);
         List<String> command = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
                 "--enable-native-access=ALL-UNNAMED", "-Dmw.home=" + CHECKOUT, "-cp", middlewareOnlyClassPath(), "io.robomw.cli.Mw"));
         command.addAll(List.of(args));
-        Process p = new ProcessBuilder(command).directory(CHECKOUT.toFile()).redirectError(logs.resolve(name + ".log").toFile()).start();
-        return new MwProcess(name, p);
+        ProcessBuilder pb = new ProcessBuilder(command).directory(CHECKOUT.toFile());
+        if (merged) {
+            pb.redirectErrorStream(true);
+        } else {
+            pb.redirectError(logs.resolve(name + ".log").toFile());
+        }
+        return new MwProcess(name, pb.start());
     }
 
     /** @return this JVM's class path without test classes, test jars, example agents and test libraries */

@@ -35,8 +35,9 @@ class FirstAgentProjectDocIT {
             }
             String out = all.toString();
             assertTrue(Files.isRegularFile(scratch.resolve("patrol/target/patrol-1.0-SNAPSHOT.jar")), doc.transcript());
-            assertTrue(out.contains("[rmi://127.0.0.1:7101/a] nxt at a drove 0.20 m"), "the clone at a reported:\n" + doc.transcript());
-            assertTrue(out.contains("[rmi://127.0.0.1:7102/b] ft at b drove 0.20 m"), "the clone at b reported:\n" + doc.transcript());
+            // each line names the host the clone was at and, as there are two, the clone
+            assertTrue(out.matches("(?s).*\\[rmi://127\\.0\\.0\\.1:7101/a [0-9a-f]{8}] nxt at a drove 0\\.20 m.*"), "the clone at a reported:\n" + doc.transcript());
+            assertTrue(out.matches("(?s).*\\[rmi://127\\.0\\.0\\.1:7102/b [0-9a-f]{8}] ft at b drove 0\\.20 m.*"), "the clone at b reported:\n" + doc.transcript());
             assertTrue(out.contains("nxt-1 drove a square; odometry ("), "the program ran:\n" + doc.transcript());
             assertTrue(Files.readString(scratch.resolve("patrol/pom.xml")).contains("<artifactId>mw-bom</artifactId>"));
         }

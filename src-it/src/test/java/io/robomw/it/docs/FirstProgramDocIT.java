@@ -29,17 +29,20 @@ class FirstProgramDocIT {
         List<String> commands = DocCommands.commands(MwProcess.CHECKOUT.resolve("docs/first-program.md"));
         assertEquals(5, commands.size(), commands.toString());
         try (DocCommands doc = new DocCommands(scratch)) {
+            // As pasted: mw describe starts while mw emulate is still starting, and waits for the file it writes.
             doc.run(commands.get(0), Duration.ZERO);
-            assertTrue(Files.readString(scratch.resolve("nxt.yaml")).contains("port: /dev/pts/"), "the robot file points at the brick");
-
-            String described = doc.run(commands.get(1), Duration.ofSeconds(60));
+            String described = doc.run(commands.get(1), Duration.ofSeconds(90));
             assertTrue(described.contains("robot 'nxt-1' on platform 'nxt'"), described);
+            assertTrue(Files.readString(scratch.resolve("nxt.yaml")).contains("port: /dev/pts/"), "the robot file points at the brick");
 
             String ran = doc.run(commands.get(2), Duration.ofSeconds(120));
             Matcher m = Pattern.compile("front range (\\d+) cm; odometry says Pose\\[x=([-0-9.E]+), y=([-0-9.E]+), heading=([-0-9.E]+)]").matcher(ran);
             assertTrue(m.find(), ran + "\n" + doc.transcript());
             double cm = Double.parseDouble(m.group(1));
             assertTrue(cm > 10 && cm < 300, "a wall or obstacle in range of the simulated sonar: " + cm);
+            Matcher shown = Pattern.compile("front range (\\d+) cm; odometry says").matcher(Files.readString(MwProcess.CHECKOUT.resolve("docs/first-program.md")));
+            assertTrue(shown.find(), "the page shows what the program prints");
+            assertEquals(cm, Double.parseDouble(shown.group(1)), 10, "the page's range is the one the program prints (within 10 cm): " + ran);
             assertEquals(0.5, Double.parseDouble(m.group(2)), 0.05, "0.5 m forward: " + ran);
             assertEquals(0.3, Double.parseDouble(m.group(3)), 0.05, "then 0.3 m after a left turn: " + ran);
             assertEquals(Math.PI / 2, Double.parseDouble(m.group(4)), 0.1, ran);

@@ -179,7 +179,7 @@ public final class Peer {
             case "resources" -> out.println(resources());
             case "robot" -> {
                 Robot robot = Robots.open(Path.of(c[1]));
-                closeables.add(RobotServer.serve(node, robot, null));
+                closeables.add(RobotServer.serveInsecure(node, robot));
                 closeables.add(robot);
                 out.println("SERVING " + robot.name());
             }
@@ -188,7 +188,7 @@ public final class Peer {
                 closeables.add(sim);
                 sim.startRealTime(Double.parseDouble(c[3]));
                 Robot robot = sim.robot(c[2]);
-                closeables.add(0, RobotServer.serve(node, robot, null));
+                closeables.add(0, RobotServer.serveInsecure(node, robot));
                 out.println("SERVING " + robot.name());
             }
             default -> out.println("ERR unknown command " + c[0]);

@@ -126,8 +126,14 @@ abstract class BrokerMessagingIT {
         local.addMessageListener("sensors/guarded", "pw", guarded::add);
         local.subscribeMessage("sensors/guarded", "pw");
         int port = Integer.parseInt(broker.address().substring(broker.address().lastIndexOf(':') + 1));
-        var device = com.hivemq.client.mqtt.MqttClient.builder().useMqttVersion5().identifier(name("device"))
-                .serverHost("127.0.0.1").serverPort(port).buildBlocking();
+        var deviceBuilder = com.hivemq.client.mqtt.MqttClient.builder().useMqttVersion5().identifier(name("device"))
+                .serverHost("127.0.0.1").serverPort(port);
+        // mw broker lets in only its user (issue 37): the device gives the credentials the broker generated for this machine
+        io.robomw.agents.messaging.mqtt.BrokerCredentials user = io.robomw.agents.messaging.mqtt.BrokerCredentials.load(null, java.util.Map.of(), "127.0.0.1");
+        if (user.username() != null && broker.kind() == Broker.Kind.EMBEDDED) {
+            deviceBuilder = deviceBuilder.simpleAuth().username(user.username()).password(user.password()).applySimpleAuth();
+        }
+        var device = deviceBuilder.buildBlocking();
         device.connect();
         try {
             device.publishWith().topic("robomw/pub/sensors/guarded").qos(com.hivemq.client.mqtt.datatypes.MqttQos.AT_LEAST_ONCE)

@@ -61,8 +61,14 @@ import java.util.UUID;
  * connection (it serves its maximum number already); the payload says why, and the node closes
  * the connection after it.
  *
- * <p>FLAGS: bit 0 is {@link #FLAG_MAC}; the other bits are reserved, written 0 and ignored on
- * reading. PAYLOAD TYPE codes are those of
+ * <p>VERSION: 1, or 2 for a frame whose payload is sealed (encrypted: {@link #FLAG_SEALED}); a
+ * node writes 1 whenever it can, so builds that read only version 1 still read every frame of an
+ * open topic, and refuse a sealed one clearly instead of taking its ciphertext for a payload.
+ *
+ * <p>FLAGS: bit 0 is {@link #FLAG_MAC}; bit 1 is {@link #FLAG_SEALED}: the PAYLOAD is AES-256-GCM
+ * ciphertext and tag under the topic's password ({@link io.robomw.agents.messaging.security.PayloadSealer}),
+ * only in version-2 frames, and only with {@link #FLAG_MAC}; the other bits are reserved, written 0
+ * and ignored on reading. PAYLOAD TYPE codes are those of
  * {@link io.robomw.agents.messaging.security.PayloadCodec} (0 null, 1 bytes, 2 string, 3 int,
  * 4 long, 5 double, 6 float, 7 boolean, 127 serialized object); an unknown one is refused when the
  * payload is decoded. An unknown KIND code, MAGIC or VERSION drops the frame as
@@ -78,10 +84,14 @@ public final class FrameCodec {
 
     /** The first two bytes of every frame, "RM". */
     public static final int MAGIC = 0x524D;
-    /** The only version this codec reads and writes. */
+    /** The version of frames whose payload is in the clear. */
     public static final int VERSION = 1;
+    /** The version of frames whose payload is sealed ({@link #FLAG_SEALED}). */
+    public static final int SEALED_VERSION = 2;
     /** FLAGS bit: the frame ends with a 32-byte HMAC-SHA256. */
     public static final int FLAG_MAC = 1;
+    /** FLAGS bit: the payload is sealed (AES-256-GCM under the topic's password); version 2 only, with {@link #FLAG_MAC}. */
+    public static final int FLAG_SEALED = 2;
 
     public static final int MAGIC_OFFSET = 0;
     public static final int VERSION_OFFSET = 2;
@@ -137,6 +147,22 @@ public final class FrameCodec {
      * @return the encoded frame
      */
     public static byte[] encode(Frame frame, boolean withMac, NameBytes names) {
+        return encode(frame, withMac, false, names);
+    }
+
+    /**
+     * {@link #encode(Frame, boolean, NameBytes)} of a frame whose payload may be sealed.
+     *
+     * @param frame   the frame (its payload already sealed when {@code sealed})
+     * @param withMac whether to reserve and flag a MAC
+     * @param sealed  whether its payload is sealed: a version-2 frame with {@link #FLAG_SEALED} (needs {@code withMac})
+     * @param names   the sender's encoded names, or {@code null}
+     * @return the encoded frame
+     */
+    public static byte[] encode(Frame frame, boolean withMac, boolean sealed, NameBytes names) {
+        if (sealed && !withMac) {
+            throw new IllegalArgumentException("a sealed frame is authenticated too");
+        }
         byte[] sender = utf8("sender", frame.sender(), names);
         byte[] receiver = utf8("receiver", frame.receiver(), names);
         byte[] topic = utf8("topic", frame.topic(), names);
@@ -149,11 +175,11 @@ public final class FrameCodec {
         }
         byte[] out = new byte[(int) length];
         SHORT.set(out, MAGIC_OFFSET, (short) MAGIC);
-        out[VERSION_OFFSET] = (byte) VERSION;
+        out[VERSION_OFFSET] = (byte) (sealed ? SEALED_VERSION : VERSION);
         out[KIND_OFFSET] = (byte) frame.kind().code();
         INT.set(out, FRAME_LENGTH_OFFSET, (int) length);
         LONG.set(out, STREAM_SEQUENCE_OFFSET, frame.streamSequence());
-        out[FLAGS_OFFSET] = (byte) (withMac ? FLAG_MAC : 0);
+        out[FLAGS_OFFSET] = (byte) ((withMac ? FLAG_MAC : 0) | (sealed ? FLAG_SEALED : 0));
         out[PAYLOAD_TYPE_OFFSET] = (byte) frame.payloadType();
         SHORT.set(out, SENDER_LENGTH_OFFSET, (short) sender.length);
         SHORT.set(out, RECEIVER_LENGTH_OFFSET, (short) receiver.length);
@@ -194,8 +220,8 @@ public final class FrameCodec {
             throw new FrameException(DropReason.MALFORMED, String.format("not a RoboMW frame: magic 0x%04x, expected 0x%04x", magic, MAGIC));
         }
         int version = buf[offset + VERSION_OFFSET] & 0xFF;
-        if (version != VERSION) {
-            throw new FrameException(DropReason.MALFORMED, "frame version " + version + ", this node reads version " + VERSION);
+        if (version != VERSION && version != SEALED_VERSION) {
+            throw new FrameException(DropReason.MALFORMED, "frame version " + version + ", this node reads versions " + VERSION + " and " + SEALED_VERSION);
         }
         long length = (int) INT.get(buf, offset + FRAME_LENGTH_OFFSET) & 0xFFFFFFFFL;
         if (length > maxFrameSize) {
@@ -246,6 +272,11 @@ public final class FrameCodec {
         FrameKind kind = FrameKind.fromCode(buf[offset + KIND_OFFSET] & 0xFF);
         int flags = buf[offset + FLAGS_OFFSET] & 0xFF;
         boolean mac = (flags & FLAG_MAC) != 0;
+        boolean sealedFlag = (flags & FLAG_SEALED) != 0;
+        if (sealedFlag != ((buf[offset + VERSION_OFFSET] & 0xFF) == SEALED_VERSION) || sealedFlag && !mac) {
+            throw new FrameException(DropReason.MALFORMED, "frame version " + (buf[offset + VERSION_OFFSET] & 0xFF) + " with flags " + flags
+                    + ": a sealed payload comes in a version-2 frame with an HMAC, and only there");
+        }
         int senderLength = u16(buf, offset + SENDER_LENGTH_OFFSET);
         int receiverLength = u16(buf, offset + RECEIVER_LENGTH_OFFSET);
         int topicLength = u16(buf, offset + TOPIC_LENGTH_OFFSET);
@@ -291,6 +322,15 @@ public final class FrameCodec {
                 new UUID((long) LONG.get(buf, offset + CORRELATION_OFFSET), (long) LONG.get(buf, offset + CORRELATION_OFFSET + 8)),
                 (long) LONG.get(buf, offset + TIMESTAMP_OFFSET), sender, receiver, topic, function,
                 buf[offset + PAYLOAD_TYPE_OFFSET] & 0xFF, payload, mac);
+    }
+
+    /**
+     * @param buf    a decoded frame's bytes
+     * @param offset where it starts
+     * @return whether its payload is sealed ({@link #FLAG_SEALED})
+     */
+    public static boolean sealed(byte[] buf, int offset) {
+        return (buf[offset + FLAGS_OFFSET] & FLAG_SEALED) != 0;
     }
 
     /**

@@ -18,6 +18,9 @@ import java.util.Set;
  *     {@code password=...} (Java properties, UTF-8);</li>
  * <li>the environment: {@code MW_MQTT_USERNAME}, with {@code MW_MQTT_PASSWORD} or
  *     {@code MW_MQTT_PASSWORD_FILE} (a file holding only the password);</li>
+ * <li>for a broker on this machine (a loopback address), the file {@code mw broker} generated,
+ *     {@link #defaultFile()} ({@code ~/.robomw/broker.credentials}), if it exists: only the user who
+ *     started that broker can read it, and it is never sent to a broker elsewhere;</li>
  * <li>none: the broker is asked to let the client in anonymously.</li>
  * </ol>
  * A file that others may read is used, with a warning in the log.
@@ -36,6 +39,37 @@ public record BrokerCredentials(String username, byte[] password) {
 
     /** No credentials. */
     public static final BrokerCredentials NONE = new BrokerCredentials(null, null);
+
+    /** @return where {@code mw broker} keeps the credentials it generated: {@code ~/.robomw/broker.credentials} */
+    public static Path defaultFile() {
+        return Path.of(System.getProperty("user.home"), ".robomw", "broker.credentials");
+    }
+
+    /**
+     * {@link #load(Path, Map)}, and for a broker on this machine with neither, the credentials
+     * {@code mw broker} generated ({@link #defaultFile()}) if that file exists.
+     *
+     * @param file       the credentials file of the address, or {@code null}
+     * @param env        the environment
+     * @param brokerHost the broker's host, as the address names it
+     * @return the credentials
+     * @throws IOException naming the file that cannot be read or lacks a user name
+     */
+    public static BrokerCredentials load(Path file, Map<String, String> env, String brokerHost) throws IOException {
+        BrokerCredentials given = load(file, env);
+        if (given != NONE || !onThisMachine(brokerHost) || !Files.isRegularFile(defaultFile())) {
+            return given;
+        }
+        return load(defaultFile(), env);
+    }
+
+    private static boolean onThisMachine(String host) {
+        try {
+            return host != null && java.net.InetAddress.getByName(host).isLoopbackAddress();
+        } catch (java.net.UnknownHostException e) {
+            return false;
+        }
+    }
 
     /**
      * @param file the credentials file of the address, or {@code null}

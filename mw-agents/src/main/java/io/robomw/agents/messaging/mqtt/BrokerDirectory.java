@@ -49,6 +49,10 @@ public final class BrokerDirectory implements AutoCloseable {
     private final List<java.util.function.Consumer<PresenceRecord>> listeners = new java.util.concurrent.CopyOnWriteArrayList<>();
     private volatile long lastChange = System.nanoTime();
 
+    private volatile io.robomw.agents.messaging.security.PresenceSeal seal;
+    private final java.util.concurrent.atomic.LongAdder ignored = new java.util.concurrent.atomic.LongAdder();
+    private final io.robomw.agents.net.ThrottledWarnings unsigned = new io.robomw.agents.net.ThrottledWarnings(LOG, Duration.ofSeconds(1));
+
     private BrokerDirectory(Address address, MqttOptions options, BrokerCredentials credentials, com.hivemq.client.mqtt.MqttClientSslConfig ssl) {
         this.address = address;
         this.topics = options.topics();
@@ -87,13 +91,30 @@ public final class BrokerDirectory implements AutoCloseable {
      */
     public static BrokerDirectory open(String brokerAddress, Duration timeout, io.robomw.agents.messaging.security.TlsSettings tls)
             throws IOException {
+        return open(brokerAddress, timeout, tls, null);
+    }
+
+    /**
+     * {@link #open(String, Duration, io.robomw.agents.messaging.security.TlsSettings)} taking only the presences signed with
+     * the cluster's seal: the others are ignored and counted ({@link #ignored()}).
+     *
+     * @param brokerAddress an mqtt or mqtts address (its path is the prefix)
+     * @param timeout       how long connecting may take
+     * @param tls           the key and trust store to use with {@code mqtts}, or {@code null}
+     * @param seal          the cluster's presence seal, or {@code null} to take every presence (unverified)
+     * @return the open directory
+     * @throws IOException if the broker cannot be reached
+     */
+    public static BrokerDirectory open(String brokerAddress, Duration timeout, io.robomw.agents.messaging.security.TlsSettings tls,
+            io.robomw.agents.messaging.security.PresenceSeal seal) throws IOException {
         Address a = Address.parse(brokerAddress);
         if (!a.scheme().equals("mqtt") && !a.scheme().equals("mqtts")) {
             throw new IllegalArgumentException("'" + brokerAddress + "' is not a broker address (mqtt://host:port or mqtts://host:port)");
         }
         MqttOptions options = MqttOptions.of(a, "directory");
-        BrokerDirectory d = new BrokerDirectory(a, options, BrokerCredentials.load(options.credentials(), System.getenv()),
+        BrokerDirectory d = new BrokerDirectory(a, options, BrokerCredentials.load(options.credentials(), System.getenv(), a.host()),
                 MqttTransport.ssl(options, tls, System.getenv(), timeout.toMillis()));
+        d.seal = seal;
         try {
             d.client.connectWith().cleanStart(true).send().get(timeout.toMillis(), TimeUnit.MILLISECONDS);
             d.client.subscribeWith().topicFilter(d.topics.everyPresence()).qos(MqttQos.AT_LEAST_ONCE).send()
@@ -125,6 +146,11 @@ public final class BrokerDirectory implements AutoCloseable {
             d.awaitQuiet(timeout);
             return d.records();
         }
+    }
+
+    /** @return how many presences were ignored for being unsigned or not signed with the seal (0 without a seal) */
+    public long ignored() {
+        return ignored.sum();
     }
 
     /** @return every presence known now, online ones first, then by name */
@@ -196,9 +222,22 @@ public final class BrokerDirectory implements AutoCloseable {
             byClient.remove(client);
         } else {
             try {
-                PresenceRecord record = PresenceRecord.decode(bytes, "presence " + t + " at " + address.endpoint());
-                byClient.put(client, record);
-                for (var l : listeners) {
+                String where = "presence " + t + " at " + address.endpoint();
+                io.robomw.agents.messaging.security.PresenceSeal s = seal;
+                PresenceRecord record;
+                if (s == null) {
+                    record = PresenceRecord.decode(bytes, where);
+                } else {
+                    record = PresenceRecord.decodeSealed(bytes, where, s).orElse(null);
+                    if (record == null) {
+                        ignored.increment();
+                        unsigned.warn("ignored the {}: it is unsigned or not signed with this cluster's key ({} ignored so far)", where, ignored.sum());
+                    }
+                }
+                if (record != null) {
+                    byClient.put(client, record);
+                }
+                for (var l : record == null ? List.<java.util.function.Consumer<PresenceRecord>>of() : listeners) {
                     try {
                         l.accept(record);
                     } catch (RuntimeException e) {

@@ -132,7 +132,7 @@ final class BrokerSession implements Link, Endpoint {
         }
         PresenceRecord offline = context.presence().now(options.clientId(), options.sessionExpirySeconds(), address.toString()).offline(Instant.now());
         b = b.willPublish().topic(topics.presence(options.clientId())).qos(MqttQos.AT_LEAST_ONCE).retain(true)
-                .payload(offline.encode()).applyWillPublish();
+                .payload(context.presence().encode(offline)).applyWillPublish();
         this.client = b.buildAsync();
         client.publishes(MqttGlobalPublishFilter.ALL, this::onPublish, delivery, true);
     }
@@ -287,7 +287,7 @@ final class BrokerSession implements Link, Endpoint {
             if (connected) {
                 PresenceRecord offline = context.presence().now(options.clientId(), options.sessionExpirySeconds(), address.toString()).offline(Instant.now());
                 client.publishWith().topic(topics.presence(options.clientId())).qos(MqttQos.AT_LEAST_ONCE).retain(true)
-                        .payload(offline.encode()).send().get(1, TimeUnit.SECONDS);
+                        .payload(context.presence().encode(offline)).send().get(1, TimeUnit.SECONDS);
             }
         } catch (Exception e) {
             LOG.debug("node '{}': offline presence not sent to {}: {}", context.nodeName(), address, e.toString());
@@ -444,7 +444,7 @@ final class BrokerSession implements Link, Endpoint {
         try {
             PresenceRecord now = context.presence().now(options.clientId(), options.sessionExpirySeconds(), address.toString());
             client.publishWith().topic(topics.presence(options.clientId())).qos(MqttQos.AT_LEAST_ONCE).retain(true)
-                    .payload(now.encode()).send();
+                    .payload(context.presence().encode(now)).send();
         } catch (RuntimeException e) {
             LOG.warn("node '{}': cannot announce its presence at {}: {}", context.nodeName(), address, e.toString());
         }

@@ -19,7 +19,7 @@ final class FramePeek {
     /** @return whether the bytes start like a RoboMW frame (magic and version) */
     static boolean isFrame(byte[] b) {
         return b.length >= FrameCodec.HEADER_LENGTH && u16(b, FrameCodec.MAGIC_OFFSET) == FrameCodec.MAGIC
-                && (b[FrameCodec.VERSION_OFFSET] & 0xFF) == FrameCodec.VERSION;
+                && ((b[FrameCodec.VERSION_OFFSET] & 0xFF) == FrameCodec.VERSION || (b[FrameCodec.VERSION_OFFSET] & 0xFF) == FrameCodec.SEALED_VERSION);
     }
 
     /** @return the frame's kind, or {@code null} for a code no kind has (this node's own frames always have one) */

@@ -75,7 +75,7 @@ final class MqttTransport implements Transport {
             if (s != null && s.isOpen()) {
                 return s;
             }
-            BrokerCredentials credentials = BrokerCredentials.load(options.credentials(), env);
+            BrokerCredentials credentials = BrokerCredentials.load(options.credentials(), env, options.host());
             Address canonical = new Address(address.scheme(), address.host(), address.port(), options.topics().prefix(), Map.of());
             s = new BrokerSession(options, canonical, context, credentials, ssl(options));
             s.start();

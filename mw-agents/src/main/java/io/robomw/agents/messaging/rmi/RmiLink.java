@@ -48,7 +48,7 @@ final class RmiLink implements Link {
             try {
                 remote.deliver(session, o == 0 && l == b.length ? b : Arrays.copyOfRange(b, o, o + l));
             } catch (RemoteException e) {
-                throw new IOException("delivering to " + address + " failed: " + e.getMessage(), e);
+                throw new IOException("delivering to " + address + " failed: " + io.robomw.agents.net.RmiSocketSetup.reason(e), e);
             }
         }, context.threads(role + "-deliver"), e -> fail(e.getMessage()));
         Thread t = context.threads(role + "-poll").newThread(this::pollLoop);
@@ -119,7 +119,7 @@ final class RmiLink implements Link {
             try {
                 frames = remote.poll(session, POLL_MILLIS);
             } catch (RemoteException e) {
-                fail("polling failed: " + e.getMessage());
+                fail("polling " + address + " failed: " + io.robomw.agents.net.RmiSocketSetup.reason(e));
                 return;
             }
             try {

@@ -99,7 +99,7 @@ final class RmiTransport implements Transport {
         } catch (NotBoundException e) {
             throw new IOException("nothing is bound as '" + address.path() + "' in the RMI registry at " + address.endpoint(), e);
         } catch (RemoteException | ClassCastException e) {
-            throw new IOException("cannot reach " + address + ": " + e.getMessage(), e);
+            throw new IOException("cannot reach " + address + ": " + io.robomw.agents.net.RmiSocketSetup.reason(e), e);
         }
         RmiLink link = new RmiLink(address, remote, session, context, open::remove);
         open.add(link);

@@ -79,7 +79,32 @@ public final class RemoteRobot implements Robot {
         this.host = host;
         this.password = password;
         this.topic = RobotProtocol.topic(robotName);
-        this.info = (RobotInfo) Futures.await(call(robotName, new RobotCall.Describe()), Futures.DEFAULT_TIMEOUT, "describe robot '" + robotName + "' at " + host);
+        try {
+            this.info = (RobotInfo) Futures.await(call(robotName, new RobotCall.Describe()), Futures.DEFAULT_TIMEOUT,
+                    "describe robot '" + robotName + "' at " + host);
+        } catch (RobotLinkException e) {
+            throw notServed(robotName, e);
+        }
+    }
+
+    /**
+     * @return an error that says a robot is not served at the host, and which robots are, when the
+     *         host refused the robot's topic; else the failure as it was
+     */
+    private RobotLinkException notServed(String robotName, RobotLinkException e) {
+        String text = String.valueOf(e.getMessage());
+        if (!text.contains("no listener for topic '" + topic + "'")) {
+            return e;
+        }
+        String marker = "topics under '" + RobotProtocol.TOPIC_PREFIX + "' here: ";
+        int at = text.indexOf(marker);
+        List<String> served = at < 0 ? List.of()
+                : java.util.Arrays.stream(text.substring(at + marker.length()).split("[,;]")).map(String::strip)
+                        .filter(t -> t.startsWith(RobotProtocol.TOPIC_PREFIX)).map(t -> t.substring(RobotProtocol.TOPIC_PREFIX.length()).split("\\s")[0])
+                        .toList();
+        String example = served.isEmpty() || host.contains("?") ? "" : " (" + host + "/" + served.get(0) + ")";
+        return new RobotLinkException("no robot '" + robotName + "' is served at " + host + (served.isEmpty() ? "; it serves none"
+                : "; it serves " + String.join(", ", served) + example), e);
     }
 
     @Override

@@ -25,6 +25,11 @@ import java.util.concurrent.ConcurrentHashMap;
  *
  * <p>The node must allow the calls' classes: build it with {@link RobotProtocol#forServer}.
  * Close the server to stop serving; the node and the robot stay open.
+ *
+ * <p><b>Who may drive it.</b> Callers must know the robot topic's password (their calls are
+ * signed with it, and a call without it is refused), or reach the node over mutual TLS, which
+ * lets in only peers with a certificate it trusts. Serving a robot to anyone who reaches the node
+ * takes {@link #serveInsecure}, and is logged as a warning (docs/security.md).
  */
 public final class RobotServer implements AutoCloseable {
 
@@ -44,14 +49,44 @@ public final class RobotServer implements AutoCloseable {
     }
 
     /**
-     * Starts serving.
+     * Starts serving to callers who know the password, or who reach the node over mutual TLS.
      *
      * @param node     the node callers reach (bound to the address they use)
      * @param robot    the robot
-     * @param password the topic password callers must use, or {@code null} (then rely on TLS or a trusted network)
+     * @param password the topic password callers must use; {@code null} only on a node with mutual TLS and no broker address
      * @return the server
+     * @throws IllegalArgumentException naming the robot if there is no password and nothing else keeps strangers out
      */
     public static RobotServer serve(MessagingNode node, Robot robot, String password) {
+        if (password == null && !onlyTlsPeers(node)) {
+            throw new IllegalArgumentException("robot '" + robot.name() + "' would be served at " + node.boundAddresses()
+                    + " to anyone who reaches it: give its callers a password (mw host --serve-password-file FILE), serve it over mutual TLS"
+                    + " (tcp:// or rmi:// with TLS settings), or, for a lab that wants it, serve it insecurely (mw host --serve-insecure,"
+                    + " RobotServer.serveInsecure)");
+        }
+        return start(node, robot, password);
+    }
+
+    /**
+     * Starts serving to anyone who reaches the node, without a password, and says so in a warning:
+     * for a closed lab network that wants it.
+     *
+     * @param node  the node callers reach
+     * @param robot the robot
+     * @return the server
+     */
+    public static RobotServer serveInsecure(MessagingNode node, Robot robot) {
+        LOG.warn("serving robot '{}' WITHOUT A PASSWORD at {}: anyone who can reach these addresses can drive it", robot.name(), node.boundAddresses());
+        return start(node, robot, null);
+    }
+
+    /** @return whether only peers with a certificate the node trusts can reach it: mutual TLS, and no broker (whose clients would reach it) */
+    private static boolean onlyTlsPeers(MessagingNode node) {
+        return node.settings().tlsSettings().isPresent() && node.boundAddresses().stream().noneMatch(a -> a.scheme().startsWith("mqtt")
+                || a.scheme().equals("udp") || a.scheme().equals("multicast"));
+    }
+
+    private static RobotServer start(MessagingNode node, Robot robot, String password) {
         RobotServer server = new RobotServer(node, robot);
         node.answerTo(robot.name());
         node.addMessageListener(server.topic, password, server.listener);

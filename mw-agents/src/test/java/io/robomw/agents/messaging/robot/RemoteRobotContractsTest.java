@@ -44,14 +44,14 @@ class RemoteRobotContractsTest {
 
     private static final Duration WAIT = Duration.ofSeconds(10);
 
-    private final HeldRobot served = new HeldRobot();
+    private final io.robomw.agents.HeldRobot served = new io.robomw.agents.HeldRobot();
     private MessagingNode server;
     private Robot remote;
 
     @BeforeEach
     void serve() {
         server = MessagingNode.builder("host").settings(RobotProtocol.forServer(MessagingSettings.defaults())).bind("tcp://127.0.0.1:0").build();
-        RobotServer.serve(server, served, null);
+        RobotServer.serveInsecure(server, served);
         remote = Robots.remote(server.address("tcp") + "/held");
     }
 
@@ -113,130 +113,11 @@ class RemoteRobotContractsTest {
         assertTrue(e.getMessage().contains("robot 'held'"), e.getMessage());
     }
 
-    /** A robot whose motions end only when the test completes them, or when they are cancelled. */
-    private static final class HeldRobot implements Robot {
-        final List<CompletableFuture<Void>> moves = new CopyOnWriteArrayList<>();
-        final List<CompletableFuture<Void>> turns = new CopyOnWriteArrayList<>();
-        final java.util.concurrent.atomic.AtomicInteger stops = new java.util.concurrent.atomic.AtomicInteger();
-        final CountDownLatch stopEntered = new CountDownLatch(1);
-        private volatile CountDownLatch stopRelease;
-        private volatile boolean failStops;
-
-        void holdStops() {
-            stopRelease = new CountDownLatch(1);
-        }
-
-        void releaseStops() {
-            stopRelease.countDown();
-        }
-
-        void failStops() {
-            failStops = true;
-        }
-
-        @Override
-        public String name() {
-            return "held";
-        }
-
-        @Override
-        public Set<Capability> capabilities() {
-            return Set.of(Capability.GROUND);
-        }
-
-        @Override
-        public List<SensorInfo> sensors() {
-            return List.of();
-        }
-
-        @Override
-        public List<String> actions() {
-            return List.of();
-        }
-
-        @Override
-        public Messaging messaging() {
-            throw new UnsupportedActionException("held", "messaging", "a test robot");
-        }
-
-        @Override
-        public Agency agency() {
-            throw new UnsupportedActionException("held", "agency", "a test robot");
-        }
-
-        @Override
-        public CompletableFuture<Void> moveAsync(double distance, double speed) {
-            CompletableFuture<Void> f = new CompletableFuture<>();
-            moves.add(f);
-            return f;
-        }
-
-        @Override
-        public CompletableFuture<Void> turnAsync(double radians, double speed) {
-            CompletableFuture<Void> f = new CompletableFuture<>();
-            turns.add(f);
-            return f;
-        }
-
-        @Override
-        public CompletableFuture<Void> arcAsync(double radius, double angle, double speed) {
-            return new CompletableFuture<>();
-        }
-
-        @Override
-        public void drive(double linearSpeed, double angularSpeed) {
-        }
-
-        @Override
-        public void stop() {
-            stopEntered.countDown();
-            CountDownLatch release = stopRelease;
-            if (release != null) {
-                try {
-                    if (!release.await(30, TimeUnit.SECONDS)) {
-                        throw new IllegalStateException("the test never released the stop");
-                    }
-                } catch (InterruptedException e) {
-                    Thread.currentThread().interrupt();
-                }
-            }
-            if (failStops) {
-                throw new RobotLinkException("robot 'held': the stop could not be handed to its link: the link is down", null);
-            }
-            stops.incrementAndGet();
-        }
-
-        @Override
-        public CompletableFuture<Void> changeAltitudeAsync(double metres, double speed) {
-            return CompletableFuture.failedFuture(new UnsupportedActionException("held", "changeAltitude", "it is a ground robot"));
-        }
-
-        @Override
-        public CompletableFuture<Void> performAsync(String action, double... args) {
-            return CompletableFuture.failedFuture(new UnsupportedActionException("held", action, "it has no actions"));
-        }
-
-        @Override
-        public CompletableFuture<Double> getValueAsync(Position position, SensorType type, ReturnType returnType) {
-            return CompletableFuture.failedFuture(new UnsupportedActionException("held", "getValue", "it has no sensors"));
-        }
-
-        @Override
-        public CompletableFuture<Double> getValueAsync(String sensorName, ReturnType returnType) {
-            return CompletableFuture.failedFuture(new UnsupportedActionException("held", "getValue", "it has no sensors"));
-        }
-
-        @Override
-        public Pose pose() {
-            return new Pose(0, 0, 0);
-        }
-
-        @Override
-        public void resetPose(Pose pose) {
-        }
-
-        @Override
-        public void close() {
-        }
+    @Test
+    void aRobotTheHostDoesNotServeIsSaidSoNamingTheRobotsItServes() {
+        io.robomw.api.RobotLinkException e = org.junit.jupiter.api.Assertions.assertThrows(io.robomw.api.RobotLinkException.class,
+                () -> Robots.remote(server.address("tcp") + "/nxt-1"));
+        org.junit.jupiter.api.Assertions.assertEquals("no robot 'nxt-1' is served at " + server.address("tcp") + "; it serves held ("
+                + server.address("tcp") + "/held)", e.getMessage());
     }
 }

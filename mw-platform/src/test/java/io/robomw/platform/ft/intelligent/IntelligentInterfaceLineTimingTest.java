@@ -8,15 +8,14 @@ import io.robomw.api.spi.PlatformServices;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.ft.FtMotors;
 import io.robomw.platform.link.Communicator;
-import io.robomw.platform.link.Link;
 import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.motor.MotorState;
+import io.robomw.platform.testkit.Answer;
+import io.robomw.platform.testkit.ScriptedLink;
 import org.junit.jupiter.api.Test;
 
 import java.io.IOException;
 import java.time.Duration;
-import java.util.ArrayDeque;
-import java.util.Deque;
 import java.util.List;
 import java.util.Map;
 import java.util.Optional;
@@ -27,7 +26,7 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 /**
- * The driver against a hand-written Intelligent Interface at the far end of a 9600-baud line, on a
+ * The driver against a scripted Intelligent Interface at the far end of a 9600-baud line, on a
  * host as loaded as a busy build machine: the line starts sending a write up to
  * {@value #LINE_HELD_MILLIS} ms after the host wrote it (a USB serial adapter's buffering, a kernel
  * that gets to it late), and the host loses the processor for up to {@value #HOST_AWAY_MILLIS} ms
@@ -43,42 +42,31 @@ class IntelligentInterfaceLineTimingTest {
     private static final long WIRE = IntelligentInterfaceMotorDriver.COMMAND_WIRE_NANOS;
 
     /** The interface and its line; one motor, M1, with its impulse switch on E1. */
-    static final class TimedInterface implements Link {
+    static final class TimedInterface {
         private final SplittableRandom random = new SplittableRandom(17);
-        /** Answers and when their last byte arrives back at the host. */
-        private final Deque<byte[]> replies = new ArrayDeque<>();
-        private final Deque<Long> replyAt = new ArrayDeque<>();
-        private boolean open;
         private long lineFree;
         private long replyLineFree;
         private long lastArrival = Long.MIN_VALUE;
         private int motorByte;
-        private int consumed;
         /** The motor's true rotation, degrees, at the last command's arrival. */
         double degrees;
         int writes;
         int writesLeavingTheMotorOn;
         private final boolean hostAway;
+        /** The host's end of the line: each write answered by the interface, each answer due when its last byte is back. */
+        final ScriptedLink link = new ScriptedLink().named("timed interface")
+                .answeringWith(this::take).afterReadingEachPiece(this::hostMayLoseTheProcessor);
 
         TimedInterface(boolean hostAway) {
             this.hostAway = hostAway;
         }
 
-        @Override
-        public void open() {
-            open = true;
-        }
-
-        @Override
-        public boolean isOpen() {
-            return open;
-        }
-
-        @Override
-        public void write(byte[] data, int off, int len) {
+        /** Takes each command of a write as its two bytes arrive, and answers it with the switch as it is then. */
+        private Answer take(byte[] data) {
             long held = hostAway ? random.nextLong(LINE_HELD_MILLIS * 1_000_000L) : 0;
             long start = Math.max(System.nanoTime() + held, lineFree);
-            for (int i = 0; i + 1 < len; i += 2) {
+            Answer answers = Answer.none();
+            for (int i = 0; i + 1 < data.length; i += 2) {
                 long arrives = start + (i / 2 + 1) * WIRE;
                 if (lastArrival != Long.MIN_VALUE) {
                     long on = Math.min(arrives - lastArrival, IntelligentInterfaceTelegram.WATCHDOG_MILLIS * 1_000_000L);
@@ -87,21 +75,21 @@ class IntelligentInterfaceLineTimingTest {
                     degrees += sign * FtMotors.DEGREES_PER_SECOND_AT_FULL_POWER * on / 1e9;
                 }
                 lastArrival = arrives;
-                int command = data[off + i] & 0xFF;
-                motorByte = data[off + i + 1] & 0xFF;
+                int command = data[i] & 0xFF;
+                motorByte = data[i + 1] & 0xFF;
                 int digital = switchClosed() ? 1 : 0;
                 byte[] reply = command == IntelligentInterfaceTelegram.DIGITAL ? new byte[]{(byte) digital}
                         : new byte[]{(byte) digital, 0x01, 0x00};
                 long replyStart = Math.max(arrives, replyLineFree);
                 replyLineFree = replyStart + reply.length * WIRE / 2;
-                replies.add(reply);
-                replyAt.add(replyLineFree);
+                answers = answers.and(Answer.of(reply).dueAt(replyLineFree));
                 lineFree = arrives;
             }
             writes++;
             if (IntelligentInterfaceTelegram.direction(motorByte, 0) != 0) {
                 writesLeavingTheMotorOn++;
             }
+            return answers;
         }
 
         /** The switch starts mid-tooth: the first transition comes after half a tick. */
@@ -109,41 +97,11 @@ class IntelligentInterfaceLineTimingTest {
             return Math.floorMod((long) Math.floor(degrees * TICKS / 360.0 + 0.5), 2) == 1;
         }
 
-        @Override
-        public int read(byte[] buf, int off, int len, Duration timeout) {
-            if (replies.isEmpty() || len == 0) {
-                return 0;
+        /** The host reads the interface's answer, then may lose the processor. */
+        private void hostMayLoseTheProcessor() {
+            if (hostAway && random.nextInt(4) == 0) {
+                LockSupport.parkNanos(random.nextLong(HOST_AWAY_MILLIS * 1_000_000L));
             }
-            for (long left = replyAt.peekFirst() - System.nanoTime(); left > 0; left = replyAt.peekFirst() - System.nanoTime()) {
-                if (left > timeout.toNanos()) {
-                    return 0;
-                }
-                LockSupport.parkNanos(left);
-            }
-            byte[] reply = replies.peekFirst();
-            int n = Math.min(len, reply.length - consumed);
-            System.arraycopy(reply, consumed, buf, off, n);
-            consumed += n;
-            if (consumed == reply.length) {
-                replies.pollFirst();
-                replyAt.pollFirst();
-                consumed = 0;
-                if (hostAway && random.nextInt(4) == 0) {
-                    // The host reads the interface's answer, then loses the processor.
-                    LockSupport.parkNanos(random.nextLong(HOST_AWAY_MILLIS * 1_000_000L));
-                }
-            }
-            return n;
-        }
-
-        @Override
-        public String describe() {
-            return "timed interface";
-        }
-
-        @Override
-        public void close() {
-            open = false;
         }
     }
 
@@ -155,7 +113,7 @@ class IntelligentInterfaceLineTimingTest {
     }
 
     private static Under platform(TimedInterface line) throws IOException {
-        Communicator c = new Communicator(line);
+        Communicator c = new Communicator(line.link);
         c.open();
         BrickChannel channel = new BrickChannel("ft-test", c, Duration.ofMillis(500));
         PlatformConfig config = new PlatformConfig("ft-test", "ft-intelligent",

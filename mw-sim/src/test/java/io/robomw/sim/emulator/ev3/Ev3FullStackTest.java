@@ -98,12 +98,14 @@ public class Ev3FullStackTest {
     @Test
     void shouldDriveTheExampleRobotFileThroughTheEmulator() throws Exception {
         Path example = Path.of("..", "examples", "robots", "ev3-two-wheeled.yaml").toAbsolutePath().normalize();
+        // a world may name robot files in its own tree only (issue 37): the example's robot file goes beside it
+        Files.copy(example, dir.resolve("ev3-two-wheeled.yaml"), java.nio.file.StandardCopyOption.REPLACE_EXISTING);
         Files.writeString(dir.resolve("world.yaml"), """
                 name: ev3-example
                 arena: { width: 3, height: 3 }
                 robots:
                   - { robot: "%s", name: ev3-1, x: 1.0, y: 1.5, heading: 0 }
-                """.formatted(example));
+                """.formatted("ev3-two-wheeled.yaml"));
         String text = Files.readString(example);
         assertTrue(text.contains("port: /dev/rfcomm0"), "the example names the Bluetooth serial port");
         try (Simulation sim = Simulation.load(dir.resolve("world.yaml"), Set.of("ev3-1")); Ev3Emulator emulator = Ev3Emulator.bind(sim, "ev3-1")) {

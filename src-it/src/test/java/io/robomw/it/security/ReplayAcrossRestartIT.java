@@ -1,0 +1,146 @@
+package io.robomw.it.security;
+
+import io.robomw.it.agents.HostProcess;
+import io.robomw.it.demo.MwProcess;
+import io.robomw.testkit.Await;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import java.io.IOException;
+import java.io.UncheckedIOException;
+import java.net.Socket;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.security.SecureRandom;
+import java.time.Duration;
+import java.util.HexFormat;
+import java.util.Properties;
+import java.util.concurrent.TimeUnit;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+/**
+ * Issue 37, found 3: replay protection did not survive a restart. A captured signed
+ * {@code mw msg send} replayed to a restarted receiver was delivered again (and answered with a
+ * signed echo); a sniffed signed robot {@code Move} re-published on the broker after the host
+ * restarted moved the robot. Now a receiver keeps its replay window on disk, and refuses both.
+ */
+class ReplayAcrossRestartIT {
+
+    @TempDir
+    Path dir;
+
+    private static String log(String name) {
+        try {
+            Path f = Path.of("target", "it-logs", name + ".log");
+            return Files.exists(f) ? Files.readString(f) : "";
+        } catch (IOException e) {
+            throw new UncheckedIOException(e);
+        }
+    }
+
+    @Test
+    void aCapturedSignedMessageReplayedToARestartedReceiverIsRefused() throws Exception {
+        Path password = Files.writeString(dir.resolve("topic.password"), "s3cret\n");
+        String name = "replay-echoer-" + Long.toHexString(new SecureRandom().nextLong());
+        int port = Attacker.freePort();
+        String[] receiver = {"msg", "sub", "tcp://127.0.0.1:" + port, "cmd", "--bind", "--echo", "--password-file", password.toString(), "--name", name};
+        byte[] captured;
+        try (MwProcess first = MwProcess.start("replay-receiver", receiver)) {
+            first.await("listening to topic", Duration.ofSeconds(60));
+            try (TcpTap tap = new TcpTap(port);
+                 MwProcess send = MwProcess.start("replay-send", "msg", "send", "tcp://127.0.0.1:" + tap.port(), name, "cmd", "open the door",
+                         "--password-file", password.toString())) {
+                assertEquals(0, send.waitFor(Duration.ofSeconds(60)), send.output());
+                captured = tap.sentToServer();
+            }
+            first.await("open the door", Duration.ofSeconds(30));
+        }
+        try (MwProcess restarted = MwProcess.start("replay-receiver-restarted", receiver)) {
+            restarted.await("listening to topic", Duration.ofSeconds(60));
+            try (Socket attacker = new Socket("127.0.0.1", port)) {
+                attacker.getOutputStream().write(captured);
+                attacker.getOutputStream().flush();
+                Await.until("the restarted receiver refuses the replayed message, or takes it", Duration.ofSeconds(60),
+                        () -> log("replay-receiver-restarted").contains("before this node restarted") || restarted.output().contains("open the door"),
+                        () -> log("replay-receiver-restarted"));
+            }
+            assertFalse(restarted.output().contains("open the door"), "the replay was delivered again: " + restarted.output());
+            assertTrue(log("replay-receiver-restarted").contains("before this node restarted"));
+        }
+    }
+
+    @Test
+    void aSniffedRobotMoveRepublishedAtTheBrokerAfterTheHostRestartedIsRefused() throws Exception {
+        MqttClients.assumeInstalled();
+        Path credentials = dir.resolve("broker.credentials");
+        Path password = Files.writeString(dir.resolve("robot.password"), "robot s3cret\n");
+        Path key = Attacker.keyFile(dir);
+        int port = Attacker.freePort();
+        String world = Path.of(ReplayAcrossRestartIT.class.getResource("/robots/sim-world.yaml").toURI()).toString();
+        try (MwProcess broker = MwProcess.start("replay-broker", "broker", "--port", String.valueOf(port), "--credentials", credentials.toString(),
+                "--data", dir.resolve("broker").toString())) {
+            broker.await("mqtt broker ready", Duration.ofSeconds(60));
+            Properties c = new Properties();
+            try (var r = Files.newBufferedReader(credentials)) {
+                c.load(r);
+            }
+            String user = c.getProperty("username");
+            String pass = c.getProperty("password");
+            String at = "mqtt://127.0.0.1:" + port;
+            try (HostProcess host = HostProcess.start("replay-robot-host", "--world", world, "--world-robot", "sim-1", "--key-file", key.toString(),
+                    "--serve", at + "?credentials=" + credentials, "--serve-password-file", password.toString())) {
+                // someone who can read the broker's traffic records the robot's commands (for 45 s)
+                Process sniffer = new ProcessBuilder("/usr/bin/mosquitto_sub", "-h", "127.0.0.1", "-p", String.valueOf(port), "-u", user, "-P", pass,
+                        "-t", "robomw/msg/#", "-W", "45", "-F", "%t %x").redirectErrorStream(true).start();
+                Await.until("the sniffer subscribed", Duration.ofSeconds(30), () -> {
+                    try {
+                        return MqttClients.sub(port, user, pass, "-t", "robomw/presence/+", "-C", "1", "-W", "10").status() == 0;
+                    } catch (IOException | InterruptedException e) {
+                        return false;
+                    }
+                });
+                String robot = at + "/sim-1?credentials=" + credentials + "&password-file=" + password;
+                try (MwProcess move = MwProcess.start("replay-robot-move", "robot", robot, "move", "0.3", "0.2")) {
+                    assertEquals(0, move.waitFor(Duration.ofSeconds(60)), move.output());
+                }
+                assertTrue(sniffer.waitFor(90, TimeUnit.SECONDS), "the sniffer ended");
+                java.util.List<String[]> sniffed = new String(sniffer.getInputStream().readAllBytes()).lines()
+                        .filter(l -> l.startsWith("robomw/msg/")).map(l -> l.strip().split(" ", 2)).toList();
+                assertTrue(sniffed.size() >= 1, "the sniffer saw the robot's commands");
+
+                host.kill();
+                host.restart();
+                String before = pose(robot);
+                int i = 0;
+                for (String[] s : sniffed) {
+                    Path frame = Files.write(dir.resolve("command-" + i++ + ".frame"), HexFormat.of().parseHex(s[1]));
+                    MqttClients.Run replayed = MqttClients.pub(port, user, pass, "-q", "1", "-t", s[0], "-f", frame.toString());
+                    assertEquals(0, replayed.status(), replayed.output());
+                }
+                try {
+                    Await.until("the restarted host refuses the replayed command", Duration.ofSeconds(60),
+                            () -> {
+                                try {
+                                    return host.log().contains("before this node restarted");
+                                } catch (IOException e) {
+                                    return false;
+                                }
+                            }, () -> "");
+                } catch (AssertionError notRefused) {
+                    throw new AssertionError("the replayed command was not refused; the robot was at " + before + ", now " + pose(robot), notRefused);
+                }
+                assertEquals(before, pose(robot), "the robot did not move again");
+            }
+        }
+    }
+
+    private static String pose(String robot) throws Exception {
+        try (MwProcess pose = MwProcess.start("replay-robot-pose", "robot", robot, "pose")) {
+            assertEquals(0, pose.waitFor(Duration.ofSeconds(60)), pose.output());
+            return pose.output().strip();
+        }
+    }
+}
