@@ -86,6 +86,17 @@ final class RobotStates {
         return ranges[rangeStart[i] + k];
     }
 
+    /**
+     * Makes room for {@code n} robots at once, before they are added.
+     *
+     * @param n how many robots the world will have
+     */
+    void reserve(int n) {
+        if (n > 0) {
+            grow(n - 1);
+        }
+    }
+
     private void grow(int i) {
         if (i < capacity) {
             return;

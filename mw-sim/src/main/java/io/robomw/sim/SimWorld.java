@@ -289,6 +289,8 @@ public final class SimWorld implements AutoCloseable {
                 segments.toArray(double[][]::new), discs.toArray(double[][]::new));
         this.rangeMethod = rangeMethod;
         this.rayCaster = rangeMethod == RangeMethod.GRID ? rangeIndex::castRay : this::dyn4jRay;
+        // room for the world file's robots at once (grown by doubling, 100,000 robots left a third of every array empty)
+        states.reserve(description.robots().size());
     }
 
     /** @return half the thickness of the thinnest wall or obstacle (+∞ without any) */
@@ -350,9 +352,13 @@ public final class SimWorld implements AutoCloseable {
         SimRobot robot = new SimRobot(robots.size(), name, description, physics, body, this.description.seed(), clock::nanoTime,
                 this.description.trajectories(), failures, states, model);
         robots.add(robot);
-        cycled = java.util.Arrays.copyOf(cycled, robots.size());
-        bodyLength = java.util.Arrays.copyOf(bodyLength, robots.size());
-        bodyWidth = java.util.Arrays.copyOf(bodyWidth, robots.size());
+        if (robots.size() > cycled.length) {
+            // grown by doubling (a copy per robot made loading 100,000 robots quadratic: minutes); slots past the robots stay empty
+            int room = Math.max(robots.size(), 2 * cycled.length);
+            cycled = java.util.Arrays.copyOf(cycled, room);
+            bodyLength = java.util.Arrays.copyOf(bodyLength, room);
+            bodyWidth = java.util.Arrays.copyOf(bodyWidth, room);
+        }
         bodyLength[robot.index()] = b.length();
         bodyWidth[robot.index()] = b.width();
         byName.put(name, robot);
