@@ -13,6 +13,7 @@ import java.io.IOException;
 import java.io.UncheckedIOException;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.util.List;
 import java.util.Set;
 
 /**
@@ -34,7 +35,12 @@ class EmulatorRequestsFuzzTest {
     static {
         try {
             Path dir = Files.createTempDirectory("emulator-fuzz");
-            Path robots = Path.of("..", "examples", "robots").toAbsolutePath().normalize();
+            Path examples = Path.of("..", "examples", "robots").toAbsolutePath().normalize();
+            // a world may name robot files in its own tree only (issue 37): the examples' robot files go beside it
+            for (String file : List.of("nxt-two-wheeled.yaml", "ev3-two-wheeled.yaml", "ft-txt.yaml", "ft-intelligent.yaml", "rcx-two-wheeled.yaml")) {
+                Files.copy(examples.resolve(file), dir.resolve(file));
+            }
+            String robots = ".";
             Files.writeString(dir.resolve("world.yaml"), """
                     name: fuzz
                     arena: { width: 10, height: 3 }
