@@ -10,6 +10,12 @@ import io.robomw.sim.emulator.ev3.Ev3Emulator;
 import io.robomw.sim.emulator.ft.intelligent.IntelligentInterfaceEmulator;
 import io.robomw.sim.emulator.ft.txt.TxtEmulator;
 import io.robomw.sim.emulator.nxt.NxtEmulator;
+import io.robomw.api.spi.FailurePolicy;
+import io.robomw.sim.emulator.mavlink.MavlinkEmulator;
+
+import java.net.InetAddress;
+import java.net.InetSocketAddress;
+import java.util.Optional;
 import org.junit.jupiter.api.io.TempDir;
 import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.ValueSource;
@@ -111,8 +117,24 @@ class SameProgramOnEveryPlatformTest {
                     sensors:
                       - { name: tof, type: range, position: front, port: R1, options: { max_range: 2.0 } }
                     """.formatted(GEOMETRY);
+            case "copter", "copter-px4", "copter-sim", "boat", "boat-sim" -> vehicle(platform, connection);
             default -> throw new IllegalArgumentException(platform);
         };
+    }
+
+    /** A multirotor or a boat of the same size, with a forward laser, as MAVLink drives it or the simulator flies it. */
+    private static String vehicle(String platform, String connection) {
+        boolean air = platform.startsWith("copter");
+        return """
+                name: r
+                platform: %s
+                connection: { %s }
+                drive: { type: vehicle, medium: %s, autopilot: %s, max_speed: 1.0, %s max_turn_rate: 1.2, acceptance_radius: 0.03 }
+                body: { length: 0.2, width: 0.2, mass: %s }
+                sensors:
+                  - { name: lidar, type: laser, position: front, port: "distance:forward", options: { max_range: 4.0 } }
+                """.formatted(platform.endsWith("-sim") ? "sim" : "mavlink", connection.startsWith("link") ? connection : "link: \"udpout://127.0.0.1:9\"",
+                air ? "air" : "water", platform.equals("copter-px4") ? "px4" : "ardupilot", air ? "max_climb_rate: 1.0," : "", air ? 1.2 : 3);
     }
 
     /** The example Aibo robot file with another connection block. */
@@ -127,21 +149,25 @@ class SameProgramOnEveryPlatformTest {
     }
 
     @ParameterizedTest
-    @ValueSource(strings = {"nxt", "ev3", "ft-intelligent", "ft-txt", "aibo", "aibo-sim", "sim", "sim-range"})
+    @ValueSource(strings = {"nxt", "ev3", "ft-intelligent", "ft-txt", "aibo", "aibo-sim", "sim", "sim-range", "copter", "copter-px4",
+            "copter-sim", "boat", "boat-sim"})
     void shouldDriveTheSquareAndSeeTheWallOnEveryPlatform(String platform) throws Exception {
         Files.writeString(dir.resolve("body.yaml"), robotFile(platform, "port: /dev/unused"));
         Files.writeString(dir.resolve("world.yaml"), """
                 name: square
                 arena: { width: 3, height: 3 }
+                water: [ { x: 0, y: 0, width: 3, height: 3 } ]
                 robots:
                   - { robot: body.yaml, name: r, x: 2.2, y: 1.0, heading: 0 }
                 """);
-        boolean emulated = !platform.startsWith("sim") && !platform.equals("aibo-sim");
+        boolean flies = platform.startsWith("copter");
+        boolean emulated = !platform.startsWith("sim") && !platform.endsWith("-sim");
         try (Simulation sim = Simulation.load(dir.resolve("world.yaml"), emulated ? Set.of("r") : Set.of())) {
             Pose start = sim.world().robot("r").pose();
             SquareSurvey.Report report;
             if (emulated) {
                 BiFunction<Simulation, String, Emulator> bind = switch (platform) {
+                    case "copter", "copter-px4", "boat" -> (world, name) -> MavlinkEmulator.bind(world, name, Optional.empty(), FailurePolicy.logging());
                     case "nxt" -> NxtEmulator::bind;
                     case "ev3" -> Ev3Emulator::bind;
                     case "ft-intelligent" -> IntelligentInterfaceEmulator::bind;
@@ -149,7 +175,9 @@ class SameProgramOnEveryPlatformTest {
                     default -> TxtEmulator::bind;
                 };
                 try (Emulator emulator = bind.apply(sim, "r")) {
-                    String connection = platform.equals("ft-txt") || platform.equals("aibo")
+                    String connection = emulator instanceof MavlinkEmulator vehicle
+                            ? "link: \"udpout://127.0.0.1:" + vehicle.listen(new InetSocketAddress(InetAddress.getLoopbackAddress(), 0)).getPort() + "\""
+                            : platform.equals("ft-txt") || platform.equals("aibo")
                             ? "host: 127.0.0.1, port: " + emulator.startOnTcp("127.0.0.1", 0)
                             : "port: " + emulator.startOnPseudoTerminal();
                     // The Intelligent Interface stops nothing by itself: its precision depends on its
@@ -157,13 +185,27 @@ class SameProgramOnEveryPlatformTest {
                     sim.startRealTime(platform.equals("ft-intelligent") ? 1 : 4);
                     Files.writeString(dir.resolve("driver.yaml"), robotFile(platform, connection));
                     try (Robot robot = Robots.open(dir.resolve("driver.yaml"))) {
+                        if (flies) {
+                            robot.takeOff(2.0);
+                        }
                         report = new SquareSurvey(0.3, 0.15).run(robot);
+                        if (flies) {
+                            robot.land();
+                        }
                     }
                 }
             } else {
                 Robot robot = sim.robot("r");
                 SquareSurvey.Report[] out = new SquareSurvey.Report[1];
-                sim.run(java.time.Duration.ofMinutes(2), () -> out[0] = new SquareSurvey(0.3, 0.15).run(robot));
+                sim.run(java.time.Duration.ofMinutes(2), () -> {
+                    if (flies) {
+                        robot.takeOff(2.0);
+                    }
+                    out[0] = new SquareSurvey(0.3, 0.15).run(robot);
+                    if (flies) {
+                        robot.land();
+                    }
+                });
                 report = out[0];
             }
             // The Intelligent Interface counts 16 impulse-wheel transitions per motor turn: 11 mm of
@@ -175,8 +217,11 @@ class SameProgramOnEveryPlatformTest {
             // (aibo.yaml): each quarter turn comes 1.8° short and each side 6 mm, which leaves it
             // 27 mm from its start; the jitter adds about 19 mm (σ: 4 mm along each side, 1.35° per
             // turn carried across the sides after it). Three σ over the systematic error: 0.09 m.
+            // A vehicle reaches each corner within its acceptance radius (0.03 m) and its autopilot's
+            // turn within a degree or two: four corners and turns add up to a few centimetres.
             boolean aibo = platform.startsWith("aibo");
-            double tolerance = platform.equals("ft-intelligent") ? 0.10 : aibo ? 0.09 : 0.03;
+            boolean vehicle = platform.startsWith("copter") || platform.startsWith("boat");
+            double tolerance = platform.equals("ft-intelligent") ? 0.10 : aibo ? 0.09 : vehicle ? 0.10 : 0.03;
             assertTrue(sim.world().robot("r").pose().distanceTo(start) < tolerance,
                     platform + ": back at the start within " + tolerance + " m, but " + sim.world().robot("r").pose().distanceTo(start));
             assertEquals(4, report.ranges().size());

@@ -130,6 +130,55 @@ public interface Motion {
     CompletableFuture<Void> changeAltitudeAsync(double metres, double speed);
 
     /**
+     * Takes off and climbs to an altitude above the take-off point, then holds there. Only a robot
+     * with {@link Capability#AIR} whose drive flies (a multirotor's vehicle drive) can; every other
+     * robot throws before anything is sent. Blocks until the altitude is reached (waiting as for a
+     * climb at 0.5 m/s).
+     *
+     * @param altitude metres above the take-off point, &gt; 0
+     * @throws UnsupportedActionException if the robot cannot fly (a boat, a wheeled robot), or the
+     *                                    altitude is out of its limits
+     */
+    default void takeOff(double altitude) {
+        Futures.await(takeOffAsync(altitude), Futures.motionTimeout(Math.abs(altitude) / TAKE_OFF_AND_LANDING_SPEED), call("takeOff", altitude));
+    }
+
+    /**
+     * Non-blocking form of {@link #takeOff}. The default refuses: a robot that flies overrides it.
+     *
+     * @param altitude metres above the take-off point
+     * @return completes when the altitude is reached
+     * @throws UnsupportedActionException at once if the robot cannot fly
+     */
+    default CompletableFuture<Void> takeOffAsync(double altitude) {
+        throw new UnsupportedActionException(this instanceof Robot r ? r.name() : "this robot", call("takeOff", altitude), "it does not fly");
+    }
+
+    /**
+     * Lands where it is (comes down at its autopilot's landing speed, then disarms). Only a robot
+     * that flies can; every other robot throws before anything is sent. Blocks until it is on the
+     * ground, at most {@link Futures#DEFAULT_TIMEOUT}.
+     *
+     * @throws UnsupportedActionException if the robot cannot fly
+     */
+    default void land() {
+        Futures.await(landAsync(), Futures.DEFAULT_TIMEOUT, "land()");
+    }
+
+    /**
+     * Non-blocking form of {@link #land}. The default refuses: a robot that flies overrides it.
+     *
+     * @return completes when the robot is on the ground
+     * @throws UnsupportedActionException at once if the robot cannot fly
+     */
+    default CompletableFuture<Void> landAsync() {
+        throw new UnsupportedActionException(this instanceof Robot r ? r.name() : "this robot", "land()", "it does not fly");
+    }
+
+    /** The speed, m/s, a blocking {@link #takeOff} allows for: its deadline is as for a climb at this speed. */
+    double TAKE_OFF_AND_LANDING_SPEED = 0.5;
+
+    /**
      * Runs a named action of an extra actuator (a gripper, an arm), as listed by
      * {@link Robot#actions()}, for example {@code perform("gripper.close")}, or a high-level action
      * of the robot's firmware ({@code perform("sit")}, {@code perform("head.pan", 0.5)}). Blocks

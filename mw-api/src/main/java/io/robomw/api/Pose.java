@@ -1,13 +1,21 @@
 package io.robomw.api;
 
 /**
- * A robot's position and heading in the plane.
+ * A robot's position, heading and altitude.
+ *
+ * <h2>Frame</h2>
+ * Right-handed, z up: x and y in the plane (a robot's own pose starts at x = y = 0, facing along
+ * x, where it was opened or last reset; a simulated world's x is east and y north), heading
+ * anti-clockwise from the x axis seen from above, z the altitude in metres above the ground (or the
+ * water) where the robot started: 0 for every robot that does not fly, and for a multirotor on the
+ * ground.
  *
  * @param x       metres
  * @param y       metres
  * @param heading radians, anti-clockwise from the x axis, normalised to (-π, π]
+ * @param z       metres up, the altitude above the starting point's ground
  */
-public record Pose(double x, double y, double heading) implements java.io.Serializable {
+public record Pose(double x, double y, double heading, double z) implements java.io.Serializable {
 
     private static final long serialVersionUID = 1L;
 
@@ -17,10 +25,21 @@ public record Pose(double x, double y, double heading) implements java.io.Serial
 
     /** Normalises the heading and refuses values that are not numbers. */
     public Pose {
-        if (!Double.isFinite(x) || !Double.isFinite(y) || !Double.isFinite(heading)) {
-            throw new IllegalArgumentException("pose values must be finite, got x=" + x + " y=" + y + " heading=" + heading);
+        if (!Double.isFinite(x) || !Double.isFinite(y) || !Double.isFinite(heading) || !Double.isFinite(z)) {
+            throw new IllegalArgumentException("pose values must be finite, got x=" + x + " y=" + y + " heading=" + heading + " z=" + z);
         }
         heading = normalize(heading);
+    }
+
+    /**
+     * A pose on the ground (z = 0).
+     *
+     * @param x       metres
+     * @param y       metres
+     * @param heading radians, anti-clockwise from the x axis
+     */
+    public Pose(double x, double y, double heading) {
+        this(x, y, heading, 0);
     }
 
     /**

@@ -32,7 +32,15 @@ public enum SensorType {
     /** Acceleration along one axis of the robot's body (an accelerometer axis). */
     ACCELEROMETER(Quantity.ACCELERATION),
     /** A joint's angle as its servo reports it (a leg, the neck, the tail of a legged robot). */
-    JOINT(Quantity.ANGLE);
+    JOINT(Quantity.ANGLE),
+    /** A vehicle's altitude: metres above its home's ground, as its autopilot reports it. */
+    ALTITUDE(Quantity.DISTANCE),
+    /** A vehicle's battery: the charge left, a fraction of full (0 to 1; {@link ReturnType#PERCENT} gives 0 to 100). */
+    BATTERY(Quantity.RATIO),
+    /** A vehicle's latitude from its GPS, north positive. */
+    LATITUDE(Quantity.ANGLE),
+    /** A vehicle's longitude from its GPS, east positive. */
+    LONGITUDE(Quantity.ANGLE);
 
     private final Quantity quantity;
 

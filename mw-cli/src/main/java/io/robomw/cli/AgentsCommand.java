@@ -6,7 +6,9 @@ import io.robomw.agents.host.HostClient;
 import io.robomw.agents.host.OwedDelivery;
 import io.robomw.agents.host.OwedSelector;
 import io.robomw.agents.messaging.PresenceRecord;
+import io.robomw.agents.messaging.MessagingNode;
 import io.robomw.agents.messaging.mqtt.BrokerDirectory;
+import io.robomw.agents.messaging.security.ReplayStore;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Mixin;
 import picocli.CommandLine.Model.CommandSpec;
@@ -126,11 +128,15 @@ final class AgentsCommand implements Callable<Integer> {
         Optional<ClusterKey> key = cluster.keyIfAny();
         List<PresenceRecord> all;
         long ignored;
-        // With the cluster key, only what the cluster's hosts signed is listed; anything else is ignored and counted.
-        try (BrokerDirectory d = BrokerDirectory.open(broker, wait, null, key.map(ClusterKey::presenceSeal).orElse(null))) {
+        long stale;
+        // With the cluster key, only what the cluster's hosts signed is listed; anything else is ignored and counted, and so is
+        // a signed presence older than one this user's mw agents took before (a replay: its window is kept across runs).
+        try (BrokerDirectory d = BrokerDirectory.open(broker, wait, null, key.map(ClusterKey::presenceSeal).orElse(null),
+                ReplayStore.fileFor(MessagingNode.defaultReplayDirectory(), "mw-agents.presence"))) {
             d.awaitQuiet(wait);
             all = d.records();
             ignored = d.ignored();
+            stale = d.stale();
         } catch (IOException | IllegalArgumentException e) {
             err.println("mw agents: " + Mw.oneLine(e));
             return 2;
@@ -160,6 +166,9 @@ final class AgentsCommand implements Callable<Integer> {
         }
         if (ignored > 0) {
             out.printf("%d presence record%s ignored: unsigned, or not signed with this cluster key%n", ignored, ignored == 1 ? "" : "s");
+        }
+        if (stale > 0) {
+            out.printf("%d signed presence record%s ignored: older than one taken before (replayed at the broker)%n", stale, stale == 1 ? "" : "s");
         }
         List<PresenceRecord> others = all.stream().filter(p -> p.host() == null && p.online()).toList();
         if (!others.isEmpty()) {

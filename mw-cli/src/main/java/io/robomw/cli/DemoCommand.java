@@ -56,7 +56,9 @@ import java.util.concurrent.TimeUnit;
 /**
  * {@code mw demo}: the paper's scenario (section IV, Fig. 7-8) in one command. One simulated world
  * with a LEGO NXT robot and a fischertechnik robot (and, with {@code --robots nxt,ft,aibo}, the
- * paper's third platform, a Sony Aibo); a virtual brick bound to each (a virtual NXT brick and a
+ * paper's third platform, a Sony Aibo; with {@code --robots nxt,copter,boat}, in the harbour world, a
+ * drone flying its square at 2 m and a boat sailing it, each behind an emulated ArduPilot on UDP); a
+ * virtual brick bound to each (a virtual NXT brick and a
  * virtual fischertechnik Intelligent Interface, each on its own pseudo-terminal; the Aibo's URBI
  * server on a TCP port); one agent host process per robot, each driving its robot through the real
  * driver over that link; and clones of one agent, shipped from the examples jar, dispatched to
@@ -66,7 +68,8 @@ import java.util.concurrent.TimeUnit;
  */
 @Command(name = "demo", mixinStandardHelpOptions = true,
         description = {"The paper's scenario: clones of one agent sent to a LEGO NXT and a fischertechnik robot (simulated, behind virtual bricks);",
-                "--robots nxt,ft,aibo adds the Sony Aibo. Writes demo.png (the trajectories) and prints each robot's results."})
+                "--robots nxt,ft,aibo adds the Sony Aibo; --robots nxt,copter,boat goes to the harbour: on land, in the air at 2 m and on the water.",
+                "Writes demo.png (the trajectories) and prints each robot's results."})
 final class DemoCommand implements Callable<Integer> {
 
     private static final String AGENT = "io.robomw.examples.agents.SquareSurveyAgent";
@@ -78,14 +81,14 @@ final class DemoCommand implements Callable<Integer> {
     @Option(names = "--home", description = "the RoboMW checkout (default: the mw.home property the mw launcher sets, else .)")
     Path home;
 
-    @Option(names = "--world", paramLabel = "WORLD.yaml", description = "the world (default: examples/worlds/arena.yaml); its robots named by --robots are used")
+    @Option(names = "--world", paramLabel = "WORLD.yaml", description = "the world (default: examples/worlds/arena.yaml, or harbour.yaml for robots only it has); its robots named by --robots are used")
     Path world;
 
     @Option(names = "--agent-jar", paramLabel = "JAR", description = "the jar with the agent (default: examples/target/examples-0.1.0-SNAPSHOT.jar)")
     Path agentJar;
 
-    @Option(names = "--side", defaultValue = "0.4", description = "side of each square, metres (default ${DEFAULT-VALUE})")
-    double side;
+    @Option(names = "--side", description = "side of each square, metres (default 0.4; 2 in a world wider than 10 m, the harbour)")
+    Double side;
 
     @Option(names = "--png", defaultValue = "demo.png", description = "where to write the picture of both trajectories (default ${DEFAULT-VALUE})")
     Path png;
@@ -136,7 +139,7 @@ final class DemoCommand implements Callable<Integer> {
     public Integer call() throws Exception {
         out = spec.commandLine().getOut();
         Path root = home != null ? home : Path.of(System.getProperty("mw.home", "."));
-        Path worldFile = world != null ? world : root.resolve("examples/worlds/arena.yaml");
+        Path worldFile = world != null ? world : defaultWorld(root);
         Path jar = agentJar != null ? agentJar : root.resolve("examples/target/examples-0.1.0-SNAPSHOT.jar");
         if (!Files.isRegularFile(jar)) {
             spec.commandLine().getErr().println("mw demo: no agent jar at " + jar + " (build it: mvn -q -DskipTests -pl examples -am package)");
@@ -161,6 +164,7 @@ final class DemoCommand implements Callable<Integer> {
         new SecureRandom().nextBytes(secret);
         Files.writeString(keyFile, HexFormat.of().formatHex(secret));
         WorldDescription description = new WorldLoader().load(worldFile);
+        double squareSide = side != null ? side : description.width() > 10 ? VEHICLE_SIDE : DEFAULT_SIDE;
         List<String> names = List.copyOf(new java.util.LinkedHashSet<>(robots));
         Map<String, Path> robotFiles = new LinkedHashMap<>();
         Map<String, String> platforms = new LinkedHashMap<>();
@@ -198,7 +202,10 @@ final class DemoCommand implements Callable<Integer> {
                 EmulatorKind kind = EMULATORS.get(platforms.get(r));
                 Emulator e = kind.bind().apply(sim, r);
                 closeLater.add(e);
-                if (kind.tcp()) {
+                if (e instanceof io.robomw.sim.emulator.mavlink.MavlinkEmulator vehicle) {
+                    int port = vehicle.listen(new InetSocketAddress(InetAddress.getLoopbackAddress(), 0)).getPort();
+                    links.put(r, Map.of("link", "udpout://127.0.0.1:" + port));
+                } else if (kind.tcp()) {
                     int port = e.startOnTcp("127.0.0.1", 0);
                     links.put(r, Map.of("host", "127.0.0.1", "port", String.valueOf(port)));
                 } else {
@@ -248,7 +255,7 @@ final class DemoCommand implements Callable<Integer> {
             Map<String, Serializable> results;
             try (URLClassLoader code = new URLClassLoader(new URL[] {jar.toUri().toURL()}, Agent.class.getClassLoader());
                  AgentHost home = AgentHost.builder("demo").clusterKey(ClusterKey.read(keyFile)).start()) {
-                Agent agent = (Agent) code.loadClass(AGENT).getConstructor(double.class).newInstance(side);
+                Agent agent = (Agent) code.loadClass(AGENT).getConstructor(double.class).newInstance(squareSide);
                 if (watching != null) {
                     watching.watchHost(home.address());
                 }
@@ -331,12 +338,52 @@ final class DemoCommand implements Callable<Integer> {
             "ev3", new EmulatorKind("LEGO EV3 brick", false, Ev3Emulator::bind),
             "ft-intelligent", new EmulatorKind("fischertechnik Intelligent Interface", false, IntelligentInterfaceEmulator::bind),
             "ft-txt", new EmulatorKind("fischertechnik TXT", true, TxtEmulator::bind),
-            "aibo", new EmulatorKind("Sony Aibo (URBI server)", true, AiboEmulator::bind));
+            "aibo", new EmulatorKind("Sony Aibo (URBI server)", true, AiboEmulator::bind),
+            "mavlink", new EmulatorKind("MAVLink vehicle (an emulated ArduPilot or PX4, over UDP)", false,
+                    (sim, name) -> io.robomw.sim.emulator.mavlink.MavlinkEmulator.bind(sim, name, java.util.Optional.empty(),
+                            io.robomw.api.spi.FailurePolicy.logging())));
+
+    /** The side of the squares in the paper's arena, metres. */
+    static final double DEFAULT_SIDE = 0.4;
+    /** The side in a world wider than 10 m (the harbour, where drones and boats are), metres. */
+    static final double VEHICLE_SIDE = 2.0;
+
+    /**
+     * @return the paper's arena, or the harbour when the robots asked for are there and not in the
+     *         arena ({@code --robots nxt,copter,boat})
+     */
+    private Path defaultWorld(Path root) {
+        Path arena = root.resolve("examples/worlds/arena.yaml");
+        Path harbour = root.resolve("examples/worlds/harbour.yaml");
+        try {
+            java.util.Set<String> inArena = new WorldLoader().load(arena).robots().stream().map(WorldDescription.RobotPlacement::name)
+                    .collect(java.util.stream.Collectors.toSet());
+            if (!inArena.containsAll(robots) && Files.isRegularFile(harbour)) {
+                java.util.Set<String> inHarbour = new WorldLoader().load(harbour).robots().stream().map(WorldDescription.RobotPlacement::name)
+                        .collect(java.util.stream.Collectors.toSet());
+                if (inHarbour.containsAll(robots)) {
+                    return harbour;
+                }
+            }
+        } catch (RuntimeException e) {
+            return arena;
+        }
+        return arena;
+    }
 
     /** @return whether the robot walks on legs: its pose is then dead reckoning, not encoder odometry */
     private static boolean legged(Path robotFile) {
         try {
             return new RobotDescriptionLoader().load(robotFile).leggedDrive().isPresent();
+        } catch (RuntimeException e) {
+            return false;
+        }
+    }
+
+    /** @return whether the robot is a vehicle: its pose is what its autopilot reports */
+    private static boolean vehicle(Path robotFile) {
+        try {
+            return new RobotDescriptionLoader().load(robotFile).vehicleDrive().isPresent();
         } catch (RuntimeException e) {
             return false;
         }
@@ -381,7 +428,8 @@ final class DemoCommand implements Callable<Integer> {
             out.printf(Locale.ROOT, "  distance driven    %8.3f m%n", (Double) component(result, "distanceDriven"));
             out.printf(Locale.ROOT, "  final pose error   %8.3f m, %5.1f deg   (true pose in the world vs. where it started)%n", closure, headingError);
             out.printf(Locale.ROOT, "  odometry closure   %8.3f m            (%s)%n", (Double) component(result, "odometryClosure"),
-                    legged(robotFile) ? "the robot's own dead reckoning from its commanded gait" : "what the robot's own encoders say");
+                    legged(robotFile) ? "the robot's own dead reckoning from its commanded gait"
+                            : vehicle(robotFile) ? "where the vehicle's autopilot says it is" : "what the robot's own encoders say");
             out.printf(Locale.ROOT, "  samples            %8d%n", samples.size());
             out.printf(Locale.ROOT, "  %8s %8s %9s%n", "x (m)", "y (m)", "range (m)");
             for (Object s : samples) {

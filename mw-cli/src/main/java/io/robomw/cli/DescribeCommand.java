@@ -207,6 +207,7 @@ final class DescribeCommand implements Callable<Integer> {
                 d.connection().values(), 1e9 / d.cyclePeriod().toNanos(), d.watchdogTimeout().toMillis(), d.capabilities());
         d.drive().ifPresent(drive -> printDrive(out, drive, indent));
         d.leggedDrive().ifPresent(drive -> printLeggedDrive(out, drive, indent));
+        d.vehicleDrive().ifPresent(drive -> printVehicleDrive(out, drive, indent));
         for (SensorSpec s : d.sensors()) {
             out.printf(Locale.ROOT, indent + "  sensor %-12s %-8s at %-11s on %s%n", s.name(), s.type(), s.position(), s.port());
         }
@@ -226,6 +227,20 @@ final class DescribeCommand implements Callable<Integer> {
         drive.arc().ifPresent(t -> out.printf(Locale.ROOT, indent + "  arc: %s%n", t.text()));
         drive.drive().ifPresent(t -> out.printf(Locale.ROOT, indent + "  drive: %s%n", t.text()));
         drive.stop().ifPresent(t -> out.printf(Locale.ROOT, indent + "  stop: %s%n", t.text()));
+    }
+
+    private static void printVehicleDrive(PrintWriter out, io.robomw.config.description.VehicleDrive drive, String indent) {
+        boolean air = drive.medium() == io.robomw.config.description.VehicleDrive.Medium.AIR;
+        out.printf(Locale.ROOT, indent + "  drive: vehicle in the %s, autopilot %s, max %.2f m/s, turns at most %.2f rad/s%s, acceptance radius %.2f m%n",
+                drive.medium().yamlName(), drive.autopilot().yamlName(), drive.maxSpeed(), drive.maxTurnRate(),
+                air ? String.format(Locale.ROOT, ", climbs at most %.2f m/s, takes off to %.1f m", drive.maxClimbRate(), drive.takeoffAltitude()) : "",
+                drive.acceptanceRadius());
+        String guided = drive.autopilot() == io.robomw.config.description.VehicleDrive.Autopilot.PX4 ? "OFFBOARD (PX4 main mode 6, after a second of setpoints)"
+                : air ? "GUIDED (ArduCopter mode 4)" : "GUIDED (Rover mode 15)";
+        out.printf(Locale.ROOT, indent + "  move(2, 1) sends: a position target 2 m ahead in %s, streamed at 20 Hz until within %.2f m%n", guided,
+                drive.acceptanceRadius());
+        out.printf(Locale.ROOT, indent + "  turn(π/2, 1) sends: a yaw target 90° left; drive(v, w): velocity and yaw-rate targets%s%n",
+                air ? "; takeOff, land, changeAltitude: NAV_TAKEOFF, NAV_LAND, an altitude target" : "; it cannot take off, land or climb");
     }
 
     private static void printDrive(PrintWriter out, DifferentialDrive drive, String indent) {

@@ -1,6 +1,10 @@
 package io.robomw.cli;
 
+import io.robomw.api.spi.FailurePolicy;
 import io.robomw.config.description.DescriptionException;
+import io.robomw.config.description.VehicleDrive;
+import io.robomw.platform.mavlink.link.MavlinkEndpoint;
+import io.robomw.platform.mavlink.wire.SigningKey;
 import io.robomw.sim.Simulation;
 import io.robomw.sim.emulator.BrickEmulator;
 import io.robomw.sim.emulator.Emulator;
@@ -9,6 +13,7 @@ import io.robomw.sim.emulator.aibo.AiboEmulator;
 import io.robomw.sim.emulator.ev3.Ev3Emulator;
 import io.robomw.sim.emulator.ft.intelligent.IntelligentInterfaceEmulator;
 import io.robomw.sim.emulator.ft.txt.TxtEmulator;
+import io.robomw.sim.emulator.mavlink.MavlinkEmulator;
 import io.robomw.sim.emulator.nxt.NxtEmulator;
 import io.robomw.sim.emulator.rcx.RcxEmulator;
 import picocli.CommandLine.Command;
@@ -18,9 +23,12 @@ import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
 
 import java.io.PrintWriter;
+import java.net.InetSocketAddress;
 import java.nio.file.Path;
 import java.time.Duration;
+import java.util.Locale;
 import java.util.Map;
+import java.util.Optional;
 import java.util.Set;
 import java.util.concurrent.Callable;
 import java.util.concurrent.CountDownLatch;
@@ -30,10 +38,10 @@ import java.util.concurrent.CountDownLatch;
  * for one robot of a simulated world. It prints the serial device (or TCP port) the real driver
  * connects to, runs the world in real time, and serves until interrupted (Ctrl-C).
  */
-@Command(mixinStandardHelpOptions = true, name = "emulate", description = "Run a virtual brick (or Aibo) bound to a robot in a simulated world; print its device path or port.")
+@Command(mixinStandardHelpOptions = true, name = "emulate", description = "Run a virtual brick (or Aibo, or MAVLink vehicle) bound to a robot in a simulated world; print its device path, port or address.")
 final class EmulateCommand implements Callable<Integer> {
 
-    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick, by its robot files' platform name: nxt, ev3, rcx, ft-intelligent, ft-txt (TCP only), aibo (URBI, TCP only)",
+    @Parameters(index = "0", paramLabel = "BRICK", description = "the brick, by its robot files' platform name: nxt, ev3, rcx, ft-intelligent, ft-txt (TCP only), aibo (URBI, TCP only), mavlink (a drone, boat or rover over UDP)",
             converter = BrickConverter.class)
     private Brick brick;
 
@@ -46,7 +54,7 @@ final class EmulateCommand implements Callable<Integer> {
                     return b;
                 }
             }
-            String near = value.replace('_', '-').toLowerCase(java.util.Locale.ROOT);
+            String near = value.replace('_', '-').toLowerCase(Locale.ROOT);
             String hint = java.util.Arrays.stream(Brick.values()).anyMatch(b -> b.platform.equals(near)) ? "did you mean '" + near + "'? " : "";
             throw new picocli.CommandLine.TypeConversionException("unknown brick '" + value + "'; " + hint + "emulated bricks: "
                     + String.join(", ", java.util.Arrays.stream(Brick.values()).map(b -> b.platform).toList()));
@@ -82,6 +90,24 @@ final class EmulateCommand implements Callable<Integer> {
             + "115200 for Bluetooth, 9600 for the Intelligent Interface, 2400 for the RCX's IR tower)")
     private Integer baud;
 
+    @Option(names = "--autopilot", paramLabel = "ardupilot|px4", description = "mavlink: the autopilot to behave as (default: the robot file's drive.autopilot)")
+    private String autopilot;
+
+    @Option(names = "--gcs", paramLabel = "udp://HOST:PORT", description = "mavlink: send to a ground station at this address, as ArduPilot SITL's --out (and hear its answers)")
+    private String gcs;
+
+    @Option(names = "--udp", paramLabel = "PORT", description = "mavlink: listen on UDP 127.0.0.1:PORT (0 = any) and answer whoever sends to it")
+    private Integer udpPort;
+
+    @Option(names = "--signing-key-file", paramLabel = "FILE", description = "mavlink: a file holding the signing passphrase (its SHA-256 is the key, as MAVProxy's"
+            + " 'signing setup'; default: the " + Secrets.MAVLINK_SIGNING_ENV + " environment variable, else unsigned): everything is signed,"
+            + " and unsigned commands are ignored")
+    private Path signingKeyFile;
+
+    /** A passphrase given as an option's value would show in {@code ps}: refused, naming the file option. */
+    @Option(names = "--signing-key", hidden = true, converter = Secrets.RefusedSigningKey.class)
+    private String refusedSigningKey;
+
     @Spec
     private CommandSpec spec;
 
@@ -92,7 +118,8 @@ final class EmulateCommand implements Callable<Integer> {
         RCX("rcx"),
         FT_INTELLIGENT("ft-intelligent"),
         FT_TXT("ft-txt"),
-        AIBO("aibo");
+        AIBO("aibo"),
+        MAVLINK("mavlink");
 
         /** The {@code platform:} value of its robot files. */
         final String platform;
@@ -128,6 +155,14 @@ final class EmulateCommand implements Callable<Integer> {
             sim.close();
             err.println("mw emulate: robot '" + robot + "' of " + world + " is a " + platform + " robot (its file says platform: " + platform
                     + "), so a " + brick + " emulator cannot write a robot file for it; emulate " + platform + ", or leave out --write-robot");
+            return 2;
+        }
+        if (brick == Brick.MAVLINK) {
+            return emulateVehicle(sim, out, err);
+        }
+        if (autopilot != null || gcs != null || udpPort != null || signingKeyFile != null) {
+            sim.close();
+            err.println("--autopilot, --gcs, --udp and --signing-key-file are for the mavlink emulator; the " + brick + " emulator does not take them");
             return 2;
         }
         CountDownLatch stopped = new CountDownLatch(1);
@@ -228,6 +263,94 @@ final class EmulateCommand implements Callable<Integer> {
             case FT_INTELLIGENT -> IntelligentInterfaceEmulator.bind(sim, robot);
             case FT_TXT -> TxtEmulator.bind(sim, robot);
             case AIBO -> AiboEmulator.bind(sim, robot);
+            case MAVLINK -> throw new IllegalStateException("the mavlink emulator is bound by emulateVehicle");
         };
+    }
+
+    /**
+     * {@code mw emulate mavlink}: a MAVLink vehicle (ArduPilot or PX4) for a vehicle of the world, on
+     * UDP: {@code --udp PORT} answers whoever sends there; {@code --gcs udp://HOST:PORT} sends to a
+     * ground station (both may be given; without either it sends to udp://127.0.0.1:14550, where ground stations listen,
+     * as ArduPilot's SITL does by default).
+     * Prints {@code udp://ADDRESS} lines, the world runs in real time, Ctrl-C stops it.
+     */
+    private Integer emulateVehicle(Simulation sim, PrintWriter out, PrintWriter err) throws Exception {
+        Optional<VehicleDrive.Autopilot> dialect = Optional.empty();
+        if (autopilot != null) {
+            try {
+                dialect = Optional.of(VehicleDrive.Autopilot.valueOf(autopilot.toUpperCase(Locale.ROOT)));
+            } catch (IllegalArgumentException e) {
+                sim.close();
+                err.println("--autopilot must be ardupilot or px4, got '" + autopilot + "'");
+                return 2;
+            }
+        }
+        if (latency != null || baud != null || tcpPort != null || writeRobot != null) {
+            sim.close();
+            err.println("--latency, --baud, --tcp and --write-robot are for bricks; the mavlink emulator serves UDP (--udp, --gcs)");
+            return 2;
+        }
+        SigningKey key = null;
+        try {
+            key = Secrets.read(signingKeyFile, "--signing-key-file", Secrets.MAVLINK_SIGNING_ENV)
+                    .map(SigningKey::fromPassphrase).orElse(null);
+        } catch (IllegalStateException e) {
+            sim.close();
+            err.println(e.getMessage());
+            return 2;
+        }
+        MavlinkEndpoint target = null;
+        if (gcs == null && udpPort == null) {
+            gcs = "udp://127.0.0.1:14550";
+        }
+        if (gcs != null) {
+            try {
+                target = MavlinkEndpoint.parse(gcs);
+            } catch (IllegalArgumentException e) {
+                sim.close();
+                err.println("--gcs: " + e.getMessage());
+                return 2;
+            }
+            if (target.kind() != MavlinkEndpoint.Kind.UDP_SEND) {
+                sim.close();
+                err.println("--gcs takes the ground station's address, udp://HOST:PORT, got '" + gcs + "'");
+                return 2;
+            }
+        }
+        MavlinkEmulator emulator;
+        try {
+            emulator = MavlinkEmulator.bind(sim, robot, dialect, FailurePolicy.logging());
+        } catch (IllegalArgumentException e) {
+            sim.close();
+            err.println(e.getMessage());
+            return 2;
+        }
+        CountDownLatch stopped = new CountDownLatch(1);
+        try (sim; emulator) {
+            if (key != null) {
+                emulator.signing(key);
+            }
+            if (udpPort != null) {
+                InetSocketAddress at = emulator.listen(new InetSocketAddress("127.0.0.1", udpPort));
+                out.println("udp://127.0.0.1:" + at.getPort());
+            }
+            if (target != null) {
+                InetSocketAddress from = emulator.sendTo(new InetSocketAddress(target.host(), target.port()));
+                out.println("sending to udp://" + target.host() + ":" + target.port() + " from udp://" + from.getAddress().getHostAddress() + ":" + from.getPort());
+            }
+            out.flush();
+            err.printf("mavlink emulator (%s) for robot '%s' of %s%s; Ctrl-C stops it%n", emulator.dialect(), robot, world,
+                    key != null ? ", signing" : "");
+            err.flush();
+            sim.startRealTime(speed);
+            Thread hook = new Thread(stopped::countDown, "mw-emulate-shutdown");
+            Runtime.getRuntime().addShutdownHook(hook);
+            try {
+                stopped.await();
+            } finally {
+                removeHook(hook);
+            }
+        }
+        return 0;
     }
 }

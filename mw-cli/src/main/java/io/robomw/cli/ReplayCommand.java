@@ -104,10 +104,10 @@ final class ReplayCommand implements Callable<Integer> {
             }
             if (foxglove.on()) {
                 // Foxglove is told the recorded times (and the replay's time, the time capability); the page ages what it shows on the replay's clock.
-                live = FoxgloveServer.create(FoxgloveServer.Options.replay("mw replay " + file, FoxgloveOption.BIND, foxglove.port));
                 try {
+                    live = FoxgloveServer.create(foxglove.replay("mw replay " + file));
                     live.start(Teleop.NONE);
-                } catch (IOException e) {
+                } catch (IOException | RuntimeException e) {
                     err.println("mw replay: " + e.getMessage());
                     return 2;
                 }

@@ -32,14 +32,15 @@ import java.util.concurrent.Callable;
  * {@code ros2 topic pub --once} or {@code ros2 service call}: ROBOT is a served robot's address
  * ({@code tcp://127.0.0.1:7000/nxt}, as {@code mw host --serve} prints it) or a robot file
  * (opened with its driver, as {@code Robots.open} does). Verbs: {@code move}, {@code turn},
- * {@code get}, {@code pose}, {@code stop} and {@code teleop} (keys drive it). Exit status 0 done,
+ * {@code takeoff}, {@code land}, {@code climb} (a robot that flies), {@code get}, {@code pose},
+ * {@code stop} and {@code teleop} (keys drive it). Exit status 0 done,
  * 1 the robot failed (a link error), 2 a usage error or an action the robot cannot do.
  */
-@Command(mixinStandardHelpOptions = true, name = "robot", description = {"Drive a robot from the keyboard: one command (move, turn, get, pose, stop), or keys (teleop).",
+@Command(mixinStandardHelpOptions = true, name = "robot", description = {"Drive a robot from the keyboard: one command (move, turn, takeoff, land, climb, get, pose, stop), or keys (teleop).",
         "ROBOT is a served robot's address (mw host --serve prints it, e.g. tcp://127.0.0.1:7000/nxt) or a robot file.",
         "Examples: mw robot tcp://127.0.0.1:7000/nxt move 0.2 0.1    mw robot nxt.yaml get FRONT SONAR CM    mw robot nxt.yaml teleop"},
-        subcommands = {RobotCommand.Move.class, RobotCommand.Turn.class, RobotCommand.Get.class, RobotCommand.PoseVerb.class,
-                RobotCommand.Stop.class, TeleopCommand.class})
+        subcommands = {RobotCommand.Move.class, RobotCommand.Turn.class, RobotCommand.TakeOff.class, RobotCommand.Land.class,
+                RobotCommand.Climb.class, RobotCommand.Get.class, RobotCommand.PoseVerb.class, RobotCommand.Stop.class, TeleopCommand.class})
 final class RobotCommand {
 
     /** Optional for picocli only, so that {@code mw robot move --help} works; every verb needs it. */
@@ -70,9 +71,10 @@ final class RobotCommand {
         return Robots.open(file, services);
     }
 
-    /** @return a pose for people: metres and degrees */
+    /** @return a pose for people: metres and degrees (and the altitude of a robot off the ground) */
     static String text(Pose p) {
-        return String.format(Locale.ROOT, "x %.3f m, y %.3f m, heading %.1f°", p.x(), p.y(), Math.toDegrees(p.heading()));
+        String plane = String.format(Locale.ROOT, "x %.3f m, y %.3f m, heading %.1f°", p.x(), p.y(), Math.toDegrees(p.heading()));
+        return p.z() == 0 ? plane : plane + String.format(Locale.ROOT, ", altitude %.2f m", p.z());
     }
 
     /**
@@ -122,6 +124,42 @@ final class RobotCommand {
         void run(Robot robot, PrintWriter out) {
             robot.move(distance, speed);
             out.println("moved " + distance + " m; pose " + text(robot.pose()));
+        }
+    }
+
+    @Command(mixinStandardHelpOptions = true, name = "takeoff", description = "Take off and climb to ALTITUDE metres (a robot that flies); blocks until there.")
+    static final class TakeOff extends Verb {
+        @Parameters(index = "0", paramLabel = "ALTITUDE", description = "metres above the take-off point")
+        double altitude;
+
+        @Override
+        void run(Robot robot, PrintWriter out) {
+            robot.takeOff(altitude);
+            out.println("took off; pose " + text(robot.pose()));
+        }
+    }
+
+    @Command(mixinStandardHelpOptions = true, name = "land", description = "Land where it is (a robot that flies); blocks until it is on the ground.")
+    static final class Land extends Verb {
+        @Override
+        void run(Robot robot, PrintWriter out) {
+            robot.land();
+            out.println("landed; pose " + text(robot.pose()));
+        }
+    }
+
+    @Command(mixinStandardHelpOptions = true, name = "climb", description = "Climb METRES (negative: descend) at SPEED m/s (a robot that flies); blocks until done.")
+    static final class Climb extends Verb {
+        @Parameters(index = "0", paramLabel = "METRES", description = "metres, negative descends")
+        double metres;
+
+        @Parameters(index = "1", paramLabel = "SPEED", defaultValue = "0.5", description = "metres per second (default ${DEFAULT-VALUE})")
+        double speed;
+
+        @Override
+        void run(Robot robot, PrintWriter out) {
+            robot.changeAltitude(metres, speed);
+            out.println("climbed " + metres + " m; pose " + text(robot.pose()));
         }
     }
 

@@ -25,6 +25,8 @@ final class Secrets {
     static final String TLS_PASSWORD_ENV = "MW_TLS_PASSWORD";
     /** Environment variable of the topic password of {@code mw msg}. */
     static final String TOPIC_PASSWORD_ENV = "MW_TOPIC_PASSWORD";
+    /** Environment variable of the MAVLink signing passphrase of {@code mw emulate mavlink}. */
+    static final String MAVLINK_SIGNING_ENV = "MW_MAVLINK_SIGNING_KEY";
 
     private Secrets() {
     }
@@ -95,6 +97,13 @@ final class Secrets {
     static final class RefusedTopicPassword extends Refused {
         RefusedTopicPassword() {
             super("--password", "--password-file FILE", TOPIC_PASSWORD_ENV);
+        }
+    }
+
+    /** {@code mw emulate mavlink --signing-key}. */
+    static final class RefusedSigningKey extends Refused {
+        RefusedSigningKey() {
+            super("--signing-key", "--signing-key-file FILE", MAVLINK_SIGNING_ENV);
         }
     }
 }

@@ -2,6 +2,7 @@ package io.robomw.cli;
 
 import io.robomw.api.Robot;
 import io.robomw.api.RobotException;
+import io.robomw.api.UnsupportedActionException;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 import picocli.CommandLine.Command;
@@ -24,10 +25,13 @@ import java.util.concurrent.atomic.AtomicReference;
  * {@code mw robot ROBOT teleop}: keys drive the robot, like ROS's {@code teleop_twist_keyboard}:
  * a key sets a velocity that holds until another key changes it; space stops; q (or Ctrl-C, or the
  * end of input) stops the robot and quits. The velocity is sent again every {@code --refresh}, so
- * the robot's watchdog keeps it moving, and stops it by itself if this process dies.
+ * the robot's watchdog keeps it moving, and stops it by itself if this process dies. A robot that
+ * flies goes up or down a step ({@code --climb-step}) per r/PageUp or f/PageDown key, hovering
+ * meanwhile; a robot that does not fly says so and drives on.
  */
 @Command(mixinStandardHelpOptions = true, name = "teleop", description = {"Drive the robot with keys: w/↑ forward, s/↓ backward, a/← turn left, d/→ turn right,",
-        "q/e forward while turning left/right, space stop, +/- faster/slower, x or Ctrl-C stop and quit. Needs a terminal."})
+        "q/e forward while turning left/right, r/PageUp up and f/PageDown down (a robot that flies), space stop, +/- faster/slower,",
+        "x or Ctrl-C stop and quit. Needs a terminal."})
 final class TeleopCommand implements Callable<Integer> {
 
     private static final Logger LOG = LoggerFactory.getLogger(TeleopCommand.class);
@@ -47,8 +51,19 @@ final class TeleopCommand implements Callable<Integer> {
     @Option(names = "--refresh", defaultValue = "100ms", description = "how often the velocity is sent again (default ${DEFAULT-VALUE}; below the robot's watchdog)")
     Duration refresh;
 
+    @Option(names = "--climb-step", defaultValue = "0.25", description = "how far r/f climb or descend, metres (default ${DEFAULT-VALUE})")
+    double climbStep;
+
+    @Option(names = "--climb-rate", defaultValue = "0.5", description = "climb and descent speed, m/s (default ${DEFAULT-VALUE})")
+    double climbRate;
+
     @Spec
     CommandSpec spec;
+
+    /** PageUp's code, after ESC [ 5 ~. */
+    static final int PAGE_UP = 'U';
+    /** PageDown's code, after ESC [ 6 ~. */
+    static final int PAGE_DOWN = 'V';
 
     /** A velocity the keys asked for. */
     record Velocity(double linear, double angular) {
@@ -87,11 +102,12 @@ final class TeleopCommand implements Callable<Integer> {
      */
     int drive(Robot robot, InputStream keys, PrintWriter out) throws IOException, InterruptedException {
         AtomicReference<Velocity> wanted = new AtomicReference<>(Velocity.STOP);
+        AtomicReference<Double> climb = new AtomicReference<>();
         AtomicReference<Throwable> failure = new AtomicReference<>();
         CountDownLatch quit = new CountDownLatch(1);
-        Thread sender = new Thread(() -> send(robot, wanted, failure, quit), "mw-teleop-" + robot.name());
+        Thread sender = new Thread(() -> send(robot, wanted, climb, failure, quit, out), "mw-teleop-" + robot.name());
         sender.setDaemon(true);
-        out.printf("teleop %s: w/s forward/backward, a/d turn, q/e curve, space stop, +/- speed, x quit%n", robot.name());
+        out.printf("teleop %s: w/s forward/backward, a/d turn, q/e curve, r/f up/down, space stop, +/- speed, x quit%n", robot.name());
         out.flush();
         sender.start();
         double scale = 1;
@@ -114,6 +130,13 @@ final class TeleopCommand implements Callable<Integer> {
                     case ' ', 'k' -> Velocity.STOP;
                     default -> null;
                 };
+                if (key == 'r' || key == PAGE_UP || key == 'f' || key == PAGE_DOWN) {
+                    wanted.set(Velocity.STOP);
+                    // keys typed while a climb is being flown add up: r r is two steps, r f none
+                    double step = (key == 'r' || key == PAGE_UP ? 1 : -1) * climbStep * scale;
+                    climb.accumulateAndGet(step, (pending, more) -> pending == null ? more : pending + more);
+                    continue;
+                }
                 if (key == '+' || key == '-') {
                     scale = Math.max(0.1, Math.min(4, scale * (key == '+' ? 1.25 : 0.8)));
                     Velocity now = wanted.get();
@@ -150,14 +173,34 @@ final class TeleopCommand implements Callable<Integer> {
             return 0;
         }
         int code = keys.read();
+        if (code == '5' || code == '6') {
+            keys.read(); // the '~'
+            return code == '5' ? PAGE_UP : PAGE_DOWN;
+        }
         return code >= 'A' && code <= 'D' ? code : 0;
     }
 
     /** The sending thread: owns the robot's motion while teleop runs; any failure stops the robot and ends the keys' loop. */
-    private void send(Robot robot, AtomicReference<Velocity> wanted, AtomicReference<Throwable> failure, CountDownLatch quit) {
+    private void send(Robot robot, AtomicReference<Velocity> wanted, AtomicReference<Double> climb, AtomicReference<Throwable> failure,
+                      CountDownLatch quit, PrintWriter out) {
         boolean moving = false;
         try {
             while (quit.getCount() > 0) {
+                Double metres = climb.getAndSet(null);
+                if (metres != null && metres != 0) {
+                    if (moving) {
+                        robot.stop();
+                        moving = false;
+                    }
+                    try {
+                        robot.changeAltitude(metres, climbRate);
+                        out.printf(Locale.ROOT, "%s %.2f m; pose %s%n", metres > 0 ? "climbed" : "descended", Math.abs(metres),
+                                RobotCommand.text(robot.pose()));
+                    } catch (UnsupportedActionException e) {
+                        out.println(Mw.oneLine(e));
+                    }
+                    out.flush();
+                }
                 Velocity v = wanted.get();
                 if (v.moving()) {
                     robot.drive(v.linear(), v.angular());

@@ -1,6 +1,13 @@
 package io.robomw.cli;
 
 import io.robomw.platform.ft.txt.TxtProtocol;
+import io.robomw.platform.mavlink.link.UdpMavlinkLink;
+import io.robomw.platform.mavlink.wire.Frame;
+import io.robomw.platform.mavlink.wire.FrameEncoder;
+import io.robomw.platform.mavlink.wire.MavAutopilot;
+import io.robomw.platform.mavlink.wire.MavType;
+import io.robomw.platform.mavlink.wire.Messages;
+import io.robomw.platform.mavlink.wire.Payload;
 import io.robomw.platform.link.SerialLink;
 import io.robomw.platform.rcx.RcxPacket;
 import io.robomw.platform.rcx.RcxPlatformProvider;
@@ -37,6 +44,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 class EmulateCommandTest {
 
     private static final Path TXT_ROBOT = Path.of("../examples/robots/ft-txt.yaml").toAbsolutePath().normalize();
+    private static final Path HARBOUR = Path.of("../examples/worlds/harbour.yaml").toAbsolutePath().normalize();
     private static final Path RCX_ROBOT = Path.of("../examples/robots/rcx-two-wheeled.yaml").toAbsolutePath().normalize();
 
     @TempDir
@@ -162,7 +170,7 @@ class EmulateCommandTest {
                 arena: { width: 3, height: 3 }
                 robots:
                   - { robot: %s, name: rcx, x: 1.0, y: 1.5, heading: 0 }
-                """.formatted(RCX_ROBOT));
+                """.formatted(beside(RCX_ROBOT)));
         start("emulate", "rcx", "--world", dir.resolve("world.yaml").toString(), "--robot", "rcx", "--latency", "30ms", "--baud", "0");
         String device = lines.poll(30, TimeUnit.SECONDS);
         assertNotNull(device, "mw emulate started with --latency 30ms");
@@ -176,9 +184,50 @@ class EmulateCommandTest {
                 arena: { width: 3, height: 3 }
                 robots:
                   - { robot: %s, name: rcx, x: 1.0, y: 1.5, heading: 0 }
-                """.formatted(RCX_ROBOT));
+                """.formatted(beside(RCX_ROBOT)));
         CliRun run = CliRun.mw("emulate", "rcx", "--world", dir.resolve("world.yaml").toString(), "--robot", "rcx", "--latency", "40");
         assertEquals(2, run.status(), run.toString());
         assertTrue(run.err().contains("--latency 40s is longer than any link's (at most 10s); give a unit: --latency 40ms"), run.err());
+    }
+
+    @Test
+    void theMavlinkEmulatorAnswersOnLoopbackAsTheWorldsBoat() throws Exception {
+        start("emulate", "mavlink", "--world", HARBOUR.toString(), "--robot", "boat", "--udp", "0");
+        String where = lines.poll(30, TimeUnit.SECONDS);
+        assertNotNull(where, "mw emulate mavlink printed its address");
+        assertTrue(where.startsWith("udp://127.0.0.1:"), "it listens on loopback only: " + where);
+        int port = Integer.parseInt(where.substring("udp://127.0.0.1:".length()));
+        BlockingQueue<Frame> heard = new LinkedBlockingQueue<>();
+        try (UdpMavlinkLink gcs = UdpMavlinkLink.sendTo(new InetSocketAddress("127.0.0.1", port), System::nanoTime)) {
+            gcs.send(new FrameEncoder(255, 190).encode(Payload.of(Messages.Heartbeat.MESSAGE).set(Messages.Heartbeat.TYPE, MavType.GCS.code())
+                    .set(Messages.Heartbeat.AUTOPILOT, MavAutopilot.INVALID.code()).set(Messages.Heartbeat.MAVLINK_VERSION, 3)));
+            long deadline = System.nanoTime() + Duration.ofSeconds(30).toNanos();
+            Frame hb = null;
+            while (hb == null && System.nanoTime() < deadline) {
+                gcs.receive(Duration.ofMillis(500), (f, from) -> heard.add(f));
+                for (Frame f = heard.poll(); f != null && hb == null; f = heard.poll()) {
+                    hb = f.is(Messages.Heartbeat.MESSAGE) ? f : null;
+                }
+            }
+            assertNotNull(hb, "the emulator's HEARTBEAT came back within 30 s");
+            assertEquals(MavType.SURFACE_BOAT.code(), hb.payload().getLong(Messages.Heartbeat.TYPE), "a surface boat (11)");
+            assertEquals(MavAutopilot.ARDUPILOTMEGA.code(), hb.payload().getLong(Messages.Heartbeat.AUTOPILOT), "the boat's file says ArduPilot");
+        }
+    }
+
+    @Test
+    void aSigningPassphraseAsAnOptionValueIsRefusedNamingTheFileOption() {
+        CliRun run = CliRun.mw("emulate", "mavlink", "--world", HARBOUR.toString(), "--robot", "boat", "--signing-key", "harbour pilots");
+        assertEquals(2, run.status(), run.toString());
+        assertTrue(run.err().contains("--signing-key-file FILE") && run.err().contains("MW_MAVLINK_SIGNING_KEY"), run.err());
+    }
+
+    @Test
+    void anUnreadableSigningKeyFileIsRefusedNamingIt() {
+        Path missing = dir.resolve("no-such.key");
+        CliRun run = CliRun.mw("emulate", "mavlink", "--world", HARBOUR.toString(), "--robot", "boat", "--udp", "0",
+                "--signing-key-file", missing.toString());
+        assertEquals(2, run.status(), run.toString());
+        assertTrue(run.err().contains("no-such.key"), run.err());
     }
 }

@@ -67,7 +67,8 @@ public final class Console implements AutoCloseable {
     private Console(Builder b, McapRecorder recorder) {
         this.view = new ConsoleView(b.title);
         this.recorder = recorder;
-        this.foxglove = b.foxglovePort < 0 ? null : FoxgloveServer.create(FoxgloveServer.Options.live(b.title, b.foxgloveBind, b.foxglovePort));
+        this.foxglove = b.foxglovePort < 0 ? null : FoxgloveServer.create(
+                FoxgloveServer.Options.live(b.title, "127.0.0.1", b.foxglovePort).listening(b.foxgloveBind, b.foxgloveToken));
         List<Observer> to = new ArrayList<>(List.of(view));
         if (recorder != null) {
             to.add(recorder);
@@ -105,6 +106,7 @@ public final class Console implements AutoCloseable {
         private boolean discover;
         private String foxgloveBind = "127.0.0.1";
         private int foxglovePort = -1;
+        private String foxgloveToken;
         private FailurePolicy failures = FailurePolicy.logging();
 
         private Builder(String title) {
@@ -172,11 +174,24 @@ public final class Console implements AutoCloseable {
          * @return this
          */
         public Builder foxglove(String address, int port) {
-            if (port < 0 || port > 65_535) {
-                throw new IllegalArgumentException("the Foxglove WebSocket's port must be 0 to 65535, got " + port);
-            }
-            this.foxgloveBind = Objects.requireNonNull(address, "address");
+            return foxglove(address, port, null);
+        }
+
+        /**
+         * {@link #foxglove(String, int)} with an access token, which an address beyond this machine needs
+         * ({@link FoxgloveServer.Options}).
+         *
+         * @param address where it listens
+         * @param port    its port, 0 for a free one
+         * @param token   the access token clients must give, or {@code null} (then {@code address} must be loopback)
+         * @return this
+         * @throws IllegalArgumentException if the address is beyond this machine and there is no token
+         */
+        public Builder foxglove(String address, int port, String token) {
+            FoxgloveServer.Options.live("check", "127.0.0.1", port).listening(Objects.requireNonNull(address, "address"), token);
+            this.foxgloveBind = address;
             this.foxglovePort = port;
+            this.foxgloveToken = token;
             return this;
         }
 

@@ -55,7 +55,9 @@ public final class SensorModel {
         /** Acceleration of the body along one axis. */
         ACCELERATION,
         /** A legged robot's joint angle. */
-        JOINT
+        JOINT,
+        /** What a vehicle's autopilot reports: its altitude, battery, latitude or longitude (0 on a robot that is no vehicle). */
+        VEHICLE
     }
 
     private final SensorSpec spec;
@@ -161,6 +163,7 @@ public final class SensorModel {
     static Kind kindOf(SensorType type) {
         return switch (type) {
             case SONAR, INFRARED, LASER, RANGE -> Kind.RANGE;
+            case ALTITUDE, BATTERY, LATITUDE, LONGITUDE -> Kind.VEHICLE;
             case TOUCH -> Kind.CONTACT;
             case LIGHT, COLOR -> Kind.FLOOR;
             case COMPASS -> Kind.HEADING;

@@ -73,6 +73,9 @@ public final class SimRobot {
     private final boolean hasAccel;
     private final Quadruped quadruped;
     private final UrbiKernel kernel;
+    /** Its dynamics, if it is a vehicle (a drone, boat or rover); else {@code null}. */
+    private final io.robomw.sim.vehicle.SimVehicle vehicle;
+    private final io.robomw.sim.world.WorldDescription.Surroundings surroundings;
     private double lastVx;
     private double lastVy;
     /** Its acceleration in its own frame, if it has an accelerometer or legs; else {@code null}. */
@@ -91,7 +94,9 @@ public final class SimRobot {
 
     SimRobot(int index, String name, RobotDescription description, Physics physics, int body, long seed,
              java.util.function.LongSupplier nanos, io.robomw.sim.world.WorldDescription.TrajectorySettings trajectorySettings,
-             io.robomw.api.spi.FailurePolicy failures, RobotStates states, RobotModel model) {
+             io.robomw.api.spi.FailurePolicy failures, RobotStates states, RobotModel model,
+             io.robomw.sim.world.WorldDescription.Surroundings surroundings) {
+        this.surroundings = surroundings;
         this.index = index;
         this.model = model;
         this.states = states;
@@ -135,7 +140,9 @@ public final class SimRobot {
             states.signRight[index] = d.right().reversed() ? -1 : 1;
             states.maxSpeed[index] = d.maxSpeed();
         }
-        states.plain[index] = kinematics != null && quadruped == null && !hasTouch && !hasAccel && actuatorIndex.length == 0;
+        this.vehicle = description.vehicleDrive().map(d -> new io.robomw.sim.vehicle.SimVehicle(
+                io.robomw.sim.vehicle.VehicleSpec.of(d, description.body()), physics.x(body), physics.y(body), physics.heading(body))).orElse(null);
+        states.plain[index] = kinematics != null && quadruped == null && vehicle == null && !hasTouch && !hasAccel && actuatorIndex.length == 0;
         states.setPose(index, physics.x(body), physics.y(body), physics.heading(body), physics.cos(body), physics.sin(body));
         trajectory.add(physics.x(body), physics.y(body));
     }
@@ -143,6 +150,11 @@ public final class SimRobot {
     /** @return whether the world steps this robot from its arrays alone ({@link RobotStates}) */
     boolean plain() {
         return states.plain[index];
+    }
+
+    /** @return its vehicle dynamics, if it is a vehicle (a drone, boat or rover); else {@code null} */
+    public io.robomw.sim.vehicle.SimVehicle vehicle() {
+        return vehicle;
     }
 
     /** @return its index in the world */
@@ -322,6 +334,10 @@ public final class SimRobot {
     void applyDrive() {
         double v;
         double w;
+        if (vehicle != null) {
+            physics.setVelocity(body, vehicle.commandX(), vehicle.commandY(), vehicle.commandYawRate());
+            return;
+        }
         if (quadruped != null) {
             v = quadruped.linearVelocity();
             w = quadruped.angularVelocity();
@@ -348,6 +364,10 @@ public final class SimRobot {
             quadruped.advance(dt);
             contacts();
             kernel.step();
+        }
+        if (vehicle != null) {
+            vehicle.advance(dt, physics.x(body), physics.y(body), Math.atan2(physics.sin(body), physics.cos(body)), physics.vx(body),
+                    physics.vy(body), surroundings);
         }
         if (physics.atRest(body) && !hasTouch) {
             if (recordTrajectory) {
@@ -532,7 +552,8 @@ public final class SimRobot {
      */
     double siValue(SensorModel sensor, SimWorld world) {
         return switch (sensor.kind()) {
-            case RANGE -> latest(sensor);
+            case RANGE -> vehicle != null && sensor.spec().position() == io.robomw.api.Position.BOTTOM
+                    ? Math.min(sensor.maxRange(), vehicle.snapshot().z()) : latest(sensor);
             case CONTACT -> touching(sensor) ? 1.0 : 0.0;
             case FLOOR -> world.floorAt(sensorX(sensor), sensorY(sensor), sensor.spec().type() == io.robomw.api.SensorType.COLOR);
             case HEADING -> states.heading[index];
@@ -548,6 +569,24 @@ public final class SimRobot {
                 Quadruped.Joint j = quadruped == null ? null : quadruped.joint(sensor.spec().port());
                 yield j == null ? 0.0 : Math.toRadians(j.angle());
             }
+            case VEHICLE -> vehicleValue(sensor.spec().type(), world);
+        };
+    }
+
+    /** A vehicle's reported quantity, in SI: altitude m, battery 0..1, latitude and longitude in radians. */
+    private double vehicleValue(io.robomw.api.SensorType type, SimWorld world) {
+        if (vehicle == null) {
+            return 0;
+        }
+        io.robomw.sim.vehicle.SimVehicle.Snapshot s = vehicle.snapshot();
+        io.robomw.sim.world.WorldDescription.GeoOrigin home = world.description().surroundings().home();
+        double radius = 6_378_137;
+        return switch (type) {
+            case ALTITUDE -> s.z();
+            case BATTERY -> s.battery();
+            case LATITUDE -> Math.toRadians(home.latitude()) + s.y() / radius;
+            case LONGITUDE -> Math.toRadians(home.longitude()) + s.x() / (radius * Math.cos(Math.toRadians(home.latitude())));
+            default -> 0;
         };
     }
 

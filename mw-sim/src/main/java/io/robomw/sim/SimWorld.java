@@ -350,7 +350,7 @@ public final class SimWorld implements AutoCloseable {
         int body = physics.addBody(b.length(), b.width(), b.mass(), b.friction(), start.x(), start.y(), start.heading());
         RobotModel model = models.computeIfAbsent(RobotModel.Key.of(description), k -> new RobotModel(description, physicsHz));
         SimRobot robot = new SimRobot(robots.size(), name, description, physics, body, this.description.seed(), clock::nanoTime,
-                this.description.trajectories(), failures, states, model);
+                this.description.trajectories(), failures, states, model, this.description.surroundings());
         robots.add(robot);
         if (robots.size() > cycled.length) {
             // grown by doubling (a copy per robot made loading 100,000 robots quadratic: minutes); slots past the robots stay empty

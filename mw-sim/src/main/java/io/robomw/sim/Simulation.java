@@ -218,7 +218,7 @@ public final class Simulation implements AutoCloseable {
         AgencyConfig agency = a.homeName().equals(AgencyConfig.defaults(d.name(), a.source()).homeName())
                 ? new AgencyConfig(AgencyConfig.defaults(name, a.source()).homeName(), a.bind(), a.port(), a.clusterKey(), a.source()) : a;
         return new RobotDescription(name, "sim", d.connection(), d.cyclePeriod(), d.watchdogTimeout(), d.capabilities(), d.drive(),
-                d.body(), d.sensors(), d.actuators(), d.leggedDrive(), d.highLevelActions(), messaging, agency, d.source());
+                d.body(), d.sensors(), d.actuators(), d.leggedDrive(), d.highLevelActions(), messaging, agency, d.source(), d.vehicleDrive());
     }
 
     /** @return the policy the simulation's clock, its robots' platforms and its emulators report failures to */

@@ -1,6 +1,7 @@
 package io.robomw.examples.agents;
 
 import io.robomw.api.Agent;
+import io.robomw.api.Capability;
 import io.robomw.api.Pose;
 import io.robomw.api.Position;
 import io.robomw.api.ReturnType;
@@ -17,7 +18,8 @@ import java.util.Locale;
  * The paper's demonstration agent (section IV): sent, cloned, to several robots, it drives a square
  * on each, samples the robot's front range sensor along the way, and brings the samples home. It
  * knows nothing of the robot but the {@link Robot} interface, so the same class drives a LEGO NXT,
- * a fischertechnik interface or a simulated robot.
+ * a fischertechnik interface, a simulated robot, a boat or a drone: a robot that flies
+ * ({@link Capability#AIR}) takes off to {@value #FLYING_ALTITUDE} m first and lands at the end.
  *
  * <p>Send it with {@code mw dispatch --jar examples.jar --agent io.robomw.examples.agents.SquareSurveyAgent --clone HOST...}
  * ({@code --arg 0.4} sets the side in metres).
@@ -27,6 +29,8 @@ public class SquareSurveyAgent extends Agent {
     private static final long serialVersionUID = 1L;
     private static final double SPEED = 0.15;
     private static final int SAMPLES_PER_SIDE = 4;
+    /** The altitude a robot that flies surveys at, metres. */
+    public static final double FLYING_ALTITUDE = 2.0;
 
     private final double side;
 
@@ -83,6 +87,11 @@ public class SquareSurveyAgent extends Agent {
     public void run() {
         Robot robot = context().robot();
         SensorType range = frontRange(robot);
+        boolean flies = robot.capabilities().contains(Capability.AIR);
+        if (flies) {
+            robot.takeOff(FLYING_ALTITUDE);
+            context().report(String.format(Locale.ROOT, "%s: took off to %.1f m", robot.name(), FLYING_ALTITUDE));
+        }
         robot.resetPose(Pose.ORIGIN);
         List<Sample> samples = new ArrayList<>();
         double driven = 0;
@@ -99,13 +108,16 @@ public class SquareSurveyAgent extends Agent {
             context().report(String.format(Locale.ROOT, "%s: side %d of 4 done, %d samples", robot.name(), sideIndex + 1, samples.size()));
         }
         Pose end = robot.pose();
+        if (flies) {
+            robot.land();
+        }
         context().setResult(new Survey(robot.name(), context().hostName(), driven, end, end.distanceTo(Pose.ORIGIN), samples));
     }
 
     private static SensorType frontRange(Robot robot) {
         for (SensorInfo s : robot.sensors()) {
-            if (s.position() == Position.FRONT && (s.type() == SensorType.SONAR || s.type() == SensorType.INFRARED)) {
-                return s.type();
+            if (s.position() == Position.FRONT && SensorType.RANGE.matches(s.type())) {
+                return SensorType.RANGE;
             }
         }
         return null;

@@ -144,7 +144,8 @@ final class HostMessaging implements AutoCloseable {
     private void watchBroker(String broker, String withOptions) {
         try {
             io.robomw.agents.messaging.mqtt.BrokerDirectory d = io.robomw.agents.messaging.mqtt.BrokerDirectory.open(withOptions,
-                    node.settings().connectTimeout(), node.settings().tls(), eventsKey == null ? null : eventsKey.presenceSeal());
+                    node.settings().connectTimeout(), node.settings().tls(), eventsKey == null ? null : eventsKey.presenceSeal(),
+                    node.replayDirectory().map(dir -> io.robomw.agents.messaging.security.ReplayStore.fileFor(dir, host.name + ".presence")).orElse(null));
             brokerDirectories.add(d);
             d.onPresence(p -> {
                 if (p.host() != null && !p.hostAddress().equals(host.address)) {

@@ -130,6 +130,12 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         return Path.of(System.getProperty("user.home"), ".robomw", "replay");
     }
 
+    /** @return the folder this node keeps its replay window in ({@link Builder#replayDirectory}), or empty when it keeps it in memory only */
+    public java.util.Optional<Path> replayDirectory() {
+        Path f = replayStore.file();
+        return f == null ? java.util.Optional.empty() : java.util.Optional.ofNullable(f.toAbsolutePath().getParent());
+    }
+
     private MessagingNode(String name, MessagingSettings settings, ClassLoader classLoader, FailurePolicy failures, ReplayStore store) {
         this.name = name;
         this.settings = settings;

@@ -67,9 +67,10 @@ public final class Presence {
      * @param client               the MQTT client identifier it is announced with
      * @param sessionExpirySeconds how long the broker keeps its session while it is away
      * @param via                  the address it is announced through (listed first)
+     * @param since                when its connection there began (the time of its will)
      * @return the node as it is now, online
      */
-    public PresenceRecord now(String client, long sessionExpirySeconds, String via) {
+    public PresenceRecord now(String client, long sessionExpirySeconds, String via, Instant since) {
         List<String> messaging = new ArrayList<>();
         messaging.add(via);
         for (Address a : addresses.get()) {
@@ -80,7 +81,7 @@ public final class Presence {
         }
         String h = host;
         String ha = hostAddress;
-        return new PresenceRecord(node, true, Instant.now(), client, sessionExpirySeconds, messaging, ha == null ? null : h, ha, List.copyOf(robots), agents);
+        return new PresenceRecord(node, true, Instant.now(), since, client, sessionExpirySeconds, messaging, ha == null ? null : h, ha, List.copyOf(robots), agents);
     }
 
     /**

@@ -18,6 +18,8 @@ import java.util.List;
  * node NAME
  * status online|offline
  * time 2026-11-24T10:15:30.123Z        (when this version was made)
+ * since 2026-11-24T10:15:29.870Z       (zero or one: when the node's connection to the broker began, its will's time;
+ *                                       every record of one connection, its will included, carries the same)
  * client MQTT-CLIENT-ID                 (empty when not announced through a broker)
  * session-expiry SECONDS                (how long the broker keeps the node's session when it is away; 0 = clean)
  * messaging ADDRESS                     (zero or more: where the node receives)
@@ -26,7 +28,8 @@ import java.util.List;
  * agent DESCRIPTION                     (zero or more: agents on its host, "ID CLASS STATUS")
  * sig SIGNATURE                         (zero or one, last: PresenceSeal's HMAC-SHA256 over every byte before this line)
  * </pre>
- * Version 2 added the {@code sig} line; version 1 records (no signature) are still read. Decoding
+ * Version 2 added the {@code since} and {@code sig} lines; version 1 records (neither) are still
+ * read, their {@code since} being their {@code time}. Decoding
  * refuses another version, an unknown key, a missing field, a {@code sig} line that is not the
  * last and an oversized record, naming what is wrong. Readers with the cluster's
  * {@link PresenceSeal} take only records it signed ({@link #decodeSealed}).
@@ -34,6 +37,8 @@ import java.util.List;
  * @param node      the node's name
  * @param online    whether it is up
  * @param time      when this version was made
+ * @param since     when the node's connection to the broker began (the time of its will): a reader takes no record of an
+ *                  earlier connection of the same client after one of a later (as Sparkplug ties a death to its birth)
  * @param client    the MQTT client identifier it announced through, or empty
  * @param sessionExpirySeconds how long the broker keeps its session while it is away (0: a clean session,
  *                  nothing is kept for it)
@@ -43,7 +48,7 @@ import java.util.List;
  * @param robots    robots it serves
  * @param agents    agents on its host
  */
-public record PresenceRecord(String node, boolean online, Instant time, String client, long sessionExpirySeconds, List<String> messaging, String host,
+public record PresenceRecord(String node, boolean online, Instant time, Instant since, String client, long sessionExpirySeconds, List<String> messaging, String host,
                              String hostAddress, List<String> robots, List<String> agents) {
 
     /** The version this class writes (it also reads version 1, which had no signature). */
@@ -58,6 +63,8 @@ public record PresenceRecord(String node, boolean online, Instant time, String c
     /** Checks and copies. */
     public PresenceRecord {
         oneLine("node", node);
+        java.util.Objects.requireNonNull(time, "time");
+        java.util.Objects.requireNonNull(since, "since");
         oneLine("client", client);
         if (sessionExpirySeconds < 0) {
             throw new IllegalArgumentException("session expiry must be >= 0 seconds, got " + sessionExpirySeconds);
@@ -82,7 +89,7 @@ public record PresenceRecord(String node, boolean online, Instant time, String c
 
     /** @return this record with {@code online} false and the time now */
     public PresenceRecord offline(Instant now) {
-        return new PresenceRecord(node, false, now, client, sessionExpirySeconds, messaging, host, hostAddress, robots, agents);
+        return new PresenceRecord(node, false, now, since, client, sessionExpirySeconds, messaging, host, hostAddress, robots, agents);
     }
 
     /**
@@ -128,6 +135,7 @@ public record PresenceRecord(String node, boolean online, Instant time, String c
         b.append("node ").append(node).append('\n');
         b.append("status ").append(online ? "online" : "offline").append('\n');
         b.append("time ").append(time).append('\n');
+        b.append("since ").append(since).append('\n');
         b.append("client ").append(client).append('\n');
         b.append("session-expiry ").append(sessionExpirySeconds).append('\n');
         messaging.forEach(m -> b.append("messaging ").append(m).append('\n'));
@@ -163,6 +171,7 @@ public record PresenceRecord(String node, boolean online, Instant time, String c
         String node = null;
         Boolean online = null;
         Instant time = null;
+        Instant since = null;
         String client = null;
         Long expiry = null;
         String host = null;
@@ -190,6 +199,13 @@ public record PresenceRecord(String node, boolean online, Instant time, String c
                         time = Instant.parse(value);
                     } catch (DateTimeParseException e) {
                         throw new IllegalArgumentException(where + ": line " + (i + 1) + ": time '" + value + "' is not an ISO-8601 instant");
+                    }
+                }
+                case "since" -> {
+                    try {
+                        since = Instant.parse(value);
+                    } catch (DateTimeParseException e) {
+                        throw new IllegalArgumentException(where + ": line " + (i + 1) + ": since '" + value + "' is not an ISO-8601 instant");
                     }
                 }
                 case "client" -> client = value;
@@ -222,7 +238,7 @@ public record PresenceRecord(String node, boolean online, Instant time, String c
         if (node == null || node.isEmpty() || online == null || time == null || client == null || expiry == null) {
             throw new IllegalArgumentException(where + ": a presence needs node, status, time, client and session-expiry lines");
         }
-        return new PresenceRecord(node, online, time, client, expiry, messaging, host, hostAddress, robots, agents);
+        return new PresenceRecord(node, online, time, since == null ? time : since, client, expiry, messaging, host, hostAddress, robots, agents);
     }
 
     private static void oneLine(String what, String value) {

@@ -113,7 +113,8 @@ public final class FuzzSeeds {
             PayloadCodec.Encoded e = payloads.encode((java.io.Serializable) value);
             frames.write("payload", "type-" + e.type() + "-" + value.getClass().getSimpleName(), withTrailingByte(e.bytes(), e.type()));
         }
-        frames.write("presence", "host", new io.robomw.agents.messaging.PresenceRecord("a", true, Instant.parse("2026-11-24T10:15:30.123Z"), "mw-a-1",
+        frames.write("presence", "host", new io.robomw.agents.messaging.PresenceRecord("a", true, Instant.parse("2026-11-24T10:15:30.123Z"),
+                Instant.parse("2026-11-24T10:15:29.870Z"), "mw-a-1",
                 86_400, List.of("tcp://127.0.0.1:7000"), "a", "rmi://127.0.0.1:1100/a", List.of("nxt"),
                 List.of(id + " io.robomw.examples.Patrol ACTIVE")).encode());
         frames.write("beacon", "node-with-host", new io.robomw.agents.messaging.discovery.BeaconRecord("nxt", true, 1000, "nxt",

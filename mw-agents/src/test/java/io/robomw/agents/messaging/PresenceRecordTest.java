@@ -13,7 +13,8 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 class PresenceRecordTest {
 
-    private final PresenceRecord host = new PresenceRecord("ft host", true, Instant.parse("2026-11-24T10:15:30.123Z"), "ft-1a2b", 3600,
+    private final PresenceRecord host = new PresenceRecord("ft host", true, Instant.parse("2026-11-24T10:15:30.123Z"),
+            Instant.parse("2026-11-24T10:15:29.870Z"), "ft-1a2b", 3600,
             List.of("mqtt://127.0.0.1:1883/robomw", "tcp://127.0.0.1:7000"), "ft host", "rmi://127.0.0.1:1100/ft", List.of("ft-1"),
             List.of("3f2a Explorer RUNNING"));
 
@@ -24,6 +25,7 @@ class PresenceRecordTest {
                 node ft host
                 status online
                 time 2026-11-24T10:15:30.123Z
+                since 2026-11-24T10:15:29.870Z
                 client ft-1a2b
                 session-expiry 3600
                 messaging mqtt://127.0.0.1:1883/robomw
@@ -75,8 +77,15 @@ class PresenceRecordTest {
     }
 
     @Test
+    void aVersionOneRecordWasMadeSinceItsOwnTime() {
+        PresenceRecord old = PresenceRecord.decode(
+                "robomw-presence 1\nnode x\nstatus online\ntime 2026-11-24T10:15:30Z\nclient c\nsession-expiry 0\n".getBytes(StandardCharsets.UTF_8), "p");
+        assertEquals(Instant.parse("2026-11-24T10:15:30Z"), old.since());
+    }
+
+    @Test
     void aLineBreakInAValueIsRefused() {
-        assertThrows(IllegalArgumentException.class, () -> new PresenceRecord("a\nstatus offline", true, Instant.now(), "", 0, List.of(), null, null,
+        assertThrows(IllegalArgumentException.class, () -> new PresenceRecord("a\nstatus offline", true, Instant.now(), Instant.now(), "", 0, List.of(), null, null,
                 List.of(), List.of()));
     }
 }

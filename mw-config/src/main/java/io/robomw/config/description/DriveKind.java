@@ -14,7 +14,9 @@ public enum DriveKind {
     /** Two driven wheels on one axle, steering by speed difference ({@link DifferentialDrive}). */
     DIFFERENTIAL("differential", "two driven wheels on one axle"),
     /** Walks by its firmware's own high-level commands ({@link LeggedDrive}). */
-    LEGGED("legged", "walks by its firmware's own commands");
+    LEGGED("legged", "walks by its firmware's own commands"),
+    /** A drone, boat or rover moved by its autopilot's own targets over MAVLink ({@link VehicleDrive}). */
+    VEHICLE("vehicle", "a drone, boat or rover moved by its autopilot");
 
     private final String yamlName;
     private final String meaning;

@@ -33,16 +33,20 @@ import java.util.stream.Stream;
  * @param messaging       how its communication component starts (the {@code messaging:} section, or defaults)
  * @param agency          how its agency starts (the {@code agency:} section, or defaults)
  * @param source          the file it was read from, for messages
+ * @param vehicleDrive    the vehicle drive, if the robot is a drone, boat or rover moved by its
+ *                        autopilot (then {@code drive} and {@code leggedDrive} are empty)
  */
 public record RobotDescription(String name, String platform, ConnectionSettings connection,
                                Duration cyclePeriod, Duration watchdogTimeout,
                                Set<Capability> capabilities, Optional<DifferentialDrive> drive,
                                Body body, List<SensorSpec> sensors, List<ActuatorSpec> actuators,
                                Optional<LeggedDrive> leggedDrive, List<HighLevelAction> highLevelActions,
-                               MessagingConfig messaging, AgencyConfig agency, String source) {
+                               MessagingConfig messaging, AgencyConfig agency, String source,
+                               Optional<VehicleDrive> vehicleDrive) {
 
     /** Copies collections. */
     public RobotDescription {
+        Objects.requireNonNull(vehicleDrive, "vehicleDrive");
         Objects.requireNonNull(name, "name");
         Objects.requireNonNull(platform, "platform");
         capabilities = Set.copyOf(capabilities);
@@ -55,11 +59,38 @@ public record RobotDescription(String name, String platform, ConnectionSettings 
     }
 
     /**
-     * @return its drive section, whatever its kind ({@link #drive()} or {@link #leggedDrive()}),
-     *         if it has one
+     * A description without a vehicle drive.
+     *
+     * @param name             the robot's name
+     * @param platform         the {@code platform:} value
+     * @param connection       the {@code connection:} block
+     * @param cyclePeriod      the execution action thread's period
+     * @param watchdogTimeout  the continuous commands' watchdog
+     * @param capabilities     ground, air, water
+     * @param drive            the differential drive, if any
+     * @param body             size and mass
+     * @param sensors          the sensors
+     * @param actuators        extra actuators
+     * @param leggedDrive      the legged drive, if any
+     * @param highLevelActions named actions of the firmware
+     * @param messaging        the messaging section
+     * @param agency           the agency section
+     * @param source           the file it was read from
+     */
+    public RobotDescription(String name, String platform, ConnectionSettings connection, Duration cyclePeriod, Duration watchdogTimeout,
+                            Set<Capability> capabilities, Optional<DifferentialDrive> drive, Body body, List<SensorSpec> sensors,
+                            List<ActuatorSpec> actuators, Optional<LeggedDrive> leggedDrive, List<HighLevelAction> highLevelActions,
+                            MessagingConfig messaging, AgencyConfig agency, String source) {
+        this(name, platform, connection, cyclePeriod, watchdogTimeout, capabilities, drive, body, sensors, actuators, leggedDrive,
+                highLevelActions, messaging, agency, source, Optional.empty());
+    }
+
+    /**
+     * @return its drive section, whatever its kind ({@link #drive()}, {@link #leggedDrive()} or
+     *         {@link #vehicleDrive()}), if it has one
      */
     public Optional<DriveSpec> driveSpec() {
-        return drive.<DriveSpec>map(d -> d).or(() -> leggedDrive.map(d -> d));
+        return drive.<DriveSpec>map(d -> d).or(() -> leggedDrive.map(d -> d)).or(() -> vehicleDrive.map(d -> d));
     }
 
     /** @return the kind of its drive, if it has one */

@@ -46,6 +46,10 @@ public final class RobotDescriptionLoader {
     private static final Range GEAR_RATIO = Range.positive(0.001, 10_000, "");
     private static final Range SPEED = Range.above(0, 100, "metres per second");
     private static final Range TURN_RATE = Range.above(0, 100, "radians per second");
+    private static final Range CLIMB_RATE = Range.between(0, 50, "metres per second").noting("> 0 for an air vehicle");
+    private static final Range VEHICLE_TURN_RATE = Range.above(0, 20, "radians per second");
+    private static final Range ACCEPTANCE_RADIUS = Range.above(0, 1000, "metres");
+    private static final Range TAKEOFF_ALTITUDE = Range.between(0, 1000, "metres");
     private static final Range STEP_FREQUENCY = Range.above(0, 100, "steps per second");
     private static final Range JITTER = Range.fromBelow(0, 1, "").noting("a fraction of the speed");
     private static final Range SLIP = Range.fromBelow(0, 1, "").noting("a fraction of the motion");
@@ -88,8 +92,17 @@ public final class RobotDescriptionLoader {
             capabilities.add(Capability.GROUND);
         }
         Optional<MappingReader> driveNode = root.mapping("drive");
-        Optional<DifferentialDrive> drive = driveNode.filter(m -> !legged(m)).flatMap(this::drive);
+        Optional<DifferentialDrive> drive = driveNode.filter(m -> !legged(m) && !vehicle(m)).flatMap(this::drive);
         Optional<LeggedDrive> leggedDrive = driveNode.filter(this::legged).flatMap(this::leggedDrive);
+        Optional<VehicleDrive> vehicleDrive = driveNode.filter(this::vehicle).flatMap(this::vehicleDrive);
+        if (vehicleDrive.isPresent() && !root.has("capabilities")) {
+            capabilities.clear();
+            capabilities.add(switch (vehicleDrive.get().medium()) {
+                case AIR -> Capability.AIR;
+                case WATER -> Capability.WATER;
+                case GROUND -> Capability.GROUND;
+            });
+        }
         Body body = root.mapping("body").map(this::body).orElse(Body.DEFAULT);
         List<Read<SensorSpec>> sensors = root.mappingList("sensors").stream()
                 .flatMap(m -> sensor(m).map(s -> new Read<>(s, m)).stream()).toList();
@@ -106,7 +119,7 @@ public final class RobotDescriptionLoader {
         return new RobotDescription(name, platform, new ConnectionSettings(connection, source),
                 Duration.ofNanos(Math.round(1e9 / cycleHz)), Duration.ofNanos(Math.round(watchdog * 1e9)),
                 capabilities, drive, body, sensors.stream().map(Read::value).toList(),
-                actuators.stream().map(Read::value).toList(), leggedDrive, highLevelActions, messaging, agency, source);
+                actuators.stream().map(Read::value).toList(), leggedDrive, highLevelActions, messaging, agency, source, vehicleDrive);
     }
 
     private Optional<DifferentialDrive> drive(MappingReader m) {
@@ -136,6 +149,36 @@ public final class RobotDescriptionLoader {
 
     private boolean legged(MappingReader driveNode) {
         return driveNode.has("type") && driveNode.text("type").flatMap(DriveKind::fromYaml).map(DriveKind.LEGGED::equals).orElse(false);
+    }
+
+    private boolean vehicle(MappingReader driveNode) {
+        return driveNode.has("type") && driveNode.text("type").flatMap(DriveKind::fromYaml).map(DriveKind.VEHICLE::equals).orElse(false);
+    }
+
+    private Optional<VehicleDrive> vehicleDrive(MappingReader m) {
+        m.text("type");
+        VehicleDrive.Medium medium = m.enumValue("medium", VehicleDrive.Medium.class, null);
+        if (!m.has("medium")) {
+            m.problem("medium", "missing: say where the vehicle moves: air, water or ground");
+        }
+        VehicleDrive.Autopilot autopilot = m.enumValue("autopilot", VehicleDrive.Autopilot.class, VehicleDrive.Autopilot.ARDUPILOT);
+        double max = m.requireNumber("max_speed", SPEED);
+        double climb = m.number("max_climb_rate", medium == VehicleDrive.Medium.AIR ? 1.5 : 0, CLIMB_RATE);
+        double turnRate = m.number("max_turn_rate", Math.toRadians(90), VEHICLE_TURN_RATE);
+        double acceptance = m.number("acceptance_radius", 0.5, ACCEPTANCE_RADIUS);
+        double takeoff = m.number("takeoff_altitude", 2.0, TAKEOFF_ALTITUDE);
+        if (medium == VehicleDrive.Medium.AIR && climb == 0) {
+            m.problem("max_climb_rate", "an air vehicle must be able to climb: give max_climb_rate > 0");
+        }
+        if (medium != null && medium != VehicleDrive.Medium.AIR && m.has("max_climb_rate") && climb > 0) {
+            m.problem("max_climb_rate", "a " + medium.yamlName() + " vehicle does not climb; leave max_climb_rate out");
+        }
+        m.finish();
+        if (medium == null || Double.isNaN(max) || Double.isNaN(climb) || Double.isNaN(turnRate) || Double.isNaN(acceptance)
+                || Double.isNaN(takeoff) || (medium == VehicleDrive.Medium.AIR) != (climb > 0)) {
+            return Optional.empty();
+        }
+        return Optional.of(new VehicleDrive(medium, autopilot, max, climb, turnRate, acceptance, takeoff));
     }
 
     private Optional<LeggedDrive> leggedDrive(MappingReader m) {

@@ -5,7 +5,9 @@ import io.robomw.config.description.DifferentialDrive;
 import io.robomw.config.description.DriveSpec;
 import io.robomw.config.description.LeggedDrive;
 import io.robomw.config.description.RobotDescription;
+import io.robomw.config.description.VehicleDrive;
 import io.robomw.config.legged.LeggedDriveControl;
+import io.robomw.config.vehicle.VehicleDriveControl;
 
 /**
  * Chooses the {@link DriveControl} for a description: the one place that knows which
@@ -42,6 +44,9 @@ public final class Drives {
         }
         if (spec instanceof LeggedDrive legs) {
             return new LeggedDriveControl(description, legs, platform, previous instanceof LeggedDriveControl p ? p : null);
+        }
+        if (spec instanceof VehicleDrive vehicle) {
+            return new VehicleDriveControl(description, vehicle, platform, previous instanceof VehicleDriveControl p ? p : null);
         }
         return new NoDrive(description);
     }

@@ -177,6 +177,16 @@ public final class ConfiguredRobot implements Robot {
         return drive().changeAltitude(metres, speed);
     }
 
+    @Override
+    public CompletableFuture<Void> takeOffAsync(double altitude) {
+        return drive().takeOff(altitude);
+    }
+
+    @Override
+    public CompletableFuture<Void> landAsync() {
+        return drive().land();
+    }
+
     /**
      * Hands the stop to the platform first (safety priority: it ends every command; nothing is
      * read or integrated before) and waits until the platform reports it handed to the hardware,

@@ -555,8 +555,8 @@ class RobotDescriptionLoaderTest {
                 drive: {type: tracked, wheel_diameter: 0.056, track_width: 0.112, max_speed: 0.3, left: {port: B}, right: {port: C}}
                 """);
 
-        assertProblem(3, 15, "'drive.type': must be 'differential' (two driven wheels on one axle) or 'legged' (walks by its firmware's own commands),"
-                + " got 'tracked'", p);
+        assertProblem(3, 15, "'drive.type': must be 'differential' (two driven wheels on one axle) or 'legged' (walks by its firmware's own commands)"
+                + " or 'vehicle' (a drone, boat or rover moved by its autopilot), got 'tracked'", p);
     }
 
     @Test

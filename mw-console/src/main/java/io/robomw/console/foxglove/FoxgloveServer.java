@@ -101,8 +101,16 @@ public final class FoxgloveServer implements Observer, AutoCloseable {
     /** Time between two pings to every client. */
     static final long PING_NANOS = TimeUnit.SECONDS.toNanos(15);
 
+    /** The environment variable a command reads the access token of a Foxglove WebSocket beyond this machine from. */
+    public static final String TOKEN_ENV = "MW_FOXGLOVE_TOKEN";
+    /** The shortest access token taken. */
+    public static final int MIN_TOKEN_LENGTH = 16;
+
     /**
-     * How to serve.
+     * How to serve. Secure by default, as the console and the rosbridge: it listens on loopback;
+     * an address beyond this machine needs an access token, which every client must give
+     * ({@code ws://HOST:PORT/?token=TOKEN}, or {@code Authorization: Bearer TOKEN}). The Foxglove
+     * WebSocket protocol has no authentication of its own, so the token is RoboMW's.
      *
      * @param name     the server's name in serverInfo (the command that runs it)
      * @param bind     the address to listen on (127.0.0.1 keeps it to this machine)
@@ -110,13 +118,22 @@ public final class FoxgloveServer implements Observer, AutoCloseable {
      * @param replay   whether it serves a replay: the time capability, TIME frames, no driving
      * @param backlog  data frames queued per client before the oldest is dropped, &gt;= 1
      * @param failures where its threads' failures go
+     * @param token    the access token clients must give (at least {@value #MIN_TOKEN_LENGTH} characters), or {@code null}
+     *                 for none (then only a loopback bind is allowed)
      */
-    public record Options(String name, String bind, int port, boolean replay, int backlog, FailurePolicy failures) {
+    public record Options(String name, String bind, int port, boolean replay, int backlog, FailurePolicy failures, String token) {
         /** Checks. */
         public Options {
             Objects.requireNonNull(name, "name");
             Objects.requireNonNull(bind, "bind");
             Objects.requireNonNull(failures, "failures");
+            if (token == null && !loopback(bind)) {
+                throw new IllegalArgumentException("a Foxglove WebSocket listening on " + bind + " (beyond this machine) needs an access token: give it in a "
+                        + "file (--foxglove-token-file FILE) or in the environment (" + TOKEN_ENV + "); the Foxglove protocol has no authentication");
+            }
+            if (token != null && token.length() < MIN_TOKEN_LENGTH) {
+                throw new IllegalArgumentException("a Foxglove access token must be at least " + MIN_TOKEN_LENGTH + " characters, got " + token.length());
+            }
             if (port < 0 || port > 65_535) {
                 throw new IllegalArgumentException("the Foxglove WebSocket's port must be 0 to 65535, got " + port);
             }
@@ -127,17 +144,63 @@ public final class FoxgloveServer implements Observer, AutoCloseable {
 
         /** @param name its name @param bind its address @param port its port @return options for a live run */
         public static Options live(String name, String bind, int port) {
-            return new Options(name, bind, port, false, DEFAULT_BACKLOG, FailurePolicy.logging());
+            return new Options(name, bind, port, false, DEFAULT_BACKLOG, FailurePolicy.logging(), null);
         }
 
         /** @param name its name @param bind its address @param port its port @return options for a replay */
         public static Options replay(String name, String bind, int port) {
-            return new Options(name, bind, port, true, DEFAULT_BACKLOG, FailurePolicy.logging());
+            return new Options(name, bind, port, true, DEFAULT_BACKLOG, FailurePolicy.logging(), null);
         }
 
         /** @param frames data frames per client @return these options with that backlog */
         public Options withBacklog(int frames) {
-            return new Options(name, bind, port, replay, frames, failures);
+            return new Options(name, bind, port, replay, frames, failures, token);
+        }
+
+        /**
+         * @param bind  the address to listen on
+         * @param token the access token clients must give, or {@code null} (then {@code bind} must be loopback)
+         * @return these options listening there
+         */
+        public Options listening(String bind, String token) {
+            return new Options(name, bind, port, replay, backlog, failures, token);
+        }
+
+        /** @return the options without the token, for the log */
+        @Override
+        public String toString() {
+            return "Options[name=" + name + ", bind=" + bind + ", port=" + port + ", replay=" + replay + ", backlog=" + backlog
+                    + (token == null ? "" : ", token given") + "]";
+        }
+
+        private static boolean loopback(String bind) {
+            try {
+                return java.net.InetAddress.getByName(bind).isLoopbackAddress();
+            } catch (java.net.UnknownHostException e) {
+                return false;
+            }
+        }
+
+        /** @return whether a handshake carries the token (query {@code token=}, or a bearer {@code Authorization}), in constant time */
+        boolean admits(String query, String authorization) {
+            if (token == null) {
+                return true;
+            }
+            byte[] want = token.getBytes(StandardCharsets.UTF_8);
+            if (authorization != null && authorization.regionMatches(true, 0, "Bearer ", 0, 7)
+                    && java.security.MessageDigest.isEqual(authorization.substring(7).trim().getBytes(StandardCharsets.UTF_8), want)) {
+                return true;
+            }
+            if (query != null) {
+                for (String pair : query.split("&")) {
+                    int eq = pair.indexOf('=');
+                    if (eq > 0 && pair.substring(0, eq).equals("token") && java.security.MessageDigest.isEqual(
+                            java.net.URLDecoder.decode(pair.substring(eq + 1), StandardCharsets.UTF_8).getBytes(StandardCharsets.UTF_8), want)) {
+                        return true;
+                    }
+                }
+            }
+            return false;
         }
     }
 
@@ -211,6 +274,11 @@ public final class FoxgloveServer implements Observer, AutoCloseable {
                         LOG.warn("foxglove: refused a handshake for Host {} (this server answers to {} on port {})", host, hosts.names(),
                                 connector.getLocalPort());
                         Response.writeError(request, response, callback, 421, "this server answers to " + hosts.names() + ", not to '" + host + "'");
+                        return null;
+                    }
+                    if (!options.admits(request.getHttpURI().getQuery(), request.getHeaders().get(HttpHeader.AUTHORIZATION))) {
+                        LOG.warn("foxglove: refused a handshake from {} without the access token", Request.getRemoteAddr(request));
+                        Response.writeError(request, response, callback, 401, "this Foxglove server needs its access token: ws://HOST:PORT/?token=TOKEN");
                         return null;
                     }
                     Optional<Subprotocol> p = Subprotocol.choose(request.getSubProtocols());

@@ -20,8 +20,17 @@ public sealed interface Observation {
     record World(long timeNanos, WorldMap map) implements Observation {
     }
 
-    /** Where a robot is. @param truth whether this is the simulator's true pose (else the robot's own odometry) */
-    record RobotPose(long timeNanos, String robot, double x, double y, double heading, boolean truth) implements Observation {
+    /**
+     * Where a robot is, in {@link io.robomw.api.Pose}'s frame (z up).
+     *
+     * @param z     the altitude, metres (0 for robots that do not fly)
+     * @param truth whether this is the simulator's true pose (else the robot's own odometry)
+     */
+    record RobotPose(long timeNanos, String robot, double x, double y, double z, double heading, boolean truth) implements Observation {
+        /** A pose on the ground (z = 0). */
+        public RobotPose(long timeNanos, String robot, double x, double y, double heading, boolean truth) {
+            this(timeNanos, robot, x, y, 0, heading, truth);
+        }
     }
 
     /** One sensor value. @param unit the unit of {@code value} ("m", "%", ...) */

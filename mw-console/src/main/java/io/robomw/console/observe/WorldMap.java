@@ -23,15 +23,24 @@ import java.util.List;
  * @param obstacles       boxes, circles and polygons
  * @param patches         floor patches
  * @param robots          the robots, their footprints and start poses
+ * @param water           the areas of water boats sail on, each a polygon of [x, y] points (none in
+ *                        recordings made before vehicles: read as none)
  */
 public record WorldMap(String name, double width, double height, boolean walls, double wallThickness, double floorBrightness,
-                       List<Shape> obstacles, List<Patch> patches, List<RobotMark> robots) {
+                       List<Shape> obstacles, List<Patch> patches, List<RobotMark> robots, List<List<double[]>> water) {
 
     /** Copies. */
     public WorldMap {
         obstacles = List.copyOf(obstacles);
         patches = List.copyOf(patches);
         robots = List.copyOf(robots);
+        water = water == null ? List.of() : water.stream().map(List::copyOf).toList();
+    }
+
+    /** A map without water. */
+    public WorldMap(String name, double width, double height, boolean walls, double wallThickness, double floorBrightness,
+                    List<Shape> obstacles, List<Patch> patches, List<RobotMark> robots) {
+        this(name, width, height, walls, wallThickness, floorBrightness, obstacles, patches, robots, List.of());
     }
 
     /**
@@ -92,7 +101,8 @@ public record WorldMap(String name, double width, double height, boolean walls, 
             }
         }
         List<Patch> patches = d.patches().stream().map(p -> new Patch(p.x(), p.y(), p.width(), p.height(), p.brightness())).toList();
-        return new WorldMap(d.name(), d.width(), d.height(), d.walls(), d.wallThickness(), d.floorBrightness(), shapes, patches, robots);
+        List<List<double[]>> water = d.surroundings().water().stream().map(WorldDescription.WaterArea::points).toList();
+        return new WorldMap(d.name(), d.width(), d.height(), d.walls(), d.wallThickness(), d.floorBrightness(), shapes, patches, robots, water);
     }
 
     /**
@@ -113,7 +123,7 @@ public record WorldMap(String name, double width, double height, boolean walls, 
                 double c = Math.cos(m.startHeading());
                 double s = Math.sin(m.startHeading());
                 return new Observation.RobotPose(p.timeNanos(), p.robot(), m.startX() + c * p.x() - s * p.y(), m.startY() + s * p.x() + c * p.y(),
-                        m.startHeading() + p.heading(), false);
+                        p.z(), m.startHeading() + p.heading(), false);
             }
         }
         return p;
@@ -134,6 +144,9 @@ public record WorldMap(String name, double width, double height, boolean walls, 
                 .map(p -> new WorldDescription.FloorPatch(p.x(), p.y(), p.width(), p.height(), p.brightness(), 0)).toList();
         List<WorldDescription.RobotPlacement> placed = robots().stream()
                 .map(r -> new WorldDescription.RobotPlacement(Path.of("recorded"), r.name(), new Pose(r.startX(), r.startY(), r.startHeading()))).toList();
-        return new WorldDescription(name, width, height, walls, wallThickness, floorBrightness, obstacles, floor, placed, 0, 60, "recording");
+        WorldDescription.Surroundings surroundings = new WorldDescription.Surroundings(water.stream().map(WorldDescription.WaterArea::new).toList(),
+                0, 0, 0, 0, WorldDescription.GeoOrigin.SITL_DEFAULT);
+        return new WorldDescription(name, width, height, walls, wallThickness, floorBrightness, obstacles, floor, placed, 0, 60,
+                WorldDescription.TrajectorySettings.DEFAULT, WorldDescription.PhysicsEngine.DYN4J, "recording", surroundings);
     }
 }

@@ -143,7 +143,7 @@ public final class McapReplay {
         if (o instanceof Observation.World w) {
             return new Observation.World(t, w.map());
         } else if (o instanceof Observation.RobotPose p) {
-            return new Observation.RobotPose(t, p.robot(), p.x(), p.y(), p.heading(), p.truth());
+            return new Observation.RobotPose(t, p.robot(), p.x(), p.y(), p.z(), p.heading(), p.truth());
         } else if (o instanceof Observation.SensorReading s) {
             return new Observation.SensorReading(t, s.robot(), s.sensor(), s.value(), s.unit());
         } else if (o instanceof Observation.RobotCommand c) {

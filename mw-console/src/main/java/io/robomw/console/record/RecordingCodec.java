@@ -84,13 +84,13 @@ public final class RecordingCodec {
         } else if (o instanceof Observation.RobotPose p) {
             ObjectNode n = stamped(t);
             n.put("frame_id", "world");
-            n.set("pose", pose(p.x(), p.y(), p.heading()));
+            n.set("pose", pose(p.x(), p.y(), p.z(), p.heading()));
             out.add(new Out("/robots/" + p.robot() + (p.truth() ? "/pose" : "/odometry"), "foxglove.PoseInFrame", bytes(n)));
             if (p.truth()) {
                 ObjectNode tf = stamped(t);
                 tf.put("parent_frame_id", "world");
                 tf.put("child_frame_id", p.robot());
-                tf.set("translation", vector(p.x(), p.y(), 0));
+                tf.set("translation", vector(p.x(), p.y(), p.z()));
                 tf.set("rotation", quaternion(p.heading()));
                 out.add(new Out(TF, "foxglove.FrameTransform", bytes(tf)));
             }
@@ -177,7 +177,9 @@ public final class RecordingCodec {
                     JsonNode p = require(pose, "position", topic);
                     JsonNode q = require(pose, "orientation", topic);
                     double heading = 2 * Math.atan2(number(q, "z", topic), number(q, "w", topic));
-                    yield new Observation.RobotPose(logTime, robot, number(p, "x", topic), number(p, "y", topic), heading, topic.endsWith("/pose"));
+                    // z: the altitude (recordings before vehicles wrote 0 there too)
+                    yield new Observation.RobotPose(logTime, robot, number(p, "x", topic), number(p, "y", topic), number(p, "z", topic), heading,
+                            topic.endsWith("/pose"));
                 }
                 case "robomw.SensorReading" -> new Observation.SensorReading(logTime, text(n, "robot", topic), text(n, "sensor", topic),
                         number(n, "value", topic), text(n, "unit", topic));
@@ -267,8 +269,12 @@ public final class RecordingCodec {
     }
 
     private static ObjectNode pose(double x, double y, double heading) {
+        return pose(x, y, 0, heading);
+    }
+
+    private static ObjectNode pose(double x, double y, double z, double heading) {
         ObjectNode n = JSON.createObjectNode();
-        n.set("position", vector(x, y, 0));
+        n.set("position", vector(x, y, z));
         n.set("orientation", quaternion(heading));
         return n;
     }
@@ -282,7 +288,7 @@ public final class RecordingCodec {
         return n;
     }
 
-    /** The arena as cubes (floor, walls, boxes) and cylinders (discs); polygons as line strips. */
+    /** The arena as cubes (floor, walls, boxes) and cylinders (discs); polygons as line strips, water areas as blue ones. */
     private static ObjectNode scene(long t, WorldMap w) {
         ObjectNode update = JSON.createObjectNode();
         update.putArray("deletions");
@@ -311,6 +317,9 @@ public final class RecordingCodec {
             cubes.add(cube(-th / 2, w.height() / 2, 0.05, 0, th, w.height(), 0.1, wall));
             cubes.add(cube(w.width() + th / 2, w.height() / 2, 0.05, 0, th, w.height(), 0.1, wall));
         }
+        for (List<double[]> area : w.water()) {
+            lines.add(loop(area, 0.006, 0.05, color(0.35, 0.58, 0.77, 1)));
+        }
         ObjectNode grey = color(0.55, 0.59, 0.64, 1);
         for (WorldMap.Shape s : w.obstacles()) {
             switch (s.kind()) {
@@ -324,23 +333,27 @@ public final class RecordingCodec {
                     c.put("top_scale", 1.0);
                     c.set("color", grey);
                 }
-                default -> {
-                    ObjectNode l = lines.addObject();
-                    l.put("type", 1); // foxglove.LineType LINE_LOOP: a closed outline
-                    l.set("pose", pose(0, 0, 0));
-                    l.put("thickness", 0.02);
-                    l.put("scale_invariant", false);
-                    ArrayNode points = l.putArray("points");
-                    for (double[] p : s.points()) {
-                        points.add(vector(p[0], p[1], 0.1));
-                    }
-                    l.set("color", grey);
-                    l.putArray("colors");
-                    l.putArray("indices");
-                }
+                default -> lines.add(loop(s.points(), 0.1, 0.02, grey));
             }
         }
         return update;
+    }
+
+    /** A closed outline (foxglove.LineType LINE_LOOP, 1) through points at a height. */
+    private static ObjectNode loop(List<double[]> points, double z, double thickness, ObjectNode color) {
+        ObjectNode l = JSON.createObjectNode();
+        l.put("type", 1);
+        l.set("pose", pose(0, 0, 0));
+        l.put("thickness", thickness);
+        l.put("scale_invariant", false);
+        ArrayNode at = l.putArray("points");
+        for (double[] p : points) {
+            at.add(vector(p[0], p[1], z));
+        }
+        l.set("color", color);
+        l.putArray("colors");
+        l.putArray("indices");
+        return l;
     }
 
     private static ObjectNode cube(double x, double y, double z, double angle, double sx, double sy, double sz, ObjectNode color) {

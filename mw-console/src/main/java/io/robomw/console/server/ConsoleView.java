@@ -54,6 +54,7 @@ public final class ConsoleView implements Observer {
         double x;
         double y;
         double heading;
+        double z;
         boolean hasPose;
         boolean truth;
         long poseNanos;
@@ -100,6 +101,7 @@ public final class ConsoleView implements Observer {
             r.x = p.x();
             r.y = p.y();
             r.heading = p.heading();
+            r.z = p.z();
             r.poseNanos = p.timeNanos();
             boolean moved = r.trail.isEmpty() || Math.hypot(p.x() - r.trail.get(r.trail.size() - 1)[1], p.y() - r.trail.get(r.trail.size() - 1)[2])
                     >= TRAIL_STEP_METRES;
@@ -205,7 +207,7 @@ public final class ConsoleView implements Observer {
                 Map<String, Object> m = new LinkedHashMap<>();
                 m.put("name", r.name);
                 if (r.hasPose) {
-                    m.put("pose", Map.of("x", r.x, "y", r.y, "heading", r.heading, "t", r.poseNanos / 1e9, "truth", r.truth));
+                    m.put("pose", Map.of("x", r.x, "y", r.y, "z", r.z, "heading", r.heading, "t", r.poseNanos / 1e9, "truth", r.truth));
                 }
                 m.put("reachable", r.reachable);
                 m.put("source", r.source);

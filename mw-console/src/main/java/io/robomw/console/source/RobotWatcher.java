@@ -134,7 +134,7 @@ public final class RobotWatcher implements AutoCloseable {
         Pose p = r.pose();
         long t = now();
         observer.observe(new Observation.RobotStatus(t, name, address, true, ""));
-        observer.observe(new Observation.RobotPose(t, name, p.x(), p.y(), p.heading(), false));
+        observer.observe(new Observation.RobotPose(t, name, p.x(), p.y(), p.z(), p.heading(), false));
         for (SensorInfo s : r.sensors()) {
             Quantity q = s.type().quantity();
             ReturnType unit = q == Quantity.DISTANCE ? ReturnType.METERS : q == Quantity.ANGLE ? ReturnType.DEGREES : ReturnType.RAW;

@@ -61,7 +61,8 @@ public final class SimSource implements AutoCloseable {
         long t = now();
         for (SimRobot r : sim.world().robots()) {
             Pose p = r.pose();
-            observer.observe(new Observation.RobotPose(t, r.name(), p.x(), p.y(), p.heading(), true));
+            double z = r.vehicle() == null ? 0 : r.vehicle().snapshot().z();
+            observer.observe(new Observation.RobotPose(t, r.name(), p.x(), p.y(), z, p.heading(), true));
             for (SensorModel s : r.rangeSensors()) {
                 observer.observe(new Observation.SensorReading(t, r.name(), s.spec().name(), r.latest(s), "m"));
             }

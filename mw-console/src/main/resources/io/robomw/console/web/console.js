@@ -6,6 +6,7 @@
 const SVG = "http://www.w3.org/2000/svg";
 const PALETTE = ["#d1495b", "#2e86ab", "#3b9c4f", "#edae49", "#7d5ba6", "#00798c", "#e07a2f", "#6c757d"];
 const STALE_POSE_SECONDS = 3;
+const ALTITUDE_SHOWN_METRES = 0.05; // a flyer's altitude is shown beside its name above this
 const MAX_EVENTS_SHOWN = 300;
 
 const token = new URLSearchParams(location.hash.replace(/^#/, "")).get("token") || "";
@@ -150,6 +151,7 @@ function renderMap() {
   if (w) {
     if (w.walls) map.append(svg("rect", { class: "wall", x: b.minX, y: 0, width: b.maxX - b.minX, height: b.maxY - b.minY }));
     map.append(svg("rect", { class: "arena", x: 0, y: sy(w.height), width: w.width, height: w.height, style: "fill:" + grey(w.floorBrightness) }));
+    for (const area of (w.water || [])) map.append(svg("polygon", { class: "water", points: area.map(p => num(p[0], 3) + "," + num(sy(p[1]), 3)).join(" ") }));
     for (const p of w.patches) map.append(svg("rect", { x: p.x, y: sy(p.y + p.height), width: p.width, height: p.height, style: "fill:" + grey(p.brightness) }));
     for (const o of w.obstacles) map.append(obstacle(o, sy));
   } else {
@@ -170,7 +172,9 @@ function renderMap() {
     g.append(svg("polygon", { class: "robot-nose", points: [len / 2 - 0.05, -wid / 4, len / 2 - 0.01, 0, len / 2 - 0.05, wid / 4].map(v => num(v, 3)).join(" ") }));
     map.append(g);
     const label = svg("text", { class: "label", x: num(r.pose.x + len * 0.6, 3), y: num(sy(r.pose.y) - wid * 0.6, 3) });
-    label.textContent = name + (stale ? " (stale)" : "");
+    const flying = (r.pose.z || 0) > ALTITUDE_SHOWN_METRES;
+    label.textContent = name + (flying ? " ↑" + num(r.pose.z, 1) + " m" : "") + (stale ? " (stale)" : "");
+    if (flying) g.setAttribute("data-z", num(r.pose.z, 3));
     map.append(label);
   }
 }
@@ -208,7 +212,7 @@ function renderRobots() {
     const kv = el("dl", { class: "kv" });
     if (r.pose) {
       kv.append(el("dt", {}, r.pose.truth ? "pose (true)" : "pose (odometry)"), el("dd", { "data-field": "pose" },
-        "x " + num(r.pose.x, 3) + " m, y " + num(r.pose.y, 3) + " m, " + num(r.pose.heading * 180 / Math.PI, 1) + "°" + (stale ? " (" + ago(age) + ")" : "")));
+        "x " + num(r.pose.x, 3) + " m, y " + num(r.pose.y, 3) + " m, " + ((r.pose.z || 0) > ALTITUDE_SHOWN_METRES ? "z " + num(r.pose.z, 2) + " m, " : "") + num(r.pose.heading * 180 / Math.PI, 1) + "°" + (stale ? " (" + ago(age) + ")" : "")));
     }
     if (r.lastCommand) kv.append(el("dt", {}, "last command"), el("dd", {}, r.lastCommand + " (" + ago(model.now - r.commandTime) + ")"));
     if (r.source) kv.append(el("dt", {}, "reached at"), el("dd", { class: "addr" }, r.source));

@@ -415,6 +415,25 @@ class FoxgloveServerTest {
         assertTrue(status(s.port(), handshake.formatted("127.0.0.1:" + s.port())).contains(" 101 "));
     }
 
+    /** Issue 37: as the console and the rosbridge, an address beyond this machine needs an access token, and a client without it gets nothing. */
+    @Test
+    void aBindBeyondThisMachineNeedsATokenAndAClientWithoutItIsRefused() throws Exception {
+        IllegalArgumentException e = assertThrows(IllegalArgumentException.class, () -> FoxgloveServer.Options.live("test", "0.0.0.0", 0));
+        assertTrue(e.getMessage().contains("0.0.0.0") && e.getMessage().contains(FoxgloveServer.TOKEN_ENV), e.getMessage());
+        assertThrows(IllegalArgumentException.class, () -> FoxgloveServer.Options.live("test", "127.0.0.1", 0).listening("192.0.2.7", null));
+        assertThrows(IllegalArgumentException.class, () -> FoxgloveServer.Options.live("test", "127.0.0.1", 0).listening("192.0.2.7", "short"));
+        String token = "a-token-of-some-length";
+        assertFalse(FoxgloveServer.Options.live("test", "127.0.0.1", 0).listening("192.0.2.7", token).toString().contains(token),
+                "the options' text does not show the token");
+        FoxgloveServer s = server(FoxgloveServer.Options.live("test", "127.0.0.1", 0).listening("127.0.0.1", token), Teleop.NONE);
+        String handshake = "GET /%s HTTP/1.1\r\nHost: 127.0.0.1:" + s.port() + "\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n%s"
+                + "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\nSec-WebSocket-Protocol: foxglove.websocket.v1\r\n\r\n";
+        assertTrue(status(s.port(), handshake.formatted("", "")).contains(" 401 "));
+        assertTrue(status(s.port(), handshake.formatted("?token=a-token-of-some-lengtH", "")).contains(" 401 "));
+        assertTrue(status(s.port(), handshake.formatted("?token=" + token, "")).contains(" 101 "));
+        assertTrue(status(s.port(), handshake.formatted("", "Authorization: Bearer " + token + "\r\n")).contains(" 101 "));
+    }
+
     private static String status(int port, String request) throws java.io.IOException {
         try (java.net.Socket socket = new java.net.Socket("127.0.0.1", port)) {
             socket.setSoTimeout(10_000);

@@ -1,5 +1,7 @@
 package io.robomw.console.record;
 
+import com.fasterxml.jackson.databind.JsonNode;
+import com.fasterxml.jackson.databind.ObjectMapper;
 import io.robomw.console.mcap.McapReader;
 import io.robomw.console.mcap.McapRecord;
 import io.robomw.console.observe.HostView;
@@ -40,6 +42,7 @@ class RecordingRoundTripTest {
                 new Observation.World(T0, world),
                 new Observation.RobotPose(T0 + 1_000_000, "nxt", 0.5, 0.5, 0.25, true),
                 new Observation.RobotPose(T0 + 2_000_000, "nxt", 0.49, 0.51, 0.26, false),
+                new Observation.RobotPose(T0 + 2_500_000, "copter", 1.5, 0.75, 2.0, -0.5, true), // a flyer at 2 m
                 new Observation.SensorReading(T0 + 3_000_000, "nxt", "sonar", 0.73, "m"),
                 new Observation.RobotCommand(T0 + 4_000_000, "nxt", "move", Map.of("distance", 0.4, "speed", 0.2)),
                 new Observation.RobotStatus(T0 + 5_000_000, "nxt", "tcp://127.0.0.1:7000/nxt", false, "no answer"),
@@ -62,6 +65,38 @@ class RecordingRoundTripTest {
             assertEquals(withoutTime(run().get(i)), withoutTime(replayed.get(i)), "observation " + i);
         }
         assertEquals(0.008, played.recordedSeconds(), 1e-9);
+    }
+
+    @Test
+    void aFlyersAltitudeAndTheWorldsWaterAreRecordedWhereFoxgloveReadsThem(@TempDir Path dir) throws Exception {
+        WorldMap harbour = new WorldMap("harbour", 10, 8, false, 0.1, 0.8, List.of(), List.of(), List.of(),
+                List.of(List.of(new double[] {0, 0}, new double[] {10, 0}, new double[] {10, 3}, new double[] {0, 3})));
+        Path file = dir.resolve("flight.mcap");
+        try (McapRecorder r = McapRecorder.start(file, Map.of("command", "test"))) {
+            r.observe(new Observation.World(T0, harbour));
+            r.observe(new Observation.RobotPose(T0 + 1_000_000, "copter", 4, 5, 2.25, 0, true));
+        }
+        List<Observation> replayed = new ArrayList<>();
+        McapReplay.play(file, replayed::add, 0, () -> false);
+        Observation.RobotPose pose = replayed.stream().filter(o -> o instanceof Observation.RobotPose).map(o -> (Observation.RobotPose) o)
+                .findFirst().orElseThrow();
+        assertEquals(2.25, pose.z(), 1e-9, "the altitude comes back from the recording");
+        WorldMap map = replayed.stream().filter(o -> o instanceof Observation.World).map(o -> ((Observation.World) o).map()).findFirst().orElseThrow();
+        assertEquals(1, map.water().size());
+        assertEquals(10.0, map.water().get(0).get(2)[0], "the water area's corner comes back");
+        assertTrue(map.description().surroundings().onWater(5, 1.5), "a replayed picture knows the water too");
+        RecordingCodec.Out scene = RecordingCodec.encode(new Observation.World(T0, harbour)).stream()
+                .filter(o -> o.schema().equals("foxglove.SceneUpdate")).findFirst().orElseThrow();
+        JsonNode lines = new ObjectMapper().readTree(scene.json()).at("/entities/0/lines");
+        assertEquals(1, lines.size(), "the water's outline in Foxglove's 3D panel");
+        assertEquals(4, lines.get(0).get("points").size());
+        for (RecordingCodec.Out out : RecordingCodec.encode(new Observation.RobotPose(T0, "copter", 4, 5, 2.25, 0, true))) {
+            JsonNode n = new ObjectMapper().readTree(out.json());
+            JsonNode z = out.topic().equals(RecordingCodec.TF) ? n.at("/translation/z") : n.at("/pose/position/z");
+            if (!z.isMissingNode()) {
+                assertEquals(2.25, z.doubleValue(), 1e-9, out.topic() + " carries z for Foxglove's 3D panel");
+            }
+        }
     }
 
     @Test
@@ -124,7 +159,7 @@ class RecordingRoundTripTest {
         assertEquals("robomw.SensorReading", topicSchema.get("/robots/nxt/sensors/sonar"));
         assertEquals("robomw.AgentEvent", topicSchema.get("/agents/events"));
         assertTrue(metadata.contains("robomw=" + McapRecorder.FORMAT_VERSION), metadata.toString());
-        assertEquals(12, stats.messageCount(), "9 observations, plus the scene, the transform and the log line they bring");
+        assertEquals(14, stats.messageCount(), "10 observations, plus the scene, the two true poses' transforms and the log line they bring");
         assertTrue(stats.chunkCount() >= 1);
     }
 
@@ -164,7 +199,7 @@ class RecordingRoundTripTest {
         if (o instanceof Observation.World w) {
             return w.map();
         } else if (o instanceof Observation.RobotPose p) {
-            return List.of(p.robot(), Math.round(p.x() * 1e9), Math.round(p.y() * 1e9), Math.round(p.heading() * 1e9), p.truth());
+            return List.of(p.robot(), Math.round(p.x() * 1e9), Math.round(p.y() * 1e9), Math.round(p.z() * 1e9), Math.round(p.heading() * 1e9), p.truth());
         } else if (o instanceof Observation.SensorReading s) {
             return new Observation.SensorReading(0, s.robot(), s.sensor(), s.value(), s.unit());
         } else if (o instanceof Observation.RobotCommand c) {

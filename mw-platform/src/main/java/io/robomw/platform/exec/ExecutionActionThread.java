@@ -105,7 +105,7 @@ public final class ExecutionActionThread implements AutoCloseable {
     // Fields rather than atomic objects, read by every cycle: one object less each to bring into
     // the cache for each of the thousands of robots a simulation cycles in one pass.
     /** Set by {@link #linkFailed} (any thread), taken by the next cycle. */
-    private volatile RobotLinkException linkFailure;
+    private volatile LinkFailure linkFailure;
     /** Set by {@link #driverFailed} (any thread), taken by the next cycle. */
     private volatile Refusal driverFailure;
     /** The cycle listeners, replaced as a whole when one is added. */
@@ -273,9 +273,21 @@ public final class ExecutionActionThread implements AutoCloseable {
      * @param cause the failure
      */
     public void linkFailed(String link, Throwable cause) {
-        LINK_FAILURE.compareAndSet(this, null, new RobotLinkException("robot '" + robot + "': link " + link + " failed: " + cause.getMessage()
-                + "; its motors were stopped", cause));
+        long throughTicket;
+        synchronized (this) {
+            throughTicket = lastTicket;
+        }
+        LINK_FAILURE.compareAndSet(this, null, new LinkFailure(new RobotLinkException("robot '" + robot + "': link " + link + " failed: "
+                + cause.getMessage() + "; its motors were stopped", cause), throughTicket));
         wake();
+    }
+
+    /**
+     * A link failure and the last ticket submitted when it was reported: containers submitted up to
+     * it (queued while the link still looked up) end with it too, instead of being admitted to wait
+     * on a link that is gone; those submitted after it (the safety stop that follows) are admitted.
+     */
+    private record LinkFailure(RobotLinkException cause, long throughTicket) {
     }
 
     /**
@@ -366,7 +378,8 @@ public final class ExecutionActionThread implements AutoCloseable {
     /**
      * Runs one cycle, in this order:
      * <ol>
-     *   <li>If the link failed, end every container with {@link RobotLinkException}; if the hardware
+     *   <li>If the link failed, end every container with {@link RobotLinkException} (and, at
+     *   admission below, those queued before the failure was reported); if the hardware
      *   refused a command ({@link #driverFailed}), end every container it concerns (those admitted
      *   up to the cycle it names) with that refusal.</li>
      *   <li>Admit queued containers and refresh slots in the order they were submitted, applying
@@ -386,10 +399,10 @@ public final class ExecutionActionThread implements AutoCloseable {
         // On its own thread a cycle's steps are timed, so an overrun names the slowest (WPILib's epochs).
         boolean timed = runner != null;
         slowestNanos = 0;
-        RobotLinkException failure = linkFailure == null ? null : (RobotLinkException) LINK_FAILURE.getAndSet(this, null);
+        LinkFailure failure = linkFailure == null ? null : (LinkFailure) LINK_FAILURE.getAndSet(this, null);
         if (failure != null) {
             for (Container c : snapshot()) {
-                finish(c, true, failure);
+                finish(c, true, failure.cause());
             }
         }
         Refusal refused = driverFailure == null ? null : (Refusal) DRIVER_FAILURE.getAndSet(this, null);
@@ -410,6 +423,11 @@ public final class ExecutionActionThread implements AutoCloseable {
             if (next instanceof Container c) {
                 if (c.completion().isCancelled()) {
                     continue; // its caller cancelled it before it started: it never runs
+                }
+                if (failure != null && c.ticket <= failure.throughTicket()) {
+                    // queued before the link was reported lost: it ends as those running did, never started
+                    c.completion().completeExceptionally(failure.cause());
+                    continue;
                 }
                 admit(c, start);
                 if (timed) {
@@ -920,7 +938,7 @@ public final class ExecutionActionThread implements AutoCloseable {
     static {
         try {
             java.lang.invoke.MethodHandles.Lookup l = java.lang.invoke.MethodHandles.lookup();
-            LINK_FAILURE = l.findVarHandle(ExecutionActionThread.class, "linkFailure", RobotLinkException.class);
+            LINK_FAILURE = l.findVarHandle(ExecutionActionThread.class, "linkFailure", LinkFailure.class);
             DRIVER_FAILURE = l.findVarHandle(ExecutionActionThread.class, "driverFailure", Refusal.class);
             CYCLES = l.findVarHandle(ExecutionActionThread.class, "cycles", long.class);
             FAILURE = l.findVarHandle(ExecutionActionThread.class, "failure", RobotException.class);

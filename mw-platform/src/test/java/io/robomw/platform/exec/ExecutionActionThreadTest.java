@@ -260,6 +260,20 @@ class ExecutionActionThreadTest {
     }
 
     @Test
+    void shouldEndAContainerSubmittedBeforeTheLinkWasReportedLostButNotYetAdmitted() {
+        // the platform admitted it while the link was up; the link agent found it down before the next cycle
+        CompletableFuture<Void> late = thread.submit(normal("late", new AtomicBoolean(), "A"));
+        thread.linkFailed("serial /dev/pts/9", new IOException("port closed"));
+        // what follows the report (the link's safety stop) is admitted
+        CompletableFuture<Void> after = thread.submit(normal("after", new AtomicBoolean(true), "B"));
+        thread.cycle();
+
+        assertInstanceOf(RobotLinkException.class, failure(late), "not left waiting on a link that is down");
+        assertFalse(thread.actuatorsInUse().contains("A"), "it never took its actuators");
+        assertTrue(after.isDone() && !after.isCompletedExceptionally(), "the command submitted after the report ran");
+    }
+
+    @Test
     void shouldEndContainerWhoseLogicThrowsAndKeepCycling() {
         Container bad = Container.builder("bad").requires("A").logic(now -> {
             throw new IllegalStateException("sensor exploded");

@@ -134,6 +134,19 @@ public final class Dyn4jPhysics implements Physics {
     }
 
     @Override
+    public void setVelocity(int index, double vx, double vy, double w) {
+        Body body = bodies.get(index);
+        if (vx == 0 && vy == 0 && w == 0 && body.isAtRest()) {
+            return;
+        }
+        body.setLinearVelocity(vx, vy);
+        body.setAngularVelocity(w);
+        if (vx != 0 || vy != 0 || w != 0) {
+            body.setAtRest(false);
+        }
+    }
+
+    @Override
     public void contacts(int index, ContactSink sink) {
         Body body = bodies.get(index);
         for (ContactConstraint<Body> c : world.getContacts(body)) {

@@ -126,6 +126,17 @@ public interface Physics {
     void drive(int body, double v, double w);
 
     /**
+     * Sets a body's velocities for the next step in the world's frame, for bodies pushed sideways
+     * as well as along their heading (a vehicle in wind or a current).
+     *
+     * @param body a body's number
+     * @param vx   velocity along x, m/s
+     * @param vy   velocity along y, m/s
+     * @param w    angular speed, rad/s, anti-clockwise
+     */
+    void setVelocity(int body, double vx, double vy, double w);
+
+    /**
      * Reports where a body touched something in the last step.
      *
      * @param body a body's number

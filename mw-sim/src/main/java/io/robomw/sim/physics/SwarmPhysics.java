@@ -328,6 +328,13 @@ public final class SwarmPhysics implements Physics {
     }
 
     @Override
+    public void setVelocity(int body, double vx, double vy, double omega) {
+        this.vx[body] = vx;
+        this.vy[body] = vy;
+        w[body] = omega;
+    }
+
+    @Override
     public void contacts(int body, ContactSink sink) {
         if (body + 1 >= bodyContactStart.length) {
             return; // added since the last step: it has touched nothing yet

@@ -30,7 +30,7 @@ class SimPlatform implements RobotPlatform {
     }
 
     /** The same for a legged robot's platform, which also takes high-level commands. */
-    static final class HighLevel extends SimPlatform implements HighLevelPlatform {
+    static class HighLevel extends SimPlatform implements HighLevelPlatform {
         private final HighLevelPlatform highLevel;
 
         <P extends RobotPlatform & HighLevelPlatform> HighLevel(P platform, Lockstep lockstep) {
@@ -46,6 +46,34 @@ class SimPlatform implements RobotPlatform {
         @Override
         public Clock clock() {
             return highLevel.clock();
+        }
+    }
+
+    /**
+     * A vehicle's platform: high-level commands, and its true pose in the world (x east, y north,
+     * heading anti-clockwise from east, z its altitude) as a vehicle's autopilot reports it.
+     */
+    static final class Vehicle extends HighLevel implements io.robomw.api.spi.PoseSource {
+        private final io.robomw.sim.vehicle.SimVehicle vehicle;
+        private final Runnable onClose;
+
+        <P extends RobotPlatform & HighLevelPlatform> Vehicle(P platform, Lockstep lockstep, io.robomw.sim.vehicle.SimVehicle vehicle,
+                                                              Runnable onClose) {
+            super(platform, lockstep);
+            this.vehicle = vehicle;
+            this.onClose = onClose;
+        }
+
+        @Override
+        public java.util.Optional<io.robomw.api.Pose> reportedPose() {
+            io.robomw.sim.vehicle.SimVehicle.Snapshot s = vehicle.snapshot();
+            return java.util.Optional.of(new io.robomw.api.Pose(s.x(), s.y(), s.heading(), s.z()));
+        }
+
+        @Override
+        public void close() {
+            onClose.run();
+            super.close();
         }
     }
 

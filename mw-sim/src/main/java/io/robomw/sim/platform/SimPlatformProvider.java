@@ -15,7 +15,8 @@ import java.io.IOException;
  * {@code platform: sim}: a robot in a simulated world. The world comes from the platform
  * services ({@link io.robomw.sim.Simulation} passes it); the robot is the world's robot of the
  * same name. A robot with a legged drive gets a platform that takes high-level commands
- * ({@link LeggedSimPlatform}).
+ * ({@link LeggedSimPlatform}); a vehicle one that flies them on its simulated vehicle
+ * ({@link io.robomw.sim.vehicle.VehicleSimPlatform}).
  */
 public final class SimPlatformProvider implements PlatformProvider {
 
@@ -31,6 +32,22 @@ public final class SimPlatformProvider implements PlatformProvider {
                         + "(mw sim WORLD.yaml, or Simulation.load(world).robot(name))"));
         SimMotors motors = SimMotors.of(world, config.robotName()).orElseThrow(() -> new IOException(
                 "robot '" + config.robotName() + "' is not in world '" + world.description().name() + "' (" + world.description().source() + ")"));
+        if (motors.robot().vehicle() != null) {
+            io.robomw.sim.SimRobot robot = motors.robot();
+            io.robomw.sim.vehicle.VehicleSimPlatform pilot = new io.robomw.sim.vehicle.VehicleSimPlatform(config.robotName(), config.clock(),
+                    robot.vehicle(), robot.description().vehicleDrive().orElseThrow());
+            HighLevelRobotPlatform platform = new HighLevelRobotPlatform(config, pilot, new SimSensorPlatform(motors), null);
+            world.attach(robot, platform.actionThread());
+            double dt = world.stepSeconds();
+            int index = robot.index();
+            java.util.function.IntConsumer control = i -> {
+                if (i == index) {
+                    pilot.control(dt);
+                }
+            };
+            world.addRobotController(1, control);
+            return new SimPlatform.Vehicle(platform, world.lockstep(), robot.vehicle(), () -> world.removeRobotController(control));
+        }
         if (motors.robot().quadruped() != null) {
             LeggedSimPlatform legged = new LeggedSimPlatform(config, motors.robot());
             HighLevelRobotPlatform platform = new HighLevelRobotPlatform(config, legged, new SimSensorPlatform(motors), null);

@@ -25,8 +25,9 @@ import java.util.Locale;
 /**
  * Draws a simulated world with Java2D: the one drawing code of both the PNG renderer and the
  * viewer. Paints, in this order: the background, the arena floor, floor patches (grey by
- * brightness), walls, obstacles, trajectories, sensor rays, robots (oriented bodies with a heading
- * mark), name labels, then the world's name and time and a scale bar.
+ * brightness), water (blue), walls, obstacles, trajectories (a flyer's dashed), sensor rays, robots
+ * (oriented bodies with a heading mark; a flyer with its rotors), name labels (a flyer's with its
+ * altitude), then the world's name, time, wind and current, and a scale bar.
  *
  * <p>Reads only what may be read while the simulation thread steps (each robot's pose, trajectory
  * and latest range readings, and the world's time), so a viewer may paint from the Swing thread
@@ -42,6 +43,8 @@ public final class WorldPainter {
     private static final Color RAY_HIT = new Color(220, 30, 30, 170);
     private static final Color RAY_FREE = new Color(40, 150, 60, 150);
     private static final Color TEXT = new Color(0x202020);
+    private static final Color WATER = new Color(0x9CC7E4);
+    private static final Color WATER_EDGE = new Color(0x5B95BF);
     private static final Color HALO = new Color(255, 255, 255, 150);
     /** Distinct colours for the first robots (the Tableau 10 palette without its grey); later robots get spread hues. */
     private static final int[] PALETTE = {0x4E79A7, 0xF28E2B, 0xE15759, 0x59A14F, 0xB07AA1, 0x76B7B2, 0xEDC948, 0xFF9DA7, 0x9C755F};
@@ -161,6 +164,20 @@ public final class WorldPainter {
             g.setColor(grey(p.brightness()));
             g.fill(rect(view, new Rectangle2D.Double(p.x(), p.y(), p.width(), p.height())));
         }
+        g.setStroke(new BasicStroke(1f));
+        for (WorldDescription.WaterArea w : d.surroundings().water()) {
+            Path2D.Double path = new Path2D.Double();
+            List<double[]> points = w.points();
+            path.moveTo(view.screenX(points.get(0)[0]), view.screenY(points.get(0)[1]));
+            for (double[] xy : points.subList(1, points.size())) {
+                path.lineTo(view.screenX(xy[0]), view.screenY(xy[1]));
+            }
+            path.closePath();
+            g.setColor(WATER);
+            g.fill(path);
+            g.setColor(WATER_EDGE);
+            g.draw(path);
+        }
         g.setStroke(new BasicStroke(1.5f));
         for (WorldDescription.Obstacle o : d.obstacles()) {
             Shape s = obstacle(o, view);
@@ -213,8 +230,14 @@ public final class WorldPainter {
         g.setStroke(halo);
         g.draw(path);
         g.setColor(robotColor(r.index()));
-        g.setStroke(line);
+        g.setStroke(flyer(r) ? new BasicStroke(line.getLineWidth(), BasicStroke.CAP_ROUND, BasicStroke.JOIN_ROUND, 1f,
+                new float[]{6f, 4f}, 0f) : line);
         g.draw(path);
+    }
+
+    /** @return whether a robot is a vehicle of the air */
+    private static boolean flyer(SimRobot r) {
+        return r.vehicle() != null && r.vehicle().medium() == io.robomw.config.description.VehicleDrive.Medium.AIR;
     }
 
     private static void paintRays(Graphics2D g, SimRobot r, ViewTransform view) {
@@ -250,6 +273,9 @@ public final class WorldPainter {
         }
         if (r.quadruped() != null) {
             paintLegs(g, r, view, p, b, color);
+        }
+        if (flyer(r)) {
+            paintRotors(g, view, p, b, color);
         }
         Shape body = orientedRect(view, p.x(), p.y(), p.heading(), b.length(), b.width());
         g.setColor(color);
@@ -301,6 +327,24 @@ public final class WorldPainter {
                 view.screenX(p.x() + tx * c - ty * s), view.screenY(p.y() + tx * s + ty * c)));
     }
 
+    /** A multirotor from above: four rotor discs at the body's corners, drawn under it. */
+    private static void paintRotors(Graphics2D g, ViewTransform view, Pose p, Body b, Color color) {
+        double c = Math.cos(p.heading());
+        double s = Math.sin(p.heading());
+        double r = Math.min(b.length(), b.width()) * 0.3 * view.scale();
+        g.setStroke(new BasicStroke(1.2f));
+        for (double[] corner : new double[][]{{0.5, 0.5}, {0.5, -0.5}, {-0.5, 0.5}, {-0.5, -0.5}}) {
+            double lx = corner[0] * b.length();
+            double ly = corner[1] * b.width();
+            double x = view.screenX(p.x() + lx * c - ly * s);
+            double y = view.screenY(p.y() + lx * s + ly * c);
+            g.setColor(new Color(color.getRed(), color.getGreen(), color.getBlue(), 90));
+            g.fill(new Ellipse2D.Double(x - r, y - r, 2 * r, 2 * r));
+            g.setColor(ROBOT_EDGE);
+            g.draw(new Ellipse2D.Double(x - r, y - r, 2 * r, 2 * r));
+        }
+    }
+
     private static void paintLabel(Graphics2D g, SimRobot r, ViewTransform view) {
         Pose p = r.pose();
         Body b = r.description().body();
@@ -308,18 +352,21 @@ public final class WorldPainter {
         float x = (float) (view.screenX(p.x()) + radiusPx + 3);
         float y = (float) (view.screenY(p.y()) - radiusPx - 3);
         g.setColor(HALO);
+        String label = flyer(r) ? String.format(Locale.ROOT, "%s  %.1f m", r.name(), r.vehicle().snapshot().z()) : r.name();
         for (int[] d : new int[][]{{-1, 0}, {1, 0}, {0, -1}, {0, 1}}) {
-            g.drawString(r.name(), x + d[0], y + d[1]);
+            g.drawString(label, x + d[0], y + d[1]);
         }
         g.setColor(TEXT);
-        g.drawString(r.name(), x, y);
+        g.drawString(label, x, y);
     }
 
     /** The world's name and time in the top-left corner, a scale bar in the bottom-left one. */
     private static void paintCaption(Graphics2D g, SimWorld world, ViewTransform view, int heightPx) {
         g.setFont(new Font(Font.SANS_SERIF, Font.BOLD, 13));
         FontMetrics fm = g.getFontMetrics();
-        String caption = String.format(Locale.ROOT, "%s   t = %.1f s", world.description().name(), world.time());
+        WorldDescription.Surroundings around = world.description().surroundings();
+        String caption = String.format(Locale.ROOT, "%s   t = %.1f s", world.description().name(), world.time())
+                + flow("wind", around.windX(), around.windY()) + flow("current", around.currentX(), around.currentY());
         // A pale box under the text keeps it readable when the view is zoomed onto the arena.
         g.setColor(HALO);
         g.fill(new Rectangle2D.Double(4, 2, fm.stringWidth(caption) + 8, fm.getHeight() + 2));
@@ -338,6 +385,16 @@ public final class WorldPainter {
         g.draw(new Line2D.Double(8, y - 4, 8, y));
         g.draw(new Line2D.Double(8 + px, y - 4, 8 + px, y));
         g.drawString(label, (float) (14 + px), y + 1);
+    }
+
+    /** @return {@code "   wind 1.5 m/s toward 90°"} (a compass bearing), or "" when still */
+    private static String flow(String what, double x, double y) {
+        double speed = Math.hypot(x, y);
+        if (speed == 0) {
+            return "";
+        }
+        double bearing = (Math.toDegrees(Math.atan2(x, y)) + 360) % 360;
+        return String.format(Locale.ROOT, "   %s %.2f m/s toward %.0f°", what, speed, bearing);
     }
 
     /**

@@ -24,13 +24,14 @@ import java.util.List;
  * @param trajectories    how the robots' paths are sampled and how many points each keeps
  * @param engine          the physics engine that steps the world
  * @param source          the file, for messages
+ * @param surroundings    water, wind, current and the world's place on Earth, for vehicles
  * @param swarms          the file's swarm entries, as written (their robots are among {@code robots}, after the
  *                        robots placed one by one, in the order of the entries)
  */
 public record WorldDescription(String name, double width, double height, boolean walls, double wallThickness,
                                double floorBrightness, List<Obstacle> obstacles, List<FloorPatch> patches,
                                List<RobotPlacement> robots, long seed, double physicsHz, TrajectorySettings trajectories,
-                               PhysicsEngine engine, String source, List<Swarm> swarms) {
+                               PhysicsEngine engine, String source, Surroundings surroundings, List<Swarm> swarms) {
 
     /** Copies the lists. */
     public WorldDescription {
@@ -39,11 +40,39 @@ public record WorldDescription(String name, double width, double height, boolean
         robots = List.copyOf(robots);
         java.util.Objects.requireNonNull(trajectories, "trajectories");
         java.util.Objects.requireNonNull(engine, "engine");
+        java.util.Objects.requireNonNull(surroundings, "surroundings");
         swarms = List.copyOf(swarms);
     }
 
     /**
      * A world without swarm entries (every robot placed one by one).
+     *
+     * @param name            the world's name
+     * @param width           arena width (x), metres
+     * @param height          arena height (y), metres
+     * @param walls           whether the arena is closed by walls
+     * @param wallThickness   thickness of those walls, metres
+     * @param floorBrightness brightness of the bare floor, 0 (black) to 1 (white)
+     * @param obstacles       static obstacles
+     * @param patches         floor patches seen by light and colour sensors
+     * @param robots          the robots and where they start
+     * @param seed            seed of every random number in the run (sensor noise)
+     * @param physicsHz       physics steps per simulated second
+     * @param trajectories    how the robots' paths are sampled and how many points each keeps
+     * @param engine          the physics engine that steps the world
+     * @param source          the file, for messages
+     * @param surroundings    water, wind, current and the world's place on Earth, for vehicles
+     */
+    public WorldDescription(String name, double width, double height, boolean walls, double wallThickness,
+                            double floorBrightness, List<Obstacle> obstacles, List<FloorPatch> patches,
+                            List<RobotPlacement> robots, long seed, double physicsHz, TrajectorySettings trajectories,
+                            PhysicsEngine engine, String source, Surroundings surroundings) {
+        this(name, width, height, walls, wallThickness, floorBrightness, obstacles, patches, robots, seed, physicsHz, trajectories,
+                engine, source, surroundings, List.of());
+    }
+
+    /**
+     * A world without water, wind or current ({@link Surroundings#NONE}) or swarm entries.
      *
      * @param name            the world's name
      * @param width           arena width (x), metres
@@ -65,7 +94,106 @@ public record WorldDescription(String name, double width, double height, boolean
                             List<RobotPlacement> robots, long seed, double physicsHz, TrajectorySettings trajectories,
                             PhysicsEngine engine, String source) {
         this(name, width, height, walls, wallThickness, floorBrightness, obstacles, patches, robots, seed, physicsHz, trajectories,
-                engine, source, List.of());
+                engine, source, Surroundings.NONE);
+    }
+
+    /**
+     * What vehicles meet in a world besides its obstacles (the {@code water:}, {@code wind:},
+     * {@code current:} and {@code home:} keys of a world file). Vectors are in the world's frame
+     * (x east, y north), metres per second, the way the air or water moves.
+     *
+     * @param water   the areas of water a boat may be on (nowhere else)
+     * @param windX   the wind's x, m/s
+     * @param windY   the wind's y, m/s
+     * @param currentX the water's current x, m/s
+     * @param currentY the water's current y, m/s
+     * @param home    where the world's origin (its lower-left corner) is on Earth
+     */
+    public record Surroundings(List<WaterArea> water, double windX, double windY, double currentX, double currentY, GeoOrigin home) {
+
+        /** No water, still air and water; the origin at ArduPilot SITL's default home. */
+        public static final Surroundings NONE = new Surroundings(List.of(), 0, 0, 0, 0, GeoOrigin.SITL_DEFAULT);
+
+        /** Copies the list. */
+        public Surroundings {
+            water = List.copyOf(water);
+            java.util.Objects.requireNonNull(home, "home");
+        }
+
+        /**
+         * @param x a point's x
+         * @param y a point's y
+         * @return whether the point is on water
+         */
+        public boolean onWater(double x, double y) {
+            for (WaterArea w : water) {
+                if (w.contains(x, y)) {
+                    return true;
+                }
+            }
+            return false;
+        }
+    }
+
+    /**
+     * An area of water: a rectangle or a simple polygon (any shape; its points in either order).
+     *
+     * @param points the corners, {x, y} in world coordinates
+     */
+    public record WaterArea(List<double[]> points) {
+        /** Copies. */
+        public WaterArea {
+            points = List.copyOf(points);
+        }
+
+        /**
+         * @param x lower-left corner x
+         * @param y lower-left corner y
+         * @param width along x
+         * @param height along y
+         * @return a rectangle of water
+         */
+        public static WaterArea rectangle(double x, double y, double width, double height) {
+            return new WaterArea(List.of(new double[]{x, y}, new double[]{x + width, y}, new double[]{x + width, y + height},
+                    new double[]{x, y + height}));
+        }
+
+        /**
+         * @param px a point's x
+         * @param py a point's y
+         * @return whether it is inside (even-odd rule)
+         */
+        public boolean contains(double px, double py) {
+            boolean in = false;
+            for (int i = 0, j = points.size() - 1; i < points.size(); j = i++) {
+                double[] a = points.get(i);
+                double[] b = points.get(j);
+                if ((a[1] > py) != (b[1] > py) && px < (b[0] - a[0]) * (py - a[1]) / (b[1] - a[1]) + a[0]) {
+                    in = !in;
+                }
+            }
+            return in;
+        }
+    }
+
+    /**
+     * Where a world's origin is on Earth: its x axis points east, its y axis north, its z up.
+     *
+     * @param latitude  degrees, -90 to 90
+     * @param longitude degrees, -180 to 180
+     * @param altitude  metres above mean sea level
+     */
+    public record GeoOrigin(double latitude, double longitude, double altitude) {
+        /** ArduPilot SITL's default home (CMAC, Canberra Model Aircraft Club): -35.363261, 149.165230, 584 m. */
+        public static final GeoOrigin SITL_DEFAULT = new GeoOrigin(-35.363261, 149.165230, 584);
+
+        /** Checks the ranges. */
+        public GeoOrigin {
+            if (!(Math.abs(latitude) <= 90) || !(Math.abs(longitude) <= 180) || !Double.isFinite(altitude)) {
+                throw new IllegalArgumentException("a home is latitude -90..90, longitude -180..180 and a finite altitude, got "
+                        + latitude + ", " + longitude + ", " + altitude);
+            }
+        }
     }
 
     /**
@@ -99,7 +227,7 @@ public record WorldDescription(String name, double width, double height, boolean
      */
     public WorldDescription withEngine(PhysicsEngine other) {
         return new WorldDescription(name, width, height, walls, wallThickness, floorBrightness, obstacles, patches, robots, seed,
-                physicsHz, trajectories, other, source, swarms);
+                physicsHz, trajectories, other, source, surroundings, swarms);
     }
 
     /** The physics engine that steps a world (the {@code physics: { engine: ... }} key of a world file). */

@@ -39,6 +39,12 @@ import java.util.Set;
  *   - { robot: ../robots/sim-two-wheeled.yaml, name: r1, x: 0.5, y: 1.5, heading: 0 }
  * swarms:                       # many robots from one entry, named bot-1 ... bot-5000
  *   - { robot: ../robots/swarm-bot.yaml, count: 5000, name: bot, area: { x: 0, y: 0, width: 80, height: 80 }, seed: 7 }
+ * water:                        # where boats may go (vehicles, docs/vehicles.md)
+ *   - { x: 10, y: 0, width: 20, height: 30 }
+ *   - { polygon: [[10, 30], [30, 30], [20, 40]] }
+ * wind: { x: 2, y: 0 }          # m/s, the way the air moves
+ * current: { x: 0, y: 0.3 }     # m/s, the way the water moves
+ * home: { latitude: 50.15, longitude: -5.07, altitude: 0 }   # the origin on Earth
  * </pre>
  *
  * Robot paths are relative to the world file, and must stay in its directory tree
@@ -176,8 +182,9 @@ public final class WorldLoader {
         List<SwarmEntry> swarmEntries = new ArrayList<>();
         int entry = 0;
         for (MappingReader s : root.mappingList("swarms")) {
-            swarmEntry(s, dir, width, height, seed, entry++, bodies).ifPresent(swarmEntries::add);
+            swarmEntry(s, dir, scope, width, height, seed, entry++, bodies).ifPresent(swarmEntries::add);
         }
+        WorldDescription.Surroundings surroundings = surroundings(root);
         root.finish();
         List<WorldDescription.Swarm> swarms = new ArrayList<>();
         if (root.problems().isEmpty()) {
@@ -202,7 +209,7 @@ public final class WorldLoader {
         }
         root.problems().throwIfAny();
         return new WorldDescription(name, width, height, walls, thickness, floor, obstacles, patches, robots, seed, physicsHz, trajectories,
-                engine, file.toString(), swarms);
+                engine, file.toString(), surroundings, swarms);
     }
 
     /** A swarm entry as read, before its robots are placed. */
@@ -211,13 +218,17 @@ public final class WorldLoader {
     }
 
     /** Reads a swarm entry; empty if a value is invalid (reported). */
-    private static Optional<SwarmEntry> swarmEntry(MappingReader s, Path dir, double arenaW, double arenaH, long worldSeed, int index,
+    private static Optional<SwarmEntry> swarmEntry(MappingReader s, Path dir, FileScope scope, double arenaW, double arenaH, long worldSeed, int index,
                                                    Map<Path, Optional<Body>> bodies) {
         int problemsBefore = s.problems().count();
         String robotFile = s.requireText("robot");
         Path robotPath = dir.resolve(robotFile).normalize();
         Optional<Body> body = Optional.empty();
-        if (!robotFile.isEmpty() && !Files.isRegularFile(robotPath)) {
+        // the same rule as a robot's entry: a swarm's robot file stays in the world file's tree, and a refused one is never read
+        Optional<String> outside = robotFile.isEmpty() ? Optional.empty() : scope.refusal(robotPath);
+        if (outside.isPresent()) {
+            s.problem("robot", "refused: " + outside.get());
+        } else if (!robotFile.isEmpty() && !Files.isRegularFile(robotPath)) {
             s.problem("robot", "no such robot file: " + robotPath);
         } else if (!robotFile.isEmpty()) {
             body = bodies.computeIfAbsent(robotPath, WorldLoader::body);
@@ -318,6 +329,68 @@ public final class WorldLoader {
             r[3] = Math.max(r[3], q[1]);
         }
         return r;
+    }
+
+    /** The keys vehicles need: water areas, wind, current, home. */
+    private WorldDescription.Surroundings surroundings(MappingReader root) {
+        List<WorldDescription.WaterArea> water = new ArrayList<>();
+        for (MappingReader w : root.mappingList("water")) {
+            if (w.has("polygon")) {
+                List<double[]> points = new ArrayList<>();
+                for (MappingReader.NumberRow row : w.numberRows("polygon")) {
+                    if (row.values().length != 2 || !coordinate(row.values()[0]) || !coordinate(row.values()[1])) {
+                        w.problems().add(row.mark(), "'" + w.path() + ".polygon' points must be [x, y] pairs " + COORDINATE);
+                    } else {
+                        points.add(row.values());
+                    }
+                }
+                if (points.size() < 3 || points.size() > MAX_POLYGON_POINTS) {
+                    w.problem("polygon", "needs 3 to " + MAX_POLYGON_POINTS + " points, got " + points.size());
+                } else if (Math.abs(area(points)) < MIN_SIZE * MIN_SIZE) {
+                    w.problem("polygon", "encloses no area; give it some");
+                } else {
+                    water.add(new WorldDescription.WaterArea(points));
+                }
+            } else {
+                double x = w.requireNumber("x", COORDINATE, WorldLoader::coordinate);
+                double y = w.requireNumber("y", COORDINATE, WorldLoader::coordinate);
+                double wd = w.requireNumber("width", SIZE, WorldLoader::size);
+                double h = w.requireNumber("height", SIZE, WorldLoader::size);
+                if (Double.isFinite(x) && Double.isFinite(y) && Double.isFinite(wd) && Double.isFinite(h)) {
+                    water.add(WorldDescription.WaterArea.rectangle(x, y, wd, h));
+                }
+            }
+            w.finish();
+        }
+        double[] wind = flow(root, "wind");
+        double[] current = flow(root, "current");
+        WorldDescription.GeoOrigin home = WorldDescription.GeoOrigin.SITL_DEFAULT;
+        Optional<MappingReader> h = root.mapping("home");
+        if (h.isPresent()) {
+            MappingReader m = h.get();
+            double lat = m.requireNumber("latitude", "between -90 and 90 degrees", v -> Math.abs(v) <= 90);
+            double lon = m.requireNumber("longitude", "between -180 and 180 degrees", v -> Math.abs(v) <= 180);
+            double alt = m.number("altitude", 0, "between -500 and 10000 metres", v -> v >= -500 && v <= 10_000);
+            m.finish();
+            if (Math.abs(lat) <= 90 && Math.abs(lon) <= 180 && Double.isFinite(alt)) {
+                home = new WorldDescription.GeoOrigin(lat, lon, alt);
+            }
+        }
+        return new WorldDescription.Surroundings(water, wind[0], wind[1], current[0], current[1], home);
+    }
+
+    /** A velocity of the air or the water, {@code { x: 2, y: 0 }} in m/s. */
+    private static double[] flow(MappingReader root, String key) {
+        Optional<MappingReader> f = root.mapping(key);
+        if (f.isEmpty()) {
+            return new double[]{0, 0};
+        }
+        MappingReader m = f.get();
+        String rule = "between -50 and 50 metres per second";
+        double x = m.number("x", 0, rule, v -> Math.abs(v) <= 50);
+        double y = m.number("y", 0, rule, v -> Math.abs(v) <= 50);
+        m.finish();
+        return new double[]{Double.isFinite(x) ? x : 0, Double.isFinite(y) ? y : 0};
     }
 
     /** @return the body a robot file gives its robot, or empty if the file cannot be read (opening it says why) */

@@ -26,6 +26,9 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
  * {@code mw msg send} replayed to a restarted receiver was delivered again (and answered with a
  * signed echo); a sniffed signed robot {@code Move} re-published on the broker after the host
  * restarted moved the robot. Now a receiver keeps its replay window on disk, and refuses both.
+ * Presences too: a signed presence captured at a broker and published again there (retained, so
+ * every later reader gets it) is not believed by a reader that took a newer one, even after that
+ * reader restarted.
  */
 class ReplayAcrossRestartIT {
 
@@ -135,6 +138,63 @@ class ReplayAcrossRestartIT {
                 assertEquals(before, pose(robot), "the robot did not move again");
             }
         }
+    }
+
+    @Test
+    void aCapturedSignedPresenceRepublishedAtTheBrokerIsIgnoredByAReaderThatTookANewerOne() throws Exception {
+        MqttClients.assumeInstalled();
+        Path key = Attacker.keyFile(dir);
+        int port = Attacker.freePort();
+        String name = "replay-presence-" + Long.toHexString(new SecureRandom().nextLong());
+        String at = "mqtt://127.0.0.1:" + port;
+        // a lab's shared broker, whose members may all publish presences (no access rules)
+        try (MwProcess broker = MwProcess.start("replay-presence-broker", "broker", "--port", String.valueOf(port), "--anonymous",
+                "--data", dir.resolve("broker").toString())) {
+            broker.await("mqtt broker ready", Duration.ofSeconds(60));
+            String[] captured;
+            String address;
+            try (HostProcess host = HostProcess.start(name, "--key-file", key.toString(), "--messaging", at)) {
+                address = host.address();
+                // a member of the lab records the host's signed presence
+                String[] seen = {""};
+                Await.until("the host's presence is at the broker", Duration.ofSeconds(60), () -> {
+                    try {
+                        MqttClients.Run r = MqttClients.sub(port, null, null, "-t", "robomw/presence/+", "-F", "%t %x", "-C", "1", "-W", "10");
+                        seen[0] = r.output();
+                        return r.status() == 0 && seen[0].startsWith("robomw/presence/");
+                    } catch (IOException | InterruptedException e) {
+                        throw new IllegalStateException(e);
+                    }
+                }, () -> seen[0]);
+                captured = seen[0].lines().filter(l -> l.startsWith("robomw/presence/")).findFirst().orElseThrow().strip().split(" ", 2);
+                assertTrue(new String(HexFormat.of().parseHex(captured[1])).contains("status online"), seen[0]);
+                assertTrue(agents(at, key, out -> out.contains(address) && !out.contains("offline since")).contains(name + "  online"));
+            }
+            // the host is gone: this user's mw agents sees it offline (and keeps the newest presence it took, across its runs)
+            agents(at, key, out -> out.contains("offline since"));
+            Path frame = Files.write(dir.resolve("presence.frame"), HexFormat.of().parseHex(captured[1]));
+            MqttClients.Run replayed = MqttClients.pub(port, null, null, "-r", "-q", "1", "-t", captured[0], "-f", frame.toString());
+            assertEquals(0, replayed.status(), replayed.output());
+            String listed = agents(at, key, out -> out.contains("presence record ignored") || out.contains(name + "  online"));
+            assertFalse(listed.contains(name + "  online"), "the replayed presence lists the host online again, at an address nobody serves: " + listed);
+            assertTrue(listed.contains("1 signed presence record ignored: older than one taken before"), listed);
+        }
+    }
+
+    /** Runs mw agents --cluster (a new process each time) until its output passes, and returns that output. */
+    private static String agents(String at, Path key, java.util.function.Predicate<String> done) {
+        String[] listed = {""};
+        // a reader takes what the broker sends within a moment of quiet: on a loaded machine it may ask again
+        Await.until("mw agents --cluster", Duration.ofSeconds(120), () -> {
+            try (MwProcess agents = MwProcess.start("replay-presence-agents", "agents", "--cluster", at, "--key-file", key.toString())) {
+                agents.waitFor(Duration.ofSeconds(60));
+                listed[0] = agents.output();
+                return done.test(listed[0]);
+            } catch (Exception e) {
+                throw new IllegalStateException(e);
+            }
+        }, () -> listed[0]);
+        return listed[0];
     }
 
     private static String pose(String robot) throws Exception {

@@ -73,7 +73,7 @@ public final class Beacon implements AutoCloseable {
 
     /** @return what the beacon says now */
     BeaconRecord record(boolean online) {
-        PresenceRecord p = node.presence().now("", 0, announcer.boundAddresses().get(0).toString());
+        PresenceRecord p = node.presence().now("", 0, announcer.boundAddresses().get(0).toString(), java.time.Instant.now());
         List<String> messaging = node.boundAddresses().stream().map(Address::toString).toList();
         List<String> listens = node.listenedTopics().stream().filter(t -> !t.equals(BeaconRecord.TOPIC)).toList();
         return new BeaconRecord(node.name(), online, period.toMillis(), p.host(), p.hostAddress(), messaging, listens, node.publishedTopics(),

@@ -51,6 +51,9 @@ public final class BrokerDirectory implements AutoCloseable {
 
     private volatile io.robomw.agents.messaging.security.PresenceSeal seal;
     private final java.util.concurrent.atomic.LongAdder ignored = new java.util.concurrent.atomic.LongAdder();
+    private final java.util.concurrent.atomic.LongAdder stale = new java.util.concurrent.atomic.LongAdder();
+    private volatile PresenceWindow window;
+    private volatile io.robomw.agents.messaging.security.ReplayStore windowStore;
     private final io.robomw.agents.net.ThrottledWarnings unsigned = new io.robomw.agents.net.ThrottledWarnings(LOG, Duration.ofSeconds(1));
 
     private BrokerDirectory(Address address, MqttOptions options, BrokerCredentials credentials, com.hivemq.client.mqtt.MqttClientSslConfig ssl) {
@@ -107,6 +110,26 @@ public final class BrokerDirectory implements AutoCloseable {
      */
     public static BrokerDirectory open(String brokerAddress, Duration timeout, io.robomw.agents.messaging.security.TlsSettings tls,
             io.robomw.agents.messaging.security.PresenceSeal seal) throws IOException {
+        return open(brokerAddress, timeout, tls, seal, null);
+    }
+
+    /**
+     * {@link #open(String, Duration, io.robomw.agents.messaging.security.TlsSettings, io.robomw.agents.messaging.security.PresenceSeal)}
+     * keeping its replay window for presences ({@link PresenceWindow}) in a file, so that a presence replayed at the broker
+     * is refused after this reader restarts too. With a seal, a signed presence of an earlier connection of its client than
+     * one taken, or an online one older than the newest of the same connection, is ignored and counted ({@link #stale()}).
+     *
+     * @param brokerAddress an mqtt or mqtts address (its path is the prefix)
+     * @param timeout       how long connecting may take
+     * @param tls           the key and trust store to use with {@code mqtts}, or {@code null}
+     * @param seal          the cluster's presence seal, or {@code null} to take every presence (unverified)
+     * @param windowFile    where to keep the window across restarts ({@link io.robomw.agents.messaging.security.ReplayStore}),
+     *                      or {@code null} for memory only
+     * @return the open directory
+     * @throws IOException if the broker cannot be reached
+     */
+    public static BrokerDirectory open(String brokerAddress, Duration timeout, io.robomw.agents.messaging.security.TlsSettings tls,
+            io.robomw.agents.messaging.security.PresenceSeal seal, java.nio.file.Path windowFile) throws IOException {
         Address a = Address.parse(brokerAddress);
         if (!a.scheme().equals("mqtt") && !a.scheme().equals("mqtts")) {
             throw new IllegalArgumentException("'" + brokerAddress + "' is not a broker address (mqtt://host:port or mqtts://host:port)");
@@ -115,6 +138,12 @@ public final class BrokerDirectory implements AutoCloseable {
         BrokerDirectory d = new BrokerDirectory(a, options, BrokerCredentials.load(options.credentials(), System.getenv(), a.host()),
                 MqttTransport.ssl(options, tls, System.getenv(), timeout.toMillis()));
         d.seal = seal;
+        d.windowStore = windowFile == null ? io.robomw.agents.messaging.security.ReplayStore.memoryOnly()
+                : io.robomw.agents.messaging.security.ReplayStore.in(windowFile, PresenceWindow.KEEP);
+        d.window = new PresenceWindow(a.endpoint() + "/" + d.topics.prefix(), d.windowStore);
+        if (seal != null) {
+            d.windowStore.floor(0); // opens the window's file now, not while the first presence is being read
+        }
         try {
             d.client.connectWith().cleanStart(true).send().get(timeout.toMillis(), TimeUnit.MILLISECONDS);
             d.client.subscribeWith().topicFilter(d.topics.everyPresence()).qos(MqttQos.AT_LEAST_ONCE).send()
@@ -151,6 +180,15 @@ public final class BrokerDirectory implements AutoCloseable {
     /** @return how many presences were ignored for being unsigned or not signed with the seal (0 without a seal) */
     public long ignored() {
         return ignored.sum();
+    }
+
+    /**
+     * @return how many signed presences were ignored as stale: of an earlier connection of their client than one taken, an
+     *         online one older than the newest of its connection, or one naming another client than the topic it came on
+     *         (0 without a seal)
+     */
+    public long stale() {
+        return stale.sum();
     }
 
     /** @return every presence known now, online ones first, then by name */
@@ -209,6 +247,10 @@ public final class BrokerDirectory implements AutoCloseable {
         } catch (Exception e) {
             LOG.debug("disconnecting the directory from {}: {}", address, e.toString());
         }
+        io.robomw.agents.messaging.security.ReplayStore w = windowStore;
+        if (w != null) {
+            w.close();
+        }
     }
 
     private void onPresence(Mqtt5Publish p) {
@@ -217,6 +259,7 @@ public final class BrokerDirectory implements AutoCloseable {
             return;
         }
         String client = MqttTopics.unescape(t.substring(topics.presencePrefix().length()));
+        lastChange = System.nanoTime(); // a presence is being read: not quiet yet
         byte[] bytes = p.getPayloadAsBytes();
         if (bytes.length == 0) {
             byClient.remove(client);
@@ -232,6 +275,12 @@ public final class BrokerDirectory implements AutoCloseable {
                     if (record == null) {
                         ignored.increment();
                         unsigned.warn("ignored the {}: it is unsigned or not signed with this cluster's key ({} ignored so far)", where, ignored.sum());
+                    } else if (!record.client().equals(client) || !window.take(client, record, System.currentTimeMillis())) {
+                        stale.increment();
+                        unsigned.warn("ignored the {} of node '{}' (connected since {}, made {}): {} ({} ignored so far)", where, record.node(),
+                                record.since(), record.time(), record.client().equals(client) ? "a newer one of that client was taken (a replay)"
+                                        : "it names client '" + record.client() + "', not the one whose topic it came on", stale.sum());
+                        record = null;
                     }
                 }
                 if (record != null) {

@@ -94,6 +94,8 @@ final class BrokerSession implements Link, Endpoint {
     private final AtomicLong failedSends = new AtomicLong();
     private final Runnable presenceListener = this::announce;
     private final String replyTopic;
+    /** When this session was made, the time of its will: every presence it announces carries it ({@link PresenceRecord#since()}). */
+    private final Instant since = Instant.now();
     private volatile boolean established;
     private volatile boolean connected;
     private volatile boolean closed;
@@ -130,7 +132,7 @@ final class BrokerSession implements Link, Endpoint {
             var auth = b.simpleAuth().username(credentials.username());
             b = credentials.password() == null ? auth.applySimpleAuth() : auth.password(credentials.password()).applySimpleAuth();
         }
-        PresenceRecord offline = context.presence().now(options.clientId(), options.sessionExpirySeconds(), address.toString()).offline(Instant.now());
+        PresenceRecord offline = context.presence().now(options.clientId(), options.sessionExpirySeconds(), address.toString(), since).offline(since);
         b = b.willPublish().topic(topics.presence(options.clientId())).qos(MqttQos.AT_LEAST_ONCE).retain(true)
                 .payload(context.presence().encode(offline)).applyWillPublish();
         this.client = b.buildAsync();
@@ -285,7 +287,7 @@ final class BrokerSession implements Link, Endpoint {
         context.presence().removeListener(presenceListener);
         try {
             if (connected) {
-                PresenceRecord offline = context.presence().now(options.clientId(), options.sessionExpirySeconds(), address.toString()).offline(Instant.now());
+                PresenceRecord offline = context.presence().now(options.clientId(), options.sessionExpirySeconds(), address.toString(), since).offline(Instant.now());
                 client.publishWith().topic(topics.presence(options.clientId())).qos(MqttQos.AT_LEAST_ONCE).retain(true)
                         .payload(context.presence().encode(offline)).send().get(1, TimeUnit.SECONDS);
             }
@@ -442,7 +444,7 @@ final class BrokerSession implements Link, Endpoint {
             return;
         }
         try {
-            PresenceRecord now = context.presence().now(options.clientId(), options.sessionExpirySeconds(), address.toString());
+            PresenceRecord now = context.presence().now(options.clientId(), options.sessionExpirySeconds(), address.toString(), since);
             client.publishWith().topic(topics.presence(options.clientId())).qos(MqttQos.AT_LEAST_ONCE).retain(true)
                     .payload(context.presence().encode(now)).send();
         } catch (RuntimeException e) {

@@ -30,6 +30,8 @@ public final class DatagramPort implements AutoCloseable {
 
     private static final Logger LOG = LoggerFactory.getLogger(DatagramPort.class);
     private static final int MAX_DESTINATIONS = 4096;
+    /** How long {@link #close()} waits for the reader thread to leave {@code receive}. */
+    private static final long CLOSE_WAIT_MILLIS = 5_000;
 
     private final DatagramChannel channel;
     private final TransportContext context;
@@ -104,12 +106,30 @@ public final class DatagramPort implements AutoCloseable {
         return thread == reader;
     }
 
+    /**
+     * Closes the socket and waits (up to {@value #CLOSE_WAIT_MILLIS} ms) for the reader thread to end:
+     * the kernel releases the port only once no thread is inside {@code receive} (the JDK defers the
+     * real close until then), so a node bound to the same port right after this returns gets it.
+     * Called on the reader thread itself (a listener closing its node), it does not wait.
+     */
     @Override
     public void close() {
         try {
             channel.close();
         } catch (IOException e) {
             LOG.debug("closing {}: {}", label, e.toString());
+        }
+        Thread t = reader;
+        if (t != null && t != Thread.currentThread()) {
+            try {
+                t.join(CLOSE_WAIT_MILLIS);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+            if (t.isAlive()) {
+                LOG.warn("node '{}': the reader of {} did not end within {} ms of closing; its port may stay taken until it does",
+                        context.nodeName(), label, CLOSE_WAIT_MILLIS);
+            }
         }
     }
 

@@ -10,7 +10,7 @@ import java.time.Instant;
  * late tick is caught up, would otherwise show a moving robot standing still).
  *
  * @param pose    the odometry estimate
- * @param z       height, metres (0 for robots on the ground)
+ * @param z       the pose's altitude, metres, z up ({@link Pose#z()}: 0 for robots on the ground)
  * @param stamp   when it was taken (wall clock)
  * @param forward speed along the body's x axis since the last sample, m/s
  * @param turning turn rate since the last sample, rad/s, positive left
@@ -28,17 +28,17 @@ record PoseSample(Pose pose, double z, Instant stamp, double forward, double tur
      */
     static PoseSample after(PoseSample previous, Pose pose, Instant stamp) {
         if (previous == null) {
-            return new PoseSample(pose, 0, stamp, 0, 0);
+            return new PoseSample(pose, pose.z(), stamp, 0, 0);
         }
         double dt = java.time.Duration.between(previous.stamp, stamp).toNanos() / 1e9;
         if (!(dt > 0)) {
-            return new PoseSample(pose, 0, stamp, previous.forward, previous.turning);
+            return new PoseSample(pose, pose.z(), stamp, previous.forward, previous.turning);
         }
         double dx = pose.x() - previous.pose.x();
         double dy = pose.y() - previous.pose.y();
         double h = previous.pose.heading();
         double forward = (dx * Math.cos(h) + dy * Math.sin(h)) / dt;
         double turning = Pose.normalize(pose.heading() - h) / dt;
-        return new PoseSample(pose, 0, stamp, forward, turning);
+        return new PoseSample(pose, pose.z(), stamp, forward, turning);
     }
 }

@@ -49,6 +49,17 @@ class RosMessagesTest {
     }
 
     @Test
+    void aFlyersOdometryAndTransformCarryItsAltitude() {
+        PoseSample s = PoseSample.after(null, new Pose(1, 2, 0, 2.5), T);
+        ObjectNode odom = RosMessages.odometry(s, "copter");
+        conforms(odom, "nav_msgs/msg/Odometry");
+        assertEquals(2.5, odom.at("/pose/pose/position/z").doubleValue(), 1e-12, "z up, the pose's altitude");
+        assertEquals(2.5, RosMessages.odomToBase(s, "copter").at("/transform/translation/z").doubleValue(), 1e-12);
+        PoseSample later = PoseSample.after(s, new Pose(1.1, 2, 0, 2.75), T.plusMillis(200));
+        assertEquals(2.75, later.z(), 1e-12);
+    }
+
+    @Test
     void aSamplesVelocityIsInTheBodyFrame() {
         PoseSample a = new PoseSample(new Pose(0, 0, Math.PI / 2), 0, T, 0, 0);
         PoseSample b = PoseSample.after(a, new Pose(0, 0.1, Math.PI / 2 + 0.05), T.plusMillis(200));
