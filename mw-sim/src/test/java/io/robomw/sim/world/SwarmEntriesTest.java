@@ -188,6 +188,23 @@ class SwarmEntriesTest {
     }
 
     @Test
+    void shouldRefuseASwarmsRobotFileOutsideTheWorldFilesTreeWithoutReadingIt() throws IOException {
+        // the examples' robot files are outside the temporary directory's tree (its folder, or the one above)
+        Path outside = Path.of("..", "examples", "robots", "nxt-two-wheeled.yaml").toAbsolutePath().normalize();
+        Path file = world("""
+                swarms:
+                  - { robot: %s, count: 3, name: far }
+                """.formatted(outside));
+
+        DescriptionException e = assertThrows(DescriptionException.class, () -> new WorldLoader().load(file));
+
+        assertEquals(1, e.problems().size(), e.getMessage());
+        Problem p = e.problems().get(0);
+        assertEquals(5, p.line(), p.toString());
+        assertTrue(p.message().startsWith("'swarms[0].robot': refused: " + outside + " is outside "), p.message());
+    }
+
+    @Test
     void shouldRefuseASwarmWhoseRobotsNamesAreTakenAlready() throws IOException {
         Path file = world("""
                 robots:
