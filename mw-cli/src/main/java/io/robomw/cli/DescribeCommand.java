@@ -112,27 +112,38 @@ final class DescribeCommand implements Callable<Integer> {
         out.printf(Locale.ROOT, "%s: world '%s', arena %.2f × %.2f m%s, %d obstacle%s, %d floor patch%s, %d robot%s, physics %.0f Hz, seed %d%n",
                 w.source(), w.name(), w.width(), w.height(), w.walls() ? " with walls" : "", w.obstacles().size(), w.obstacles().size() == 1 ? "" : "s",
                 w.patches().size(), w.patches().size() == 1 ? "" : "es", w.robots().size(), w.robots().size() == 1 ? "" : "s", w.physicsHz(), w.seed());
-        Map<Path, List<WorldDescription.RobotPlacement>> byFile = new LinkedHashMap<>();
-        for (WorldDescription.RobotPlacement r : w.robots()) {
-            byFile.computeIfAbsent(r.description(), f -> new ArrayList<>()).add(r);
+        // The robots placed one by one come first; a swarm entry's are described by the entry.
+        int single = w.swarms().isEmpty() ? w.robots().size() : w.swarms().get(0).first();
+        Map<Path, List<String>> byFile = new LinkedHashMap<>();
+        for (WorldDescription.RobotPlacement r : w.robots().subList(0, single)) {
+            byFile.computeIfAbsent(r.description(), f -> new ArrayList<>()).add("'" + r.name() + "'");
         }
-        w.robots().stream().limit(MAX_LISTED).forEach(r -> out.printf(Locale.ROOT, "  robot '%s' at (%.2f, %.2f) heading %.1f°, from %s%n",
+        Map<Path, Integer> counts = new LinkedHashMap<>();
+        byFile.forEach((f, names) -> counts.put(f, names.size()));
+        w.robots().stream().limit(Math.min(single, MAX_LISTED)).forEach(r -> out.printf(Locale.ROOT, "  robot '%s' at (%.2f, %.2f) heading %.1f°, from %s%n",
                 r.name(), r.start().x(), r.start().y(), Math.toDegrees(r.start().heading()), r.description()));
-        if (w.robots().size() > MAX_LISTED) {
-            out.printf(Locale.ROOT, "  ... and %d more robots%n", w.robots().size() - MAX_LISTED);
+        if (single > MAX_LISTED) {
+            out.printf(Locale.ROOT, "  ... and %d more robots%n", single - MAX_LISTED);
+        }
+        for (WorldDescription.Swarm s : w.swarms()) {
+            out.printf(Locale.ROOT, "  swarm '%s': %d robot%s ('%s-1' to '%s-%d') from %s, placed by seed %d in %.2f × %.2f m at (%.2f, %.2f)%n",
+                    s.name(), s.count(), s.count() == 1 ? "" : "s", s.name(), s.name(), s.count(), s.robot(), s.seed(), s.width(), s.height(),
+                    s.x(), s.y());
+            byFile.computeIfAbsent(s.robot(), f -> new ArrayList<>()).add("swarm '" + s.name() + "' (" + s.count() + ")");
+            counts.merge(s.robot(), s.count(), Integer::sum);
         }
         int status = 0;
-        for (Map.Entry<Path, List<WorldDescription.RobotPlacement>> group : byFile.entrySet()) {
-            List<String> names = group.getValue().stream().map(WorldDescription.RobotPlacement::name).toList();
-            out.printf(Locale.ROOT, "  robot file %s, for %d robot%s: %s%n", group.getKey(), names.size(), names.size() == 1 ? "" : "s", listed(names));
+        for (Map.Entry<Path, List<String>> group : byFile.entrySet()) {
+            int n = counts.get(group.getKey());
+            out.printf(Locale.ROOT, "  robot file %s, for %d robot%s: %s%n", group.getKey(), n, n == 1 ? "" : "s", listed(group.getValue()));
             status = Math.max(status, describeRobot(group.getKey(), "    ", out, err));
         }
         return status;
     }
 
-    /** @return up to {@link #MAX_LISTED} names, and how many more */
+    /** @return up to {@link #MAX_LISTED} names (quoted already), and how many more */
     static String listed(List<String> names) {
-        String shown = names.stream().limit(MAX_LISTED).map(n -> "'" + n + "'").collect(Collectors.joining(", "));
+        String shown = names.stream().limit(MAX_LISTED).collect(Collectors.joining(", "));
         return names.size() > MAX_LISTED ? shown + " and " + (names.size() - MAX_LISTED) + " more" : shown;
     }
 

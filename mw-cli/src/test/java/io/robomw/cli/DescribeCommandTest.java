@@ -130,4 +130,28 @@ class DescribeCommandTest {
         assertTrue(run.out().contains("robot 'n19' at (9.05, 0.50)") && !run.out().contains("robot 'n20' at"), run.out());
         assertTrue(run.out().contains("  ... and 180 more robots\n"), run.out());
     }
+
+    @Test
+    void aSwarmEntryIsDescribedAsItsCountAndOneRobotFile() throws IOException {
+        Files.copy(NXT, dir.resolve("nxt.yaml"));
+        Files.writeString(dir.resolve("world.yaml"), """
+                name: crowd
+                arena: { width: 100, height: 100 }
+                robots:
+                  - { robot: nxt.yaml, name: scout, x: 99, y: 99 }
+                swarms:
+                  - { robot: nxt.yaml, count: 10000, name: bot, seed: 5, area: { x: 0, y: 0, width: 90, height: 90 } }
+                """);
+
+        CliRun run = CliRun.mw("describe", dir.resolve("world.yaml").toString());
+
+        assertEquals(0, run.status(), run.err());
+        assertTrue(run.out().contains(", 10001 robots, "), run.out());
+        assertTrue(run.out().contains("  robot 'scout' at (99.00, 99.00)"), run.out());
+        assertTrue(run.out().contains("  swarm 'bot': 10000 robots ('bot-1' to 'bot-10000') from " + dir.resolve("nxt.yaml")
+                + ", placed by seed 5 in 90.00 × 90.00 m at (0.00, 0.00)\n"), run.out());
+        assertTrue(run.out().contains("robot file " + dir.resolve("nxt.yaml") + ", for 10001 robots: 'scout', swarm 'bot' (10000)\n"), run.out());
+        assertTrue(!run.out().contains("robot 'bot-1' at") && !run.out().contains("more robots"), "a swarm's robots are not listed one by one: " + run.out());
+        assertEquals(1, run.out().split("robot 'nxt-1' on platform 'nxt'", -1).length - 1, run.out());
+    }
 }

@@ -30,7 +30,9 @@ import java.util.SplittableRandom;
  *   <td>the port's last letter, if x, y or z; else x</td></tr>
  * </table>
  *
- * <p>Written and read on the simulation thread, except {@link #latest}, which viewers may read.
+ * <p>One model serves every robot of a world read from the same robot file (its geometry is the
+ * file's): immutable, any thread. What a robot's sensor reads is the robot's ({@link SimRobot#latest}),
+ * kept in the world's arrays; a noisy sensor draws from the robot's own seeded generator.
  */
 public final class SensorModel {
 
@@ -69,14 +71,26 @@ public final class SensorModel {
     private final double maxRange;
     private final double noise;
     private final double rateHz;
-    private final SplittableRandom random;
     private final boolean headMounted;
     private final double height;
     private final char axis;
-    private volatile double latest;
+    /** Its place among its robot file's range sensors, or -1 if it is not one. */
+    private final int rangeIndex;
+    /** Every how many steps of its world it samples. */
+    private final long everySteps;
+    /** Each ray's direction on the body (from forwards), its cosine and sine. */
+    private final double[] rayCos;
+    private final double[] raySin;
 
-    SensorModel(SensorSpec spec, Body body, long seed) {
+    /**
+     * @param spec       the sensor as its robot file describes it
+     * @param body       the robot's body (the default mount points lie on its edges)
+     * @param rangeIndex its place among the file's range sensors, or -1
+     * @param physicsHz  its world's step rate
+     */
+    SensorModel(SensorSpec spec, Body body, int rangeIndex, double physicsHz) {
         this.spec = spec;
+        this.rangeIndex = rangeIndex;
         this.kind = kindOf(spec.type());
         Map<String, Object> o = spec.options();
         double[] mount = defaultMount(spec.position(), body);
@@ -90,8 +104,7 @@ public final class SensorModel {
         this.maxRange = number(o, "max_range", sonar ? 2.55 : 0.80, 0, MAX_RANGE);
         this.noise = number(o, "noise", 0, 0, MAX_NOISE);
         this.rateHz = number(o, "rate_hz", 10, 0.001, MAX_RATE_HZ);
-        // Only a noisy sensor draws from a generator (48 bytes a sensor, eight sensors a robot in a swarm).
-        this.random = noise > 0 ? new SplittableRandom(seed) : null;
+        this.everySteps = everySteps(physicsHz);
         Object mountOption = o.getOrDefault("mount", "body");
         if (!mountOption.equals("body") && !mountOption.equals("head")) {
             throw new IllegalArgumentException("sensor '" + spec.name() + "': option 'mount' must be body or head, got '" + mountOption + "'");
@@ -99,6 +112,13 @@ public final class SensorModel {
         this.headMounted = mountOption.equals("head");
         this.height = number(o, "height", 0.2, 0, MAX_MOUNT);
         this.axis = axisOf(spec, o);
+        this.rayCos = new double[rays];
+        this.raySin = new double[rays];
+        for (int i = 0; i < rays; i++) {
+            double a = rays == 1 ? mountAngle : mountAngle - beamWidth / 2 + beamWidth * i / (rays - 1);
+            rayCos[i] = Math.cos(a);
+            raySin[i] = Math.sin(a);
+        }
         if (!(maxRange > minRange)) {
             throw new IllegalArgumentException("sensor '" + spec.name() + "': option 'max_range' (" + maxRange + ") must be above 'min_range' ("
                     + minRange + ")");
@@ -140,7 +160,7 @@ public final class SensorModel {
                 + ", got '" + v + "' (the simulator's sensor options are in docs/simulation.md)");
     }
 
-    private static Kind kindOf(SensorType type) {
+    static Kind kindOf(SensorType type) {
         return switch (type) {
             case SONAR, INFRARED, LASER, RANGE -> Kind.RANGE;
             case ALTITUDE, BATTERY, LATITUDE, LONGITUDE -> Kind.VEHICLE;
@@ -210,9 +230,14 @@ public final class SensorModel {
         return mountAngle;
     }
 
-    /** @return the last range sample, metres (range sensors) */
-    public double latest() {
-        return latest;
+    /** @return its place among its robot's range sensors ({@link SimRobot#rangeSensors()}), or -1 if it is not a range sensor */
+    public int rangeIndex() {
+        return rangeIndex;
+    }
+
+    /** @return whether its readings are noisy (each robot's then draws from a seeded generator of its own) */
+    public boolean noisy() {
+        return noise > 0;
     }
 
     /** @return the full cone angle of a range sensor, radians */
@@ -258,38 +283,14 @@ public final class SensorModel {
         return Math.max(1, Math.round(physicsHz / rateHz));
     }
 
-    /**
-     * Samples a range sensor.
-     *
-     * @param caster    casts one ray
-     * @param self      the robot's index (its own body is not seen)
-     * @param x         robot centre x
-     * @param y         robot centre y
-     * @param heading   robot heading
-     */
-    void sampleRange(SimWorld.RayCaster caster, int self, double x, double y, double heading) {
-        sampleRange(caster, self, x, y, heading, 0, 0);
+    /** @return every how many steps of its world it samples */
+    long everySteps() {
+        return everySteps;
     }
 
     /**
-     * Samples a range sensor that may turn with a head.
-     *
-     * @param caster  casts one ray
-     * @param self    the robot's index
-     * @param x       robot centre x
-     * @param y       robot centre y
-     * @param heading robot heading
-     * @param pan     the head's pan, radians, positive left (0 for a body-mounted sensor)
-     * @param tilt    the head's tilt, radians, positive up; looking down, the ray meets the floor
-     *                at {@code height / tan(-tilt)}
-     */
-    void sampleRange(SimWorld.RayCaster caster, int self, double x, double y, double heading, double pan, double tilt) {
-        sampleRange(caster, self, x, y, heading, Math.cos(heading), Math.sin(heading), pan, tilt);
-    }
-
-    /**
-     * Samples a range sensor, the heading's cosine and sine given (the same for every sensor of a
-     * robot, so its sensors compute them once).
+     * Samples a range sensor ray by ray (the naive baseline's dyn4j ray casts), the heading's
+     * cosine and sine given.
      *
      * @param caster  casts one ray
      * @param self    the robot's index
@@ -300,27 +301,112 @@ public final class SensorModel {
      * @param s       {@code Math.sin(heading)}
      * @param pan     the head's pan, radians
      * @param tilt    the head's tilt, radians
+     * @param random  the robot's generator for this sensor's noise, or {@code null} if it has none
+     * @return the sample, metres
      */
-    void sampleRange(SimWorld.RayCaster caster, int self, double x, double y, double heading, double c, double s, double pan, double tilt) {
+    double sampleRange(SimWorld.RayCaster caster, int self, double x, double y, double heading, double c, double s, double pan, double tilt,
+                       SplittableRandom random) {
         double ox = x + mountX * c - mountY * s;
         double oy = y + mountX * s + mountY * c;
         double centre = heading + mountAngle + (headMounted ? pan : 0);
-        double floor = headMounted && tilt < -1e-3 ? height / Math.tan(-tilt) : Double.POSITIVE_INFINITY;
         double best = Double.POSITIVE_INFINITY;
         for (int i = 0; i < rays; i++) {
             double a = rays == 1 ? centre : centre - beamWidth / 2 + beamWidth * i / (rays - 1);
             best = Math.min(best, caster.cast(ox, oy, a, maxRange, self));
         }
+        return finish(best, tilt, random);
+    }
+
+    /**
+     * Adds the rays of a range sensor to a robot's batch (their origins, directions and range), for
+     * {@link #finishRange} once they are cast.
+     *
+     * @param batch   the robot's rays so far
+     * @param x       robot centre x
+     * @param y       robot centre y
+     * @param heading robot heading
+     * @param c       {@code Math.cos(heading)}
+     * @param s       {@code Math.sin(heading)}
+     * @param pan     the head's pan, radians
+     */
+    void addRays(RayBatch batch, double x, double y, double heading, double c, double s, double pan) {
+        double ox = x + mountX * c - mountY * s;
+        double oy = y + mountX * s + mountY * c;
+        if (headMounted) {
+            double centre = heading + mountAngle + pan;
+            for (int i = 0; i < rays; i++) {
+                double a = rays == 1 ? centre : centre - beamWidth / 2 + beamWidth * i / (rays - 1);
+                batch.add(ox, oy, Math.cos(a), Math.sin(a), maxRange);
+            }
+            return;
+        }
+        // each ray's direction on the body, turned by the heading: no sine or cosine per ray
+        for (int i = 0; i < rays; i++) {
+            double u = rayCos[i];
+            double v = raySin[i];
+            batch.add(ox, oy, c * u - s * v, s * u + c * v, maxRange);
+        }
+    }
+
+    /**
+     * Takes the sample from this sensor's rays once they are cast: as {@link #sampleRange} does.
+     *
+     * @param hits   the distances of the batch's rays (+∞: nothing within range)
+     * @param first  the index of this sensor's first ray in the batch
+     * @param tilt   the head's tilt, radians, positive up
+     * @param random the robot's generator for this sensor's noise, or {@code null} if it has none
+     * @return the sample, metres
+     */
+    double finishRange(double[] hits, int first, double tilt, SplittableRandom random) {
+        double best = Double.POSITIVE_INFINITY;
+        for (int i = 0; i < rays; i++) {
+            best = Math.min(best, hits[first + i]);
+        }
+        return finish(best, tilt, random);
+    }
+
+    /** The nearest hit as the sensor reports it: the floor a head looking down sees, the range's limits, the noise. */
+    private double finish(double best, double tilt, SplittableRandom random) {
+        double floor = headMounted && tilt < -1e-3 ? height / Math.tan(-tilt) : Double.POSITIVE_INFINITY;
         best = Math.min(best, floor);
         double value = Double.isInfinite(best) || best > maxRange ? maxRange : best;
         if (noise > 0) {
-            value += gaussian() * noise;
+            value += gaussian(random) * noise;
         }
-        latest = Math.min(maxRange, Math.max(minRange, value));
+        return Math.min(maxRange, Math.max(minRange, value));
     }
 
-    private double gaussian() {
-        // Box-Muller on the sensor's own seeded generator, so results do not depend on threads.
+    /** A robot's rays of one sensing pass, cast together ({@link io.robomw.sim.sensing.RangeIndex#castRays}); one per thread. */
+    static final class RayBatch {
+        double[] ox = new double[16];
+        double[] oy = new double[16];
+        double[] dx = new double[16];
+        double[] dy = new double[16];
+        double[] maxRange = new double[16];
+        double[] hits = new double[16];
+        int count;
+
+        void add(double x, double y, double ux, double uy, double range) {
+            if (count == ox.length) {
+                int m = 2 * count;
+                ox = java.util.Arrays.copyOf(ox, m);
+                oy = java.util.Arrays.copyOf(oy, m);
+                dx = java.util.Arrays.copyOf(dx, m);
+                dy = java.util.Arrays.copyOf(dy, m);
+                maxRange = java.util.Arrays.copyOf(maxRange, m);
+                hits = new double[m];
+            }
+            ox[count] = x;
+            oy[count] = y;
+            dx[count] = ux;
+            dy[count] = uy;
+            maxRange[count] = range;
+            count++;
+        }
+    }
+
+    private static double gaussian(SplittableRandom random) {
+        // Box-Muller on the robot's own seeded generator for the sensor, so results do not depend on threads.
         double u1 = 1.0 - random.nextDouble();
         double u2 = random.nextDouble();
         return Math.sqrt(-2 * Math.log(u1)) * Math.cos(2 * Math.PI * u2);

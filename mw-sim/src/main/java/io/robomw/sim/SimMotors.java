@@ -96,6 +96,7 @@ public final class SimMotors {
         return () -> {
             SimFuture<Double> f = world.lockstep().newFuture();
             robot.requestRead(model, f);
+            world.readQueued();
             return f;
         };
     }

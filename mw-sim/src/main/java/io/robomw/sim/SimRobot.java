@@ -49,20 +49,23 @@ public final class SimRobot {
     private final Physics physics;
     /** Its body's number in {@link #physics}. */
     private final int body;
-    private final Physics.ContactSink touchPoint = this::touchPoint;
+    /** Where its contact points go, if it has a touch sensor or legs; else {@code null}. */
+    private final Physics.ContactSink touchPoint;
     private int touchedSides;
     private int touchedQuadrants;
+    /** What every robot of its robot file shares: kinematics, motor ports, sensor models. */
+    private final RobotModel model;
     private final DifferentialKinematics kinematics;
-    /** The motor ports, in the description's order: a robot has a few, and a scan is cheaper than a map. */
-    private final String[] ports;
+    /** Its actuators' commanded speeds and encoders, by motor port index (the drive's two motors are in the world's arrays). */
     private final double[] commanded;
     private final double[] motorDegrees;
     private final int leftIndex;
     private final int rightIndex;
     private final int[] actuatorIndex;
-    private final Map<String, SensorModel> sensors = new LinkedHashMap<>();
-    private final List<SensorModel> rangeSensors = new ArrayList<>();
-    private final Queue<PendingRead> reads = new ConcurrentLinkedQueue<>();
+    /** Per range sensor (by its place among them): the generator of its noise, if any sensor is noisy; else {@code null}. */
+    private final java.util.SplittableRandom[] noise;
+    /** Reads waiting for the next cycle, made at the first read. */
+    private volatile Queue<PendingRead> reads;
     /** Set after a read is queued, cleared before the queue is drained: a cycle without reads looks no further. */
     private volatile boolean readsPending;
     private final Trajectory trajectory;
@@ -75,22 +78,15 @@ public final class SimRobot {
     private final io.robomw.sim.world.WorldDescription.Surroundings surroundings;
     private double lastVx;
     private double lastVy;
-    private final double[] accel = {0, 0, Quadruped.GRAVITY};
+    /** Its acceleration in its own frame, if it has an accelerometer or legs; else {@code null}. */
+    private final double[] accel;
     private int contactQuadrants;
-    private double lastX;
-    private double lastY;
-    private double lastHeading;
-    private double turned;
     private int contactSides;
-    // The true pose, in three fields rather than a new Pose each step: a step stores no reference
-    // into this long-lived object (each such store costs G1 a card to refine, and at 10,000 robots
-    // and 50 Hz those cards cost more processor time than the robots' own work). The world's
-    // threads read the fields directly; other threads read them through poseVersion (a sequence
-    // lock: odd while they are written), in pose().
-    private double poseX;
-    private double poseY;
-    private double poseHeading;
-    private int poseVersion;
+    // The true pose, the angle turned and the drive motors' encoders and speeds live in the world's
+    // arrays (RobotStates, at this robot's index), not in fields: a step then touches no object of a
+    // plain robot at all, and stores no reference into this long-lived one (each such store costs G1
+    // a card to refine). Other threads read the pose through its sequence lock there, in pose().
+    private final RobotStates states;
 
     /** A read waiting for the robot's next cycle. */
     private record PendingRead(SensorModel sensor, SimFuture<Double> future) {
@@ -98,45 +94,62 @@ public final class SimRobot {
 
     SimRobot(int index, String name, RobotDescription description, Physics physics, int body, long seed,
              java.util.function.LongSupplier nanos, io.robomw.sim.world.WorldDescription.TrajectorySettings trajectorySettings,
-             io.robomw.api.spi.FailurePolicy failures, io.robomw.sim.world.WorldDescription.Surroundings surroundings) {
+             io.robomw.api.spi.FailurePolicy failures, RobotStates states, RobotModel model,
+             io.robomw.sim.world.WorldDescription.Surroundings surroundings) {
         this.surroundings = surroundings;
         this.index = index;
+        this.model = model;
+        this.states = states;
         this.trajectory = new Trajectory(trajectorySettings);
         this.name = name;
         this.description = description;
         this.physics = physics;
         this.body = body;
-        this.kinematics = description.drive().map(DifferentialKinematics::new).orElse(null);
-        List<String> ports = description.motorPorts();
-        this.ports = ports.toArray(String[]::new);
-        commanded = new double[ports.size()];
-        motorDegrees = new double[ports.size()];
-        leftIndex = description.drive().map(d -> portIndex(d.left().port())).orElse(-1);
-        rightIndex = description.drive().map(d -> portIndex(d.right().port())).orElse(-1);
-        actuatorIndex = description.actuators().stream().mapToInt(a -> portIndex(a.port())).toArray();
-        int i = 0;
-        boolean touch = false;
-        boolean acc = false;
-        for (SensorSpec s : description.sensors()) {
-            SensorModel m = new SensorModel(s, description.body(), seed * 0x9E3779B97F4A7C15L + index * 1_000_003L + i++);
-            sensors.put(s.name(), m);
-            if (m.kind() == SensorModel.Kind.RANGE) {
-                rangeSensors.add(m);
+        this.kinematics = model.kinematics;
+        boolean actuators = model.actuatorIndex.length > 0;
+        commanded = actuators ? new double[model.ports.length] : NO_MOTORS;
+        motorDegrees = actuators ? new double[model.ports.length] : NO_MOTORS;
+        leftIndex = model.leftIndex;
+        rightIndex = model.rightIndex;
+        actuatorIndex = model.actuatorIndex;
+        if (model.noisy) {
+            noise = new java.util.SplittableRandom[model.rangeSensors.size()];
+            for (int i = 0; i < model.sensors.size(); i++) {
+                SensorModel m = model.sensors.get(i);
+                if (m.rangeIndex() >= 0 && m.noisy()) {
+                    noise[m.rangeIndex()] = new java.util.SplittableRandom(seed * 0x9E3779B97F4A7C15L + index * 1_000_003L + i);
+                }
             }
-            touch |= m.kind() == SensorModel.Kind.CONTACT;
-            acc |= m.kind() == SensorModel.Kind.ACCELERATION;
+        } else {
+            noise = null;
         }
-        this.hasTouch = touch;
-        this.hasAccel = acc;
+        this.hasTouch = model.hasTouch;
+        this.hasAccel = model.hasAccel;
         this.quadruped = description.leggedDrive().map(d -> new Quadruped(d, seed * 0x9E3779B97F4A7C15L + index * 7_919L + 17)).orElse(null);
+        this.touchPoint = hasTouch || quadruped != null ? this::touchPoint : null;
+        this.accel = hasAccel || quadruped != null ? new double[] {0, 0, Quadruped.GRAVITY} : null;
         this.kernel = quadruped == null ? null : new UrbiKernel(name, quadruped, this::urbiSensor, nanos, failures);
-        readPose();
-        lastX = physics.x(body);
-        lastY = physics.y(body);
-        lastHeading = poseHeading;
-        trajectory.add(lastX, lastY);
+        states.add(index, model.rangeSensors.size());
+        states.body[index] = body;
+        states.trajectory[index] = trajectory;
+        if (kinematics != null) {
+            DifferentialDrive d = kinematics.drive();
+            states.track[index] = d.trackWidth();
+            states.degreesPerMetre[index] = kinematics.motorDegreesPerMetre();
+            states.signLeft[index] = d.left().reversed() ? -1 : 1;
+            states.signRight[index] = d.right().reversed() ? -1 : 1;
+            states.maxSpeed[index] = d.maxSpeed();
+        }
         this.vehicle = description.vehicleDrive().map(d -> new io.robomw.sim.vehicle.SimVehicle(
-                io.robomw.sim.vehicle.VehicleSpec.of(d, description.body()), lastX, lastY, lastHeading)).orElse(null);
+                io.robomw.sim.vehicle.VehicleSpec.of(d, description.body()), physics.x(body), physics.y(body), physics.heading(body))).orElse(null);
+        states.plain[index] = kinematics != null && quadruped == null && vehicle == null && !hasTouch && !hasAccel && actuatorIndex.length == 0;
+        states.setPose(index, physics.x(body), physics.y(body), physics.heading(body), physics.cos(body), physics.sin(body));
+        trajectory.add(physics.x(body), physics.y(body));
+    }
+
+    /** @return whether the world steps this robot from its arrays alone ({@link RobotStates}) */
+    boolean plain() {
+        return states.plain[index];
     }
 
     /** @return its vehicle dynamics, if it is a vehicle (a drone, boat or rover); else {@code null} */
@@ -166,32 +179,32 @@ public final class SimRobot {
      * @return where it is now (true pose, not odometry)
      */
     public Pose pose() {
-        while (true) {
-            int version = (int) POSE_VERSION.getAcquire(this);
-            double x = poseX;
-            double y = poseY;
-            double heading = poseHeading;
-            java.lang.invoke.VarHandle.loadLoadFence();
-            if ((version & 1) == 0 && (int) POSE_VERSION.getOpaque(this) == version) {
-                return new Pose(x, y, heading);
-            }
-            Thread.onSpinWait(); // a step is writing it: three stores
-        }
+        return states.pose(index);
     }
 
     /** @return its true x now; the world's threads only (others: {@link #pose()}) */
     double x() {
-        return poseX;
+        return states.x[index];
     }
 
     /** @return its true y now; the world's threads only */
     double y() {
-        return poseY;
+        return states.y[index];
     }
 
     /** @return its true heading now, in (-π, π]; the world's threads only */
     double heading() {
-        return poseHeading;
+        return states.heading[index];
+    }
+
+    /** @return the cosine of its heading now, as its body's physics gives it; the world's threads only */
+    double cosHeading() {
+        return states.cos[index];
+    }
+
+    /** @return the sine of its heading now; the world's threads only */
+    double sinHeading() {
+        return states.sin[index];
     }
 
     /** @return the path it has driven, sampled as the world's {@code trajectory} settings say (bounded) */
@@ -199,14 +212,29 @@ public final class SimRobot {
         return trajectory;
     }
 
-    /** @return its sensors' models, by name */
+    /** @return its sensors' models, by name (shared by every robot of its robot file) */
     public Map<String, SensorModel> sensors() {
-        return sensors;
+        return model.byName;
     }
 
-    /** @return its range sensors */
+    /** @return its range sensors' models (shared by every robot of its robot file), in the order of {@link SensorModel#rangeIndex()} */
     public List<SensorModel> rangeSensors() {
-        return rangeSensors;
+        return model.rangeSensors;
+    }
+
+    /**
+     * Any thread (a viewer gets the sample of some step).
+     *
+     * @param sensor one of its range sensors
+     * @return its last sample, metres
+     */
+    public double latest(SensorModel sensor) {
+        return states.range(index, sensor.rangeIndex());
+    }
+
+    /** @return the generator of a range sensor's noise (by its place among them), or {@code null} */
+    java.util.SplittableRandom noise(int rangeIndex) {
+        return noise == null ? null : noise[rangeIndex];
     }
 
     /** @return its body's number in the world's physics */
@@ -235,7 +263,26 @@ public final class SimRobot {
         if (i < 0) {
             throw new IllegalArgumentException("simulated robot '" + name + "' has no motor on port " + port);
         }
-        commanded[i] = degreesPerSecond;
+        command(i, degreesPerSecond);
+    }
+
+    /**
+     * @param portIndex        a motor's index ({@link #motorPortIndex})
+     * @param degreesPerSecond the commanded motor speed
+     */
+    void command(int portIndex, double degreesPerSecond) {
+        if (portIndex == leftIndex) {
+            states.commandLeft[index] = degreesPerSecond;
+        } else if (portIndex == rightIndex) {
+            states.commandRight[index] = degreesPerSecond;
+        } else {
+            commanded[portIndex] = degreesPerSecond;
+        }
+    }
+
+    /** @return a motor's commanded speed, degrees per second */
+    private double commanded(int portIndex) {
+        return portIndex == leftIndex ? states.commandLeft[index] : portIndex == rightIndex ? states.commandRight[index] : commanded[portIndex];
     }
 
     /**
@@ -244,7 +291,7 @@ public final class SimRobot {
      */
     double motorDegrees(String port) {
         int i = portIndex(port);
-        return i < 0 ? 0.0 : motorDegrees[i];
+        return i < 0 ? 0.0 : motorDegrees(i);
     }
 
     /**
@@ -252,7 +299,7 @@ public final class SimRobot {
      * @return its encoder, degrees
      */
     double motorDegrees(int portIndex) {
-        return motorDegrees[portIndex];
+        return portIndex == leftIndex ? states.encoderLeft[index] : portIndex == rightIndex ? states.encoderRight[index] : motorDegrees[portIndex];
     }
 
     /** @return a motor port's index, or -1 */
@@ -262,13 +309,10 @@ public final class SimRobot {
 
     /** @return a motor port's index, or -1 */
     private int portIndex(String port) {
-        for (int i = 0; i < ports.length; i++) {
-            if (ports[i].equals(port)) {
-                return i;
-            }
-        }
-        return -1;
+        return model.portIndex(port);
     }
+
+    private static final double[] NO_MOTORS = new double[0];
 
     /**
      * Sets every motor to rest and the body's velocities to match, when the world halts (its
@@ -276,6 +320,10 @@ public final class SimRobot {
      */
     void halt() {
         java.util.Arrays.fill(commanded, 0);
+        if (kinematics != null) {
+            states.commandLeft[index] = 0;
+            states.commandRight[index] = 0;
+        }
         if (quadruped != null) {
             quadruped.stop();
         }
@@ -294,20 +342,12 @@ public final class SimRobot {
             v = quadruped.linearVelocity();
             w = quadruped.angularVelocity();
         } else if (kinematics != null) {
-            DifferentialDrive d = kinematics.drive();
-            double max = d.maxSpeed();
-            double vl = clamp(kinematics.wheelMetres(commanded[leftIndex], d.left().reversed()), max);
-            double vr = clamp(kinematics.wheelMetres(commanded[rightIndex], d.right().reversed()), max);
-            v = (vl + vr) / 2;
-            w = (vr - vl) / d.trackWidth();
+            states.drive(index, physics);
+            return;
         } else {
             return;
         }
         physics.drive(body, v, w);
-    }
-
-    private static double clamp(double v, double max) {
-        return Math.max(-max, Math.min(max, v));
     }
 
     /**
@@ -331,37 +371,19 @@ public final class SimRobot {
         }
         if (physics.atRest(body) && !hasTouch) {
             if (recordTrajectory) {
-                trajectory.add(lastX, lastY);
+                trajectory.add(states.x[index], states.y[index]);
             }
             return;
         }
-        readPose();
-        double x = poseX;
-        double y = poseY;
-        double heading = poseHeading;
-        double dTheta = Pose.normalize(heading - lastHeading);
-        turned += dTheta;
-        if (kinematics != null) {
-            DifferentialDrive d = kinematics.drive();
-            double mid = lastHeading + dTheta / 2;
-            double ds = (x - lastX) * Math.cos(mid) + (y - lastY) * Math.sin(mid);
-            double left = ds - dTheta * d.trackWidth() / 2;
-            double right = ds + dTheta * d.trackWidth() / 2;
-            double dpm = kinematics.motorDegreesPerMetre();
-            motorDegrees[leftIndex] += (d.left().reversed() ? -left : left) * dpm;
-            motorDegrees[rightIndex] += (d.right().reversed() ? -right : right) * dpm;
-        }
+        states.advance(index, physics, kinematics != null);
         for (int a : actuatorIndex) {
             motorDegrees[a] += commanded[a] * dt;
         }
-        lastX = x;
-        lastY = y;
-        lastHeading = heading;
         if (hasTouch) {
             contactSides = contacts();
         }
         if (recordTrajectory) {
-            trajectory.add(x, y);
+            trajectory.add(states.x[index], states.y[index]);
         }
     }
 
@@ -415,9 +437,9 @@ public final class SimRobot {
         }
         Double max = AiboDevices.DISTANCE_MAX_MM.get(device);
         if (max != null) {
-            for (SensorModel m : rangeSensors) {
+            for (SensorModel m : model.rangeSensors) {
                 if (m.spec().port().equals(device)) {
-                    return OptionalDouble.of(Math.min(max, m.latest() * 1000));
+                    return OptionalDouble.of(Math.min(max, latest(m) * 1000));
                 }
             }
             return OptionalDouble.of(max);
@@ -437,34 +459,6 @@ public final class SimRobot {
             return 0;
         }
         return Math.toRadians(quadruped.joint("neck").angle() + quadruped.joint("headTilt").angle());
-    }
-
-    /** Takes the body's pose from the physics, as {@code new Pose(x, y, atan2(sin, cos))} would hold it. */
-    private void readPose() {
-        double x = physics.x(body);
-        double y = physics.y(body);
-        double heading = Math.atan2(physics.sin(body), physics.cos(body));
-        if (!Double.isFinite(x) || !Double.isFinite(y) || !Double.isFinite(heading)) {
-            new Pose(x, y, heading); // throws, saying which values are not numbers
-        }
-        heading = Pose.normalize(heading);
-        int version = poseVersion;
-        POSE_VERSION.setOpaque(this, version + 1);
-        java.lang.invoke.VarHandle.storeStoreFence();
-        poseX = x;
-        poseY = y;
-        poseHeading = heading;
-        POSE_VERSION.setRelease(this, version + 2);
-    }
-
-    private static final java.lang.invoke.VarHandle POSE_VERSION;
-
-    static {
-        try {
-            POSE_VERSION = java.lang.invoke.MethodHandles.lookup().findVarHandle(SimRobot.class, "poseVersion", int.class);
-        } catch (ReflectiveOperationException e) {
-            throw new ExceptionInInitializerError(e);
-        }
     }
 
     private static final int FRONT = 1;
@@ -505,8 +499,23 @@ public final class SimRobot {
      * @param future completed with the raw value
      */
     void requestRead(SensorModel sensor, SimFuture<Double> future) {
-        reads.add(new PendingRead(sensor, future));
+        Queue<PendingRead> q = reads;
+        if (q == null) {
+            READS.compareAndSet(this, null, new ConcurrentLinkedQueue<PendingRead>());
+            q = reads;
+        }
+        q.add(new PendingRead(sensor, future));
         readsPending = true;
+    }
+
+    private static final java.lang.invoke.VarHandle READS;
+
+    static {
+        try {
+            READS = java.lang.invoke.MethodHandles.lookup().findVarHandle(SimRobot.class, "reads", Queue.class);
+        } catch (ReflectiveOperationException e) {
+            throw new ExceptionInInitializerError(e);
+        }
     }
 
     /**
@@ -544,11 +553,11 @@ public final class SimRobot {
     double siValue(SensorModel sensor, SimWorld world) {
         return switch (sensor.kind()) {
             case RANGE -> vehicle != null && sensor.spec().position() == io.robomw.api.Position.BOTTOM
-                    ? Math.min(sensor.maxRange(), vehicle.snapshot().z()) : sensor.latest();
+                    ? Math.min(sensor.maxRange(), vehicle.snapshot().z()) : latest(sensor);
             case CONTACT -> touching(sensor) ? 1.0 : 0.0;
             case FLOOR -> world.floorAt(sensorX(sensor), sensorY(sensor), sensor.spec().type() == io.robomw.api.SensorType.COLOR);
-            case HEADING -> poseHeading;
-            case TURNED -> turned;
+            case HEADING -> states.heading[index];
+            case TURNED -> states.turned[index];
             case SILENCE -> 0.0;
             case TACHO -> Math.toRadians(motorDegrees(sensor.spec().port()));
             case ACCELERATION -> accel[switch (sensor.axis()) {
@@ -609,10 +618,12 @@ public final class SimRobot {
     }
 
     private double sensorX(SensorModel s) {
-        return poseX + s.mountX() * Math.cos(poseHeading) - s.mountY() * Math.sin(poseHeading);
+        double h = states.heading[index];
+        return states.x[index] + s.mountX() * Math.cos(h) - s.mountY() * Math.sin(h);
     }
 
     private double sensorY(SensorModel s) {
-        return poseY + s.mountX() * Math.sin(poseHeading) + s.mountY() * Math.cos(poseHeading);
+        double h = states.heading[index];
+        return states.y[index] + s.mountX() * Math.sin(h) + s.mountY() * Math.cos(h);
     }
 }

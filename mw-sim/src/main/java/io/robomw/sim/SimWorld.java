@@ -72,6 +72,10 @@ public final class SimWorld implements AutoCloseable {
     /** The farthest a robot may move in a step with the swarm engine (half the thinnest static), metres. */
     private final double thinnestStatic;
     private final List<SimRobot> robots = new ArrayList<>();
+    /** What the robots change at every step, in arrays by robot index. */
+    private final RobotStates states = new RobotStates();
+    /** What the robots read from one robot file share. */
+    private final Map<RobotModel.Key, RobotModel> models = new java.util.HashMap<>();
     private final Map<String, SimRobot> byName = new LinkedHashMap<>();
     private final RangeIndex rangeIndex;
     private final long stepNanos;
@@ -94,6 +98,9 @@ public final class SimWorld implements AutoCloseable {
     /** The wall clock phases are timed with, when profiling ({@link #profile}); {@code null} otherwise. */
     private Clock profileClock;
     private final long[] phaseNanos = new long[Phase.values().length];
+    /** The clock the robots' parts are timed with, on the robots of every {@value #PART_SAMPLE}th index; {@code null} otherwise. */
+    private volatile Clock partClock;
+    private final java.util.concurrent.atomic.LongAdder[] partNanos = new java.util.concurrent.atomic.LongAdder[RobotPart.values().length];
     /** Controllers run robot by robot in the world's own pass ({@link #addRobotController}). */
     private volatile RobotController[] controllers = new RobotController[0];
     /** The controllers due at the step being taken (touched by the stepping thread, read by the pass). */
@@ -122,6 +129,30 @@ public final class SimWorld implements AutoCloseable {
          */
         ROBOTS
     }
+
+    /**
+     * The parts of a robot's work in a step that {@link #profile(Clock, boolean)} times (on the
+     * worker threads, robot by robot: their sum is processor time, not wall time).
+     */
+    public enum RobotPart {
+        /** After the motion: encoders, contacts, the true pose, the trajectory. */
+        MOTION,
+        /** Its body's place in the range index, when sensors are due. */
+        PLACE,
+        /** Its range sensors that are due: the ray casts. */
+        SENSING,
+        /** Its execution action threads' cycles that are due (the Platform Layer: containers, refreshes, the inline link side and driver). */
+        CYCLES,
+        /** Completing its pending sensor reads. */
+        READS,
+        /** The robot controllers due on it (the wander controller: reading its sensors, {@code drive} through the Configuration Layer). */
+        CONTROLLERS,
+        /** Setting its body's velocities from its commanded wheel speeds. */
+        DRIVE
+    }
+
+    /** One robot in this many has its parts timed when profiling (a clock reading per part of every robot would cost more than some parts). */
+    static final int PART_SAMPLE = 8;
 
     /** Casts one ray for a range sensor. */
     @FunctionalInterface
@@ -258,6 +289,8 @@ public final class SimWorld implements AutoCloseable {
                 segments.toArray(double[][]::new), discs.toArray(double[][]::new));
         this.rangeMethod = rangeMethod;
         this.rayCaster = rangeMethod == RangeMethod.GRID ? rangeIndex::castRay : this::dyn4jRay;
+        // room for the world file's robots at once (grown by doubling, 100,000 robots left a third of every array empty)
+        states.reserve(description.robots().size());
     }
 
     /** @return half the thickness of the thinnest wall or obstacle (+∞ without any) */
@@ -315,10 +348,19 @@ public final class SimWorld implements AutoCloseable {
             checkSwarmBody(name, description);
         }
         int body = physics.addBody(b.length(), b.width(), b.mass(), b.friction(), start.x(), start.y(), start.heading());
+        RobotModel model = models.computeIfAbsent(RobotModel.Key.of(description), k -> new RobotModel(description, physicsHz));
         SimRobot robot = new SimRobot(robots.size(), name, description, physics, body, this.description.seed(), clock::nanoTime,
-                this.description.trajectories(), failures, this.description.surroundings());
+                this.description.trajectories(), failures, states, model, this.description.surroundings());
         robots.add(robot);
-        cycled = java.util.Arrays.copyOf(cycled, robots.size());
+        if (robots.size() > cycled.length) {
+            // grown by doubling (a copy per robot made loading 100,000 robots quadratic: minutes); slots past the robots stay empty
+            int room = Math.max(robots.size(), 2 * cycled.length);
+            cycled = java.util.Arrays.copyOf(cycled, room);
+            bodyLength = java.util.Arrays.copyOf(bodyLength, room);
+            bodyWidth = java.util.Arrays.copyOf(bodyWidth, room);
+        }
+        bodyLength[robot.index()] = b.length();
+        bodyWidth[robot.index()] = b.width();
         byName.put(name, robot);
         initialSampleDue = true;
         sensingPeriods = null;
@@ -389,6 +431,18 @@ public final class SimWorld implements AutoCloseable {
      */
     public SimRobot robot(String name) {
         return byName.get(name);
+    }
+
+    /**
+     * A range sensor's last sample, without touching the robot's object: for controllers that work
+     * robot by robot in the world's pass ({@link #addRobotController}).
+     *
+     * @param robot a robot's index
+     * @param k     one of its range sensors, by its place among them ({@link SensorModel#rangeIndex()})
+     * @return the sensor's last sample, metres
+     */
+    public double rangeReading(int robot, int k) {
+        return states.range(robot, k);
     }
 
     /** @return the world's rigid-body physics */
@@ -486,13 +540,57 @@ public final class SimWorld implements AutoCloseable {
      * @param wall the wall clock, or {@code null}
      */
     public void profile(Clock wall) {
+        profile(wall, false);
+    }
+
+    /**
+     * Times every phase of the following steps on a wall clock, and with {@code robotParts} also
+     * the {@linkplain RobotPart parts} of the robots' work on the robots of every
+     * {@value #PART_SAMPLE}th index (see {@link #robotPartNanos()}); {@code null} stops both.
+     *
+     * @param wall       the wall clock, or {@code null}
+     * @param robotParts whether to time the robots' parts too
+     */
+    public void profile(Clock wall, boolean robotParts) {
         profileClock = wall;
         java.util.Arrays.fill(phaseNanos, 0);
+        for (int k = 0; k < partNanos.length; k++) {
+            partNanos[k] = new java.util.concurrent.atomic.LongAdder();
+        }
+        partClock = robotParts ? wall : null;
     }
 
     /** @return wall nanoseconds spent in each {@link Phase} (by ordinal) since {@link #profile} */
     public long[] phaseNanos() {
         return phaseNanos.clone();
+    }
+
+    /**
+     * @return the nanoseconds spent in each {@link RobotPart} (by ordinal) since {@link #profile(Clock, boolean)}, summed over
+     *         every robot and thread: estimated from the robots timed (those of every {@value #PART_SAMPLE}th index), scaled
+     *         to all of them
+     */
+    public long[] robotPartNanos() {
+        int n = robots.size();
+        int timed = (n + PART_SAMPLE - 1) / PART_SAMPLE;
+        long[] out = new long[partNanos.length];
+        for (int k = 0; k < out.length; k++) {
+            out[k] = partNanos[k] == null || timed == 0 ? 0 : Math.round(partNanos[k].sum() * (double) n / timed);
+        }
+        return out;
+    }
+
+    /** @return the clock to time robot {@code i}'s parts with, or {@code null} if they are not timed */
+    private Clock partClock(int i) {
+        Clock c = partClock;
+        return c != null && i % PART_SAMPLE == 0 ? c : null;
+    }
+
+    /** Adds the time since {@code since} to a part; @return now */
+    private long part(Clock c, RobotPart part, long since) {
+        long now = c.nanoTime();
+        partNanos[part.ordinal()].add(now - since);
+        return now;
     }
 
     private long tick(long since, Phase phase) {
@@ -516,7 +614,7 @@ public final class SimWorld implements AutoCloseable {
             }
             parallel.forEach(n, i -> {
                 if (grid) {
-                    place(robots.get(i));
+                    place(i);
                 }
             });
             if (grid) {
@@ -542,14 +640,43 @@ public final class SimWorld implements AutoCloseable {
         boolean controlling = controllersDue(step);
         if (!sensing && !cycling && !controlling) {
             // No robot's work after the motion reads the clock or another robot: one pass.
+            RobotStates st = states;
+            boolean reads = readsPending;
+            readsPending = false;
             parallel.forEach(n, i -> {
                 try {
-                    SimRobot r = robots.get(i);
-                    r.afterStep(stepSeconds, record);
-                    if (cycled[i] != null) {
-                        r.completeReads(this);
+                    Clock timer = partClock(i);
+                    long t0 = timer == null ? 0 : timer.nanoTime();
+                    if (st.plain[i]) {
+                        // a plain robot's step from the world's arrays alone: no object of it is touched
+                        st.afterStep(i, physics, record);
+                        if (timer != null) {
+                            t0 = part(timer, RobotPart.MOTION, t0);
+                        }
+                        if (reads && cycled[i] != null) {
+                            robots.get(i).completeReads(this);
+                        }
+                        if (timer != null) {
+                            t0 = part(timer, RobotPart.READS, t0);
+                        }
+                        st.drive(i, physics);
+                    } else {
+                        SimRobot r = robots.get(i);
+                        r.afterStep(stepSeconds, record);
+                        if (timer != null) {
+                            t0 = part(timer, RobotPart.MOTION, t0);
+                        }
+                        if (cycled[i] != null) {
+                            r.completeReads(this);
+                        }
+                        if (timer != null) {
+                            t0 = part(timer, RobotPart.READS, t0);
+                        }
+                        r.applyDrive();
                     }
-                    r.applyDrive();
+                    if (timer != null) {
+                        part(timer, RobotPart.DRIVE, t0);
+                    }
                 } catch (Throwable e) {
                     robotFailed(i, e);
                 }
@@ -564,15 +691,27 @@ public final class SimWorld implements AutoCloseable {
         if (grid) {
             rangeIndex.robots(n);
         }
+        RobotStates st = states;
         parallel.forEach(n, i -> {
-            SimRobot r = robots.get(i);
+            Clock timer = partClock(i);
+            long t0 = timer == null ? 0 : timer.nanoTime();
             try {
-                r.afterStep(stepSeconds, record);
+                if (st.plain[i]) {
+                    st.afterStep(i, physics, record);
+                } else {
+                    robots.get(i).afterStep(stepSeconds, record);
+                }
             } catch (Throwable e) {
                 robotFailed(i, e);
             }
+            if (timer != null) {
+                t0 = part(timer, RobotPart.MOTION, t0);
+            }
             if (grid) {
-                place(r);
+                place(i);
+                if (timer != null) {
+                    part(timer, RobotPart.PLACE, t0);
+                }
             }
         });
         t = tick(t, Phase.AFTER_STEP);
@@ -584,11 +723,17 @@ public final class SimWorld implements AutoCloseable {
         long senseStep = sensing ? step : 0;
         RobotController[] due = dueControllers;
         int dueNow = dueCount;
+        readsPending = false;
         parallel.forEach(n, i -> {
             SimRobot r = robots.get(i);
+            Clock timer = partClock(i);
             try {
+                long t0 = timer == null ? 0 : timer.nanoTime();
                 if (senseStep != 0) {
                     sense(r, senseStep);
+                    if (timer != null) {
+                        t0 = part(timer, RobotPart.SENSING, t0);
+                    }
                 }
                 Cycled c = cycled[i];
                 if (c != null) {
@@ -598,12 +743,28 @@ public final class SimWorld implements AutoCloseable {
                             c.thread.cycle();
                         }
                     }
+                    if (timer != null) {
+                        t0 = part(timer, RobotPart.CYCLES, t0);
+                    }
                     r.completeReads(this);
+                    if (timer != null) {
+                        t0 = part(timer, RobotPart.READS, t0);
+                    }
                 }
                 for (int k = 0; k < dueNow; k++) {
                     due[k].control().accept(i);
                 }
-                r.applyDrive();
+                if (timer != null && dueNow > 0) {
+                    t0 = part(timer, RobotPart.CONTROLLERS, t0);
+                }
+                if (st.plain[i]) {
+                    st.drive(i, physics);
+                } else {
+                    r.applyDrive();
+                }
+                if (timer != null) {
+                    part(timer, RobotPart.DRIVE, t0);
+                }
             } catch (Throwable e) {
                 robotFailed(i, e);
             }
@@ -663,10 +824,22 @@ public final class SimWorld implements AutoCloseable {
         lockstep.fail(why);
     }
 
-    /** Places a robot's body in the range index, from its pose after the step. */
-    private void place(SimRobot r) {
-        Body b = r.description().body();
-        rangeIndex.placeRobot(r.index(), r.x(), r.y(), r.heading(), b.length(), b.width());
+    /** Places robot {@code i}'s body in the range index, from its pose after the step. */
+    private void place(int i) {
+        RobotStates st = states;
+        rangeIndex.placeRobot(i, st.x[i], st.y[i], st.cos[i], st.sin[i], bodyLength[i], bodyWidth[i]);
+    }
+
+    /** Each robot's body length and width, for the range index (by robot index). */
+    private double[] bodyLength = new double[0];
+    private double[] bodyWidth = new double[0];
+
+    /** Set by a read queued on any robot, cleared by the step that completes the reads: a step with none looks at no robot's queue. */
+    private volatile boolean readsPending;
+
+    /** A robot queued a read: the next step completes it. Any thread. */
+    void readQueued() {
+        readsPending = true;
     }
 
     /**
@@ -679,20 +852,48 @@ public final class SimWorld implements AutoCloseable {
         if (sensors.isEmpty()) {
             return;
         }
-        double x = r.x();
-        double y = r.y();
-        double heading = r.heading();
-        double c = Math.cos(heading);
-        double s = Math.sin(heading);
+        int i = r.index();
+        RobotStates st = states;
+        double x = st.x[i];
+        double y = st.y[i];
+        double heading = st.heading[i];
+        double c = st.cos[i];
+        double s = st.sin[i];
         double pan = r.headPan();
         double tilt = r.headTilt();
+        double[] ranges = st.ranges;
+        int start = st.rangeStart[i];
+        if (rangeMethod != RangeMethod.GRID) {
+            for (int k = 0; k < sensors.size(); k++) {
+                SensorModel m = sensors.get(k);
+                if (step < 0 || step % m.everySteps() == 0) {
+                    ranges[start + k] = m.sampleRange(rayCaster, i, x, y, heading, c, s, pan, tilt, r.noise(k));
+                }
+            }
+            return;
+        }
+        // every due sensor's rays cast together: what is around the robot is gathered once
+        SensorModel.RayBatch batch = rayBatches.get();
+        batch.count = 0;
         for (int k = 0; k < sensors.size(); k++) {
             SensorModel m = sensors.get(k);
-            if (step < 0 || step % m.everySteps(physicsHz) == 0) {
-                m.sampleRange(rayCaster, r.index(), x, y, heading, c, s, pan, tilt);
+            if (step < 0 || step % m.everySteps() == 0) {
+                m.addRays(batch, x, y, heading, c, s, pan);
+            }
+        }
+        rangeIndex.castRays(batch.ox, batch.oy, batch.dx, batch.dy, batch.maxRange, batch.count, i, batch.hits);
+        int first = 0;
+        for (int k = 0; k < sensors.size(); k++) {
+            SensorModel m = sensors.get(k);
+            if (step < 0 || step % m.everySteps() == 0) {
+                ranges[start + k] = m.finishRange(batch.hits, first, tilt, r.noise(k));
+                first += m.rays();
             }
         }
     }
+
+    /** Each worker thread's rays of the robot it senses for. */
+    private final ThreadLocal<SensorModel.RayBatch> rayBatches = ThreadLocal.withInitial(SensorModel.RayBatch::new);
 
     /** @return whether any range sensor samples at this step */
     private boolean sensingDue(long step) {
@@ -700,7 +901,7 @@ public final class SimWorld implements AutoCloseable {
             java.util.TreeSet<Long> periods = new java.util.TreeSet<>();
             for (SimRobot r : robots) {
                 for (SensorModel s : r.rangeSensors()) {
-                    periods.add(s.everySteps(description.physicsHz()));
+                    periods.add(s.everySteps());
                 }
             }
             sensingPeriods = periods.stream().mapToLong(Long::longValue).toArray();

@@ -113,15 +113,18 @@ public final class Simulation implements AutoCloseable {
                 }
             }
             PlatformServices services = given.with(SimWorld.class, world).with(FailurePolicy.class, failures);
+            // the providers looked up once, not three class path scans a robot (minutes for 100,000 robots)
+            Map<String, PlatformProvider> providers = new HashMap<>();
+            io.robomw.api.spi.RobotComponents components = io.robomw.api.spi.RobotComponents.find();
             for (SimRobot r : world.robots()) {
                 if (this.emulated.contains(r.name())) {
                     continue;
                 }
                 RobotDescription d = r.description();
-                PlatformProvider provider = DescriptionRobotFactory.provider(d);
+                PlatformProvider provider = providers.computeIfAbsent(d.platform(), k -> DescriptionRobotFactory.provider(d));
                 RobotPlatform platform = provider.open(DescriptionRobotFactory.platformConfig(d, services, world.clock(), io.robomw.api.spi.Cycling.BY_OWNER));
                 try {
-                    robots.put(r.name(), ConfiguredRobot.withComponents(() -> d, platform, null));
+                    robots.put(r.name(), ConfiguredRobot.withComponents(() -> d, platform, null, components));
                 } catch (RuntimeException e) {
                     platform.close();
                     throw e;

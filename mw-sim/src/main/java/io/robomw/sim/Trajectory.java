@@ -119,6 +119,15 @@ public final class Trajectory {
         return count;
     }
 
+    /**
+     * @return how many points it has room for now (its storage grows by doubling up to the world's
+     *         {@code max_points}, 8 bytes a point): what a full trajectory would add to the heap is
+     *         {@code 8 × (max_points − capacity())} bytes
+     */
+    public synchronized int capacity() {
+        return points.length / 2;
+    }
+
     /** @return the samples taken so far (kept or not) */
     public synchronized long samples() {
         return samples;

@@ -129,6 +129,7 @@ class TrajectoryTest {
             SimRobot body = sim.world().robot("r1");
             Trajectory t = body.trajectory();
             assertTrue(t.size() <= 40 && t.size() >= 20, "at most 40 points, the whole run thinned: " + t.size());
+            assertEquals(40, t.capacity(), "its storage grew to the world's max_points and no further");
             assertTrue(t.samples() >= 3000, "a sample every 0.2 s: " + t.samples());
             // 0.1 m/s for 600 s: 60 m of circles of 0.2 m radius, measured on 0.2 s chords (a hair shorter than the arcs).
             assertEquals(60.0, t.lengthTo(body.pose().x(), body.pose().y()), 0.3);

@@ -88,10 +88,25 @@ public final class ConfiguredRobot implements Robot {
      * @return the robot
      */
     public static ConfiguredRobot withComponents(Supplier<RobotDescription> description, RobotPlatform platform, AutoCloseable onClose) {
+        return withComponents(description, platform, onClose, RobotComponents.find());
+    }
+
+    /**
+     * A robot with every component from providers looked up already: for a caller that opens many
+     * robots ({@link RobotComponents#find} once, not twice a robot).
+     *
+     * @param description the description in force (read on every call; the sections are read now)
+     * @param platform    the opened platform
+     * @param onClose     closed after the platform, or {@code null}
+     * @param components  the providers of messaging and agency
+     * @return the robot
+     */
+    public static ConfiguredRobot withComponents(Supplier<RobotDescription> description, RobotPlatform platform, AutoCloseable onClose,
+                                                 RobotComponents components) {
         RobotDescription d = description.get();
-        MessagingComponent messaging = RobotComponents.messaging(d.name(), d.messaging());
+        MessagingComponent messaging = components.messagingOf(d.name(), d.messaging());
         try {
-            return new ConfiguredRobot(description, platform, messaging, RobotComponents.agency(d.name(), d.agency()), onClose);
+            return new ConfiguredRobot(description, platform, messaging, components.agencyOf(d.name(), d.agency()), onClose);
         } catch (RuntimeException e) {
             messaging.close();
             throw e;

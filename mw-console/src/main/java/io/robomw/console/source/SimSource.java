@@ -64,7 +64,7 @@ public final class SimSource implements AutoCloseable {
             double z = r.vehicle() == null ? 0 : r.vehicle().snapshot().z();
             observer.observe(new Observation.RobotPose(t, r.name(), p.x(), p.y(), z, p.heading(), true));
             for (SensorModel s : r.rangeSensors()) {
-                observer.observe(new Observation.SensorReading(t, r.name(), s.spec().name(), s.latest(), "m"));
+                observer.observe(new Observation.SensorReading(t, r.name(), s.spec().name(), r.latest(s), "m"));
             }
         }
     }

@@ -92,6 +92,14 @@ public interface Physics {
 
     /**
      * @param body a body's number
+     * @return its heading, radians in [-π, π], anti-clockwise from x (by default from its cosine and sine)
+     */
+    default double heading(int body) {
+        return Math.atan2(sin(body), cos(body));
+    }
+
+    /**
+     * @param body a body's number
      * @return its linear velocity's x, m/s
      */
     double vx(int body);

@@ -18,9 +18,9 @@ import java.util.Arrays;
  * bodies on; it works through the bodies in fixed batches of {@value #BATCH}, each writing its contacts
  * to a buffer of its own, and the buffers are joined in batch order, so the contacts and therefore
  * the sequential solve (on the stepping thread) come in the same order whatever the number of
- * threads: the same commands give the same trajectories bit for bit on 1, 2 or 3 threads. Angles
- * go through {@link StrictMath} so that no processor's or compiler's variant of a sine changes a
- * bit.
+ * threads: the same commands give the same trajectories bit for bit on 1, 2 or 3 threads. A body's
+ * cosine and sine are computed in plain Java arithmetic ({@link Rotation}), so that no processor's
+ * or compiler's variant of a sine changes a bit.
  *
  * <h2>What it does not model</h2>
  * No restitution (bodies do not bounce), no continuous collision detection (a body must not move
@@ -254,8 +254,8 @@ public final class SwarmPhysics implements Physics {
         px[i] = x;
         py[i] = y;
         angle[i] = wrap(heading);
-        cs[i] = StrictMath.cos(angle[i]);
-        sn[i] = StrictMath.sin(angle[i]);
+        cs[i] = Rotation.cos(angle[i]);
+        sn[i] = Rotation.sin(angle[i]);
         invMass[i] = 1 / mass;
         invInertia[i] = 12 / (mass * (length * length + width * width));
         halfLength[i] = length / 2;
@@ -297,6 +297,12 @@ public final class SwarmPhysics implements Physics {
     @Override
     public double sin(int body) {
         return sn[body];
+    }
+
+    /** @return the body's angle as the engine integrates it, in [-π, π] (its cosine and sine are computed from it) */
+    @Override
+    public double heading(int body) {
+        return angle[body];
     }
 
     @Override
@@ -999,8 +1005,8 @@ public final class SwarmPhysics implements Physics {
             if (o != 0) {
                 double a = wrap(angle[i] + o * dt);
                 angle[i] = a;
-                cs[i] = StrictMath.cos(a);
-                sn[i] = StrictMath.sin(a);
+                cs[i] = Rotation.cos(a);
+                sn[i] = Rotation.sin(a);
             }
         }
     }

@@ -34,8 +34,13 @@ public final class WanderController implements Runnable {
     private final double[] maxWheelSpeed;
     private final double[] halfTrack;
     private final double[] maxTurnRate;
-    /** Per robot, per range sensor: bit 1 ahead, bit 2 left, bit 4 right, from its mounting angle. */
+    /** Per robot, per range sensor: bit 1 ahead, bit 2 left, bit 4 right, from its mounting angle (shared by the robots of one robot file). */
     private final int[][] sectors;
+    /** Per robot, per range sensor: its longest range (shared as the sectors are). */
+    private final double[][] maxRanges;
+    /** By a robot's index here: its index in the world. */
+    private final int[] worldIndex;
+    private final io.robomw.sim.SimWorld world;
     /** By a robot's index in the world: its index here, or -1 if it is not controlled (a brick emulator drives it). */
     private final int[] byWorldIndex;
 
@@ -57,6 +62,11 @@ public final class WanderController implements Runnable {
         this.turnBias = new double[bodies.size()];
         this.random = new SplittableRandom[bodies.size()];
         this.sectors = new int[bodies.size()][];
+        this.maxRanges = new double[bodies.size()][];
+        this.worldIndex = bodies.stream().mapToInt(SimRobot::index).toArray();
+        this.world = simulation.world();
+        java.util.Map<List<SensorModel>, int[]> sharedSectors = new java.util.IdentityHashMap<>();
+        java.util.Map<List<SensorModel>, double[]> sharedRanges = new java.util.IdentityHashMap<>();
         this.maxWheelSpeed = new double[bodies.size()];
         this.halfTrack = new double[bodies.size()];
         this.maxTurnRate = new double[bodies.size()];
@@ -75,11 +85,15 @@ public final class WanderController implements Runnable {
             halfTrack[i] = d.drive().map(dd -> dd.trackWidth() / 2).orElse(Double.NaN);
             maxTurnRate[i] = d.leggedDrive().map(l -> l.maxTurnRate()).orElse(Double.NaN);
             List<SensorModel> range = bodies.get(i).rangeSensors();
-            sectors[i] = new int[range.size()];
-            for (int k = 0; k < range.size(); k++) {
-                double a = Math.IEEEremainder(range.get(k).mountAngle(), 2 * Math.PI);
-                sectors[i][k] = (Math.abs(a) < 0.3 ? 1 : 0) | (a > 0 && a < 1.8 ? 2 : 0) | (a < 0 && a > -1.8 ? 4 : 0);
-            }
+            sectors[i] = sharedSectors.computeIfAbsent(range, r -> {
+                int[] sector = new int[r.size()];
+                for (int k = 0; k < r.size(); k++) {
+                    double a = Math.IEEEremainder(r.get(k).mountAngle(), 2 * Math.PI);
+                    sector[k] = (Math.abs(a) < 0.3 ? 1 : 0) | (a > 0 && a < 1.8 ? 2 : 0) | (a < 0 && a > -1.8 ? 4 : 0);
+                }
+                return sector;
+            });
+            maxRanges[i] = sharedRanges.computeIfAbsent(range, r -> r.stream().mapToDouble(SensorModel::maxRange).toArray());
         }
     }
 
@@ -126,15 +140,16 @@ public final class WanderController implements Runnable {
             if (speed[i] == 0) {
                 return;
             }
-            SimRobot body = bodies.get(i);
             double left = Double.POSITIVE_INFINITY;
             double right = Double.POSITIVE_INFINITY;
             double ahead = Double.POSITIVE_INFINITY;
-            List<SensorModel> range = body.rangeSensors();
-            for (int k = 0; k < range.size(); k++) {
-                SensorModel s = range.get(k);
-                double d = s.latest() / s.maxRange();
-                int sector = sectors[i][k];
+            int[] sectorOf = sectors[i];
+            double[] maxRange = maxRanges[i];
+            int robot = worldIndex[i];
+            for (int k = 0; k < sectorOf.length; k++) {
+                // the sample from the world's arrays: the robot's own objects are not touched to read it
+                double d = world.rangeReading(robot, k) / maxRange[k];
+                int sector = sectorOf[k];
                 if ((sector & 1) != 0) {
                     ahead = Math.min(ahead, d);
                 }

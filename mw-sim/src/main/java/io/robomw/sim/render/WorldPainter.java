@@ -248,7 +248,7 @@ public final class WorldPainter {
             double ox = p.x() + m.mountX() * c - m.mountY() * s;
             double oy = p.y() + m.mountX() * s + m.mountY() * c;
             double a = p.heading() + m.mountAngle();
-            double range = m.latest();
+            double range = r.latest(m);
             double ex = ox + range * Math.cos(a);
             double ey = oy + range * Math.sin(a);
             boolean hit = range < m.maxRange();

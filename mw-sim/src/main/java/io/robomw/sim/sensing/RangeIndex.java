@@ -43,6 +43,10 @@ public final class RangeIndex {
     private final int[] robotStart;
     private int[] robotFill = new int[0];
     private int[] robotItems = new int[0];
+    /** Per robot: its centre and the radius of its body's bounding circle, {x, y, r}, for a ray's quick miss. */
+    private double[] robotCircles = new double[0];
+    /** Each thread's scratch for {@link #castRays}. */
+    private final ThreadLocal<Gathered> gathered = ThreadLocal.withInitial(Gathered::new);
 
     /**
      * @param minX     lower-left corner of the indexed area
@@ -185,6 +189,7 @@ public final class RangeIndex {
             return;
         }
         corners = new double[count * 8];
+        robotCircles = new double[count * 3];
         robotCells = new int[count * 4];
         robotCount = count;
         robotItems = new int[0];
@@ -204,8 +209,22 @@ public final class RangeIndex {
      * @param width   its body width
      */
     public void placeRobot(int i, double x, double y, double heading, double length, double width) {
-        double c = Math.cos(heading);
-        double s = Math.sin(heading);
+        placeRobot(i, x, y, Math.cos(heading), Math.sin(heading), length, width);
+    }
+
+    /**
+     * {@link #placeRobot(int, double, double, double, double, double)} with the heading's cosine and
+     * sine given (a robot keeps them from its step).
+     *
+     * @param i      the robot's index
+     * @param x      its centre x
+     * @param y      its centre y
+     * @param c      its heading's cosine
+     * @param s      its heading's sine
+     * @param length its body length
+     * @param width  its body width
+     */
+    public void placeRobot(int i, double x, double y, double c, double s, double length, double width) {
         double hl = length / 2;
         double hw = width / 2;
         // corners in the order front-left, back-left, back-right, front-right; edge k joins corner k and k + 1
@@ -228,6 +247,11 @@ public final class RangeIndex {
         q[k + 5] = y2;
         q[k + 6] = x3;
         q[k + 7] = y3;
+        int m = i * 3;
+        double[] circles = robotCircles;
+        circles[m] = x;
+        circles[m + 1] = y;
+        circles[m + 2] = Math.sqrt(hl * hl + hw * hw) * (1 + 1e-9) + 1e-9; // every corner inside, whatever the rounding
         robotCells[e] = clampCol(Math.min(Math.min(x0, x1), Math.min(x2, x3)));
         robotCells[e + 1] = clampCol(Math.max(Math.max(x0, x1), Math.max(x2, x3)));
         robotCells[e + 2] = clampRow(Math.min(Math.min(y0, y1), Math.min(y2, y3)));
@@ -287,8 +311,21 @@ public final class RangeIndex {
      * @return the distance to the nearest hit, or {@link Double#POSITIVE_INFINITY} if none within maxRange
      */
     public double castRay(double ox, double oy, double angle, double maxRange, int self) {
-        double dx = Math.cos(angle);
-        double dy = Math.sin(angle);
+        return castRay(ox, oy, Math.cos(angle), Math.sin(angle), maxRange, self);
+    }
+
+    /**
+     * {@link #castRay(double, double, double, double, int)} along a direction given by its unit vector.
+     *
+     * @param ox       ray origin x
+     * @param oy       ray origin y
+     * @param dx       the direction's x ({@code cos} of its angle)
+     * @param dy       the direction's y ({@code sin} of its angle)
+     * @param maxRange longest distance of interest
+     * @param self     index of the robot casting the ray (its body is ignored), or -1
+     * @return the distance to the nearest hit, or {@link Double#POSITIVE_INFINITY} if none within maxRange
+     */
+    public double castRay(double ox, double oy, double dx, double dy, double maxRange, int self) {
         double fx = (ox - originX) / cell;
         double fy = (oy - originY) / cell;
         int col = (int) Math.floor(fx);
@@ -358,6 +395,163 @@ public final class RangeIndex {
             }
         }
         return best <= maxRange ? best : Double.POSITIVE_INFINITY;
+    }
+
+    /** Most cells a gathered cast looks at per ray (beyond, each ray walks the grid on its own: long rays, small cells). */
+    private static final int GATHER_CELLS_PER_RAY = 6;
+
+    /**
+     * The rays of one robot's sensors at once: what lies in the cells around all of them is
+     * gathered once (each static shape and robot body once, however many cells it spans), and
+     * each ray is tested against that, a body first by its bounding circle. The same distances as
+     * {@link #castRay(double, double, double, double, double, int)} for each ray, bit for bit (the
+     * same crossing of the same shapes; the nearest is the nearest in any order); rays long for
+     * the grid's cells are cast one by one. May be called from many threads at once, as castRay.
+     *
+     * @param ox       each ray's origin x
+     * @param oy       each ray's origin y
+     * @param dx       each ray's direction's x (a unit vector)
+     * @param dy       each ray's direction's y
+     * @param maxRange each ray's longest distance of interest
+     * @param count    how many rays (the first {@code count} of each array)
+     * @param self     index of the robot casting them (its body is ignored), or -1
+     * @param out      each ray's distance to its nearest hit, or {@link Double#POSITIVE_INFINITY} if none within its maxRange
+     */
+    public void castRays(double[] ox, double[] oy, double[] dx, double[] dy, double[] maxRange, int count, int self, double[] out) {
+        double minX = Double.POSITIVE_INFINITY;
+        double minY = Double.POSITIVE_INFINITY;
+        double maxX = Double.NEGATIVE_INFINITY;
+        double maxY = Double.NEGATIVE_INFINITY;
+        for (int k = 0; k < count; k++) {
+            double ex = ox[k] + dx[k] * maxRange[k];
+            double ey = oy[k] + dy[k] * maxRange[k];
+            minX = Math.min(minX, Math.min(ox[k], ex));
+            minY = Math.min(minY, Math.min(oy[k], ey));
+            maxX = Math.max(maxX, Math.max(ox[k], ex));
+            maxY = Math.max(maxY, Math.max(oy[k], ey));
+        }
+        int c0 = clampCol(minX);
+        int c1 = clampCol(maxX);
+        int r0 = clampRow(minY);
+        int r1 = clampRow(maxY);
+        if (!(count > 0) || (long) (c1 - c0 + 1) * (r1 - r0 + 1) > (long) GATHER_CELLS_PER_RAY * count + 9) {
+            for (int k = 0; k < count; k++) {
+                out[k] = castRay(ox[k], oy[k], dx[k], dy[k], maxRange[k], self);
+            }
+            return;
+        }
+        Gathered g = gathered.get();
+        g.begin(sx1.length + cx.length, robotCount);
+        int stamp = g.stamp;
+        int[] staticSeen = g.staticSeen;
+        int[] robotSeen = g.robotSeen;
+        for (int r = r0; r <= r1; r++) {
+            for (int c = c0; c <= c1; c++) {
+                int k = r * cols + c;
+                for (int j = staticStart[k]; j < staticStart[k + 1]; j++) {
+                    int item = staticItems[j];
+                    int slot = item >= 0 ? item : sx1.length - item - 1;
+                    if (staticSeen[slot] != stamp) {
+                        staticSeen[slot] = stamp;
+                        g.addStatic(item);
+                    }
+                }
+                for (int j = robotStart[k]; j < robotStart[k + 1]; j++) {
+                    int b = robotItems[j];
+                    if (b != self && robotSeen[b] != stamp) {
+                        robotSeen[b] = stamp;
+                        g.addRobot(b);
+                    }
+                }
+            }
+        }
+        int[] statics = g.statics;
+        int staticCount = g.staticCount;
+        int[] bodies = g.robots;
+        int bodyCount = g.robotCount;
+        double[] q = corners;
+        double[] circles = robotCircles;
+        for (int k = 0; k < count; k++) {
+            double rx = ox[k];
+            double ry = oy[k];
+            double ux = dx[k];
+            double uy = dy[k];
+            double range = maxRange[k];
+            double best = Double.POSITIVE_INFINITY;
+            for (int j = 0; j < staticCount; j++) {
+                int item = statics[j];
+                double d = item >= 0 ? segment(rx, ry, ux, uy, sx1[item], sy1[item], sx2[item], sy2[item])
+                        : disc(rx, ry, ux, uy, cx[-item - 1], cy[-item - 1], cr[-item - 1]);
+                best = nearer(best, d);
+            }
+            for (int j = 0; j < bodyCount; j++) {
+                int b = bodies[j];
+                int m = b * 3;
+                double vx = circles[m] - rx;
+                double vy = circles[m + 1] - ry;
+                double rad = circles[m + 2];
+                double along = vx * ux + vy * uy;
+                double across = vx * uy - vy * ux;
+                if (along < -rad || along > range + rad || across > rad || across < -rad) {
+                    continue; // the ray passes the body's bounding circle by
+                }
+                int base = b * 8;
+                double x0 = q[base];
+                double y0 = q[base + 1];
+                double x1 = q[base + 2];
+                double y1 = q[base + 3];
+                double x2 = q[base + 4];
+                double y2 = q[base + 5];
+                double x3 = q[base + 6];
+                double y3 = q[base + 7];
+                best = nearer(best, segment(rx, ry, ux, uy, x0, y0, x1, y1));
+                best = nearer(best, segment(rx, ry, ux, uy, x1, y1, x2, y2));
+                best = nearer(best, segment(rx, ry, ux, uy, x2, y2, x3, y3));
+                best = nearer(best, segment(rx, ry, ux, uy, x3, y3, x0, y0));
+            }
+            out[k] = best <= range ? best : Double.POSITIVE_INFINITY;
+        }
+    }
+
+    /** One thread's scratch for {@link #castRays}: what was gathered, and stamps that say what was gathered already. */
+    private static final class Gathered {
+        int stamp;
+        int[] staticSeen = new int[0];
+        int[] robotSeen = new int[0];
+        int[] statics = new int[16];
+        int staticCount;
+        int[] robots = new int[16];
+        int robotCount;
+
+        void begin(int staticItems, int robotItems) {
+            if (staticSeen.length < staticItems) {
+                staticSeen = new int[staticItems];
+            }
+            if (robotSeen.length < robotItems) {
+                robotSeen = new int[robotItems];
+            }
+            if (++stamp == 0) {
+                java.util.Arrays.fill(staticSeen, 0);
+                java.util.Arrays.fill(robotSeen, 0);
+                stamp = 1;
+            }
+            staticCount = 0;
+            robotCount = 0;
+        }
+
+        void addStatic(int item) {
+            if (staticCount == statics.length) {
+                statics = java.util.Arrays.copyOf(statics, 2 * staticCount);
+            }
+            statics[staticCount++] = item;
+        }
+
+        void addRobot(int b) {
+            if (robotCount == robots.length) {
+                robots = java.util.Arrays.copyOf(robots, 2 * robotCount);
+            }
+            robots[robotCount++] = b;
+        }
     }
 
     /** @return {@code d} if it is nearer than {@code best}, else {@code best} (which a NaN never replaces) */

@@ -25,11 +25,13 @@ import java.util.List;
  * @param engine          the physics engine that steps the world
  * @param source          the file, for messages
  * @param surroundings    water, wind, current and the world's place on Earth, for vehicles
+ * @param swarms          the file's swarm entries, as written (their robots are among {@code robots}, after the
+ *                        robots placed one by one, in the order of the entries)
  */
 public record WorldDescription(String name, double width, double height, boolean walls, double wallThickness,
                                double floorBrightness, List<Obstacle> obstacles, List<FloorPatch> patches,
                                List<RobotPlacement> robots, long seed, double physicsHz, TrajectorySettings trajectories,
-                               PhysicsEngine engine, String source, Surroundings surroundings) {
+                               PhysicsEngine engine, String source, Surroundings surroundings, List<Swarm> swarms) {
 
     /** Copies the lists. */
     public WorldDescription {
@@ -39,10 +41,38 @@ public record WorldDescription(String name, double width, double height, boolean
         java.util.Objects.requireNonNull(trajectories, "trajectories");
         java.util.Objects.requireNonNull(engine, "engine");
         java.util.Objects.requireNonNull(surroundings, "surroundings");
+        swarms = List.copyOf(swarms);
     }
 
     /**
-     * A world without water, wind or current ({@link Surroundings#NONE}).
+     * A world without swarm entries (every robot placed one by one).
+     *
+     * @param name            the world's name
+     * @param width           arena width (x), metres
+     * @param height          arena height (y), metres
+     * @param walls           whether the arena is closed by walls
+     * @param wallThickness   thickness of those walls, metres
+     * @param floorBrightness brightness of the bare floor, 0 (black) to 1 (white)
+     * @param obstacles       static obstacles
+     * @param patches         floor patches seen by light and colour sensors
+     * @param robots          the robots and where they start
+     * @param seed            seed of every random number in the run (sensor noise)
+     * @param physicsHz       physics steps per simulated second
+     * @param trajectories    how the robots' paths are sampled and how many points each keeps
+     * @param engine          the physics engine that steps the world
+     * @param source          the file, for messages
+     * @param surroundings    water, wind, current and the world's place on Earth, for vehicles
+     */
+    public WorldDescription(String name, double width, double height, boolean walls, double wallThickness,
+                            double floorBrightness, List<Obstacle> obstacles, List<FloorPatch> patches,
+                            List<RobotPlacement> robots, long seed, double physicsHz, TrajectorySettings trajectories,
+                            PhysicsEngine engine, String source, Surroundings surroundings) {
+        this(name, width, height, walls, wallThickness, floorBrightness, obstacles, patches, robots, seed, physicsHz, trajectories,
+                engine, source, surroundings, List.of());
+    }
+
+    /**
+     * A world without water, wind or current ({@link Surroundings#NONE}) or swarm entries.
      *
      * @param name            the world's name
      * @param width           arena width (x), metres
@@ -197,7 +227,7 @@ public record WorldDescription(String name, double width, double height, boolean
      */
     public WorldDescription withEngine(PhysicsEngine other) {
         return new WorldDescription(name, width, height, walls, wallThickness, floorBrightness, obstacles, patches, robots, seed,
-                physicsHz, trajectories, other, source, surroundings);
+                physicsHz, trajectories, other, source, surroundings, swarms);
     }
 
     /** The physics engine that steps a world (the {@code physics: { engine: ... }} key of a world file). */
@@ -342,5 +372,23 @@ public record WorldDescription(String name, double width, double height, boolean
      * @param start       where it starts
      */
     public record RobotPlacement(Path description, String name, Pose start) {
+    }
+
+    /**
+     * A swarm entry of a world file: {@code count} robots from one robot file, named
+     * {@code <name>-1} to {@code <name>-<count>}, placed by {@code seed} in a rectangle of the arena
+     * (see {@code docs/simulation.md}, "Swarms").
+     *
+     * @param robot  the robot YAML file every robot of the swarm is read from
+     * @param name   the robots' names' stem
+     * @param count  how many robots
+     * @param x      the area's lower-left corner x, metres
+     * @param y      its lower-left corner y
+     * @param width  its extent along x, metres
+     * @param height its extent along y
+     * @param seed   the seed of the places and headings
+     * @param first  the index of its first robot in {@link WorldDescription#robots()}
+     */
+    public record Swarm(Path robot, String name, int count, double x, double y, double width, double height, long seed, int first) {
     }
 }

@@ -37,6 +37,8 @@ import java.util.Set;
  *   - { x: 0.5, y: 0.5, width: 0.3, height: 0.3, brightness: 0.1, color: 1 }
  * robots:
  *   - { robot: ../robots/sim-two-wheeled.yaml, name: r1, x: 0.5, y: 1.5, heading: 0 }
+ * swarms:                       # many robots from one entry, named bot-1 ... bot-5000
+ *   - { robot: ../robots/swarm-bot.yaml, count: 5000, name: bot, area: { x: 0, y: 0, width: 80, height: 80 }, seed: 7 }
  * water:                        # where boats may go (vehicles, docs/vehicles.md)
  *   - { x: 10, y: 0, width: 20, height: 30 }
  *   - { polygon: [[10, 30], [30, 30], [20, 40]] }
@@ -51,7 +53,9 @@ import java.util.Set;
  * and the other robots (by the body its robot file gives it); one that overlaps something is a
  * problem at its place in the file, naming both (see {@link Placements}); the check runs once the
  * file has no other problem, and skips a robot whose file cannot be read (opening it reports why).
- * Stateless.
+ * A swarm entry's robots are placed by its seed clear of everything before them ({@link SwarmPlacer});
+ * an area too small for its count is a problem at the entry, as is a robot file that cannot be read
+ * (its body says how much room each robot needs). Stateless.
  */
 public final class WorldLoader {
 
@@ -63,6 +67,8 @@ public final class WorldLoader {
     public static final double MAX_WALL = 10;
     /** The most points of one polygon. */
     public static final int MAX_POLYGON_POINTS = 1000;
+    /** The most robots of one swarm entry. */
+    public static final int MAX_SWARM = 1_000_000;
 
     private static final String SIZE = "> 0 metres (0.001 to 1000)";
     private static final String COORDINATE = "between -1000 and 1000 metres";
@@ -173,8 +179,27 @@ public final class WorldLoader {
                         x, y, heading)));
             }
         }
+        List<SwarmEntry> swarmEntries = new ArrayList<>();
+        int entry = 0;
+        for (MappingReader s : root.mappingList("swarms")) {
+            swarmEntry(s, dir, scope, width, height, seed, entry++, bodies).ifPresent(swarmEntries::add);
+        }
         WorldDescription.Surroundings surroundings = surroundings(root);
         root.finish();
+        List<WorldDescription.Swarm> swarms = new ArrayList<>();
+        if (root.problems().isEmpty()) {
+            SwarmPlacer placer = new SwarmPlacer();
+            for (WorldDescription.Obstacle o : obstacles) {
+                double[] b = bounds(o);
+                placer.block(b[0], b[1], b[2], b[3]);
+            }
+            for (WorldDescription.RobotPlacement r : robots) {
+                bodies.getOrDefault(r.description(), Optional.empty()).ifPresent(b -> placer.blockRobot(r.start().x(), r.start().y(), b.length(), b.width()));
+            }
+            for (SwarmEntry s : swarmEntries) {
+                place(s, placer, names, robots, swarms, placements, placing);
+            }
+        }
         if (root.problems().isEmpty()) {
             placing.forEach(Runnable::run);
             if (walls) {
@@ -184,7 +209,126 @@ public final class WorldLoader {
         }
         root.problems().throwIfAny();
         return new WorldDescription(name, width, height, walls, thickness, floor, obstacles, patches, robots, seed, physicsHz, trajectories,
-                engine, file.toString(), surroundings);
+                engine, file.toString(), surroundings, swarms);
+    }
+
+    /** A swarm entry as read, before its robots are placed. */
+    private record SwarmEntry(MappingReader entry, Path robot, String name, int count, double x, double y, double width, double height,
+                              long seed, double heading, Body body) {
+    }
+
+    /** Reads a swarm entry; empty if a value is invalid (reported). */
+    private static Optional<SwarmEntry> swarmEntry(MappingReader s, Path dir, FileScope scope, double arenaW, double arenaH, long worldSeed, int index,
+                                                   Map<Path, Optional<Body>> bodies) {
+        int problemsBefore = s.problems().count();
+        String robotFile = s.requireText("robot");
+        Path robotPath = dir.resolve(robotFile).normalize();
+        Optional<Body> body = Optional.empty();
+        // the same rule as a robot's entry: a swarm's robot file stays in the world file's tree, and a refused one is never read
+        Optional<String> outside = robotFile.isEmpty() ? Optional.empty() : scope.refusal(robotPath);
+        if (outside.isPresent()) {
+            s.problem("robot", "refused: " + outside.get());
+        } else if (!robotFile.isEmpty() && !Files.isRegularFile(robotPath)) {
+            s.problem("robot", "no such robot file: " + robotPath);
+        } else if (!robotFile.isEmpty()) {
+            body = bodies.computeIfAbsent(robotPath, WorldLoader::body);
+            if (body.isEmpty()) {
+                s.problem("robot", "cannot place the swarm: robot file " + robotPath + " has problems (mw describe " + robotPath
+                        + " lists them), and its body says how much room each robot needs");
+            }
+        }
+        int count = s.integer("count", 0, 1, MAX_SWARM);
+        if (!s.has("count")) {
+            s.problems().add(s.mark(), "missing key '" + s.path() + ".count': expected an integer from 1 to " + MAX_SWARM + " (how many robots)");
+        }
+        String stem = s.text("name").orElse(robotPath.getFileName().toString().replaceFirst("\\.ya?ml$", ""));
+        if (stem.isBlank()) {
+            s.problem("name", "a swarm's name must not be blank: its robots are named after it (name-1, name-2, ...)");
+        }
+        double x = 0;
+        double y = 0;
+        double w = arenaW;
+        double h = arenaH;
+        Optional<MappingReader> area = s.mapping("area");
+        if (area.isPresent()) {
+            MappingReader a = area.get();
+            x = a.requireNumber("x", COORDINATE, WorldLoader::coordinate);
+            y = a.requireNumber("y", COORDINATE, WorldLoader::coordinate);
+            w = a.requireNumber("width", SIZE, WorldLoader::size);
+            h = a.requireNumber("height", SIZE, WorldLoader::size);
+            a.finish();
+            if (arenaW > 0 && arenaH > 0 && (x < 0 || y < 0 || x + w > arenaW + 1e-9 || y + h > arenaH + 1e-9)) {
+                s.problem("area", String.format(java.util.Locale.ROOT, "the area (%s × %s m at (%s, %s)) must lie inside the %s × %s m arena",
+                        w(w), w(h), w(x), w(y), w(arenaW), w(arenaH)));
+            }
+        }
+        long seed = s.has("seed") ? s.integer("seed", 0) : worldSeed * 0x9E3779B97F4A7C15L + index;
+        double heading = s.has("heading") ? s.number("heading", 0, ANGLE, WorldLoader::angle) : Double.NaN;
+        s.finish();
+        if (s.problems().count() > problemsBefore || body.isEmpty()) {
+            return Optional.empty();
+        }
+        return Optional.of(new SwarmEntry(s, robotPath, stem, count, x, y, w, h, seed, heading, body.get()));
+    }
+
+    /** Places a swarm's robots (or reports that its area is too small), and names them. */
+    private static void place(SwarmEntry s, SwarmPlacer placer, Set<String> names, List<WorldDescription.RobotPlacement> robots,
+                              List<WorldDescription.Swarm> swarms, Placements placements, List<Runnable> placing) {
+        Body b = s.body();
+        SwarmPlacer.Placement p = placer.place(s.count(), s.x(), s.y(), s.width(), s.height(), b.length(), b.width(), s.seed(), s.heading());
+        if (!p.placed()) {
+            s.entry().problems().add(s.entry().mark(), String.format(java.util.Locale.ROOT,
+                    "'%s': %d robots do not fit in the %s × %s m area at (%s, %s): each robot of %s (%s × %s m) needs a square of %.3f m "
+                            + "(its diagonal and %.0f mm), and %s of them are clear of the obstacles and robots placed before; make the area "
+                            + "larger or the count smaller",
+                    s.entry().path(), s.count(), w(s.width()), w(s.height()), w(s.x()), w(s.y()), s.robot().getFileName(), w(b.length()),
+                    w(b.width()), p.cell(), SwarmPlacer.GAP_METRES * 1000, p.fitting() == 0 ? "none" : "only " + p.fitting()));
+            return;
+        }
+        int first = robots.size();
+        for (int k = 0; k < s.count(); k++) {
+            String robotName = s.name() + "-" + (k + 1);
+            if (!names.add(robotName)) {
+                s.entry().problem("name", "swarm '" + s.name() + "' names its robots " + s.name() + "-1 to " + s.name() + "-" + s.count()
+                        + ", but another robot is named '" + robotName + "' already; give the swarm another name");
+                return;
+            }
+            double x = p.x()[k];
+            double y = p.y()[k];
+            double heading = p.heading()[k];
+            robots.add(new WorldDescription.RobotPlacement(s.robot(), robotName, new Pose(x, y, heading)));
+            placing.add(() -> placements.robot("robot '" + robotName + "'", s.entry().path(), s.entry().mark(), b.length(), b.width(),
+                    x, y, heading));
+        }
+        swarms.add(new WorldDescription.Swarm(s.robot(), s.name(), s.count(), s.x(), s.y(), s.width(), s.height(), s.seed(), first));
+    }
+
+    /** @return an obstacle's bounding box {x0, y0, x1, y1} */
+    private static double[] bounds(WorldDescription.Obstacle o) {
+        if (o instanceof WorldDescription.Circle c) {
+            return new double[] {c.x() - c.radius(), c.y() - c.radius(), c.x() + c.radius(), c.y() + c.radius()};
+        }
+        List<double[]> points;
+        if (o instanceof WorldDescription.Box b) {
+            double c = Math.cos(b.angle());
+            double s = Math.sin(b.angle());
+            points = new ArrayList<>();
+            for (double[] l : new double[][] {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}}) {
+                double lx = l[0] * b.width() / 2;
+                double ly = l[1] * b.height() / 2;
+                points.add(new double[] {b.x() + lx * c - ly * s, b.y() + lx * s + ly * c});
+            }
+        } else {
+            points = ((WorldDescription.Polygon) o).points();
+        }
+        double[] r = {Double.POSITIVE_INFINITY, Double.POSITIVE_INFINITY, Double.NEGATIVE_INFINITY, Double.NEGATIVE_INFINITY};
+        for (double[] q : points) {
+            r[0] = Math.min(r[0], q[0]);
+            r[1] = Math.min(r[1], q[1]);
+            r[2] = Math.max(r[2], q[0]);
+            r[3] = Math.max(r[3], q[1]);
+        }
+        return r;
     }
 
     /** The keys vehicles need: water areas, wind, current, home. */

@@ -32,6 +32,15 @@ public final class SwarmBenchmark {
         }
     }
 
+    /**
+     * The most points a robot's trajectory keeps in the benchmark's world: 128 (1 KiB a robot, the whole path ever
+     * coarser), the window a swarm's world file sets; the default (1000 points, 8 KB a robot) alone would exceed the
+     * 6 KiB a robot of issue 36's target at N = 100,000.
+     */
+    static final int TRAJECTORY_POINTS = 128;
+    private static final WorldDescription.TrajectorySettings TRAJECTORY =
+            new WorldDescription.TrajectorySettings(0.1, TRAJECTORY_POINTS, WorldDescription.Keep.WHOLE);
+
     private SwarmBenchmark() {
     }
 
@@ -108,7 +117,10 @@ public final class SwarmBenchmark {
      * ({@link ThreadPlacement}, which costs some CPU itself), then
      * {@code BENCH} lines: the real-time factor; for grid50 and swarm50 also the physics step
      * alone as a ceiling (simulated seconds per wall second spent in it), its cost per robot, and
-     * the live heap per robot.
+     * the live heap per robot (live heap after a full GC, less the heap before the world was made,
+     * over N): at load ({@code heap-per-robot}) and after the window with what the trajectories
+     * still have room to grow added ({@code heap-per-robot-full}: issue 36's figure); every sample
+     * prints the load average before and after its window.
      */
     static void sample(String[] args) throws IOException {
         int n = Integer.parseInt(args[1]);
@@ -132,8 +144,10 @@ public final class SwarmBenchmark {
         }
         long heapBefore = liveHeap();
         Path dir = Files.createTempDirectory("robomw-swarm");
+        long building = System.nanoTime();
         try (Simulation sim = Simulation.create(world(n, config, dir), threads, config.method())) {
             WanderController.install(sim, 10, 1);
+            double builtIn = (System.nanoTime() - building) / 1e9;
             long heapPerRobot = (liveHeap() - heapBefore) / n;
             SimWorld w = sim.world();
             Duration second = Duration.ofSeconds(1);
@@ -162,7 +176,8 @@ public final class SwarmBenchmark {
             long cpu0 = processCpuNanos();
             long steppingCpu0 = threadCpuNanos();
             long[] machine0 = machineTicks();
-            w.profile(io.robomw.api.Clock.system());
+            String loadBefore = loadAverage();
+            w.profile(io.robomw.api.Clock.system(), true);
             double sim0 = w.time();
             long t0 = System.nanoTime();
             end = t0 + Math.round(measure * 1e9);
@@ -185,7 +200,17 @@ public final class SwarmBenchmark {
             long steppingCpu = threadCpuNanos() - steppingCpu0;
             long[] machine1 = machineTicks();
             long[] phases = w.phaseNanos();
+            long[] parts = w.robotPartNanos();
             w.profile(null);
+            String loadAfter = loadAverage();
+            // Live heap after the run: the trajectories have grown with it; what they would add once full is counted from
+            // their room now (each grows by doubling up to the world's max_points, 8 bytes a point).
+            long heapAfterRun = (liveHeap() - heapBefore) / n;
+            long toFull = 0;
+            for (io.robomw.sim.SimRobot r : w.robots()) {
+                toFull += 8L * (TRAJECTORY_POINTS - r.trajectory().capacity());
+            }
+            long heapFull = heapAfterRun + toFull / n;
             String placed = placement == null ? "(not watched; --placement)" : placement.stop();
             double rtf = simSeconds / wall;
             long stepsTaken = Math.round(simSeconds / w.stepSeconds());
@@ -196,9 +221,19 @@ public final class SwarmBenchmark {
                 inWorld += ns;
                 p.append(String.format(Locale.ROOT, "%s %.1f µs, ", phase.name().toLowerCase(Locale.ROOT), ns / 1e3 / stepsTaken));
             }
-            p.append(String.format(Locale.ROOT, "controller and rest %.1f µs", ((now - t0) - inWorld) / 1e3 / stepsTaken));
+            p.append(String.format(Locale.ROOT, "step listeners and rest %.1f µs", ((now - t0) - inWorld) / 1e3 / stepsTaken));
+            StringBuilder q = new StringBuilder();
+            long partsTotal = 0;
+            for (SimWorld.RobotPart part : SimWorld.RobotPart.values()) {
+                long ns = parts[part.ordinal()];
+                partsTotal += ns;
+                q.append(String.format(Locale.ROOT, "%s %.1f µs (%.0f ns a robot), ", part.name().toLowerCase(Locale.ROOT), ns / 1e3 / stepsTaken,
+                        ns / (double) stepsTaken / n));
+            }
+            q.append(String.format(Locale.ROOT, "in all %.1f µs", partsTotal / 1e3 / stepsTaken));
             System.out.printf(Locale.ROOT, "SAMPLE N=%d %s: %.2f× real time over %.1f s wall (%d steps); per second: %s%n", n, key, rtf, wall, stepsTaken, perSecond);
-            System.out.println("  per step: " + p);
+            System.out.println("  per step (wall): " + p);
+            System.out.println("  per step, the robots' parts (processor time, every thread; timed on every " + 8 + "th robot): " + q);
             System.out.printf(Locale.ROOT, "  CPU per step: %.1f µs for the process (%.2f processors busy on average), %.1f µs on the stepping thread; %d threads%n",
                     cpu / 1e3 / stepsTaken, cpu / 1e9 / wall, steppingCpu / 1e3 / stepsTaken, threads);
             if (machine0 != null && machine1 != null) {
@@ -210,9 +245,13 @@ public final class SwarmBenchmark {
                         others > 0.1 ? " (NOT QUIET: this sample shared the processors)" : "", steal);
             }
             long jitInWindow = jitMillis() - jit0;
-            System.out.printf(Locale.ROOT, "  warm-up %.1f s; GC in the window: %d collections, %d ms; JIT compilation in the window: %d ms%s; live heap per robot %d bytes%n",
+            System.out.printf(Locale.ROOT, "  warm-up %.1f s; GC in the window: %d collections, %d ms; JIT compilation in the window: %d ms%s; live heap per robot at load %d bytes%n",
                     warmedFor, gcCount() - gcCount0, gcMillis() - gcMillis0, jitInWindow,
                     jitInWindow > wall * 100 ? " (UNSTEADY: the JIT compiled for more than a tenth of the window)" : "", heapPerRobot);
+            System.out.printf(Locale.ROOT, "  live heap per robot after the run %d bytes, with every trajectory full (%d points) %d bytes (%.2f KiB)%n",
+                    heapAfterRun, TRAJECTORY_POINTS, heapFull, heapFull / 1024.0);
+            System.out.printf(Locale.ROOT, "  world of %d robots built and its controller installed in %.1f s (not measured)%n", n, builtIn);
+            System.out.println("  load average (1, 5, 15 min) before the window: " + loadBefore + "; after: " + loadAfter);
             System.out.println("  threads: " + placed);
             String id = "sim.n" + n + "." + key;
             System.out.println(io.robomw.sim.bench.SwarmBenchmark.line(id, rtf, "×"));
@@ -223,7 +262,15 @@ public final class SwarmBenchmark {
                 System.out.println(line(prefix + "physics", simSeconds / physicsSeconds, "×"));
                 System.out.println(line(prefix + "step-per-robot", physicsSeconds * 1e6 / stepsTaken / n, "µs"));
                 System.out.println(line(prefix + "heap-per-robot", heapPerRobot / 1024.0, "KiB"));
+                System.out.println(line(prefix + "heap-per-robot-full", heapFull / 1024.0, "KiB"));
             }
+            // where a step's time goes: the physics (wall time of the stepping thread and its workers) and the
+            // robots' parts (processor time summed over the threads), milliseconds per step
+            System.out.println(line(id + ".ms.physics", phases[SimWorld.Phase.PHYSICS.ordinal()] / 1e6 / stepsTaken, "ms"));
+            for (SimWorld.RobotPart part : SimWorld.RobotPart.values()) {
+                System.out.println(line(id + ".ms." + part.name().toLowerCase(Locale.ROOT), parts[part.ordinal()] / 1e6 / stepsTaken, "ms"));
+            }
+            System.out.println(line(id + ".ms.cpu", cpu / 1e6 / stepsTaken, "ms"));
         } finally {
             deleteTree(dir);
         }
@@ -232,6 +279,16 @@ public final class SwarmBenchmark {
     /** A {@code BENCH} line as {@code bench/all} collects them (the same as src-it's BenchReport.line). */
     static String line(String id, double value, String unit) {
         return String.format(Locale.ROOT, "BENCH %s %.6g %s", id, value, unit);
+    }
+
+    /** @return the machine's load average over 1, 5 and 15 minutes ({@code /proc/loadavg}), or "unknown" */
+    private static String loadAverage() {
+        try {
+            String[] f = Files.readString(Path.of("/proc/loadavg")).trim().split("\\s+");
+            return f[0] + " " + f[1] + " " + f[2];
+        } catch (IOException | RuntimeException e) {
+            return "unknown";
+        }
     }
 
     private static long liveHeap() {
@@ -335,6 +392,6 @@ public final class SwarmBenchmark {
                     new Pose(0.5 + (i % cols), 0.5 + (double) (i / cols), (i * 2.399963) % (2 * Math.PI))));
         }
         return new WorldDescription("swarm-" + n, side, side, true, 0.1, 0.8, List.of(), List.of(), placements, 1,
-                config.physicsHz(), WorldDescription.TrajectorySettings.DEFAULT, config.engine(), "benchmark");
+                config.physicsHz(), TRAJECTORY, config.engine(), "benchmark");
     }
 }

@@ -64,6 +64,67 @@ class RangeIndexTest {
         assertTrue(hits > rays / 4 && hits < rays, "most rays hit something and some hit nothing (else the test proves little): " + hits + " of " + rays);
     }
 
+    @Test
+    void shouldGiveExactlyTheDistancesOfOneRayAtATimeWhenARobotsRaysAreCastTogether() {
+        SplittableRandom random = new SplittableRandom(22);
+        int hits = 0;
+        int rays = 0;
+        for (int world = 0; world < 20; world++) {
+            double size = 4 + random.nextDouble() * 6;
+            double cell = 0.25 + random.nextDouble() * 0.75;
+            double[][] segments = new double[6][];
+            for (int i = 0; i < segments.length; i++) {
+                segments[i] = new double[] {random.nextDouble() * size, random.nextDouble() * size, random.nextDouble() * size, random.nextDouble() * size};
+            }
+            double[][] discs = {{random.nextDouble() * size, random.nextDouble() * size, 0.05 + random.nextDouble() * 0.3},
+                    {random.nextDouble() * size, random.nextDouble() * size, 0.05 + random.nextDouble() * 0.3}};
+            int n = 100 + random.nextInt(200);
+            double[] x = new double[n];
+            double[] y = new double[n];
+            double[] heading = new double[n];
+            double[] length = new double[n];
+            double[] width = new double[n];
+            for (int i = 0; i < n; i++) {
+                x[i] = random.nextDouble() * size;
+                y[i] = random.nextDouble() * size;
+                heading[i] = random.nextDouble(-Math.PI, Math.PI);
+                length[i] = 0.05 + random.nextDouble() * 0.4;
+                width[i] = 0.05 + random.nextDouble() * 0.3;
+            }
+            RangeIndex index = new RangeIndex(-1, -1, size + 2, size + 2, cell, segments, discs);
+            index.indexRobots(n, x, y, heading, length, width);
+            double[] ox = new double[12];
+            double[] oy = new double[12];
+            double[] dx = new double[12];
+            double[] dy = new double[12];
+            double[] max = new double[12];
+            double[] out = new double[12];
+            for (int k = 0; k < 300; k++) {
+                int self = random.nextInt(n);
+                int count = 1 + random.nextInt(12);
+                // mostly short rays around the robot, sometimes long ones (cast one by one)
+                double longest = random.nextInt(10) == 0 ? 4 : 0.8;
+                for (int j = 0; j < count; j++) {
+                    double a = random.nextDouble(-4, 4);
+                    ox[j] = x[self] + 0.05 * Math.cos(a);
+                    oy[j] = y[self] + 0.05 * Math.sin(a);
+                    dx[j] = Math.cos(a);
+                    dy[j] = Math.sin(a);
+                    max[j] = 0.1 + random.nextDouble() * longest;
+                }
+                index.castRays(ox, oy, dx, dy, max, count, self, out);
+                for (int j = 0; j < count; j++) {
+                    double one = index.castRay(ox[j], oy[j], dx[j], dy[j], max[j], self);
+                    assertEquals(Double.doubleToRawLongBits(one), Double.doubleToRawLongBits(out[j]),
+                            "world " + world + ", batch " + k + ", ray " + j + ": one at a time " + one + ", together " + out[j]);
+                    rays++;
+                    hits += Double.isInfinite(one) ? 0 : 1;
+                }
+            }
+        }
+        assertTrue(hits > rays / 4 && hits < rays, "many rays hit something and some hit nothing (else the test proves little): " + hits + " of " + rays);
+    }
+
     /** Every shape tried, with the textbook crossing (divide, then test). */
     private static double bruteForce(double ox, double oy, double angle, double maxRange, int self, double[][] segments, double[][] discs,
                                      double[] x, double[] y, double[] heading, double[] length, double[] width) {

@@ -283,7 +283,7 @@ final class Telemetry {
             }
             DistanceSensorType type = m.spec().type() == io.robomw.api.SensorType.SONAR ? DistanceSensorType.ULTRASOUND
                     : m.spec().type() == io.robomw.api.SensorType.INFRARED ? DistanceSensorType.INFRARED : DistanceSensorType.LASER;
-            out.add(distance(time, id++, SensorOrientation.NONE, type, m.minRange(), m.maxRange(), m.latest()));
+            out.add(distance(time, id++, SensorOrientation.NONE, type, m.minRange(), m.maxRange(), robot.latest(m)));
         }
         return out;
     }
