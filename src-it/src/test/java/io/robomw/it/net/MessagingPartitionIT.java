@@ -114,16 +114,19 @@ class MessagingPartitionIT {
         LabHost bs = lab.host("broker");
         LabHost xs = lab.host("x");
         LabHost ys = lab.host("y");
-        LabProcess broker = bs.mw("mqtt-broker", List.of("-Xmx256m"), "broker", "--bind", bs.ip(), "--port", "1883");
+        // mw broker lets in only its user (issue 37): its credentials go to a file the nodes are told of
+        java.nio.file.Path credentials = java.nio.file.Files.createTempDirectory("mqtt-lab").resolve("broker.credentials");
+        LabProcess broker = bs.mw("mqtt-broker", List.of("-Xmx256m"), "broker", "--bind", bs.ip(), "--port", "1883", "--credentials", credentials.toString());
         broker.expect("mqtt broker ready at", LabHost.START);
         String at = "mqtt://" + bs.ip() + ":1883";
+        String user = "credentials=" + credentials;
         LabProcess x = peer(xs, "x");
         LabProcess y = peer(ys, "y");
         x.ask("echo cmd -", "OK", WAIT);
         x.ask("subscribe ynews -", "OK", WAIT);
-        x.ask("bind " + at + "?keep-alive=2", "BOUND", WAIT);
+        x.ask("bind " + at + "?" + user + "&keep-alive=2", "BOUND", WAIT);
         y.ask("subscribe news -", "OK", WAIT);
-        y.ask("bind " + at + "?session-expiry=600&keep-alive=2", "BOUND", WAIT);
+        y.ask("bind " + at + "?" + user + "&session-expiry=600&keep-alive=2", "BOUND", WAIT);
         assertEquals("REPLY hello", y.ask("request " + at + " x cmd hello -", "REPLY", WAIT));
 
         lab.partition(bs, ys);
