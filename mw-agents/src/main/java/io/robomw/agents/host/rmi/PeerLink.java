@@ -86,8 +86,12 @@ public final class PeerLink {
      * RMI opened a connection per call, past the host's limit (docs/benchmarks.md, "Many agents at once").
      */
     static final int MAX_WIRES = 8;
-    /** The most idle wire connections a link keeps: as many as it may have open, so a burst reuses them. */
-    static final int MAX_IDLE_WIRES = MAX_WIRES;
+    /**
+     * The most idle wire connections a link keeps (half of {@link #MAX_WIRES}): a burst reuses them
+     * and opens the rest, which close when it is over, so an idle host holds few sockets and threads
+     * for each peer (the soak runs bound what a host keeps after a run: docs/reliability.md).
+     */
+    static final int MAX_IDLE_WIRES = 4;
     /** An idle wire connection older than this is closed rather than used (the host closes idle ones after 2 minutes). */
     static final long WIRE_STALE_NANOS = 60_000_000_000L;
 
