@@ -68,11 +68,13 @@ class RoslibpyIT {
     void roslibpyDrivesARobotServedByAnotherProcessThroughMwRosbridge() throws Exception {
         int robotPort = freePort();
         int bridgePort = freePort();
+        java.nio.file.Path password = servePassword();
         try (MwProcess host = MwProcess.start("rosbridge-it-host", "host", "--name", "served", "--port", String.valueOf(freePort()), "--world",
                 MwProcess.CHECKOUT.resolve("examples/worlds/arena.yaml").toString(), "--world-robot", "nxt", "--serve", "tcp://127.0.0.1:" + robotPort,
-                "--no-wire", "--key-file", keyFile().toString())) {
+                "--no-wire", "--key-file", keyFile().toString(), "--serve-password-file", password.toString())) {
             host.await("robot nxt served at", WITHIN);
-            try (MwProcess bridge = MwProcess.start("rosbridge-it-bridge", "rosbridge", "tcp://127.0.0.1:" + robotPort + "/nxt", "--port",
+            // a served robot needs its password (issue 37): the caller's address names the file it is in
+            try (MwProcess bridge = MwProcess.start("rosbridge-it-bridge", "rosbridge", "tcp://127.0.0.1:" + robotPort + "/nxt?password-file=" + password, "--port",
                     String.valueOf(bridgePort))) {
                 bridge.await("rosbridge at ", WITHIN);
                 PythonClient.Run r = PythonClient.run("roslibpy_client.py", Map.of("ROSLIBPY_TRANSPORT", "twisted"), SCRIPT, String.valueOf(bridgePort),
@@ -86,6 +88,15 @@ class RoslibpyIT {
     private static java.nio.file.Path keyFile() throws IOException {
         java.nio.file.Path f = java.nio.file.Files.createTempFile("rosbridge-it", ".key");
         java.nio.file.Files.writeString(f, "rosbridge it cluster passphrase\n");
+        f.toFile().deleteOnExit();
+        return f;
+    }
+
+    /** The served robot's password, in a file only this user reads (as docs/security.md asks). */
+    private static java.nio.file.Path servePassword() throws IOException {
+        java.nio.file.Path f = java.nio.file.Files.createTempFile("rosbridge-it", ".password",
+                java.nio.file.attribute.PosixFilePermissions.asFileAttribute(java.nio.file.attribute.PosixFilePermissions.fromString("rw-------")));
+        java.nio.file.Files.writeString(f, "rosbridge it robot password\n");
         f.toFile().deleteOnExit();
         return f;
     }
