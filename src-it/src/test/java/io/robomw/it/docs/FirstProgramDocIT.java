@@ -36,7 +36,7 @@ class FirstProgramDocIT {
             assertTrue(Files.readString(scratch.resolve("nxt.yaml")).contains("port: /dev/pts/"), "the robot file points at the brick");
 
             String ran = doc.run(commands.get(2), Duration.ofSeconds(120));
-            Matcher m = Pattern.compile("front range (\\d+) cm; odometry says Pose\\[x=([-0-9.E]+), y=([-0-9.E]+), heading=([-0-9.E]+)]").matcher(ran);
+            Matcher m = Pattern.compile("front range (\\d+) cm; odometry says Pose\\[x=([-0-9.E]+), y=([-0-9.E]+), heading=([-0-9.E]+)(?:, z=[-0-9.E]+)?]").matcher(ran);
             assertTrue(m.find(), ran + "\n" + doc.transcript());
             double cm = Double.parseDouble(m.group(1));
             assertTrue(cm > 10 && cm < 300, "a wall or obstacle in range of the simulated sonar: " + cm);
