@@ -3,6 +3,7 @@ package io.robomw.cli;
 import io.robomw.api.spi.FailurePolicy;
 import io.robomw.sim.Simulation;
 import io.robomw.sim.emulator.mavlink.MavlinkEmulator;
+import io.robomw.sim.vehicle.SimVehicle;
 import io.robomw.testkit.Await;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
@@ -59,13 +60,17 @@ class VehicleCommandsTest {
         return Double.parseDouble(m.group(1));
     }
 
-    /** Waits until the simulated copter holds altitude {@code z} (within 0.2 m), saying where it was last. */
+    /**
+     * Waits until the simulated copter holds altitude {@code z}: within 0.1 m of it and still (under
+     * 0.05 m/s up or down), not passing through it on an overshoot, so that the next command, a
+     * new process that climbs from where the copter is, starts from {@code z}. Says where it was last.
+     */
     private void settlesAt(double z, String when) {
-        double[] last = {Double.NaN};
+        SimVehicle.Snapshot[] last = {null};
         Await.until("the simulated copter holding " + z + " m " + when, Duration.ofSeconds(20), () -> {
-            last[0] = sim.world().robot("copter").vehicle().snapshot().z();
-            return Math.abs(last[0] - z) < 0.2;
-        }, () -> String.format(java.util.Locale.ROOT, "last at %.2f m", last[0]));
+            last[0] = sim.world().robot("copter").vehicle().snapshot();
+            return Math.abs(last[0].z() - z) < 0.1 && Math.abs(last[0].vz()) < 0.05;
+        }, () -> String.format(java.util.Locale.ROOT, "last at %.2f m, %.2f m/s", last[0].z(), last[0].vz()));
     }
 
     @Test
