@@ -146,7 +146,7 @@ public final class MotorLinkSide {
                 MotorState s = p.draining;
                 MotorPort.Start start = s == null ? null : p.start();
                 if (start != null && start.state() == s) {
-                    p.start(new MotorPort.Start(s, start.degrees(), took));
+                    start.sent(took);
                 }
             }
         } catch (IOException | RuntimeException e) {
