@@ -1,25 +1,20 @@
 package io.robomw.platform;
 
 import io.robomw.api.CommandPreemptedException;
-import io.robomw.api.ReturnType;
 import io.robomw.api.RobotLinkException;
-import io.robomw.api.SensorType;
 import io.robomw.api.spi.Cycling;
 import io.robomw.api.spi.MotorCommand;
 import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.RobotPlatform;
-import io.robomw.api.spi.SensorChannel;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.brick.LinkAgent;
 import io.robomw.platform.brick.LinkState;
 import io.robomw.platform.exec.ExecutionActionThread;
 import io.robomw.platform.motor.MotorPlatform;
-import io.robomw.platform.sensor.Sensor;
+import io.robomw.platform.sensor.Sensors;
 import io.robomw.platform.sensor.SensorPlatform;
 
 import java.io.IOException;
-import java.util.LinkedHashMap;
-import java.util.Map;
 import java.util.Optional;
 import java.util.concurrent.CompletableFuture;
 
@@ -42,7 +37,7 @@ public final class BrickPlatform implements RobotPlatform {
     private final PlatformConfig config;
     private final ExecutionActionThread actionThread;
     private final MotorPlatform motors;
-    private final Map<String, Sensor> sensors = new LinkedHashMap<>();
+    private final Sensors sensors;
     private final LinkAgent agent;
 
     /**
@@ -60,12 +55,7 @@ public final class BrickPlatform implements RobotPlatform {
         this.config = config;
         this.motors = motors;
         this.actionThread = new ExecutionActionThread(config.robotName(), config.clock(), config.cyclePeriod(), config.failures());
-        for (SensorChannel channelOfSensor : config.sensors()) {
-            Sensor sensor = channelOfSensor.type() == SensorType.TACHO
-                    ? sensorPlatform.selectMotorSensor(channelOfSensor.port(), channelOfSensor.type(), ReturnType.RAW)
-                    : sensorPlatform.createSensor(channelOfSensor);
-            sensors.put(channelOfSensor.name(), sensor);
-        }
+        this.sensors = sensorPlatform.createSensors(config.sensors());
         this.agent = new LinkAgent(config, actionThread, motors, channel, link);
     }
 
@@ -171,11 +161,11 @@ public final class BrickPlatform implements RobotPlatform {
 
     @Override
     public CompletableFuture<Double> readRaw(String sensorName) {
-        Sensor sensor = sensors.get(sensorName);
-        if (sensor == null) {
+        CompletableFuture<Double> read = sensors.readRaw(sensorName);
+        if (read == null) {
             return CompletableFuture.failedFuture(new IllegalArgumentException("robot '" + config.robotName() + "' has no sensor '" + sensorName + "'"));
         }
-        return sensor.readRaw();
+        return read;
     }
 
     @Override

@@ -4,6 +4,7 @@ import io.robomw.platform.sensor.Sensor;
 import io.robomw.sim.lockstep.SimFuture;
 
 import java.util.Optional;
+import java.util.concurrent.CompletableFuture;
 
 /**
  * The hardware face of a simulated robot, for the simulator's platform (and for brick emulators):
@@ -81,6 +82,24 @@ public final class SimMotors {
             throw new IllegalArgumentException("simulated robot '" + robot.name() + "' has no sensor '" + name + "'");
         }
         return robot.siValue(model, world);
+    }
+
+    /**
+     * Reads a sensor by name, as {@link #sensor}'s reader would: answered at the robot's next cycle.
+     * A robot's platform reads all its sensors through this one method (no reader a sensor a robot).
+     *
+     * @param name a sensor's name
+     * @return completes with its raw value; {@code null} if the robot has no such sensor
+     */
+    public CompletableFuture<Double> readRaw(String name) {
+        SensorModel model = robot.sensors().get(name);
+        if (model == null) {
+            return null;
+        }
+        SimFuture<Double> f = world.lockstep().newFuture();
+        robot.requestRead(model, f);
+        world.readQueued();
+        return f;
     }
 
     /**

@@ -115,6 +115,7 @@ public final class Simulation implements AutoCloseable {
             PlatformServices services = given.with(SimWorld.class, world).with(FailurePolicy.class, failures);
             // the providers looked up once, not three class path scans a robot (minutes for 100,000 robots)
             Map<String, PlatformProvider> providers = new HashMap<>();
+            Map<List<?>, List<io.robomw.api.spi.SensorChannel>> channels = new java.util.IdentityHashMap<>();
             io.robomw.api.spi.RobotComponents components = io.robomw.api.spi.RobotComponents.find();
             for (SimRobot r : world.robots()) {
                 if (this.emulated.contains(r.name())) {
@@ -122,7 +123,10 @@ public final class Simulation implements AutoCloseable {
                 }
                 RobotDescription d = r.description();
                 PlatformProvider provider = providers.computeIfAbsent(d.platform(), k -> DescriptionRobotFactory.provider(d));
-                RobotPlatform platform = provider.open(DescriptionRobotFactory.platformConfig(d, services, world.clock(), io.robomw.api.spi.Cycling.BY_OWNER));
+                // one list of sensor channels for every robot of a robot file (its renamed copies share its sensors)
+                List<io.robomw.api.spi.SensorChannel> sensorChannels = channels.computeIfAbsent(d.sensors(), k -> DescriptionRobotFactory.sensorChannels(d));
+                RobotPlatform platform = provider.open(DescriptionRobotFactory.platformConfig(d, sensorChannels, services, world.clock(),
+                        io.robomw.api.spi.Cycling.BY_OWNER));
                 try {
                     robots.put(r.name(), ConfiguredRobot.withComponents(() -> d, platform, null, components));
                 } catch (RuntimeException e) {

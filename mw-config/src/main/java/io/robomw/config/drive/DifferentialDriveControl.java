@@ -46,6 +46,8 @@ public final class DifferentialDriveControl implements DriveControl {
     private final MotionListener listener;
     /** Numbers the motions, across reloads. */
     private final AtomicLong movements;
+    /** The last {@code drive} command made (a value, so any thread may reuse it). */
+    private volatile MotorCommand lastDrive;
 
     /**
      * @param description the description in force
@@ -122,8 +124,25 @@ public final class DifferentialDriveControl implements DriveControl {
         requireWheelSpeed(call, Math.max(Math.abs(m.leftDegreesPerSecond()), Math.abs(m.rightDegreesPerSecond())) / kinematics.motorDegreesPerMetre());
         listener.motionStarted(new Movement(movements.incrementAndGet(), linearSpeed, angularSpeed, Double.POSITIVE_INFINITY));
         // Nobody waits for a drive's completion: the platform need not make a future for it.
-        platform.runDetached(new MotorCommand("drive", List.of(MotorTarget.run(left, m.leftDegreesPerSecond()),
-                MotorTarget.run(right, m.rightDegreesPerSecond())), CommandPriority.NORMAL, watchdog));
+        platform.runDetached(driveCommand(m.leftDegreesPerSecond(), m.rightDegreesPerSecond()));
+    }
+
+    /**
+     * @return the {@code drive} command for these wheel speeds: the last one when it asked for the
+     *         same (a controller refreshing its drive at every tick often does), so a repeated drive
+     *         makes no command, targets and list of its own (commands are values: nothing keeps or
+     *         changes them)
+     */
+    private MotorCommand driveCommand(double leftSpeed, double rightSpeed) {
+        MotorCommand last = lastDrive;
+        if (last != null && Double.compare(last.targets().get(0).degreesPerSecond(), leftSpeed) == 0
+                && Double.compare(last.targets().get(1).degreesPerSecond(), rightSpeed) == 0) {
+            return last;
+        }
+        MotorCommand command = new MotorCommand("drive", List.of(MotorTarget.run(left, leftSpeed), MotorTarget.run(right, rightSpeed)),
+                CommandPriority.NORMAL, watchdog);
+        lastDrive = command;
+        return command;
     }
 
     @Override

@@ -98,9 +98,32 @@ public final class DescriptionRobotFactory implements RobotFactory {
      * @return what its platform is told
      */
     public static PlatformConfig platformConfig(RobotDescription d, PlatformServices services, Clock clock, Cycling cycling) {
-        return new PlatformConfig(d.name(), d.platform(), d.connection(), d.motors(),
-                d.sensors().stream().map(s -> new SensorChannel(s.name(), s.type(), s.port(), s.options())).toList(),
+        return platformConfig(d, sensorChannels(d), services, clock, cycling);
+    }
+
+    /**
+     * The same, with its sensors' channels given: a simulation of many robots of one robot file
+     * gives them all one list ({@link #sensorChannels} of the file), not a copy a robot.
+     *
+     * @param d        a description
+     * @param channels {@link #sensorChannels}{@code (d)}, or an equal list
+     * @param services services for the platform
+     * @param clock    its clock
+     * @param cycling  who runs its cycles
+     * @return what its platform is told
+     */
+    public static PlatformConfig platformConfig(RobotDescription d, List<SensorChannel> channels, PlatformServices services, Clock clock,
+                                                Cycling cycling) {
+        return new PlatformConfig(d.name(), d.platform(), d.connection(), d.motors(), channels,
                 d.cyclePeriod(), d.watchdogTimeout(), clock, services, cycling, failurePolicy(services));
+    }
+
+    /**
+     * @param d a description
+     * @return its sensors as its platform is told them, in its order
+     */
+    public static List<SensorChannel> sensorChannels(RobotDescription d) {
+        return d.sensors().stream().map(s -> new SensorChannel(s.name(), s.type(), s.port(), s.options())).toList();
     }
 
     /**

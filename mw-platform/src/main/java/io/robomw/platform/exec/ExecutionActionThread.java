@@ -222,6 +222,26 @@ public final class ExecutionActionThread implements AutoCloseable {
         if (values.length != slot.size()) {
             throw new IllegalArgumentException("refresh slot '" + slot.name() + "' takes " + slot.size() + " values, got " + values.length);
         }
+        refresh(slot, values, 0, 0);
+    }
+
+    /**
+     * The same for a slot of two values (a drive's two wheels), without an array a refresh.
+     *
+     * @param slot   the slot (it belongs to this thread from its first refresh on)
+     * @param first  its first value
+     * @param second its second value
+     * @throws IllegalArgumentException if the slot belongs to another thread or does not take two values
+     */
+    public void refresh(RefreshSlot slot, double first, double second) {
+        if (slot.size() != 2) {
+            throw new IllegalArgumentException("refresh slot '" + slot.name() + "' takes " + slot.size() + " values, got 2");
+        }
+        refresh(slot, null, first, second);
+    }
+
+    /** Refreshes with {@code values}, or if that is {@code null} the two values {@code first} and {@code second}. */
+    private void refresh(RefreshSlot slot, double[] values, double first, double second) {
         if (failure != null || closed) {
             LOG.debug("robot '{}': '{}' was not run: the robot {}", robot, slot.name(), closed ? "is closed" : "has failed");
             return;
@@ -237,18 +257,26 @@ public final class ExecutionActionThread implements AutoCloseable {
             if (!slot.queued) {
                 slot.ticket = ++lastTicket;
                 slot.queued = true;
-                slot.put(values);
+                put(slot, values, first, second);
                 anyIncoming = true;
                 wake();
             } else if (slot.ticket == lastTicket) {
-                slot.put(values); // the newest refresh replaces the one queued just before it
+                put(slot, values, first, second); // the newest refresh replaces the one queued just before it
             } else {
                 // Something was submitted after its queued values: these go behind that, on their own.
-                separately = slot.handler().container(values.clone());
+                separately = slot.handler().container(values == null ? new double[] {first, second} : values.clone());
             }
         }
         if (separately != null) {
             submit(separately);
+        }
+    }
+
+    private static void put(RefreshSlot slot, double[] values, double first, double second) {
+        if (values == null) {
+            slot.put(first, second);
+        } else {
+            slot.put(values);
         }
     }
 
@@ -594,7 +622,7 @@ public final class ExecutionActionThread implements AutoCloseable {
      * if that one is refreshed by it, else a new container by the clash rules.
      */
     private void admit(RefreshSlot slot, long now) {
-        Container holder = soleHolder(slot.requirements());
+        Container holder = soleHolder(slot.actuators);
         if (holder != null && holder.refreshedBy(slot.refreshKey(), slot.requirements(), slot.priority())) {
             try {
                 holder.restartWatchdog(now);
@@ -615,7 +643,7 @@ public final class ExecutionActionThread implements AutoCloseable {
     }
 
     /** @return the one running container that holds any of these actuators, or {@code null} if none or several do */
-    private Container soleHolder(Set<String> requirements) {
+    private Container soleHolder(String[] requirements) {
         Container only = null;
         for (String actuator : requirements) {
             Container holder = holders.get(actuator);

@@ -69,6 +69,8 @@ public final class RefreshSlot {
     volatile boolean retired;
     // Cycling thread only:
     final double[] taken;
+    /** The requirements as an array, which each admission walks without an iterator. */
+    final String[] actuators;
     /** The execution action thread it belongs to, from its first refresh (under that thread's monitor). */
     ExecutionActionThread owner;
 
@@ -87,6 +89,7 @@ public final class RefreshSlot {
             throw new IllegalArgumentException("refresh slot '" + name + "' requires no actuator; every command must name the actuators it drives");
         }
         this.requirements = Set.copyOf(requirements);
+        this.actuators = this.requirements.toArray(String[]::new);
         this.priority = Objects.requireNonNull(priority, "priority");
         this.refreshKey = Objects.requireNonNull(refreshKey, "refreshKey");
         this.handler = Objects.requireNonNull(handler, "handler");
@@ -134,6 +137,12 @@ public final class RefreshSlot {
     /** Copies values in; under the owner's lock. */
     void put(double[] values) {
         System.arraycopy(values, 0, pending, 0, pending.length);
+    }
+
+    /** Puts two values in (a slot of two, a drive's wheels); under the owner's lock. */
+    void put(double first, double second) {
+        pending[0] = first;
+        pending[1] = second;
     }
 
     /** Takes the queued values for the cycle; under the owner's lock. */

@@ -3,7 +3,6 @@ package io.robomw.platform.motor;
 import java.lang.invoke.MethodHandles;
 import java.lang.invoke.VarHandle;
 import java.util.ArrayList;
-import java.util.Iterator;
 import java.util.List;
 import java.util.concurrent.CompletableFuture;
 
@@ -164,14 +163,17 @@ final class MotorHandOff {
         List<CompletableFuture<Void>> done = null;
         synchronized (lock) {
             sentBatches = takenBatches;
-            for (Iterator<PendingStop> i = pendingStops.iterator(); i.hasNext(); ) {
-                PendingStop s = i.next();
+            // no iterator: this runs after every batch a robot's link writes
+            for (int i = 0; i < pendingStops.size(); ) {
+                PendingStop s = pendingStops.get(i);
                 if (s.batch() <= sentBatches) {
-                    i.remove();
+                    pendingStops.remove(i);
                     if (done == null) {
                         done = new ArrayList<>(2);
                     }
                     done.add(s.handed());
+                } else {
+                    i++;
                 }
             }
         }

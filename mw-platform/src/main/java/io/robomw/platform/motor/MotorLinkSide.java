@@ -95,7 +95,11 @@ public final class MotorLinkSide {
         if (timing.stopsOnLinkSide()) {
             anticipateStops();
         }
-        List<MotorState> batch = null;
+        // The batch as an unmodifiable list of its one or two states (a drive's wheels: one object
+        // a batch, written at every change of every robot's drive), a list of its own beyond.
+        MotorState first = null;
+        MotorState second = null;
+        List<MotorState> more = null;
         for (MotorPort p : ports) {
             MotorState s = p.draining;
             if (s == null) {
@@ -105,11 +109,20 @@ public final class MotorLinkSide {
                 p.draining = null; // the brick is stopped so already (it braked at its limit from here)
                 continue;
             }
-            if (batch == null) {
-                batch = new ArrayList<>(ports.length);
+            if (first == null) {
+                first = s;
+            } else if (second == null) {
+                second = s;
+            } else {
+                if (more == null) {
+                    more = new ArrayList<>(ports.length);
+                    more.add(first);
+                    more.add(second);
+                }
+                more.add(s);
             }
-            batch.add(s);
         }
+        List<MotorState> batch = more != null ? more : second != null ? List.of(first, second) : first != null ? List.of(first) : null;
         if (batch == null) {
             handOff.written(); // everything taken is what the brick does already
         } else {
@@ -146,7 +159,7 @@ public final class MotorLinkSide {
                 MotorState s = p.draining;
                 MotorPort.Start start = s == null ? null : p.start();
                 if (start != null && start.state() == s) {
-                    p.start(new MotorPort.Start(s, start.degrees(), took));
+                    start.sent(took);
                 }
             }
         } catch (IOException | RuntimeException e) {

@@ -284,13 +284,18 @@ public final class MotorPlatform {
      * @throws IllegalArgumentException if a target names a port this platform does not drive
      */
     public void submitDetached(MotorCommand command, ExecutionActionThread thread) {
-        for (MotorTarget t : command.targets()) {
-            if (!t.continuous()) {
+        List<MotorTarget> targets = command.targets();
+        for (int i = 0; i < targets.size(); i++) { // no iterator: a drive is refreshed at every tick of every robot
+            if (!targets.get(i).continuous()) {
                 thread.submit(container(command));
                 return;
             }
         }
-        thread.refresh(driveSlot(command), speeds(command));
+        if (targets.size() == 2) {
+            thread.refresh(driveSlot(command), targets.get(0).degreesPerSecond(), targets.get(1).degreesPerSecond());
+        } else {
+            thread.refresh(driveSlot(command), speeds(command));
+        }
     }
 
     /** @return the slot for this all-continuous command: the last one made if it fits, else a new one (the old retired) */

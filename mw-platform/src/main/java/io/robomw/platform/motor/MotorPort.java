@@ -60,7 +60,39 @@ final class MotorPort {
      * that was ({@link Long#MAX_VALUE} while the driver is still sending it: a brick that takes
      * several packets to start a motor starts it only with the last).
      */
-    record Start(MotorState state, double degrees, long sinceNanos) {
+    static final class Start {
+        private final MotorState state;
+        private final double degrees;
+        private volatile long sinceNanos;
+
+        Start(MotorState state, double degrees, long sinceNanos) {
+            this.state = state;
+            this.degrees = degrees;
+            this.sinceNanos = sinceNanos;
+        }
+
+        /** @return the running state sent */
+        MotorState state() {
+            return state;
+        }
+
+        /** @return where the motor was predicted to be when the brick took it */
+        double degrees() {
+            return degrees;
+        }
+
+        /** @return when the brick took it ({@link Long#MAX_VALUE} while it is being sent); read it once per use */
+        long sinceNanos() {
+            return sinceNanos;
+        }
+
+        /**
+         * The driver has sent it: it counts from then (link side only). In place, not a new start
+         * a batch: the link writes a batch at every change of every robot's drive.
+         */
+        void sent(long atNanos) {
+            sinceNanos = atNanos;
+        }
     }
 
     /** Records a reading; link side only (one writer at a time). */

@@ -64,13 +64,14 @@ final class RotationPredictor {
     /** @return how far a rotation has turned, from where it started, by the time a command sent now reaches the brick */
     double turned(MotorPort port, MotorPort.Start start) {
         double speed = timing.actualDegreesPerSecond(start.state());
-        double predicted = predictedDegrees(port, speed, start.sinceNanos());
+        long since = start.sinceNanos(); // once: the link side sets it when the driver has sent the start
+        double predicted = predictedDegrees(port, speed, since);
         double resolution = timing.encoderResolutionDegrees(port.name);
         long now = clock.nanoTime();
-        if (resolution > 0 && start.sinceNanos() <= now) {
+        if (resolution > 0 && since <= now) {
             // A coarse encoder (a reading is the nearest count): believe the motor's own speed since
             // it started, within the half count either side of the reading that the count allows.
-            double byTime = start.degrees() + speed * (now + timing.commandDelayNanos() - start.sinceNanos()) / 1e9;
+            double byTime = start.degrees() + speed * (now + timing.commandDelayNanos() - since) / 1e9;
             predicted = Math.max(predicted - resolution / 2, Math.min(predicted + resolution / 2, byTime));
         }
         return Math.abs(predicted - start.degrees());

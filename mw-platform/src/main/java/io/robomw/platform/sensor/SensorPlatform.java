@@ -7,6 +7,9 @@ import io.robomw.platform.motor.MotorPlatform;
 
 import java.io.IOException;
 import java.util.concurrent.CompletableFuture;
+import java.util.LinkedHashMap;
+import java.util.List;
+import java.util.Map;
 
 /**
  * The paper's sensor platform: sets up a robot's sensors on its brick and reads them. A platform
@@ -40,6 +43,30 @@ public abstract class SensorPlatform {
      * @throws IOException if the brick refused or did not answer
      */
     public abstract Sensor createSensor(SensorChannel sensorObject) throws IOException;
+
+    /**
+     * Sets up every sensor of a description: a {@link SensorType#TACHO} channel is its motor's
+     * encoder ({@link #selectMotorSensor}), every other one {@link #createSensor}'s reader, in the
+     * description's order. A driver may override it to answer all of a robot's sensors from one
+     * object (the same reads, less heap a robot).
+     *
+     * @param channels the sensors as the description gives them
+     * @return the robot's sensors, by name
+     * @throws IOException if the brick refused one or did not answer
+     */
+    public Sensors createSensors(List<SensorChannel> channels) throws IOException {
+        Map<String, Sensor> byName = new LinkedHashMap<>();
+        for (SensorChannel channel : channels) {
+            Sensor sensor = channel.type() == SensorType.TACHO
+                    ? selectMotorSensor(channel.port(), channel.type(), ReturnType.RAW)
+                    : createSensor(channel);
+            byName.put(channel.name(), sensor);
+        }
+        return name -> {
+            Sensor sensor = byName.get(name);
+            return sensor == null ? null : sensor.readRaw();
+        };
+    }
 
     /**
      * A motor's built-in sensor. The default gives the encoder ({@link SensorType#TACHO}) in motor

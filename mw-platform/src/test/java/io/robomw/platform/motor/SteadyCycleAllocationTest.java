@@ -20,6 +20,7 @@ import java.lang.management.ManagementFactory;
 import java.time.Duration;
 import java.util.List;
 import java.util.Map;
+import java.util.Set;
 import java.util.concurrent.CompletableFuture;
 
 import static org.junit.jupiter.api.Assertions.assertTrue;
@@ -83,6 +84,45 @@ class SteadyCycleAllocationTest {
             }
             long perCycle = (threads.getThreadAllocatedBytes(thread) - before) / cycles;
             assertTrue(perCycle < 8, "a steady cycle allocated " + perCycle + " bytes");
+        }
+    }
+
+    @Test
+    void aDriveRefreshedAtEveryCycleWithTheSameSpeedsAllocatesNothing() throws Exception {
+        ManualClock clock = new ManualClock();
+        PlatformConfig config = new PlatformConfig("refreshed", "fake", new ConnectionSettings(Map.of(), "test"),
+                List.of(MotorChannel.actuator("B"), MotorChannel.actuator("C")), List.of(), Duration.ofMillis(100), Duration.ofMillis(500), clock,
+                PlatformServices.none(), Cycling.BY_OWNER, FailurePolicy.logging());
+        MotorPlatform motors = new MotorPlatform(config, new QuietMotors());
+        SensorPlatform sensors = new SensorPlatform(motors) {
+            @Override
+            public Sensor createSensor(SensorChannel channel) {
+                return () -> CompletableFuture.completedFuture(0.0);
+            }
+        };
+        // A controller's drive at every tick: the Configuration Layer hands the same command again
+        // while the speeds stay the same (DifferentialDriveControl keeps its last one).
+        MotorCommand drive = new MotorCommand("drive", List.of(MotorTarget.run("B", 120), MotorTarget.run("C", 80)),
+                CommandPriority.NORMAL, Duration.ofMillis(500));
+        try (BrickPlatform platform = new BrickPlatform(config, motors, sensors, null, null).start()) {
+            for (int i = 0; i < 20_000; i++) { // warm up: the JIT compiles refresh and cycle
+                platform.runDetached(drive);
+                platform.actionThread().cycle();
+                clock.advanceNanos(100_000_000L);
+            }
+            com.sun.management.ThreadMXBean threads = (com.sun.management.ThreadMXBean) ManagementFactory.getThreadMXBean();
+            long thread = Thread.currentThread().getId();
+            long before = threads.getThreadAllocatedBytes(thread);
+            int cycles = 10_000;
+            for (int i = 0; i < cycles; i++) {
+                platform.runDetached(drive);
+                platform.actionThread().cycle();
+                clock.advanceNanos(100_000_000L);
+            }
+            long perCycle = (threads.getThreadAllocatedBytes(thread) - before) / cycles;
+            assertTrue(perCycle < 8, "a refresh and its cycle allocated " + perCycle + " bytes");
+            assertTrue(platform.actionThread().actuatorsInUse().containsAll(Set.of("B", "C")),
+                    "the refreshed drive still runs (its watchdog restarted by every refresh): " + platform.actionThread().actuatorsInUse());
         }
     }
 }

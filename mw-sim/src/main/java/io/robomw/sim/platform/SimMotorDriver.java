@@ -31,7 +31,8 @@ final class SimMotorDriver implements MotorDriver {
 
     @Override
     public void send(List<MotorState> states, FeedbackSink feedback) {
-        for (MotorState s : states) {
+        for (int i = 0; i < states.size(); i++) { // no iterator: every robot's every batch
+            MotorState s = states.get(i);
             motors.command(s.port(), s.degreesPerSecond());
         }
     }

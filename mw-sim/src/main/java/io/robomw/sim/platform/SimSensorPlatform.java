@@ -1,10 +1,15 @@
 package io.robomw.sim.platform;
 
+import io.robomw.api.SensorType;
 import io.robomw.api.spi.SensorChannel;
 import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
+import io.robomw.platform.sensor.Sensors;
 import io.robomw.sim.SimMotors;
+
+import java.io.IOException;
+import java.util.List;
 
 /**
  * The simulator's sensor platform: a read is answered at the robot's next cycle with the raw value
@@ -22,6 +27,22 @@ final class SimSensorPlatform extends SensorPlatform {
     /** For a legged robot, which has no motors of its own. */
     SimSensorPlatform(SimMotors robot) {
         this.robot = robot;
+    }
+
+    /**
+     * One reader for all of a robot's sensors ({@link SimMotors#readRaw}), its models shared by
+     * every robot of the robot file, when the description's sensors are exactly the model's (no
+     * motor encoder among them, which the motor platform answers): the same reads as a reader a
+     * sensor, without a map and readers a robot. Otherwise the standard map.
+     */
+    @Override
+    public Sensors createSensors(List<SensorChannel> channels) throws IOException {
+        java.util.Map<String, io.robomw.sim.SensorModel> models = robot.robot().sensors();
+        boolean same = channels.size() == models.size();
+        for (SensorChannel c : channels) {
+            same &= c.type() != SensorType.TACHO && models.containsKey(c.name());
+        }
+        return same ? robot::readRaw : super.createSensors(channels);
     }
 
     @Override
