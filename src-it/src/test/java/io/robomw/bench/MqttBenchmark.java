@@ -6,6 +6,7 @@ import com.hivemq.client.mqtt.datatypes.MqttQos;
 import com.hivemq.client.mqtt.mqtt5.Mqtt5AsyncClient;
 import com.hivemq.client.mqtt.mqtt5.message.publish.Mqtt5Publish;
 import io.robomw.agents.messaging.MessagingNode;
+import io.robomw.agents.messaging.mqtt.BrokerCredentials;
 import io.robomw.it.mqtt.Broker;
 
 import java.nio.ByteBuffer;
@@ -224,7 +225,14 @@ public final class MqttBenchmark {
     }
 
     private static Mqtt5AsyncClient client(String id, int port) throws Exception {
-        Mqtt5AsyncClient c = MqttClient.builder().useMqttVersion5().identifier(id).serverHost("127.0.0.1").serverPort(port).buildAsync();
+        var b = MqttClient.builder().useMqttVersion5().identifier(id).serverHost("127.0.0.1").serverPort(port);
+        // mw broker lets in only its user (NOT_AUTHORIZED otherwise): the bare client gives the credentials
+        // it generated for this machine, as RoboMW's transport does; Mosquitto ignores them
+        BrokerCredentials user = BrokerCredentials.load(null, System.getenv(), "127.0.0.1");
+        if (user.username() != null) {
+            b = b.simpleAuth().username(user.username()).password(user.password()).applySimpleAuth();
+        }
+        Mqtt5AsyncClient c = b.buildAsync();
         c.connectWith().cleanStart(true).send().get(10, TimeUnit.SECONDS);
         return c;
     }
