@@ -51,6 +51,15 @@ public final class JadeHopperAgent extends Agent {
     }
 
     private void hop(String here) {
+        long wait = io.robomw.bench.many.HopLog.waitNanos(seed);
+        if (wait > 0) {
+            // paced: waits at this stop (on its own thread, as JADE runs agents) before it leaves
+            try {
+                java.util.concurrent.TimeUnit.NANOSECONDS.sleep(wait);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        }
         String next;
         do {
             seed ^= seed << 13;

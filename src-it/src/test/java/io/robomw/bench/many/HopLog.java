@@ -12,7 +12,9 @@ import java.util.function.LongPredicate;
  * (JDK types only, so nothing of the benchmark travels with an agent): {@value #HOP} is a
  * {@link LongPredicate} (latency in ns, or −1 for an agent's first stop; answers whether to go on),
  * {@value #HOME} and {@value #PARKED} are {@link AtomicInteger}s, {@value #GATE} a
- * {@link java.util.concurrent.CountDownLatch} parked agents wait on.
+ * {@link java.util.concurrent.CountDownLatch} parked agents wait on, {@value #PACE} an
+ * {@link java.util.concurrent.atomic.AtomicLong}: how long on average a hopping agent waits at each
+ * stop before it leaves (ns; 0: it leaves at once, the saturated load).
  */
 public final class HopLog implements LongPredicate {
 
@@ -24,6 +26,8 @@ public final class HopLog implements LongPredicate {
     public static final String PARKED = "robomw.bench.many.parked";
     /** The system property of the latch parked agents wait on. */
     public static final String GATE = "robomw.bench.many.gate";
+    /** The system property of the mean wait at each stop, ns (paced mode; 0 saturates). */
+    public static final String PACE = "robomw.bench.many.pace";
 
     static final int FINE = 20_000;
     static final int BUCKETS = FINE + 10_000;
@@ -40,6 +44,7 @@ public final class HopLog implements LongPredicate {
         System.getProperties().put(HOME, new AtomicInteger());
         System.getProperties().put(PARKED, new AtomicInteger());
         System.getProperties().put(GATE, new java.util.concurrent.CountDownLatch(1));
+        System.getProperties().put(PACE, new java.util.concurrent.atomic.AtomicLong());
         return log;
     }
 
@@ -88,6 +93,23 @@ public final class HopLog implements LongPredicate {
             }
         }
         return window + " " + (b.length() == 0 ? "-" : b.toString());
+    }
+
+    /** @param nanos the mean wait of a hopping agent at each stop from now on (0: none) */
+    static void pace(long nanos) {
+        ((java.util.concurrent.atomic.AtomicLong) System.getProperties().get(PACE)).set(nanos);
+    }
+
+    /**
+     * The wait at a stop: uniform in [mean / 2, 3 mean / 2) by the agent's random state, so that
+     * agents do not leave in step; 0 when not paced.
+     *
+     * @param seed the agent's random state
+     * @return ns
+     */
+    public static long waitNanos(long seed) {
+        long mean = ((java.util.concurrent.atomic.AtomicLong) System.getProperties().get(PACE)).get();
+        return mean <= 0 ? 0 : mean / 2 + Math.floorMod(seed >>> 1, mean);
     }
 
     static AtomicInteger counter(String property) {

@@ -46,10 +46,16 @@ import java.util.stream.Stream;
  *   full collections, N more agents, the live heap again: the difference / N. Then RoboMW's are let
  *   go (their trips end there); JADE's stay, idle, through the hop phase (killing them one by one
  *   took minutes on a loaded machine; an idle JADE agent takes no processor time).</li>
+ *   <li>Paced, after the saturated window and before the agents go home (unless {@code --paced 0}):
+ *   every agent waits at each stop so that the offered load is a share (50 % by default) of the
+ *   saturated rate just measured, as wrk2 does to avoid coordinated omission: at saturation the
+ *   hop latency is mostly the queue's (Little's law: N agents / the rate). Hops per second, p50 and
+ *   p99 again, over S s after a settling time (see {@link #paced}).</li>
  * </ol>
  *
- * <p>Prints {@code BENCH many.<system>.<figure>} lines for bench/all's report. Arguments:
- * {@code --system robomw|jade --agents N --hosts H --warmup W --seconds S}.
+ * <p>Prints {@code BENCH many.<system>.<figure>} lines for bench/all's report ({@code paced.*}
+ * for the paced phase). Arguments:
+ * {@code --system robomw|jade --agents N --hosts H --warmup W --seconds S --paced SHARE}.
  */
 public final class ManyAgentsBenchmark {
 
@@ -66,6 +72,7 @@ public final class ManyAgentsBenchmark {
             import java.util.concurrent.CountDownLatch;
             import java.util.concurrent.TimeUnit;
             import java.util.concurrent.atomic.AtomicInteger;
+            import java.util.concurrent.atomic.AtomicLong;
             import java.util.function.LongPredicate;
 
             /** Hops at random among its hosts while its host's log says so, then goes home; or (park) waits at its one host. */
@@ -100,6 +107,15 @@ public final class ManyAgentsBenchmark {
                     }
                     String here = c.hostAddress();
                     if (((LongPredicate) System.getProperties().get("%s")).test(departed == 0 ? -1 : now - departed)) {
+                        long mean = ((AtomicLong) System.getProperties().get("%s")).get();
+                        if (mean > 0) {
+                            // paced: waits at this stop (on its runner thread) before it leaves
+                            try {
+                                TimeUnit.NANOSECONDS.sleep(mean / 2 + Math.floorMod(seed >>> 1, mean));
+                            } catch (InterruptedException e) {
+                                Thread.currentThread().interrupt();
+                            }
+                        }
                         String next;
                         do {
                             seed ^= seed << 13;
@@ -117,18 +133,20 @@ public final class ManyAgentsBenchmark {
                     }
                 }
             }
-            """.formatted(HopLog.PARKED, HopLog.GATE, HopLog.HOP);
+            """.formatted(HopLog.PARKED, HopLog.GATE, HopLog.HOP, HopLog.PACE);
 
     private final String system;
     private final int agents;
     private final int hosts;
     private final int warmup;
     private final int seconds;
+    private final double share;
     private final Path work;
     private final List<PeerProcess> peers = new ArrayList<>();
     private final List<String> names = new ArrayList<>();
 
-    private ManyAgentsBenchmark(String system, int agents, int hosts, int warmup, int seconds, Path work) {
+    private ManyAgentsBenchmark(String system, int agents, int hosts, int warmup, int seconds, double share, Path work) {
+        this.share = share;
         this.system = system;
         this.agents = agents;
         this.hosts = hosts;
@@ -147,6 +165,7 @@ public final class ManyAgentsBenchmark {
         int hosts = 4;
         int warmup = 10;
         int seconds = 30;
+        double share = 0.5;
         for (int i = 0; i < args.length; i += 2) {
             switch (args[i]) {
                 case "--system" -> system = args[i + 1];
@@ -154,14 +173,15 @@ public final class ManyAgentsBenchmark {
                 case "--hosts" -> hosts = Integer.parseInt(args[i + 1]);
                 case "--warmup" -> warmup = Integer.parseInt(args[i + 1]);
                 case "--seconds" -> seconds = Integer.parseInt(args[i + 1]);
-                default -> throw new IllegalArgumentException("unknown argument " + args[i] + " (--system robomw|jade --agents N --hosts H --warmup W --seconds S)");
+                case "--paced" -> share = Double.parseDouble(args[i + 1]);
+                default -> throw new IllegalArgumentException("unknown argument " + args[i] + " (--system robomw|jade --agents N --hosts H --warmup W --seconds S --paced SHARE)");
             }
         }
         if (!system.equals("robomw") && !system.equals("jade")) {
             throw new IllegalArgumentException("--system is robomw or jade, not " + system);
         }
         Path work = Files.createTempDirectory("robomw-many-agents");
-        ManyAgentsBenchmark b = new ManyAgentsBenchmark(system, agents, hosts, warmup, seconds, work);
+        ManyAgentsBenchmark b = new ManyAgentsBenchmark(system, agents, hosts, warmup, seconds, share, work);
         try {
             b.run();
         } finally {
@@ -200,21 +220,7 @@ public final class ManyAgentsBenchmark {
         long t0 = System.nanoTime();
         Thread.sleep(seconds * 1000L);
         long[] histogram = new long[HopLog.BUCKETS];
-        double perSecond = 0;
-        for (PeerProcess p : peers) {
-            String[] snap = p.ask("SNAP", "SNAP").split(" ");
-            long hostHops = 0;
-            String s = snap[2];
-            if (!s.equals("-")) {
-                for (String e : s.split(",")) {
-                    int colon = e.indexOf(':');
-                    long n = Long.parseLong(e.substring(colon + 1));
-                    histogram[Integer.parseInt(e.substring(0, colon))] += n;
-                    hostHops += n;
-                }
-            }
-            perSecond += hostHops / (Long.parseLong(snap[1]) / 1e9);
-        }
+        double perSecond = snap(histogram);
         long t1 = System.nanoTime();
         long cpu1 = cpu();
         long hops = java.util.Arrays.stream(histogram).sum();
@@ -222,6 +228,9 @@ public final class ManyAgentsBenchmark {
         double p50 = percentile(histogram, hops, 0.50);
         double p99 = percentile(histogram, hops, 0.99);
         double cpuPerHop = hops == 0 ? Double.NaN : (cpu1 - cpu0) / 1e3 / hops;
+        say(String.format(Locale.ROOT, "%s saturated: %,d hops in %.1f s: %,.0f hops/s, p50 %.0f µs, p99 %.0f µs",
+                system, hops, window, perSecond, p50, p99));
+        Paced paced = share > 0 && perSecond > 0 ? paced(perSecond) : null;
         for (PeerProcess p : peers) {
             p.ask("STOP", "STOPPING");
         }
@@ -237,10 +246,68 @@ public final class ManyAgentsBenchmark {
         System.out.println(line(id + "cpu-per-hop", cpuPerHop, "µs"));
         System.out.println(line(id + "heap-per-parked", perParked, "bytes"));
         System.out.println(line(id + "lost", lost, "agents"));
+        if (paced != null) {
+            System.out.println(line(id + "paced.wait", paced.waitNanos / 1e3, "µs"));
+            System.out.println(line(id + "paced.hops-per-s", paced.perSecond, "hops/s"));
+            System.out.println(line(id + "paced.share", paced.perSecond / perSecond, "of saturated"));
+            System.out.println(line(id + "paced.p50", paced.p50, "µs"));
+            System.out.println(line(id + "paced.p99", paced.p99, "µs"));
+        }
         // RoboMW must bring every agent home; what JADE loses is a figure of the baseline, not a failure of the harness.
         if (system.equals("robomw") && (lost != 0 || home0[1] != 0)) {
             throw new IllegalStateException(lost + " of " + agents + " agents not home within " + HOME + ", " + home0[1] + " trips failed");
         }
+    }
+
+    /** What the paced phase measured. */
+    private record Paced(long waitNanos, double perSecond, double p50, double p99) {
+    }
+
+    /**
+     * The paced phase: every hopping agent waits at each stop for a time whose mean makes the
+     * offered load {@code share} of the saturated rate measured just before (N agents each leaving
+     * once per N / (share × rate) s; a little less in fact, the hop's own latency adds to each
+     * cycle), so the latency is the hop's rather than the queue's at saturation (Little's law), as
+     * wrk2 measures at a fixed rate to avoid coordinated omission. Settles for the warm-up / 2
+     * (at least 5 s and two waits), then records for the same S s.
+     */
+    private Paced paced(double saturated) throws Exception {
+        long wait = (long) (agents / (share * saturated) * 1e9);
+        for (PeerProcess p : peers) {
+            p.ask("PACE " + wait, "PACED");
+        }
+        Thread.sleep(Math.max(Math.max(5000L, warmup * 500L), 2 * wait / 1_000_000));
+        for (PeerProcess p : peers) {
+            p.ask("MEASURE", "MEASURING");
+        }
+        Thread.sleep(seconds * 1000L);
+        long[] histogram = new long[HopLog.BUCKETS];
+        double perSecond = snap(histogram);
+        long hops = java.util.Arrays.stream(histogram).sum();
+        Paced r = new Paced(wait, perSecond, percentile(histogram, hops, 0.50), percentile(histogram, hops, 0.99));
+        say(String.format(Locale.ROOT, "%s paced at %.0f %% of %,.0f hops/s (mean wait %.1f ms at each stop): %,d hops, %,.0f hops/s (%.0f %%), p50 %.0f µs, p99 %.0f µs",
+                system, share * 100, saturated, wait / 1e6, hops, perSecond, 100 * perSecond / saturated, r.p50, r.p99));
+        return r;
+    }
+
+    /** Stops recording on every host and adds their histograms into {@code histogram}: @return the hops per second of all hosts */
+    private double snap(long[] histogram) throws Exception {
+        double perSecond = 0;
+        for (PeerProcess p : peers) {
+            String[] snap = p.ask("SNAP", "SNAP").split(" ");
+            long hostHops = 0;
+            String s = snap[2];
+            if (!s.equals("-")) {
+                for (String e : s.split(",")) {
+                    int colon = e.indexOf(':');
+                    long n = Long.parseLong(e.substring(colon + 1));
+                    histogram[Integer.parseInt(e.substring(0, colon))] += n;
+                    hostHops += n;
+                }
+            }
+            perSecond += hostHops / (Long.parseLong(snap[1]) / 1e9);
+        }
+        return perSecond;
     }
 
     /** Sends {@code n} agents to wait at the parking host and waits until {@code total} wait there. */

@@ -37,6 +37,8 @@ import java.util.concurrent.atomic.AtomicInteger;
  *   {@code LAUNCHED N}.</li>
  *   <li>{@code MEASURE}: empties the histogram and records; {@code MEASURING}.</li>
  *   <li>{@code SNAP}: stops recording; {@code SNAP bucket:count,...}.</li>
+ *   <li>{@code PACE NANOS}: hopping agents wait NANOS on average at each stop from now on (0:
+ *   not at all); {@code PACED}.</li>
  *   <li>{@code STOP}: agents go home at their next stop; {@code STOPPING}.</li>
  *   <li>{@code HOME}: {@code HOME n failed} (agents home, trips that failed).</li>
  *   <li>{@code PARK N JAR TARGET} (RoboMW) or {@code PARK N TARGET} (JADE): sends N agents to wait at
@@ -107,6 +109,10 @@ public final class ManyAgentsPeer {
                 yield "MEASURING";
             }
             case "SNAP" -> "SNAP " + log.snapshot();
+            case "PACE" -> {
+                HopLog.pace(Long.parseLong(c[1]));
+                yield "PACED";
+            }
             case "STOP" -> {
                 log.stop();
                 yield "STOPPING";
