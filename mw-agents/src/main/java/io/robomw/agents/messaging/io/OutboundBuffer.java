@@ -14,7 +14,7 @@ import java.util.concurrent.locks.ReentrantLock;
  * The frames waiting to go to one peer, in order, with the link's stream sequence numbers.
  *
  * <p>Senders {@link #send} frames; a writer thread ({@link #startWriter}) takes everything that
- * has gathered and writes it in one call, so a fast publisher's frames go out in large batches
+ * has gathered and writes it in one call (two more per large frame, see below), so a fast publisher's frames go out in large batches
  * (it sleeps up to 50 µs for a batch of publications to grow, see
  * {@link #linger}).
  * When nothing is waiting, a request or reply (any frame but a publication), or a publication
