@@ -21,8 +21,11 @@ import java.util.concurrent.TimeUnit;
  * <p>What a peer can make it hold is bounded by what the peer sent, not by what it announced: the
  * buffer starts at {@value #INITIAL} bytes and grows (doubling) only as bytes arrive: to
  * {@value #STREAMING} while reads keep filling it, beyond that only for a frame that needs it, so
- * a header announcing a 1 MiB frame costs nothing until the megabyte comes; after a large frame
- * the buffer shrinks back to {@value #STREAMING}. With {@link Timeouts}, a stream that delivers
+ * a header announcing a 1 MiB frame costs nothing until the megabyte comes. A stream of large
+ * frames (camera images) keeps the large buffer from one frame to the next, rather than growing it
+ * again for each (which allocated and copied about twice the frame every time); the buffer shrinks
+ * back to {@value #STREAMING} when a frame no larger than that comes (on an idle link, its next
+ * keep-alive). With {@link Timeouts}, a stream that delivers
  * no whole frame within the first-frame timeout (from the start) or the idle timeout (from each
  * call of {@link #next()}) ends with {@link DropReason#TIMED_OUT}: a peer that stops in the
  * middle of a frame, or sends a byte now and then, cannot hold the connection.
@@ -107,14 +110,6 @@ public final class FrameStreamReader {
             // counted from when the caller is done with the last frame (a listener may take long)
             deadline = System.nanoTime() + timeouts.idleNanos();
         }
-        if (buf.length > STREAMING && end - start <= STREAMING) {
-            // a large frame is done: give its memory back
-            byte[] small = new byte[STREAMING];
-            System.arraycopy(buf, start, small, 0, end - start);
-            end -= start;
-            start = 0;
-            buf = small;
-        }
         if (!fill(FrameCodec.PREFIX_LENGTH)) {
             if (end == start) {
                 return -1;
@@ -122,6 +117,14 @@ public final class FrameStreamReader {
             throw new FrameException(DropReason.TRUNCATED, "stream ended " + (end - start) + " bytes into a frame prefix");
         }
         int length = FrameCodec.declaredLength(buf, start, maxFrameSize);
+        if (buf.length > STREAMING && length <= STREAMING && end - start <= STREAMING) {
+            // the large frames are done: give their memory back
+            byte[] small = new byte[STREAMING];
+            System.arraycopy(buf, start, small, 0, end - start);
+            end -= start;
+            start = 0;
+            buf = small;
+        }
         if (!fill(length)) {
             throw new FrameException(DropReason.TRUNCATED, "stream ended after " + (end - start) + " of a frame's " + length + " bytes");
         }

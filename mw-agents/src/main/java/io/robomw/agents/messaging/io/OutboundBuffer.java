@@ -14,7 +14,7 @@ import java.util.concurrent.locks.ReentrantLock;
  * The frames waiting to go to one peer, in order, with the link's stream sequence numbers.
  *
  * <p>Senders {@link #send} frames; a writer thread ({@link #startWriter}) takes everything that
- * has gathered and writes it in one call, so a fast publisher's frames go out in large batches
+ * has gathered and writes it in one call (two more per large frame, see below), so a fast publisher's frames go out in large batches
  * (it sleeps up to 50 µs for a batch of publications to grow, see
  * {@link #linger}).
  * When nothing is waiting, a request or reply (any frame but a publication), or a publication
@@ -23,6 +23,12 @@ import java.util.concurrent.locks.ReentrantLock;
  * goes out in batches.
  * Transports without a writer thread (an RMI session, which the peer polls) {@link #take} the
  * batches themselves.
+ *
+ * <p>A frame of {@value #SHARED_FROM} bytes or more (a laser scan, a camera frame) is not copied
+ * into the buffer: only its first {@value #HEAD} bytes are, with this link's sequence number, and
+ * the writer writes the rest straight from the caller's array after them (a publication to eight
+ * subscribers is encoded once and copied by none of them). The caller must not change such a frame
+ * after {@link #send}.
  *
  * <p>At most {@code capacity} bytes wait; a sender waits for room up to the send timeout, then
  * gets an {@link IOException} (the caller closes the link: a peer that does not read must not
@@ -49,6 +55,20 @@ public final class OutboundBuffer {
 
     /** Each of the two buffers starts this small and doubles as frames wait: an idle link holds 8 KiB. */
     private static final int INITIAL = 4 * 1024;
+    /** Frames at least this large are written from the caller's array rather than copied into the buffer. */
+    public static final int SHARED_FROM = 64 * 1024;
+    /** The bytes of a shared frame copied into the buffer: its prefix and stream sequence number, which differ per link. */
+    static final int HEAD = FrameCodec.STREAM_SEQUENCE_OFFSET + 8;
+
+    /**
+     * The rest of a large frame, from {@link #HEAD}, written from the caller's array after the
+     * buffer's bytes up to {@code at}.
+     *
+     * @param at    where in the buffer the frame's head ends
+     * @param frame the whole frame
+     */
+    private record Shared(int at, byte[] frame) {
+    }
     private static final byte[] EMPTY = new byte[0];
     private static final int LINGER_BYTES = 32 * 1024;
     private static final long LINGER_NANOS = 50_000;
@@ -64,6 +84,12 @@ public final class OutboundBuffer {
     private final String peer;
     private byte[] fill = new byte[INITIAL];
     private byte[] spare = new byte[INITIAL];
+    /** The large frames of {@code fill}, in order (under the lock). */
+    private java.util.ArrayList<Shared> fillShared = new java.util.ArrayList<>(2);
+    /** Those of {@code spare}: the batch being written. */
+    private java.util.ArrayList<Shared> spareShared = new java.util.ArrayList<>(2);
+    /** Bytes of large frames waiting beyond {@code used} (under the lock). */
+    private int sharedBytes;
     /** Bytes waiting in {@code fill}: written under the lock with release stores (no fence per frame), read outside it with {@link #usedNow}. */
     private int used;
     private long sequence;
@@ -135,7 +161,8 @@ public final class OutboundBuffer {
     /**
      * Queues a frame (or writes it at once if the link is idle and has a writer).
      *
-     * @param frame an encoded frame; copied, and the copy gets this link's next stream sequence
+     * @param frame an encoded frame; copied (below {@value #SHARED_FROM} bytes; a larger one's head
+     *              only, and it must not change after), and the copy gets this link's next stream sequence
      * @throws IOException if the buffer is closed, or stayed full for the send timeout
      */
     public void send(byte[] frame) throws IOException {
@@ -145,11 +172,12 @@ public final class OutboundBuffer {
         if (writer != null && (urgent || (usedNow() == 0 && System.nanoTime() - lastSendNanos > IDLE_MICROS * 1000)) && writeLock.tryLock()) {
             try {
                 byte[] direct = null;
+                boolean shared = frame.length >= SHARED_FROM;
                 lock.lock();
                 try {
                     long now = System.nanoTime();
                     if (!closed && used == 0 && !batchTaken && (urgent || now - lastSendNanos > IDLE_MICROS * 1000)) {
-                        direct = frame.clone();
+                        direct = shared ? java.util.Arrays.copyOf(frame, HEAD) : frame.clone();
                         FrameCodec.writeStreamSequence(direct, 0, ++sequence);
                     }
                     lastSendNanos = now;
@@ -157,7 +185,7 @@ public final class OutboundBuffer {
                     lock.unlock();
                 }
                 if (direct != null) {
-                    writeTimed(writer, direct, direct.length);
+                    writeTimed(writer, direct, direct.length, shared ? java.util.List.of(new Shared(HEAD, frame)) : java.util.List.of());
                     return;
                 }
             } finally {
@@ -172,18 +200,20 @@ public final class OutboundBuffer {
         lock.lock();
         try {
             long waitNanos = sendTimeoutNanos;
-            while (!closed && used + length > capacity && used > 0) {
+            while (!closed && used + sharedBytes + length > capacity && used > 0) {
                 if (waitNanos <= 0) {
                     throw new IOException(peer + " took no frames for " + TimeUnit.NANOSECONDS.toMillis(sendTimeoutNanos)
-                            + " ms with " + used + " bytes waiting (limit " + capacity + "); it is not reading");
+                            + " ms with " + (used + sharedBytes) + " bytes waiting (limit " + capacity + "); it is not reading");
                 }
                 waitNanos = hasRoom.awaitNanos(waitNanos);
             }
             if (closed) {
                 throw new IOException("link to " + peer + " is closed");
             }
-            if (used + length > fill.length) {
-                byte[] bigger = new byte[Math.max(used + length, Math.min(capacity, fill.length * 2))];
+            boolean shared = length >= SHARED_FROM;
+            int copied = shared ? HEAD : length;
+            if (used + copied > fill.length) {
+                byte[] bigger = new byte[Math.max(used + copied, Math.min(capacity, fill.length * 2))];
                 System.arraycopy(fill, 0, bigger, 0, used);
                 fill = bigger;
             }
@@ -191,10 +221,15 @@ public final class OutboundBuffer {
                 // the first frame of a batch; the writer stamps the time again when it writes the batch
                 lastSendNanos = System.nanoTime();
             }
-            System.arraycopy(frame, 0, fill, used, length);
+            System.arraycopy(frame, 0, fill, used, copied);
             FrameCodec.writeStreamSequence(fill, used, ++sequence);
-            setUsed(used + length);
-            if (frame[FrameCodec.KIND_OFFSET] != FrameKind.PUBLISH.code()) {
+            if (shared) {
+                fillShared.add(new Shared(used + HEAD, frame));
+                sharedBytes += length - HEAD;
+            }
+            setUsed(used + copied);
+            if (shared || frame[FrameCodec.KIND_OFFSET] != FrameKind.PUBLISH.code()) {
+                // a request or reply, or a frame large enough to be a batch alone: no lingering
                 urgentWaiting = true;
                 if (lingering) {
                     LockSupport.unpark(writerThread);
@@ -257,7 +292,7 @@ public final class OutboundBuffer {
                 left = hasData.awaitNanos(left);
             }
             writerWaiting = false;
-            byte[] out = java.util.Arrays.copyOf(fill, used);
+            byte[] out = merged();
             setUsed(0);
             if (closed) {
                 release();
@@ -356,10 +391,34 @@ public final class OutboundBuffer {
         return (int) USED.getOpaque(this);
     }
 
+    /** @return the waiting bytes, large frames' rest included, back to back (with the lock held); clears the large frames */
+    private byte[] merged() {
+        if (fillShared.isEmpty()) {
+            return java.util.Arrays.copyOf(fill, used);
+        }
+        byte[] out = new byte[used + sharedBytes];
+        int from = 0;
+        int to = 0;
+        for (Shared s : fillShared) {
+            System.arraycopy(fill, from, out, to, s.at() - from);
+            to += s.at() - from;
+            System.arraycopy(s.frame(), HEAD, out, to, s.frame().length - HEAD);
+            to += s.frame().length - HEAD;
+            from = s.at();
+        }
+        System.arraycopy(fill, from, out, to, used - from);
+        fillShared.clear();
+        sharedBytes = 0;
+        return out;
+    }
+
     /** Gives the buffers back once closed and empty (called with the lock held). */
     private void release() {
         fill = EMPTY;
         spare = EMPTY;
+        fillShared.clear();
+        spareShared.clear();
+        sharedBytes = 0;
     }
 
     private void writeLoop(Writer out) throws IOException {
@@ -367,6 +426,7 @@ public final class OutboundBuffer {
         while (true) {
             byte[] batch;
             int length;
+            java.util.ArrayList<Shared> shared;
             lockAsWriter();
             try {
                 while (used == 0 && !closed) {
@@ -391,7 +451,7 @@ public final class OutboundBuffer {
                     release();
                     return;
                 }
-                if (used < LINGER_BYTES && !closed) {
+                if (used + sharedBytes < LINGER_BYTES && !closed) {
                     lock.unlock();
                     try {
                         linger();
@@ -403,6 +463,10 @@ public final class OutboundBuffer {
                 length = used;
                 fill = spare;
                 spare = batch;
+                shared = fillShared;
+                fillShared = spareShared;
+                spareShared = shared;
+                sharedBytes = 0;
                 setUsed(0);
                 urgentWaiting = false;
                 batchTaken = true;
@@ -412,8 +476,9 @@ public final class OutboundBuffer {
             }
             writeLock.lock();
             try {
-                writeTimed(out, batch, length);
+                writeTimed(out, batch, length, shared);
             } finally {
+                shared.clear(); // the caller's large frames are not kept beyond their write
                 lockAsWriter();
                 batchTaken = false;
                 hasRoom.signalAll();
@@ -473,13 +538,23 @@ public final class OutboundBuffer {
         }
     }
 
-    private void writeTimed(Writer out, byte[] buf, int length) throws IOException {
+    /** Writes {@code buf}'s first {@code length} bytes, each large frame's rest after its head. */
+    private void writeTimed(Writer out, byte[] buf, int length, java.util.List<Shared> shared) throws IOException {
         long now = System.nanoTime();
         writingSinceNanos = now;
         lastSendNanos = now;
         writing = true;
         try {
-            out.write(buf, 0, length);
+            int from = 0;
+            for (int i = 0; i < shared.size(); i++) {
+                Shared s = shared.get(i);
+                out.write(buf, from, s.at() - from);
+                out.write(s.frame(), HEAD, s.frame().length - HEAD);
+                from = s.at();
+            }
+            if (length > from) {
+                out.write(buf, from, length - from);
+            }
         } finally {
             writing = false;
         }

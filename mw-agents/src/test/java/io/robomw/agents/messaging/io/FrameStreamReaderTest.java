@@ -66,4 +66,26 @@ class FrameStreamReaderTest {
         assertEquals(FrameStreamReader.STREAMING, r.capacity());
         assertEquals(-1, r.next());
     }
+
+    @Test
+    void aStreamOfLargeFramesKeepsOneBufferUntilASmallFrameComes() throws Exception {
+        ByteArrayOutputStream s = new ByteArrayOutputStream();
+        for (int i = 0; i < 3; i++) {
+            byte[] big = new byte[MIB];
+            System.arraycopy(prefix(MIB), 0, big, 0, FrameCodec.PREFIX_LENGTH);
+            s.writeBytes(big);
+        }
+        byte[] small = new byte[200];
+        System.arraycopy(prefix(200), 0, small, 0, FrameCodec.PREFIX_LENGTH);
+        s.writeBytes(small);
+        FrameStreamReader r = new FrameStreamReader(new ByteArrayInputStream(s.toByteArray()), MIB);
+
+        assertEquals(MIB, r.next());
+        byte[] first = r.buffer();
+        assertEquals(MIB, r.next());
+        assertEquals(MIB, r.next());
+        assertTrue(first == r.buffer(), "the second and third camera frames were read into the first one's buffer");
+        assertEquals(200, r.next());
+        assertEquals(FrameStreamReader.STREAMING, r.capacity());
+    }
 }

@@ -153,4 +153,56 @@ class OutboundBufferTest {
         assertTrue(e.getMessage().contains("stuck-peer") && e.getMessage().contains("not reading"), e.getMessage());
         buffer.close();
     }
+
+    /** A frame of {@code length} bytes of {@code kind} whose bytes after the head count up from {@code seed}. */
+    private static byte[] large(FrameKind kind, int length, int seed) {
+        byte[] f = new byte[length];
+        f[FrameCodec.KIND_OFFSET] = (byte) kind.code();
+        for (int i = OutboundBuffer.HEAD; i < length; i++) {
+            f[i] = (byte) (seed + i);
+        }
+        return f;
+    }
+
+    @Test
+    void largeFramesAmongSmallOnesGoOutWholeInOrderWithTheirOwnSequenceAndTheCallersArrayUnchanged() throws Exception {
+        Wire wire = new Wire();
+        OutboundBuffer buffer = started(wire, 8 << 20);
+        List<byte[]> sent = new ArrayList<>();
+        for (int i = 0; i < 12; i++) {
+            byte[] f = i % 3 == 0 ? frame(FrameKind.PUBLISH, 0, i) : large(FrameKind.PUBLISH, OutboundBuffer.SHARED_FROM + 1000 * i, i);
+            sent.add(f);
+            buffer.send(f);
+        }
+        int total = sent.stream().mapToInt(f -> f.length).sum();
+        byte[] all = awaitBytes(wire, total);
+        int at = 0;
+        for (int i = 0; i < sent.size(); i++) {
+            byte[] f = sent.get(i);
+            assertEquals(0L, ByteBuffer.wrap(f).getLong(FrameCodec.STREAM_SEQUENCE_OFFSET), "the caller's frame " + i + " is not stamped");
+            assertEquals(i + 1L, ByteBuffer.wrap(all).getLong(at + FrameCodec.STREAM_SEQUENCE_OFFSET), "sequence of frame " + i);
+            assertTrue(java.util.Arrays.equals(f, OutboundBuffer.HEAD, f.length, all, at + OutboundBuffer.HEAD, at + f.length),
+                    "bytes of frame " + i);
+            at += f.length;
+        }
+        buffer.close();
+    }
+
+    @Test
+    void aPeerThatFetchesTakesLargeFramesWhole() throws Exception {
+        OutboundBuffer buffer = new OutboundBuffer("peer", 8 << 20, TimeUnit.SECONDS.toNanos(5));
+        byte[] small = frame(FrameKind.MESSAGE, 1, 1);
+        byte[] big = large(FrameKind.PUBLISH, OutboundBuffer.SHARED_FROM, 7);
+        buffer.send(small);
+        buffer.send(big);
+        buffer.send(small);
+
+        byte[] all = buffer.take(TimeUnit.SECONDS.toNanos(1));
+
+        assertEquals(2 * small.length + big.length, all.length);
+        assertEquals(2L, ByteBuffer.wrap(all).getLong(small.length + FrameCodec.STREAM_SEQUENCE_OFFSET));
+        assertTrue(java.util.Arrays.equals(big, OutboundBuffer.HEAD, big.length, all, small.length + OutboundBuffer.HEAD, small.length + big.length));
+        assertEquals(3L, ByteBuffer.wrap(all).getLong(small.length + big.length + FrameCodec.STREAM_SEQUENCE_OFFSET));
+        assertEquals(0, buffer.take(1).length, "nothing left");
+    }
 }
