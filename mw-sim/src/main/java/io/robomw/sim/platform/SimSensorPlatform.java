@@ -6,10 +6,12 @@ import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
 import io.robomw.platform.sensor.Sensors;
+import io.robomw.sim.SensorModel;
 import io.robomw.sim.SimMotors;
 
 import java.io.IOException;
 import java.util.List;
+import java.util.Map;
 
 /**
  * The simulator's sensor platform: a read is answered at the robot's next cycle with the raw value
@@ -37,7 +39,7 @@ final class SimSensorPlatform extends SensorPlatform {
      */
     @Override
     public Sensors createSensors(List<SensorChannel> channels) throws IOException {
-        java.util.Map<String, io.robomw.sim.SensorModel> models = robot.robot().sensors();
+        Map<String, SensorModel> models = robot.robot().sensors();
         boolean same = channels.size() == models.size();
         for (SensorChannel c : channels) {
             same &= c.type() != SensorType.TACHO && models.containsKey(c.name());

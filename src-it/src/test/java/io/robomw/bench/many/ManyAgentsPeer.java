@@ -43,7 +43,8 @@ import java.util.concurrent.atomic.AtomicInteger;
  *   <li>{@code HOME}: {@code HOME n failed} (agents home, trips that failed).</li>
  *   <li>{@code PARK N JAR TARGET} (RoboMW) or {@code PARK N TARGET} (JADE): sends N agents to wait at
  *   TARGET; {@code PARKING N}. {@code PARKED}: {@code PARKED n} waiting here. {@code RELEASE}: lets
- *   RoboMW's end (JADE's stay, idle); {@code RELEASED}.</li>
+ *   RoboMW's end (JADE's stay, idle); {@code RELEASED}. {@code RETURNED}: {@code RETURNED n}, the
+ *   parked agents sent from here whose trips have ended.</li>
  *   <li>{@code HEAP}: {@code HEAP bytes}, the heap in use after two full collections.</li>
  * </ul>
  */
@@ -55,6 +56,8 @@ public final class ManyAgentsPeer {
     private final PrintStream out;
     private final HopLog log = HopLog.install();
     private final AtomicInteger failed = new AtomicInteger();
+    /** RoboMW's parked agents whose trips ended (released) with the result expected. */
+    private final AtomicInteger parkedReturned = new AtomicInteger();
     private final List<URLClassLoader> loaders = new ArrayList<>();
     private AgentHost host;
     private AgentContainer container;
@@ -120,6 +123,7 @@ public final class ManyAgentsPeer {
             case "HOME" -> "HOME " + HopLog.counter(HopLog.HOME).get() + " " + failed.get();
             case "PARK" -> park(Integer.parseInt(c[1]), c);
             case "PARKED" -> "PARKED " + HopLog.counter(HopLog.PARKED).get();
+            case "RETURNED" -> "RETURNED " + parkedReturned.get();
             case "RELEASE" -> release();
             case "HEAP" -> "HEAP " + liveHeap();
             default -> "ERR unknown command " + String.join(" ", c);
@@ -178,6 +182,8 @@ public final class ManyAgentsPeer {
             if (e == null && expected.equals(r)) {
                 if (expected.equals("home")) {
                     HopLog.counter(HopLog.HOME).incrementAndGet();
+                } else {
+                    parkedReturned.incrementAndGet();
                 }
             } else {
                 failed.incrementAndGet();
