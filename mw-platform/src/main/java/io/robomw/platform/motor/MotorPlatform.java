@@ -58,6 +58,9 @@ public final class MotorPlatform {
     /** The logic object of a continuous command: it never holds, so the command runs until replaced, stopped or its watchdog fires. */
     private static final LogicObject NEVER = now -> false;
 
+    /** The most a rotation that still moves may take, in {@link #deadlineNanos} windows, before it counts as blocked. */
+    static final int MOST_DEADLINES = 4;
+
     private final String robot;
     private final Clock clock;
     private final Set<String> ports;
@@ -194,10 +197,16 @@ public final class MotorPlatform {
         }
         long[] startedAt = new long[1];
         MotorState[] started = new MotorState[targets.size()];
+        // Per target: the encoder reading at the start, the farthest it has moved from there, and when it last moved on.
+        double[] origin = new double[targets.size()];
+        double[] farthest = new double[targets.size()];
+        long[] movedAt = new long[targets.size()];
         b.action(now -> {
             startedAt[0] = now;
             for (int i = 0; i < targets.size(); i++) {
                 MotorTarget t = targets.get(i);
+                origin[i] = used[i].readingDegrees();
+                movedAt[i] = now;
                 double speed = t.degrees() == 0 ? 0 : t.degreesPerSecond();
                 if (t.continuous()) {
                     if (!same(used[i].wanted, speed, t.degrees(), MotorState.StopMode.BRAKE)) {
@@ -221,11 +230,19 @@ public final class MotorPlatform {
                     setWanted(p, MotorState.stopped(t.port(), MotorState.StopMode.BRAKE), false);
                     return true;
                 }
-                long deadline = deadlineNanos(t);
-                if (now - startedAt[0] > deadline) {
+                double moved = Math.abs(p.readingDegrees() - origin[index]);
+                if (moved > farthest[index]) {
+                    farthest[index] = moved;
+                    movedAt[index] = now;
+                }
+                long stall = deadlineNanos(t);
+                if (now - movedAt[index] > stall || now - startedAt[0] > MOST_DEADLINES * stall) {
                     throw new RobotException(String.format(Locale.ROOT,
-                            "robot '%s': motor %s did not finish turning %.0f° at %.0f°/s within %.1f s (turned about %.0f° by its encoder); is it blocked?",
-                            robot, t.port(), t.degrees(), Math.abs(t.degreesPerSecond()), deadline / 1e9, predictor.turned(p)));
+                            "robot '%s': motor %s did not finish turning %.0f° at %.0f°/s: its encoder %s (turned about %.0f°); is it blocked?",
+                            robot, t.port(), t.degrees(), Math.abs(t.degreesPerSecond()),
+                            now - movedAt[index] > stall ? String.format(Locale.ROOT, "showed no progress for %.1f s", stall / 1e9)
+                                    : String.format(Locale.ROOT, "still short after %.1f s", MOST_DEADLINES * stall / 1e9),
+                            predictor.turned(p)));
                 }
                 return false;
             });
@@ -466,7 +483,12 @@ public final class MotorPlatform {
         return predictor.turned(p, start) >= t.degrees() - lead;
     }
 
-    /** How long a rotation may take before it counts as blocked: three times its time at speed, plus 2 s. */
+    /**
+     * How long a rotation's encoder may show no progress before it counts as blocked: three times
+     * its time at speed, plus 2 s. A rotation that moves on, however slowly (a driver that creeps up
+     * to its target slower while the host is loaded, as the Intelligent Interface's does), goes on,
+     * up to {@link #MOST_DEADLINES} of these in all.
+     */
     private static long deadlineNanos(MotorTarget t) {
         return Math.round(3 * t.degrees() / Math.abs(t.degreesPerSecond()) * 1e9) + 2_000_000_000L;
     }
