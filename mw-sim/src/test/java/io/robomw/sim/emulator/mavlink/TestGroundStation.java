@@ -88,7 +88,8 @@ final class TestGroundStation implements AutoCloseable {
         send(c);
         Payload[] ack = new Payload[1];
         Await.until("COMMAND_ACK of " + command, WAIT, () -> {
-            for (Frame f : received.subList(before, received.size())) {
+            List<Frame> now = List.copyOf(received); // a copy: the reader adds while this looks (a live subList would throw)
+            for (Frame f : now.subList(before, now.size())) {
                 if (f.is(Messages.CommandAck.MESSAGE) && f.payload().getLong(Messages.CommandAck.COMMAND) == command.code()) {
                     ack[0] = f.payload();
                     return true;
