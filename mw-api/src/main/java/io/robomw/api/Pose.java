@@ -58,7 +58,11 @@ public record Pose(double x, double y, double heading, double z) implements java
         if (radians > -Math.PI && radians <= Math.PI) {
             return radians;
         }
-        double a = Math.IEEEremainder(radians, 2 * Math.PI);
-        return a <= -Math.PI ? a + 2 * Math.PI : a;
+        // floor, not Math.IEEEremainder: that is a native call (JDK 17), and a simulation normalizes every robot's heading every step
+        double a = radians - 2 * Math.PI * Math.floor((radians + Math.PI) / (2 * Math.PI));
+        if (a <= -Math.PI) {
+            return a + 2 * Math.PI;
+        }
+        return a > Math.PI ? a - 2 * Math.PI : a;
     }
 }
