@@ -161,7 +161,10 @@ class AgentHostTest {
         AgentHost home = host("home");
         AgentHost a = host("a");
         AgentRef ref = home.agency().sendAgent(a.address(), new io.robomw.agents.host.trip.StubbornAgent());
-        await(() -> !a.agents().isEmpty());
+        List<java.io.Serializable> reports = new java.util.concurrent.CopyOnWriteArrayList<>();
+        ref.addReportListener(reports::add);
+        // its callback running (not just listed at a: a retract that comes before the callback starts takes effect at once)
+        await(() -> reports.contains("waiting"));
         var retracted = ref.retract();
         await(() -> a.agents().stream().anyMatch(i -> i.pending() == AgentInfo.Pending.RETRACT));
         assertEquals("ACTIVE (retract pending)", a.agents().get(0).state());

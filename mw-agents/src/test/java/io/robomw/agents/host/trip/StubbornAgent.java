@@ -4,8 +4,9 @@ import io.robomw.api.Agent;
 import io.robomw.api.AgentMessage;
 
 /**
- * Test agent whose stop ignores interrupts: it waits (up to 30 s) for a "release" message, and
- * counts the interrupts it swallowed meanwhile; its result is that count.
+ * Test agent whose stop ignores interrupts: it reports "waiting" home once its stop's work has
+ * begun, waits (up to 30 s) for a "release" message, and counts the interrupts it swallowed
+ * meanwhile; its result is that count.
  */
 public class StubbornAgent extends Agent {
 
@@ -15,6 +16,7 @@ public class StubbornAgent extends Agent {
     @Override
     public void run() {
         int interrupts = 0;
+        context().report("waiting"); // a retract asked from now on finds its callback running
         long deadline = System.nanoTime() + 30_000_000_000L;
         synchronized (this) {
             while (!released && System.nanoTime() < deadline) {
