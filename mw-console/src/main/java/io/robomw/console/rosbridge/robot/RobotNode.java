@@ -237,32 +237,22 @@ public final class RobotNode implements AutoCloseable {
     }
 
     private Runnable rangeReader(SensorInfo s, SensorGeometry g, Topic topic) {
-        AtomicBoolean inFlight = new AtomicBoolean();
         String frame = ns + "/" + Graph.namespace(s.name());
-        return () -> {
-            if (!inFlight.compareAndSet(false, true)) {
-                return;
-            }
-            CompletableFuture<Double> reading;
-            try {
-                reading = robot.robot().getValueAsync(s.name(), ReturnType.METERS);
-            } catch (RuntimeException e) {
-                inFlight.set(false);
-                failed("sensor " + s.name(), e);
-                return;
-            }
-            reading.whenComplete((metres, e) -> {
-                inFlight.set(false);
-                if (e != null) {
-                    failed("sensor " + s.name(), e);
-                } else {
-                    topic.publish(RosMessages.range(clock.instant(), frame, g.radiation().code(), g.fieldOfView(), g.minRange(), g.maxRange(), metres));
-                }
-            });
-        };
+        return sensorReader(s, ReturnType.METERS, metres -> topic.publish(
+                RosMessages.range(clock.instant(), frame, g.radiation().code(), g.fieldOfView(), g.minRange(), g.maxRange(), metres)));
     }
 
     private Runnable batteryReader(SensorInfo s, Topic topic) {
+        return sensorReader(s, ReturnType.PERCENT, percent -> topic.publish(
+                RosMessages.batteryState(clock.instant(), ns + "/base_link", percent / 100.0, s.name())));
+    }
+
+    /**
+     * A reader of one sensor for a topic's timer: one read at a time (a tick while the last is in
+     * flight is skipped), each value handed to {@code publish}, a failure reported and the next tick
+     * tried again.
+     */
+    private Runnable sensorReader(SensorInfo s, ReturnType unit, java.util.function.DoubleConsumer publish) {
         AtomicBoolean inFlight = new AtomicBoolean();
         return () -> {
             if (!inFlight.compareAndSet(false, true)) {
@@ -270,18 +260,18 @@ public final class RobotNode implements AutoCloseable {
             }
             CompletableFuture<Double> reading;
             try {
-                reading = robot.robot().getValueAsync(s.name(), ReturnType.PERCENT);
+                reading = robot.robot().getValueAsync(s.name(), unit);
             } catch (RuntimeException e) {
                 inFlight.set(false);
                 failed("sensor " + s.name(), e);
                 return;
             }
-            reading.whenComplete((percent, e) -> {
+            reading.whenComplete((value, e) -> {
                 inFlight.set(false);
                 if (e != null) {
                     failed("sensor " + s.name(), e);
                 } else {
-                    topic.publish(RosMessages.batteryState(clock.instant(), ns + "/base_link", percent / 100.0, s.name()));
+                    publish.accept(value);
                 }
             });
         };
