@@ -438,11 +438,23 @@ public final class AgentBenchmark {
     // ---- the agent's code ----
 
     static byte[] compileAgent(Path work) throws IOException {
-        Path src = work.resolve("src/io/robomw/benchagent/BenchAgent.java");
+        return compile(work, "BenchAgent", AGENT_SOURCE);
+    }
+
+    /**
+     * Compiles a benchmark's agent, kept off the class path so its code travels as an archive.
+     *
+     * @param work       a directory for the source and the classes
+     * @param simpleName the class's name in package {@code io.robomw.benchagent}
+     * @param source     its source
+     * @return its class file
+     */
+    public static byte[] compile(Path work, String simpleName, String source) throws IOException {
+        Path src = work.resolve("src/io/robomw/benchagent/" + simpleName + ".java");
         Path classes = work.resolve("classes");
         Files.createDirectories(src.getParent());
         Files.createDirectories(classes);
-        Files.writeString(src, AGENT_SOURCE);
+        Files.writeString(src, source);
         JavaCompiler javac = ToolProvider.getSystemJavaCompiler();
         if (javac == null) {
             throw new IllegalStateException("the benchmark needs a JDK (javax.tools) to compile its agent");
@@ -452,7 +464,7 @@ public final class AgentBenchmark {
         if (rc != 0) {
             throw new IllegalStateException("the benchmark agent does not compile:\n" + err.toString(StandardCharsets.UTF_8));
         }
-        return Files.readAllBytes(classes.resolve("io/robomw/benchagent/BenchAgent.class"));
+        return Files.readAllBytes(classes.resolve("io/robomw/benchagent/" + simpleName + ".class"));
     }
 
     /** A jar with the agent class and a resource entry of its own, so each tag gives an archive of its own. */

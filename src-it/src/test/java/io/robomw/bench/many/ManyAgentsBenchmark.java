@@ -1,16 +1,13 @@
 package io.robomw.bench.many;
 
+import io.robomw.bench.AgentBenchmark;
 import io.robomw.it.messaging.PeerProcess;
 import io.robomw.testkit.Await;
 
-import javax.tools.JavaCompiler;
-import javax.tools.ToolProvider;
-import java.io.ByteArrayOutputStream;
 import java.io.IOException;
 import java.io.OutputStream;
 import java.net.InetAddress;
 import java.net.ServerSocket;
-import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
@@ -449,24 +446,11 @@ public final class ManyAgentsBenchmark {
     // ---- the agent's code ----
 
     private Path jar() throws IOException {
-        Path src = work.resolve("src/io/robomw/benchagent/HopAgent.java");
-        Path classes = work.resolve("classes");
-        Files.createDirectories(src.getParent());
-        Files.createDirectories(classes);
-        Files.writeString(src, AGENT_SOURCE);
-        JavaCompiler javac = ToolProvider.getSystemJavaCompiler();
-        if (javac == null) {
-            throw new IllegalStateException("the benchmark needs a JDK (javax.tools) to compile its agent");
-        }
-        ByteArrayOutputStream err = new ByteArrayOutputStream();
-        int rc = javac.run(null, null, err, "-d", classes.toString(), "-cp", System.getProperty("java.class.path"), "--release", "17", src.toString());
-        if (rc != 0) {
-            throw new IllegalStateException("the benchmark agent does not compile:\n" + err.toString(StandardCharsets.UTF_8));
-        }
+        byte[] agentClass = AgentBenchmark.compile(work, "HopAgent", AGENT_SOURCE);
         Path jar = work.resolve("hop-agent.jar");
         try (OutputStream f = Files.newOutputStream(jar); JarOutputStream j = new JarOutputStream(f)) {
             j.putNextEntry(new JarEntry("io/robomw/benchagent/HopAgent.class"));
-            j.write(Files.readAllBytes(classes.resolve("io/robomw/benchagent/HopAgent.class")));
+            j.write(agentClass);
             j.closeEntry();
         }
         return jar;
