@@ -134,7 +134,9 @@ class AgentHostTest {
         VisitorAgent agent = new VisitorAgent().holdUntilReleased(); // blocks its stop for 120 s unless released or interrupted
         agent.itinerary().addStop(a.address()).addStop(b.address());
         AgentRef ref = home.agency().startTrip(agent);
-        await(() -> "a".equals(safeWhere(ref)));
+        List<java.io.Serializable> reports = new java.util.concurrent.CopyOnWriteArrayList<>();
+        ref.addReportListener(reports::add);
+        await(() -> reports.contains("at a")); // its work at a has begun (not only arrived there)
         Agent back = ref.retract().get(60, TimeUnit.SECONDS); // never released: the retract must not wait for the 120 s hold (60 s is patience for a loaded machine)
         assertEquals(List.of("a"), ((VisitorAgent) back).visited());
         assertEquals(AgentStatus.RETRACTED, ref.status());

@@ -56,10 +56,21 @@ public final class HostedAgent {
         this.imageSize = image.stateLength() + 64;
     }
 
-    /** Its callbacks run on the calling thread from now until {@link #rested()}. */
-    synchronized void working() {
+    /**
+     * Its callbacks run on the calling thread from now until {@link #rested()}, unless an operator's
+     * retract or dispose came first (after it arrived, before its work began): then they do not run
+     * at all. Under this object's lock, as {@link #interruptWork()}: a retract either finds the work
+     * running and interrupts it, or is found here.
+     *
+     * @return whether its callbacks may run
+     */
+    synchronized boolean working() {
+        if (retractRequested || disposeRequested) {
+            return false;
+        }
         working = Thread.currentThread();
         drives = false;
+        return true;
     }
 
     /**

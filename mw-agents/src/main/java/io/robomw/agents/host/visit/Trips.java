@@ -97,34 +97,39 @@ public final class Trips {
                 if (marked) {
                     HostContext ctx = host.contextOf(h);
                     h.agent.attach(ctx);
-                    h.working();
-                    try {
-                        h.agent.onArrival();
-                        Itinerary.Task task = it.currentStop().map(Itinerary.Stop::task).orElse(null);
-                        if (task != null) {
-                            task.execute(ctx);
-                        } else {
-                            h.agent.run();
+                    if (!h.working()) {
+                        // an operator's retract or dispose came after it arrived and before its work began: the work does not begin
+                        it.record(stopHost, Itinerary.Outcome.INTERRUPTED, (h.retractRequested ? "retracted" : "disposed of")
+                                + " by the operator before its work began at " + host.name);
+                    } else {
+                        try {
+                            h.agent.onArrival();
+                            Itinerary.Task task = it.currentStop().map(Itinerary.Stop::task).orElse(null);
+                            if (task != null) {
+                                task.execute(ctx);
+                            } else {
+                                h.agent.run();
+                            }
+                            it.record(stopHost, Itinerary.Outcome.DONE, "");
+                            host.activity.record(h.id, h.className, HostActivity.STOP_DONE, host.address, "");
+                        } catch (Throwable e) {
+                            // Whatever the agent's code throws that a thread survives (an exception, a LinkageError, a
+                            // StackOverflowError...) fails its stop, not the host; any other ends its trip (below).
+                            host.failures.surviveOrRethrow(role, e);
+                            if (h.leaveAskedAt != 0) {
+                                // A retract or dispose interrupted the work: the stop was cut short on purpose, not failed.
+                                LOG.info("host {}: agent {} ({}) ended its stop on the {} interrupt: {}", host.name, h.id, h.className,
+                                        h.retractRequested ? "retract" : "dispose", e.toString());
+                                it.record(stopHost, Itinerary.Outcome.INTERRUPTED, (h.retractRequested ? "retracted" : "disposed of") + " by the operator while"
+                                        + " its work ran at " + host.name + ": " + e);
+                            } else {
+                                LOG.warn("host {}: agent {} ({}) failed at its stop: {}", host.name, h.id, h.className, e.toString());
+                                it.record(stopHost, Itinerary.Outcome.FAILED, StackTraces.of(e));
+                            }
+                            host.activity.record(h.id, h.className, HostActivity.STOP_FAILED, host.address, e.toString());
+                        } finally {
+                            h.rested();
                         }
-                        it.record(stopHost, Itinerary.Outcome.DONE, "");
-                        host.activity.record(h.id, h.className, HostActivity.STOP_DONE, host.address, "");
-                    } catch (Throwable e) {
-                        // Whatever the agent's code throws that a thread survives (an exception, a LinkageError, a
-                        // StackOverflowError...) fails its stop, not the host; any other ends its trip (below).
-                        host.failures.surviveOrRethrow(role, e);
-                        if (h.leaveAskedAt != 0) {
-                            // A retract or dispose interrupted the work: the stop was cut short on purpose, not failed.
-                            LOG.info("host {}: agent {} ({}) ended its stop on the {} interrupt: {}", host.name, h.id, h.className,
-                                    h.retractRequested ? "retract" : "dispose", e.toString());
-                            it.record(stopHost, Itinerary.Outcome.INTERRUPTED, (h.retractRequested ? "retracted" : "disposed of") + " by the operator while"
-                                    + " its work ran at " + host.name + ": " + e);
-                        } else {
-                            LOG.warn("host {}: agent {} ({}) failed at its stop: {}", host.name, h.id, h.className, e.toString());
-                            it.record(stopHost, Itinerary.Outcome.FAILED, StackTraces.of(e));
-                        }
-                        host.activity.record(h.id, h.className, HostActivity.STOP_FAILED, host.address, e.toString());
-                    } finally {
-                        h.rested();
                     }
                 }
             }
