@@ -132,7 +132,7 @@ class HostSocketsTest {
         try (ServerSocket server = new HostSockets.Server(InetAddress.getLoopbackAddress(), null, counters, connections, 0).createServerSocket(0);
              Socket silent = new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort());
              Socket accepted = server.accept()) {
-            assertEquals(null, accepted.getInetAddress(), "RMI sees no client address");
+            assertTrue(accepted.getInetAddress().isAnyLocalAddress(), "RMI sees no client address: " + accepted.getInetAddress());
             accepted.setSoTimeout(120_000); // what RMI asks for: the first byte is awaited for 5 s only
             long start = System.nanoTime();
             assertThrows(java.net.SocketTimeoutException.class, () -> accepted.getInputStream().read());
@@ -180,6 +180,42 @@ class HostSocketsTest {
                 assertTrue(java.util.Arrays.equals(got, 0, small.length, small, 0, small.length), "the smaller call arrives whole");
                 assertTrue(java.util.Arrays.equals(got, small.length, got.length, large, 0, large.length), "the larger call arrives whole, after it");
                 assertEquals(small.length + large.length, counters.in.sum(), "every byte read is counted once");
+            }
+        }
+    }
+
+    /**
+     * Under a flight recording (JFR's socket events, on by default in its "default" and "profile"
+     * settings) an accepted connection reads and writes: JDK 17's recorder asks the socket for
+     * its client's address after every read and write slower than its threshold, and an address
+     * of {@code null} killed RMI's connection thread, so a host being profiled dropped calls.
+     */
+    @Test
+    void anAcceptedConnectionReadsAndWritesWhileAFlightRecordingRecordsSocketEvents() throws Exception {
+        HostSockets.Counters counters = new HostSockets.Counters();
+        try (jdk.jfr.Recording recording = new jdk.jfr.Recording();
+             ServerSocket server = new HostSockets.Server(InetAddress.getLoopbackAddress(), null, counters).createServerSocket(0);
+             Socket client = new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort());
+             Socket accepted = server.accept()) {
+            recording.enable("jdk.SocketRead").withThreshold(java.time.Duration.ZERO);
+            recording.enable("jdk.SocketWrite").withThreshold(java.time.Duration.ZERO);
+            recording.start();
+            client.getOutputStream().write(new byte[] {0x50, 1, 2});
+            byte[] got = accepted.getInputStream().readNBytes(3);
+            accepted.getOutputStream().write(new byte[] {0x51, 4});
+            client.setSoTimeout(10_000);
+            assertEquals(0x51, client.getInputStream().read());
+            assertEquals(4, client.getInputStream().read());
+            assertEquals(3, got.length);
+            recording.stop();
+            java.nio.file.Path file = java.nio.file.Files.createTempFile("host-sockets", ".jfr");
+            try {
+                recording.dump(file);
+                java.util.List<jdk.jfr.consumer.RecordedEvent> events = jdk.jfr.consumer.RecordingFile.readAllEvents(file);
+                assertTrue(events.stream().anyMatch(e -> e.getEventType().getName().equals("jdk.SocketRead")
+                        && e.getInt("port") == client.getLocalPort()), "the recorder saw the accepted connection's read: " + events);
+            } finally {
+                java.nio.file.Files.deleteIfExists(file);
             }
         }
     }

@@ -23,8 +23,8 @@ import java.util.concurrent.atomic.LongAdder;
  * given, counts the bytes its accepted connections carry (for the wire-bytes benchmark and
  * {@code mw agents}), keeps its connections within {@link HostConnections}' limits (which
  * connection proved the key, the oldest idle one makes way, a first byte within 5 s), and with TLS
- * requires a client certificate. Its sockets do not tell RMI the client's address (RMI sees
- * {@code 0.0.0.0}, "origin unknown"), so the JDK's registry refuses every {@code bind},
+ * requires a client certificate. Its sockets do not tell RMI the client's address (they say
+ * {@code 0.0.0.0}, which RMI takes as "origin unknown"), so the JDK's registry refuses every {@code bind},
  * {@code rebind} and {@code unbind} that does not come from the host's own process (the host binds
  * its name in-process); the host knows the address itself ({@link HostConnections#currentRemote}).
  * The client side travels in the
@@ -135,6 +135,21 @@ public final class HostSockets {
         }
     }
 
+    /**
+     * What an accepted connection tells RMI its client's address is: the wildcard address, which
+     * RMI's registry takes as "origin unknown" (so it refuses changes from it), named so that
+     * asking its host name looks nothing up.
+     */
+    static final InetAddress ORIGIN_UNKNOWN = originUnknown();
+
+    private static InetAddress originUnknown() {
+        try {
+            return InetAddress.getByAddress("origin-unknown-to-rmi", new byte[4]);
+        } catch (java.net.UnknownHostException e) {
+            throw new AssertionError("four bytes are an IPv4 address", e);
+        }
+    }
+
     private static final class CountingSocket extends Socket {
         private final Counters counters;
         private final HostConnections connections;
@@ -153,13 +168,18 @@ public final class HostSockets {
         }
 
         /**
-         * None, to RMI: RMI then takes the client to be at {@code 0.0.0.0}, from where the JDK's
+         * The wildcard address {@code 0.0.0.0} ({@link #ORIGIN_UNKNOWN}), to RMI and everyone else
+         * who asks: RMI then takes the client to be at {@code 0.0.0.0}, from where the JDK's
          * registry takes no {@code bind}, {@code rebind} or {@code unbind} ("origin unknown"), while
-         * lookups go on. The host knows the address from {@link #realAddress()}.
+         * lookups go on. Not {@code null}: the JDK's own socket code takes a connected socket to
+         * have an address (JDK 17's flight recorder reads it after every socket read and write
+         * that took longer than its threshold, and a {@code null} killed the connection's thread
+         * with a NullPointerException, so a host under a JFR recording dropped calls). The host
+         * knows the real address from {@link #realAddress()}.
          */
         @Override
         public InetAddress getInetAddress() {
-            return null;
+            return ORIGIN_UNKNOWN;
         }
 
         /** @return the client's address */
