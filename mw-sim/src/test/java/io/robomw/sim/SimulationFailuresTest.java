@@ -1,5 +1,7 @@
 package io.robomw.sim;
 
+import io.robomw.testkit.RecordingFailures;
+
 import io.robomw.api.Robot;
 import io.robomw.api.RobotException;
 import io.robomw.api.RobotLinkException;

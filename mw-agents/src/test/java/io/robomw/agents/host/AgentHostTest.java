@@ -1,6 +1,6 @@
 package io.robomw.agents.host;
 
-import io.robomw.agents.RecordingFailures;
+import io.robomw.testkit.RecordingFailures;
 import io.robomw.agents.host.trip.VisitorAgent;
 import io.robomw.testkit.Await;
 import io.robomw.api.Agent;
@@ -99,6 +99,11 @@ class AgentHostTest {
         VisitorAgent agent = new VisitorAgent().holdUntilReleased();
         agent.itinerary().addStop(a.address()).addStop(b.address());
         AgentRef ref = home.agency().startTrip(agent);
+        List<java.io.Serializable> reports = new java.util.concurrent.CopyOnWriteArrayList<>();
+        ref.addReportListener(reports::add);
+        // Its work at a has begun: a retract that came earlier (after it arrived, before its work began) would
+        // keep the work from beginning, and it would come home without having visited a (HostedAgentTest).
+        await(() -> reports.contains("at a"));
         var retracted = ref.retract();
         // The retract takes effect when the stop's work returns; release the agent until it is home.
         await(() -> {

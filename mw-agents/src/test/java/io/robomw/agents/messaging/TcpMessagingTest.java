@@ -1,6 +1,6 @@
 package io.robomw.agents.messaging;
 
-import io.robomw.agents.RecordingFailures;
+import io.robomw.testkit.RecordingFailures;
 import io.robomw.testkit.Await;
 import io.robomw.api.Message;
 import io.robomw.api.MessagingException;

@@ -2,7 +2,7 @@ package io.robomw.sim.emulator;
 
 import io.robomw.api.spi.FailurePolicy;
 import io.robomw.api.spi.PlatformServices;
-import io.robomw.sim.RecordingFailures;
+import io.robomw.testkit.RecordingFailures;
 import io.robomw.sim.SimMotors;
 import io.robomw.sim.Simulation;
 import io.robomw.testkit.Await;

@@ -109,7 +109,7 @@ class DelayedLinkTest {
     @Test
     void shouldCloseTheLinkAndNameTheErrorWhenItsPumpDiesOfOne() throws Exception {
         ScriptedLink memory = memory();
-        io.robomw.sim.RecordingFailures failures = new io.robomw.sim.RecordingFailures();
+        io.robomw.testkit.RecordingFailures failures = new io.robomw.testkit.RecordingFailures();
         OutOfMemoryError injected = new OutOfMemoryError("injected into the pump");
         memory.deliverFailure(injected);
         DelayedLink link = new DelayedLink(memory, LATENT, failures);
@@ -120,7 +120,7 @@ class DelayedLinkTest {
                     () -> link.read(new byte[4], 0, 4, Duration.ofSeconds(5)), "the emulator's read ends instead of waiting for ever");
 
             assertTrue(e.getMessage().contains("OutOfMemoryError: injected into the pump"), e.getMessage());
-            assertEquals(List.of(new io.robomw.sim.RecordingFailures.Report("memory-in", injected, true)), failures.reports());
+            assertEquals(List.of(new io.robomw.testkit.RecordingFailures.Report("memory-in", injected, true)), failures.reports());
             assertFalse(memory.isOpen(), "the real link was closed: the driver sees it drop");
             org.junit.jupiter.api.Assertions.assertFalse(link.isOpen());
             io.robomw.testkit.Await.until("the pump and the sender ended", Duration.ofSeconds(10), () -> Thread.getAllStackTraces().keySet().stream()
@@ -135,7 +135,7 @@ class DelayedLinkTest {
     @Test
     void shouldReportAFailedReadOfThePumpAndDeliverWhatComesAfterIt() throws Exception {
         ScriptedLink memory = memory();
-        io.robomw.sim.RecordingFailures failures = new io.robomw.sim.RecordingFailures();
+        io.robomw.testkit.RecordingFailures failures = new io.robomw.testkit.RecordingFailures();
         IllegalStateException injected = new IllegalStateException("one bad read");
         memory.deliverFailure(injected);
         DelayedLink link = new DelayedLink(memory, LATENT, failures);
@@ -147,7 +147,7 @@ class DelayedLinkTest {
             readExactly(link, got, 2);
 
             assertArrayEquals(new byte[]{7, 8}, got);
-            assertEquals(List.of(new io.robomw.sim.RecordingFailures.Report("memory-in", injected, false)), failures.reports());
+            assertEquals(List.of(new io.robomw.testkit.RecordingFailures.Report("memory-in", injected, false)), failures.reports());
         } finally {
             link.close();
         }
@@ -156,7 +156,7 @@ class DelayedLinkTest {
     @Test
     void shouldReportAFailedWriteOfTheSenderAndSendTheNextReply() throws Exception {
         ScriptedLink memory = memory();
-        io.robomw.sim.RecordingFailures failures = new io.robomw.sim.RecordingFailures();
+        io.robomw.testkit.RecordingFailures failures = new io.robomw.testkit.RecordingFailures();
         LinkageError injected = new LinkageError("one bad write");
         memory.failNextWrite(new RuntimeException(injected));
         DelayedLink link = new DelayedLink(memory, LATENT, failures);

@@ -1,4 +1,4 @@
-package io.robomw.sim;
+package io.robomw.testkit;
 
 import io.robomw.api.spi.FailurePolicy;
 
@@ -7,7 +7,7 @@ import java.util.concurrent.CopyOnWriteArrayList;
 
 /**
  * A failure policy for tests: keeps every report (who, what, whether the thread died) and counts
- * them, as the injected policy of a simulation or an emulator's link.
+ * them, as the injected policy of an owner thread (a simulation, an emulator's link, an agent host).
  */
 public final class RecordingFailures implements FailurePolicy {
 
@@ -46,5 +46,10 @@ public final class RecordingFailures implements FailurePolicy {
     /** @return the deaths reported so far */
     public List<Report> deaths() {
         return reports.stream().filter(Report::died).toList();
+    }
+
+    /** @return the survived failures reported so far */
+    public List<Report> survived() {
+        return reports.stream().filter(r -> !r.died()).toList();
     }
 }
