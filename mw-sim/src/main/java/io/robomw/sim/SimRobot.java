@@ -147,6 +147,11 @@ public final class SimRobot {
         trajectory.add(physics.x(body), physics.y(body));
     }
 
+    /** @return what the robots of its robot file share */
+    RobotModel model() {
+        return model;
+    }
+
     /** @return whether the world steps this robot from its arrays alone ({@link RobotStates}) */
     boolean plain() {
         return states.plain[index];
