@@ -39,11 +39,18 @@ final class BatchedRobot implements Robot {
     /** @return its own robot, promoted out of its batch first */
     private ConfiguredRobot own() {
         if (!promoted) {
-            synchronized (this) {
-                if (!promoted) {
-                    // its own odometry goes on from the batch's estimate
-                    world.promote(index, robot::resetPose);
-                    promoted = true;
+            if (Parallel.onWorker()) {
+                // a controller in the world's pass: the promotion waits for the next step (see SimWorld.promote), and this
+                // thread takes no lock a program promoting the robot may hold while it waits for the step to end
+                world.promote(index, robot::resetPose);
+                promoted = true;
+            } else {
+                synchronized (this) {
+                    if (!promoted) {
+                        // its own odometry goes on from the batch's estimate
+                        world.promote(index, robot::resetPose);
+                        promoted = true;
+                    }
                 }
             }
         }

@@ -35,7 +35,9 @@ import java.util.Map;
  *   <li>sample every range sensor that is due (each sensor has its own seeded noise, so results
  *   do not depend on threads);</li>
  *   <li>cycle every robot's execution action thread that is due, then complete its pending sensor
- *   reads, then run the {@linkplain #addRobotController robot controllers} that are due on it;</li>
+ *   reads (for a robot driven in a {@linkplain #batchRobots() batch}: its batch's cycle of it, over
+ *   the batch's arrays, instead), then run the {@linkplain #addRobotController robot controllers}
+ *   that are due on it;</li>
  *   <li>set each robot's body velocities from its commanded wheel speeds, for the next step;</li>
  *   <li>(end of step) hand the completions that wake programs over, in one go.</li>
  * </ol>

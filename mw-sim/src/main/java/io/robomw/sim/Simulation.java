@@ -38,6 +38,11 @@ import java.util.function.BooleanSupplier;
  * {@link java.util.ServiceLoader}) whose body is in the world. The robot files of the world are
  * used as they are, whatever their {@code platform:}: in a simulation they run on {@code sim}.
  *
+ * <p>The robots of one robot file that can be driven together (see {@link SimWorld#batchRobots()})
+ * start in a batch: the same three layers over arrays, which controllers drive through
+ * {@link SimWorld#driveBatched}. Each is still a {@link Robot} ({@link #robot}, {@link #robots}):
+ * its first verb promotes it out of its batch, and from then on it runs on its own stack.
+ *
  * <h2>Two ways to run</h2>
  * <ul>
  *   <li><b>As fast as possible</b>, repeatably: {@link #run(Duration, Runnable...)} runs programs
