@@ -795,7 +795,7 @@ public final class SimWorld implements AutoCloseable {
             }
             parallel.forEach(n, i -> {
                 try {
-                    sense(robots.get(i), -1);
+                    sense(i, -1);
                 } catch (Throwable e) {
                     robotFailed(i, e);
                 }
@@ -914,7 +914,7 @@ public final class SimWorld implements AutoCloseable {
             try {
                 long t0 = timer == null ? 0 : timer.nanoTime();
                 if (senseStep != 0) {
-                    sense(r, senseStep);
+                    sense(i, senseStep);
                     if (timer != null) {
                         t0 = part(timer, RobotPart.SENSING, t0);
                     }
@@ -1048,27 +1048,29 @@ public final class SimWorld implements AutoCloseable {
      *
      * @param step the step number, or -1 for every sensor
      */
-    private void sense(SimRobot r, long step) {
-        List<SensorModel> sensors = r.rangeSensors();
+    private void sense(int i, long step) {
+        RobotStates st = states;
+        RobotModel model = st.model[i];
+        List<SensorModel> sensors = model.rangeSensors;
         if (sensors.isEmpty()) {
             return;
         }
-        int i = r.index();
-        RobotStates st = states;
+        // a plain robot without noise is sensed from the world's arrays and its file's models alone: its own object is not reached
+        SimRobot r = st.plain[i] && !model.noisy ? null : robots.get(i);
         double x = st.x[i];
         double y = st.y[i];
         double heading = st.heading[i];
         double c = st.cos[i];
         double s = st.sin[i];
-        double pan = r.headPan();
-        double tilt = r.headTilt();
+        double pan = st.plain[i] ? 0 : r.headPan();
+        double tilt = st.plain[i] ? 0 : r.headTilt();
         double[] ranges = st.ranges;
         int start = st.rangeStart[i];
         if (rangeMethod != RangeMethod.GRID) {
             for (int k = 0; k < sensors.size(); k++) {
                 SensorModel m = sensors.get(k);
                 if (step < 0 || step % m.everySteps() == 0) {
-                    ranges[start + k] = m.sampleRange(rayCaster, i, x, y, heading, c, s, pan, tilt, r.noise(k));
+                    ranges[start + k] = m.sampleRange(rayCaster, i, x, y, heading, c, s, pan, tilt, (r == null ? null : r.noise(k)));
                 }
             }
             return;
@@ -1087,7 +1089,7 @@ public final class SimWorld implements AutoCloseable {
         for (int k = 0; k < sensors.size(); k++) {
             SensorModel m = sensors.get(k);
             if (step < 0 || step % m.everySteps() == 0) {
-                ranges[start + k] = m.finishRange(batch.hits, first, tilt, r.noise(k));
+                ranges[start + k] = m.finishRange(batch.hits, first, tilt, (r == null ? null : r.noise(k)));
                 first += m.rays();
             }
         }
