@@ -112,6 +112,32 @@ class SwarmBatchTest {
     }
 
     @Test
+    void aRobotIsPromotedWhileTheWorldRunsInRealTimeOnItsOwnThread() throws Exception {
+        WorldDescription world = crowd(6, 1.0);
+        try (Simulation sim = Simulation.create(world, 2)) {
+            SimWorld w = sim.world();
+            w.addRobotController(5, i -> {
+                if (w.batched(i) && i != 2) {
+                    w.driveBatched(i, 0.05, 0);
+                }
+            });
+            sim.startRealTime(4);
+            try {
+                Robot r2 = sim.robot("r2");
+                r2.move(0.15, 0.1); // promoted between two steps of the real-time thread, then moved by its own stack
+                assertFalse(w.batched(w.robot("r2").index()));
+                assertEquals(0.15, w.robot("r2").pose().distanceTo(world.robots().get(2).start()), 0.01, "it moved as commanded");
+                assertEquals(0.15, r2.pose().x(), 0.01, "and its odometry says so");
+                double r3 = w.robot("r3").pose().distanceTo(world.robots().get(3).start());
+                io.robomw.testkit.Await.until("the batch drives r3 on", Duration.ofSeconds(30),
+                        () -> w.robot("r3").pose().distanceTo(world.robots().get(3).start()) > r3 + 0.02);
+            } finally {
+                sim.stopRealTime();
+            }
+        }
+    }
+
+    @Test
     void aFailureOfOneBatchedRobotBrakesThatRobotOnlyAndIsReported() throws IOException {
         RecordingFailures policy = new RecordingFailures();
         Files.writeString(dir.resolve("scout.yaml"), """
