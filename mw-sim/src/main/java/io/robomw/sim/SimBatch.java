@@ -51,7 +51,7 @@ public final class SimBatch implements WheelBatch, BatchMotorDriver {
      */
     SimBatch(RobotDescription description, List<SimRobot> members, RobotStates states, long now) {
         DifferentialDrive d = description.drive().orElseThrow();
-        this.name = description.source() == null ? description.name() : String.valueOf(description.source());
+        this.name = java.util.Objects.requireNonNullElse(description.source(), description.name()); // its robot file names it in messages
         this.robots = members.stream().mapToInt(SimRobot::index).toArray();
         this.states = states;
         this.motors = new MotorBatch(name, List.of(d.left().port(), d.right().port()), robots.length, description.watchdogTimeout(), this);

@@ -530,7 +530,7 @@ public final class SimWorld implements AutoCloseable {
      * @param handOver takes its pose by the batch's odometry, on the thread that promotes it
      */
     public void promote(int robot, java.util.function.Consumer<Pose> handOver) {
-        if (Parallel.onWorker() && !stepLock.isHeldByCurrentThread()) {
+        if (Parallel.onWorker()) {
             promotions.add(new Promotion(robot, handOver));
             return;
         }
