@@ -47,7 +47,11 @@ public final class MotorBatch {
     private final double[] wanted;
     /** Per member: when its watchdog was last restarted (its drive admitted or refreshed), clock nanoseconds. */
     private final long[] refreshedAt;
-    /** Per member: {@link #IDLE}, {@link #QUEUED}, {@link #RUNNING}, {@link #RUNNING_QUEUED} or {@link #RELEASED}. */
+    /**
+     * Per member: {@link #IDLE}, {@link #QUEUED}, {@link #RUNNING}, {@link #RUNNING_QUEUED} or {@link #RELEASED}: a byte
+     * a member in one array the cycle walks in order (an enum constant a member would be a reference to follow, 4-8
+     * bytes of a 100,000-member array). In memory only: never written to a wire or a file.
+     */
     private final byte[] state;
 
     private static final byte IDLE = 0;
