@@ -32,7 +32,7 @@ public final class Parallel implements AutoCloseable {
         this.threads = Math.max(1, threads);
         AtomicInteger n = new AtomicInteger();
         this.pool = this.threads == 1 ? null : Executors.newFixedThreadPool(this.threads, r -> {
-            Thread t = new Thread(r, "sim-worker-" + n.incrementAndGet());
+            Thread t = new Worker(r, "sim-worker-" + n.incrementAndGet());
             t.setDaemon(true);
             return t;
         });
@@ -108,6 +108,18 @@ public final class Parallel implements AutoCloseable {
             }
             throw new IllegalStateException(cause);
         }
+    }
+
+    /** A world's worker thread. */
+    private static final class Worker extends Thread {
+        Worker(Runnable r, String name) {
+            super(r, name);
+        }
+    }
+
+    /** @return whether the calling thread is one of a simulation's worker threads (of any world) */
+    static boolean onWorker() {
+        return Thread.currentThread() instanceof Worker;
     }
 
     /** Stops the worker threads. */

@@ -55,6 +55,8 @@ final class RobotStates {
     double[] maxSpeed = new double[0];
     /** Whether the robot is stepped here entirely. */
     boolean[] plain = new boolean[0];
+    /** Per robot: what the robots of its robot file share (its range sensors' models), so sensing need not reach the robot's object. */
+    RobotModel[] model = new RobotModel[0];
     Trajectory[] trajectory = new Trajectory[0];
     /** Per robot: where its range sensors' samples start in {@link #ranges}. */
     int[] rangeStart = new int[0];
@@ -120,6 +122,7 @@ final class RobotStates {
         signRight = Arrays.copyOf(signRight, m);
         maxSpeed = Arrays.copyOf(maxSpeed, m);
         plain = Arrays.copyOf(plain, m);
+        model = Arrays.copyOf(model, m);
         trajectory = Arrays.copyOf(trajectory, m);
         rangeStart = Arrays.copyOf(rangeStart, m);
         capacity = m;

@@ -142,9 +142,15 @@ public final class SimRobot {
         }
         this.vehicle = description.vehicleDrive().map(d -> new io.robomw.sim.vehicle.SimVehicle(
                 io.robomw.sim.vehicle.VehicleSpec.of(d, description.body()), physics.x(body), physics.y(body), physics.heading(body))).orElse(null);
+        states.model[index] = model;
         states.plain[index] = kinematics != null && quadruped == null && vehicle == null && !hasTouch && !hasAccel && actuatorIndex.length == 0;
         states.setPose(index, physics.x(body), physics.y(body), physics.heading(body), physics.cos(body), physics.sin(body));
         trajectory.add(physics.x(body), physics.y(body));
+    }
+
+    /** @return what the robots of its robot file share */
+    RobotModel model() {
+        return model;
     }
 
     /** @return whether the world steps this robot from its arrays alone ({@link RobotStates}) */

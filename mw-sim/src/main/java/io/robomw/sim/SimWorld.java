@@ -35,7 +35,9 @@ import java.util.Map;
  *   <li>sample every range sensor that is due (each sensor has its own seeded noise, so results
  *   do not depend on threads);</li>
  *   <li>cycle every robot's execution action thread that is due, then complete its pending sensor
- *   reads, then run the {@linkplain #addRobotController robot controllers} that are due on it;</li>
+ *   reads (for a robot driven in a {@linkplain #batchRobots() batch}: its batch's cycle of it, over
+ *   the batch's arrays, instead), then run the {@linkplain #addRobotController robot controllers}
+ *   that are due on it;</li>
  *   <li>set each robot's body velocities from its commanded wheel speeds, for the next step;</li>
  *   <li>(end of step) hand the completions that wake programs over, in one go.</li>
  * </ol>
@@ -88,6 +90,26 @@ public final class SimWorld implements AutoCloseable {
     private final String role;
     /** Per robot (by index): the execution action threads the world cycles, or {@code null}. */
     private Cycled[] cycled = new Cycled[0];
+    /**
+     * Per robot (by index): the batch that drives it ({@link #batchRobots()}), or {@code null} (its own
+     * execution action thread does, if it has one). Written by the stepping thread between passes (under
+     * {@link #stepLock}), read by the pass.
+     */
+    private SimBatch[] batchOf = new SimBatch[0];
+    /** Per robot (by index): its member index in {@link #batchOf}'s batch. */
+    private int[] memberOf = new int[0];
+    /** The batches, in the order they were made. */
+    private final List<SimBatch> batches = new ArrayList<>();
+    /** Whether any batch's cycle is due in the step being taken. */
+    private boolean batchCycling;
+    /** Held by the stepping thread while it steps, and by a thread promoting a robot out of its batch. */
+    private final java.util.concurrent.locks.ReentrantLock stepLock = new java.util.concurrent.locks.ReentrantLock();
+    /** Promotions asked for on a worker thread during a pass: applied at the start of the next step. */
+    private final java.util.concurrent.ConcurrentLinkedQueue<Promotion> promotions = new java.util.concurrent.ConcurrentLinkedQueue<>();
+
+    /** A promotion asked for while a pass ran. */
+    private record Promotion(int robot, java.util.function.Consumer<Pose> handOver) {
+    }
     /** The earliest time a cycle is due. */
     private long nextCycle = Long.MAX_VALUE;
     private long steps;
@@ -179,16 +201,21 @@ public final class SimWorld implements AutoCloseable {
         return best;
     }
 
-    /** A robot's execution action thread and when it is due; {@code more}: the robot's next one, if it has more. */
+    /**
+     * A robot's execution action thread and when it is due; {@code more}: the robot's next one, if it has more;
+     * {@code poll}: a round of its link side (encoders read), for a robot promoted out of a batch, or {@code null}.
+     */
     private static final class Cycled {
         private final ExecutionActionThread thread;
         private final long period;
+        private final Runnable poll;
         private long next;
         private Cycled more;
 
-        Cycled(ExecutionActionThread thread, long now) {
+        Cycled(ExecutionActionThread thread, Runnable poll, long now) {
             this.thread = thread;
             this.period = thread.period().toNanos();
+            this.poll = poll;
             this.next = now;
         }
     }
@@ -356,6 +383,8 @@ public final class SimWorld implements AutoCloseable {
             // grown by doubling (a copy per robot made loading 100,000 robots quadratic: minutes); slots past the robots stay empty
             int room = Math.max(robots.size(), 2 * cycled.length);
             cycled = java.util.Arrays.copyOf(cycled, room);
+            batchOf = java.util.Arrays.copyOf(batchOf, room);
+            memberOf = java.util.Arrays.copyOf(memberOf, room);
             bodyLength = java.util.Arrays.copyOf(bodyLength, room);
             bodyWidth = java.util.Arrays.copyOf(bodyWidth, room);
         }
@@ -391,7 +420,20 @@ public final class SimWorld implements AutoCloseable {
      * @param thread its execution action thread
      */
     public void attach(SimRobot robot, ExecutionActionThread thread) {
-        Cycled c = new Cycled(thread, clock.nanoTime());
+        attach(robot, thread, null);
+    }
+
+    /**
+     * Cycles a robot's execution action thread on this world's clock from now on; a robot of a
+     * motor platform whose link side the world may service on its own (its encoders read) can be
+     * driven in a {@linkplain #batchRobots() batch} until it is addressed one by one.
+     *
+     * @param robot the robot
+     * @param thread its execution action thread
+     * @param poll   one round of its platform's link side (send what is published, read the encoders), or {@code null}
+     */
+    public void attach(SimRobot robot, ExecutionActionThread thread, Runnable poll) {
+        Cycled c = new Cycled(thread, poll, clock.nanoTime());
         int i = robot.index();
         if (cycled[i] == null) {
             cycled[i] = c;
@@ -403,6 +445,129 @@ public final class SimWorld implements AutoCloseable {
             last.more = c;
         }
         nextCycle = Math.min(nextCycle, c.next);
+    }
+
+    /**
+     * Puts the robots that can be driven together into batches, one per robot file (with its cycle
+     * rate and watchdog): every robot stepped from the world's arrays alone (a differential drive,
+     * nothing else to move or feel), on the ground, whose own platform is a motor platform the world
+     * may poll ({@link #attach(SimRobot, ExecutionActionThread, Runnable)}). From then on a batched
+     * robot's own execution action thread is not cycled: its batch ({@link SimBatch}) is, over
+     * arrays, and controllers drive it through {@link #driveBatched}; until a program or an agent
+     * addresses it one by one ({@link #promote}). Before the first step.
+     *
+     * @return the batches made
+     */
+    public synchronized List<SimBatch> batchRobots() {
+        if (steps > 0) {
+            throw new IllegalStateException("world '" + description.name() + "': robots are batched before the first step");
+        }
+        record Key(RobotModel model, java.time.Duration period, java.time.Duration watchdog, Object drive, Object capabilities) {
+        }
+        Map<Key, List<SimRobot>> groups = new LinkedHashMap<>();
+        for (SimRobot r : robots) {
+            int i = r.index();
+            Cycled c = cycled[i];
+            RobotDescription d = r.description();
+            if (batchOf[i] != null || c == null || c.more != null || c.poll == null || !states.plain[i] || d.drive().isEmpty()
+                    || !d.capabilities().contains(io.robomw.api.Capability.GROUND)) {
+                continue;
+            }
+            groups.computeIfAbsent(new Key(r.model(), d.cyclePeriod(), d.watchdogTimeout(), d.drive().get(), d.capabilities()),
+                    k -> new ArrayList<>()).add(r);
+        }
+        List<SimBatch> made = new ArrayList<>();
+        for (List<SimRobot> members : groups.values()) {
+            SimBatch batch = new SimBatch(members.get(0).description(), members, states, clock.nanoTime());
+            for (int m = 0; m < members.size(); m++) {
+                batchOf[members.get(m).index()] = batch;
+                memberOf[members.get(m).index()] = m;
+            }
+            batches.add(batch);
+            made.add(batch);
+        }
+        return made;
+    }
+
+    /**
+     * @param robot a robot's index
+     * @return whether its batch drives it ({@link #batchRobots()}), rather than its own platform
+     */
+    public boolean batched(int robot) {
+        return batchOf[robot] != null;
+    }
+
+    /**
+     * A batched robot's {@code drive(v, ω)} through its batch (Configuration Layer, then Platform
+     * Layer, then the simulated motors), for controllers that work robot by robot in the world's
+     * pass ({@link #addRobotController}); its robot's {@code drive} does the same for a robot that
+     * is not batched.
+     *
+     * @param robot        a batched robot's index
+     * @param linearSpeed  metres per second
+     * @param angularSpeed radians per second, positive left
+     * @throws IllegalStateException                    if the robot is not batched (any more)
+     * @throws io.robomw.api.UnsupportedActionException naming the robot, as its {@code drive} would
+     */
+    public void driveBatched(int robot, double linearSpeed, double angularSpeed) {
+        SimBatch batch = batchOf[robot];
+        if (batch == null) {
+            throw new IllegalStateException("robot '" + robots.get(robot).name() + "' is not driven in a batch; drive it through its Robot");
+        }
+        batch.drive(memberOf[robot], linearSpeed, angularSpeed);
+    }
+
+    /**
+     * Promotes a robot out of its batch, for a program or an agent that addresses it one by one:
+     * its batch releases it (the batch's drive ends, its motors brake), its own platform's link is
+     * polled (its encoders read), its own execution action thread is cycled from its next due
+     * cycle on (the times it would have had, had it never been batched), and {@code handOver}
+     * gets the batch's odometry of it, for its own odometry to go on from. Done at once, between
+     * two steps (a step under way is waited for); asked on one of the world's worker threads
+     * during a pass, done at the start of the next step. Nothing if it is not batched. Any thread.
+     *
+     * @param robot    a robot's index
+     * @param handOver takes its pose by the batch's odometry, on the thread that promotes it
+     */
+    public void promote(int robot, java.util.function.Consumer<Pose> handOver) {
+        if (Parallel.onWorker()) {
+            promotions.add(new Promotion(robot, handOver));
+            return;
+        }
+        stepLock.lock();
+        try {
+            applyPromotion(robot, handOver);
+        } finally {
+            stepLock.unlock();
+        }
+    }
+
+    /** {@link #promote}, under the step lock. */
+    private void applyPromotion(int i, java.util.function.Consumer<Pose> handOver) {
+        SimBatch batch = batchOf[i];
+        if (batch == null) {
+            return;
+        }
+        try {
+            Pose pose = batch.release(memberOf[i]);
+            batchOf[i] = null;
+            long t = clock.nanoTime();
+            for (Cycled c = cycled[i]; c != null; c = c.more) {
+                if (c.next <= t) {
+                    c.next += ((t - c.next) / c.period + 1) * c.period;
+                }
+                c.poll.run();
+                nextCycle = Math.min(nextCycle, c.next);
+            }
+            handOver.accept(pose);
+        } catch (Throwable e) {
+            robotFailed(i, e);
+        }
+    }
+
+    /** @return the batches ({@link #batchRobots()}) */
+    public List<SimBatch> batches() {
+        return Collections.unmodifiableList(batches);
     }
 
     /** @return the world's description */
@@ -476,7 +641,15 @@ public final class SimWorld implements AutoCloseable {
     public void step() {
         lockstep.beginStep();
         try {
-            advance();
+            stepLock.lock();
+            try {
+                for (Promotion p; (p = promotions.poll()) != null; ) {
+                    applyPromotion(p.robot(), p.handOver());
+                }
+                advance();
+            } finally {
+                stepLock.unlock();
+            }
         } finally {
             lockstep.endStep();
         }
@@ -622,7 +795,7 @@ public final class SimWorld implements AutoCloseable {
             }
             parallel.forEach(n, i -> {
                 try {
-                    sense(robots.get(i), -1);
+                    sense(i, -1);
                 } catch (Throwable e) {
                     robotFailed(i, e);
                 }
@@ -636,7 +809,18 @@ public final class SimWorld implements AutoCloseable {
         boolean record = step % trajectoryEvery == 0;
         long now = clock.nanoTime() + stepNanos;
         boolean sensing = sensingDue(step);
-        boolean cycling = now >= nextCycle;
+        batchCycling = false;
+        for (int b = 0; b < batches.size(); b++) {
+            SimBatch batch = batches.get(b);
+            int due = 0;
+            while (batch.nextCycle <= now) {
+                batch.nextCycle += batch.periodNanos;
+                due++;
+            }
+            batch.cyclesDue = due;
+            batchCycling |= due > 0;
+        }
+        boolean cycling = now >= nextCycle || batchCycling;
         boolean controlling = controllersDue(step);
         if (!sensing && !cycling && !controlling) {
             // No robot's work after the motion reads the clock or another robot: one pass.
@@ -653,7 +837,7 @@ public final class SimWorld implements AutoCloseable {
                         if (timer != null) {
                             t0 = part(timer, RobotPart.MOTION, t0);
                         }
-                        if (reads && cycled[i] != null) {
+                        if (reads && cycled[i] != null && batchOf[i] == null) {
                             robots.get(i).completeReads(this);
                         }
                         if (timer != null) {
@@ -666,7 +850,7 @@ public final class SimWorld implements AutoCloseable {
                         if (timer != null) {
                             t0 = part(timer, RobotPart.MOTION, t0);
                         }
-                        if (cycled[i] != null) {
+                        if (cycled[i] != null && batchOf[i] == null) {
                             r.completeReads(this);
                         }
                         if (timer != null) {
@@ -730,13 +914,22 @@ public final class SimWorld implements AutoCloseable {
             try {
                 long t0 = timer == null ? 0 : timer.nanoTime();
                 if (senseStep != 0) {
-                    sense(r, senseStep);
+                    sense(i, senseStep);
                     if (timer != null) {
                         t0 = part(timer, RobotPart.SENSING, t0);
                     }
                 }
-                Cycled c = cycled[i];
-                if (c != null) {
+                SimBatch batch = batchOf[i];
+                Cycled c = batch == null ? cycled[i] : null;
+                if (batch != null) {
+                    if (batch.cyclesDue > 0) {
+                        // the Platform Layer of its batch: its member's cycle over the batch's arrays
+                        batch.cycle(memberOf[i], now);
+                        if (timer != null) {
+                            t0 = part(timer, RobotPart.CYCLES, t0);
+                        }
+                    }
+                } else if (c != null) {
                     for (; c != null; c = c.more) {
                         while (c.next <= now) {
                             c.next += c.period; // first: a cycle that throws is not run again in this step
@@ -771,8 +964,11 @@ public final class SimWorld implements AutoCloseable {
         });
         if (cycling) {
             long earliest = Long.MAX_VALUE;
-            for (Cycled c : cycled) {
-                for (; c != null; c = c.more) {
+            for (int i = 0; i < n; i++) {
+                if (batchOf[i] != null) {
+                    continue; // its own thread is not cycled while its batch drives it
+                }
+                for (Cycled c = cycled[i]; c != null; c = c.more) {
                     earliest = Math.min(earliest, c.next);
                 }
             }
@@ -791,6 +987,11 @@ public final class SimWorld implements AutoCloseable {
     private void robotFailed(int i, Throwable failure) {
         SimRobot r = robots.get(i);
         failures.surviveOrRethrow(role + ": robot '" + r.name() + "'", failure);
+        SimBatch batch = batchOf[i];
+        if (batch != null) {
+            batch.failed(memberOf[i]); // its batch's drive of it ends: its motors brake
+            return;
+        }
         for (Cycled c = cycled[i]; c != null; c = c.more) {
             c.thread.linkFailed("to its simulated body in world '" + description.name() + "'", failure);
         }
@@ -847,27 +1048,29 @@ public final class SimWorld implements AutoCloseable {
      *
      * @param step the step number, or -1 for every sensor
      */
-    private void sense(SimRobot r, long step) {
-        List<SensorModel> sensors = r.rangeSensors();
+    private void sense(int i, long step) {
+        RobotStates st = states;
+        RobotModel model = st.model[i];
+        List<SensorModel> sensors = model.rangeSensors;
         if (sensors.isEmpty()) {
             return;
         }
-        int i = r.index();
-        RobotStates st = states;
+        // a plain robot without noise is sensed from the world's arrays and its file's models alone: its own object is not reached
+        SimRobot r = st.plain[i] && !model.noisy ? null : robots.get(i);
         double x = st.x[i];
         double y = st.y[i];
         double heading = st.heading[i];
         double c = st.cos[i];
         double s = st.sin[i];
-        double pan = r.headPan();
-        double tilt = r.headTilt();
+        double pan = st.plain[i] ? 0 : r.headPan();
+        double tilt = st.plain[i] ? 0 : r.headTilt();
         double[] ranges = st.ranges;
         int start = st.rangeStart[i];
         if (rangeMethod != RangeMethod.GRID) {
             for (int k = 0; k < sensors.size(); k++) {
                 SensorModel m = sensors.get(k);
                 if (step < 0 || step % m.everySteps() == 0) {
-                    ranges[start + k] = m.sampleRange(rayCaster, i, x, y, heading, c, s, pan, tilt, r.noise(k));
+                    ranges[start + k] = m.sampleRange(rayCaster, i, x, y, heading, c, s, pan, tilt, (r == null ? null : r.noise(k)));
                 }
             }
             return;
@@ -886,7 +1089,7 @@ public final class SimWorld implements AutoCloseable {
         for (int k = 0; k < sensors.size(); k++) {
             SensorModel m = sensors.get(k);
             if (step < 0 || step % m.everySteps() == 0) {
-                ranges[start + k] = m.finishRange(batch.hits, first, tilt, r.noise(k));
+                ranges[start + k] = m.finishRange(batch.hits, first, tilt, (r == null ? null : r.noise(k)));
                 first += m.rays();
             }
         }

@@ -38,6 +38,11 @@ import java.util.function.BooleanSupplier;
  * {@link java.util.ServiceLoader}) whose body is in the world. The robot files of the world are
  * used as they are, whatever their {@code platform:}: in a simulation they run on {@code sim}.
  *
+ * <p>The robots of one robot file that can be driven together (see {@link SimWorld#batchRobots()})
+ * start in a batch: the same three layers over arrays, which controllers drive through
+ * {@link SimWorld#driveBatched}. Each is still a {@link Robot} ({@link #robot}, {@link #robots}):
+ * its first verb promotes it out of its batch, and from then on it runs on its own stack.
+ *
  * <h2>Two ways to run</h2>
  * <ul>
  *   <li><b>As fast as possible</b>, repeatably: {@link #run(Duration, Runnable...)} runs programs
@@ -80,7 +85,10 @@ public final class Simulation implements AutoCloseable {
     static final long CATCH_UP_NANOS = Duration.ofSeconds(1).toNanos();
 
     private final SimWorld world;
-    private final Map<String, ConfiguredRobot> robots = new LinkedHashMap<>();
+    /** Every robot opened here, by name: its own, or its handle while its world drives it in a batch ({@link BatchedRobot}). */
+    private final Map<String, Robot> robots = new LinkedHashMap<>();
+    /** Every robot's own Configuration Layer, to close. */
+    private final List<ConfiguredRobot> opened = new ArrayList<>();
     private final List<Runnable> stepListeners = new CopyOnWriteArrayList<>();
     private final Set<String> emulated;
     private final FailurePolicy failures;
@@ -128,10 +136,19 @@ public final class Simulation implements AutoCloseable {
                 RobotPlatform platform = provider.open(DescriptionRobotFactory.platformConfig(d, sensorChannels, services, world.clock(),
                         io.robomw.api.spi.Cycling.BY_OWNER));
                 try {
-                    robots.put(r.name(), ConfiguredRobot.withComponents(() -> d, platform, null, components));
+                    ConfiguredRobot robot = ConfiguredRobot.withComponents(() -> d, platform, null, components);
+                    opened.add(robot);
+                    robots.put(r.name(), robot);
                 } catch (RuntimeException e) {
                     platform.close();
                     throw e;
+                }
+            }
+            // Robots of one robot file are driven together, over arrays, until one is addressed one by one.
+            world.batchRobots();
+            for (SimRobot r : world.robots()) {
+                if (world.batched(r.index())) {
+                    robots.put(r.name(), new BatchedRobot((ConfiguredRobot) robots.get(r.name()), world, r.index()));
                 }
             }
         } catch (IOException e) {
@@ -574,7 +591,7 @@ public final class Simulation implements AutoCloseable {
     @Override
     public void close() {
         stopRealTime();
-        for (ConfiguredRobot r : robots.values()) {
+        for (ConfiguredRobot r : opened) {
             try {
                 r.close();
             } catch (RuntimeException e) {

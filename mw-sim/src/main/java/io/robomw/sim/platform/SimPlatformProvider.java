@@ -56,7 +56,14 @@ public final class SimPlatformProvider implements PlatformProvider {
         }
         MotorPlatform motorPlatform = new MotorPlatform(config, new SimMotorDriver(config, motors));
         BrickPlatform platform = new BrickPlatform(config, motorPlatform, new SimSensorPlatform(motorPlatform, motors), null, null);
-        world.attach(motors.robot(), platform.actionThread());
+        // the world may drive it in a batch until it is addressed one by one; it then reads its encoders with a round of its link side
+        world.attach(motors.robot(), platform.actionThread(), () -> {
+            try {
+                motorPlatform.linkSide().service();
+            } catch (java.io.IOException e) {
+                throw new java.io.UncheckedIOException("robot '" + config.robotName() + "': its simulated link failed: " + e.getMessage(), e);
+            }
+        });
         return new SimPlatform(platform, world.lockstep());
     }
 }

@@ -13,7 +13,9 @@ import java.util.SplittableRandom;
  * Wanders every robot of a simulation at once: a Braitenberg-style reactive controller, run at a
  * fixed rate (default 10 Hz) robot by robot in the world's pass over its robots, that reads each robot's range sensors and
  * sets its velocities with the continuous {@link Robot#drive} command (through all three layers,
- * refreshed at every tick, so the watchdog never fires while it runs). Robots without range
+ * refreshed at every tick, so the watchdog never fires while it runs): a robot its world drives in a
+ * batch with the others of its robot file through the batch ({@link io.robomw.sim.SimWorld#driveBatched}:
+ * the same layers over arrays), a robot addressed one by one through its own {@link Robot}. Robots without range
  * sensors drive in gentle random curves. Deterministic: each robot has its own seeded random
  * stream, and the robots are controlled in parallel on the world's worker threads.
  *
@@ -174,7 +176,12 @@ public final class WanderController implements Runnable {
                 w = near < 0.25 ? (side >= 0 ? 1.5 : -1.5) : 2.0 * side + turnBias[i] * 0.3;
             }
             try {
-                robots.get(i).drive(v, clampTurn(i, v, w));
+                if (world.batched(robot)) {
+                    // driven with the other robots of its robot file: the same three layers, over arrays
+                    world.driveBatched(robot, v, clampTurn(i, v, w));
+                } else {
+                    robots.get(i).drive(v, clampTurn(i, v, w));
+                }
             } catch (UnsupportedActionException e) {
                 speed[i] = 0;
             }

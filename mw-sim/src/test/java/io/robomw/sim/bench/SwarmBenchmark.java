@@ -175,6 +175,7 @@ public final class SwarmBenchmark {
             ThreadPlacement placement = watchThreads ? ThreadPlacement.start() : null;
             long cpu0 = processCpuNanos();
             long steppingCpu0 = threadCpuNanos();
+            long simThreadsCpu0 = simThreadsCpuNanos();
             long[] machine0 = machineTicks();
             String loadBefore = loadAverage();
             w.profile(io.robomw.api.Clock.system(), true);
@@ -198,6 +199,7 @@ public final class SwarmBenchmark {
             double wall = (now - t0) / 1e9;
             long cpu = processCpuNanos() - cpu0;
             long steppingCpu = threadCpuNanos() - steppingCpu0;
+            long simThreadsCpu = simThreadsCpuNanos() - simThreadsCpu0;
             long[] machine1 = machineTicks();
             long[] phases = w.phaseNanos();
             long[] parts = w.robotPartNanos();
@@ -236,6 +238,8 @@ public final class SwarmBenchmark {
             System.out.println("  per step, the robots' parts (processor time, every thread; timed on every " + 8 + "th robot): " + q);
             System.out.printf(Locale.ROOT, "  CPU per step: %.1f µs for the process (%.2f processors busy on average), %.1f µs on the stepping thread; %d threads%n",
                     cpu / 1e3 / stepsTaken, cpu / 1e9 / wall, steppingCpu / 1e3 / stepsTaken, threads);
+            System.out.printf(Locale.ROOT, "  CPU per step of the simulation's own threads (the stepping thread and the sim-worker threads; no JIT, no GC): %.1f µs, "
+                    + "%.3f µs a robot%n", simThreadsCpu / 1e3 / stepsTaken, simThreadsCpu / 1e3 / stepsTaken / n);
             if (machine0 != null && machine1 != null) {
                 double busy = (machine1[0] - machine0[0]) / 100.0 / wall;
                 double others = Math.max(0, busy - cpu / 1e9 / wall);
@@ -271,6 +275,7 @@ public final class SwarmBenchmark {
                 System.out.println(line(id + ".ms." + part.name().toLowerCase(Locale.ROOT), parts[part.ordinal()] / 1e6 / stepsTaken, "ms"));
             }
             System.out.println(line(id + ".ms.cpu", cpu / 1e6 / stepsTaken, "ms"));
+            System.out.println(line(id + ".ms.cpu-sim-threads", simThreadsCpu / 1e6 / stepsTaken, "ms"));
         } finally {
             deleteTree(dir);
         }
@@ -325,6 +330,22 @@ public final class SwarmBenchmark {
         } catch (IOException | RuntimeException e) {
             return null;
         }
+    }
+
+    /**
+     * @return CPU time of the simulation's own threads: the calling (stepping) thread and every live thread named
+     *         {@code sim-worker-*}, nanoseconds; the JIT's and the collector's threads are not counted, so a loaded
+     *         machine's longer compilation and collection do not count against the step
+     */
+    private static long simThreadsCpuNanos() {
+        java.lang.management.ThreadMXBean t = java.lang.management.ManagementFactory.getThreadMXBean();
+        long sum = t.getCurrentThreadCpuTime();
+        for (java.lang.management.ThreadInfo info : t.getThreadInfo(t.getAllThreadIds())) {
+            if (info != null && info.getThreadName().startsWith("sim-worker-")) {
+                sum += Math.max(0, t.getThreadCpuTime(info.getThreadId()));
+            }
+        }
+        return sum;
     }
 
     /** @return CPU time of the calling thread, nanoseconds */
