@@ -5,6 +5,7 @@ import io.robomw.api.Robot;
 import io.robomw.api.spi.FailurePolicy;
 import io.robomw.api.spi.PlatformServices;
 import io.robomw.sim.programs.WanderController;
+import io.robomw.testkit.RecordingFailures;
 import io.robomw.sim.world.WorldDescription;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
