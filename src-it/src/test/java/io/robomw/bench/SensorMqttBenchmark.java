@@ -45,8 +45,9 @@ import java.util.concurrent.atomic.AtomicLong;
  */
 public final class SensorMqttBenchmark {
 
+    /** The bare publisher's bound on publications not yet acknowledged, unless {@code -Dsensor.mqtt.inFlight} says otherwise. */
     static final int IN_FLIGHT_DEFAULT = 64;
-    /** Bare client's publications waiting in its client at once (RoboMW's own queue bounds its own). */
+    /** Bare client's publications not yet acknowledged at once, in its client and at the broker (RoboMW's own queue bounds its own). */
     static final int IN_FLIGHT = Integer.getInteger("sensor.mqtt.inFlight", IN_FLIGHT_DEFAULT);
     static final long WAIT_SECONDS = 180;
 
