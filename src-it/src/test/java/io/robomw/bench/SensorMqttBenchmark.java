@@ -12,6 +12,7 @@ import io.robomw.it.mqtt.Broker;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
+import java.util.Random;
 import java.util.UUID;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.Semaphore;
@@ -21,15 +22,33 @@ import java.util.concurrent.atomic.AtomicLong;
 /**
  * Sensor-sized messages through an MQTT 5 broker (issue 36): RoboMW ({@code mqtt://}) against the
  * bare HiveMQ MQTT client through the same broker (in a process of its own on loopback), QoS 1,
- * one publisher and K subscribers in this JVM. Each sample runs both, bare first, each after a
- * warm-up of its own: MB/s (10^6 bytes) of payload all K subscribers received, from the first
- * measured publication to the last delivery. Arguments: {@code BROKER SIZE K WARMUP MEASURED}
- * (BROKER embedded or mosquitto). Prints {@code BENCH sensor.mqtt-BROKER.bare|robomw.SIZE.Ksub}.
+ * one publisher and K subscribers in this JVM. Each sample sets up both (a publisher and K
+ * subscribers each), warms both (bare, then RoboMW), then measures both (bare, then RoboMW): MB/s
+ * (10^6 bytes) of payload all K subscribers received, from the first measured publication to the
+ * last delivery. Arguments: {@code BROKER SIZE K WARMUP MEASURED} (BROKER embedded or mosquitto).
+ * Prints {@code BENCH sensor.mqtt-BROKER.bare|robomw.SIZE.Ksub}, and on the line before them each
+ * side's processor time per MB ({@link Sample}).
+ *
+ * <p>Like with like (since 2026-11-28; before, the bare callback only counted arrivals and never
+ * read a payload, and the bare client was measured in a fresh JVM before RoboMW had warmed
+ * anything, RoboMW in a JVM the bare run had warmed):
+ * <ul>
+ * <li>each subscriber, bare or RoboMW, takes every payload as a {@code byte[]} of its own and
+ *     checks its length, as {@link SensorPeer}'s subscribers do (JeroMQ's {@code recv}, the plain
+ *     sockets' {@code readFully}): a RoboMW listener is handed that array, the bare client's
+ *     callback asks for it ({@code getPayloadAsBytes()}, the client's way to an array);</li>
+ * <li>both are warmed before either is measured;</li>
+ * <li>both publishers have at most the broker's receive maximum unacknowledged (Mosquitto: 20);
+ *     beyond it the bare publisher waits when {@value #IN_FLIGHT_DEFAULT} wait in its client, RoboMW
+ *     when its {@code max-queued} (10,000) do.</li>
+ * </ul>
  */
 public final class SensorMqttBenchmark {
 
-    /** Bare client's publications in flight at once (RoboMW's own queue bounds its own). */
-    static final int IN_FLIGHT = Integer.getInteger("sensor.mqtt.inFlight", 64);
+    /** The bare publisher's bound on publications not yet acknowledged, unless {@code -Dsensor.mqtt.inFlight} says otherwise. */
+    static final int IN_FLIGHT_DEFAULT = 64;
+    /** Bare client's publications not yet acknowledged at once, in its client and at the broker (RoboMW's own queue bounds its own). */
+    static final int IN_FLIGHT = Integer.getInteger("sensor.mqtt.inFlight", IN_FLIGHT_DEFAULT);
     static final long WAIT_SECONDS = 180;
 
     private SensorMqttBenchmark() {
@@ -47,108 +66,162 @@ public final class SensorMqttBenchmark {
         int measured = Integer.parseInt(args[4]);
         String id = "sensor.mqtt-" + args[0].toLowerCase(Locale.ROOT) + ".";
         String tail = "." + SensorBenchmark.sizeId(size) + "." + k + "sub";
-        try (Broker broker = Broker.start(kind, "sensor-" + args[0].toLowerCase(Locale.ROOT))) {
-            double bare = bare(broker.address(), size, k, warmup, measured);
-            double robo = robomw(broker.address(), size, k, warmup, measured);
-            System.out.printf(Locale.ROOT, "MQTT %s, %d bytes to %d subscriber(s): bare HiveMQ client %.0f MB/s, RoboMW %.0f MB/s%n", kind, size, k, bare, robo);
-            System.out.println(BenchReport.line(id + "bare" + tail, bare, "MB/s"));
-            System.out.println(BenchReport.line(id + "robomw" + tail, robo, "MB/s"));
+        byte[] payload = new byte[size];
+        new Random(7).nextBytes(payload);
+        try (Broker broker = Broker.start(kind, "sensor-" + args[0].toLowerCase(Locale.ROOT));
+             Side bare = new Bare(broker.address(), k, size);
+             Side robo = new RoboMw(broker.address(), k, size)) {
+            bare.run(payload, warmup, "bare warm-up");
+            robo.run(payload, warmup, "RoboMW warm-up");
+            Sample b = bare.run(payload, measured, "bare");
+            Sample r = robo.run(payload, measured, "RoboMW");
+            System.out.printf(Locale.ROOT, "MQTT %s, %d bytes to %d subscriber(s): bare HiveMQ client %.0f MB/s (%.2f ms of this JVM's processor"
+                    + " time per MB), RoboMW %.0f MB/s (%.2f ms per MB)%n", kind, size, k, b.megabytesPerSecond(), b.cpuMillisPerMegabyte(),
+                    r.megabytesPerSecond(), r.cpuMillisPerMegabyte());
+            System.out.println(BenchReport.line(id + "bare" + tail, b.megabytesPerSecond(), "MB/s"));
+            System.out.println(BenchReport.line(id + "robomw" + tail, r.megabytesPerSecond(), "MB/s"));
         }
         System.exit(0);
     }
 
-    private static double bare(String address, int size, int k, int warmup, int measured) throws Exception {
-        int port = Integer.parseInt(address.substring(address.lastIndexOf(':') + 1));
-        List<Mqtt5AsyncClient> subs = new ArrayList<>();
-        Mqtt5AsyncClient pub = client("sensor-pub-" + UUID.randomUUID(), port);
-        try {
-            String topic = "sensor/" + UUID.randomUUID();
-            CountDownLatch[] phase = {new CountDownLatch(k * warmup)};
-            AtomicLong last = new AtomicLong();
+    /**
+     * One side's figures over its measured window.
+     *
+     * @param megabytesPerSecond   payload delivered to all subscribers together, 10^6 bytes a second
+     * @param cpuMillisPerMegabyte this JVM's processor time (every thread: clients, collector, compiler; not the broker's)
+     *                             per 10^6 bytes delivered: the client's cost, which a loaded machine changes less than the rate
+     */
+    record Sample(double megabytesPerSecond, double cpuMillisPerMegabyte) {
+    }
+
+    /** One system under test: a publisher and K subscribers, connected and subscribed; each delivery calls {@link #delivered}. */
+    private abstract static class Side implements AutoCloseable {
+
+        private final int k;
+        private final int size;
+        private final AtomicLong last = new AtomicLong();
+        private volatile CountDownLatch phase = new CountDownLatch(0);
+
+        Side(int k, int size) {
+            this.k = k;
+            this.size = size;
+        }
+
+        /** Publishes the payload n times. */
+        abstract void publish(byte[] payload, int n) throws Exception;
+
+        /** A subscriber's check of what it got: the whole payload (a wrong one fails the sample: its phase then waits in vain). */
+        final void delivered(byte[] got) {
+            if (got.length != size) {
+                throw new IllegalStateException("a subscriber got " + got.length + " bytes, expected " + size);
+            }
+            last.set(System.nanoTime());
+            phase.countDown();
+        }
+
+        /** Publishes n times and waits until each of the K subscribers has all n. */
+        final Sample run(byte[] payload, int n, String what) throws Exception {
+            CountDownLatch p = new CountDownLatch(k * n);
+            phase = p;
+            long cpu0 = processCpuNanos();
+            long t0 = System.nanoTime();
+            publish(payload, n);
+            if (!p.await(WAIT_SECONDS, TimeUnit.SECONDS)) {
+                throw new AssertionError(what + ": " + p.getCount() + " deliveries missing after " + WAIT_SECONDS + " s");
+            }
+            double megabytes = (double) k * n * size / 1e6;
+            return new Sample(megabytes / ((last.get() - t0) / 1e9), (processCpuNanos() - cpu0) / 1e6 / megabytes);
+        }
+    }
+
+    private static long processCpuNanos() {
+        return ((com.sun.management.OperatingSystemMXBean) java.lang.management.ManagementFactory.getOperatingSystemMXBean()).getProcessCpuTime();
+    }
+
+    /** The bare HiveMQ client: one client publishing, K clients subscribed (QoS 1). */
+    private static final class Bare extends Side {
+
+        private final List<Mqtt5AsyncClient> clients = new ArrayList<>();
+        private final Mqtt5AsyncClient pub;
+        private final String topic = "sensor/" + UUID.randomUUID();
+        private final Semaphore inFlight = new Semaphore(IN_FLIGHT);
+
+        Bare(String address, int k, int size) throws Exception {
+            super(k, size);
+            int port = Integer.parseInt(address.substring(address.lastIndexOf(':') + 1));
+            pub = client("sensor-pub-" + UUID.randomUUID(), port);
             for (int i = 0; i < k; i++) {
                 Mqtt5AsyncClient sub = client("sensor-sub-" + i + "-" + UUID.randomUUID(), port);
-                subs.add(sub);
-                sub.publishes(MqttGlobalPublishFilter.SUBSCRIBED, p -> {
-                    last.set(System.nanoTime());
-                    phase[0].countDown();
-                });
+                sub.publishes(MqttGlobalPublishFilter.SUBSCRIBED, p -> delivered(p.getPayloadAsBytes()));
                 sub.subscribeWith().topicFilter(topic).qos(MqttQos.AT_LEAST_ONCE).send().get(10, TimeUnit.SECONDS);
             }
-            byte[] payload = new byte[size];
-            new java.util.Random(7).nextBytes(payload);
-            Semaphore inFlight = new Semaphore(IN_FLIGHT);
-            publishBare(pub, topic, payload, warmup, inFlight);
-            await(phase[0], "bare warm-up");
-            phase[0] = new CountDownLatch(k * measured);
-            long t0 = System.nanoTime();
-            publishBare(pub, topic, payload, measured, inFlight);
-            await(phase[0], "bare");
-            return (double) k * measured * size / 1e6 / ((last.get() - t0) / 1e9);
-        } finally {
-            pub.disconnect().get(5, TimeUnit.SECONDS);
-            for (Mqtt5AsyncClient s : subs) {
-                s.disconnect().get(5, TimeUnit.SECONDS);
+        }
+
+        private Mqtt5AsyncClient client(String id, int port) throws Exception {
+            var b = MqttClient.builder().useMqttVersion5().identifier(id).serverHost("127.0.0.1").serverPort(port);
+            // mw broker lets in only its user: the bare client gives the credentials it generated for this machine, as RoboMW does
+            BrokerCredentials user = BrokerCredentials.load(null, System.getenv(), "127.0.0.1");
+            if (user.username() != null) {
+                b = b.simpleAuth().username(user.username()).password(user.password()).applySimpleAuth();
+            }
+            Mqtt5AsyncClient c = b.buildAsync();
+            clients.add(c);
+            c.connectWith().cleanStart(true).send().get(10, TimeUnit.SECONDS);
+            return c;
+        }
+
+        @Override
+        void publish(byte[] payload, int n) throws InterruptedException {
+            for (int i = 0; i < n; i++) {
+                inFlight.acquire();
+                pub.publish(Mqtt5Publish.builder().topic(topic).qos(MqttQos.AT_LEAST_ONCE).payload(payload).build())
+                        .whenComplete((r, e) -> inFlight.release());
+            }
+        }
+
+        @Override
+        public void close() throws Exception {
+            for (Mqtt5AsyncClient c : clients) {
+                c.disconnect().get(5, TimeUnit.SECONDS);
             }
         }
     }
 
-    private static void publishBare(Mqtt5AsyncClient pub, String topic, byte[] payload, int n, Semaphore inFlight) throws InterruptedException {
-        for (int i = 0; i < n; i++) {
-            inFlight.acquire();
-            pub.publish(Mqtt5Publish.builder().topic(topic).qos(MqttQos.AT_LEAST_ONCE).payload(payload).build()).whenComplete((r, e) -> inFlight.release());
-        }
-    }
+    /** RoboMW: one node publishing, K nodes subscribed, each its own session at the broker. */
+    private static final class RoboMw extends Side {
 
-    private static double robomw(String address, int size, int k, int warmup, int measured) throws Exception {
-        List<MessagingNode> subs = new ArrayList<>();
-        try (MessagingNode pub = MessagingNode.builder("sensor-pub").settings(SensorPeer.SETTINGS).bind(address).build()) {
-            String topic = "scan-" + UUID.randomUUID();
-            CountDownLatch[] phase = {new CountDownLatch(k * warmup)};
-            AtomicLong last = new AtomicLong();
+        private final List<MessagingNode> nodes = new ArrayList<>();
+        private final MessagingNode pub;
+        private final String topic = "scan-" + UUID.randomUUID();
+
+        RoboMw(String address, int k, int size) {
+            super(k, size);
+            pub = node("sensor-pub", address);
             for (int i = 0; i < k; i++) {
-                MessagingNode sub = MessagingNode.builder("sensor-sub-" + i).settings(SensorPeer.SETTINGS).bind(address).build();
-                subs.add(sub);
-                sub.addMessageListener(topic, null, m -> {
-                    last.set(System.nanoTime());
-                    phase[0].countDown();
-                });
+                MessagingNode sub = node("sensor-sub-" + i, address);
+                sub.addMessageListener(topic, null, m -> delivered((byte[]) m.payload()));
                 sub.subscribeMessage(topic, null);
             }
-            byte[] payload = new byte[size];
-            new java.util.Random(7).nextBytes(payload);
-            for (int i = 0; i < warmup; i++) {
+        }
+
+        private MessagingNode node(String name, String address) {
+            MessagingNode n = MessagingNode.builder(name).settings(SensorPeer.SETTINGS).bind(address).build();
+            nodes.add(n);
+            return n;
+        }
+
+        @Override
+        void publish(byte[] payload, int n) {
+            for (int i = 0; i < n; i++) {
                 pub.publishMessage(topic, payload, "data", null);
             }
-            await(phase[0], "RoboMW warm-up");
-            phase[0] = new CountDownLatch(k * measured);
-            long t0 = System.nanoTime();
-            for (int i = 0; i < measured; i++) {
-                pub.publishMessage(topic, payload, "data", null);
-            }
-            await(phase[0], "RoboMW");
-            return (double) k * measured * size / 1e6 / ((last.get() - t0) / 1e9);
-        } finally {
-            for (MessagingNode s : subs) {
-                s.close();
+        }
+
+        @Override
+        public void close() {
+            for (MessagingNode n : nodes) {
+                n.close();
             }
         }
-    }
-
-    private static void await(CountDownLatch latch, String what) throws InterruptedException {
-        if (!latch.await(WAIT_SECONDS, TimeUnit.SECONDS)) {
-            throw new AssertionError(what + ": " + latch.getCount() + " deliveries missing after " + WAIT_SECONDS + " s");
-        }
-    }
-
-    private static Mqtt5AsyncClient client(String id, int port) throws Exception {
-        var b = MqttClient.builder().useMqttVersion5().identifier(id).serverHost("127.0.0.1").serverPort(port);
-        // mw broker lets in only its user: the bare client gives the credentials it generated for this machine, as RoboMW does
-        BrokerCredentials user = BrokerCredentials.load(null, System.getenv(), "127.0.0.1");
-        if (user.username() != null) {
-            b = b.simpleAuth().username(user.username()).password(user.password()).applySimpleAuth();
-        }
-        Mqtt5AsyncClient c = b.buildAsync();
-        c.connectWith().cleanStart(true).send().get(10, TimeUnit.SECONDS);
-        return c;
     }
 }

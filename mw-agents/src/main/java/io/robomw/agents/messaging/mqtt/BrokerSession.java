@@ -456,20 +456,21 @@ final class BrokerSession implements Link, Endpoint {
 
     private void onPublish(Mqtt5Publish p) {
         try {
-            byte[] bytes = p.getPayloadAsBytes();
+            // read in place, not copied: the node reads a frame only during onFrame and never writes it
+            ReceivedPayload bytes = ReceivedPayload.of(p);
             String t = p.getTopic().toString();
             Channel from = this;
             if (t.startsWith(topics.requestPrefix())) {
                 from = new ReplyRoute(this, p.getResponseTopic().map(Object::toString).orElse(null),
                         p.getCorrelationData().map(b -> { byte[] c = new byte[b.remaining()]; b.duplicate().get(c); return c; }).orElse(null));
             }
-            if (FramePeek.isFrame(bytes)) {
-                context.onFrame(bytes, 0, bytes.length, from);
+            if (FramePeek.isFrame(bytes.array(), bytes.offset(), bytes.length())) {
+                context.onFrame(bytes.array(), bytes.offset(), bytes.length(), from);
             } else if (t.startsWith(topics.publicationPrefix())) {
-                byte[] frame = ForeignPublication.frame(topics.topicOfPublication(t), bytes, p);
+                byte[] frame = ForeignPublication.frame(topics.topicOfPublication(t), bytes.copy(), p);
                 context.onFrame(frame, 0, frame.length, from);
             } else {
-                context.dropped(DropReason.MALFORMED, address + " topic " + t, "a " + bytes.length + "-byte message that is not a RoboMW frame");
+                context.dropped(DropReason.MALFORMED, address + " topic " + t, "a " + bytes.length() + "-byte message that is not a RoboMW frame");
             }
         } catch (Throwable e) {
             context.failures().surviveOrRethrow(Thread.currentThread().getName(), e);

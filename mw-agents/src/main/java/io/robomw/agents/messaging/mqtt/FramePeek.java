@@ -16,10 +16,13 @@ final class FramePeek {
     private FramePeek() {
     }
 
-    /** @return whether the bytes start like a RoboMW frame (magic and version) */
-    static boolean isFrame(byte[] b) {
-        return b.length >= FrameCodec.HEADER_LENGTH && u16(b, FrameCodec.MAGIC_OFFSET) == FrameCodec.MAGIC
-                && ((b[FrameCodec.VERSION_OFFSET] & 0xFF) == FrameCodec.VERSION || (b[FrameCodec.VERSION_OFFSET] & 0xFF) == FrameCodec.SEALED_VERSION);
+    /** @return whether the {@code length} bytes at {@code offset} start like a RoboMW frame (magic and version) */
+    static boolean isFrame(byte[] b, int offset, int length) {
+        if (length < FrameCodec.HEADER_LENGTH) {
+            return false;
+        }
+        int version = b[offset + FrameCodec.VERSION_OFFSET] & 0xFF;
+        return u16(b, offset + FrameCodec.MAGIC_OFFSET) == FrameCodec.MAGIC && (version == FrameCodec.VERSION || version == FrameCodec.SEALED_VERSION);
     }
 
     /** @return the frame's kind, or {@code null} for a code no kind has (this node's own frames always have one) */
