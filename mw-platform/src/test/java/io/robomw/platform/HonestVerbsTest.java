@@ -127,7 +127,10 @@ class HonestVerbsTest {
         int before = motors.sent.size();
         CompletableFuture<Void> after = platform.run(rotate("B", 1e9));
         Await.until("the command after the stop started its motor", Duration.ofSeconds(10),
-                () -> motors.sent.subList(before, motors.sent.size()).stream().anyMatch(b -> b.stream().anyMatch(MotorState::running)));
+                () -> {
+                    List<List<MotorState>> sent = List.copyOf(motors.sent); // a sub-list of the live list fails when the link side adds to it
+                    return sent.subList(before, sent.size()).stream().anyMatch(b -> b.stream().anyMatch(MotorState::running));
+                });
         assertFalse(after.isDone(), "admitted, not refused as held by 'stop'");
         after.cancel(true);
     }

@@ -116,8 +116,8 @@ final class CommandSender {
         if (result == MavResult.ACCEPTED) {
             p.result.complete(null);
         } else {
-            p.result.completeExceptionally(new RobotException("robot '" + robot + "': the vehicle answered " + name(command) + " with "
-                    + result));
+            p.result.completeExceptionally(new CommandRefusedException("robot '" + robot + "': the vehicle answered " + name(command) + " with "
+                    + result, result));
         }
     }
 

@@ -60,6 +60,12 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
     static final double YAW_TOLERANCE = Math.toRadians(2);
     /** How long PX4 must see the stream before OFFBOARD is asked for, seconds. */
     static final double OFFBOARD_AFTER_SECONDS = 1.1;
+    /**
+     * How many times OFFBOARD is asked for again, each after another {@link #OFFBOARD_AFTER_SECONDS} of
+     * the stream, when PX4 answers TEMPORARILY_REJECTED (it saw a gap in the stream: a busy machine
+     * that delayed the ground station's sender); then the maneuver fails with PX4's answer.
+     */
+    static final int OFFBOARD_RETRIES = 3;
 
     private final GroundStation gcs;
     private final Map<Run, Maneuver> running = new ConcurrentHashMap<>();
@@ -70,6 +76,8 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
     private volatile double[] planned;
     private volatile long streamSince = Long.MIN_VALUE;
     private volatile boolean offboardAsked;
+    /** OFFBOARD requests PX4 answered TEMPORARILY_REJECTED in a row. */
+    private volatile int offboardRefusals;
 
     VehicleCommandPlatform(String robot, Clock clock, GroundStation gcs) {
         super(robot, clock);
@@ -273,10 +281,17 @@ final class VehicleCommandPlatform extends HighLevelCommandPlatform implements G
             if ((now - streamSince) / 1e9 >= OFFBOARD_AFTER_SECONDS && !offboardAsked) {
                 offboardAsked = true;
                 gcs.setMode(gcs.kind().guidedMode()).whenComplete((v, e) -> {
-                    offboardAsked = false;
-                    if (e != null) {
+                    Throwable cause = e instanceof java.util.concurrent.CompletionException && e.getCause() != null ? e.getCause() : e;
+                    if (cause instanceof CommandRefusedException r && r.temporary() && offboardRefusals < OFFBOARD_RETRIES) {
+                        offboardRefusals++;
+                        streamSince = Long.MIN_VALUE; // stream on, and ask again once PX4 has seen it long enough
+                    } else if (e != null) {
+                        offboardRefusals = 0;
                         fail(e);
+                    } else {
+                        offboardRefusals = 0;
                     }
+                    offboardAsked = false;
                 });
             }
         }

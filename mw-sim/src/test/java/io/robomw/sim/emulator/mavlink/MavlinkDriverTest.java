@@ -144,6 +144,25 @@ class MavlinkDriverTest {
         fliesASquareCorner("copter-px4", Optional.empty());
     }
 
+    /**
+     * PX4 answers OFFBOARD with TEMPORARILY_REJECTED when it has not seen the setpoint stream long
+     * enough (a busy machine stalled the ground station's sender): "retrying later should work", so
+     * the driver streams on and asks again instead of failing the move.
+     */
+    @Test
+    void aPx4ThatRejectsOffboardForAWhileIsAskedAgainAndTheMoveGoesOn() throws Exception {
+        InetSocketAddress at = emulate("copter-px4", Optional.empty(), Optional.empty());
+        try (SetpointGapRelay relay = new SetpointGapRelay(at)) {
+            HighLevelPlatform p = (HighLevelPlatform) (platform = new MavlinkPlatformProvider().open(config("copter-px4", relay.address(), Map.of())));
+            run(p, command("takeoff", Map.of("altitude", 2.0), 4));
+            double x0 = vehicle("copter-px4").x();
+            run(p, command("move", Map.of("distance", 2.0, "speed", 1.0, "acceptance_radius", 0.3), 2));
+            assertEquals(x0 + 2, vehicle("copter-px4").x(), 0.35, "2 m ahead");
+            assertTrue(relay.held() > 0, "setpoints were held back before the first OFFBOARD request");
+            assertTrue(relay.setModes() >= 2, "OFFBOARD was asked for again after PX4's TEMPORARILY_REJECTED: " + relay.setModes());
+        }
+    }
+
     @Test
     void aLostLinkFailsTheRunningCommandAndTheVehiclesOwnFailsafeActs() throws Exception {
         HighLevelPlatform p = open("boat", Optional.empty());
