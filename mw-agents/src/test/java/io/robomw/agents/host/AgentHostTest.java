@@ -99,6 +99,10 @@ class AgentHostTest {
         VisitorAgent agent = new VisitorAgent().holdUntilReleased();
         agent.itinerary().addStop(a.address()).addStop(b.address());
         AgentRef ref = home.agency().startTrip(agent);
+        List<java.io.Serializable> reports = new java.util.concurrent.CopyOnWriteArrayList<>();
+        ref.addReportListener(reports::add);
+        // A retract before the work at a began would keep it from beginning (and a would not be in the state it brings home).
+        await(() -> reports.contains("at a"));
         var retracted = ref.retract();
         // The retract takes effect when the stop's work returns; release the agent until it is home.
         await(() -> {
