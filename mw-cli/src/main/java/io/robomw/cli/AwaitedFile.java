@@ -1,5 +1,7 @@
 package io.robomw.cli;
 
+import picocli.CommandLine.Model.CommandSpec;
+
 import java.io.PrintWriter;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -24,18 +26,20 @@ final class AwaitedFile {
 
     /**
      * @param file    the file
-     * @param err     where to say that the command waits
+     * @param spec    the command waiting: its standard error says that it waits; its root, for how long ({@link Mw#filePatience})
      * @param command the command, for that line
      * @return whether the file is there (at once, or within {@link #PATIENCE})
      */
-    static boolean await(Path file, PrintWriter err, String command) {
+    static boolean await(Path file, CommandSpec spec, String command) {
         if (Files.exists(file)) {
             return true;
         }
-        err.println(command + ": waiting up to " + Durations.format(PATIENCE) + " for " + file + " (a command started just before, such as"
+        Duration patience = Mw.filePatience(spec);
+        PrintWriter err = spec.commandLine().getErr();
+        err.println(command + ": waiting up to " + Durations.format(patience) + " for " + file + " (a command started just before, such as"
                 + " mw emulate --write-robot, may still be writing it)");
         err.flush();
-        long deadline = System.nanoTime() + PATIENCE.toNanos();
+        long deadline = System.nanoTime() + patience.toNanos();
         while (!Files.exists(file) && System.nanoTime() - deadline < 0) {
             LockSupport.parkNanos(LOOK_EVERY_NANOS); // a file appearing: polled, as there is nothing to be woken by
             if (Thread.currentThread().isInterrupted()) {

@@ -64,7 +64,7 @@ final class DescribeCommand implements Callable<Integer> {
         PrintWriter err = spec.commandLine().getErr();
         int status = 0;
         for (Path file : files) {
-            AwaitedFile.await(file, err, "mw describe");
+            AwaitedFile.await(file, spec, "mw describe");
             try {
                 if (isWorld(file)) {
                     status = Math.max(status, describeWorld(file, out, err));

@@ -158,7 +158,7 @@ final class HostCommand implements Callable<Integer> {
                 sim.startRealTime(speed);
                 robot = sim.robot(worldRobot);
             } else if (robotFile != null) {
-                AwaitedFile.await(robotFile, err, "mw host");
+                AwaitedFile.await(robotFile, spec, "mw host");
                 PlatformServices services = connection.isEmpty() ? PlatformServices.none()
                         : PlatformServices.none().with(ConnectionOverride.class, new ConnectionOverride(connection));
                 robot = Robots.open(robotFile, services);

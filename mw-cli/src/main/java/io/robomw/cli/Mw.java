@@ -37,6 +37,13 @@ public final class Mw {
     @Option(names = "--verbose", scope = ScopeType.INHERIT, description = "on an error, also show its stack trace")
     boolean verbose;
 
+    /** How long a command waits for a file that is not there yet ({@link AwaitedFile}); tests of a missing file shorten it. */
+    private final Duration filePatience;
+
+    private Mw(Duration filePatience) {
+        this.filePatience = filePatience;
+    }
+
     /**
      * @param args the command line
      */
@@ -47,7 +54,16 @@ public final class Mw {
 
     /** @return the {@code mw} command line, with its error handling: one line per error, the trace with --verbose */
     static CommandLine commandLine() {
-        Mw mw = new Mw();
+        return commandLine(AwaitedFile.PATIENCE);
+    }
+
+    /**
+     * @param filePatience how long a command waits for a file that is not there yet (a test seam: the launcher waits
+     *                     {@link AwaitedFile#PATIENCE})
+     * @return the {@code mw} command line
+     */
+    static CommandLine commandLine(Duration filePatience) {
+        Mw mw = new Mw(filePatience);
         CommandLine cl = new CommandLine(mw);
         cl.registerConverter(Duration.class, new Durations());
         cl.setParameterExceptionHandler((e, args) -> {
@@ -87,6 +103,11 @@ public final class Mw {
     /** @return whether --verbose was given (for a command that prints remote failures) */
     static boolean verbose(CommandLine.Model.CommandSpec spec) {
         return spec.root().userObject() instanceof Mw mw && mw.verbose;
+    }
+
+    /** @return how long the command of {@code spec} waits for a file that is not there yet */
+    static Duration filePatience(CommandLine.Model.CommandSpec spec) {
+        return spec.root().userObject() instanceof Mw mw ? mw.filePatience : AwaitedFile.PATIENCE;
     }
 
     /** @return an error's message, or its type when it has none, without the "java.lang." noise */

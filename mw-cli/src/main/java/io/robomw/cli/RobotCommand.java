@@ -62,7 +62,7 @@ final class RobotCommand {
             return Robots.remote(target);
         }
         Path file = Path.of(target);
-        AwaitedFile.await(file, robotSpec.commandLine().getErr(), "mw robot");
+        AwaitedFile.await(file, robotSpec, "mw robot");
         if (!Files.isRegularFile(file)) {
             throw new IllegalArgumentException("no robot file " + target + ", and it is no address (tcp://HOST:PORT/NAME)");
         }

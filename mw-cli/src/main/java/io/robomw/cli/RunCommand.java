@@ -56,7 +56,7 @@ final class RunCommand implements Callable<Integer> {
         for (String a : args) {
             // a robot or world file named as an argument may still be being written by a command started just before
             if ((a.endsWith(".yaml") || a.endsWith(".yml")) && !a.contains("://")) {
-                AwaitedFile.await(Path.of(a), err, "mw run");
+                AwaitedFile.await(Path.of(a), spec, "mw run");
             }
         }
         List<String> command = new ArrayList<>();

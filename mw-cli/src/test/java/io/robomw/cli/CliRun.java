@@ -4,6 +4,7 @@ import picocli.CommandLine;
 
 import java.io.PrintWriter;
 import java.io.StringWriter;
+import java.time.Duration;
 
 /**
  * One {@code mw} command run in this JVM, through {@link Mw#commandLine()} as the launcher runs
@@ -16,9 +17,20 @@ import java.io.StringWriter;
 record CliRun(int status, String out, String err) {
 
     static CliRun mw(String... args) {
+        return mw(Mw.commandLine(), args);
+    }
+
+    /**
+     * A command that looks for a file that is not there: it waits {@code filePatience} for it (the launcher 30 s) before it
+     * says the file is missing.
+     */
+    static CliRun mwWaitingForFiles(Duration filePatience, String... args) {
+        return mw(Mw.commandLine(filePatience), args);
+    }
+
+    private static CliRun mw(CommandLine cl, String... args) {
         StringWriter out = new StringWriter();
         StringWriter err = new StringWriter();
-        CommandLine cl = Mw.commandLine();
         cl.setOut(new PrintWriter(out, true));
         cl.setErr(new PrintWriter(err, true));
         int status = cl.execute(args);

@@ -9,6 +9,7 @@ import io.robomw.api.Robots;
 import org.junit.jupiter.api.Test;
 
 import java.nio.file.Path;
+import java.time.Duration;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
@@ -56,8 +57,10 @@ class RobotCommandTest {
         assertEquals(2, tooFast.status());
         assertTrue(tooFast.err().contains("max_speed") || tooFast.err().contains("0.3"), tooFast.err());
 
-        CliRun noFile = CliRun.mw("robot", "nothing.yaml", "pose");
+        // Waits for the file a while (mw emulate --write-robot may still be writing it), 1 s here rather than the launcher's 30 s.
+        CliRun noFile = CliRun.mwWaitingForFiles(Duration.ofSeconds(1), "robot", "nothing.yaml", "pose");
         assertEquals(2, noFile.status());
+        assertTrue(noFile.err().contains("waiting up to 1s for nothing.yaml"), noFile.err());
         assertTrue(noFile.err().contains("no robot file nothing.yaml"), noFile.err());
 
         CliRun noVerb = CliRun.mw("robot", file);

@@ -32,6 +32,9 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
  */
 class ReplayAcrossRestartIT {
 
+    /** The topic of the sniffer's own message that ends its capture (no node reads it). */
+    private static final String END_OF_CAPTURE = "robomw/msg/replay-it-sniffer/end-of-capture";
+
     @TempDir
     Path dir;
 
@@ -95,9 +98,10 @@ class ReplayAcrossRestartIT {
             String at = "mqtt://127.0.0.1:" + port;
             try (HostProcess host = HostProcess.start("replay-robot-host", "--world", world, "--world-robot", "sim-1", "--key-file", key.toString(),
                     "--serve", at + "?credentials=" + credentials, "--serve-password-file", password.toString())) {
-                // someone who can read the broker's traffic records the robot's commands (for 45 s)
+                // someone who can read the broker's traffic records the robot's commands (90 s at most), until the end of the
+                // capture: a message of its own on the same topics, published once the move is over
                 Process sniffer = new ProcessBuilder("/usr/bin/mosquitto_sub", "-h", "127.0.0.1", "-p", String.valueOf(port), "-u", user, "-P", pass,
-                        "-t", "robomw/msg/#", "-W", "45", "-F", "%t %x").redirectErrorStream(true).start();
+                        "-t", "robomw/msg/#", "-q", "1", "-W", "90", "-F", "%t %x").redirectErrorStream(true).start();
                 Await.until("the sniffer subscribed", Duration.ofSeconds(30), () -> {
                     try {
                         return MqttClients.sub(port, user, pass, "-t", "robomw/presence/+", "-C", "1", "-W", "10").status() == 0;
@@ -109,9 +113,23 @@ class ReplayAcrossRestartIT {
                 try (MwProcess move = MwProcess.start("replay-robot-move", "robot", robot, "move", "0.3", "0.2")) {
                     assertEquals(0, move.waitFor(Duration.ofSeconds(60)), move.output());
                 }
-                assertTrue(sniffer.waitFor(90, TimeUnit.SECONDS), "the sniffer ended");
-                java.util.List<String[]> sniffed = new String(sniffer.getInputStream().readAllBytes()).lines()
-                        .filter(l -> l.startsWith("robomw/msg/")).map(l -> l.strip().split(" ", 2)).toList();
+                MqttClients.Run end = MqttClients.pub(port, user, pass, "-q", "1", "-t", END_OF_CAPTURE, "-m", "end");
+                assertEquals(0, end.status(), end.output());
+                java.util.List<String[]> sniffed = new java.util.ArrayList<>();
+                boolean ended = false;
+                // mosquitto_sub writes each message as it comes; it ends by itself after 90 s at most (-W)
+                try (var lines = new java.io.BufferedReader(new java.io.InputStreamReader(sniffer.getInputStream(), java.nio.charset.StandardCharsets.UTF_8))) {
+                    for (String line; !ended && (line = lines.readLine()) != null; ) {
+                        ended = line.startsWith(END_OF_CAPTURE + " ");
+                        if (!ended && line.startsWith("robomw/msg/")) {
+                            sniffed.add(line.strip().split(" ", 2));
+                        }
+                    }
+                } finally {
+                    sniffer.destroy();
+                }
+                assertTrue(sniffer.waitFor(30, TimeUnit.SECONDS), "the sniffer ended");
+                assertTrue(ended, "the sniffer saw the end of the capture: " + sniffed.size() + " messages before it");
                 assertTrue(sniffed.size() >= 1, "the sniffer saw the robot's commands");
 
                 host.kill();
