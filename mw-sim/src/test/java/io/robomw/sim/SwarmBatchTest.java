@@ -16,7 +16,6 @@ import java.nio.file.Path;
 import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
-import java.util.Locale;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
@@ -187,21 +186,7 @@ class SwarmBatchTest {
     /** {@code n} robots of one file in a row of rows {@code spacing} apart, 8 range sensors each, 50 Hz physics. */
     private WorldDescription crowd(int n, double spacing) throws IOException {
         Path robot = dir.resolve("bot.yaml");
-        StringBuilder sensors = new StringBuilder();
-        for (int i = 0; i < 8; i++) {
-            sensors.append(String.format(Locale.ROOT,
-                    "  - { name: ir%d, type: infrared, position: center, port: S%d, options: { angle: %.6f, x: %.4f, y: %.4f, max_range: 0.5, "
-                            + "noise: 0.01, rate_hz: 10 } }%n",
-                    i, i, i * Math.PI / 4, 0.06 * Math.cos(i * Math.PI / 4), 0.06 * Math.sin(i * Math.PI / 4)));
-        }
-        Files.writeString(robot, """
-                name: bot
-                platform: sim
-                cycle_hz: 10
-                drive: { wheel_diameter: 0.056, track_width: 0.112, max_speed: 0.3, left: { port: B }, right: { port: C } }
-                body: { length: 0.12, width: 0.12, mass: 0.3 }
-                sensors:
-                """ + sensors);
+        SwarmRobotFile.write(robot, i -> "10");
         int cols = (int) Math.ceil(Math.sqrt(n));
         List<WorldDescription.RobotPlacement> placements = new ArrayList<>();
         for (int i = 0; i < n; i++) {

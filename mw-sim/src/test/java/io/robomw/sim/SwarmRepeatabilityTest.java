@@ -12,7 +12,6 @@ import java.nio.file.Path;
 import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
-import java.util.Locale;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
@@ -115,21 +114,7 @@ class SwarmRepeatabilityTest {
     /** 160 robots the given distance apart, noisy sensors, 50 Hz physics. */
     private WorldDescription crowdedWorld(double spacing) throws IOException {
         Path robot = dir.resolve("bot.yaml");
-        StringBuilder sensors = new StringBuilder();
-        for (int i = 0; i < 8; i++) {
-            sensors.append(String.format(Locale.ROOT,
-                    "  - { name: ir%d, type: infrared, position: center, port: S%d, options: { angle: %.6f, x: %.4f, y: %.4f, max_range: 0.5, "
-                            + "noise: 0.01, rate_hz: %s } }%n",
-                    i, i, i * Math.PI / 4, 0.06 * Math.cos(i * Math.PI / 4), 0.06 * Math.sin(i * Math.PI / 4), i % 2 == 0 ? "10" : "25"));
-        }
-        Files.writeString(robot, """
-                name: bot
-                platform: sim
-                cycle_hz: 10
-                drive: { wheel_diameter: 0.056, track_width: 0.112, max_speed: 0.3, left: { port: B }, right: { port: C } }
-                body: { length: 0.12, width: 0.12, mass: 0.3 }
-                sensors:
-                """ + sensors);
+        SwarmRobotFile.write(robot, i -> i % 2 == 0 ? "10" : "25");
         int cols = 16;
         List<WorldDescription.RobotPlacement> placements = new ArrayList<>();
         for (int i = 0; i < ROBOTS; i++) {
