@@ -1,6 +1,5 @@
 package io.robomw.platform;
 
-import io.robomw.api.CommandPreemptedException;
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.spi.Cycling;
 import io.robomw.api.spi.MotorCommand;
@@ -137,7 +136,8 @@ public final class BrickPlatform implements RobotPlatform {
      * Stops every motor: a safety-priority container brakes them all in the next cycle.
      *
      * @return completes once the link agent has written the batch carrying the brakes (on its own
-     *         thread; inline, within the cycle that applied the stop); fails with
+     *         thread; inline, within the cycle that applied the stop) and the stop no longer holds
+     *         the motors (a command submitted then is admitted as usual); fails with
      *         {@link RobotLinkException} naming the robot if the link is down or fails first, or the
      *         platform has failed or is closed. The stop is queued all the same: a link that comes
      *         back brakes the motors first.
@@ -149,14 +149,9 @@ public final class BrickPlatform implements RobotPlatform {
         if (refused != null) {
             handed.completeExceptionally(refused);
         }
-        actionThread.submit(motors.stopContainer(handed)).whenComplete((v, e) -> {
-            if (e != null && !(e instanceof CommandPreemptedException)) {
-                // Refused by a failed or closed action thread (a newer stop that took over hands itself over).
-                handed.completeExceptionally(new RobotLinkException("robot '" + config.robotName() + "': its stop could not be handed to the hardware: "
-                        + e.getMessage(), e));
-            }
-        });
-        return handed;
+        // Refused by a failed or closed action thread (a newer stop that took over hands itself over).
+        return actionThread.submitStop(motors.stopContainer(handed), handed, e -> new RobotLinkException("robot '" + config.robotName()
+                + "': its stop could not be handed to the hardware: " + e.getMessage(), e));
     }
 
     @Override

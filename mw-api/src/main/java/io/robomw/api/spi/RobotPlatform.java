@@ -43,8 +43,10 @@ public interface RobotPlatform extends AutoCloseable {
      * normal command queued with the stop restarts a motor. Returns at once.
      *
      * @return completes once the stop has been handed to the hardware (written to the link; a
-     *         simulator's motors have stopped); fails with {@link io.robomw.api.RobotLinkException}
-     *         naming the robot if the link is down or the platform has failed
+     *         simulator's motors have stopped) and the stop no longer holds the motors, so a
+     *         command run then is admitted as usual; fails with
+     *         {@link io.robomw.api.RobotLinkException} naming the robot if the link is down or the
+     *         platform has failed
      */
     CompletableFuture<Void> stopAll();
 

@@ -132,7 +132,8 @@ public final class HighLevelRobotPlatform implements RobotPlatform, HighLevelPla
     /**
      * Ends every running command, each with its stop.
      *
-     * @return completes once those stops are written to the link; fails with
+     * @return completes once those stops are written to the link and the stop no longer holds the
+     *         actuators (a command submitted then is admitted as usual); fails with
      *         {@link RobotLinkException} naming the robot if the link is down or fails first, or the
      *         platform is closed. The stop is queued all the same.
      */
@@ -143,13 +144,8 @@ public final class HighLevelRobotPlatform implements RobotPlatform, HighLevelPla
             handed.completeExceptionally(new RobotLinkException("robot '" + config.robotName()
                     + "': its stop was not written: the link is down", null));
         }
-        actionThread.submit(commands.stopContainer(handed)).whenComplete((v, e) -> {
-            if (e != null && !(e instanceof io.robomw.api.CommandPreemptedException)) {
-                handed.completeExceptionally(new RobotLinkException("robot '" + config.robotName() + "': its stop could not be handed to the robot: "
-                        + e.getMessage(), e));
-            }
-        });
-        return handed;
+        return actionThread.submitStop(commands.stopContainer(handed), handed, e -> new RobotLinkException("robot '" + config.robotName()
+                + "': its stop could not be handed to the robot: " + e.getMessage(), e));
     }
 
     @Override

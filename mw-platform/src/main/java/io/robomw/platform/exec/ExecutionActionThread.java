@@ -20,6 +20,7 @@ import java.util.Set;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.atomic.AtomicLong;
+import java.util.function.Function;
 
 /**
  * The paper's execution action thread: a real-time repository of containers, cycled at a fixed
@@ -197,6 +198,42 @@ public final class ExecutionActionThread implements AutoCloseable {
         }
         wake();
         return container.completion();
+    }
+
+    /**
+     * Queues a platform's safety stop ({@code RobotPlatform.stopAll()}'s container) and tells its
+     * caller when it is over on both sides: the platform has handed it to the hardware
+     * ({@code handed}, which its action completes, maybe at once, while the cycle that admits it
+     * still admits what else is queued) <em>and</em> it no longer holds the actuators. A command
+     * submitted once the returned future completes is admitted as usual, never refused by the
+     * stop (a caller that waits for the stop and moves again at once would otherwise race the
+     * cycle that admitted the stop).
+     *
+     * @param stop    the stop's container
+     * @param handed  completed by the platform once the stop is on the wire, or failed with a
+     *                {@link RobotLinkException} naming the robot
+     * @param refused what {@code handed} fails with when this thread refused the container (failed
+     *                or closed), given why; a stop pre-empted by a newer stop is not refused: the
+     *                newer one goes on
+     * @return completes once {@code handed} did and the stop ended; fails as soon as {@code handed} fails
+     */
+    public CompletableFuture<Void> submitStop(Container stop, CompletableFuture<Void> handed,
+                                              Function<Throwable, RobotLinkException> refused) {
+        CompletableFuture<Void> ended = submit(stop);
+        ended.whenComplete((v, e) -> {
+            if (e != null && !(e instanceof CommandPreemptedException)) {
+                handed.completeExceptionally(refused.apply(e));
+            }
+        });
+        CompletableFuture<Void> over = new CompletableFuture<>();
+        handed.whenComplete((v, e) -> {
+            if (e != null) {
+                over.completeExceptionally(e);
+            } else {
+                ended.whenComplete((v2, e2) -> over.complete(null));
+            }
+        });
+        return over;
     }
 
     /** Wakes the cycling thread from an idle wait, if it has one: there is work. */

@@ -164,6 +164,41 @@ class ExecutionActionThreadTest {
         assertEquals(List.of(), ended, "the refused container never started, so never ends");
     }
 
+    /**
+     * The race CI found (an Aibo's {@code stopAll().get()} then a walk, refused by the stop): a
+     * platform whose stop is handed over at once, inside the cycle that admits it, and a caller
+     * that moves again the moment the stop is over. Here the caller's move is submitted on the
+     * cycling thread itself, while that cycle still admits: the stop must not be over yet.
+     */
+    @Test
+    void aCommandSubmittedOnceAStopIsOverIsAdmittedNotRefusedByTheStop() throws Exception {
+        CompletableFuture<Void> handed = new CompletableFuture<>();
+        Container stop = Container.builder("stop").requires("B", "C").priority(CommandPriority.SAFETY)
+                .action(now -> handed.complete(null)).logic(now -> true).build();
+        List<CompletableFuture<Void>> next = new ArrayList<>();
+
+        thread.submitStop(stop, handed, e -> new RobotLinkException("robot 'test-robot': " + e.getMessage(), e))
+                .thenRun(() -> next.add(thread.submit(normal("move", new AtomicBoolean(), "B"))));
+        thread.cycle();
+        thread.cycle();
+
+        assertEquals(1, next.size(), "the stop is over");
+        assertFalse(next.get(0).isDone(), "the move after the stop runs: " + next.get(0));
+        assertEquals(Set.of("B"), thread.actuatorsInUse());
+    }
+
+    @Test
+    void aStopRefusedByAClosedThreadFailsWithThePlatformsLinkException() {
+        thread.close();
+        CompletableFuture<Void> handed = new CompletableFuture<>();
+        Container stop = Container.builder("stop").requires("B").priority(CommandPriority.SAFETY).logic(now -> true).build();
+
+        CompletableFuture<Void> over = thread.submitStop(stop, handed, e -> new RobotLinkException("robot 'test-robot': " + e.getMessage(), e));
+
+        RobotLinkException e = assertInstanceOf(RobotLinkException.class, failure(over));
+        assertTrue(e.getMessage().contains("robot 'test-robot'") && e.getMessage().contains("closed"), e.getMessage());
+    }
+
     @Test
     void shouldLetSafetyContainerInterruptNormalOne() {
         CompletableFuture<Void> move = thread.submit(normal("move", new AtomicBoolean(), "B", "C"));
