@@ -3,6 +3,7 @@ package io.robomw.agents.host;
 import io.robomw.testkit.RecordingFailures;
 import io.robomw.agents.host.trip.VisitorAgent;
 import io.robomw.testkit.Await;
+import io.robomw.testkit.Ports;
 import io.robomw.api.Agent;
 import io.robomw.api.AgentException;
 import io.robomw.api.AgentRef;
@@ -251,7 +252,7 @@ class AgentHostTest {
     void anAgentThatHopsToTheSameDurableHostIsResumedFromItsNewCopyAfterTheHostStops(@org.junit.jupiter.api.io.TempDir java.nio.file.Path dir)
             throws Exception {
         AgentHost home = host("home");
-        AgentHost a = AgentHost.builder("a").clusterKey(KEY).store(dir.resolve("a")).stopGrace(Duration.ZERO).start();
+        AgentHost a = AgentHost.builder("a").clusterKey(KEY).port(Ports.free()).store(dir.resolve("a")).stopGrace(Duration.ZERO).start();
         hosts.add(a);
         VisitorAgent agent = new VisitorAgent().holdUntilReleased();
         agent.itinerary().addStop(a.address()).addStop(a.address());
@@ -265,8 +266,7 @@ class AgentHostTest {
         Await.until("host a has recorded the first copy departed", Duration.ofSeconds(10), () -> a.address().equals(a.forwardOf(ref.id())));
         int port = HostAddress.parse(a.address()).port();
         a.close(); // mid-stop at its second stop
-        AgentHost again = AgentHost.builder("a").clusterKey(KEY).port(port).store(dir.resolve("a")).start();
-        hosts.add(again);
+        AgentHost again = hosts.restart(AgentHost.builder("a").clusterKey(KEY).port(port).store(dir.resolve("a")));
         ref.result().get(30, TimeUnit.SECONDS); // resumed from the copy that hopped to a again: not lost
         assertEquals(List.of(io.robomw.api.Itinerary.Outcome.DONE, io.robomw.api.Itinerary.Outcome.INTERRUPTED),
                 ref.history().stream().map(io.robomw.api.Itinerary.Visit::outcome).toList(), "its second stop cut short, not run twice");
@@ -276,7 +276,7 @@ class AgentHostTest {
     @Test
     void aDurableHomeThatTookARetractedAgentBackStartsAgainWithNothingToResume(@org.junit.jupiter.api.io.TempDir java.nio.file.Path dir)
             throws Exception {
-        AgentHost home = AgentHost.builder("home").clusterKey(KEY).store(dir.resolve("home")).start();
+        AgentHost home = AgentHost.builder("home").clusterKey(KEY).port(Ports.free()).store(dir.resolve("home")).start();
         hosts.add(home);
         AgentHost a = host("a");
         VisitorAgent agent = new VisitorAgent().holdUntilReleased();
@@ -290,8 +290,7 @@ class AgentHostTest {
         assertEquals(List.of("a"), ((VisitorAgent) retracted.get(60, TimeUnit.SECONDS)).visited());
         int port = HostAddress.parse(home.address()).port();
         home.close();
-        AgentHost again = AgentHost.builder("home").clusterKey(KEY).port(port).store(dir.resolve("home")).start();
-        hosts.add(again);
+        AgentHost again = hosts.restart(AgentHost.builder("home").clusterKey(KEY).port(port).store(dir.resolve("home")));
         assertTrue(again.agents().isEmpty(), "the agent is back with its handle, nothing hosted to resume: " + again.agents());
     }
 

@@ -3,6 +3,7 @@ package io.robomw.agents.host;
 import io.robomw.agents.host.ops.HostWatch;
 import io.robomw.agents.host.trip.VisitorAgent;
 import io.robomw.testkit.Await;
+import io.robomw.testkit.Ports;
 import io.robomw.api.AgentRef;
 import io.robomw.api.AgentStatus;
 import org.junit.jupiter.api.Test;
@@ -123,17 +124,17 @@ class HostWatchTest {
 
     @Test
     void aHostThatIsDownFailsThePollAndIsWatchedAgainWhenItIsBack() throws Exception {
-        AgentHost a = host("a");
+        int port = Ports.free();
+        AgentHost a = hosts.start(AgentHost.builder("a").port(port).clusterKey(KEY));
         String address = a.address();
-        int port = Integer.parseInt(address.replaceAll(".*:(\\d+)/.*", "$1"));
         HostWatch watch = HostWatch.of(address, KEY, false, "test-console");
         assertEquals("a", watch.poll().name());
         a.close();
         IOException down = assertThrows(IOException.class, watch::poll);
         assertTrue(down.getMessage().contains(address), down.getMessage());
-        // Back on the same port, as a restarted host is: the closed one's listening socket may take a moment to be
-        // released by RMI, and a host started before then gets "address already in use" (seen once in CI).
-        Await.until("the host restarts on its port", WITHIN, () -> restart("a", port));
+        // Back on the same port, as a restarted host is (the closed one's listening socket may take a moment to be
+        // released by RMI: seen once in CI).
+        hosts.restart(AgentHost.builder("a").port(port).clusterKey(KEY));
         Await.until("the restarted host answers", WITHIN, () -> poll(watch) != null);
     }
 
@@ -148,16 +149,6 @@ class HostWatchTest {
         IOException hugeCount = assertThrows(IOException.class,
                 () -> HostWatch.decode("rmi://x:1/x", new byte[] {1, 2, 0, 0, 0, 4, 0x7f, 0, 0, 0}, 0));
         assertTrue(hugeCount.getMessage().contains("agents in 0 bytes"), hugeCount.getMessage());
-    }
-
-    /** @return whether a host of that name could be started on that port (it is then closed after the test) */
-    private boolean restart(String name, int port) {
-        try {
-            hosts.add(AgentHost.builder(name).port(port).clusterKey(KEY).start());
-            return true;
-        } catch (IOException e) {
-            return false;
-        }
     }
 
     private static HostWatch.Snapshot poll(HostWatch w) {

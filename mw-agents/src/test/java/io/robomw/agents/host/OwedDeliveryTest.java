@@ -7,6 +7,7 @@ import io.robomw.agents.host.protocol.Op;
 import io.robomw.agents.host.code.CodeArchive;
 import io.robomw.agents.host.trip.VisitorAgent;
 import io.robomw.testkit.Await;
+import io.robomw.testkit.Ports;
 import io.robomw.api.AgentRef;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.extension.RegisterExtension;
@@ -79,7 +80,7 @@ class OwedDeliveryTest {
 
     @Test
     void deliveriesOwedToAGoneHomeAreListedWithTheirAgeAndTriesAndDroppedByTheOperator() throws Exception {
-        AgentHost a = started(AgentHost.builder("a").store(dir.resolve("a")));
+        AgentHost a = started(AgentHost.builder("a").port(Ports.free()).store(dir.resolve("a")));
         Instant before = Instant.now();
         UUID id = sendAgentWithAGoneHome(a);
         HostClient operator = new HostClient(KEY, false, 10_000);
@@ -103,33 +104,33 @@ class OwedDeliveryTest {
 
         int port = HostAddress.parse(a.address()).port();
         a.close();
-        AgentHost again = started(AgentHost.builder("a").port(port).store(dir.resolve("a")));
+        AgentHost again = hosts.restart(AgentHost.builder("a").port(port).store(dir.resolve("a")).clusterKey(KEY));
         assertTrue(again.owed().isEmpty(), "dropped deliveries are not owed again after a restart: " + again.owed());
     }
 
     @Test
     void aDeliveryOwedLongerThanTheExpiryIsGivenUpAndNotResumed() throws Exception {
         DeliveryPolicy quick = DeliveryPolicy.defaults().withExpiry(Duration.ofMillis(300)).withMaxBackoff(Duration.ofMillis(100));
-        AgentHost a = started(AgentHost.builder("a").store(dir.resolve("a")).deliveryPolicy(quick));
+        AgentHost a = started(AgentHost.builder("a").port(Ports.free()).store(dir.resolve("a")).deliveryPolicy(quick));
         sendAgentWithAGoneHome(a);
         // The transfer's OK means a holds it; once it is gone from a's agents its result has been owed.
         Await.until("the agent ended its trip", Duration.ofSeconds(10), () -> a.agents().isEmpty());
         Await.until("the deliveries are given up after the expiry", Duration.ofSeconds(10), () -> a.owed().isEmpty());
         int port = HostAddress.parse(a.address()).port();
         a.close();
-        AgentHost again = started(AgentHost.builder("a").port(port).store(dir.resolve("a")));
+        AgentHost again = hosts.restart(AgentHost.builder("a").port(port).store(dir.resolve("a")).clusterKey(KEY));
         assertTrue(again.owed().isEmpty(), "given-up deliveries are not owed again after a restart: " + again.owed());
     }
 
     @Test
     void anOwedDeliveryKeepsItsAgeAcrossARestart() throws Exception {
-        AgentHost a = started(AgentHost.builder("a").store(dir.resolve("a")));
+        AgentHost a = started(AgentHost.builder("a").port(Ports.free()).store(dir.resolve("a")));
         sendAgentWithAGoneHome(a);
         Await.until("the result is owed", Duration.ofSeconds(10), () -> a.owed().size() == 3);
         Instant since = a.owed().get(0).owedSince();
         int port = HostAddress.parse(a.address()).port();
         a.close();
-        AgentHost again = started(AgentHost.builder("a").port(port).store(dir.resolve("a")));
+        AgentHost again = hosts.restart(AgentHost.builder("a").port(port).store(dir.resolve("a")).clusterKey(KEY));
         assertEquals(3, again.owed().size());
         assertEquals(since, again.owed().get(0).owedSince());
     }

@@ -2,6 +2,7 @@ package io.robomw.agents.host;
 
 import io.robomw.agents.host.trip.NumberedReporter;
 import io.robomw.testkit.Await;
+import io.robomw.testkit.Ports;
 import io.robomw.api.AgentRef;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.extension.RegisterExtension;
@@ -38,7 +39,7 @@ class ResumedNumberingTest {
     @Test
     void reportsAfterAResumeMidStopReachTheHomeAndNoneIsTakenTwice() throws Exception {
         AgentHost home = started(AgentHost.builder("home"));
-        AgentHost a = started(AgentHost.builder("a").store(dir.resolve("a")).stopGrace(Duration.ZERO));
+        AgentHost a = started(AgentHost.builder("a").port(Ports.free()).store(dir.resolve("a")).stopGrace(Duration.ZERO));
         AgentHost b = started(AgentHost.builder("b"));
         NumberedReporter agent = new NumberedReporter("a");
         agent.itinerary().addStop(a.address()).addStop(b.address());
@@ -50,7 +51,7 @@ class ResumedNumberingTest {
 
         int port = HostAddress.parse(a.address()).port();
         a.close(); // interrupts the stop: the store says it had started
-        started(AgentHost.builder("a").port(port).store(dir.resolve("a")));
+        hosts.restart(AgentHost.builder("a").port(port).store(dir.resolve("a")).clusterKey(KEY));
 
         assertEquals("done", ref.result().get(30, TimeUnit.SECONDS));
         assertEquals(List.of("a early 1", "a early 2", "a early 3", "b early 1", "b early 2", "b early 3"), reports);

@@ -1,11 +1,9 @@
 package io.robomw.it.agents;
 
+import io.robomw.testkit.Ports;
 import io.robomw.it.StdoutLines;
 
 import java.io.IOException;
-import java.net.InetAddress;
-import java.net.InetSocketAddress;
-import java.net.ServerSocket;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -69,7 +67,7 @@ public final class HostProcess implements AutoCloseable {
      * @return the running host
      */
     public static HostProcess start(String name, List<String> jvmArgs, String... extra) throws IOException {
-        HostProcess h = new HostProcess(name, freePort(), List.copyOf(jvmArgs), List.of(extra));
+        HostProcess h = new HostProcess(name, Ports.free(), List.copyOf(jvmArgs), List.of(extra));
         h.launch();
         return h;
     }
@@ -185,12 +183,5 @@ public final class HostProcess implements AutoCloseable {
 
     static String middlewareOnlyClassPath() {
         return MwProcess.middlewareOnlyClassPath();
-    }
-
-    static int freePort() throws IOException {
-        try (ServerSocket s = new ServerSocket()) {
-            s.bind(new InetSocketAddress(InetAddress.getLoopbackAddress(), 0));
-            return s.getLocalPort();
-        }
     }
 }

@@ -1,12 +1,11 @@
 package io.robomw.it.cli;
 
+import io.robomw.testkit.Ports;
 import io.robomw.it.demo.MwProcess;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
 import java.io.IOException;
-import java.net.InetAddress;
-import java.net.ServerSocket;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
@@ -29,18 +28,12 @@ class UpIT {
     @TempDir
     Path dir;
 
-    private static int freePort() throws IOException {
-        try (ServerSocket s = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
-            return s.getLocalPort();
-        }
-    }
-
     @Test
     void ctrlCAtTheTerminalStopsTheProcessesLastFirstAndOnlyMwUpGetsIt() throws Exception {
         Path key = dir.resolve("cluster.key");
         Files.writeString(key, "up test passphrase");
-        int nxtPort = freePort();
-        int ftPort = freePort();
+        int nxtPort = Ports.free();
+        int ftPort = Ports.free();
         String setup = Files.readString(MwProcess.CHECKOUT.resolve("examples/quickstart-up.yaml"))
                 .replace("worlds/arena.yaml", MwProcess.CHECKOUT.resolve("examples/worlds/arena.yaml").toString())
                 .replace("../cluster.key", key.toString())
@@ -71,8 +64,8 @@ class UpIT {
     void theQuickstartComesUpFromOneFileAndGoesDownWithIt() throws Exception {
         Path key = dir.resolve("cluster.key");
         Files.writeString(key, "up test passphrase");
-        int nxtPort = freePort();
-        int ftPort = freePort();
+        int nxtPort = Ports.free();
+        int ftPort = Ports.free();
         String setup = Files.readString(MwProcess.CHECKOUT.resolve("examples/quickstart-up.yaml"))
                 .replace("worlds/arena.yaml", MwProcess.CHECKOUT.resolve("examples/worlds/arena.yaml").toString())
                 .replace("../cluster.key", key.toString())

@@ -1,5 +1,6 @@
 package io.robomw.it.console;
 
+import io.robomw.testkit.Ports;
 import io.robomw.agents.host.AgentHost;
 import io.robomw.agents.host.ClusterKey;
 import io.robomw.api.AgentRef;
@@ -24,9 +25,6 @@ import org.openqa.selenium.support.ui.WebDriverWait;
 
 import java.io.File;
 import java.io.IOException;
-import java.net.InetAddress;
-import java.net.InetSocketAddress;
-import java.net.ServerSocket;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.nio.file.StandardCopyOption;
@@ -68,9 +66,9 @@ class ConsoleBrowserIT {
         Files.writeString(keyFile, PASSPHRASE + "\n");
         Path robotPassword = Files.writeString(dir.resolve("robot.password"), "console robot\n");
         Path world = MwProcess.CHECKOUT.resolve("examples/worlds/arena.yaml");
-        int alphaPort = freePort();
-        int robotPort = freePort();
-        betaPort = freePort();
+        int alphaPort = Ports.free();
+        int robotPort = Ports.free();
+        betaPort = Ports.free();
         alpha = MwProcess.start("console-it-alpha", "host", "--name", "alpha", "--port", String.valueOf(alphaPort), "--world", world.toString(),
                 "--world-robot", "nxt", "--serve", "tcp://127.0.0.1:" + robotPort, "--serve-password-file", robotPassword.toString(),
                 "--key-file", keyFile.toString());
@@ -272,12 +270,5 @@ class ConsoleBrowserIT {
     private static void screenshot(String name) throws IOException {
         File shot = ((TakesScreenshot) browser).getScreenshotAs(OutputType.FILE);
         Files.copy(shot.toPath(), SHOTS.resolve(name + ".png"), StandardCopyOption.REPLACE_EXISTING);
-    }
-
-    private static int freePort() throws IOException {
-        try (ServerSocket s = new ServerSocket()) {
-            s.bind(new InetSocketAddress(InetAddress.getLoopbackAddress(), 0));
-            return s.getLocalPort();
-        }
     }
 }

@@ -1,5 +1,6 @@
 package io.robomw.it.demo;
 
+import io.robomw.testkit.Ports;
 import io.robomw.testkit.BusyThreads;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -7,8 +8,6 @@ import org.junit.jupiter.api.io.TempDir;
 import javax.imageio.ImageIO;
 import java.awt.image.BufferedImage;
 import java.net.InetAddress;
-import java.net.InetSocketAddress;
-import java.net.ServerSocket;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
@@ -128,8 +127,8 @@ class DemoIT {
             running.add(ftBrick);
             String nxtDevice = nxtBrick.await("/dev/", Duration.ofSeconds(60)).strip();
             String ftDevice = ftBrick.await("/dev/", Duration.ofSeconds(60)).strip();
-            int nxtPort = freePort();
-            int ftPort = freePort();
+            int nxtPort = Ports.free();
+            int ftPort = Ports.free();
             MwProcess nxtHost = MwProcess.start("quickstart-host-nxt", "host", "--robot", "examples/robots/nxt-two-wheeled.yaml", "--connection", "port=" + nxtDevice,
                     "--port", String.valueOf(nxtPort), "--name", "nxt", "--key-file", key.toString());
             running.add(nxtHost);
@@ -158,13 +157,6 @@ class DemoIT {
             for (MwProcess p : running) {
                 p.close();
             }
-        }
-    }
-
-    private static int freePort() throws Exception {
-        try (ServerSocket s = new ServerSocket()) {
-            s.bind(new InetSocketAddress(InetAddress.getLoopbackAddress(), 0));
-            return s.getLocalPort();
         }
     }
 }

@@ -1,5 +1,6 @@
 package io.robomw.it.mqtt;
 
+import io.robomw.testkit.Ports;
 import io.robomw.testkit.Await;
 import io.robomw.it.StdoutLines;
 import org.junit.jupiter.api.Assumptions;
@@ -7,7 +8,6 @@ import org.junit.jupiter.api.Assumptions;
 import java.io.IOException;
 import java.net.InetAddress;
 import java.net.InetSocketAddress;
-import java.net.ServerSocket;
 import java.net.Socket;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -68,7 +68,7 @@ public final class Broker implements AutoCloseable {
         deleteTree(dir);
         Files.createDirectories(dir);
         Broker b = new Broker(kind, name, dir.toAbsolutePath());
-        b.port = freePort();
+        b.port = Ports.free();
         b.launch();
         return b;
     }
@@ -96,7 +96,7 @@ public final class Broker implements AutoCloseable {
         }
         Broker b = new Broker(Kind.MOSQUITTO, name, dir.toAbsolutePath());
         b.passwordFile = passwords.toString();
-        b.port = freePort();
+        b.port = Ports.free();
         b.launch();
         return b;
     }
@@ -116,7 +116,7 @@ public final class Broker implements AutoCloseable {
         Files.createDirectories(dir);
         Broker b = new Broker(Kind.MOSQUITTO, name, dir.toAbsolutePath());
         b.tlsPem = pem.toAbsolutePath().toString();
-        b.port = freePort();
+        b.port = Ports.free();
         b.launch();
         return b;
     }
@@ -271,13 +271,6 @@ public final class Broker implements AutoCloseable {
             }
         }
         return MOSQUITTO;
-    }
-
-    private static int freePort() throws IOException {
-        try (ServerSocket s = new ServerSocket()) {
-            s.bind(new InetSocketAddress(InetAddress.getLoopbackAddress(), 0));
-            return s.getLocalPort();
-        }
     }
 
     private static void deleteTree(Path dir) throws IOException {

@@ -1,14 +1,12 @@
 package io.robomw.it.rosbridge;
 
+import io.robomw.testkit.Ports;
 import io.robomw.it.demo.MwProcess;
 import org.junit.jupiter.api.AfterAll;
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
 
 import java.io.IOException;
-import java.net.InetAddress;
-import java.net.InetSocketAddress;
-import java.net.ServerSocket;
 import java.time.Duration;
 import java.util.Map;
 
@@ -34,7 +32,7 @@ class RoslibpyIT {
     @BeforeAll
     static void start() throws Exception {
         PythonClient.python();
-        simPort = freePort();
+        simPort = Ports.free();
         sim = MwProcess.start("rosbridge-it-sim", "sim", MwProcess.CHECKOUT.resolve("examples/worlds/arena.yaml").toString(), "--rosbridge",
                 String.valueOf(simPort));
         String line = sim.await("rosbridge at ", WITHIN);
@@ -66,10 +64,10 @@ class RoslibpyIT {
 
     @Test
     void roslibpyDrivesARobotServedByAnotherProcessThroughMwRosbridge() throws Exception {
-        int robotPort = freePort();
-        int bridgePort = freePort();
+        int robotPort = Ports.free();
+        int bridgePort = Ports.free();
         java.nio.file.Path password = servePassword();
-        try (MwProcess host = MwProcess.start("rosbridge-it-host", "host", "--name", "served", "--port", String.valueOf(freePort()), "--world",
+        try (MwProcess host = MwProcess.start("rosbridge-it-host", "host", "--name", "served", "--port", String.valueOf(Ports.free()), "--world",
                 MwProcess.CHECKOUT.resolve("examples/worlds/arena.yaml").toString(), "--world-robot", "nxt", "--serve", "tcp://127.0.0.1:" + robotPort,
                 "--no-wire", "--key-file", keyFile().toString(), "--serve-password-file", password.toString())) {
             host.await("robot nxt served at", WITHIN);
@@ -99,12 +97,5 @@ class RoslibpyIT {
         java.nio.file.Files.writeString(f, "rosbridge it robot password\n");
         f.toFile().deleteOnExit();
         return f;
-    }
-
-    private static int freePort() throws IOException {
-        try (ServerSocket s = new ServerSocket()) {
-            s.bind(new InetSocketAddress(InetAddress.getLoopbackAddress(), 0));
-            return s.getLocalPort();
-        }
     }
 }

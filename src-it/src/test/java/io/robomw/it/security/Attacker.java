@@ -1,9 +1,6 @@
 package io.robomw.it.security;
 
 import java.io.IOException;
-import java.net.InetAddress;
-import java.net.InetSocketAddress;
-import java.net.ServerSocket;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -29,13 +26,5 @@ final class Attacker {
     /** @return the port of an agent host's address, rmi://HOST:PORT/NAME */
     static int port(String hostAddress) {
         return Integer.parseInt(hostAddress.replaceAll("^rmi://[^:]+:(\\d+)/.*$", "$1"));
-    }
-
-    /** @return a loopback port nobody listens on now */
-    static int freePort() throws IOException {
-        try (ServerSocket s = new ServerSocket()) {
-            s.bind(new InetSocketAddress(InetAddress.getLoopbackAddress(), 0));
-            return s.getLocalPort();
-        }
     }
 }

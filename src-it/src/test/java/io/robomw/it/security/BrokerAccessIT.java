@@ -1,5 +1,6 @@
 package io.robomw.it.security;
 
+import io.robomw.testkit.Ports;
 import io.robomw.it.agents.HostProcess;
 import io.robomw.it.demo.MwProcess;
 import org.junit.jupiter.api.BeforeEach;
@@ -59,7 +60,7 @@ class BrokerAccessIT {
 
     @Test
     void anAnonymousClientReadsNothingAndTheUserEverything() throws Exception {
-        int port = Attacker.freePort();
+        int port = Ports.free();
         try (MwProcess broker = broker(port);
              MwProcess node = MwProcess.start("broker-access-node", "msg", "sub", at(port), "news", "--name", "lab-node")) {
             node.await("listening to topic", Duration.ofSeconds(60));
@@ -80,7 +81,7 @@ class BrokerAccessIT {
 
     @Test
     void aClientCannotReplaceAnotherNodesPresence() throws Exception {
-        int port = Attacker.freePort();
+        int port = Ports.free();
         try (MwProcess broker = broker(port);
              MwProcess node = MwProcess.start("broker-presence-node", "msg", "sub", at(port), "news", "--name", "lab-node")) {
             node.await("listening to topic", Duration.ofSeconds(60));
@@ -95,7 +96,7 @@ class BrokerAccessIT {
 
     @Test
     void aFakeHostPresenceIsIgnoredAndCountedByReadersWithTheClusterKey() throws Exception {
-        int port = Attacker.freePort();
+        int port = Ports.free();
         Path key = Attacker.keyFile(dir);
         try (MwProcess broker = broker(port);
              HostProcess host = HostProcess.start("lab-a", "--key-file", key.toString(), "--messaging", at(port))) {

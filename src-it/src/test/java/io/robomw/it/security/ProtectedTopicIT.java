@@ -1,5 +1,6 @@
 package io.robomw.it.security;
 
+import io.robomw.testkit.Ports;
 import io.robomw.it.demo.MwProcess;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -30,7 +31,7 @@ class ProtectedTopicIT {
     @Test
     void aSubscriberWithoutThePasswordReadsNothingOfAProtectedTopic() throws Exception {
         Path password = Files.writeString(dir.resolve("topic.password"), "s3cret\n");
-        int port = Attacker.freePort();
+        int port = Ports.free();
         try (MwProcess pub = MwProcess.start("protected-pub", "msg", "pub", "tcp://127.0.0.1:" + port, "secret", SECRET, "--password-file",
                 password.toString(), "--count", "0", "--rate", "5");
              TcpTap tap = new TcpTap(port)) {

@@ -1,5 +1,6 @@
 package io.robomw.it.security;
 
+import io.robomw.testkit.Ports;
 import io.robomw.agents.host.rmi.AgentHostRemote;
 import io.robomw.it.agents.HostProcess;
 import io.robomw.it.demo.MwProcess;
@@ -64,7 +65,7 @@ class RegistryRewriteIT {
         try (HostProcess host = HostProcess.start("behind-relay", "--key-file", key.toString())) {
             AgentHostRemote real = (AgentHostRemote) LocateRegistry.getRegistry("127.0.0.1", Attacker.port(host.address())).lookup("behind-relay");
             Relay relay = new Relay(real);
-            int relayPort = Attacker.freePort();
+            int relayPort = Ports.free();
             Registry relayRegistry = LocateRegistry.createRegistry(relayPort);
             AgentHostRemote relayStub = (AgentHostRemote) UnicastRemoteObject.exportObject(relay, 0);
             try {

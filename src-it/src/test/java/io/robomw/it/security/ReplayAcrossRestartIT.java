@@ -1,5 +1,6 @@
 package io.robomw.it.security;
 
+import io.robomw.testkit.Ports;
 import io.robomw.it.agents.HostProcess;
 import io.robomw.it.demo.MwProcess;
 import io.robomw.testkit.Await;
@@ -51,7 +52,7 @@ class ReplayAcrossRestartIT {
     void aCapturedSignedMessageReplayedToARestartedReceiverIsRefused() throws Exception {
         Path password = Files.writeString(dir.resolve("topic.password"), "s3cret\n");
         String name = "replay-echoer-" + Long.toHexString(new SecureRandom().nextLong());
-        int port = Attacker.freePort();
+        int port = Ports.free();
         String[] receiver = {"msg", "sub", "tcp://127.0.0.1:" + port, "cmd", "--bind", "--echo", "--password-file", password.toString(), "--name", name};
         byte[] captured;
         try (MwProcess first = MwProcess.start("replay-receiver", receiver)) {
@@ -84,7 +85,7 @@ class ReplayAcrossRestartIT {
         Path credentials = dir.resolve("broker.credentials");
         Path password = Files.writeString(dir.resolve("robot.password"), "robot s3cret\n");
         Path key = Attacker.keyFile(dir);
-        int port = Attacker.freePort();
+        int port = Ports.free();
         String world = Path.of(ReplayAcrossRestartIT.class.getResource("/robots/sim-world.yaml").toURI()).toString();
         try (MwProcess broker = MwProcess.start("replay-broker", "broker", "--port", String.valueOf(port), "--credentials", credentials.toString(),
                 "--data", dir.resolve("broker").toString())) {
@@ -162,7 +163,7 @@ class ReplayAcrossRestartIT {
     void aCapturedSignedPresenceRepublishedAtTheBrokerIsIgnoredByAReaderThatTookANewerOne() throws Exception {
         MqttClients.assumeInstalled();
         Path key = Attacker.keyFile(dir);
-        int port = Attacker.freePort();
+        int port = Ports.free();
         String name = "replay-presence-" + Long.toHexString(new SecureRandom().nextLong());
         String at = "mqtt://127.0.0.1:" + port;
         // a lab's shared broker, whose members may all publish presences (no access rules)

@@ -1,5 +1,6 @@
 package io.robomw.it.security;
 
+import io.robomw.testkit.Ports;
 import io.robomw.it.agents.HostProcess;
 import io.robomw.it.demo.MwProcess;
 import org.junit.jupiter.api.Test;
@@ -49,7 +50,7 @@ class ServedRobotIT {
     @Test
     void aServedRobotNeedsItsPasswordAndTheHostRefusesToServeWithoutOne() throws Exception {
         Path key = Attacker.keyFile(dir);
-        try (MwProcess open = MwProcess.start("serve-without-password", "host", "--name", "open", "--port", String.valueOf(Attacker.freePort()),
+        try (MwProcess open = MwProcess.start("serve-without-password", "host", "--name", "open", "--port", String.valueOf(Ports.free()),
                 "--world", world(), "--world-robot", "sim-1", "--key-file", key.toString(), "--serve", "tcp://127.0.0.1:0")) {
             assertEquals(2, open.waitFor(Duration.ofSeconds(60)), "a host does not serve a robot to anyone by default: " + open.output());
         }
