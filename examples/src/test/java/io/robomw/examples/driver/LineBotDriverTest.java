@@ -72,8 +72,12 @@ class LineBotDriverTest {
 
                 robot.move(0.10, 0.05);
                 double wheel = 0.10 / (Math.PI * WHEEL_DIAMETER) * 360; // 229.2° per wheel
-                assertEquals(wheel, board.degrees("A"), 10, "A turned the move's rotation, stopped by its encoder over the link");
-                assertEquals(wheel, board.degrees("B"), 10);
+                // Stopped by its encoder over the link: the driver sees the rotation done at a poll and sends the stop, so a
+                // busy machine's late poll lets the wheel turn on a little (24° at load 60-90 on 2 cores: 0.2 s at 115°/s).
+                for (String port : List.of("A", "B")) {
+                    double turned = board.degrees(port);
+                    assertTrue(turned > wheel - 10 && turned < wheel * 1.25, port + " turned the move's rotation, " + wheel + "°: " + turned);
+                }
 
                 robot.stop();
                 assertTrue(board.requests().containsAll(List.of("STOP A BRAKE", "STOP B BRAKE")), "braked: " + board.requests());
