@@ -7,6 +7,8 @@ import io.robomw.api.spi.SensorChannel;
 import io.robomw.platform.motor.MotorPlatform;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
 
 import java.io.IOException;
 import java.time.Duration;
@@ -17,12 +19,16 @@ import java.util.concurrent.CompletableFuture;
  * GETINPUTVALUES (touch: the boolean scaled value, 1 pressed; light and sound: the normalized
  * value 0..1023; colour: the colour number) or, for the ultrasonic sensor, with an I²C transaction
  * (LSWRITE register 0x42, LSGETSTATUS until ready, LSREAD: centimetres). After SETINPUTMODE the
- * firmware marks a port invalid until it has set the sensor up; reads wait for the valid flag.
+ * firmware marks a port invalid until it has set the sensor up; reads wait for the valid flag. A
+ * brick that restarted (its link reopened to it) has forgotten the setup: its reply names another
+ * sensor type, and the port is set up again.
  * Reads run on the caller's thread, one exchange at a time on the brick's channel.
  *
  * <p>Sensor options: {@code floodlight: false} reads a light sensor with its lamp off.
  */
 public final class NxtSensorPlatform extends SensorPlatform {
+
+    private static final Logger LOG = LoggerFactory.getLogger(NxtSensorPlatform.class);
 
     /**
      * How long a reading may stay invalid or an I²C transaction pending. A real brick answers within
@@ -89,19 +95,35 @@ public final class NxtSensorPlatform extends SensorPlatform {
     }
 
     private Sensor analog(SensorChannel sensor, int port, int type, int mode, Field field) throws IOException {
-        brick.request(NxtTelegram.setInputMode(true, port, type, mode), NxtTelegram.STATUS_REPLY, port);
+        setUp(port, type, mode);
         return () -> read(() -> {
-            byte[] reply = validInputValues(port);
+            byte[] reply = validInputValues(port, type, mode);
             return (double) (field == Field.SCALED ? LittleEndian.s16(reply, field.offset) : LittleEndian.u16(reply, field.offset));
         });
     }
 
-    private byte[] validInputValues(int port) throws IOException {
+    private void setUp(int port, int type, int mode) throws IOException {
+        brick.request(NxtTelegram.setInputMode(true, port, type, mode), NxtTelegram.STATUS_REPLY, port);
+    }
+
+    /**
+     * Reads a port's values until the firmware marks them valid. A brick that answers for another
+     * sensor type than the one set up has forgotten the setup (it was switched off and on, and its
+     * link reopened to it): the port is set up again, and the read waits for it.
+     */
+    private byte[] validInputValues(int port, int type, int mode) throws IOException {
         Deadline deadline = Deadline.after(Duration.ofNanos(MAX_WAIT_NANOS)); // the brick's time to read its port: wall-clock
         int reads = 0;
         do {
             byte[] reply = brick.request(NxtTelegram.getInputValues(port), NxtTelegram.GETINPUTVALUES_REPLY, port);
             reads++;
+            int setFor = reply[NxtTelegram.DATA_OFFSET + NxtTelegram.IN_TYPE] & 0xFF;
+            if (setFor != type) {
+                LOG.info("robot '{}': the NXT's input S{} is set up for sensor type 0x{} instead of 0x{} (the brick restarted?); setting it up again",
+                        brick.robot(), port + 1, Integer.toHexString(setFor), Integer.toHexString(type));
+                setUp(port, type, mode);
+                continue;
+            }
             if (reply[NxtTelegram.DATA_OFFSET + NxtTelegram.IN_VALID] != 0) {
                 return reply;
             }
@@ -110,9 +132,9 @@ public final class NxtSensorPlatform extends SensorPlatform {
     }
 
     private Sensor ultrasonic(int port) throws IOException {
-        brick.request(NxtTelegram.setInputMode(true, port, NxtTelegram.TYPE_LOWSPEED_9V, NxtTelegram.MODE_RAW), NxtTelegram.STATUS_REPLY, port);
+        setUp(port, NxtTelegram.TYPE_LOWSPEED_9V, NxtTelegram.MODE_RAW);
         return () -> read(() -> {
-            validInputValues(port);
+            validInputValues(port, NxtTelegram.TYPE_LOWSPEED_9V, NxtTelegram.MODE_RAW);
             brick.request(NxtTelegram.lsWrite(true, port, 1, (byte) NxtTelegram.ULTRASONIC_ADDRESS, (byte) NxtTelegram.ULTRASONIC_DISTANCE),
                     NxtTelegram.STATUS_REPLY, port);
             Deadline deadline = Deadline.after(Duration.ofNanos(MAX_WAIT_NANOS));

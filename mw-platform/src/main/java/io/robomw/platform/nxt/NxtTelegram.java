@@ -142,6 +142,10 @@ public final class NxtTelegram {
     public static final int IN_PORT = 0;
     /** ...whether the values are valid (0 until the firmware has set the sensor up after SETINPUTMODE). */
     public static final int IN_VALID = 1;
+    /** ...the sensor type the port is set up for ({@link #TYPE_NO_SENSOR} on a brick that has just started). */
+    public static final int IN_TYPE = 3;
+    /** ...the sensor mode the port is set up for. */
+    public static final int IN_MODE = 4;
     /** ...the raw A/D value, u16. */
     public static final int IN_RAW = 5;
     /** ...the normalized value 0..1023, u16. */
