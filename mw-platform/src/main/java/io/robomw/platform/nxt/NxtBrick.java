@@ -4,22 +4,32 @@ import io.robomw.platform.brick.LittleEndian;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.brick.RoundTripEstimate;
 import io.robomw.platform.link.LinkLostException;
+import io.robomw.platform.link.LinkTimeoutException;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
 
 import java.io.IOException;
 
 /**
  * One NXT brick behind a {@link BrickChannel}: sends telegrams with their length prefix and reads
  * each reply by its length prefix, never by timing. A reply of the wrong type or opcode means the
- * link lost its framing and is reported as a lost link (the channel reopens it); a status other
+ * link lost its framing and is reported as a lost link (the channel reopens it), but for a late
+ * one: after a request whose reply did not come within the timeout (a Bluetooth link's latency
+ * spike, a busy host), that reply may still come, whole, before the next one; a well-formed reply
+ * to another command is then taken for it and dropped, once for each reply owed. A status other
  * than success becomes an {@link NxtException} naming the command, port and status.
  *
  * <p>Thread-safe (the channel serialises exchanges).
  */
 public final class NxtBrick {
 
+    private static final Logger LOG = LoggerFactory.getLogger(NxtBrick.class);
+
     private final String robot;
     private final BrickChannel channel;
     private final RoundTripEstimate roundTrip = new RoundTripEstimate();
+    /** Replies that did not come within their timeout and may still come; only touched inside the channel's exchanges. */
+    private int owed;
 
     /**
      * @param robot   the robot's name, for messages
@@ -154,7 +164,12 @@ public final class NxtBrick {
                 long sent = BrickChannel.LINK_TIME.nanoTime();
                 c.send(out.toByteArray());
                 for (int i = first; i < next; i++) {
-                    replies.add(readReply(c, timeout, requests.get(i)));
+                    try {
+                        replies.add(readReply(c, timeout, requests.get(i)));
+                    } catch (LinkTimeoutException e) {
+                        owe(next - i);
+                        throw e;
+                    }
                     if (i == first) {
                         roundTrip.sample(BrickChannel.LINK_TIME.nanoTime() - sent);
                     }
@@ -167,19 +182,39 @@ public final class NxtBrick {
     /** The most bytes one write of a pipelined batch carries: one of the NXT's Bluetooth receive buffers. */
     public static final int PIPELINE_BYTES = 128;
 
+    /** At most this many late replies are looked out for (a pipelined batch's worth); more owed than that were lost. */
+    static final int MAX_OWED = 16;
+
+    private void owe(int replies) {
+        owed = Math.min(MAX_OWED, owed + replies);
+    }
+
     private byte[] readReply(io.robomw.platform.link.Communicator c, java.time.Duration timeout, Request request) throws IOException {
         int opcode = NxtTelegram.opcode(request.telegram());
-        byte[] prefix = c.receiveExactly(2, timeout);
-        int length = LittleEndian.u16(prefix, 0);
-        if (length < NxtTelegram.STATUS_REPLY || length > NxtTelegram.MAX_LENGTH) {
-            throw new LinkLostException(channel.describe(), "NXT reply to " + NxtTelegram.name(opcode) + " announced " + length
-                    + " bytes; the link lost its framing");
-        }
-        byte[] reply = c.receiveExactly(length, timeout);
-        if ((reply[NxtTelegram.TYPE_OFFSET] & 0xFF) != NxtTelegram.REPLY || NxtTelegram.opcode(reply) != opcode) {
+        while (true) {
+            byte[] prefix = c.receiveExactly(2, timeout);
+            int length = LittleEndian.u16(prefix, 0);
+            if (length < NxtTelegram.STATUS_REPLY || length > NxtTelegram.MAX_LENGTH) {
+                throw new LinkLostException(channel.describe(), "NXT reply to " + NxtTelegram.name(opcode) + " announced " + length
+                        + " bytes; the link lost its framing");
+            }
+            byte[] reply = c.receiveExactly(length, timeout);
+            boolean isReply = (reply[NxtTelegram.TYPE_OFFSET] & 0xFF) == NxtTelegram.REPLY;
+            if (isReply && NxtTelegram.opcode(reply) == opcode) {
+                return checkedLength(request, opcode, length, reply);
+            }
+            if (isReply && owed > 0) {
+                owed--;
+                LOG.debug("robot '{}': dropped a late reply to {} on {} while waiting for the reply to {} ({} more may come)", robot,
+                        NxtTelegram.name(NxtTelegram.opcode(reply)), channel.describe(), NxtTelegram.name(opcode), owed);
+                continue;
+            }
             throw new LinkLostException(channel.describe(), String.format("expected a reply to %s, got %02X %02X; the link lost its framing",
                     NxtTelegram.name(opcode), reply[NxtTelegram.TYPE_OFFSET] & 0xFF, NxtTelegram.opcode(reply)));
         }
+    }
+
+    private byte[] checkedLength(Request request, int opcode, int length, byte[] reply) throws LinkLostException {
         if (NxtTelegram.status(reply) == NxtStatus.SUCCESS && length != request.replyLength()) {
             throw new LinkLostException(channel.describe(), NxtTelegram.name(opcode) + " reply is " + length + " bytes, expected " + request.replyLength());
         }
@@ -218,7 +253,13 @@ public final class NxtBrick {
         return channel.exchange((c, timeout) -> {
             long sent = BrickChannel.LINK_TIME.nanoTime();
             c.send(NxtTelegram.withLengthPrefix(request.telegram()));
-            byte[] reply = readReply(c, timeout, request);
+            byte[] reply;
+            try {
+                reply = readReply(c, timeout, request);
+            } catch (LinkTimeoutException e) {
+                owe(1);
+                throw e;
+            }
             roundTrip.sample(BrickChannel.LINK_TIME.nanoTime() - sent);
             return reply;
         });

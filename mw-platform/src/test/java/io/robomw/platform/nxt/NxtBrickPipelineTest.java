@@ -3,6 +3,8 @@ package io.robomw.platform.nxt;
 import io.robomw.platform.brick.BrickChannel;
 import io.robomw.platform.link.Communicator;
 import io.robomw.platform.link.Link;
+import io.robomw.platform.link.LinkLostException;
+import io.robomw.platform.link.LinkTimeoutException;
 import io.robomw.platform.testkit.Framing;
 import io.robomw.platform.testkit.ScriptedLink;
 import org.junit.jupiter.api.Test;
@@ -28,7 +30,8 @@ class NxtBrickPipelineTest {
         byte[] t = java.util.Arrays.copyOfRange(frame, 2, frame.length);
         int op = t[1] & 0xFF;
         boolean refuse = op == NxtTelegram.SETOUTPUTSTATE && t[2] == 2;
-        int length = op == NxtTelegram.GETOUTPUTSTATE ? NxtTelegram.GETOUTPUTSTATE_REPLY : NxtTelegram.STATUS_REPLY;
+        int length = op == NxtTelegram.GETOUTPUTSTATE ? NxtTelegram.GETOUTPUTSTATE_REPLY
+                : op == NxtTelegram.GETINPUTVALUES ? NxtTelegram.GETINPUTVALUES_REPLY : NxtTelegram.STATUS_REPLY;
         ByteArrayOutputStream reply = new ByteArrayOutputStream();
         reply.write(length);
         reply.write(0);
@@ -105,5 +108,37 @@ class NxtBrickPipelineTest {
         byte[] next = brick.requestAllowing(NxtTelegram.getOutputState(1), NxtTelegram.GETOUTPUTSTATE_REPLY, 1);
         assertEquals(NxtTelegram.GETOUTPUTSTATE, next[1], "every reply of the refused batch was read: the next exchange is in step");
         assertEquals(1, next[3]);
+    }
+
+    /**
+     * A Bluetooth link's latency spike: the brick's reply to a poll comes after the poll's timeout,
+     * ahead of the reply to the next request. It is dropped as late, and the next request gets its
+     * own reply, instead of the link being declared lost ("the link lost its framing") for it.
+     */
+    @Test
+    void aReplyThatCameAfterItsTimeoutIsDroppedAndTheNextRequestGetsItsOwn() throws Exception {
+        boolean[] silent = {false};
+        ScriptedLink slow = new ScriptedLink().named("slow brick").framedBy(Framing.lengthPrefixed16LittleEndian())
+                .answering(frame -> silent[0] ? null : answer(frame));
+        NxtBrick brick = brick(slow);
+        brick.request(setOutput(0).telegram(), NxtTelegram.STATUS_REPLY, 0); // the channel has answered: the 200 ms timeout holds from now
+
+        silent[0] = true;
+        assertThrows(LinkTimeoutException.class, () -> brick.requestAllowing(NxtTelegram.getOutputState(1), NxtTelegram.GETOUTPUTSTATE_REPLY, 1));
+        silent[0] = false;
+        byte[] poll = NxtTelegram.getOutputState(1);
+        slow.deliver(answer(withLengthPrefix(poll))); // the poll's reply, late
+
+        byte[] reply = brick.requestAllowing(NxtTelegram.getInputValues(0), NxtTelegram.GETINPUTVALUES_REPLY, 0);
+        assertEquals(NxtTelegram.GETINPUTVALUES, reply[1], "the request got its own reply");
+
+        slow.deliver(answer(withLengthPrefix(poll))); // a reply nobody is owed: the stream is out of step
+        LinkLostException lost = assertThrows(LinkLostException.class, () -> brick.requestAllowing(NxtTelegram.getInputValues(0),
+                NxtTelegram.GETINPUTVALUES_REPLY, 0));
+        assertTrue(lost.getMessage().contains("lost its framing"), lost.getMessage());
+    }
+
+    private static byte[] withLengthPrefix(byte[] telegram) {
+        return NxtTelegram.withLengthPrefix(telegram);
     }
 }
