@@ -97,7 +97,11 @@ class ReplayAcrossRestartIT {
             String user = c.getProperty("username");
             String pass = c.getProperty("password");
             String at = "mqtt://127.0.0.1:" + port;
-            try (HostProcess host = HostProcess.start("replay-robot-host", "--world", world, "--world-robot", "sim-1", "--key-file", key.toString(),
+            // A name of its own, as the tests above: a node's replay window is a file per node name in the user's home, which
+            // one process at a time holds; a host of the same name elsewhere (another build's run of this test) would leave
+            // this one's window in memory only, and the replay after the restart would be taken.
+            String hostName = "replay-robot-host-" + Long.toHexString(new SecureRandom().nextLong());
+            try (HostProcess host = HostProcess.start(hostName, "--world", world, "--world-robot", "sim-1", "--key-file", key.toString(),
                     "--serve", at + "?credentials=" + credentials, "--serve-password-file", password.toString())) {
                 // someone who can read the broker's traffic records the robot's commands (90 s at most), until the end of the
                 // capture: a message of its own on the same topics, published once the move is over
