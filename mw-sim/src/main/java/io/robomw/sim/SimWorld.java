@@ -135,10 +135,13 @@ public final class SimWorld implements AutoCloseable {
 
     /** The phases of a step that {@link #profile} times, in the order a step runs them. */
     public enum Phase {
-        /** The physics step: broadphase, contacts, integration (dyn4j: on the stepping thread; swarm: split between the workers). */
+        /**
+         * The physics step: broadphase, contacts, integration (dyn4j: on the stepping thread; swarm: detection split between the
+         * workers, the solve on the stepping thread, each body's move left to {@link #AFTER_STEP}).
+         */
         PHYSICS,
         /**
-         * Per robot, after the motion (worker threads): encoders, contacts, pose; when sensors are due,
+         * Per robot, after the motion (worker threads): with the swarm engine its body's move, then encoders, contacts, pose; when sensors are due,
          * its body's place in the range index; in a step where no sensor and no cycle is due, also
          * its pending reads and its body's velocities (the whole step in one pass).
          */
@@ -157,7 +160,7 @@ public final class SimWorld implements AutoCloseable {
      * worker threads, robot by robot: their sum is processor time, not wall time).
      */
     public enum RobotPart {
-        /** After the motion: encoders, contacts, the true pose, the trajectory. */
+        /** After the motion: with the swarm engine the body's move itself, then encoders, contacts, the true pose, the trajectory. */
         MOTION,
         /** Its body's place in the range index, when sensors are due. */
         PLACE,
@@ -803,7 +806,8 @@ public final class SimWorld implements AutoCloseable {
             initialSampleDue = false;
         }
         long t = tick(0, null);
-        physics.step(stepSeconds);
+        // the bodies' moves are left to the pass below that reads their new poses (each robot has one body)
+        boolean moves = physics.stepLeavingMoves(stepSeconds);
         t = tick(t, Phase.PHYSICS);
         long step = ++steps;
         boolean record = step % trajectoryEvery == 0;
@@ -831,6 +835,9 @@ public final class SimWorld implements AutoCloseable {
                 try {
                     Clock timer = partClock(i);
                     long t0 = timer == null ? 0 : timer.nanoTime();
+                    if (moves) {
+                        physics.move(st.body[i]);
+                    }
                     if (st.plain[i]) {
                         // a plain robot's step from the world's arrays alone: no object of it is touched
                         st.afterStep(i, physics, record);
@@ -880,6 +887,9 @@ public final class SimWorld implements AutoCloseable {
             Clock timer = partClock(i);
             long t0 = timer == null ? 0 : timer.nanoTime();
             try {
+                if (moves) {
+                    physics.move(st.body[i]);
+                }
                 if (st.plain[i]) {
                     st.afterStep(i, physics, record);
                 } else {

@@ -363,6 +363,21 @@ public final class SwarmPhysics implements Physics {
 
     @Override
     public void step(double dt) {
+        stepLeavingMoves(dt);
+        for (int i = 0; i < n; i++) {
+            move(i);
+        }
+    }
+
+    /**
+     * The step but the bodies' moves: contacts, their resolution, each body's list of contacts; the
+     * caller then {@linkplain #move moves} every body (the world does it in its pass over the robots,
+     * on the worker threads, where it reads the new poses).
+     *
+     * @return {@code true}: every body must be moved
+     */
+    @Override
+    public boolean stepLeavingMoves(double dt) {
         stepSeconds = dt;
         if (gridStale) {
             layOutGrid();
@@ -388,11 +403,8 @@ public final class SwarmPhysics implements Physics {
             contacts.append(batches[b]);
         }
         solve();
-        // a few nanoseconds a body: cheaper than a hand-over to the workers
-        for (int b = 0; b < batchCount; b++) {
-            integrate(b);
-        }
         indexContacts();
+        return true;
     }
 
     /** Chooses the grid's cells (at least a body's diameter wide) and puts each static in the cells it covers. */
@@ -987,26 +999,44 @@ public final class SwarmPhysics implements Physics {
         }
     }
 
-    /** Moves the bodies of one batch by their velocities. */
-    private void integrate(int batch) {
+    /** Moves a body by its velocity: the end of its step (see {@link #stepLeavingMoves}); its cosine and sine from one reduction of its angle. */
+    @Override
+    public void move(int i) {
+        double x = vx[i];
+        double y = vy[i];
+        double o = w[i];
+        if (x == 0 && y == 0 && o == 0) {
+            rest[i] = true;
+            return;
+        }
         double dt = stepSeconds;
-        int to = Math.min(n, (batch + 1) * BATCH);
-        for (int i = batch * BATCH; i < to; i++) {
-            double x = vx[i];
-            double y = vy[i];
-            double o = w[i];
-            if (x == 0 && y == 0 && o == 0) {
-                rest[i] = true;
-                continue;
-            }
-            rest[i] = false;
-            px[i] += x * dt;
-            py[i] += y * dt;
-            if (o != 0) {
-                double a = wrap(angle[i] + o * dt);
-                angle[i] = a;
-                cs[i] = Rotation.cos(a);
-                sn[i] = Rotation.sin(a);
+        rest[i] = false;
+        px[i] += x * dt;
+        py[i] += y * dt;
+        if (o != 0) {
+            double a = wrap(angle[i] + o * dt);
+            angle[i] = a;
+            int q = Rotation.quadrant(a);
+            double r = Rotation.reduce(a, q);
+            double ks = Rotation.kernelSin(r);
+            double kc = Rotation.kernelCos(r);
+            switch (q & 3) {
+                case 0 -> {
+                    cs[i] = kc;
+                    sn[i] = ks;
+                }
+                case 1 -> {
+                    cs[i] = -ks;
+                    sn[i] = kc;
+                }
+                case 2 -> {
+                    cs[i] = -kc;
+                    sn[i] = -ks;
+                }
+                default -> {
+                    cs[i] = ks;
+                    sn[i] = -kc;
+                }
             }
         }
     }
