@@ -509,9 +509,9 @@ public final class SwarmPhysics implements Physics {
         int[] start = cellStart;
         int[] members = cellBodies;
         for (int i = from; i < to; i++) {
-            int own = bodyCell[i];
-            int cx = own % cols;
-            int cy = own / cols;
+            // its cell's column and row as binBodies found them (no division)
+            int cx = col(px[i]);
+            int cy = row(py[i]);
             boolean cornersDone = false;
             for (int d = 0; d < 5; d++) {
                 int xx = cx + (d == 0 ? 0 : d == 1 ? 1 : d - 3);
