@@ -1087,18 +1087,18 @@ public final class SimWorld implements AutoCloseable {
         }
         // every due sensor's rays cast together: what is around the robot is gathered once
         SensorModel.RayBatch batch = rayBatches.get();
+        boolean[] due = batch.due(sensors, step);
         batch.count = 0;
-        for (int k = 0; k < sensors.size(); k++) {
-            SensorModel m = sensors.get(k);
-            if (step < 0 || step % m.everySteps() == 0) {
-                m.addRays(batch, x, y, heading, c, s, pan);
+        for (int k = 0; k < due.length; k++) {
+            if (due[k]) {
+                sensors.get(k).addRays(batch, x, y, heading, c, s, pan);
             }
         }
         rangeIndex.castRays(batch.ox, batch.oy, batch.dx, batch.dy, batch.maxRange, batch.count, i, batch.hits);
         int first = 0;
-        for (int k = 0; k < sensors.size(); k++) {
+        for (int k = 0; k < due.length; k++) {
             SensorModel m = sensors.get(k);
-            if (step < 0 || step % m.everySteps() == 0) {
+            if (due[k]) {
                 ranges[start + k] = m.finishRange(batch.hits, first, tilt, (r == null ? null : r.noise(k)));
                 first += m.rays();
             }
