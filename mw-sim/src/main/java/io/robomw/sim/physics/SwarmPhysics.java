@@ -103,6 +103,8 @@ public final class SwarmPhysics implements Physics {
     private int[] cellBodies = new int[0];
     private int[] cellFill = new int[0];
     private int[] bodyCell = new int[0];
+    /** Each body's centre and radius in cell order, beside {@link #cellBodies}: a cell's neighbours are read in a row, not body by body. */
+    private double[] cellXYR = new double[0];
     private int[] staticCellStart = new int[1];
     private int[] staticCells = new int[0];
     private int[] staticCellRange = new int[0];
@@ -473,6 +475,7 @@ public final class SwarmPhysics implements Physics {
         if (bodyCell.length < n) {
             bodyCell = new int[px.length];
             cellBodies = new int[px.length];
+            cellXYR = new double[3 * px.length];
         }
         if (cellFill.length != cells) {
             cellFill = new int[cells];
@@ -490,7 +493,11 @@ public final class SwarmPhysics implements Physics {
         int[] fill = cellFill;
         System.arraycopy(start, 0, fill, 0, cells);
         for (int i = 0; i < n; i++) {
-            cellBodies[fill[bodyCell[i]]++] = i;
+            int k = fill[bodyCell[i]]++;
+            cellBodies[k] = i;
+            cellXYR[3 * k] = px[i];
+            cellXYR[3 * k + 1] = py[i];
+            cellXYR[3 * k + 2] = radius[i];
         }
     }
 
@@ -508,10 +515,14 @@ public final class SwarmPhysics implements Physics {
         double[] b = out.scratchB;
         int[] start = cellStart;
         int[] members = cellBodies;
+        double[] xyr = cellXYR;
         for (int i = from; i < to; i++) {
             // its cell's column and row as binBodies found them (no division)
-            int cx = col(px[i]);
-            int cy = row(py[i]);
+            double xi = px[i];
+            double yi = py[i];
+            double ri = radius[i];
+            int cx = col(xi);
+            int cy = row(yi);
             boolean cornersDone = false;
             for (int d = 0; d < 5; d++) {
                 int xx = cx + (d == 0 ? 0 : d == 1 ? 1 : d - 3);
@@ -530,13 +541,13 @@ public final class SwarmPhysics implements Physics {
                     k++;
                 }
                 for (; k < end; k++) {
-                    int j = members[k];
-                    double dx = px[j] - px[i];
-                    double dy = py[j] - py[i];
-                    double r = radius[i] + radius[j];
+                    double dx = xyr[3 * k] - xi;
+                    double dy = xyr[3 * k + 1] - yi;
+                    double r = ri + xyr[3 * k + 2];
                     if (dx * dx + dy * dy >= r * r) {
                         continue;
                     }
+                    int j = members[k];
                     if (!cornersDone) {
                         corners(i, a);
                         cornersDone = true;
