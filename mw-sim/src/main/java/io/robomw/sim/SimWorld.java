@@ -919,7 +919,6 @@ public final class SimWorld implements AutoCloseable {
         int dueNow = dueCount;
         readsPending = false;
         parallel.forEach(n, i -> {
-            SimRobot r = robots.get(i);
             Clock timer = partClock(i);
             try {
                 long t0 = timer == null ? 0 : timer.nanoTime();
@@ -940,6 +939,7 @@ public final class SimWorld implements AutoCloseable {
                         }
                     }
                 } else if (c != null) {
+                    SimRobot r = robots.get(i);
                     for (; c != null; c = c.more) {
                         while (c.next <= now) {
                             c.next += c.period; // first: a cycle that throws is not run again in this step
@@ -963,7 +963,7 @@ public final class SimWorld implements AutoCloseable {
                 if (st.plain[i]) {
                     st.drive(i, physics);
                 } else {
-                    r.applyDrive();
+                    robots.get(i).applyDrive();
                 }
                 if (timer != null) {
                     part(timer, RobotPart.DRIVE, t0);
