@@ -108,6 +108,11 @@ public final class SwarmPhysics implements Physics {
     private int[] staticCellStart = new int[1];
     private int[] staticCells = new int[0];
     private int[] staticCellRange = new int[0];
+    /**
+     * Per cell: whether it or one of its eight neighbours holds a static. A body's bounds (at most a cell wide) lie in the
+     * cell of its centre and its neighbours, so a body whose cell has none touches no static.
+     */
+    private boolean[] staticNear = new boolean[0];
 
     // ---- contacts of the step, in a fixed order ----
     private ContactBuffer[] batches = new ContactBuffer[0];
@@ -444,6 +449,19 @@ public final class SwarmPhysics implements Physics {
             count[c + 1] += count[c];
         }
         staticCellStart = count.clone();
+        staticNear = new boolean[cells];
+        for (int cy = 0; cy < rows; cy++) {
+            for (int cx = 0; cx < cols; cx++) {
+                if (count[cy * cols + cx + 1] == count[cy * cols + cx]) {
+                    continue;
+                }
+                for (int ny = Math.max(0, cy - 1); ny <= Math.min(rows - 1, cy + 1); ny++) {
+                    for (int nx = Math.max(0, cx - 1); nx <= Math.min(cols - 1, cx + 1); nx++) {
+                        staticNear[ny * cols + nx] = true;
+                    }
+                }
+            }
+        }
         staticCells = new int[count[cells]];
         int[] fill = Arrays.copyOf(count, cells);
         for (int s = 0; s < statics; s++) {
@@ -556,7 +574,7 @@ public final class SwarmPhysics implements Physics {
                     collidePolygons(out, i, j, a, 4, b, 4, j);
                 }
             }
-            if (statics > 0) {
+            if (statics > 0 && staticNear[cy * cols + cx]) {
                 detectStatics(out, i, a, cornersDone);
             }
         }
