@@ -385,6 +385,29 @@ public final class SensorModel {
         double[] maxRange = new double[16];
         double[] hits = new double[16];
         int count;
+        /** Which of a robot file's range sensors are due at a step: the last list and step asked about, and the answer. */
+        private java.util.List<SensorModel> dueSensors;
+        private long dueStep;
+        private boolean[] due = new boolean[0];
+
+        /**
+         * @param sensors a robot's range sensors (the list its robot file's robots share)
+         * @param step    the step, or -1 for every sensor
+         * @return whether each is due; the same answer for every robot of the file at that step, worked out once a step per
+         *         thread rather than by a division per sensor and robot
+         */
+        boolean[] due(java.util.List<SensorModel> sensors, long step) {
+            if (sensors != dueSensors || step != dueStep) {
+                boolean[] d = due.length == sensors.size() ? due : new boolean[sensors.size()];
+                for (int k = 0; k < d.length; k++) {
+                    d[k] = step < 0 || step % sensors.get(k).everySteps() == 0;
+                }
+                due = d;
+                dueSensors = sensors;
+                dueStep = step;
+            }
+            return due;
+        }
 
         void add(double x, double y, double ux, double uy, double range) {
             if (count == ox.length) {

@@ -67,6 +67,33 @@ public interface Physics {
     void step(double dt);
 
     /**
+     * {@link #step}, but what moves each body by its velocity may be left to the caller, so that the
+     * world moves a body in the same pass over its robots that reads the body's new pose (one pass
+     * over the bodies' arrays instead of two, and on the worker threads). When this returns
+     * {@code true}, the caller must call {@link #move} once for every body, before any query of that
+     * body and before the next step; until then a body's pose, velocity and {@link #atRest} flag are
+     * those before the move. Engines that cannot leave it move every body here and return
+     * {@code false}.
+     *
+     * @param dt the step, seconds
+     * @return whether every body still has to be {@linkplain #move moved}
+     */
+    default boolean stepLeavingMoves(double dt) {
+        step(dt);
+        return false;
+    }
+
+    /**
+     * Moves one body by its velocity, once after {@link #stepLeavingMoves} returned {@code true}: the
+     * last part of that step for this body (the same arithmetic as {@link #step} does). Any thread,
+     * each body by one thread. The default (an engine that moves every body in its step) does nothing.
+     *
+     * @param body a body's number
+     */
+    default void move(int body) {
+    }
+
+    /**
      * @param body a body's number
      * @return its centre's x
      */

@@ -68,23 +68,23 @@ final class Rotation {
     }
 
     /** @return the nearest whole number of quarter turns */
-    private static int quadrant(double a) {
+    static int quadrant(double a) {
         return (int) Math.rint(a * INV_PIO2);
     }
 
     /** @return the angle less that many quarter turns, in about [-π/4, π/4] */
-    private static double reduce(double a, int q) {
+    static double reduce(double a, int q) {
         return (a - q * PIO2_1) - q * PIO2_1T;
     }
 
-    private static double kernelSin(double x) {
+    static double kernelSin(double x) {
         double z = x * x;
         double v = z * x;
         double r = S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)));
         return x + v * (S1 + z * r);
     }
 
-    private static double kernelCos(double x) {
+    static double kernelCos(double x) {
         double z = x * x;
         double r = z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6)))));
         double hz = 0.5 * z;

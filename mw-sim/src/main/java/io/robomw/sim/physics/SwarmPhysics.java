@@ -103,9 +103,16 @@ public final class SwarmPhysics implements Physics {
     private int[] cellBodies = new int[0];
     private int[] cellFill = new int[0];
     private int[] bodyCell = new int[0];
+    /** Each body's centre and radius in cell order, beside {@link #cellBodies}: a cell's neighbours are read in a row, not body by body. */
+    private double[] cellXYR = new double[0];
     private int[] staticCellStart = new int[1];
     private int[] staticCells = new int[0];
     private int[] staticCellRange = new int[0];
+    /**
+     * Per cell: whether it or one of its eight neighbours holds a static. A body's bounds (at most a cell wide) lie in the
+     * cell of its centre and its neighbours, so a body whose cell has none touches no static.
+     */
+    private boolean[] staticNear = new boolean[0];
 
     // ---- contacts of the step, in a fixed order ----
     private ContactBuffer[] batches = new ContactBuffer[0];
@@ -363,6 +370,21 @@ public final class SwarmPhysics implements Physics {
 
     @Override
     public void step(double dt) {
+        stepLeavingMoves(dt);
+        for (int i = 0; i < n; i++) {
+            move(i);
+        }
+    }
+
+    /**
+     * The step but the bodies' moves: contacts, their resolution, each body's list of contacts; the
+     * caller then {@linkplain #move moves} every body (the world does it in its pass over the robots,
+     * on the worker threads, where it reads the new poses).
+     *
+     * @return {@code true}: every body must be moved
+     */
+    @Override
+    public boolean stepLeavingMoves(double dt) {
         stepSeconds = dt;
         if (gridStale) {
             layOutGrid();
@@ -388,11 +410,8 @@ public final class SwarmPhysics implements Physics {
             contacts.append(batches[b]);
         }
         solve();
-        // a few nanoseconds a body: cheaper than a hand-over to the workers
-        for (int b = 0; b < batchCount; b++) {
-            integrate(b);
-        }
         indexContacts();
+        return true;
     }
 
     /** Chooses the grid's cells (at least a body's diameter wide) and puts each static in the cells it covers. */
@@ -430,6 +449,19 @@ public final class SwarmPhysics implements Physics {
             count[c + 1] += count[c];
         }
         staticCellStart = count.clone();
+        staticNear = new boolean[cells];
+        for (int cy = 0; cy < rows; cy++) {
+            for (int cx = 0; cx < cols; cx++) {
+                if (count[cy * cols + cx + 1] == count[cy * cols + cx]) {
+                    continue;
+                }
+                for (int ny = Math.max(0, cy - 1); ny <= Math.min(rows - 1, cy + 1); ny++) {
+                    for (int nx = Math.max(0, cx - 1); nx <= Math.min(cols - 1, cx + 1); nx++) {
+                        staticNear[ny * cols + nx] = true;
+                    }
+                }
+            }
+        }
         staticCells = new int[count[cells]];
         int[] fill = Arrays.copyOf(count, cells);
         for (int s = 0; s < statics; s++) {
@@ -461,6 +493,7 @@ public final class SwarmPhysics implements Physics {
         if (bodyCell.length < n) {
             bodyCell = new int[px.length];
             cellBodies = new int[px.length];
+            cellXYR = new double[3 * px.length];
         }
         if (cellFill.length != cells) {
             cellFill = new int[cells];
@@ -478,7 +511,11 @@ public final class SwarmPhysics implements Physics {
         int[] fill = cellFill;
         System.arraycopy(start, 0, fill, 0, cells);
         for (int i = 0; i < n; i++) {
-            cellBodies[fill[bodyCell[i]]++] = i;
+            int k = fill[bodyCell[i]]++;
+            cellBodies[k] = i;
+            cellXYR[3 * k] = px[i];
+            cellXYR[3 * k + 1] = py[i];
+            cellXYR[3 * k + 2] = radius[i];
         }
     }
 
@@ -496,10 +533,14 @@ public final class SwarmPhysics implements Physics {
         double[] b = out.scratchB;
         int[] start = cellStart;
         int[] members = cellBodies;
+        double[] xyr = cellXYR;
         for (int i = from; i < to; i++) {
-            int own = bodyCell[i];
-            int cx = own % cols;
-            int cy = own / cols;
+            // its cell's column and row as binBodies found them (no division)
+            double xi = px[i];
+            double yi = py[i];
+            double ri = radius[i];
+            int cx = col(xi);
+            int cy = row(yi);
             boolean cornersDone = false;
             for (int d = 0; d < 5; d++) {
                 int xx = cx + (d == 0 ? 0 : d == 1 ? 1 : d - 3);
@@ -518,13 +559,13 @@ public final class SwarmPhysics implements Physics {
                     k++;
                 }
                 for (; k < end; k++) {
-                    int j = members[k];
-                    double dx = px[j] - px[i];
-                    double dy = py[j] - py[i];
-                    double r = radius[i] + radius[j];
+                    double dx = xyr[3 * k] - xi;
+                    double dy = xyr[3 * k + 1] - yi;
+                    double r = ri + xyr[3 * k + 2];
                     if (dx * dx + dy * dy >= r * r) {
                         continue;
                     }
+                    int j = members[k];
                     if (!cornersDone) {
                         corners(i, a);
                         cornersDone = true;
@@ -533,7 +574,7 @@ public final class SwarmPhysics implements Physics {
                     collidePolygons(out, i, j, a, 4, b, 4, j);
                 }
             }
-            if (statics > 0) {
+            if (statics > 0 && staticNear[cy * cols + cx]) {
                 detectStatics(out, i, a, cornersDone);
             }
         }
@@ -987,26 +1028,44 @@ public final class SwarmPhysics implements Physics {
         }
     }
 
-    /** Moves the bodies of one batch by their velocities. */
-    private void integrate(int batch) {
+    /** Moves a body by its velocity: the end of its step (see {@link #stepLeavingMoves}); its cosine and sine from one reduction of its angle. */
+    @Override
+    public void move(int i) {
+        double x = vx[i];
+        double y = vy[i];
+        double o = w[i];
+        if (x == 0 && y == 0 && o == 0) {
+            rest[i] = true;
+            return;
+        }
         double dt = stepSeconds;
-        int to = Math.min(n, (batch + 1) * BATCH);
-        for (int i = batch * BATCH; i < to; i++) {
-            double x = vx[i];
-            double y = vy[i];
-            double o = w[i];
-            if (x == 0 && y == 0 && o == 0) {
-                rest[i] = true;
-                continue;
-            }
-            rest[i] = false;
-            px[i] += x * dt;
-            py[i] += y * dt;
-            if (o != 0) {
-                double a = wrap(angle[i] + o * dt);
-                angle[i] = a;
-                cs[i] = Rotation.cos(a);
-                sn[i] = Rotation.sin(a);
+        rest[i] = false;
+        px[i] += x * dt;
+        py[i] += y * dt;
+        if (o != 0) {
+            double a = wrap(angle[i] + o * dt);
+            angle[i] = a;
+            int q = Rotation.quadrant(a);
+            double r = Rotation.reduce(a, q);
+            double ks = Rotation.kernelSin(r);
+            double kc = Rotation.kernelCos(r);
+            switch (q & 3) {
+                case 0 -> {
+                    cs[i] = kc;
+                    sn[i] = ks;
+                }
+                case 1 -> {
+                    cs[i] = -ks;
+                    sn[i] = kc;
+                }
+                case 2 -> {
+                    cs[i] = -kc;
+                    sn[i] = -ks;
+                }
+                default -> {
+                    cs[i] = ks;
+                    sn[i] = -kc;
+                }
             }
         }
     }

@@ -440,11 +440,24 @@ public final class RangeIndex {
             }
             return;
         }
+        // The rays' reach: a circle about the middle of their box that holds every point of every ray. A body whose
+        // bounding circle lies beyond it is hit by none (its crossings would all be past the rays' ranges), so it is not
+        // gathered; the margin keeps that true whatever the rounding.
+        double mx = (minX + maxX) / 2;
+        double my = (minY + maxY) / 2;
+        double reach = 0;
+        for (int k = 0; k < count; k++) {
+            double ex = ox[k] - mx;
+            double ey = oy[k] - my;
+            reach = Math.max(reach, Math.sqrt(ex * ex + ey * ey) + maxRange[k]);
+        }
+        reach = reach * (1 + 1e-9) + 1e-9;
         Gathered g = gathered.get();
         g.begin(sx1.length + cx.length, robotCount);
         int stamp = g.stamp;
         int[] staticSeen = g.staticSeen;
         int[] robotSeen = g.robotSeen;
+        double[] circles = robotCircles;
         for (int r = r0; r <= r1; r++) {
             for (int c = c0; c <= c1; c++) {
                 int k = r * cols + c;
@@ -460,7 +473,13 @@ public final class RangeIndex {
                     int b = robotItems[j];
                     if (b != self && robotSeen[b] != stamp) {
                         robotSeen[b] = stamp;
-                        g.addRobot(b);
+                        int m = b * 3;
+                        double vx = circles[m] - mx;
+                        double vy = circles[m + 1] - my;
+                        double near = reach + circles[m + 2];
+                        if (vx * vx + vy * vy <= near * near) {
+                            g.addRobot(b);
+                        }
                     }
                 }
             }
@@ -470,13 +489,12 @@ public final class RangeIndex {
         int[] bodies = g.robots;
         int bodyCount = g.robotCount;
         double[] q = corners;
-        double[] circles = robotCircles;
+        // the statics ray by ray, then each body against every ray (its corners loaded once); the nearest is the nearest in any order
         for (int k = 0; k < count; k++) {
             double rx = ox[k];
             double ry = oy[k];
             double ux = dx[k];
             double uy = dy[k];
-            double range = maxRange[k];
             double best = Double.POSITIVE_INFINITY;
             for (int j = 0; j < staticCount; j++) {
                 int item = statics[j];
@@ -484,15 +502,24 @@ public final class RangeIndex {
                         : disc(rx, ry, ux, uy, cx[-item - 1], cy[-item - 1], cr[-item - 1]);
                 best = nearer(best, d);
             }
-            for (int j = 0; j < bodyCount; j++) {
-                int b = bodies[j];
-                int m = b * 3;
-                double vx = circles[m] - rx;
-                double vy = circles[m + 1] - ry;
-                double rad = circles[m + 2];
+            out[k] = best;
+        }
+        for (int j = 0; j < bodyCount; j++) {
+            int b = bodies[j];
+            int m = b * 3;
+            double bx = circles[m];
+            double by = circles[m + 1];
+            double rad = circles[m + 2];
+            for (int k = 0; k < count; k++) {
+                double rx = ox[k];
+                double ry = oy[k];
+                double ux = dx[k];
+                double uy = dy[k];
+                double vx = bx - rx;
+                double vy = by - ry;
                 double along = vx * ux + vy * uy;
                 double across = vx * uy - vy * ux;
-                if (along < -rad || along > range + rad || across > rad || across < -rad) {
+                if (along < -rad || along > maxRange[k] + rad || across > rad || across < -rad) {
                     continue; // the ray passes the body's bounding circle by
                 }
                 int base = b * 8;
@@ -504,12 +531,16 @@ public final class RangeIndex {
                 double y2 = q[base + 5];
                 double x3 = q[base + 6];
                 double y3 = q[base + 7];
+                double best = out[k];
                 best = nearer(best, segment(rx, ry, ux, uy, x0, y0, x1, y1));
                 best = nearer(best, segment(rx, ry, ux, uy, x1, y1, x2, y2));
                 best = nearer(best, segment(rx, ry, ux, uy, x2, y2, x3, y3));
                 best = nearer(best, segment(rx, ry, ux, uy, x3, y3, x0, y0));
+                out[k] = best;
             }
-            out[k] = best <= range ? best : Double.POSITIVE_INFINITY;
+        }
+        for (int k = 0; k < count; k++) {
+            out[k] = out[k] <= maxRange[k] ? out[k] : Double.POSITIVE_INFINITY;
         }
     }
 

@@ -175,11 +175,47 @@ class SwarmPhysicsTest {
         assertTrue(one[3][0] > 2000, "the crowd pushed and shoved (else the solve's order proves nothing): " + one[3][0] + " contacts");
     }
 
+    @Test
+    void shouldGiveBitForBitTheSameBodiesWhenTheCallerMovesThemInAnyOrder() {
+        double[][] whole = crowd(2);
+        double[][] left = crowd(2, true);
+        for (int k = 0; k < whole.length; k++) {
+            assertTrue(java.util.Arrays.equals(whole[k], left[k]), "bodies moved by the caller, backwards: array " + k);
+        }
+        assertTrue(whole[3][0] > 2000, "the crowd pushed and shoved: " + whole[3][0] + " contacts");
+    }
+
+    @Test
+    void shouldKeepEachBodysCosineAndSineThoseOfItsAngle() {
+        SwarmPhysics p = arena();
+        int a = robot(p, 1, 1, 0.3);
+        int b = robot(p, 3, 3, -2.9);
+        for (int s = 0; s < 400; s++) {
+            p.drive(a, 0.1, 1.7);
+            p.drive(b, 0.1, -2.3);
+            p.step(DT);
+            for (int r : new int[] {a, b}) {
+                assertEquals(Double.doubleToRawLongBits(Rotation.cos(p.heading(r))), Double.doubleToRawLongBits(p.cos(r)), "cos, step " + s);
+                assertEquals(Double.doubleToRawLongBits(Rotation.sin(p.heading(r))), Double.doubleToRawLongBits(p.sin(r)), "sin, step " + s);
+                assertEquals(1.0, p.cos(r) * p.cos(r) + p.sin(r) * p.sin(r), 1e-12);
+            }
+        }
+        p.drive(a, 0, 0);
+        p.step(DT);
+        assertTrue(p.atRest(a) && !p.atRest(b), "a body without velocity is at rest, a turning one is not");
+    }
+
+    private static double[][] crowd(int threads) {
+        return crowd(threads, false);
+    }
+
     /**
      * 1500 robots packed 0.15 m apart, each turning at its own seeded rate, detection split between
      * the given threads however few the bodies: their poses after 4 s and the contacts seen.
+     *
+     * @param leaveMoves whether each step leaves the bodies' moves to the caller, which moves them last to first
      */
-    private static double[][] crowd(int threads) {
+    private static double[][] crowd(int threads, boolean leaveMoves) {
         try (Parallel workers = new Parallel(threads)) {
             SwarmPhysics p = new SwarmPhysics(workers, -1, -1, 7, 7, 0);
             p.addStaticBox(3, -0.05, 6.2, 0.1, 0);
@@ -199,7 +235,14 @@ class SwarmPhysicsTest {
                 for (int i = 0; i < n; i++) {
                     p.drive(i, 0.3, turn[i]);
                 }
-                p.step(DT);
+                if (leaveMoves) {
+                    assertTrue(p.stepLeavingMoves(DT), "the swarm engine leaves the moves");
+                    for (int i = n - 1; i >= 0; i--) {
+                        p.move(i);
+                    }
+                } else {
+                    p.step(DT);
+                }
                 contacts += p.contactCount();
             }
             double[] x = new double[n];
