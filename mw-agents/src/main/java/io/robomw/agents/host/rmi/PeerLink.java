@@ -38,7 +38,7 @@ import java.util.concurrent.atomic.AtomicLong;
  * <p><b>Versions.</b> It proposes agent protocol version 4 ({@link Session#BOUND_VERSION}): its
  * authentication names the address it meant to reach (the host's RMI address, resolved), so a
  * host behind a relay refuses it and the link fails saying so. A host that takes it names its
- * agent wire's port, and transfers then go there ({@link WireChannel}, a few connections kept per
+ * agent wire's port, and transfers and arrival news then go there ({@link WireChannel}, a few connections kept per
  * link, one call at a time each), every other call over RMI. A host of a build before version 4
  * refuses it; the link then fails saying so, unless it may talk to older builds
  * ({@link #olderHosts()}): it then authenticates again with version 3 (and 2 if that is refused,
@@ -210,14 +210,14 @@ public final class PeerLink {
                 remote = stub;
                 port = wirePort;
             }
-            if (opCode == Op.TRANSFER.code() && port > 0 && !wireOff && (wireDownUntil == 0 || System.nanoTime() - wireDownUntil > 0)) {
+            if (onWire(opCode) && port > 0 && !wireOff && (wireDownUntil == 0 || System.nanoTime() - wireDownUntil > 0)) {
                 Reply r = callOnWire(s, port, opCode, op, frame);
                 if (r == WireChannel.UNKNOWN_SESSION && attempt == 0) {
                     forget(s);
                     continue;
                 }
                 if (r == WireChannel.UNKNOWN_SESSION) {
-                    throw new PeerException("host " + address + " does not know the session it just made: the TRANSFER was not served", false, null);
+                    throw new PeerException("host " + address + " does not know the session it just made: the " + op + " was not served", false, null);
                 }
                 if (r != null) {
                     return r;
@@ -250,6 +250,11 @@ public final class PeerLink {
                 throw new PeerException("host " + address + " sent a bad reply to " + op + ": " + e.getMessage(), true, e);
             }
         }
+    }
+
+    /** @return whether calls with this operation go on the agent wire when the host offers one (transfers, and arrivals: a call per hop or more) */
+    private static boolean onWire(int opCode) {
+        return opCode == Op.TRANSFER.code() || opCode == Op.ARRIVALS.code();
     }
 
     /** @return whether the host's deserialization filter refused the call's arguments (too large before authentication) */
