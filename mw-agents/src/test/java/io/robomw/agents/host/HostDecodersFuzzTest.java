@@ -102,7 +102,7 @@ class HostDecodersFuzzTest {
     /** Every layout of {@link Bodies}: the first byte picks the reader, the rest is the body. */
     @FuzzTest
     void bodies(FuzzedDataProvider data) {
-        int which = data.consumeInt(0, 8);
+        int which = data.consumeInt(0, 9);
         byte[] body = data.consumeRemainingAsBytes();
         try {
             switch (which) {
@@ -114,6 +114,7 @@ class HostDecodersFuzzTest {
                 case 5 -> Bodies.readAgentRequest(body);
                 case 6 -> Bodies.readArchive(body);
                 case 7 -> Bodies.readOwedEvent(body);
+                case 8 -> Bodies.readArrivals(body);
                 default -> Bodies.readListReply(body, "fuzz");
             }
         } catch (IllegalArgumentException | IOException refused) {

@@ -37,7 +37,7 @@ class WireCodesTest {
     // The tables of Session, AgentEvent, AgentImage and Bodies, written out again.
     private static final Map<Op, Integer> OPS = Map.ofEntries(entry(Op.TRANSFER, 0), entry(Op.PUT_ARCHIVE, 1), entry(Op.LIST, 2), entry(Op.EVENT, 3),
             entry(Op.MESSAGE, 4), entry(Op.RETRACT, 5), entry(Op.DISPOSE, 6), entry(Op.DESCRIBE, 7), entry(Op.WATCH, 8), entry(Op.OWED, 9),
-            entry(Op.DROP_OWED, 10));
+            entry(Op.DROP_OWED, 10), entry(Op.ARRIVALS, 11));
     private static final Map<Reply.Status, Integer> STATUSES = Map.ofEntries(entry(Reply.Status.OK, 0), entry(Reply.Status.NEED_ARCHIVE, 1),
             entry(Reply.Status.DUPLICATE, 2), entry(Reply.Status.REFUSED, 3), entry(Reply.Status.MOVED, 4), entry(Reply.Status.GONE, 5),
             entry(Reply.Status.NOT_HANDLED, 6), entry(Reply.Status.UNKNOWN_SESSION, 7));

@@ -64,6 +64,7 @@ public final class Calls implements HostEndpoint.Handler {
             case PUT_ARCHIVE -> code.onArchive(peer, body);
             case LIST -> Reply.ok(Bodies.listReply(agents()));
             case EVENT -> home.onEvent(peer, body);
+            case ARRIVALS -> home.onArrivals(peer, body);
             case MESSAGE -> onMessage(peer, body);
             case RETRACT, DISPOSE -> onRequest(peer, op, body);
             case DESCRIBE -> Reply.ok(host.messaging.describeSelf().encode());

@@ -213,6 +213,31 @@ public final class Home implements Agency {
     }
 
     /**
+     * News that agents sent from here arrived elsewhere, several in one call.
+     *
+     * @param peer the host that sends it
+     * @param body {@link Bodies#arrivals}
+     * @return the reply (OK also when some of the agents were not sent from here: there is nothing to retry)
+     */
+    public Reply onArrivals(String peer, byte[] body) {
+        List<Bodies.Arrival> arrivals;
+        try {
+            arrivals = Bodies.readArrivals(body);
+        } catch (IllegalArgumentException ex) {
+            return host.refuse("refused arrivals from peer '" + peer + "': " + ex.getMessage());
+        }
+        for (Bodies.Arrival a : arrivals) {
+            AgentHandle h = host.handles.get(a.id());
+            if (h == null) {
+                LOG.debug("host {}: arrival of agent {} which was not sent from here; dropped", host.name, a.id());
+            } else {
+                h.arrived(a.where());
+            }
+        }
+        return Reply.ok();
+    }
+
+    /**
      * A retracted agent of this home comes back: its state completes the retract.
      *
      * @param peer  the host that sends it

@@ -34,7 +34,11 @@ import java.util.function.Predicate;
  *
  * <p><b>Arrivals</b> are sent once, as news; an arrival still queued when a newer one of the same
  * agent is queued is dropped (the host does not send one at all when the agent came from its home
- * or arrived there: the home knows).
+ * or arrived there: the home knows). The arrivals queued one after another for a home go in one
+ * call ({@link Sender#deliverArrivals}, at most {@link #MAX_ARRIVALS_PER_CALL}), sent as soon as
+ * the worker is free: nothing waits to fill a batch, but those that queue while a call is on its
+ * way go together in the next (with a thousand agents hopping, dozens a call instead of a call
+ * each). A reliable event queued between arrivals is sent in its place in the order.
  *
  * <p>An agent leaves a host only after its reports from there are home ({@link #awaitDelivered}),
  * so reports arrive in order even when the agent moves faster than they do.
@@ -50,9 +54,25 @@ final class HomeEvents implements AutoCloseable {
     /** How long a worker waits with nothing to deliver before it ends. */
     static final long IDLE_MILLIS = 10_000;
 
-    /** Sends one event; throws if the home did not take it. */
+    /** The most arrivals sent to a home in one call. */
+    static final int MAX_ARRIVALS_PER_CALL = 256;
+
+    /** Sends events to a home. */
     interface Sender {
+        /** Sends one event; throws if the home did not take it. */
         void deliver(String home, AgentEvent event) throws Exception;
+
+        /**
+         * Sends arrivals, news sent once (by default one {@link #deliver} each).
+         *
+         * @param arrivals 1 to {@link #MAX_ARRIVALS_PER_CALL} arrivals, in the order they were made
+         * @throws Exception if the home did not take them (they are not sent again)
+         */
+        default void deliverArrivals(String home, List<AgentEvent> arrivals) throws Exception {
+            for (AgentEvent a : arrivals) {
+                deliver(home, a);
+            }
+        }
     }
 
     /** Told when a reliable event is no longer owed: the home acknowledged it, or it was dropped or given up. */
@@ -314,7 +334,7 @@ final class HomeEvents implements AutoCloseable {
                 for (Outgoing o = next(); o != null; o = next()) {
                     current = o;
                     if (o.owed() == null) {
-                        sendArrival(o);
+                        sendArrivals(o);
                     } else {
                         deliver(o.owed());
                     }
@@ -340,15 +360,29 @@ final class HomeEvents implements AutoCloseable {
             }
         }
 
-        private void sendArrival(Outgoing o) {
-            if (!latestArrival.remove(o.arrival().id(), o)) {
-                return; // a newer arrival of the same agent is queued: this one is moot
+        /** Sends an arrival and those queued right after it (up to the next reliable event), in one call. */
+        private void sendArrivals(Outgoing first) {
+            List<AgentEvent> batch = new ArrayList<>();
+            if (latestArrival.remove(first.arrival().id(), first)) {
+                batch.add(first.arrival());
+            } // else a newer arrival of the same agent is queued: this one is moot
+            synchronized (this) {
+                for (Outgoing o = queue.peek(); o != null && o.owed() == null && batch.size() < MAX_ARRIVALS_PER_CALL; o = queue.peek()) {
+                    queue.poll();
+                    if (latestArrival.remove(o.arrival().id(), o)) {
+                        batch.add(o.arrival());
+                    }
+                }
+            }
+            if (batch.isEmpty()) {
+                return;
             }
             try {
-                sender.deliver(home, o.arrival());
+                sender.deliverArrivals(home, batch);
             } catch (Throwable e) {
                 OwnerThreads.rethrowFatal(e);
-                LOG.debug("host {}: arrival news for agent {} not delivered to {}: {}", hostName, o.arrival().id(), home, e.getMessage());
+                LOG.debug("host {}: arrival news for {} agents (the first {}) not delivered to {}: {}", hostName, batch.size(), batch.get(0).id(), home,
+                        e.getMessage());
             }
         }
 

@@ -18,8 +18,11 @@ import org.slf4j.LoggerFactory;
 
 import java.io.IOException;
 import java.io.Serializable;
+import java.util.ArrayList;
 import java.util.List;
+import java.util.Set;
 import java.util.UUID;
+import java.util.concurrent.ConcurrentHashMap;
 import java.util.function.Predicate;
 
 /**
@@ -36,11 +39,23 @@ public final class OwedEvents implements AutoCloseable {
     private final HostState host;
     private final Peers peers;
     private final HomeEvents events;
+    /** Homes that refused {@link Op#ARRIVALS} (builds before it): sent one EVENT per arrival. */
+    private final Set<String> singleArrivals = ConcurrentHashMap.newKeySet();
 
     public OwedEvents(HostState host, Peers peers, DeliveryPolicy policy) {
         this.host = host;
         this.peers = peers;
-        this.events = new HomeEvents(host.name, policy, this::deliver, this::settled, host.failures);
+        this.events = new HomeEvents(host.name, policy, new HomeEvents.Sender() {
+            @Override
+            public void deliver(String home, AgentEvent event) throws Exception {
+                OwedEvents.this.deliver(home, event);
+            }
+
+            @Override
+            public void deliverArrivals(String home, List<AgentEvent> arrivals) throws Exception {
+                OwedEvents.this.deliverArrivals(home, arrivals);
+            }
+        }, this::settled, host.failures);
     }
 
     /** Stores an event owed to a home (durably, with a journal) and sends it until the home has it. */
@@ -124,6 +139,36 @@ public final class OwedEvents implements AutoCloseable {
         Reply r = peers.call(home, Op.EVENT, event.encode());
         if (r.status() != Reply.Status.OK) {
             throw new IOException(home + " answered " + r.status() + ": " + r.text());
+        }
+    }
+
+    /**
+     * Sends arrivals in one ARRIVALS call; a home of a build before it (it refuses the operation) is
+     * sent one EVENT each, then and from then on; a home announced at a broker, one event each through it.
+     */
+    private void deliverArrivals(String home, List<AgentEvent> arrivals) throws Exception {
+        HostMessaging messaging = host.messaging;
+        if ((messaging != null && messaging.brokerFor(home) != null) || singleArrivals.contains(home)) {
+            for (AgentEvent a : arrivals) {
+                deliver(home, a);
+            }
+            return;
+        }
+        List<Bodies.Arrival> body = new ArrayList<>(arrivals.size());
+        for (AgentEvent a : arrivals) {
+            body.add(new Bodies.Arrival(a.id(), a.location()));
+        }
+        Reply r = peers.call(home, Op.ARRIVALS, Bodies.arrivals(body));
+        if (r.status() == Reply.Status.REFUSED && r.text().contains("unknown operation code " + Op.ARRIVALS.code())) {
+            LOG.info("host {}: home {} does not take several arrivals in one call ({}); sending it one event each", host.name, home, r.text());
+            singleArrivals.add(home);
+            for (AgentEvent a : arrivals) {
+                deliver(home, a);
+            }
+            return;
+        }
+        if (r.status() != Reply.Status.OK) {
+            throw new IOException(home + " answered " + r.status() + " to " + arrivals.size() + " arrivals: " + r.text());
         }
     }
 

@@ -34,6 +34,7 @@ import java.util.UUID;
  * LIST reply       [count 4] then per agent: [id 16][class name: length 2, modified UTF-8][status 1][hop 8][home: length 2, modified UTF-8]
  * MESSAGE body     [id 16][one-way 1][content: the serialized value]
  * RETRACT, DISPOSE [id 16]
+ * ARRIVALS body    [count 2, 1 to {@value #MAX_ARRIVALS}] then per arrival: [id 16][where: length 2, modified UTF-8]
  * PUT_ARCHIVE body [claimed SHA-256 32][the jar]
  * owed event       [home length 2][home UTF-8][the encoded AgentEvent]
  * OWED reply       [count 4] then per delivery: [agent id 16][event seq 8][event kind 1, {@link AgentEvent.Kind}'s code]
@@ -452,6 +453,70 @@ public final class Bodies {
         }
         ByteBuffer b = ByteBuffer.wrap(body);
         return new UUID(b.getLong(), b.getLong());
+    }
+
+    // ---- ARRIVALS ----
+
+    /** The most arrivals in one ARRIVALS body. */
+    public static final int MAX_ARRIVALS = 1_024;
+
+    /**
+     * News that an agent arrived at a host.
+     *
+     * @param id    the agent
+     * @param where the host it arrived at (its address)
+     */
+    public record Arrival(UUID id, String where) {
+    }
+
+    /**
+     * @param arrivals 1 to {@value #MAX_ARRIVALS} arrivals
+     * @return an ARRIVALS body
+     * @throws IllegalArgumentException if there are none or more than {@value #MAX_ARRIVALS}
+     */
+    public static byte[] arrivals(List<Arrival> arrivals) {
+        if (arrivals.isEmpty() || arrivals.size() > MAX_ARRIVALS) {
+            throw new IllegalArgumentException("an ARRIVALS body holds 1 to " + MAX_ARRIVALS + " arrivals, not " + arrivals.size());
+        }
+        try {
+            ByteArrayOutputStream bytes = new ByteArrayOutputStream(2 + arrivals.size() * (ID_BYTES + 2 + 32));
+            DataOutputStream out = new DataOutputStream(bytes);
+            out.writeShort(arrivals.size());
+            for (Arrival a : arrivals) {
+                out.writeLong(a.id().getMostSignificantBits());
+                out.writeLong(a.id().getLeastSignificantBits());
+                out.writeUTF(a.where());
+            }
+            return bytes.toByteArray();
+        } catch (IOException e) {
+            throw new UncheckedIOException(e);
+        }
+    }
+
+    /**
+     * @param body an ARRIVALS body
+     * @return the arrivals it holds, in order
+     * @throws IllegalArgumentException if it is cut short, has bytes left over, or claims none or more than {@value #MAX_ARRIVALS}
+     */
+    public static List<Arrival> readArrivals(byte[] body) {
+        DataInputStream in = new DataInputStream(new ByteArrayInputStream(body));
+        try {
+            int n = in.readUnsignedShort();
+            if (n == 0 || n > MAX_ARRIVALS) {
+                throw new IllegalArgumentException("an ARRIVALS body claiming " + n + " arrivals; it holds 1 to " + MAX_ARRIVALS);
+            }
+            List<Arrival> out = new ArrayList<>(n);
+            for (int i = 0; i < n; i++) {
+                UUID id = new UUID(in.readLong(), in.readLong());
+                out.add(new Arrival(id, in.readUTF()));
+            }
+            if (in.available() > 0) {
+                throw new IllegalArgumentException("an ARRIVALS body with " + in.available() + " bytes after its " + n + " arrivals");
+            }
+            return out;
+        } catch (IOException e) {
+            throw new IllegalArgumentException("an ARRIVALS body cut short (" + body.length + " bytes)", e);
+        }
     }
 
     // ---- PUT_ARCHIVE ----

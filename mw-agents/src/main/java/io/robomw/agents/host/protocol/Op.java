@@ -35,7 +35,13 @@ public enum Op implements WireCode {
     /** List the reports and results this host owes homes and has not delivered ({@link OwedDelivery}). */
     OWED(9),
     /** Drop owed deliveries ({@link OwedSelector}); the reply lists the ones dropped. */
-    DROP_OWED(10);
+    DROP_OWED(10),
+    /**
+     * News for a home that several of its agents arrived elsewhere, in one call ({@code Bodies.arrivals});
+     * sent on the agent wire when the host offers one. A host of a build before it refuses the code, and
+     * is then sent one {@link #EVENT} per arrival.
+     */
+    ARRIVALS(11);
 
     private static final WireCodes<Op> CODES = WireCodes.of(Op.class, "operation");
 

@@ -38,7 +38,7 @@ import java.util.concurrent.atomic.AtomicLong;
  * <p><b>Versions.</b> It proposes agent protocol version 4 ({@link Session#BOUND_VERSION}): its
  * authentication names the address it meant to reach (the host's RMI address, resolved), so a
  * host behind a relay refuses it and the link fails saying so. A host that takes it names its
- * agent wire's port, and transfers then go there ({@link WireChannel}, a few connections kept per
+ * agent wire's port, and transfers and arrival news then go there ({@link WireChannel}, a few connections kept per
  * link, one call at a time each), every other call over RMI. A host of a build before version 4
  * refuses it; the link then fails saying so, unless it may talk to older builds
  * ({@link #olderHosts()}): it then authenticates again with version 3 (and 2 if that is refused,
@@ -56,9 +56,13 @@ public final class PeerLink {
     private final HostSockets.Client sockets;
     private final SecureRandom random;
     private final AtomicLong seq = new AtomicLong();
+    private final AtomicLong wiresOpened = new AtomicLong();
     private final javax.net.ssl.SSLContext wireTls;
     private final int timeoutMillis;
+    /** The idle wire connections, the one used last at the end (taken first, so that those past {@link #MAX_IDLE_WIRES} age at the front). */
     private final java.util.ArrayDeque<WireChannel> idleWires = new java.util.ArrayDeque<>();
+    /** Whether a trim of the surplus idle connections is scheduled (guarded by this). */
+    private boolean trimScheduled;
     /** One permit per wire connection the link may have in use ({@link #MAX_WIRES}). */
     private final java.util.concurrent.Semaphore wires = new java.util.concurrent.Semaphore(MAX_WIRES, true);
     private AgentHostRemote stub;
@@ -87,11 +91,17 @@ public final class PeerLink {
      */
     static final int MAX_WIRES = 8;
     /**
-     * The most idle wire connections a link keeps (half of {@link #MAX_WIRES}): a burst reuses them
-     * and opens the rest, which close when it is over, so an idle host holds few sockets and threads
-     * for each peer (the soak runs bound what a host keeps after a run: docs/reliability.md).
+     * The most idle wire connections a link keeps for long (half of {@link #MAX_WIRES}), so an idle
+     * host holds few sockets and threads for each peer (the soak runs bound what a host keeps after a
+     * run: docs/reliability.md). Those past it are kept while they are used at least every
+     * {@link #SURPLUS_LINGER_NANOS} and closed after that idle: a sustained load that needs more
+     * reuses them rather than closing one at the end of a call and opening another for the next
+     * (1,000 agents among 4 hosts opened and closed about 90 connections a second at each host,
+     * each with a HELLO, a server thread and a handshake; docs/benchmarks.md, "Many agents at once").
      */
     static final int MAX_IDLE_WIRES = 4;
+    /** How long an idle connection past {@link #MAX_IDLE_WIRES} is kept for the next call before it is closed. */
+    static final long SURPLUS_LINGER_NANOS = 1_000_000_000L;
     /** An idle wire connection older than this is closed rather than used (the host closes idle ones after 2 minutes). */
     static final long WIRE_STALE_NANOS = 60_000_000_000L;
 
@@ -122,7 +132,11 @@ public final class PeerLink {
     }
 
     /** @param spin how long a transfer waits for its reply by spinning before it blocks (0: never) */
-    /** @param tagger computes the tags of large frames while they are written ({@link WireWriter}); {@code null}: the writing thread does */
+    /**
+     * @param tagger computes the tags of large frames while they are written ({@link WireWriter}), and runs the trims of
+     *               surplus idle connections; {@code null}: the writing thread tags, and surplus idle connections are
+     *               closed only when the link is next used
+     */
     void wireTagger(java.util.concurrent.Executor tagger) {
         this.wireTagger = tagger;
     }
@@ -210,14 +224,14 @@ public final class PeerLink {
                 remote = stub;
                 port = wirePort;
             }
-            if (opCode == Op.TRANSFER.code() && port > 0 && !wireOff && (wireDownUntil == 0 || System.nanoTime() - wireDownUntil > 0)) {
+            if (onWire(opCode) && port > 0 && !wireOff && (wireDownUntil == 0 || System.nanoTime() - wireDownUntil > 0)) {
                 Reply r = callOnWire(s, port, opCode, op, frame);
                 if (r == WireChannel.UNKNOWN_SESSION && attempt == 0) {
                     forget(s);
                     continue;
                 }
                 if (r == WireChannel.UNKNOWN_SESSION) {
-                    throw new PeerException("host " + address + " does not know the session it just made: the TRANSFER was not served", false, null);
+                    throw new PeerException("host " + address + " does not know the session it just made: the " + op + " was not served", false, null);
                 }
                 if (r != null) {
                     return r;
@@ -250,6 +264,11 @@ public final class PeerLink {
                 throw new PeerException("host " + address + " sent a bad reply to " + op + ": " + e.getMessage(), true, e);
             }
         }
+    }
+
+    /** @return whether calls with this operation go on the agent wire when the host offers one (transfers, and arrivals: a call per hop or more) */
+    private static boolean onWire(int opCode) {
+        return opCode == Op.TRANSFER.code() || opCode == Op.ARRIVALS.code();
     }
 
     /** @return whether the host's deserialization filter refused the call's arguments (too large before authentication) */
@@ -298,6 +317,7 @@ public final class PeerLink {
         WireChannel ch = idleWire(s);
         if (ch == null) {
             try {
+                wiresOpened.incrementAndGet();
                 ch = WireChannel.connect(s, address.host(), port, wireTls, timeoutMillis, wireTagger);
             } catch (IOException e) {
                 wireUnreachable(port, e);
@@ -356,11 +376,49 @@ public final class PeerLink {
     }
 
     private synchronized void giveBack(WireChannel ch) {
-        if (ch.session == session && idleWires.size() < MAX_IDLE_WIRES) {
+        if (ch.session == session && idleWires.size() < MAX_WIRES) {
             idleWires.addLast(ch);
+            trimSurplus();
         } else {
             ch.close();
         }
+    }
+
+    /**
+     * Closes the idle connections past {@link #MAX_IDLE_WIRES} that have lingered unused for
+     * {@link #SURPLUS_LINGER_NANOS}; while some are left, a trim is scheduled (on the wire tagger's
+     * threads) for when the oldest has lingered, so a link that falls quiet is down to
+     * {@link #MAX_IDLE_WIRES} soon after. Called with the lock held.
+     */
+    private void trimSurplus() {
+        while (idleWires.size() > MAX_IDLE_WIRES && idleWires.peekFirst().idleNanos() >= SURPLUS_LINGER_NANOS) {
+            idleWires.pollFirst().close();
+        }
+        java.util.concurrent.Executor on = wireTagger;
+        if (idleWires.size() > MAX_IDLE_WIRES && !trimScheduled && on != null) {
+            long wait = Math.max(1, SURPLUS_LINGER_NANOS - idleWires.peekFirst().idleNanos());
+            try {
+                java.util.concurrent.CompletableFuture.delayedExecutor(wait, java.util.concurrent.TimeUnit.NANOSECONDS, on).execute(this::scheduledTrim);
+                trimScheduled = true;
+            } catch (java.util.concurrent.RejectedExecutionException closing) {
+                // the host is closing: its links close their connections
+            }
+        }
+    }
+
+    private synchronized void scheduledTrim() {
+        trimScheduled = false;
+        trimSurplus();
+    }
+
+    /** @return how many wire connections the link has opened (or tried to) so far (for tests) */
+    long wiresOpened() {
+        return wiresOpened.get();
+    }
+
+    /** @return how many idle wire connections the link keeps now (for tests) */
+    synchronized int idleWireCount() {
+        return idleWires.size();
     }
 
     private void closeIdleWires() {

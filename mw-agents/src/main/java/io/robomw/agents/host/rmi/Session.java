@@ -84,6 +84,8 @@ import java.util.Arrays;
  * <tr><td>8</td><td>WATCH</td><td>the last event number the watcher saw (u64); the reply is laid out in {@link HostWatch}</td></tr>
  * <tr><td>9</td><td>OWED</td><td>empty; the reply's body is {@link Bodies#owedReply}</td></tr>
  * <tr><td>10</td><td>DROP_OWED</td><td>{@link Bodies#dropOwed}; the reply's body lists the ones dropped, as {@link Bodies#owedReply}</td></tr>
+ * <tr><td>11</td><td>ARRIVALS</td><td>{@link Bodies#arrivals}: news for the home that some of its agents arrived elsewhere; sent on the agent
+ * wire where there is one</td></tr>
  * </table>
  *
  * <table>
