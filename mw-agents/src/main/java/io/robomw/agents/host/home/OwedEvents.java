@@ -149,9 +149,7 @@ public final class OwedEvents implements AutoCloseable {
     private void deliverArrivals(String home, List<AgentEvent> arrivals) throws Exception {
         HostMessaging messaging = host.messaging;
         if ((messaging != null && messaging.brokerFor(home) != null) || singleArrivals.contains(home)) {
-            for (AgentEvent a : arrivals) {
-                deliver(home, a);
-            }
+            deliverEach(home, arrivals);
             return;
         }
         List<Bodies.Arrival> body = new ArrayList<>(arrivals.size());
@@ -162,13 +160,17 @@ public final class OwedEvents implements AutoCloseable {
         if (r.status() == Reply.Status.REFUSED && r.text().contains("unknown operation code " + Op.ARRIVALS.code())) {
             LOG.info("host {}: home {} does not take several arrivals in one call ({}); sending it one event each", host.name, home, r.text());
             singleArrivals.add(home);
-            for (AgentEvent a : arrivals) {
-                deliver(home, a);
-            }
+            deliverEach(home, arrivals);
             return;
         }
         if (r.status() != Reply.Status.OK) {
             throw new IOException(home + " answered " + r.status() + " to " + arrivals.size() + " arrivals: " + r.text());
+        }
+    }
+
+    private void deliverEach(String home, List<AgentEvent> arrivals) throws Exception {
+        for (AgentEvent a : arrivals) {
+            deliver(home, a);
         }
     }
 
