@@ -28,7 +28,13 @@ public final class NxtBrick {
     private final String robot;
     private final BrickChannel channel;
     private final RoundTripEstimate roundTrip = new RoundTripEstimate();
-    /** Replies that did not come within their timeout and may still come; only touched inside the channel's exchanges. */
+    /**
+     * Replies that did not come within their timeout and may still come; only touched inside the
+     * channel's exchanges. Kept across a reopen of the link: a serial port's input (a USB or
+     * Bluetooth serial device) survives a close and an open, so a late reply can still come after
+     * it; over a reopened TCP link none can, and only a well-formed reply to another command is
+     * ever dropped on this count.
+     */
     private int owed;
 
     /**
