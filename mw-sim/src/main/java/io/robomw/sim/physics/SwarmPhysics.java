@@ -129,6 +129,12 @@ public final class SwarmPhysics implements Physics {
     private ContactBuffer[] batches = new ContactBuffer[0];
     private final ContactBuffer contacts = new ContactBuffer();
     private int[] bodyContactStart = new int[1];
+    /**
+     * Whether {@link #bodyContactStart} lists the last step's contacts by body: made by the first {@link #contacts} call
+     * after a step (a robot with touch sensors asks), not by every step (a pass over every body, on the stepping thread,
+     * that a swarm without touch sensors never reads).
+     */
+    private volatile boolean contactsIndexed;
     private int[] bodyContacts = new int[0];
     private double stepSeconds;
 
@@ -359,6 +365,9 @@ public final class SwarmPhysics implements Physics {
 
     @Override
     public void contacts(int body, ContactSink sink) {
+        if (!contactsIndexed) {
+            indexContactsOnce();
+        }
         if (body + 1 >= bodyContactStart.length) {
             return; // added since the last step: it has touched nothing yet
         }
@@ -426,7 +435,7 @@ public final class SwarmPhysics implements Physics {
             contacts.append(batches[b]);
         }
         solve();
-        indexContacts();
+        contactsIndexed = false;
         return true;
     }
 
@@ -559,9 +568,9 @@ public final class SwarmPhysics implements Physics {
         double[] xyr = bodyXYR;
         for (int i = from; i < to; i++) {
             // its cell's column and row as binBodies found them (no division)
-            double xi = px[i];
-            double yi = py[i];
-            double ri = radius[i];
+            double xi = xyr[3 * i];
+            double yi = xyr[3 * i + 1];
+            double ri = xyr[3 * i + 2];
             int cx = col(xi);
             int cy = row(yi);
             boolean cornersDone = false;
@@ -1097,6 +1106,14 @@ public final class SwarmPhysics implements Physics {
                     sn[i] = -kc;
                 }
             }
+        }
+    }
+
+    /** {@link #indexContacts}, by the first of the threads asking for contacts after a step. */
+    private synchronized void indexContactsOnce() {
+        if (!contactsIndexed) {
+            indexContacts();
+            contactsIndexed = true;
         }
     }
 
