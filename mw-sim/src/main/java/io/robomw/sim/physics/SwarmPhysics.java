@@ -102,9 +102,20 @@ public final class SwarmPhysics implements Physics {
     private int[] cellStart = new int[1];
     private int[] cellBodies = new int[0];
     private int[] cellFill = new int[0];
+    /**
+     * Each body's cell: of the grid as laid out at the last step, written by the body's {@link #move} (on the worker
+     * thread that moved it, while its new position is in that processor's cache), so the binning on the stepping thread
+     * reads one int a body instead of its position; all of them again whenever the grid is laid out anew.
+     */
     private int[] bodyCell = new int[0];
-    /** Each body's centre and radius in cell order, beside {@link #cellBodies}: a cell's neighbours are read in a row, not body by body. */
-    private double[] cellXYR = new double[0];
+    /**
+     * Each body's centre and radius in one place, {x, y, r} by body (written where its position is: {@link #addBody},
+     * {@link #move}): detection reads a neighbour's in one cache line, and the binning on the stepping thread copies
+     * nothing (a cell-ordered copy made there read every body's position just written by another processor).
+     */
+    private double[] bodyXYR = new double[0];
+    /** Whether {@link #bodyCell} holds every body's cell in the grid as it is laid out (false until a step has binned them). */
+    private boolean cellsKnown;
     private int[] staticCellStart = new int[1];
     private int[] staticCells = new int[0];
     private int[] staticCellRange = new int[0];
@@ -118,6 +129,12 @@ public final class SwarmPhysics implements Physics {
     private ContactBuffer[] batches = new ContactBuffer[0];
     private final ContactBuffer contacts = new ContactBuffer();
     private int[] bodyContactStart = new int[1];
+    /**
+     * Whether {@link #bodyContactStart} lists the last step's contacts by body: made by the first {@link #contacts} call
+     * after a step (a robot with touch sensors asks), not by every step (a pass over every body, on the stepping thread,
+     * that a swarm without touch sensors never reads).
+     */
+    private volatile boolean contactsIndexed;
     private int[] bodyContacts = new int[0];
     private double stepSeconds;
 
@@ -256,6 +273,8 @@ public final class SwarmPhysics implements Physics {
             friction = Arrays.copyOf(friction, m);
             radius = Arrays.copyOf(radius, m);
             rest = Arrays.copyOf(rest, m);
+            bodyCell = Arrays.copyOf(bodyCell, m);
+            bodyXYR = Arrays.copyOf(bodyXYR, 3 * m);
         }
         int i = n++;
         px[i] = x;
@@ -273,6 +292,9 @@ public final class SwarmPhysics implements Physics {
         if (radius[i] > maxRadius) {
             maxRadius = radius[i];
         }
+        bodyXYR[3 * i] = x;
+        bodyXYR[3 * i + 1] = y;
+        bodyXYR[3 * i + 2] = radius[i];
         gridStale = true;
         return i;
     }
@@ -343,6 +365,9 @@ public final class SwarmPhysics implements Physics {
 
     @Override
     public void contacts(int body, ContactSink sink) {
+        if (!contactsIndexed) {
+            indexContactsOnce();
+        }
         if (body + 1 >= bodyContactStart.length) {
             return; // added since the last step: it has touched nothing yet
         }
@@ -410,7 +435,7 @@ public final class SwarmPhysics implements Physics {
             contacts.append(batches[b]);
         }
         solve();
-        indexContacts();
+        contactsIndexed = false;
         return true;
     }
 
@@ -424,6 +449,7 @@ public final class SwarmPhysics implements Physics {
             cell *= 1.5;
         }
         inv = 1 / cell;
+        cellsKnown = false;
         cols = (int) Math.ceil(width * inv) + 1;
         rows = (int) Math.ceil(height * inv) + 1;
         int cells = cols * rows;
@@ -487,23 +513,28 @@ public final class SwarmPhysics implements Physics {
         return r < 0 ? 0 : Math.min(r, rows - 1);
     }
 
-    /** Sorts the bodies by the cell of their centre (a counting sort, in body order within a cell). */
+    /**
+     * Sorts the bodies by the cell of their centre (a counting sort, in body order within a cell), from the cells their
+     * moves found ({@link #bodyCell}), or found here after the grid was laid out anew.
+     */
     private void binBodies() {
         int cells = cols * rows;
-        if (bodyCell.length < n) {
-            bodyCell = new int[px.length];
+        if (cellBodies.length < n) {
             cellBodies = new int[px.length];
-            cellXYR = new double[3 * px.length];
         }
         if (cellFill.length != cells) {
             cellFill = new int[cells];
         }
         int[] start = cellStart;
         Arrays.fill(start, 0);
+        if (!cellsKnown) {
+            for (int i = 0; i < n; i++) {
+                bodyCell[i] = cellOf(px[i], py[i]);
+            }
+            cellsKnown = true;
+        }
         for (int i = 0; i < n; i++) {
-            int c = row(py[i]) * cols + col(px[i]);
-            bodyCell[i] = c;
-            start[c + 1]++;
+            start[bodyCell[i] + 1]++;
         }
         for (int c = 0; c < cells; c++) {
             start[c + 1] += start[c];
@@ -511,12 +542,13 @@ public final class SwarmPhysics implements Physics {
         int[] fill = cellFill;
         System.arraycopy(start, 0, fill, 0, cells);
         for (int i = 0; i < n; i++) {
-            int k = fill[bodyCell[i]]++;
-            cellBodies[k] = i;
-            cellXYR[3 * k] = px[i];
-            cellXYR[3 * k + 1] = py[i];
-            cellXYR[3 * k + 2] = radius[i];
+            cellBodies[fill[bodyCell[i]]++] = i;
         }
+    }
+
+    /** @return the grid cell of a point (see {@link #col}, {@link #row}) */
+    private int cellOf(double x, double y) {
+        return row(y) * cols + col(x);
     }
 
     /**
@@ -533,12 +565,12 @@ public final class SwarmPhysics implements Physics {
         double[] b = out.scratchB;
         int[] start = cellStart;
         int[] members = cellBodies;
-        double[] xyr = cellXYR;
+        double[] xyr = bodyXYR;
         for (int i = from; i < to; i++) {
             // its cell's column and row as binBodies found them (no division)
-            double xi = px[i];
-            double yi = py[i];
-            double ri = radius[i];
+            double xi = xyr[3 * i];
+            double yi = xyr[3 * i + 1];
+            double ri = xyr[3 * i + 2];
             int cx = col(xi);
             int cy = row(yi);
             boolean cornersDone = false;
@@ -559,13 +591,13 @@ public final class SwarmPhysics implements Physics {
                     k++;
                 }
                 for (; k < end; k++) {
-                    double dx = xyr[3 * k] - xi;
-                    double dy = xyr[3 * k + 1] - yi;
-                    double r = ri + xyr[3 * k + 2];
+                    int j = members[k];
+                    double dx = xyr[3 * j] - xi;
+                    double dy = xyr[3 * j + 1] - yi;
+                    double r = ri + xyr[3 * j + 2];
                     if (dx * dx + dy * dy >= r * r) {
                         continue;
                     }
-                    int j = members[k];
                     if (!cornersDone) {
                         corners(i, a);
                         cornersDone = true;
@@ -1040,8 +1072,15 @@ public final class SwarmPhysics implements Physics {
         }
         double dt = stepSeconds;
         rest[i] = false;
-        px[i] += x * dt;
-        py[i] += y * dt;
+        double nx = px[i] + x * dt;
+        double ny = py[i] + y * dt;
+        px[i] = nx;
+        py[i] = ny;
+        bodyXYR[3 * i] = nx;
+        bodyXYR[3 * i + 1] = ny;
+        if (cellsKnown) {
+            bodyCell[i] = cellOf(nx, ny); // the grid's as the step laid it out: the next binning's
+        }
         if (o != 0) {
             double a = wrap(angle[i] + o * dt);
             angle[i] = a;
@@ -1067,6 +1106,14 @@ public final class SwarmPhysics implements Physics {
                     sn[i] = -kc;
                 }
             }
+        }
+    }
+
+    /** {@link #indexContacts}, by the first of the threads asking for contacts after a step. */
+    private synchronized void indexContactsOnce() {
+        if (!contactsIndexed) {
+            indexContacts();
+            contactsIndexed = true;
         }
     }
 

@@ -38,7 +38,11 @@ public final class RangeIndex {
     // robot; edge k joins corner k and k + 1), rebuilt by indexRobots
     private double[] corners = new double[0];
     private int robotCount;
-    /** Per robot: first and last column, first and last row its body covers. */
+    /**
+     * Per robot: the first and the last cell its body's bounding box covers (lower-left and upper-right, as row * cols +
+     * column): two ints a robot, written by {@link #placeRobot} on the thread that places it and read by
+     * {@link #indexPlacedRobots} on another, so as little as it can be.
+     */
     private int[] robotCells = new int[0];
     private final int[] robotStart;
     private int[] robotFill = new int[0];
@@ -190,7 +194,7 @@ public final class RangeIndex {
         }
         corners = new double[count * 8];
         robotCircles = new double[count * 3];
-        robotCells = new int[count * 4];
+        robotCells = new int[count * 2];
         robotCount = count;
         robotItems = new int[0];
         Arrays.fill(robotStart, 0);
@@ -236,7 +240,6 @@ public final class RangeIndex {
         double y2 = y - hl * s - hw * c;
         double x3 = x + hl * c + hw * s;
         double y3 = y + hl * s - hw * c;
-        int e = i * 4;
         int k = i * 8;
         double[] q = corners;
         q[k] = x0;
@@ -252,10 +255,12 @@ public final class RangeIndex {
         circles[m] = x;
         circles[m + 1] = y;
         circles[m + 2] = Math.sqrt(hl * hl + hw * hw) * (1 + 1e-9) + 1e-9; // every corner inside, whatever the rounding
-        robotCells[e] = clampCol(Math.min(Math.min(x0, x1), Math.min(x2, x3)));
-        robotCells[e + 1] = clampCol(Math.max(Math.max(x0, x1), Math.max(x2, x3)));
-        robotCells[e + 2] = clampRow(Math.min(Math.min(y0, y1), Math.min(y2, y3)));
-        robotCells[e + 3] = clampRow(Math.max(Math.max(y0, y1), Math.max(y2, y3)));
+        int c0 = clampCol(Math.min(Math.min(x0, x1), Math.min(x2, x3)));
+        int c1 = clampCol(Math.max(Math.max(x0, x1), Math.max(x2, x3)));
+        int r0 = clampRow(Math.min(Math.min(y0, y1), Math.min(y2, y3)));
+        int r1 = clampRow(Math.max(Math.max(y0, y1), Math.max(y2, y3)));
+        robotCells[2 * i] = r0 * cols + c0;
+        robotCells[2 * i + 1] = r1 * cols + c1;
     }
 
     /**
@@ -269,10 +274,14 @@ public final class RangeIndex {
         Arrays.fill(start, 0);
         int[] rc = robotCells;
         for (int i = 0; i < robotCount; i++) {
-            int e = i * 4;
-            int spanC = rc[e + 1] - rc[e] + 1;
-            for (int r = rc[e + 2]; r <= rc[e + 3]; r++) {
-                int k = r * cols + rc[e];
+            int first = rc[2 * i];
+            int last = rc[2 * i + 1];
+            if (first == last) {
+                start[first + 1]++; // most bodies lie in one cell
+                continue;
+            }
+            int spanC = spanColumns(first, last);
+            for (int k = first; k <= last; k += cols) {
                 for (int j = 0; j < spanC; j++) {
                     start[k + j + 1]++;
                 }
@@ -289,15 +298,29 @@ public final class RangeIndex {
         System.arraycopy(start, 0, fill, 0, cells);
         int[] items = robotItems;
         for (int i = 0; i < robotCount; i++) {
-            int e = i * 4;
-            int spanC = rc[e + 1] - rc[e] + 1;
-            for (int r = rc[e + 2]; r <= rc[e + 3]; r++) {
-                int k = r * cols + rc[e];
+            int first = rc[2 * i];
+            int last = rc[2 * i + 1];
+            if (first == last) {
+                items[fill[first]++] = i;
+                continue;
+            }
+            int spanC = spanColumns(first, last);
+            for (int k = first; k <= last; k += cols) {
                 for (int j = 0; j < spanC; j++) {
                     items[fill[k + j]++] = i;
                 }
             }
         }
+    }
+
+    /**
+     * @param first a box's lower-left cell (row * cols + column)
+     * @param last  its upper-right cell, at or after first's column
+     * @return how many columns the box spans
+     */
+    private int spanColumns(int first, int last) {
+        int d = last - first;
+        return (d < cols ? d : d % cols) + 1; // within one row the difference is the columns' (no division)
     }
 
     /**
