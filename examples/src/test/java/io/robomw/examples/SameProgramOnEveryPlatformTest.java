@@ -17,6 +17,8 @@ import java.net.InetAddress;
 import java.net.InetSocketAddress;
 import java.util.Optional;
 import org.junit.jupiter.api.io.TempDir;
+import org.junit.jupiter.api.parallel.Execution;
+import org.junit.jupiter.api.parallel.ExecutionMode;
 import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.ValueSource;
 
@@ -38,6 +40,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
  * {@code RANGE}. Each robot starts 0.7 m from the east wall of its world, facing it, so its last
  * corner sample sees that wall.
  */
+@Execution(ExecutionMode.CONCURRENT)
 class SameProgramOnEveryPlatformTest {
 
     /** The same two-wheeled geometry everywhere; only platform, connection, ports and encoders differ. */
@@ -148,9 +151,13 @@ class SameProgramOnEveryPlatformTest {
         }
     }
 
+    /**
+     * The platforms run side by side (the class is concurrent: each has its own world, emulator, link and files), the
+     * longest first: the vehicles' real-time flights and the Intelligent Interface's real-time world.
+     */
     @ParameterizedTest
-    @ValueSource(strings = {"nxt", "ev3", "ft-intelligent", "ft-txt", "aibo", "aibo-sim", "sim", "sim-range", "copter", "copter-px4",
-            "copter-sim", "boat", "boat-sim"})
+    @ValueSource(strings = {"copter", "copter-px4", "ft-intelligent", "boat", "nxt", "ev3", "ft-txt", "aibo", "aibo-sim", "sim", "sim-range",
+            "copter-sim", "boat-sim"})
     void shouldDriveTheSquareAndSeeTheWallOnEveryPlatform(String platform) throws Exception {
         Files.writeString(dir.resolve("body.yaml"), robotFile(platform, "port: /dev/unused"));
         Files.writeString(dir.resolve("world.yaml"), """
