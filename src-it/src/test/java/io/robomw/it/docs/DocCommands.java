@@ -144,6 +144,9 @@ final class DocCommands implements AutoCloseable {
         String line = inBackground ? command.substring(0, command.length() - 1).strip() : command;
         String name = "doc-" + (++count);
         ProcessBuilder pb = new ProcessBuilder(argv(line)).directory(dir.toFile()).redirectError(logs.resolve(name + ".log").toFile());
+        if (line.startsWith("mvn ")) {
+            quickJvm(pb);
+        }
         Process p = pb.start();
         StdoutLines out = new StdoutLines(p, "it-" + name);
         if (inBackground) {
@@ -171,8 +174,10 @@ final class DocCommands implements AutoCloseable {
     /** @return the program and arguments: ./mw is the distribution, anything else goes through bash */
     private List<String> argv(String line) {
         if (line.startsWith("./mw ") || line.equals("./mw")) {
+            // As MwProcess starts the mw commands: a small collector and the quick compiler only (what MW_JAVA_OPTS may give ./mw).
             List<String> argv = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                    "-Dmw.home=" + MwProcess.CHECKOUT, "-cp", String.join(File.pathSeparator, classPath), "io.robomw.cli.Mw"));
+                    "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-Dmw.home=" + MwProcess.CHECKOUT, "-cp", String.join(File.pathSeparator, classPath),
+                    "io.robomw.cli.Mw"));
             argv.addAll(ShellWords.split(line.substring(4).strip()));
             return argv;
         }
@@ -183,6 +188,19 @@ final class DocCommands implements AutoCloseable {
             return argv;
         }
         return List.of("bash", "-c", line);
+    }
+
+    /**
+     * Gives a Maven run a small collector and the quick compiler only, after any MAVEN_OPTS of the build's own: a short
+     * build of a small project spends most of its time starting up and loading plugins, which C2 would compile too late
+     * to repay.
+     *
+     * @param pb the {@code mvn} process to be
+     * @return it
+     */
+    static ProcessBuilder quickJvm(ProcessBuilder pb) {
+        pb.environment().merge("MAVEN_OPTS", "-XX:+UseSerialGC -XX:TieredStopAtLevel=1", (own, quick) -> own.isBlank() ? quick : own + " " + quick);
+        return pb;
     }
 
     private static void stop(Process p) throws InterruptedException {

@@ -74,7 +74,7 @@ final class FreshRepository {
                 </project>
                 """);
         Path log = dir.resolve("install.log");
-        Process p = new ProcessBuilder("mvn", "-o", "-B", "-q", "-Dmaven.repo.local=" + repo, "validate").directory(installer.toFile())
+        Process p = DocCommands.quickJvm(new ProcessBuilder("mvn", "-o", "-B", "-q", "-Dmaven.repo.local=" + repo, "validate")).directory(installer.toFile())
                 .redirectErrorStream(true).redirectOutput(log.toFile()).start();
         assertTrue(p.waitFor(300, TimeUnit.SECONDS), "mvn install-file within 300 s");
         assertEquals(0, p.exitValue(), "installing RoboMW into " + repo + ": " + Files.readString(log, StandardCharsets.UTF_8));

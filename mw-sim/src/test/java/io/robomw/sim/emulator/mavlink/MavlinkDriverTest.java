@@ -20,6 +20,8 @@ import io.robomw.sim.Simulation;
 import io.robomw.sim.vehicle.SimVehicle;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.parallel.Execution;
+import org.junit.jupiter.api.parallel.ExecutionMode;
 import org.junit.jupiter.api.io.TempDir;
 
 import java.io.IOException;
@@ -45,8 +47,10 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 /**
  * {@code platform: mavlink} against the emulator, on loopback: the driver's high-level commands
  * (what the vehicle drive sends) fly the simulated copter in both dialects and sail the boat; its
- * sensors read the vehicle's telemetry. (Against an independent vehicle, pymavlink's: src-it.)
+ * sensors read the vehicle's telemetry. (Against an independent vehicle, pymavlink's: src-it.) The cases run
+ * side by side: each has its own world, emulator, port and driver.
  */
+@Execution(ExecutionMode.CONCURRENT)
 class MavlinkDriverTest {
 
     private static final Path HARBOUR = Path.of("..", "examples", "worlds", "harbour.yaml");

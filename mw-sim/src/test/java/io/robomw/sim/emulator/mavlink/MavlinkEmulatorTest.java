@@ -21,6 +21,8 @@ import io.robomw.sim.Simulation;
 import io.robomw.testkit.Await;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.parallel.Execution;
+import org.junit.jupiter.api.parallel.ExecutionMode;
 
 import java.io.IOException;
 import java.net.InetAddress;
@@ -37,7 +39,9 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 /**
  * The emulator against a small ground station made of the codec (the independent clients, MAVSDK
  * and pymavlink, fly it in src-it): the harbour world in real time, a real UDP socket on loopback.
+ * The cases run side by side: each has its own world, emulator, port and ground station.
  */
+@Execution(ExecutionMode.CONCURRENT)
 class MavlinkEmulatorTest {
 
     private static final Path HARBOUR = Path.of("..", "examples", "worlds", "harbour.yaml");
