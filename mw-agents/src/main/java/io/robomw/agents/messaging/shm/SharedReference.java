@@ -72,11 +72,15 @@ public record SharedReference(long sequence, int offset, int length) {
      * @throws FrameException ({@link DropReason#MALFORMED}) if the frame carries an HMAC or its payload is not a reference
      */
     public static SharedReference read(byte[] buf, int offset, int length) throws FrameException {
+        if (length < FrameCodec.HEADER_LENGTH + BYTES || offset + length > buf.length) {
+            throw new FrameException(DropReason.TRUNCATED, "a shared-memory publication of " + length + " bytes; it has a "
+                    + FrameCodec.HEADER_LENGTH + "-byte header and a " + BYTES + "-byte reference");
+        }
         if ((buf[offset + FrameCodec.FLAGS_OFFSET] & FrameCodec.FLAG_MAC) != 0) {
             throw new FrameException(DropReason.MALFORMED, "a shared-memory publication with an HMAC: frames with an HMAC never go through shared memory");
         }
         int payload = payloadLength(buf, offset);
-        if (payload != BYTES || length < FrameCodec.HEADER_LENGTH + BYTES) {
+        if (payload != BYTES) {
             throw new FrameException(DropReason.MALFORMED, "a shared-memory publication whose payload is " + payload + " bytes; a reference is " + BYTES);
         }
         int at = offset + length - BYTES;
