@@ -34,11 +34,13 @@ public final class SegmentView implements AutoCloseable {
     private final String peer;
     private final int cell;
     private final int dataBytes;
+    private final int maxPayload;
     private MappedByteBuffer control;
     private MappedByteBuffer data;
     private long lastSequence;
 
-    private SegmentView(Path file, String peer, int cell, int dataBytes, MappedByteBuffer control, MappedByteBuffer data) {
+    private SegmentView(Path file, String peer, int cell, int dataBytes, int maxPayload, MappedByteBuffer control, MappedByteBuffer data) {
+        this.maxPayload = maxPayload;
         this.file = file;
         this.peer = peer;
         this.cell = cell;
@@ -55,10 +57,11 @@ public final class SegmentView implements AutoCloseable {
      * @param directory where segments are ({@link SharedSegment#DIRECTORY})
      * @param offer     the offer
      * @param peer      the publisher, for messages
+     * @param maxPayload the largest payload taken out (the node's maximum frame size: what it would take over TCP)
      * @return the view
      * @throws IOException naming the file and what is wrong, if it is not such a segment or cannot be mapped
      */
-    public static SegmentView open(Path directory, Handshake.Offer offer, String peer) throws IOException {
+    public static SegmentView open(Path directory, Handshake.Offer offer, String peer, int maxPayload) throws IOException {
         Path file = offer.file();
         if (!directory.equals(file.getParent()) || !file.getFileName().toString().startsWith(SegmentLayout.FILE_PREFIX)) {
             throw new IOException(peer + " offered " + file + ", which is not a segment file in " + directory);
@@ -101,7 +104,7 @@ public final class SegmentView implements AutoCloseable {
             MappedByteBuffer data = ch.map(FileChannel.MapMode.READ_ONLY, dataOffset, dataBytes);
             control.order(ByteOrder.nativeOrder());
             data.order(ByteOrder.nativeOrder());
-            return new SegmentView(file, peer, offer.cell(), dataBytes, control, data);
+            return new SegmentView(file, peer, offer.cell(), dataBytes, maxPayload, control, data);
         }
     }
 
@@ -116,8 +119,8 @@ public final class SegmentView implements AutoCloseable {
      * @param ref the reference, as received
      * @return the payload
      * @throws FrameException ({@link DropReason#MALFORMED}) naming the reference and the rule if it lies outside the
-     *                        ring, does not follow the last one, or does not match the record it names; the caller
-     *                        ends the connection
+     *                        ring, does not follow the last one, or does not match the record it names
+     *                        ({@link DropReason#OVERSIZED} if its payload is above the maximum); the caller ends the connection
      */
     public byte[] take(SharedReference ref) throws FrameException {
         if (data == null) {
@@ -128,6 +131,10 @@ public final class SegmentView implements AutoCloseable {
         if (offset % SegmentLayout.ALIGNMENT != 0 || offset + SegmentLayout.RECORD_HEADER + length > dataBytes) {
             throw new FrameException(DropReason.MALFORMED, "shared-memory reference " + ref + " from " + peer + " lies outside the "
                     + dataBytes + "-byte ring of " + file + " (or is not " + SegmentLayout.ALIGNMENT + "-aligned)");
+        }
+        if (length > maxPayload) {
+            throw new FrameException(DropReason.OVERSIZED, "shared-memory reference " + ref + " from " + peer + " names a payload of " + length
+                    + " bytes, above the maximum frame size of " + maxPayload);
         }
         if (ref.sequence() <= lastSequence) {
             throw new FrameException(DropReason.MALFORMED, "shared-memory reference " + ref + " from " + peer + " does not follow the last one, "

@@ -144,7 +144,7 @@ final class SharedMemoryLink {
         }
         SegmentView v;
         try {
-            v = SegmentView.open(SharedSegment.DIRECTORY, offer.get(), peer);
+            v = SegmentView.open(SharedSegment.DIRECTORY, offer.get(), peer, context.settings().maxFrameSize());
         } catch (IOException | RuntimeException e) {
             LOG.warn("node '{}': cannot map the shared memory {} offered ({}); its publications keep coming over TCP", context.nodeName(), peer,
                     e.getMessage());
@@ -227,16 +227,6 @@ final class SharedMemoryLink {
         segment = seg;
         outlet = s;
         out.send(Handshake.offer(new Handshake.Offer(s.cell(), seg.nonce(), seg.file())));
-    }
-
-    /** @return whether large publications go to the peer through shared memory */
-    boolean publishesShared() {
-        return accepted;
-    }
-
-    /** @return whether the peer's large publications come through shared memory (reader thread) */
-    boolean receivesShared() {
-        return view != null;
     }
 
     /** The connection closed: the peer stops counting in this node's segment. */

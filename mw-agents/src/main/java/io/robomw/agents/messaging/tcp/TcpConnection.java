@@ -171,10 +171,6 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
         }
     }
 
-    /** @return whether large publications go to the peer through shared memory (it accepted this node's offer) */
-    boolean publishesShared() {
-        return shared.publishesShared();
-    }
 
     @Override
     public boolean isOpen() {
@@ -205,8 +201,8 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
     @Override
     public void close() {
         if (closed.compareAndSet(false, true)) {
+            outbound.close(); // first: a publisher waiting for room in it gives up, and with it the segment's lock
             shared.closePublisher();
-            outbound.close();
             Thread me = Thread.currentThread();
             if (me != reader && !leadership.leads(me)) {
                 outbound.awaitDrained(DRAIN_NANOS);

@@ -119,7 +119,7 @@ class MessageFramesFuzzTest {
     @FuzzTest
     void sharedReference(byte[] input) throws IOException {
         SharedSegment segment = Segment.ONE_RECORD;
-        try (SegmentView view = SegmentView.open(segment.file().getParent(), new Handshake.Offer(0, segment.nonce(), segment.file()), "fuzz")) {
+        try (SegmentView view = SegmentView.open(segment.file().getParent(), new Handshake.Offer(0, segment.nonce(), segment.file()), "fuzz", 4 << 20)) {
             SharedReference ref = SharedReference.read(input, 0, input.length);
             byte[] payload = view.take(ref);
             if (payload.length != 1000) {

@@ -40,7 +40,7 @@ class SegmentViewTest {
         segment = SharedSegment.create(dir, RING, 4);
         open.add(segment);
         cell = segment.attach(() -> { });
-        SegmentView v = SegmentView.open(dir, new Handshake.Offer(cell.cell(), segment.nonce(), segment.file()), "peer");
+        SegmentView v = SegmentView.open(dir, new Handshake.Offer(cell.cell(), segment.nonce(), segment.file()), "peer", 4 << 20);
         open.add(v);
         cell.activate();
         return v;
@@ -96,16 +96,26 @@ class SegmentViewTest {
     void anOfferOfAnotherFileOrWithAnotherNonceIsRefused() throws Exception {
         view();
         Path elsewhere = Files.createFile(dir.resolve("not-a-segment"));
-        assertThrows(IOException.class, () -> SegmentView.open(dir, new Handshake.Offer(0, segment.nonce(), elsewhere), "peer"));
-        assertThrows(IOException.class, () -> SegmentView.open(dir.resolve("sub"), new Handshake.Offer(0, segment.nonce(), segment.file()), "peer"));
+        assertThrows(IOException.class, () -> SegmentView.open(dir, new Handshake.Offer(0, segment.nonce(), elsewhere), "peer", 4 << 20));
+        assertThrows(IOException.class, () -> SegmentView.open(dir.resolve("sub"), new Handshake.Offer(0, segment.nonce(), segment.file()), "peer", 4 << 20));
         IOException nonce = assertThrows(IOException.class,
-                () -> SegmentView.open(dir, new Handshake.Offer(0, segment.nonce() + 1, segment.file()), "peer"));
+                () -> SegmentView.open(dir, new Handshake.Offer(0, segment.nonce() + 1, segment.file()), "peer", 4 << 20));
         assertTrue(nonce.getMessage().contains("nonce"), nonce.getMessage());
-        assertThrows(IOException.class, () -> SegmentView.open(dir, new Handshake.Offer(4, segment.nonce(), segment.file()), "peer"), "cell 4 of 4");
+        assertThrows(IOException.class, () -> SegmentView.open(dir, new Handshake.Offer(4, segment.nonce(), segment.file()), "peer", 4 << 20), "cell 4 of 4");
         Path link = Files.createSymbolicLink(dir.resolve(SegmentLayout.FILE_PREFIX + "link"), segment.file());
-        assertThrows(IOException.class, () -> SegmentView.open(dir, new Handshake.Offer(0, segment.nonce(), link), "peer"));
+        assertThrows(IOException.class, () -> SegmentView.open(dir, new Handshake.Offer(0, segment.nonce(), link), "peer", 4 << 20));
         Path small = Files.write(dir.resolve(SegmentLayout.FILE_PREFIX + "small"), new byte[10]);
-        assertThrows(IOException.class, () -> SegmentView.open(dir, new Handshake.Offer(0, segment.nonce(), small), "peer"));
+        assertThrows(IOException.class, () -> SegmentView.open(dir, new Handshake.Offer(0, segment.nonce(), small), "peer", 4 << 20));
+    }
+
+    @Test
+    void aPayloadAboveTheSubscribersMaximumFrameSizeIsRefused() throws Exception {
+        view();
+        SharedReference big = publish(2000, 1);
+        try (SegmentView small = SegmentView.open(dir, new Handshake.Offer(cell.cell(), segment.nonce(), segment.file()), "peer", 1024)) {
+            FrameException e = assertThrows(FrameException.class, () -> small.take(big));
+            assertEquals(DropReason.OVERSIZED, e.reason());
+        }
     }
 
     @Test

@@ -60,7 +60,7 @@ class SharedSegmentTest {
         Sub(SharedSegment segment) throws IOException {
             cell = segment.attach(closedForLagging::incrementAndGet);
             assertNotNull(cell, "a free cell");
-            view = SegmentView.open(dir, new Handshake.Offer(cell.cell(), segment.nonce(), segment.file()), "test-publisher");
+            view = SegmentView.open(dir, new Handshake.Offer(cell.cell(), segment.nonce(), segment.file()), "test-publisher", 4 << 20);
             open.add(view);
             cell.activate();
         }
