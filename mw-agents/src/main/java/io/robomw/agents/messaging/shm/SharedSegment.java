@@ -41,8 +41,9 @@ import java.util.concurrent.locks.ReentrantLock;
  * a write and a read system call per payload per subscriber, about what the payload's TCP write
  * costs for 100 KB.
  *
- * <p>The file is unlinked by {@link #close}; a segment made by a process that was killed is removed
- * by the next segment made on the host ({@link #removeStale}). Thread-safe.
+ * <p>The file is unlinked by {@link #close}, or at the JVM's end if it was not closed (a shutdown
+ * hook); a segment of a process that was killed ({@code kill -9}) is removed by the next segment
+ * made on the host ({@link #removeStale}). Thread-safe.
  */
 public final class SharedSegment implements AutoCloseable {
 
@@ -84,6 +85,8 @@ public final class SharedSegment implements AutoCloseable {
     /** The publication in {@link #newest} (only the newest is kept: a record in the ring needs no array). */
     private byte[] newestPublication;
     private volatile boolean closed;
+    /** Unlinks the file if the JVM ends before {@link #close} (System.exit, SIGTERM); removed by close. */
+    private final Thread unlinkAtExit;
 
     private record Record(long sequence, long start, long end, byte[] referenceFrame) {
     }
@@ -173,6 +176,14 @@ public final class SharedSegment implements AutoCloseable {
         this.map = map;
         this.byCell = new Subscriber[cells];
         this.owner = file.getFileName().toString();
+        this.unlinkAtExit = new Thread(() -> {
+            try {
+                Files.deleteIfExists(file);
+            } catch (IOException e) {
+                // the next segment made on this host removes it (its process has ended)
+            }
+        }, "robomw-shm-unlink-" + owner);
+        Runtime.getRuntime().addShutdownHook(unlinkAtExit);
     }
 
     /**
@@ -449,6 +460,11 @@ public final class SharedSegment implements AutoCloseable {
             Files.deleteIfExists(file);
         } catch (IOException e) {
             LOG.warn("cannot remove shared-memory segment {}: {}", file, e.toString());
+        }
+        try {
+            Runtime.getRuntime().removeShutdownHook(unlinkAtExit);
+        } catch (IllegalStateException e) {
+            // the JVM is ending: the hook runs, and finds the file gone
         }
     }
 
