@@ -14,7 +14,8 @@ import java.util.Locale;
  * a camera frame of 1 MiB) from one publisher JVM to K subscribers in a second JVM, both
  * {@link SensorPeer}s on 127.0.0.1, in MB/s (10^6 bytes) delivered: the payload bytes all K
  * subscribers received over the measured window. One sample of one system per run:
- * {@code SYSTEM SIZE K WARMUP MEASURED}, SYSTEM one of {@code tcp} (RoboMW), {@code zmq}
+ * {@code SYSTEM SIZE K WARMUP MEASURED}, SYSTEM one of {@code tcp} (RoboMW: large publications through
+ * shared memory, the default), {@code tcp-noshm} (RoboMW with shared memory off), {@code zmq}
  * (JeroMQ PUB/SUB, the baseline) or {@code raw} (plain sockets, the ceiling: one thread writes
  * each payload to each connection). Prints {@code BENCH sensor.SYSTEM.SIZE.Ksub value MB/s}.
  */

@@ -25,7 +25,8 @@ import java.util.function.Consumer;
 
 /**
  * One side of {@link SensorBenchmark}, in a JVM of its own: a publisher of large payloads, or K
- * subscribers, over RoboMW tcp ({@code tcp}), JeroMQ PUB/SUB ({@code zmq}) or plain sockets
+ * subscribers, over RoboMW tcp ({@code tcp}: large publications through shared memory, the default;
+ * {@code tcp-noshm}: with shared memory off, every byte on the connections), JeroMQ PUB/SUB ({@code zmq}) or plain sockets
  * ({@code raw}: the publisher writes each payload, length first, to each subscriber's connection
  * in turn; the ceiling of a publisher thread's fan-out on this machine).
  *
@@ -44,6 +45,8 @@ public final class SensorPeer {
 
     /** Frames up to 2 MiB: the default 1 MiB leaves no room for a 1 MiB payload's header. */
     static final MessagingSettings SETTINGS = MessagingSettings.defaults().withMaxFrameSize(2 << 20);
+    /** The same with shared memory off: every payload on the subscribers' TCP connections. */
+    static final MessagingSettings SETTINGS_NO_SHM = SETTINGS.withSharedMemory(false);
     /** JeroMQ's high-water mark: none (0), as in the 64-byte case: a PUB socket drops what is above it, so a bounded one would measure the drops. */
     static final int ZMQ_HWM = 0;
 
@@ -79,7 +82,8 @@ public final class SensorPeer {
             long count = Long.parseLong(args[4]);
             switch (system) {
                 case "zmq" -> zmqPub(out, go, size, count);
-                case "tcp" -> mwPub(out, go, size, count);
+                case "tcp" -> mwPub(out, go, size, count, SETTINGS);
+                case "tcp-noshm" -> mwPub(out, go, size, count, SETTINGS_NO_SHM);
                 case "raw" -> rawPub(out, go, size, k, count);
                 default -> throw new IllegalArgumentException("unknown system " + system);
             }
@@ -100,8 +104,8 @@ public final class SensorPeer {
         }
     }
 
-    private static void mwPub(PrintStream out, CountDownLatch go, int size, long count) throws InterruptedException {
-        try (MessagingNode node = MessagingNode.builder("sensor-pub").settings(SETTINGS).bind("tcp://127.0.0.1:0").build()) {
+    private static void mwPub(PrintStream out, CountDownLatch go, int size, long count, MessagingSettings settings) throws InterruptedException {
+        try (MessagingNode node = MessagingNode.builder("sensor-pub").settings(settings).bind("tcp://127.0.0.1:0").build()) {
             out.println("BOUND " + node.boundAddresses().get(0));
             publish(out, go, size, count, data -> node.publishMessage("scan", data, "data", null));
         }
@@ -179,8 +183,9 @@ public final class SensorPeer {
                 }
             };
             switch (system) {
-                case "tcp" -> {
-                    MessagingNode node = MessagingNode.builder("sensor-sub-" + i).settings(SETTINGS).connect(address).build();
+                case "tcp", "tcp-noshm" -> {
+                    MessagingNode node = MessagingNode.builder("sensor-sub-" + i).settings(system.equals("tcp") ? SETTINGS : SETTINGS_NO_SHM)
+                            .connect(address).build();
                     node.addMessageListener("scan", null, m -> onMessage.accept((byte[]) m.payload()));
                     node.subscribeMessage("scan", null);
                     open.add(node);

@@ -76,7 +76,11 @@ final class Inbound {
         return t == null ? name : t.name;
     }
 
-    void onFrame(byte[] buf, int offset, int length, Channel from) {
+    /**
+     * @param shared the payload of a {@link FrameKind#PUBLISH_SHARED} frame, as the transport took it
+     *               out of the peer's shared memory; {@code null} for any other frame
+     */
+    void onFrame(byte[] buf, int offset, int length, byte[] shared, Channel from) {
         try {
             Frame f = FrameCodec.decode(buf, offset, length, maxFrameSize, names.get());
             if (f.source() == node.id()) {
@@ -89,6 +93,16 @@ final class Inbound {
                 case SUBSCRIBE -> subscribe(f, from);
                 case UNSUBSCRIBE -> node.remoteSubscribers().unsubscribe(f.topic(), from);
                 case MESSAGE, PUBLISH -> onMessage(f, buf, offset, length, from);
+                case PUBLISH_SHARED -> {
+                    if (shared == null) {
+                        throw new FrameException(DropReason.MALFORMED, "a shared-memory publication on a link that has no shared memory");
+                    }
+                    // the PUBLISH it stands for; never authenticated (frames with an HMAC do not go through shared memory)
+                    onMessage(new Frame(FrameKind.PUBLISH, f.streamSequence(), f.source(), f.messageNumber(), f.correlationId(), f.timestampMicros(),
+                            f.sender(), f.receiver(), f.topic(), f.function(), f.payloadType(), shared, false), buf, offset, length, from);
+                }
+                case SHM_ASK, SHM_OFFER, SHM_ACCEPT -> throw new FrameException(DropReason.MALFORMED, f.kind()
+                        + " on a link that has no shared memory (only plain TCP connections have)");
                 case REPLY, ERROR -> onReply(f, buf, offset, length, from);
                 case KEEPALIVE -> {
                     // its arrival is all it says (the transport has seen a whole frame)

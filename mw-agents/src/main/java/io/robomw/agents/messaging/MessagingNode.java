@@ -876,7 +876,12 @@ public final class MessagingNode implements Messaging, AutoCloseable {
 
         @Override
         public void onFrame(byte[] buf, int offset, int length, Channel from) {
-            inbound.onFrame(buf, offset, length, from);
+            inbound.onFrame(buf, offset, length, null, from);
+        }
+
+        @Override
+        public void onFrame(byte[] buf, int offset, int length, byte[] payload, Channel from) {
+            inbound.onFrame(buf, offset, length, payload, from);
         }
 
         @Override

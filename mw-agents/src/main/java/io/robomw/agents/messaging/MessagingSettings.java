@@ -2,6 +2,7 @@ package io.robomw.agents.messaging;
 
 import io.robomw.agents.messaging.security.PayloadAllowList;
 import io.robomw.agents.messaging.security.TlsSettings;
+import io.robomw.agents.messaging.shm.SharedMemorySettings;
 
 import java.time.Duration;
 import java.util.Objects;
@@ -29,11 +30,13 @@ import java.util.Optional;
  *                            does, so the reply wakes it directly (docs/messaging.md, "Performance")
  * @param limits              what peers may make the node hold: connections, subscriptions, topic length, and the
  *                            first-frame and idle timeouts of connections ({@link PeerLimits})
+ * @param sharedMemory        whether large publications go to subscribers on the same host through shared memory
+ *                            (on by default; never with TLS or for frames with an HMAC; docs/messaging.md, "Shared memory")
  */
 public record MessagingSettings(Duration replyTimeout, Duration connectTimeout, Duration sendTimeout, int maxFrameSize,
                                 int outboundBufferBytes, String multicastInterface, int multicastTtl, Duration maxClockSkew,
                                 Duration subscriptionRefresh, TlsSettings tls, PayloadAllowList allowList, Duration replySpin,
-                                PeerLimits limits) {
+                                PeerLimits limits, SharedMemorySettings sharedMemory) {
 
     /** Largest payload of one UDP datagram over IPv4. */
     public static final int MAX_DATAGRAM = 65_507;
@@ -48,6 +51,7 @@ public record MessagingSettings(Duration replyTimeout, Duration connectTimeout, 
         Objects.requireNonNull(allowList, "allowList");
         Objects.requireNonNull(replySpin, "replySpin");
         Objects.requireNonNull(limits, "limits");
+        Objects.requireNonNull(sharedMemory, "sharedMemory");
         if (replySpin.isNegative()) {
             throw new IllegalArgumentException("replySpin must be >= 0, got " + replySpin);
         }
@@ -66,12 +70,13 @@ public record MessagingSettings(Duration replyTimeout, Duration connectTimeout, 
      * @return reply timeout 5 s, connect timeout 5 s, send timeout 10 s, frames up to 1 MiB, 4 MiB
      *         buffered per peer, multicast on loopback with TTL 0, clock skew 5 min, UDP
      *         subscriptions refreshed every second, no TLS, JDK value types only, replies awaited
-     *         with a 50 µs spin, and the peer limits of {@link PeerLimits#defaults()}
+     *         with a 50 µs spin, the peer limits of {@link PeerLimits#defaults()}, and shared memory
+     *         for large publications to subscribers on the same host ({@link SharedMemorySettings#defaults()})
      */
     public static MessagingSettings defaults() {
         return new MessagingSettings(Duration.ofSeconds(5), Duration.ofSeconds(5), Duration.ofSeconds(10), 1 << 20, 4 << 20,
                 null, 0, Duration.ofMinutes(5), Duration.ofSeconds(1), null, PayloadAllowList.jdkDefaults(), Duration.ofNanos(50_000),
-                PeerLimits.defaults());
+                PeerLimits.defaults(), SharedMemorySettings.defaults());
     }
 
     /** @return the TLS settings, if TLS is on */
@@ -81,57 +86,70 @@ public record MessagingSettings(Duration replyTimeout, Duration connectTimeout, 
 
     /** @param v the reply timeout @return a copy with it */
     public MessagingSettings withReplyTimeout(Duration v) {
-        return new MessagingSettings(v, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, limits);
+        return new MessagingSettings(v, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, limits, sharedMemory);
     }
 
     /** @param v the connect timeout @return a copy with it */
     public MessagingSettings withConnectTimeout(Duration v) {
-        return new MessagingSettings(replyTimeout, v, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, limits);
+        return new MessagingSettings(replyTimeout, v, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, limits, sharedMemory);
     }
 
     /** @param v the send timeout @return a copy with it */
     public MessagingSettings withSendTimeout(Duration v) {
-        return new MessagingSettings(replyTimeout, connectTimeout, v, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, limits);
+        return new MessagingSettings(replyTimeout, connectTimeout, v, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, limits, sharedMemory);
     }
 
     /** @param v the maximum frame size in bytes @return a copy with it (and a buffer of at least that) */
     public MessagingSettings withMaxFrameSize(int v) {
-        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, v, Math.max(v, outboundBufferBytes), multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, limits);
+        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, v, Math.max(v, outboundBufferBytes), multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, limits, sharedMemory);
     }
 
     /** @param name the multicast interface's name or address @param ttl the multicast TTL @return a copy with them */
     public MessagingSettings withMulticast(String name, int ttl) {
-        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, name, ttl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, limits);
+        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, name, ttl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, limits, sharedMemory);
     }
 
     /** @param v the maximum clock skew @return a copy with it */
     public MessagingSettings withMaxClockSkew(Duration v) {
-        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, v, subscriptionRefresh, tls, allowList, replySpin, limits);
+        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, v, subscriptionRefresh, tls, allowList, replySpin, limits, sharedMemory);
     }
 
     /** @param v how often UDP subscriptions are refreshed @return a copy with it */
     public MessagingSettings withSubscriptionRefresh(Duration v) {
-        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, v, tls, allowList, replySpin, limits);
+        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, v, tls, allowList, replySpin, limits, sharedMemory);
     }
 
     /** @param v TLS settings, or {@code null} for none @return a copy with them */
     public MessagingSettings withTls(TlsSettings v) {
-        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, v, allowList, replySpin, limits);
+        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, v, allowList, replySpin, limits, sharedMemory);
     }
 
     /** @param v the allow-list @return a copy with it */
     public MessagingSettings withAllowList(PayloadAllowList v) {
-        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, v, replySpin, limits);
+        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, v, replySpin, limits, sharedMemory);
     }
 
     /** @param v how long a waiting thread spins before parking; zero never spins @return a copy with it */
     public MessagingSettings withReplySpin(Duration v) {
-        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, v, limits);
+        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, v, limits, sharedMemory);
     }
 
     /** @param v what peers may make the node hold @return a copy with it */
     public MessagingSettings withLimits(PeerLimits v) {
-        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, v);
+        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, v, sharedMemory);
+    }
+
+    /** @param v whether and how large publications go through shared memory @return a copy with it */
+    public MessagingSettings withSharedMemory(SharedMemorySettings v) {
+        return new MessagingSettings(replyTimeout, connectTimeout, sendTimeout, maxFrameSize, outboundBufferBytes, multicastInterface, multicastTtl, maxClockSkew, subscriptionRefresh, tls, allowList, replySpin, limits, v);
+    }
+
+    /**
+     * @param on whether large publications go to subscribers on the same host through shared memory (default on)
+     * @return a copy with it
+     */
+    public MessagingSettings withSharedMemory(boolean on) {
+        return withSharedMemory(sharedMemory.withEnabled(on));
     }
 
     /** @param types application payload types to allow @return a copy whose allow-list has them too */

@@ -55,6 +55,10 @@ import java.util.UUID;
  * <tr><td>5</td><td>SUBSCRIBE</td></tr>
  * <tr><td>6</td><td>UNSUBSCRIBE</td></tr>
  * <tr><td>7</td><td>KEEPALIVE (connections only; empty names and payload)</td></tr>
+ * <tr><td>8</td><td>SHM_ASK (plain TCP to a loopback peer only; handled by the transport)</td></tr>
+ * <tr><td>9</td><td>SHM_OFFER (in answer to SHM_ASK only; handled by the transport)</td></tr>
+ * <tr><td>10</td><td>SHM_ACCEPT (in answer to SHM_OFFER only; handled by the transport)</td></tr>
+ * <tr><td>11</td><td>PUBLISH_SHARED (a PUBLISH whose payload is in the sender's shared memory; after SHM_ACCEPT only)</td></tr>
  * </table>
  *
  * <p>An ERROR whose CORRELATION ID is all zeros answers no request: the node refuses the whole

@@ -26,7 +26,29 @@ public enum FrameKind implements WireCode {
      * Nothing but "this link is alive": sent on a connection that has been silent for a third of
      * the idle timeout, so the peer does not close a quiet healthy link. Empty names and payload.
      */
-    KEEPALIVE(7);
+    KEEPALIVE(7),
+    /**
+     * "Publications may reach me through shared memory": sent once by a node at the start of a
+     * plain TCP connection to a peer on the loopback interface, when shared memory is on; the
+     * payload says which host it runs on ({@link io.robomw.agents.messaging.shm.Handshake}). A node
+     * that does not know this kind counts one dropped frame and goes on over TCP.
+     */
+    SHM_ASK(8),
+    /**
+     * The answer to {@link #SHM_ASK} from a node on the same host, before its first large
+     * publication to the asker: which segment file to map and which consumed-sequence cell is
+     * the asker's. Sent only to a peer that asked.
+     */
+    SHM_OFFER(9),
+    /** The asker mapped the offered segment and checked it: large publications may come as {@link #PUBLISH_SHARED} now. */
+    SHM_ACCEPT(10),
+    /**
+     * A publication whose payload is in the sender's shared-memory segment: the frame is the
+     * {@link #PUBLISH} it stands for, but its PAYLOAD is a 16-byte reference (sequence, offset,
+     * length: {@link io.robomw.agents.messaging.shm.SharedReference}). Sent only on a connection
+     * whose peer accepted an offer, and never for a frame with an HMAC.
+     */
+    PUBLISH_SHARED(11);
 
     private static final WireCodes<FrameKind> CODES = WireCodes.of(FrameKind.class, "frame kind");
 

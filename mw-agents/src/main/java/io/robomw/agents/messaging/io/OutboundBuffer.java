@@ -166,7 +166,7 @@ public final class OutboundBuffer {
      * @throws IOException if the buffer is closed, or stayed full for the send timeout
      */
     public void send(byte[] frame) throws IOException {
-        boolean urgent = frame[FrameCodec.KIND_OFFSET] != FrameKind.PUBLISH.code();
+        boolean urgent = !publication(frame);
         // A publication joins frames already waiting without reading the clock: in a stream, that
         // is nearly every one (two clock reads were a tenth of a publication's cost).
         if (writer != null && (urgent || (usedNow() == 0 && System.nanoTime() - lastSendNanos > IDLE_MICROS * 1000)) && writeLock.tryLock()) {
@@ -193,6 +193,15 @@ public final class OutboundBuffer {
             }
         }
         append(frame);
+    }
+
+    /**
+     * @return whether a frame is a publication (a {@code PUBLISH}, or a {@code PUBLISH_SHARED}
+     *         reference to one in shared memory), which may wait a little to go out in a batch
+     */
+    private static boolean publication(byte[] frame) {
+        byte kind = frame[FrameCodec.KIND_OFFSET];
+        return kind == FrameKind.PUBLISH.code() || kind == FrameKind.PUBLISH_SHARED.code();
     }
 
     private void append(byte[] frame) throws IOException {
@@ -228,7 +237,7 @@ public final class OutboundBuffer {
                 sharedBytes += length - HEAD;
             }
             setUsed(used + copied);
-            if (shared || frame[FrameCodec.KIND_OFFSET] != FrameKind.PUBLISH.code()) {
+            if (shared || !publication(frame)) {
                 // a request or reply, or a frame large enough to be a batch alone: no lingering
                 urgentWaiting = true;
                 if (lingering) {

@@ -32,6 +32,20 @@ public interface TransportContext {
     void onFrame(byte[] buf, int offset, int length, Channel from);
 
     /**
+     * Takes one received {@link io.robomw.agents.messaging.frame.FrameKind#PUBLISH_SHARED} frame with
+     * the payload it refers to, which the transport took out of the peer's shared memory: the node
+     * handles it as the {@code PUBLISH} it stands for. Called on the transport's receiving thread;
+     * never throws.
+     *
+     * @param buf     bytes holding the reference frame
+     * @param offset  where it starts
+     * @param length  its length
+     * @param payload the publication's payload
+     * @param from    the channel it came on
+     */
+    void onFrame(byte[] buf, int offset, int length, byte[] payload, Channel from);
+
+    /**
      * Counts and logs input the transport could not even frame (garbage on a stream, a datagram
      * too short, a declared length above the maximum).
      *

@@ -38,7 +38,11 @@ final class TcpAcceptor implements Endpoint {
     private record Refused(Socket socket, long sinceNanos) {
     }
 
-    TcpAcceptor(ServerSocket server, Address address, TransportContext context, List<AutoCloseable> open, ConnectionTimeouts timeouts) {
+    private final java.util.function.Supplier<io.robomw.agents.messaging.shm.SharedSegment> segments;
+
+    TcpAcceptor(ServerSocket server, Address address, TransportContext context, List<AutoCloseable> open, ConnectionTimeouts timeouts,
+                java.util.function.Supplier<io.robomw.agents.messaging.shm.SharedSegment> segments) {
+        this.segments = segments;
         this.timeouts = timeouts;
         this.server = server;
         this.address = address;
@@ -95,7 +99,7 @@ final class TcpAcceptor implements Endpoint {
             }
             TcpConnection c;
             try {
-                c = new TcpConnection(s, address, peer, context, open, timeouts, accepted::decrementAndGet);
+                c = new TcpConnection(s, address, peer, context, open, timeouts, segments, accepted::decrementAndGet);
             } catch (Throwable e) {
                 accepted.decrementAndGet();
                 closeQuietly(s);

@@ -43,6 +43,10 @@ import java.util.concurrent.locks.LockSupport;
  * A waiting thread never runs listeners: the first message or publication it reads it leaves, not
  * handled, to the reader thread, which handles it and everything after it in the order they came.
  * TLS connections are read by their reader thread only.
+ *
+ * <p>A plain connection to a peer on the loopback interface may carry large publications through
+ * shared memory ({@link SharedMemoryLink}); publications through it, and the offer of it, are
+ * handled by the reader thread only, in order with the connection's other frames.
  */
 final class TcpConnection implements Link, ConnectionTimeouts.Watched {
 
@@ -77,6 +81,7 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
     private volatile String timedOut;
     private volatile Thread reader;
     private final FrameStreamReader frames;
+    private final SharedMemoryLink shared;
     /** Whether threads waiting for a reply may read it (plain TCP; TLS keeps its reader thread). */
     private final boolean leadable;
     private final ReadLeadership leadership = new ReadLeadership();
@@ -87,16 +92,18 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
     private int readTimeoutMillis;
 
     TcpConnection(Socket socket, Address address, String peer, TransportContext context, java.util.List<AutoCloseable> registry,
-                  ConnectionTimeouts timeouts) throws IOException {
-        this(socket, address, peer, context, registry, timeouts, () -> { });
+                  ConnectionTimeouts timeouts, java.util.function.Supplier<io.robomw.agents.messaging.shm.SharedSegment> segments) throws IOException {
+        this(socket, address, peer, context, registry, timeouts, segments, () -> { });
     }
 
     /**
      * @param timeouts the transport's timer for plain connections' timeouts (not used for TLS)
+     * @param segments the transport's shared-memory segment, made on first use ({@code null} if it cannot be)
      * @param onClose  run once when it closes (an acceptor counts its connections)
      */
     TcpConnection(Socket socket, Address address, String peer, TransportContext context, java.util.List<AutoCloseable> registry,
-                  ConnectionTimeouts timeouts, Runnable onClose) throws IOException {
+                  ConnectionTimeouts timeouts, java.util.function.Supplier<io.robomw.agents.messaging.shm.SharedSegment> segments,
+                  Runnable onClose) throws IOException {
         this.onClose = onClose;
         this.timeouts = socket instanceof SSLSocket ? null : timeouts;
         this.registry = registry;
@@ -114,6 +121,10 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
         this.frames = leadable ? new FrameStreamReader(in, context.settings().maxFrameSize())
                 : new FrameStreamReader(in, context.settings().maxFrameSize(),
                 new FrameStreamReader.Timeouts(socket::setSoTimeout, limits.firstFrameTimeout().toNanos(), limits.idleTimeout().toNanos()));
+        boolean sharable = context.settings().sharedMemory().enabled() && !(socket instanceof SSLSocket) && context.settings().tls() == null
+                && SharedMemoryOption.allows(address) && socket.getInetAddress().isLoopbackAddress();
+        this.shared = new SharedMemoryLink(peer, context, sharable, segments,
+                () -> fail("it has not copied a shared-memory payload within the send timeout; it is not reading"));
     }
 
     void start() {
@@ -133,6 +144,14 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
         reader = t;
         leadership.reader(t);
         t.start();
+        byte[] ask = shared.ask();
+        if (ask != null) {
+            try {
+                outbound.send(ask);
+            } catch (IOException e) {
+                fail("cannot ask for shared memory: " + e.getMessage());
+            }
+        }
     }
 
     @Override
@@ -147,8 +166,11 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
 
     @Override
     public void send(byte[] frame) throws IOException {
-        outbound.send(frame);
+        if (!shared.trySend(frame, outbound)) {
+            outbound.send(frame);
+        }
     }
+
 
     @Override
     public boolean isOpen() {
@@ -179,7 +201,8 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
     @Override
     public void close() {
         if (closed.compareAndSet(false, true)) {
-            outbound.close();
+            outbound.close(); // first: a publisher waiting for room in it gives up, and with it the segment's lock
+            shared.closePublisher();
             Thread me = Thread.currentThread();
             if (me != reader && !leadership.leads(me)) {
                 outbound.awaitDrained(DRAIN_NANOS);
@@ -247,6 +270,7 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
             ended(e);
         } finally {
             close();
+            shared.closeView();
         }
     }
 
@@ -264,7 +288,7 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
         if (undispatched >= 0) {
             int length = undispatched;
             undispatched = -1;
-            context.onFrame(frames.buffer(), frames.offset(), length, this);
+            deliver(frames.buffer(), frames.offset(), length);
             progress.lazySet(++p);
         }
         int length;
@@ -277,7 +301,7 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
                 return false;
             }
             progress.lazySet(++p); // odd: the node has the frame (plain stores: the timer reads them a few times per timeout)
-            context.onFrame(frames.buffer(), frames.offset(), length, this);
+            deliver(frames.buffer(), frames.offset(), length);
             progress.lazySet(++p);
         }
     }
@@ -349,13 +373,13 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
                 }
                 progress.lazySet(++p);
                 byte kind = frames.buffer()[frames.offset() + FrameCodec.KIND_OFFSET];
-                if (kind == FrameKind.MESSAGE.code() || kind == FrameKind.PUBLISH.code()) {
-                    // listeners run on the reader thread, this frame first, in order
+                if (kind == FrameKind.MESSAGE.code() || kind == FrameKind.PUBLISH.code() || SharedMemoryLink.forReader(kind)) {
+                    // listeners run on the reader thread, this frame first, in order (and shared memory is read there only)
                     undispatched = length;
                     toReader = true;
                     return false;
                 }
-                context.onFrame(frames.buffer(), frames.offset(), length, this);
+                deliver(frames.buffer(), frames.offset(), length);
                 progress.lazySet(++p);
             }
             return true;
@@ -375,6 +399,23 @@ final class TcpConnection implements Link, ConnectionTimeouts.Watched {
             } else {
                 leadership.release(framesWait());
             }
+        }
+    }
+
+    /**
+     * Hands a frame to the node, or to the connection's shared memory: the handshake, and a
+     * publication whose payload is taken out of the peer's segment first (on the reader thread).
+     *
+     * @throws FrameException if a shared-memory reference is bad (the connection ends)
+     */
+    private void deliver(byte[] buf, int offset, int length) throws FrameException {
+        int kind = buf[offset + FrameCodec.KIND_OFFSET];
+        if (!SharedMemoryLink.handles(kind)) {
+            context.onFrame(buf, offset, length, this);
+        } else if (kind == FrameKind.PUBLISH_SHARED.code()) {
+            context.onFrame(buf, offset, length, shared.take(buf, offset, length), this);
+        } else {
+            shared.onHandshake(buf, offset, length, outbound);
         }
     }
 

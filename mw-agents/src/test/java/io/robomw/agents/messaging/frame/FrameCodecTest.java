@@ -110,8 +110,11 @@ class FrameCodecTest {
     @org.junit.jupiter.params.ParameterizedTest
     @org.junit.jupiter.params.provider.EnumSource(FrameKind.class)
     void shouldWriteEveryKindAsTheCodeOfTheTableAndReadItBack(FrameKind kind) throws FrameException {
-        java.util.Map<FrameKind, Integer> table = java.util.Map.of(FrameKind.MESSAGE, 1, FrameKind.REPLY, 2, FrameKind.ERROR, 3,
-                FrameKind.PUBLISH, 4, FrameKind.SUBSCRIBE, 5, FrameKind.UNSUBSCRIBE, 6, FrameKind.KEEPALIVE, 7);
+        java.util.Map<FrameKind, Integer> table = java.util.Map.ofEntries(java.util.Map.entry(FrameKind.MESSAGE, 1),
+                java.util.Map.entry(FrameKind.REPLY, 2), java.util.Map.entry(FrameKind.ERROR, 3), java.util.Map.entry(FrameKind.PUBLISH, 4),
+                java.util.Map.entry(FrameKind.SUBSCRIBE, 5), java.util.Map.entry(FrameKind.UNSUBSCRIBE, 6), java.util.Map.entry(FrameKind.KEEPALIVE, 7),
+                java.util.Map.entry(FrameKind.SHM_ASK, 8), java.util.Map.entry(FrameKind.SHM_OFFER, 9), java.util.Map.entry(FrameKind.SHM_ACCEPT, 10),
+                java.util.Map.entry(FrameKind.PUBLISH_SHARED, 11));
         Frame f = new Frame(kind, 5, 1, 9, new UUID(1, 2), 1_000_000L, "a", "b", "t", "f", 2, new byte[0], false);
         byte[] bytes = FrameCodec.encode(f, false);
         assertEquals(table.get(kind), bytes[FrameCodec.KIND_OFFSET] & 0xFF);

@@ -8,6 +8,10 @@ import io.robomw.agents.messaging.io.FrameStreamReader;
 import io.robomw.agents.messaging.security.PayloadAllowList;
 import io.robomw.agents.messaging.security.PayloadCodec;
 import io.robomw.agents.messaging.security.PayloadRejectedException;
+import io.robomw.agents.messaging.shm.Handshake;
+import io.robomw.agents.messaging.shm.SegmentView;
+import io.robomw.agents.messaging.shm.SharedReference;
+import io.robomw.agents.messaging.shm.SharedSegment;
 
 import java.io.ByteArrayInputStream;
 import java.io.EOFException;
@@ -16,7 +20,8 @@ import java.io.IOException;
 /**
  * Fuzz tests of what a messaging node decodes from the network (docs/fuzzing.md): a datagram or
  * framed stream as one frame, a byte stream cut into frames, a frame's payload, a node's presence
- * and its discovery beacon. The only refusals allowed are {@link FrameException} (with its drop
+ * and its discovery beacon, the shared-memory handshake and the references a subscriber takes
+ * payloads out of a segment by. The only refusals allowed are {@link FrameException} (with its drop
  * reason), {@link IOException} at the end of a stream, {@link PayloadRejectedException}, and an
  * {@link IllegalArgumentException} from the presence and beacon records.
  */
@@ -85,6 +90,65 @@ class MessageFramesFuzzTest {
         byte[] again = b.encode();
         if (again.length > BeaconRecord.MAX_BYTES || !BeaconRecord.decode(again, "fuzz").equals(b)) {
             throw new AssertionError("a beacon does not survive its own encoding: " + b);
+        }
+    }
+
+    /** A shared-memory handshake frame (SHM_ASK, SHM_OFFER, SHM_ACCEPT) as a TCP connection reads it. */
+    @FuzzTest
+    void handshake(byte[] input) {
+        try {
+            Frame f = FrameCodec.decode(input, 0, input.length, MAX_FRAME);
+            switch (f.kind()) {
+                case SHM_ASK -> Handshake.readAsk(f);
+                case SHM_OFFER -> Handshake.readOffer(f);
+                case SHM_ACCEPT -> Handshake.readAccept(f);
+                default -> {
+                    // not a handshake frame
+                }
+            }
+        } catch (FrameException refused) {
+            // the documented refusal
+        }
+    }
+
+    /**
+     * A PUBLISH_SHARED frame's reference, taken out of a real segment holding one 1,000-byte record
+     * by a fresh subscriber view: a reference outside the ring, misaligned, out of order or not
+     * matching its record is refused with {@link FrameException}, never read past the mapping.
+     */
+    @FuzzTest
+    void sharedReference(byte[] input) throws IOException {
+        SharedSegment segment = Segment.ONE_RECORD;
+        try (SegmentView view = SegmentView.open(segment.file().getParent(), new Handshake.Offer(0, segment.nonce(), segment.file()), "fuzz", 4 << 20)) {
+            SharedReference ref = SharedReference.read(input, 0, input.length);
+            byte[] payload = view.take(ref);
+            if (payload.length != 1000) {
+                throw new AssertionError("a reference that was taken gave " + payload.length + " bytes, the record holds 1000");
+            }
+        } catch (FrameException refused) {
+            // the documented refusal
+        }
+    }
+
+    /** One segment for every input, in a temporary folder, with one record in it. */
+    private static final class Segment {
+        static final SharedSegment ONE_RECORD = make();
+
+        private static SharedSegment make() {
+            try {
+                java.nio.file.Path dir = java.nio.file.Files.createTempDirectory("robomw-fuzz-shm");
+                SharedSegment s = SharedSegment.create(dir, 1 << 20, 4);
+                s.file().toFile().deleteOnExit();
+                dir.toFile().deleteOnExit();
+                SharedSegment.Subscriber cell = s.attach(() -> { });
+                cell.activate();
+                byte[] publication = FrameCodec.encode(new Frame(FrameKind.PUBLISH, 0, 1, 1, new java.util.UUID(1, 1), 0, "p", "", "t", "f",
+                        PayloadCodec.BYTES, new byte[1000], false), false);
+                s.send(publication, cell, f -> { }, 1_000_000_000L);
+                return s;
+            } catch (IOException e) {
+                throw new java.io.UncheckedIOException(e);
+            }
         }
     }
 
