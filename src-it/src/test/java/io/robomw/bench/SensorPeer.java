@@ -39,7 +39,8 @@ import java.util.function.Consumer;
  *   arrived to the last one (at K × (WARMUP + MEASURED), or 2 s after the last if some never come:
  *   JeroMQ drops above its high-water mark); prints {@code CPU ...} and {@code RESULT messages nanos}.</li>
  * </ul>
- * Ends when stdin closes.
+ * Ends when stdin closes or says {@code exit} (the driver's close): through {@code System.exit}, so a
+ * shared-memory segment's file is removed as the JVM ends rather than left for the next one.
  */
 public final class SensorPeer {
 
@@ -63,7 +64,7 @@ public final class SensorPeer {
         Thread watcher = new Thread(() -> {
             try {
                 java.io.BufferedReader commands = new java.io.BufferedReader(new java.io.InputStreamReader(System.in, StandardCharsets.UTF_8));
-                for (String line; (line = commands.readLine()) != null; ) {
+                for (String line; (line = commands.readLine()) != null && !line.equals("exit"); ) {
                     if (line.equals("GO")) {
                         go.countDown();
                     }
