@@ -70,7 +70,7 @@ public final class Handshake {
             }
             String id = Files.readString(BOOT_ID, StandardCharsets.US_ASCII).trim();
             return id.isEmpty() ? Optional.empty() : Optional.of(id);
-        } catch (IOException | RuntimeException e) {
+        } catch (IOException | SecurityException e) {
             return Optional.empty();
         }
     }

@@ -223,7 +223,8 @@ public final class SharedSegment implements AutoCloseable {
             map.putInt(SegmentLayout.DATA_BYTES_OFFSET, dataBytes);
             SegmentLayout.LONG.setRelease((ByteBuffer) map, SegmentLayout.MAGIC_OFFSET, SegmentLayout.MAGIC);
             return new SharedSegment(file, nonce, cells, dataBytes, map);
-        } catch (IOException | RuntimeException e) {
+        } catch (Throwable e) {
+            // whatever stopped it (an Error too), the half-made file is not left in /dev/shm
             Files.deleteIfExists(file);
             throw e;
         }
