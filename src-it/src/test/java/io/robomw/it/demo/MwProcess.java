@@ -26,6 +26,13 @@ public final class MwProcess implements AutoCloseable {
 
     public static final Path CHECKOUT = Path.of("..").toAbsolutePath().normalize();
 
+    /**
+     * The JVM options mw demo gives its hosts (and the tests their short-lived processes): a small
+     * collector and the quick compiler only, so that the many short mw commands of a test start in
+     * less time and take less of a loaded machine.
+     */
+    public static final List<String> QUICK_JVM = List.of("-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1");
+
     private final String name;
     private final Process process;
     private final StdoutLines lines;
@@ -54,11 +61,10 @@ public final class MwProcess implements AutoCloseable {
     private static MwProcess start(String name, boolean merged, String... args) throws IOException {
         Path logs = Path.of("target", "it-logs");
         Files.createDirectories(logs);
-        // The JVM options mw demo gives its hosts (and the tests their other processes): a small collector and the quick
-        // compiler only, so that the many short mw commands of a test start in less time and take less of a loaded machine.
         List<String> command = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "--enable-native-access=ALL-UNNAMED", "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-Dmw.home=" + CHECKOUT, "-cp",
-                middlewareOnlyClassPath(), "io.robomw.cli.Mw"));
+                "--enable-native-access=ALL-UNNAMED"));
+        command.addAll(QUICK_JVM);
+        command.addAll(List.of("-Dmw.home=" + CHECKOUT, "-cp", middlewareOnlyClassPath(), "io.robomw.cli.Mw"));
         command.addAll(List.of(args));
         ProcessBuilder pb = new ProcessBuilder(command).directory(CHECKOUT.toFile());
         if (merged) {

@@ -174,10 +174,10 @@ final class DocCommands implements AutoCloseable {
     /** @return the program and arguments: ./mw is the distribution, anything else goes through bash */
     private List<String> argv(String line) {
         if (line.startsWith("./mw ") || line.equals("./mw")) {
-            // As MwProcess starts the mw commands: a small collector and the quick compiler only (what MW_JAVA_OPTS may give ./mw).
-            List<String> argv = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                    "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-Dmw.home=" + MwProcess.CHECKOUT, "-cp", String.join(File.pathSeparator, classPath),
-                    "io.robomw.cli.Mw"));
+            // As MwProcess starts the mw commands (what MW_JAVA_OPTS may give ./mw).
+            List<String> argv = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString()));
+            argv.addAll(MwProcess.QUICK_JVM);
+            argv.addAll(List.of("-Dmw.home=" + MwProcess.CHECKOUT, "-cp", String.join(File.pathSeparator, classPath), "io.robomw.cli.Mw"));
             argv.addAll(ShellWords.split(line.substring(4).strip()));
             return argv;
         }
@@ -199,7 +199,7 @@ final class DocCommands implements AutoCloseable {
      * @return it
      */
     static ProcessBuilder quickJvm(ProcessBuilder pb) {
-        pb.environment().merge("MAVEN_OPTS", "-XX:+UseSerialGC -XX:TieredStopAtLevel=1", (own, quick) -> own.isBlank() ? quick : own + " " + quick);
+        pb.environment().merge("MAVEN_OPTS", String.join(" ", MwProcess.QUICK_JVM), (own, quick) -> own.isBlank() ? quick : own + " " + quick);
         return pb;
     }
 
