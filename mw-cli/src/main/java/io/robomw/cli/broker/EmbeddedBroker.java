@@ -33,6 +33,14 @@ public final class EmbeddedBroker implements AutoCloseable {
 
     private static final Logger LOG = LoggerFactory.getLogger(EmbeddedBroker.class);
     private static final int FREE_PORT_TRIES = 3;
+    /**
+     * QoS 1 messages the broker holds for one client beyond those in flight to it: a slow subscriber's
+     * backlog, or what waits for a persistent session that is away. As many as a RoboMW node queues for
+     * the broker ({@code max-queued}); HiveMQ's own default, 1000, dropped the newest of a 2,000-message
+     * burst to a subscriber in another JVM on a loaded machine. Past it the newest are dropped (HiveMQ's
+     * {@code discard}), as Mosquitto does past its {@code max_queued_messages}.
+     */
+    static final int QUEUED_PER_CLIENT = 10_000;
 
     private final EmbeddedHiveMQ hivemq;
     private final String bind;
@@ -146,7 +154,7 @@ public final class EmbeddedBroker implements AutoCloseable {
         }
     }
 
-    /** The broker's configuration: one TCP listener, no usage statistics sent anywhere. */
+    /** The broker's configuration: one TCP listener, {@link #QUEUED_PER_CLIENT} messages queued a client, no usage statistics sent anywhere. */
     static String config(String bind, int port) {
         return """
                 <?xml version="1.0"?>
@@ -157,11 +165,17 @@ public final class EmbeddedBroker implements AutoCloseable {
                             <bind-address>%s</bind-address>
                         </tcp-listener>
                     </listeners>
+                    <mqtt>
+                        <queued-messages>
+                            <max-queue-size>%d</max-queue-size>
+                            <strategy>discard</strategy>
+                        </queued-messages>
+                    </mqtt>
                     <anonymous-usage-statistics>
                         <enabled>false</enabled>
                     </anonymous-usage-statistics>
                 </hivemq>
-                """.formatted(port, bind);
+                """.formatted(port, bind, QUEUED_PER_CLIENT);
     }
 
     private static boolean listening(String bind, int port) {
