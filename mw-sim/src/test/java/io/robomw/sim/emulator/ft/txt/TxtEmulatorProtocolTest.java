@@ -37,12 +37,14 @@ public class TxtEmulatorProtocolTest {
      * block. Encoder resolution: the fischertechnik encoder motor gives 63 pulses per motor turn
      * (63⅓ really; the description takes 63), so on 56 mm wheels one pulse is π × 56 mm ÷ 63 =
      * 2.79 mm of wheel travel (5.7° of motor rotation), and a turn on the spot with a 112 mm track
-     * is resolved to 2.86° of heading per pulse of one wheel.
+     * is resolved to 2.86° of heading per pulse of one wheel. A driver waits up to 2 s for a reply
+     * (a real TXT's default is 500 ms): the emulator's reply crosses three of its threads, which a
+     * loaded host may each hold up, and a reply given up on is a lost link that fails the move.
      */
     public static final String ROBOT = """
             name: txt-1
             platform: ft-txt
-            connection: { %s }
+            connection: { %s, reply_timeout_ms: 2000 }
             drive:
               wheel_diameter: 0.056
               track_width: 0.112
