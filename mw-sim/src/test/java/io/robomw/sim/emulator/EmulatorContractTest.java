@@ -54,9 +54,13 @@ class EmulatorContractTest {
         EV3(Ev3FullStackTest.ROBOT, "ev3-1", Ev3Emulator::bind, Link.PSEUDO_TERMINAL, 0.01, 0.01, 2.0, Duration.ofSeconds(10), 0.005, true),
         /**
          * The TXT on TCP; its encoders count 63 pulses a motor turn, 2.79 mm of wheel travel and
-         * 2.86° of heading per pulse of one wheel (see {@link TxtEmulatorProtocolTest#ROBOT}).
+         * 2.86° of heading per pulse of one wheel (see {@link TxtEmulatorProtocolTest#ROBOT}). Its
+         * driver polls while idle: the link thread sends the cyclic exchange (the TXT's keep-alive)
+         * every 100 ms. A sensor read is no probe of its link: it is answered from the last
+         * exchange's inputs while they are less than 100 ms old, which may be the closed
+         * emulator's.
          */
-        TXT(TxtEmulatorProtocolTest.ROBOT, "txt-1", TxtEmulator::bind, Link.TCP, 0.02, 0.02, 5.0, Duration.ofSeconds(20), 0.03, false);
+        TXT(TxtEmulatorProtocolTest.ROBOT, "txt-1", TxtEmulator::bind, Link.TCP, 0.02, 0.02, 5.0, Duration.ofSeconds(20), 0.03, true);
 
         final String robotFile;
         final String robotName;

@@ -37,12 +37,14 @@ public class TxtEmulatorProtocolTest {
      * block. Encoder resolution: the fischertechnik encoder motor gives 63 pulses per motor turn
      * (63⅓ really; the description takes 63), so on 56 mm wheels one pulse is π × 56 mm ÷ 63 =
      * 2.79 mm of wheel travel (5.7° of motor rotation), and a turn on the spot with a 112 mm track
-     * is resolved to 2.86° of heading per pulse of one wheel.
+     * is resolved to 2.86° of heading per pulse of one wheel. A driver waits up to 2 s for a reply
+     * (a real TXT's default is 500 ms): the emulator's reply crosses three of its threads, which a
+     * loaded host may each hold up, and a reply given up on is a lost link that fails the move.
      */
     public static final String ROBOT = """
             name: txt-1
             platform: ft-txt
-            connection: { %s }
+            connection: { %s, reply_timeout_ms: 2000 }
             drive:
               wheel_diameter: 0.056
               track_width: 0.112
@@ -141,6 +143,40 @@ public class TxtEmulatorProtocolTest {
         return last[0];
     }
 
+    /**
+     * Sends exchanges with every output off until counters C1 and C2 read the same in replies the
+     * emulator made at least {@code seconds} of simulated time apart: the wheels stand still. Not
+     * {@code seconds} from a time read before the first of them: on a loaded host the world may
+     * run on at full PWM for that long before the emulator takes the stop (and the wheels turn for
+     * a world step or two after it, as the world sets their speeds at its next step), so the
+     * counters could still move after a reply that only looked late enough.
+     *
+     * @return the first reply of the stillness
+     */
+    private TxtProtocol.ExchangeReply untilStandingStill(double seconds) throws IOException {
+        TxtProtocol.ExchangeReply[] still = new TxtProtocol.ExchangeReply[1];
+        double[] stillAnsweredBy = {Double.NaN};
+        TxtProtocol.ExchangeReply[] last = new TxtProtocol.ExchangeReply[1];
+        Await.until("C1 and C2 unchanged for " + seconds + " simulated seconds: standing still", Duration.ofSeconds(10), () -> {
+            double sent = sim.world().time(); // the emulator answers at this simulated time or later
+            try {
+                last[0] = idle();
+            } catch (IOException e) {
+                throw new java.io.UncheckedIOException(e);
+            }
+            double answered = sim.world().time(); // ... and by this one
+            int[] c = last[0].counterValue();
+            if (still[0] == null || c[0] != still[0].counterValue()[0] || c[1] != still[0].counterValue()[1]) {
+                still[0] = last[0];
+                stillAnsweredBy[0] = answered;
+                return false;
+            }
+            return sent >= stillAnsweredBy[0] + seconds;
+        }, () -> "; last counters " + (last[0] == null ? "none" : java.util.Arrays.toString(last[0].counterValue()))
+                + " at " + sim.world().time() + " s, unchanged since " + stillAnsweredBy[0] + " s");
+        return still[0];
+    }
+
     @Test
     void shouldAnswerEveryRequestOfTheTableWithItsReplyByIdAndSize() throws Exception {
         start(1.0);
@@ -214,9 +250,7 @@ public class TxtEmulatorProtocolTest {
         start(0.5);
         int[] pwm = {512, 0, 512, 0, 0, 0, 0, 0};
         exchangeUntil(pwm, new int[4], new int[4], new int[4], r -> r.counterValue()[0] >= 20 && r.counterValue()[1] >= 20, "counting");
-        double t0 = sim.world().time();
-        TxtProtocol.ExchangeReply stopped = exchangeUntil(new int[8], new int[4], new int[4], new int[4],
-                r -> sim.world().time() > t0 + 0.2, "standing still");
+        TxtProtocol.ExchangeReply stopped = untilStandingStill(0.2);
         TxtProtocol.ExchangeReply reset = exchange(new int[8], new int[4], new int[4], new int[]{1, 0, 0, 0});
         assertArrayEquals(new int[]{1, 0, 0, 0}, reset.counterCmdId(), "the reset is echoed");
         assertEquals(0, reset.counterValue()[0], "C1 restarted from 0");
