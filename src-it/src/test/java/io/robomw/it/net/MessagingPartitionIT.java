@@ -4,6 +4,8 @@ import io.robomw.it.messaging.Peer;
 import io.robomw.testkit.Await;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.parallel.Execution;
+import org.junit.jupiter.api.parallel.ExecutionMode;
 
 import java.io.IOException;
 import java.io.UncheckedIOException;
@@ -22,6 +24,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
  * asserted here as docs/messaging.md states it ("Through a partition"); figures go to
  * {@code target/network-figures.md}.
  */
+@Execution(ExecutionMode.CONCURRENT)
 class MessagingPartitionIT {
 
     private static final Duration WAIT = Duration.ofSeconds(90);

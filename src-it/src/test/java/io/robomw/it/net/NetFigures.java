@@ -22,7 +22,7 @@ final class NetFigures {
      * @param scenario what ran
      * @param figures  what it measured, as text
      */
-    static void record(String scenario, String figures) {
+    static synchronized void record(String scenario, String figures) {
         try {
             String load = Files.readString(Path.of("/proc/loadavg")).strip().split(" ")[0];
             Files.writeString(Path.of("target", "network-figures.md"),

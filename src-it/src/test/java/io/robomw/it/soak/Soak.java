@@ -94,15 +94,38 @@ final class Soak implements AutoCloseable {
     /** Starts the hosts (the first one durable: the one killed), the home, and runs a few agents once round to warm up. */
     void start() throws Exception {
         Path key = Files.writeString(dir.resolve("cluster.key"), PASSPHRASE + "\n");
-        for (int i = 0; i < plan.hosts(); i++) {
-            String name = plan.name() + "-h" + (i + 1);
-            List<String> args = new ArrayList<>(List.of("--key-file", key.toString(), "--no-messaging"));
-            if (i == 0) {
-                args.addAll(List.of("--store", dir.resolve(name).toString()));
+        // The host JVMs start at once (none needs another); every one that started is kept, to be closed, before a failure is thrown.
+        List<Future<HostProcess>> starting = new ArrayList<>();
+        ExecutorService starters = Executors.newFixedThreadPool(plan.hosts(), r -> new Thread(r, "soak-host-start"));
+        try {
+            for (int i = 0; i < plan.hosts(); i++) {
+                String name = plan.name() + "-h" + (i + 1);
+                List<String> args = new ArrayList<>(List.of("--key-file", key.toString(), "--no-messaging"));
+                if (i == 0) {
+                    args.addAll(List.of("--store", dir.resolve(name).toString()));
+                }
+                starting.add(starters.submit(() -> HostProcess.start(name, args.toArray(String[]::new))));
             }
-            HostProcess h = HostProcess.start(name, args.toArray(String[]::new));
-            hosts.add(h);
-            restarts.put(h, 0);
+            Throwable failed = null;
+            for (Future<HostProcess> f : starting) {
+                try {
+                    HostProcess h = f.get(2, TimeUnit.MINUTES);
+                    hosts.add(h);
+                    restarts.put(h, 0);
+                } catch (java.util.concurrent.ExecutionException e) {
+                    failed = failed == null ? e.getCause() : failed;
+                } catch (java.util.concurrent.TimeoutException e) {
+                    failed = failed == null ? e : failed;
+                }
+            }
+            if (failed instanceof Error err) {
+                throw err;
+            }
+            if (failed != null) {
+                throw new IOException("a soak host did not start: " + failed, failed);
+            }
+        } finally {
+            starters.shutdownNow();
         }
         home = AgentHost.builder(plan.name() + "-home").clusterKey(ClusterKey.fromPassphrase(PASSPHRASE)).noMessaging().start();
         // Warm-up: the agent's code reaches every host, the links are made, the JITs have seen the hop path.
@@ -130,9 +153,8 @@ final class Soak implements AutoCloseable {
 
     /** Runs the plan and checks what came home. */
     Figures run() throws Exception {
-        Map<HostProcess, HostFigures> before = new LinkedHashMap<>();
+        Map<HostProcess, HostFigures> before = figuresOfEachHost();
         for (HostProcess h : hosts) {
-            before.put(h, HostFigures.of(h.pid()));
             heapDump(h, "before");
         }
         long started = System.nanoTime();
@@ -219,12 +241,40 @@ final class Soak implements AutoCloseable {
         }
 
         settle(before);
+        Map<HostProcess, HostFigures> after = figuresOfEachHost();
         List<HostRow> rows = new ArrayList<>();
         for (HostProcess h : hosts) {
-            rows.add(new HostRow(h.address(), before.get(h), HostFigures.of(h.pid()), restarts.get(h)));
+            rows.add(new HostRow(h.address(), before.get(h), after.get(h), restarts.get(h)));
             heapDump(h, "after");
         }
         return new Figures(plan, refs.size(), home, stopsRun, twice, lost, duplicates.get(), interrupted, unreachable, kills, seconds, rows);
+    }
+
+    /** Takes every host's figures at once (each a jcmd JVM against its host): the hosts' order kept. */
+    private Map<HostProcess, HostFigures> figuresOfEachHost() throws IOException {
+        ExecutorService takers = Executors.newFixedThreadPool(hosts.size(), r -> new Thread(r, "soak-host-figures"));
+        try {
+            Map<HostProcess, Future<HostFigures>> taking = new LinkedHashMap<>();
+            for (HostProcess h : hosts) {
+                taking.put(h, takers.submit(() -> HostFigures.of(h.pid())));
+            }
+            Map<HostProcess, HostFigures> figures = new LinkedHashMap<>();
+            for (Map.Entry<HostProcess, Future<HostFigures>> e : taking.entrySet()) {
+                try {
+                    figures.put(e.getKey(), e.getValue().get(3, TimeUnit.MINUTES));
+                } catch (java.util.concurrent.ExecutionException x) {
+                    throw x.getCause() instanceof IOException io ? io : new IOException("figures of " + e.getKey().address() + ": " + x.getCause(), x.getCause());
+                } catch (java.util.concurrent.TimeoutException x) {
+                    throw new IOException("figures of " + e.getKey().address() + " not taken within 3 minutes", x);
+                } catch (InterruptedException x) {
+                    Thread.currentThread().interrupt();
+                    throw new IOException("interrupted while taking the figures of " + e.getKey().address(), x);
+                }
+            }
+            return figures;
+        } finally {
+            takers.shutdownNow();
+        }
     }
 
     /**
