@@ -290,21 +290,22 @@ public final class Parallel implements AutoCloseable {
         @Override
         public void run() {
             Parallel p = owner;
-            int seen = p.generation;
+            int seen = 0; // the generation before the first pass (not read here: a pass may be published before this thread runs)
             while (true) {
                 int g = p.generation;
-                if (g == seen && !p.closed) {
+                if (g == seen) {
+                    if (p.closed) {
+                        return; // a pass published before the close has been done
+                    }
                     // the next pass often follows within microseconds: watch a little before parking
                     long until = System.nanoTime() + SPIN_NANOS;
-                    while ((g = p.generation) == seen && !p.closed && System.nanoTime() < until) {
+                    while (p.generation == seen && !p.closed && System.nanoTime() < until) {
                         Thread.onSpinWait();
                     }
-                    while ((g = p.generation) == seen && !p.closed) {
+                    while (p.generation == seen && !p.closed) {
                         LockSupport.park(p);
                     }
-                }
-                if (p.closed) {
-                    return;
+                    continue;
                 }
                 seen = g;
                 p.work(index);
