@@ -24,8 +24,8 @@ import java.util.function.IntConsumer;
  * {@value #CHUNKS_PER_THREAD} a worker), and each worker has a region of them, the same at every pass:
  * it claims its own from the front, and then the others' from their backs. A robot is then handled
  * by the same worker pass after pass (its data stays in that processor's caches: with the ranges
- * dealt from one counter, half of them moved between the processors at every pass, measured
- * 10-30 % more processor time a step at 10,000 robots), and the workers still end a pass within a
+ * dealt from one counter, half of them moved between the processors at every pass, 10-25 % more
+ * processor time a step at 10,000 robots in two A/B pairs on a loaded machine), and the workers still end a pass within a
  * small range of each other whatever else the machine runs. The last worker to finish unparks the
  * caller. A pass allocates nothing.
  */

@@ -125,8 +125,8 @@ public final class SimWorld implements AutoCloseable {
     /**
      * Each thread's sums of the robots' parts it timed since {@link #profile(Clock, boolean)} (by ordinal, after
      * {@link #PART_PAD} slots of padding: each thread's sums in cache lines of their own). Plain longs a thread adds to
-     * alone: a shared adder's atomic update per part of a timed robot cost more than the part it timed (measured: 5 % of
-     * the processor time of a step at 10,000 robots, its two threads' updates colliding on one cell). Read by
+     * alone: a shared adder's atomic update per part of a timed robot cost more than some parts it timed (profiled at
+     * 10,000 robots on a loaded machine: 5 % of a step's processor time in {@code LongAdder.add}). Read by
      * {@link #robotPartNanos} between steps, after the pass that wrote them has ended.
      */
     private final java.util.List<long[]> partSums = new java.util.concurrent.CopyOnWriteArrayList<>();
