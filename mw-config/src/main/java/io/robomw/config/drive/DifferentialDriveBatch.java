@@ -39,6 +39,14 @@ public final class DifferentialDriveBatch {
     private final double[] heading;
     private final double[] lastLeft;
     private final double[] lastRight;
+    /**
+     * Per member: the sine and cosine of its heading, and the heading they are of (NaN: none). The arc that last moved
+     * a member computed them for the heading it ended at, and the next arc starts there: one sine and one cosine an
+     * arc instead of two each (a swarm's members integrate at every tick), the same numbers as computing them anew.
+     */
+    private final double[] sinOf;
+    private final double[] cosOf;
+    private final double[] trigHeading;
 
     /**
      * @param description the robot file every member was loaded from (a ground robot on a differential drive)
@@ -77,6 +85,10 @@ public final class DifferentialDriveBatch {
         this.lastRight = new double[n];
         java.util.Arrays.fill(lastLeft, Double.NaN);
         java.util.Arrays.fill(lastRight, Double.NaN);
+        this.sinOf = new double[n];
+        this.cosOf = new double[n];
+        this.trigHeading = new double[n];
+        java.util.Arrays.fill(trigHeading, Double.NaN);
     }
 
     /** @return the members' Platform Layer */
@@ -139,6 +151,7 @@ public final class DifferentialDriveBatch {
         x[member] = pose.x();
         y[member] = pose.y();
         heading[member] = pose.heading();
+        trigHeading[member] = Double.NaN;
     }
 
     /** Integrates a member's wheel travel since its last readings as one arc ({@link io.robomw.config.kinematics.Odometry}'s arithmetic). */
@@ -158,23 +171,40 @@ public final class DifferentialDriveBatch {
         double ds = (left + right) / 2;
         double dTheta = (right - left) / (2 * half);
         double h = heading[member];
+        // the sine and cosine of h: the last arc's, when it ended at h (bit for bit: a heading is always finite, never NaN)
+        boolean known = Double.doubleToRawLongBits(trigHeading[member]) == Double.doubleToRawLongBits(h);
+        double sinH = known ? sinOf[member] : Math.sin(h);
+        double cosH = known ? cosOf[member] : Math.cos(h);
         double nx;
         double ny;
+        double nh = h + dTheta;
+        double sinN;
+        double cosN;
         if (Math.abs(dTheta) < 1e-12) {
-            nx = x[member] + ds * Math.cos(h);
-            ny = y[member] + ds * Math.sin(h);
+            nx = x[member] + ds * cosH;
+            ny = y[member] + ds * sinH;
+            boolean same = Double.doubleToRawLongBits(nh) == Double.doubleToRawLongBits(h);
+            sinN = same ? sinH : Double.NaN;
+            cosN = same ? cosH : Double.NaN;
         } else {
             double rad = ds / dTheta;
-            nx = x[member] + rad * (Math.sin(h + dTheta) - Math.sin(h));
-            ny = y[member] - rad * (Math.cos(h + dTheta) - Math.cos(h));
+            sinN = Math.sin(nh);
+            cosN = Math.cos(nh);
+            nx = x[member] + rad * (sinN - sinH);
+            ny = y[member] - rad * (cosN - cosH);
         }
-        double nh = h + dTheta;
         if (!Double.isFinite(nx) || !Double.isFinite(ny) || !Double.isFinite(nh)) {
             throw new IllegalArgumentException("robot '" + names.get(member) + "': odometry is no longer finite (" + nx + ", " + ny + ", " + nh
                     + "): an encoder reading is not a number");
         }
         x[member] = nx;
         y[member] = ny;
-        heading[member] = Pose.normalize(nh);
+        double normal = Pose.normalize(nh);
+        heading[member] = normal;
+        // known for the next arc only if the heading kept is the one they are of (not wrapped, not an unknown straight step)
+        boolean keep = !Double.isNaN(sinN) && Double.doubleToRawLongBits(normal) == Double.doubleToRawLongBits(nh);
+        trigHeading[member] = keep ? normal : Double.NaN;
+        sinOf[member] = sinN;
+        cosOf[member] = cosN;
     }
 }
