@@ -120,7 +120,10 @@ class PeerLimitsTest {
 
     @Test
     void connectionsBeyondTheLimitAreRefusedWithTheReasonAndSlotsComeBack() throws Exception {
-        MessagingNode server = node("server", PeerLimits.defaults().withMaxConnections(2), true);
+        // The two raw connections below hold the slots and never send a frame: the first-frame timeout (10 s by default)
+        // would close them, and free a slot, while a loaded machine is still at the steps below.
+        MessagingNode server = node("server", PeerLimits.defaults().withMaxConnections(2)
+                .withTimeouts(Duration.ofMinutes(5), Duration.ofMinutes(5)), true);
         server.addMessageListener("ask", null, m -> server.replyMessage(m, "yes", "answer"));
         Socket first = connect(server);
         Socket second = connect(server);
