@@ -1,5 +1,6 @@
 package io.robomw.it.net;
 
+import io.robomw.it.AtOnce;
 import io.robomw.testkit.Await;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
@@ -13,12 +14,6 @@ import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.util.List;
-import java.util.concurrent.ExecutionException;
-import java.util.concurrent.ExecutorService;
-import java.util.concurrent.Executors;
-import java.util.concurrent.Future;
-import java.util.concurrent.TimeUnit;
-import java.util.concurrent.TimeoutException;
 import java.util.regex.Matcher;
 import java.util.regex.Pattern;
 
@@ -70,40 +65,17 @@ class AgentPartitionIT {
         keyFile = dir.resolve("cluster.key");
         Files.writeString(keyFile, "network lab cluster\n");
         // The three JVMs start at once (each in its namespace; none needs another to start); the lab stops whichever started.
-        ExecutorService starters = Executors.newFixedThreadPool(3, r -> new Thread(r, "lab-start-" + tag));
-        try {
-            Future<LabProcess> startingA = starters.submit(() -> startA(durableA));
-            Future<LabProcess> startingB = starters.submit(() -> bNs.agentHost("b", keyFile, hostOptions()));
-            Future<LabProcess> startingHome = starters.submit(() -> {
-                LabProcess p = homeNs.java(tag + "-home", TripHome.class.getName(), "home", homeNs.ip(), keyFile.toString());
-                p.expect("READY", LabHost.START);
-                return p;
-            });
-            a = started(startingA);
-            b = started(startingB);
-            home = new TripLog(started(startingHome));
-        } finally {
-            starters.shutdownNow();
-        }
-    }
-
-    private static LabProcess started(Future<LabProcess> starting) throws IOException {
-        try {
-            return starting.get(LabHost.START.toSeconds() + 30, TimeUnit.SECONDS);
-        } catch (ExecutionException e) {
-            if (e.getCause() instanceof IOException io) {
-                throw io;
-            }
-            if (e.getCause() instanceof Error err) {
-                throw err; // the start's own assertion, with what the JVM printed
-            }
-            throw new IllegalStateException("a lab JVM did not start: " + e.getCause(), e.getCause());
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
-            throw new IOException("interrupted while a lab JVM started", e);
-        } catch (TimeoutException e) {
-            throw new IOException("a lab JVM did not start within " + LabHost.START.plusSeconds(30), e);
-        }
+        List<LabProcess> started = AtOnce.all(List.of(
+                new AtOnce.Step<>("starting host a", () -> startA(durableA)),
+                new AtOnce.Step<>("starting host b", () -> bNs.agentHost("b", keyFile, hostOptions())),
+                new AtOnce.Step<>("starting the home", () -> {
+                    LabProcess p = homeNs.java(tag + "-home", TripHome.class.getName(), "home", homeNs.ip(), keyFile.toString());
+                    p.expect("READY", LabHost.START);
+                    return p;
+                })), LabHost.START.plusSeconds(30), p -> { });
+        a = started.get(0);
+        b = started.get(1);
+        home = new TripLog(started.get(2));
     }
 
     private LabProcess startA(boolean durable) throws IOException {

@@ -4,6 +4,7 @@ import io.robomw.agents.host.AgentHost;
 import io.robomw.agents.host.ClusterKey;
 import io.robomw.api.AgentRef;
 import io.robomw.api.Itinerary;
+import io.robomw.it.AtOnce;
 import io.robomw.it.agents.HostProcess;
 
 import java.io.IOException;
@@ -95,38 +96,19 @@ final class Soak implements AutoCloseable {
     void start() throws Exception {
         Path key = Files.writeString(dir.resolve("cluster.key"), PASSPHRASE + "\n");
         // The host JVMs start at once (none needs another); every one that started is kept, to be closed, before a failure is thrown.
-        List<Future<HostProcess>> starting = new ArrayList<>();
-        ExecutorService starters = Executors.newFixedThreadPool(plan.hosts(), r -> new Thread(r, "soak-host-start"));
-        try {
-            for (int i = 0; i < plan.hosts(); i++) {
-                String name = plan.name() + "-h" + (i + 1);
-                List<String> args = new ArrayList<>(List.of("--key-file", key.toString(), "--no-messaging"));
-                if (i == 0) {
-                    args.addAll(List.of("--store", dir.resolve(name).toString()));
-                }
-                starting.add(starters.submit(() -> HostProcess.start(name, args.toArray(String[]::new))));
+        List<AtOnce.Step<HostProcess>> starts = new ArrayList<>();
+        for (int i = 0; i < plan.hosts(); i++) {
+            String name = plan.name() + "-h" + (i + 1);
+            List<String> args = new ArrayList<>(List.of("--key-file", key.toString(), "--no-messaging"));
+            if (i == 0) {
+                args.addAll(List.of("--store", dir.resolve(name).toString()));
             }
-            Throwable failed = null;
-            for (Future<HostProcess> f : starting) {
-                try {
-                    HostProcess h = f.get(2, TimeUnit.MINUTES);
-                    hosts.add(h);
-                    restarts.put(h, 0);
-                } catch (java.util.concurrent.ExecutionException e) {
-                    failed = failed == null ? e.getCause() : failed;
-                } catch (java.util.concurrent.TimeoutException e) {
-                    failed = failed == null ? e : failed;
-                }
-            }
-            if (failed instanceof Error err) {
-                throw err;
-            }
-            if (failed != null) {
-                throw new IOException("a soak host did not start: " + failed, failed);
-            }
-        } finally {
-            starters.shutdownNow();
+            starts.add(new AtOnce.Step<>("starting soak host " + name, () -> HostProcess.start(name, args.toArray(String[]::new))));
         }
+        AtOnce.all(starts, Duration.ofMinutes(2), h -> {
+            hosts.add(h);
+            restarts.put(h, 0);
+        });
         home = AgentHost.builder(plan.name() + "-home").clusterKey(ClusterKey.fromPassphrase(PASSPHRASE)).noMessaging().start();
         // Warm-up: the agent's code reaches every host, the links are made, the JITs have seen the hop path.
         List<AgentRef> warm = new ArrayList<>();
@@ -252,29 +234,16 @@ final class Soak implements AutoCloseable {
 
     /** Takes every host's figures at once (each a jcmd JVM against its host): the hosts' order kept. */
     private Map<HostProcess, HostFigures> figuresOfEachHost() throws IOException {
-        ExecutorService takers = Executors.newFixedThreadPool(hosts.size(), r -> new Thread(r, "soak-host-figures"));
-        try {
-            Map<HostProcess, Future<HostFigures>> taking = new LinkedHashMap<>();
-            for (HostProcess h : hosts) {
-                taking.put(h, takers.submit(() -> HostFigures.of(h.pid())));
-            }
-            Map<HostProcess, HostFigures> figures = new LinkedHashMap<>();
-            for (Map.Entry<HostProcess, Future<HostFigures>> e : taking.entrySet()) {
-                try {
-                    figures.put(e.getKey(), e.getValue().get(3, TimeUnit.MINUTES));
-                } catch (java.util.concurrent.ExecutionException x) {
-                    throw x.getCause() instanceof IOException io ? io : new IOException("figures of " + e.getKey().address() + ": " + x.getCause(), x.getCause());
-                } catch (java.util.concurrent.TimeoutException x) {
-                    throw new IOException("figures of " + e.getKey().address() + " not taken within 3 minutes", x);
-                } catch (InterruptedException x) {
-                    Thread.currentThread().interrupt();
-                    throw new IOException("interrupted while taking the figures of " + e.getKey().address(), x);
-                }
-            }
-            return figures;
-        } finally {
-            takers.shutdownNow();
+        List<AtOnce.Step<HostFigures>> taking = new ArrayList<>();
+        for (HostProcess h : hosts) {
+            taking.add(new AtOnce.Step<>("taking the figures of " + h.address(), () -> HostFigures.of(h.pid())));
         }
+        List<HostFigures> taken = AtOnce.all(taking, Duration.ofMinutes(3), f -> { });
+        Map<HostProcess, HostFigures> figures = new LinkedHashMap<>();
+        for (int i = 0; i < hosts.size(); i++) {
+            figures.put(hosts.get(i), taken.get(i));
+        }
+        return figures;
     }
 
     /**
