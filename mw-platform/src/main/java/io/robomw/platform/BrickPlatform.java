@@ -104,18 +104,24 @@ public final class BrickPlatform implements RobotPlatform {
                     + "; " + command + " (close the robot and open it again)", failed.get());
         }
         if (agent.state() != LinkState.UP) {
-            return new RobotLinkException("robot '" + config.robotName() + "': its link " + agent.describe() + " is down; " + command, null);
+            return linkDown(command);
         }
         return null;
     }
 
+    private RobotLinkException linkDown(String command) {
+        return new RobotLinkException("robot '" + config.robotName() + "': its link " + agent.describe() + " is down; " + command, null);
+    }
+
     @Override
     public CompletableFuture<Void> run(MotorCommand command) {
-        RobotLinkException refused = refusal("command '" + command.name() + "' was not run");
+        String notRun = "command '" + command.name() + "' was not run";
+        RobotLinkException refused = refusal(notRun);
         if (refused != null) {
             return CompletableFuture.failedFuture(refused);
         }
-        return actionThread.submit(motors.container(command));
+        CompletableFuture<Void> queued = agent.submitWhileUp(motors.container(command));
+        return queued != null ? queued : CompletableFuture.failedFuture(linkDown(notRun)); // lost since the check
     }
 
     /**
@@ -126,10 +132,10 @@ public final class BrickPlatform implements RobotPlatform {
      */
     @Override
     public void runDetached(MotorCommand command) {
-        if (agent.failure().isPresent() || agent.state() != LinkState.UP) {
+        if (agent.failure().isPresent()) {
             return;
         }
-        motors.submitDetached(command, actionThread);
+        agent.submitDetachedWhileUp(command);
     }
 
     /**

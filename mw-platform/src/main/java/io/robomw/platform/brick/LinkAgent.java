@@ -3,11 +3,13 @@ package io.robomw.platform.brick;
 import io.robomw.api.RobotException;
 import io.robomw.api.RobotLinkException;
 import io.robomw.api.spi.Cycling;
+import io.robomw.api.spi.MotorCommand;
 import io.robomw.api.spi.FailurePolicy;
 import io.robomw.api.spi.IdleStrategy;
 import io.robomw.api.spi.OwnerThread;
 import io.robomw.api.spi.PlatformConfig;
 import io.robomw.platform.ThrottledWarnings;
+import io.robomw.platform.exec.Container;
 import io.robomw.platform.exec.ExecutionActionThread;
 import io.robomw.platform.link.LinkLostException;
 import io.robomw.platform.motor.MotorPlatform;
@@ -17,6 +19,7 @@ import org.slf4j.LoggerFactory;
 import java.io.IOException;
 import java.time.Duration;
 import java.util.Optional;
+import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicLong;
 import java.util.concurrent.atomic.AtomicReference;
@@ -72,6 +75,12 @@ public final class LinkAgent implements AutoCloseable {
     private final ThrottledWarnings refusals;
     private final boolean inline;
     private final AtomicReference<LinkState> state = new AtomicReference<>(LinkState.UP);
+    /**
+     * Held while the link is found lost (the state going down and the action thread told to stop every command) and while
+     * a command is handed over only if the link is up ({@link #submitWhileUp}, {@link #submitDetachedWhileUp}): a command either sees the link down, or is stopped
+     * with the others; never admitted after the stop to wait for a link that is gone.
+     */
+    private final Object linkChange = new Object();
     private final AtomicLong driverErrors = new AtomicLong();
     /** When the link was last reopened, or found lost ({@link BrickChannel#LINK_TIME}). */
     private volatile long lastReopen;
@@ -129,6 +138,40 @@ public final class LinkAgent implements AutoCloseable {
     /** @return the link's state */
     public LinkState state() {
         return state.get();
+    }
+
+    /**
+     * Hands a command to the action thread only if the link is up, in one step with respect to the link being found lost on
+     * another thread: either the loss comes first (nothing is handed over: the caller refuses the command) or the command is
+     * stopped with every other one when the loss is reported. Without it, a command that saw the link up just before the loss
+     * and was queued just after the stop would wait for the link to come back and run then, long after its caller was told
+     * the link was down.
+     *
+     * @param command the command's container
+     * @return its future, or {@code null} if the link was not up and nothing was handed over
+     */
+    public CompletableFuture<Void> submitWhileUp(Container command) {
+        synchronized (linkChange) {
+            return state.get() == LinkState.UP ? actionThread.submit(command) : null;
+        }
+    }
+
+    /**
+     * {@link MotorPlatform#submitDetached} a command nobody waits for, only if the link is up, in one step with respect to the
+     * link being found lost (as {@link #submitWhileUp}): a drive refreshed as the link is lost is dropped with the others
+     * instead of moving the motors when the link comes back. Allocates nothing (a drive at a program's rate comes here).
+     *
+     * @param command the command
+     * @return whether it was handed over
+     */
+    public boolean submitDetachedWhileUp(MotorCommand command) {
+        synchronized (linkChange) {
+            if (state.get() != LinkState.UP) {
+                return false;
+            }
+            motors.submitDetached(command, actionThread);
+            return true;
+        }
     }
 
     /** @return why the agent's thread died, if it did: the platform has failed */
@@ -255,26 +298,29 @@ public final class LinkAgent implements AutoCloseable {
      * the stops waiting to be written fail; from reopening, the attempt failed. Idempotent.
      */
     private void lost(IOException cause) {
-        while (true) {
-            LinkState was = state.get();
-            if (was == LinkState.DOWN) {
-                return;
-            }
-            if (state.compareAndSet(was, LinkState.DOWN)) {
-                lastReopen = BrickChannel.LINK_TIME.nanoTime();
-                if (was == LinkState.UP) {
-                    LOG.warn("robot '{}': link {} is down: {}; its commands were stopped, and it is reopened every {} ms", robot, describe(),
-                            cause.getMessage(), BrickChannel.REOPEN_INTERVAL.toMillis());
-                    actionThread.linkFailed(describe(), cause);
-                } else {
-                    LOG.debug("robot '{}': reopening {} failed: {}", robot, describe(), cause.getMessage());
+        LinkState was;
+        synchronized (linkChange) {
+            do {
+                was = state.get();
+                if (was == LinkState.DOWN) {
+                    return;
                 }
-                motors.failPendingStops(new RobotLinkException("robot '" + robot + "': its stop was not handed to the hardware: link "
-                        + describe() + " failed: " + cause.getMessage() + "; it goes out when the link returns", cause));
-                wake();
-                return;
+            } while (!state.compareAndSet(was, LinkState.DOWN));
+            lastReopen = BrickChannel.LINK_TIME.nanoTime();
+            if (was == LinkState.UP) {
+                // under the lock: a command handed over while up is either refused or among those this stops
+                actionThread.linkFailed(describe(), cause);
             }
         }
+        if (was == LinkState.UP) {
+            LOG.warn("robot '{}': link {} is down: {}; its commands were stopped, and it is reopened every {} ms", robot, describe(),
+                    cause.getMessage(), BrickChannel.REOPEN_INTERVAL.toMillis());
+        } else {
+            LOG.debug("robot '{}': reopening {} failed: {}", robot, describe(), cause.getMessage());
+        }
+        motors.failPendingStops(new RobotLinkException("robot '" + robot + "': its stop was not handed to the hardware: link "
+                + describe() + " failed: " + cause.getMessage() + "; it goes out when the link returns", cause));
+        wake();
     }
 
     /** What the channel asks and tells this agent. */

@@ -9,6 +9,7 @@ import io.robomw.api.spi.MotorCommand;
 import io.robomw.api.spi.PlatformConfig;
 import io.robomw.api.spi.RobotPlatform;
 import io.robomw.api.spi.SensorChannel;
+import io.robomw.platform.exec.Container;
 import io.robomw.platform.exec.ExecutionActionThread;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
@@ -40,6 +41,8 @@ public final class HighLevelRobotPlatform implements RobotPlatform, HighLevelPla
     private final Map<String, Sensor> sensors = new LinkedHashMap<>();
     private final AutoCloseable link;
     private volatile boolean linkDown;
+    /** Held while the link's failure is reported and while a command is handed over only if the link is up. */
+    private final Object linkChange = new Object();
     private volatile boolean closed;
 
     /**
@@ -88,11 +91,15 @@ public final class HighLevelRobotPlatform implements RobotPlatform, HighLevelPla
      * @param cause what happened
      */
     public void linkFailed(String link, Throwable cause) {
-        if (!linkDown) {
+        boolean was;
+        synchronized (linkChange) {
+            was = linkDown;
             linkDown = true;
+            actionThread.linkFailed(link, cause);
+        }
+        if (!was) {
             LOG.warn("robot '{}': link {} failed: {}", config.robotName(), link, cause.getMessage());
         }
-        actionThread.linkFailed(link, cause);
     }
 
     /** The link works again: commands are taken again. */
@@ -110,11 +117,16 @@ public final class HighLevelRobotPlatform implements RobotPlatform, HighLevelPla
 
     @Override
     public CompletableFuture<Void> execute(HighLevelCommand command) {
-        if (linkDown) {
-            return CompletableFuture.failedFuture(new RobotLinkException("robot '" + config.robotName()
-                    + "': its link is down; command '" + command.name() + "' (" + command.text() + ") was not sent", null));
+        Container container = commands.container(command);
+        synchronized (linkChange) {
+            // one step with the failure's report: a command either sees the link down or is ended with the others by it,
+            // never admitted after that to be sent when the link is back
+            if (!linkDown) {
+                return actionThread.submit(container);
+            }
         }
-        return actionThread.submit(commands.container(command));
+        return CompletableFuture.failedFuture(new RobotLinkException("robot '" + config.robotName()
+                + "': its link is down; command '" + command.name() + "' (" + command.text() + ") was not sent", null));
     }
 
     @Override

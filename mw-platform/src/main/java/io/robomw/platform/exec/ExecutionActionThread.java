@@ -349,8 +349,11 @@ public final class ExecutionActionThread implements AutoCloseable {
 
     /**
      * A link failure and the last ticket submitted when it was reported: containers submitted up to
-     * it (queued while the link still looked up) end with it too, instead of being admitted to wait
-     * on a link that is gone; those submitted after it (the safety stop that follows) are admitted.
+     * it (queued while the link still looked up) end with it too, and refreshes queued up to it are
+     * dropped, instead of being admitted to wait on a link that is gone (and to move the motors when
+     * it comes back); those submitted after it (the safety stop that follows) are admitted. A brick's
+     * link agent reports the failure under the same lock under which commands are handed over
+     * while the link is up, so no command slips in between.
      */
     private record LinkFailure(RobotLinkException cause, long throughTicket) {
     }
@@ -499,9 +502,14 @@ public final class ExecutionActionThread implements AutoCloseable {
                     epoch(c.name(), "admission", t0);
                 }
             } else {
-                admit((RefreshSlot) next, start);
+                RefreshSlot slot = (RefreshSlot) next;
+                if (failure != null && slot.ticket <= failure.throughTicket()) {
+                    // refreshed before the link was reported lost: dropped, as what it refreshes was stopped (nobody waits for it)
+                    continue;
+                }
+                admit(slot, start);
                 if (timed) {
-                    epoch(((RefreshSlot) next).name(), "refresh", t0);
+                    epoch(slot.name(), "refresh", t0);
                 }
             }
         }

@@ -29,12 +29,14 @@ import org.junit.jupiter.api.Test;
 
 import java.io.IOException;
 import java.time.Duration;
+import java.util.ArrayList;
 import java.util.List;
 import java.util.Map;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicBoolean;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertInstanceOf;
@@ -151,6 +153,55 @@ class LinkAgentTest {
 
             // The tests log warnings only: the return's line is at info level.
             assertEquals(1, log.containing("pluggable brick").size(), "one line for the loss, from one place: " + log.containing("pluggable brick"));
+        }
+    }
+
+    /**
+     * Commands submitted by other threads at the moment the link is lost either fail with the loss or are refused (or, detached,
+     * are dropped): none is left admitted to wait on the gone link (it would run after the reconnect, long after its caller saw the link down).
+     * Each round: one thread runs drives and another sends detached ones (a program's {@code drive} at its own rate) without
+     * pause, the brick is unplugged and a read finds it, and once the link is down every future the first got must end and
+     * no command may hold the motors, with the brick still unplugged.
+     */
+    @Test
+    void noCommandSubmittedAsTheLinkIsLostIsLeftWaitingForItToComeBack() throws Exception {
+        open();
+        for (int round = 0; round < 12; round++) {
+            Await.until("the link is up (round " + round + ")", Duration.ofSeconds(10), () -> platform.linkState() == LinkState.UP);
+            List<CompletableFuture<Void>> submitted = new CopyOnWriteArrayList<>();
+            AtomicBoolean submitting = new AtomicBoolean(true);
+            List<Thread> submitters = new ArrayList<>();
+            for (int t = 0; t < 2; t++) {
+                boolean detached = t == 1;
+                Thread s = new Thread(() -> {
+                    while (submitting.get()) {
+                        if (detached) {
+                            // a program's drive(v, ω) at its own rate: nobody waits for it
+                            platform.runDetached(MotorCommand.of("drive", List.of(MotorTarget.run("B", 180), MotorTarget.run("C", 180))));
+                        } else {
+                            submitted.add(platform.run(driveForever()));
+                        }
+                    }
+                }, detached ? "detached-submitter" : "submitter");
+                s.start();
+                submitters.add(s);
+            }
+            int before = motors.sent.size();
+            Await.until("drives reach the brick", Duration.ofSeconds(10), () -> motors.sent.size() > before);
+            brick.unplug();
+            assertThrows(IOException.class, () -> motors.ping(new byte[] {9}));
+            Await.until("the link is down", Duration.ofSeconds(10), () -> platform.linkState() == LinkState.DOWN);
+            submitting.set(false);
+            for (Thread s : submitters) {
+                s.join(10_000);
+            }
+            int r = round;
+            Await.until("every drive submitted around the loss ended (round " + r + ", " + submitted.size() + " submitted)",
+                    Duration.ofSeconds(10), () -> submitted.stream().allMatch(CompletableFuture::isDone));
+            assertTrue(submitted.stream().allMatch(CompletableFuture::isCompletedExceptionally), "none of them finished: the motors run forever");
+            Await.until("no command holds a motor while the link is down (round " + r + ")", Duration.ofSeconds(10),
+                    () -> platform.actionThread().actuatorsInUse().isEmpty());
+            brick.plugIn();
         }
     }
 }
