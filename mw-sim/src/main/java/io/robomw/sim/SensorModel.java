@@ -376,7 +376,7 @@ public final class SensorModel {
         return Math.min(maxRange, Math.max(minRange, value));
     }
 
-    /** A robot's rays of one sensing pass, cast together ({@link io.robomw.sim.sensing.RangeIndex#castRays}); one per thread. */
+    /** A robot's rays of one sensing pass, cast together ({@link io.robomw.sim.sensing.RangeIndex#castRays}); one per thread (per {@link Parallel#slot}). */
     static final class RayBatch {
         double[] ox = new double[16];
         double[] oy = new double[16];
@@ -385,6 +385,8 @@ public final class SensorModel {
         double[] maxRange = new double[16];
         double[] hits = new double[16];
         int count;
+        /** The range index's scratch for these rays' casts. */
+        final io.robomw.sim.sensing.RangeIndex.Gathered gathered = new io.robomw.sim.sensing.RangeIndex.Gathered();
         /** Which of a robot file's range sensors are due at a step: the last list and step asked about, and the answer. */
         private java.util.List<SensorModel> dueSensors;
         private long dueStep;

@@ -441,6 +441,25 @@ public final class RangeIndex {
      * @param out      each ray's distance to its nearest hit, or {@link Double#POSITIVE_INFINITY} if none within its maxRange
      */
     public void castRays(double[] ox, double[] oy, double[] dx, double[] dy, double[] maxRange, int count, int self, double[] out) {
+        castRays(ox, oy, dx, dy, maxRange, count, self, out, gathered.get());
+    }
+
+    /**
+     * {@link #castRays(double[], double[], double[], double[], double[], int, int, double[])} with the calling thread's
+     * scratch given (a caller that keeps one per thread saves the ThreadLocal look-up, once a robot).
+     *
+     * @param ox       each ray's origin x
+     * @param oy       each ray's origin y
+     * @param dx       each ray's direction's x (a unit vector)
+     * @param dy       each ray's direction's y
+     * @param maxRange each ray's longest distance of interest
+     * @param count    how many rays (the first {@code count} of each array)
+     * @param self     index of the robot casting them (its body is ignored), or -1
+     * @param out      each ray's distance to its nearest hit, or {@link Double#POSITIVE_INFINITY} if none within its maxRange
+     * @param g        scratch no other thread uses meanwhile
+     */
+    public void castRays(double[] ox, double[] oy, double[] dx, double[] dy, double[] maxRange, int count, int self, double[] out,
+            Gathered g) {
         double minX = Double.POSITIVE_INFINITY;
         double minY = Double.POSITIVE_INFINITY;
         double maxX = Double.NEGATIVE_INFINITY;
@@ -475,7 +494,6 @@ public final class RangeIndex {
             reach = Math.max(reach, Math.sqrt(ex * ex + ey * ey) + maxRange[k]);
         }
         reach = reach * (1 + 1e-9) + 1e-9;
-        Gathered g = gathered.get();
         g.begin(sx1.length + cx.length, robotCount);
         int stamp = g.stamp;
         int[] staticSeen = g.staticSeen;
@@ -567,8 +585,11 @@ public final class RangeIndex {
         }
     }
 
-    /** One thread's scratch for {@link #castRays}: what was gathered, and stamps that say what was gathered already. */
-    private static final class Gathered {
+    /**
+     * One thread's scratch for {@link #castRays}: what was gathered, and stamps that say what was gathered already. Used
+     * by one thread at a time, on any index.
+     */
+    public static final class Gathered {
         int stamp;
         int[] staticSeen = new int[0];
         int[] robotSeen = new int[0];
