@@ -484,16 +484,20 @@ public final class RangeIndex {
         }
         // The rays' reach: a circle about the middle of their box that holds every point of every ray. A body whose
         // bounding circle lies beyond it is hit by none (its crossings would all be past the rays' ranges), so it is not
-        // gathered; the margin keeps that true whatever the rounding.
+        // gathered; the margin keeps that true whatever the rounding. The farthest origin plus the longest range: one
+        // square root, not one a ray (no smaller than any ray's own sum, rounding being monotonic; the same when the
+        // rays are equally long, as a robot's usually are).
         double mx = (minX + maxX) / 2;
         double my = (minY + maxY) / 2;
-        double reach = 0;
+        double farthest = 0;
+        double longest = 0;
         for (int k = 0; k < count; k++) {
             double ex = ox[k] - mx;
             double ey = oy[k] - my;
-            reach = Math.max(reach, Math.sqrt(ex * ex + ey * ey) + maxRange[k]);
+            farthest = Math.max(farthest, ex * ex + ey * ey);
+            longest = Math.max(longest, maxRange[k]);
         }
-        reach = reach * (1 + 1e-9) + 1e-9;
+        double reach = (Math.sqrt(farthest) + longest) * (1 + 1e-9) + 1e-9;
         g.begin(sx1.length + cx.length, robotCount);
         int stamp = g.stamp;
         int[] staticSeen = g.staticSeen;
