@@ -46,6 +46,11 @@ public final class RangeIndex {
     private int[] robotCells = new int[0];
     private final int[] robotStart;
     private int[] robotFill = new int[0];
+    /**
+     * The robots of each cell, in compressed-row form by {@link #robotStart}: a robot whose body lies in that cell alone as
+     * its index, one whose body spans several as {@code ~index} (negative), so that a gathering over several cells looks
+     * up whether it met a robot already only for the few that span cells.
+     */
     private int[] robotItems = new int[0];
     /** Per robot: its centre and the radius of its body's bounding circle, {x, y, r}, for a ray's quick miss. */
     private double[] robotCircles = new double[0];
@@ -307,7 +312,7 @@ public final class RangeIndex {
             int spanC = spanColumns(first, last);
             for (int k = first; k <= last; k += cols) {
                 for (int j = 0; j < spanC; j++) {
-                    items[fill[k + j]++] = i;
+                    items[fill[k + j]++] = ~i; // in several cells
                 }
             }
         }
@@ -379,6 +384,7 @@ public final class RangeIndex {
                 }
                 for (int j = robotStart[k]; j < robotStart[k + 1]; j++) {
                     int r = robotItems[j];
+                    r = r >= 0 ? r : ~r;
                     if (r == self || r == seen0 || r == seen1 || r == seen2 || r == seen3) {
                         continue; // its own body, or a body already tested in a cell before (it spans several)
                     }
@@ -516,8 +522,15 @@ public final class RangeIndex {
                 }
                 for (int j = robotStart[k]; j < robotStart[k + 1]; j++) {
                     int b = robotItems[j];
-                    if (b != self && robotSeen[b] != stamp) {
+                    if (b < 0) {
+                        // a body in several cells: gathered at the first of them met, passed over at the others
+                        b = ~b;
+                        if (robotSeen[b] == stamp) {
+                            continue;
+                        }
                         robotSeen[b] = stamp;
+                    }
+                    if (b != self) {
                         int m = b * 3;
                         double vx = circles[m] - mx;
                         double vy = circles[m + 1] - my;
