@@ -255,10 +255,11 @@ public final class Parallel implements AutoCloseable {
     }
 
     /**
-     * The calling thread's slot, for scratch kept per thread: a pass's work runs on this pool's workers or, inline, on
-     * the one thread that calls its passes (they are not called from two threads at once), so no two threads share a
-     * slot while a pass runs. An array indexed by it does the job of a ThreadLocal without the look-up (once a robot,
-     * that took 2 % of a step's processor time at 10,000 robots).
+     * The calling thread's slot, for scratch kept per thread: a pass's work runs on this pool's workers, each with a slot
+     * of its own, or inline on the thread that asked for it, and every other thread shares the last slot. So scratch
+     * indexed by it is one thread's at a time if the passes that use it are asked for by one thread at a time (as a
+     * world's steps are, under its step lock): it does the job of a ThreadLocal without the look-up (once a robot, that
+     * took 2 % of a step's processor time at 10,000 robots).
      *
      * @return the index of the calling worker of this pool, or {@code slots() - 1} on any other thread
      */

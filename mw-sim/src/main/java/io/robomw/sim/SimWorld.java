@@ -1125,7 +1125,7 @@ public final class SimWorld implements AutoCloseable {
         }
     }
 
-    /** Each worker thread's rays of the robot it senses for (by {@link Parallel#slot}). */
+    /** Each worker thread's rays of the robot it senses for (by {@link Parallel#slot}: steps are taken one at a time). */
     private final SensorModel.RayBatch[] rayBatches;
 
     /** @return whether any range sensor samples at this step */
