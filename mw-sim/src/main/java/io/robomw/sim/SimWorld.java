@@ -1114,7 +1114,13 @@ public final class SimWorld implements AutoCloseable {
                 sensors.get(k).addRays(batch, x, y, heading, c, s, pan);
             }
         }
-        rangeIndex.castRays(batch.ox, batch.oy, batch.dx, batch.dy, batch.maxRange, batch.count, i, batch.hits, batch.gathered);
+        if (model.rangeReach > 0) {
+            // sensors all round: what is around the robot is what lies within their reach of its centre
+            rangeIndex.castRaysWithin(x, y, model.rangeReach, batch.ox, batch.oy, batch.dx, batch.dy, batch.maxRange, batch.count, i, batch.hits,
+                    batch.gathered);
+        } else {
+            rangeIndex.castRays(batch.ox, batch.oy, batch.dx, batch.dy, batch.maxRange, batch.count, i, batch.hits, batch.gathered);
+        }
         int first = 0;
         for (int k = 0; k < due.length; k++) {
             SensorModel m = sensors.get(k);

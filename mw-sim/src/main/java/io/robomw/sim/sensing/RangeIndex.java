@@ -504,6 +504,53 @@ public final class RangeIndex {
             longest = Math.max(longest, maxRange[k]);
         }
         double reach = (Math.sqrt(farthest) + longest) * (1 + 1e-9) + 1e-9;
+        castGathered(ox, oy, dx, dy, maxRange, count, self, out, g, c0, c1, r0, r1, mx, my, reach);
+    }
+
+    /**
+     * {@link #castRays(double[], double[], double[], double[], double[], int, int, double[], Gathered)} with a circle
+     * given that holds every point of every ray: a robot's sensors' farthest reach from its centre, known once for its
+     * robot file. Its box and its circle stand for the rays' own (no minimum and maximum of every ray's ends, no
+     * farthest origin): they take in every body the rays' own would and maybe more, so the distances are the same, bit
+     * for bit. Worth it when the circle is about as tight as the rays' box, as for sensors all round a robot.
+     *
+     * @param centreX  the circle's centre x
+     * @param centreY  the circle's centre y
+     * @param radius   its radius: no point of a ray (origin plus up to its maxRange along it) is farther from the centre
+     * @param ox       each ray's origin x
+     * @param oy       each ray's origin y
+     * @param dx       each ray's direction's x (a unit vector)
+     * @param dy       each ray's direction's y
+     * @param maxRange each ray's longest distance of interest
+     * @param count    how many rays (the first {@code count} of each array)
+     * @param self     index of the robot casting them (its body is ignored), or -1
+     * @param out      each ray's distance to its nearest hit, or {@link Double#POSITIVE_INFINITY} if none within its maxRange
+     * @param g        scratch no other thread uses meanwhile
+     */
+    public void castRaysWithin(double centreX, double centreY, double radius, double[] ox, double[] oy, double[] dx, double[] dy,
+            double[] maxRange, int count, int self, double[] out, Gathered g) {
+        // the margin keeps every point of every ray inside whatever the rounding of their origins
+        double reach = radius * (1 + 1e-9) + 1e-9;
+        int c0 = clampCol(centreX - reach);
+        int c1 = clampCol(centreX + reach);
+        int r0 = clampRow(centreY - reach);
+        int r1 = clampRow(centreY + reach);
+        if (!(count > 0) || (long) (c1 - c0 + 1) * (r1 - r0 + 1) > (long) GATHER_CELLS_PER_RAY * count + 9) {
+            for (int k = 0; k < count; k++) {
+                out[k] = castRay(ox[k], oy[k], dx[k], dy[k], maxRange[k], self);
+            }
+            return;
+        }
+        castGathered(ox, oy, dx, dy, maxRange, count, self, out, g, c0, c1, r0, r1, centreX, centreY, reach);
+    }
+
+    /**
+     * The gathered cast of {@link #castRays}: what lies in cells {@code c0..c1} of rows {@code r0..r1} (each static and
+     * robot once; a robot only if its bounding circle reaches the circle ({@code mx}, {@code my}, {@code reach}), which
+     * holds every point of every ray), then each ray against that.
+     */
+    private void castGathered(double[] ox, double[] oy, double[] dx, double[] dy, double[] maxRange, int count, int self, double[] out,
+            Gathered g, int c0, int c1, int r0, int r1, double mx, double my, double reach) {
         g.begin(sx1.length + cx.length, robotCount);
         int stamp = g.stamp;
         int[] staticSeen = g.staticSeen;
