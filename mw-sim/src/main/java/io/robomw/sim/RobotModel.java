@@ -31,6 +31,13 @@ final class RobotModel {
     final List<SensorModel> rangeSensors;
     /** Whether a range sensor is noisy (each robot then has a generator per sensor). */
     final boolean noisy;
+    /**
+     * The radius about a robot's centre that holds every point of its range sensors' rays, if the circle's box is about
+     * as tight as the rays' own box (sensors all round the robot: at most twice its area in the robot's frame, which a
+     * box of the rays can reach by turning), for sensing to gather what is around the robot without finding the rays'
+     * box at every sample ({@link io.robomw.sim.sensing.RangeIndex#castRaysWithin}); 0 otherwise.
+     */
+    final double rangeReach;
     final boolean hasTouch;
     final boolean hasAccel;
 
@@ -66,6 +73,7 @@ final class RobotModel {
         this.byName = Collections.unmodifiableMap(names);
         this.rangeSensors = List.copyOf(range);
         this.noisy = noise;
+        this.rangeReach = rangeReach(range);
         this.hasTouch = touch;
         this.hasAccel = acc;
     }
@@ -98,5 +106,19 @@ final class RobotModel {
         public int hashCode() {
             return System.identityHashCode(drive) * 31 + System.identityHashCode(sensors) * 17 + System.identityHashCode(body);
         }
+    }
+
+    /** @return {@link #rangeReach} of these range sensors */
+    private static double rangeReach(List<SensorModel> range) {
+        double radius = 0;
+        double[] box = {Double.POSITIVE_INFINITY, Double.POSITIVE_INFINITY, Double.NEGATIVE_INFINITY, Double.NEGATIVE_INFINITY};
+        for (SensorModel m : range) {
+            if (!m.stretch(box)) {
+                return 0;
+            }
+            radius = Math.max(radius, m.reach());
+        }
+        double area = (box[2] - box[0]) * (box[3] - box[1]);
+        return !range.isEmpty() && 4 * radius * radius <= 2 * area ? radius : 0;
     }
 }

@@ -45,6 +45,13 @@ final class RobotStates {
     double[] encoderRight = new double[0];
     double[] commandLeft = new double[0];
     double[] commandRight = new double[0];
+    /**
+     * The body's linear (metres per second) and angular (radians per second) speed the commanded wheel speeds ask for:
+     * worked out when a command is set ({@link #command}), at most once a cycle, rather than at every step (three
+     * divisions a robot at 50 Hz, for commands that change at 10 Hz).
+     */
+    double[] linear = new double[0];
+    double[] angular = new double[0];
     // the drive's constants: the body's number in the physics, track width, motor degrees per metre of
     // wheel travel, each motor's direction (1, or -1 when reversed), top wheel speed
     int[] body = new int[0];
@@ -115,6 +122,8 @@ final class RobotStates {
         encoderRight = Arrays.copyOf(encoderRight, m);
         commandLeft = Arrays.copyOf(commandLeft, m);
         commandRight = Arrays.copyOf(commandRight, m);
+        linear = Arrays.copyOf(linear, m);
+        angular = Arrays.copyOf(angular, m);
         body = Arrays.copyOf(body, m);
         track = Arrays.copyOf(track, m);
         degreesPerMetre = Arrays.copyOf(degreesPerMetre, m);
@@ -217,13 +226,28 @@ final class RobotStates {
         }
     }
 
-    /** Sets robot {@code i}'s body velocities from its commanded wheel speeds (a differential drive). */
-    void drive(int i, Physics physics) {
+    /**
+     * Sets robot {@code i}'s commanded wheel speeds (a differential drive's, degrees per second; its constants set) and
+     * the body's speeds they ask for, each wheel's within the drive's top speed.
+     *
+     * @param i     the robot's index
+     * @param left  the left motor's speed
+     * @param right the right motor's speed
+     */
+    void command(int i, double left, double right) {
+        commandLeft[i] = left;
+        commandRight[i] = right;
         double max = maxSpeed[i];
         double dpm = degreesPerMetre[i];
-        double vl = clamp(signLeft[i] * commandLeft[i] / dpm, max);
-        double vr = clamp(signRight[i] * commandRight[i] / dpm, max);
-        physics.drive(body[i], (vl + vr) / 2, (vr - vl) / track[i]);
+        double vl = clamp(signLeft[i] * left / dpm, max);
+        double vr = clamp(signRight[i] * right / dpm, max);
+        linear[i] = (vl + vr) / 2;
+        angular[i] = (vr - vl) / track[i];
+    }
+
+    /** Sets robot {@code i}'s body velocities from its commanded wheel speeds (a differential drive; see {@link #command}). */
+    void drive(int i, Physics physics) {
+        physics.drive(body[i], linear[i], angular[i]);
     }
 
     private static double clamp(double v, double max) {

@@ -265,6 +265,32 @@ public final class SensorModel {
         return headMounted;
     }
 
+    /** @return how far from the robot's centre a point of its rays can be: its mount's distance plus its longest range */
+    double reach() {
+        return Math.sqrt(mountX * mountX + mountY * mountY) + maxRange;
+    }
+
+    /**
+     * Stretches a box, in the robot's frame, over its rays (their origins and their ends at the longest range).
+     *
+     * @param box {minX, minY, maxX, maxY}
+     * @return false, leaving the box, if the rays turn with a head (no box in the robot's frame holds them)
+     */
+    boolean stretch(double[] box) {
+        if (headMounted) {
+            return false;
+        }
+        for (int i = 0; i < rays; i++) {
+            double ex = mountX + maxRange * rayCos[i];
+            double ey = mountY + maxRange * raySin[i];
+            box[0] = Math.min(box[0], Math.min(mountX, ex));
+            box[1] = Math.min(box[1], Math.min(mountY, ey));
+            box[2] = Math.max(box[2], Math.max(mountX, ex));
+            box[3] = Math.max(box[3], Math.max(mountY, ey));
+        }
+        return true;
+    }
+
     /** @return an accelerometer's axis: {@code x} forwards, {@code y} left, {@code z} up */
     public char axis() {
         return axis;
@@ -376,7 +402,7 @@ public final class SensorModel {
         return Math.min(maxRange, Math.max(minRange, value));
     }
 
-    /** A robot's rays of one sensing pass, cast together ({@link io.robomw.sim.sensing.RangeIndex#castRays}); one per thread. */
+    /** A robot's rays of one sensing pass, cast together ({@link io.robomw.sim.sensing.RangeIndex#castRays}); one per thread (per {@link Parallel#slot}). */
     static final class RayBatch {
         double[] ox = new double[16];
         double[] oy = new double[16];
@@ -385,6 +411,8 @@ public final class SensorModel {
         double[] maxRange = new double[16];
         double[] hits = new double[16];
         int count;
+        /** The range index's scratch for these rays' casts. */
+        final io.robomw.sim.sensing.RangeIndex.Gathered gathered = new io.robomw.sim.sensing.RangeIndex.Gathered();
         /** Which of a robot file's range sensors are due at a step: the last list and step asked about, and the answer. */
         private java.util.List<SensorModel> dueSensors;
         private long dueStep;

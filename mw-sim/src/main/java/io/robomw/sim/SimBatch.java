@@ -96,8 +96,7 @@ public final class SimBatch implements WheelBatch, BatchMotorDriver {
     @Override
     public void send(int member, double[] speeds, int from) {
         int i = robots[member];
-        states.commandLeft[i] = speeds[from];
-        states.commandRight[i] = speeds[from + 1];
+        states.command(i, speeds[from], speeds[from + 1]);
     }
 
     // ---- the world's side ----

@@ -139,6 +139,7 @@ public final class SimRobot {
             states.signLeft[index] = d.left().reversed() ? -1 : 1;
             states.signRight[index] = d.right().reversed() ? -1 : 1;
             states.maxSpeed[index] = d.maxSpeed();
+            states.command(index, 0, 0);
         }
         this.vehicle = description.vehicleDrive().map(d -> new io.robomw.sim.vehicle.SimVehicle(
                 io.robomw.sim.vehicle.VehicleSpec.of(d, description.body()), physics.x(body), physics.y(body), physics.heading(body))).orElse(null);
@@ -278,9 +279,9 @@ public final class SimRobot {
      */
     void command(int portIndex, double degreesPerSecond) {
         if (portIndex == leftIndex) {
-            states.commandLeft[index] = degreesPerSecond;
+            states.command(index, degreesPerSecond, states.commandRight[index]);
         } else if (portIndex == rightIndex) {
-            states.commandRight[index] = degreesPerSecond;
+            states.command(index, states.commandLeft[index], degreesPerSecond);
         } else {
             commanded[portIndex] = degreesPerSecond;
         }
@@ -327,8 +328,7 @@ public final class SimRobot {
     void halt() {
         java.util.Arrays.fill(commanded, 0);
         if (kinematics != null) {
-            states.commandLeft[index] = 0;
-            states.commandRight[index] = 0;
+            states.command(index, 0, 0);
         }
         if (quadruped != null) {
             quadruped.stop();

@@ -123,18 +123,13 @@ public final class SimWorld implements AutoCloseable {
     /** The clock the robots' parts are timed with, on the robots of every {@value #PART_SAMPLE}th index; {@code null} otherwise. */
     private volatile Clock partClock;
     /**
-     * Each thread's sums of the robots' parts it timed since {@link #profile(Clock, boolean)} (by ordinal, after
+     * Each thread's sums of the robots' parts it timed since {@link #profile(Clock, boolean)} (by {@link Parallel#slot}, then by ordinal, after
      * {@link #PART_PAD} slots of padding: each thread's sums in cache lines of their own). Plain longs a thread adds to
      * alone: a shared adder's atomic update per part of a timed robot cost more than some parts it timed (profiled at
      * 10,000 robots on a loaded machine: 5 % of a step's processor time in {@code LongAdder.add}). Read by
      * {@link #robotPartNanos} between steps, after the pass that wrote them has ended.
      */
-    private final java.util.List<long[]> partSums = new java.util.concurrent.CopyOnWriteArrayList<>();
-    private final ThreadLocal<long[]> threadPartSums = ThreadLocal.withInitial(() -> {
-        long[] sums = new long[2 * PART_PAD + RobotPart.values().length];
-        partSums.add(sums);
-        return sums;
-    });
+    private final long[][] partSums;
     /** Controllers run robot by robot in the world's own pass ({@link #addRobotController}). */
     private volatile RobotController[] controllers = new RobotController[0];
     /** The controllers due at the step being taken (touched by the stepping thread, read by the pass). */
@@ -286,6 +281,11 @@ public final class SimWorld implements AutoCloseable {
         this.stepNanos = Math.round(1e9 / description.physicsHz());
         this.trajectoryEvery = (int) Math.max(1, Math.min(Integer.MAX_VALUE, Math.round(description.trajectories().everySeconds() * description.physicsHz())));
         this.parallel = new Parallel(sensingThreads);
+        this.partSums = new long[parallel.slots()][2 * PART_PAD + RobotPart.values().length];
+        this.rayBatches = new SensorModel.RayBatch[parallel.slots()];
+        for (int t = 0; t < rayBatches.length; t++) {
+            rayBatches[t] = new SensorModel.RayBatch();
+        }
         double margin = description.wallThickness() + 1;
         if (description.engine() == WorldDescription.PhysicsEngine.SWARM) {
             if (rangeMethod == RangeMethod.DYN4J_RAYCAST) {
@@ -785,7 +785,7 @@ public final class SimWorld implements AutoCloseable {
     /** Adds the time since {@code since} to a part; @return now */
     private long part(Clock c, RobotPart part, long since) {
         long now = c.nanoTime();
-        threadPartSums.get()[PART_PAD + part.ordinal()] += now - since;
+        partSums[parallel.slot()][PART_PAD + part.ordinal()] += now - since;
         return now;
     }
 
@@ -1106,7 +1106,7 @@ public final class SimWorld implements AutoCloseable {
             return;
         }
         // every due sensor's rays cast together: what is around the robot is gathered once
-        SensorModel.RayBatch batch = rayBatches.get();
+        SensorModel.RayBatch batch = rayBatches[parallel.slot()];
         boolean[] due = batch.due(sensors, step);
         batch.count = 0;
         for (int k = 0; k < due.length; k++) {
@@ -1114,7 +1114,13 @@ public final class SimWorld implements AutoCloseable {
                 sensors.get(k).addRays(batch, x, y, heading, c, s, pan);
             }
         }
-        rangeIndex.castRays(batch.ox, batch.oy, batch.dx, batch.dy, batch.maxRange, batch.count, i, batch.hits);
+        if (model.rangeReach > 0) {
+            // sensors all round: what is around the robot is what lies within their reach of its centre
+            rangeIndex.castRaysWithin(x, y, model.rangeReach, batch.ox, batch.oy, batch.dx, batch.dy, batch.maxRange, batch.count, i, batch.hits,
+                    batch.gathered);
+        } else {
+            rangeIndex.castRays(batch.ox, batch.oy, batch.dx, batch.dy, batch.maxRange, batch.count, i, batch.hits, batch.gathered);
+        }
         int first = 0;
         for (int k = 0; k < due.length; k++) {
             SensorModel m = sensors.get(k);
@@ -1125,8 +1131,8 @@ public final class SimWorld implements AutoCloseable {
         }
     }
 
-    /** Each worker thread's rays of the robot it senses for. */
-    private final ThreadLocal<SensorModel.RayBatch> rayBatches = ThreadLocal.withInitial(SensorModel.RayBatch::new);
+    /** Each worker thread's rays of the robot it senses for (by {@link Parallel#slot}: steps are taken one at a time). */
+    private final SensorModel.RayBatch[] rayBatches;
 
     /** @return whether any range sensor samples at this step */
     private boolean sensingDue(long step) {

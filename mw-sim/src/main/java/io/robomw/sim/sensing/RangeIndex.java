@@ -46,6 +46,11 @@ public final class RangeIndex {
     private int[] robotCells = new int[0];
     private final int[] robotStart;
     private int[] robotFill = new int[0];
+    /**
+     * The robots of each cell, in compressed-row form by {@link #robotStart}: a robot whose body lies in that cell alone as
+     * its index, one whose body spans several as {@code ~index} (negative), so that a gathering over several cells looks
+     * up whether it met a robot already only for the few that span cells.
+     */
     private int[] robotItems = new int[0];
     /** Per robot: its centre and the radius of its body's bounding circle, {x, y, r}, for a ray's quick miss. */
     private double[] robotCircles = new double[0];
@@ -307,7 +312,7 @@ public final class RangeIndex {
             int spanC = spanColumns(first, last);
             for (int k = first; k <= last; k += cols) {
                 for (int j = 0; j < spanC; j++) {
-                    items[fill[k + j]++] = i;
+                    items[fill[k + j]++] = ~i; // in several cells
                 }
             }
         }
@@ -379,6 +384,7 @@ public final class RangeIndex {
                 }
                 for (int j = robotStart[k]; j < robotStart[k + 1]; j++) {
                     int r = robotItems[j];
+                    r = r >= 0 ? r : ~r;
                     if (r == self || r == seen0 || r == seen1 || r == seen2 || r == seen3) {
                         continue; // its own body, or a body already tested in a cell before (it spans several)
                     }
@@ -441,6 +447,25 @@ public final class RangeIndex {
      * @param out      each ray's distance to its nearest hit, or {@link Double#POSITIVE_INFINITY} if none within its maxRange
      */
     public void castRays(double[] ox, double[] oy, double[] dx, double[] dy, double[] maxRange, int count, int self, double[] out) {
+        castRays(ox, oy, dx, dy, maxRange, count, self, out, gathered.get());
+    }
+
+    /**
+     * {@link #castRays(double[], double[], double[], double[], double[], int, int, double[])} with the calling thread's
+     * scratch given (a caller that keeps one per thread saves the ThreadLocal look-up, once a robot).
+     *
+     * @param ox       each ray's origin x
+     * @param oy       each ray's origin y
+     * @param dx       each ray's direction's x (a unit vector)
+     * @param dy       each ray's direction's y
+     * @param maxRange each ray's longest distance of interest
+     * @param count    how many rays (the first {@code count} of each array)
+     * @param self     index of the robot casting them (its body is ignored), or -1
+     * @param out      each ray's distance to its nearest hit, or {@link Double#POSITIVE_INFINITY} if none within its maxRange
+     * @param g        scratch no other thread uses meanwhile
+     */
+    public void castRays(double[] ox, double[] oy, double[] dx, double[] dy, double[] maxRange, int count, int self, double[] out,
+            Gathered g) {
         double minX = Double.POSITIVE_INFINITY;
         double minY = Double.POSITIVE_INFINITY;
         double maxX = Double.NEGATIVE_INFINITY;
@@ -465,17 +490,67 @@ public final class RangeIndex {
         }
         // The rays' reach: a circle about the middle of their box that holds every point of every ray. A body whose
         // bounding circle lies beyond it is hit by none (its crossings would all be past the rays' ranges), so it is not
-        // gathered; the margin keeps that true whatever the rounding.
+        // gathered; the margin keeps that true whatever the rounding. The farthest origin plus the longest range: one
+        // square root, not one a ray (no smaller than any ray's own sum, rounding being monotonic; the same when the
+        // rays are equally long, as a robot's usually are).
         double mx = (minX + maxX) / 2;
         double my = (minY + maxY) / 2;
-        double reach = 0;
+        double farthest = 0;
+        double longest = 0;
         for (int k = 0; k < count; k++) {
             double ex = ox[k] - mx;
             double ey = oy[k] - my;
-            reach = Math.max(reach, Math.sqrt(ex * ex + ey * ey) + maxRange[k]);
+            farthest = Math.max(farthest, ex * ex + ey * ey);
+            longest = Math.max(longest, maxRange[k]);
         }
-        reach = reach * (1 + 1e-9) + 1e-9;
-        Gathered g = gathered.get();
+        double reach = (Math.sqrt(farthest) + longest) * (1 + 1e-9) + 1e-9;
+        castGathered(ox, oy, dx, dy, maxRange, count, self, out, g, c0, c1, r0, r1, mx, my, reach);
+    }
+
+    /**
+     * {@link #castRays(double[], double[], double[], double[], double[], int, int, double[], Gathered)} with a circle
+     * given that holds every point of every ray: a robot's sensors' farthest reach from its centre, known once for its
+     * robot file. Its box and its circle stand for the rays' own (no minimum and maximum of every ray's ends, no
+     * farthest origin): they take in every body the rays' own would and maybe more, so the distances are the same, bit
+     * for bit. Worth it when the circle is about as tight as the rays' box, as for sensors all round a robot.
+     *
+     * @param centreX  the circle's centre x
+     * @param centreY  the circle's centre y
+     * @param radius   its radius: no point of a ray (origin plus up to its maxRange along it) is farther from the centre
+     * @param ox       each ray's origin x
+     * @param oy       each ray's origin y
+     * @param dx       each ray's direction's x (a unit vector)
+     * @param dy       each ray's direction's y
+     * @param maxRange each ray's longest distance of interest
+     * @param count    how many rays (the first {@code count} of each array)
+     * @param self     index of the robot casting them (its body is ignored), or -1
+     * @param out      each ray's distance to its nearest hit, or {@link Double#POSITIVE_INFINITY} if none within its maxRange
+     * @param g        scratch no other thread uses meanwhile
+     */
+    public void castRaysWithin(double centreX, double centreY, double radius, double[] ox, double[] oy, double[] dx, double[] dy,
+            double[] maxRange, int count, int self, double[] out, Gathered g) {
+        // the margin keeps every point of every ray inside whatever the rounding of their origins
+        double reach = radius * (1 + 1e-9) + 1e-9;
+        int c0 = clampCol(centreX - reach);
+        int c1 = clampCol(centreX + reach);
+        int r0 = clampRow(centreY - reach);
+        int r1 = clampRow(centreY + reach);
+        if (!(count > 0) || (long) (c1 - c0 + 1) * (r1 - r0 + 1) > (long) GATHER_CELLS_PER_RAY * count + 9) {
+            for (int k = 0; k < count; k++) {
+                out[k] = castRay(ox[k], oy[k], dx[k], dy[k], maxRange[k], self);
+            }
+            return;
+        }
+        castGathered(ox, oy, dx, dy, maxRange, count, self, out, g, c0, c1, r0, r1, centreX, centreY, reach);
+    }
+
+    /**
+     * The gathered cast of {@link #castRays}: what lies in cells {@code c0..c1} of rows {@code r0..r1} (each static and
+     * robot once; a robot only if its bounding circle reaches the circle ({@code mx}, {@code my}, {@code reach}), which
+     * holds every point of every ray), then each ray against that.
+     */
+    private void castGathered(double[] ox, double[] oy, double[] dx, double[] dy, double[] maxRange, int count, int self, double[] out,
+            Gathered g, int c0, int c1, int r0, int r1, double mx, double my, double reach) {
         g.begin(sx1.length + cx.length, robotCount);
         int stamp = g.stamp;
         int[] staticSeen = g.staticSeen;
@@ -494,8 +569,15 @@ public final class RangeIndex {
                 }
                 for (int j = robotStart[k]; j < robotStart[k + 1]; j++) {
                     int b = robotItems[j];
-                    if (b != self && robotSeen[b] != stamp) {
+                    if (b < 0) {
+                        // a body in several cells: gathered at the first of them met, passed over at the others
+                        b = ~b;
+                        if (robotSeen[b] == stamp) {
+                            continue;
+                        }
                         robotSeen[b] = stamp;
+                    }
+                    if (b != self) {
                         int m = b * 3;
                         double vx = circles[m] - mx;
                         double vy = circles[m + 1] - my;
@@ -567,8 +649,11 @@ public final class RangeIndex {
         }
     }
 
-    /** One thread's scratch for {@link #castRays}: what was gathered, and stamps that say what was gathered already. */
-    private static final class Gathered {
+    /**
+     * One thread's scratch for {@link #castRays}: what was gathered, and stamps that say what was gathered already. Used
+     * by one thread at a time, on any index.
+     */
+    public static final class Gathered {
         int stamp;
         int[] staticSeen = new int[0];
         int[] robotSeen = new int[0];

@@ -99,11 +99,14 @@ class RangeIndexTest {
             double[] dy = new double[12];
             double[] max = new double[12];
             double[] out = new double[12];
+            double[] within = new double[12];
+            RangeIndex.Gathered scratch = new RangeIndex.Gathered();
             for (int k = 0; k < 300; k++) {
                 int self = random.nextInt(n);
                 int count = 1 + random.nextInt(12);
                 // mostly short rays around the robot, sometimes long ones (cast one by one)
                 double longest = random.nextInt(10) == 0 ? 4 : 0.8;
+                double reach = 0;
                 for (int j = 0; j < count; j++) {
                     double a = random.nextDouble(-4, 4);
                     ox[j] = x[self] + 0.05 * Math.cos(a);
@@ -111,12 +114,17 @@ class RangeIndexTest {
                     dx[j] = Math.cos(a);
                     dy[j] = Math.sin(a);
                     max[j] = 0.1 + random.nextDouble() * longest;
+                    reach = Math.max(reach, 0.05 + max[j]);
                 }
                 index.castRays(ox, oy, dx, dy, max, count, self, out);
+                // and gathered from the circle about the robot's centre that holds them (as a robot with sensors all round is sensed)
+                index.castRaysWithin(x[self], y[self], reach, ox, oy, dx, dy, max, count, self, within, scratch);
                 for (int j = 0; j < count; j++) {
                     double one = index.castRay(ox[j], oy[j], dx[j], dy[j], max[j], self);
                     assertEquals(Double.doubleToRawLongBits(one), Double.doubleToRawLongBits(out[j]),
                             "world " + world + ", batch " + k + ", ray " + j + ": one at a time " + one + ", together " + out[j]);
+                    assertEquals(Double.doubleToRawLongBits(one), Double.doubleToRawLongBits(within[j]),
+                            "world " + world + ", batch " + k + ", ray " + j + ": one at a time " + one + ", within the robot's reach " + within[j]);
                     rays++;
                     hits += Double.isInfinite(one) ? 0 : 1;
                 }
