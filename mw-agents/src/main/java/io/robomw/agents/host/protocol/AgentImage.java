@@ -121,7 +121,7 @@ public record AgentImage(UUID id, long hop, Kind kind, boolean fromHome, String 
         Frame.Buffer out = new Frame.Buffer(expected, buffers.take(Session.HEADER + Math.max(64, expected) + Session.MAC));
         ByteBuffer h = header(0);
         out.write(h.array(), 0, h.position());
-        StateCodec.write(agent, out);
+        StateCodec.writeCompact(agent, out);
         return out.finish();
     }
 
