@@ -50,16 +50,52 @@ public final class StateCodec {
     /** Most object references in one agent's state. */
     public static final int MAX_REFERENCES = 1_000_000;
 
+    /** The form in which a host writes the agents it sends ({@link #writeAgent}); it reads both. */
+    public enum Form {
+        /** Java serialization's own stream ({@code ACED 0005}): what every host reads, builds before the compact form too. */
+        STANDARD,
+        /** The compact form ({@link #writeCompact}): hosts of builds before it refuse it. */
+        COMPACT
+    }
+
     private final PayloadAllowList allowList;
     private final long maxBytes;
+    private final Form form;
 
     /**
+     * A codec that writes agents in the compact form.
+     *
      * @param extraAllowed class names the host's operator allows besides the agent's own classes
      * @param maxBytes     the largest state accepted, which also bounds every array's length
      */
     public StateCodec(List<String> extraAllowed, long maxBytes) {
+        this(extraAllowed, maxBytes, Form.COMPACT);
+    }
+
+    /**
+     * @param extraAllowed class names the host's operator allows besides the agent's own classes
+     * @param maxBytes     the largest state accepted, which also bounds every array's length
+     * @param form         the form agents are sent in: {@link Form#STANDARD} for a host that talks to hosts of older builds
+     */
+    public StateCodec(List<String> extraAllowed, long maxBytes, Form form) {
         this.allowList = PayloadAllowList.jdkDefaults().withNames(API_TYPES).withNames(extraAllowed);
         this.maxBytes = maxBytes;
+        this.form = java.util.Objects.requireNonNull(form);
+    }
+
+    /**
+     * Writes an agent that travels in this codec's {@link Form}.
+     *
+     * @param agent an agent
+     * @param to    where to write it
+     * @throws IOException if something in it is not serializable (the message names the class), or the stream fails
+     */
+    public void writeAgent(Serializable agent, java.io.OutputStream to) throws IOException {
+        if (form == Form.COMPACT) {
+            writeCompact(agent, to);
+        } else {
+            write(agent, to);
+        }
     }
 
     /** @return the largest state accepted, in bytes */
@@ -115,15 +151,15 @@ public final class StateCodec {
      * many-agents benchmark's agent the descriptors were most of what reading its state allocated.
      * A host older than this form refuses such a state ("invalid stream header: 524D0001").
      *
-     * <p>The stream objects are pooled (a few, shared by all threads; one that wrote more than
-     * {@link #POOL_MAX_BYTES} is dropped, so the pool never keeps a large state's handle tables).
+     * <p>The stream objects are pooled (a few of this codec's, that is of its host's, shared by its threads; one that
+     * wrote more than {@link #POOL_MAX_BYTES} is dropped, so the pool never keeps a large state's handle tables).
      *
      * @param value an agent
      * @param to    where to write it
      * @throws IOException if something in it is not serializable (the message names the class), or the stream fails
      */
-    public static void writeCompact(Serializable value, java.io.OutputStream to) throws IOException {
-        CompactOut out = POOL.poll();
+    public void writeCompact(Serializable value, java.io.OutputStream to) throws IOException {
+        CompactOut out = streams.poll();
         if (out == null) {
             out = new CompactOut(new Sink());
         }
@@ -138,7 +174,7 @@ public final class StateCodec {
         } finally {
             out.sink.start(null);
             if (reusable) {
-                POOL.offer(out);
+                streams.offer(out);
             }
         }
     }
@@ -171,8 +207,8 @@ public final class StateCodec {
         }
     };
 
-    /** The pooled streams of {@link #writeCompact}: at most a few, whoever writes. */
-    private static final java.util.concurrent.ArrayBlockingQueue<CompactOut> POOL = new java.util.concurrent.ArrayBlockingQueue<>(8);
+    /** The pooled streams of {@link #writeCompact}: at most a few, whichever of the host's threads writes. */
+    private final java.util.concurrent.ArrayBlockingQueue<CompactOut> streams = new java.util.concurrent.ArrayBlockingQueue<>(8);
     private static final byte[] COMPACT_HEADER = {(byte) (COMPACT_MAGIC >>> 8), (byte) COMPACT_MAGIC, (byte) (COMPACT_VERSION >>> 8), (byte) COMPACT_VERSION};
 
     /** Where a pooled {@link CompactOut} writes: the stream of the value being written, and how much went to it. */

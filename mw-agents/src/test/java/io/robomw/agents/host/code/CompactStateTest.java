@@ -39,8 +39,22 @@ class CompactStateTest {
 
     private static byte[] compact(Serializable value) throws IOException {
         ByteArrayOutputStream out = new ByteArrayOutputStream();
-        StateCodec.writeCompact(value, out);
+        CODEC.writeCompact(value, out);
         return out.toByteArray();
+    }
+
+    @Test
+    void aHostThatTalksToOlderHostsSendsAgentsInTheFormEveryBuildReads() throws Exception {
+        ArchiveClassLoader code = agentCode();
+        Agent a = agent(code);
+        ByteArrayOutputStream standard = new ByteArrayOutputStream();
+        new StateCodec(List.of(), 1 << 20, StateCodec.Form.STANDARD).writeAgent(a, standard);
+        assertArrayEquals(new byte[] {(byte) 0xAC, (byte) 0xED, 0x00, 0x05}, java.util.Arrays.copyOf(standard.toByteArray(), 4));
+        assertArrayEquals(StateCodec.write(a), standard.toByteArray(), "Java serialization's own stream, as builds before the compact form wrote");
+        ByteArrayOutputStream compact = new ByteArrayOutputStream();
+        CODEC.writeAgent(a, compact);
+        assertArrayEquals(new byte[] {0x52, 0x4D, 0x00, 0x01}, java.util.Arrays.copyOf(compact.toByteArray(), 4), "the default: compact");
+        assertEquals(a.itinerary().stops(), CODEC.read(standard.toByteArray(), code, Agent.class).itinerary().stops());
     }
 
     @Test
@@ -119,7 +133,7 @@ class CompactStateTest {
         for (int round = 0; round < 3; round++) {
             c = allocatedBy(() -> {
                 sink.reset();
-                StateCodec.writeCompact(a, sink);
+                CODEC.writeCompact(a, sink);
                 return null;
             });
             s = allocatedBy(() -> {
