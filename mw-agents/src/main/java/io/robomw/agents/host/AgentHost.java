@@ -146,7 +146,8 @@ public final class AgentHost implements AutoCloseable {
         this.storeDir = b.storeDir;
         this.stopGrace = b.stopGrace;
         this.endpointSpin = b.endpointSpin;
-        this.state = new HostState(new Place(), b.name, b.robot, new StateCodec(b.allowed, b.maxStateBytes), (int) b.callTimeout.toMillis(),
+        this.state = new HostState(new Place(), b.name, b.robot, new StateCodec(b.allowed, b.maxStateBytes,
+                b.olderHosts || b.version2Only ? StateCodec.Form.STANDARD : StateCodec.Form.COMPACT), (int) b.callTimeout.toMillis(),
                 b.runnerSpin, b.failures);
         this.robot = new RobotTurns(b.name, b.robot);
         this.code = new CodeLoaders(state);

@@ -278,7 +278,9 @@ public final class AgentHostBuilder {
      * Lets this host's links talk to hosts of builds before agent protocol version 4 (for a
      * cluster upgraded host by host): a link to a host that refuses version 4 authenticates with
      * version 3, or 2, whose authentication does not bind the channel, so a relay between the two
-     * hosts goes unnoticed (docs/security.md). Off by default: such a link fails, saying why.
+     * hosts goes unnoticed (docs/security.md). Off by default: such a link fails, saying why. Such
+     * a host also sends agents' state in Java serialization's standard form, which builds before the
+     * compact form (2026-11-29) read, instead of the compact one.
      *
      * @return this
      */

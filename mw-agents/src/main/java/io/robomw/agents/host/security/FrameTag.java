@@ -34,6 +34,8 @@ public final class FrameTag {
     private final Cipher cipher;
     private final byte[] scratch = new byte[CHUNK + 2 * WireFrames.TAG];
     private final byte[] tag = new byte[WireFrames.TAG];
+    /** The nonce's bytes, rewritten for each frame ({@link GCMParameterSpec} copies them). */
+    private final byte[] nonceBytes = new byte[12];
 
     public FrameTag() {
         cipher = AesGcm.newCipher();
@@ -48,7 +50,7 @@ public final class FrameTag {
      * @param checking  whether the tag will be checked (a received frame) rather than sent
      */
     public void start(SecretKeySpec key, int direction, long seq, boolean checking) {
-        byte[] n = new byte[12];
+        byte[] n = nonceBytes;
         n[3] = (byte) direction;
         for (int i = 0; i < 8; i++) {
             n[4 + i] = (byte) (seq >>> (56 - 8 * i));

@@ -39,6 +39,8 @@ public final class WireChannel implements AutoCloseable {
      */
     public static final int SPIN_MAX_BODY = WireWriter.ONE_WRITE;
 
+    private static final byte[] NO_BODY = new byte[0];
+
     public final Session session;
     private final String peer;
     private final Socket socket;
@@ -53,7 +55,7 @@ public final class WireChannel implements AutoCloseable {
         this.peer = peer;
         this.socket = socket;
         this.in = in;
-        this.reader = new WireReader(in, null);
+        this.reader = new WireReader(in, null, WireReader.Reuse.EVERY_FRAME); // a reply's body is copied out below
         this.writer = writer;
     }
 
@@ -160,7 +162,7 @@ public final class WireChannel implements AutoCloseable {
             throw new WireFrames.FrameRefused("host " + peer + " answered with " + e.getMessage());
         }
         lastUsed = System.nanoTime();
-        return new Reply(status, Arrays.copyOfRange(f, WireFrames.HEADER, WireFrames.HEADER + (int) h.length()));
+        return new Reply(status, h.length() == 0 ? NO_BODY : Arrays.copyOfRange(f, WireFrames.HEADER, WireFrames.HEADER + (int) h.length()));
     }
 
     @Override

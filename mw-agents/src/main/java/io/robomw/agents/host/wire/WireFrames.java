@@ -5,7 +5,6 @@ import io.robomw.agents.host.protocol.Reply;
 import io.robomw.agents.host.rmi.HostEndpoint;
 import io.robomw.agents.host.rmi.Session;
 import java.io.IOException;
-import java.nio.ByteBuffer;
 import java.nio.charset.StandardCharsets;
 
 /**
@@ -81,8 +80,9 @@ public final class WireFrames {
 
         /** @return the header at {@code off} in {@code b} ({@value #HEADER} bytes there) */
         public static Header read(byte[] b, int off) {
-            ByteBuffer h = ByteBuffer.wrap(b, off, HEADER);
-            return new Header(h.get() & 0xFF, h.get() & 0xFF, h.getLong(), h.getLong(), h.getInt() & 0xFFFF_FFFFL);
+            java.util.Objects.checkFromIndexSize(off, HEADER, b.length);
+            return new Header(b[off] & 0xFF, b[off + 1] & 0xFF, (long) LONGS.get(b, off + 2), (long) LONGS.get(b, off + 10),
+                    (int) INTS.get(b, off + 18) & 0xFFFF_FFFFL);
         }
 
         /** @return the whole frame's length: header, body and tag */
@@ -93,8 +93,22 @@ public final class WireFrames {
 
     /** @return a header's bytes */
     static byte[] header(int code, long session, long seq, int length) {
-        return ByteBuffer.allocate(HEADER).put((byte) VERSION).put((byte) code).putLong(session).putLong(seq).putInt(length).array();
+        byte[] h = new byte[HEADER];
+        header(h, code, session, seq, length);
+        return h;
     }
+
+    /** Puts a header's bytes at the start of {@code into} (a writer's own array, reused frame after frame). */
+    static void header(byte[] into, int code, long session, long seq, int length) {
+        into[0] = (byte) VERSION;
+        into[1] = (byte) code;
+        LONGS.set(into, 2, session);
+        LONGS.set(into, 10, seq);
+        INTS.set(into, 18, length);
+    }
+
+    private static final java.lang.invoke.VarHandle LONGS = java.lang.invoke.MethodHandles.byteArrayViewVarHandle(long[].class, java.nio.ByteOrder.BIG_ENDIAN);
+    private static final java.lang.invoke.VarHandle INTS = java.lang.invoke.MethodHandles.byteArrayViewVarHandle(int[].class, java.nio.ByteOrder.BIG_ENDIAN);
 
     /** @return the body of a FRAME_REFUSED reply: the reason, cut to {@value #MAX_REASON_BYTES} bytes */
     static byte[] reason(String why) {

@@ -25,8 +25,17 @@ public final class WireReader {
     /** The largest frame array a connection keeps for the next frame; a larger frame gets an array of its own, dropped after it. */
     public static final int KEEP_MAX = 4 * 1024 * 1024;
 
+    /** Which frames' arrays a reader reuses for the next frame. */
+    public enum Reuse {
+        /** Only a frame of more than {@link #AHEAD} bytes: a smaller one gets an array of its own, which whoever serves it may keep. */
+        LARGE_FRAMES,
+        /** Every frame of up to {@link #KEEP_MAX} bytes: for a reader whose caller copies out what it keeps (a peer reading replies). */
+        EVERY_FRAME
+    }
+
     private final InputStream in;
     private final Socket socket;
+    private final Reuse reuse;
     private final byte[] ahead = new byte[AHEAD];
     /** The array the last frame was read into, reused by the next one that fits; {@code null} until a frame of more than {@link #AHEAD} bytes. */
     private byte[] kept;
@@ -40,8 +49,18 @@ public final class WireReader {
      * @param socket the socket whose read timeout enforces deadlines, or {@code null} for none (a byte array in a test)
      */
     public WireReader(InputStream in, Socket socket) {
+        this(in, socket, Reuse.LARGE_FRAMES);
+    }
+
+    /**
+     * @param in     the connection's input
+     * @param socket the socket whose read timeout enforces deadlines, or {@code null} for none
+     * @param reuse  which frames' arrays are reused
+     */
+    public WireReader(InputStream in, Socket socket, Reuse reuse) {
         this.in = in;
         this.socket = socket;
+        this.reuse = reuse;
     }
 
     /**
@@ -128,7 +147,7 @@ public final class WireReader {
             return kept;
         }
         byte[] f = new byte[total];
-        if (total <= KEEP_MAX && total > AHEAD) {
+        if (total <= KEEP_MAX && (total > AHEAD || reuse == Reuse.EVERY_FRAME)) {
             kept = f;
         }
         return f;

@@ -62,6 +62,10 @@ public final class WireWriter {
     private final Out out;
     private final FrameTag tag = new FrameTag();
     private final Executor tagger;
+    /** A small frame's header, and the parts of its one gathering write: reused frame after frame (one frame at a time). */
+    private final byte[] smallHeader = new byte[WireFrames.HEADER];
+    private final ByteBuffer smallHeaderBuffer = ByteBuffer.wrap(smallHeader);
+    private final ByteBuffer[] parts = new ByteBuffer[3];
 
     /** A writer that tags every frame on the writing thread. */
     public WireWriter(Out out) {
@@ -90,14 +94,24 @@ public final class WireWriter {
      * @param len       its length
      */
     public void write(SecretKeySpec key, int direction, int code, long session, long seq, byte[] body, int off, int len) throws IOException {
-        byte[] header = WireFrames.header(code, session, seq, len);
         tag.start(key, direction, seq, false);
-        tag.update(header, 0, header.length);
         if (len <= ONE_WRITE) {
+            WireFrames.header(smallHeader, code, session, seq, len);
+            tag.update(smallHeader, 0, smallHeader.length);
             tag.update(body, off, len);
-            out.write(ByteBuffer.wrap(header), ByteBuffer.wrap(body, off, len), ByteBuffer.wrap(tag.finish()));
+            byte[] t = tag.finish();
+            parts[0] = smallHeaderBuffer.clear();
+            parts[1] = ByteBuffer.wrap(body, off, len);
+            parts[2] = tagBuffer(t);
+            try {
+                out.write(parts);
+            } finally {
+                parts[1] = null; // the body's array is the caller's again
+            }
             return;
         }
+        byte[] header = WireFrames.header(code, session, seq, len);
+        tag.update(header, 0, header.length);
         CompletableFuture<byte[]> sealed = null;
         if (tagger != null) {
             try {
@@ -126,6 +140,18 @@ public final class WireWriter {
                 out.write(piece);
             }
         }
+    }
+
+    private ByteBuffer tagBuffer;
+
+    /** @return a buffer over the tag's array (FrameTag's own, the same frame after frame), wrapped once */
+    private ByteBuffer tagBuffer(byte[] t) {
+        ByteBuffer b = tagBuffer;
+        if (b == null || b.array() != t) {
+            b = ByteBuffer.wrap(t);
+            tagBuffer = b;
+        }
+        return b.clear();
     }
 
     /** Writes the pieces of a large frame while {@code sealed} computes its tag, then the tag; returns once the tagger is done. */
