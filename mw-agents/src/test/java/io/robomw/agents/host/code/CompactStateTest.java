@@ -98,6 +98,37 @@ class CompactStateTest {
         assertTrue(e.getMessage().contains("java.util.concurrent.atomic.AtomicLong") && e.getMessage().contains("allow-list"), e.getMessage());
     }
 
+    /**
+     * Bad input never hurts: a compact state cut short, or with any one byte changed, is read back or refused with the
+     * codec's one refusal ({@link StateRejectedException}), never another exception (the fuzz test's contract, here over
+     * every byte of a real compact state, with every cut and three changes of each byte).
+     */
+    @Test
+    void aDamagedCompactStateIsReadOrRefusedWithTheOneRefusal() throws Exception {
+        ArchiveClassLoader code = agentCode();
+        byte[] good = compact(agent(code));
+        int refused = 0;
+        for (int at = 0; at < good.length; at++) {
+            refused += readOrRefused(java.util.Arrays.copyOf(good, at), code);
+            for (int flip : new int[] {0x01, 0x80, 0xFF}) {
+                byte[] bad = good.clone();
+                bad[at] ^= (byte) flip;
+                refused += readOrRefused(bad, code);
+            }
+        }
+        assertTrue(refused >= good.length, "every cut at least is refused: " + refused + " refusals for " + good.length + " bytes");
+    }
+
+    /** @return 1 if the codec refused the bytes, 0 if it read them; fails the test on any other outcome */
+    private static int readOrRefused(byte[] bytes, ClassLoader code) {
+        try {
+            CODEC.read(bytes, code, Serializable.class);
+            return 0;
+        } catch (StateRejectedException expected) {
+            return 1;
+        }
+    }
+
     @Test
     void anUnknownHeaderIsRefusedNamingIt() throws Exception {
         ArchiveClassLoader code = agentCode();
