@@ -28,7 +28,7 @@ final class MotorHandOff {
     /** The cycle whose states were published last; under the lock. */
     private long publishedCycle = Long.MAX_VALUE;
     /** The cycle whose published states the link side took last; link side. */
-    private long servedCycle = Long.MAX_VALUE;
+    private long servedCycle = 0; // none yet: a refusal in the first service concerns only the commands running when it began
     /** Batches published so far; under the lock. */
     private long publishedBatches;
     /** The count of published batches the link side took last; link side. */
@@ -185,7 +185,9 @@ final class MotorHandOff {
     /**
      * @return the execution action thread's cycle whose states the link side took last: a refusal
      *         during a service concerns the commands admitted up to it, and those running when the
-     *         service began; {@link Long#MAX_VALUE} when a publish did not say
+     *         service began; {@link Long#MAX_VALUE} when a publish did not say; 0 before the link side
+     *         took any (not "every cycle": a driver that fails in its first service must not end the
+     *         commands admitted after it began)
      */
     long servedCycle() {
         return servedCycle;

@@ -68,7 +68,7 @@ public final class MotorLinkSide {
     /**
      * @return the execution action thread's cycle whose states the link side took last: a refusal
      *         during a service concerns the commands admitted up to it, and those running when it
-     *         began; {@link Long#MAX_VALUE} when a flush did not say
+     *         began; {@link Long#MAX_VALUE} when a flush did not say; 0 before it took any
      */
     public long servedCycle() {
         return handOff.servedCycle();
