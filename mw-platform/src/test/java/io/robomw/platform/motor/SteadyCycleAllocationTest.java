@@ -14,9 +14,9 @@ import io.robomw.api.spi.SensorChannel;
 import io.robomw.platform.BrickPlatform;
 import io.robomw.platform.sensor.Sensor;
 import io.robomw.platform.sensor.SensorPlatform;
+import io.robomw.testkit.Allocations;
 import org.junit.jupiter.api.Test;
 
-import java.lang.management.ManagementFactory;
 import java.time.Duration;
 import java.util.List;
 import java.util.Map;
@@ -74,15 +74,10 @@ class SteadyCycleAllocationTest {
                 platform.actionThread().cycle();
                 clock.advanceNanos(10_000_000L);
             }
-            com.sun.management.ThreadMXBean threads = (com.sun.management.ThreadMXBean) ManagementFactory.getThreadMXBean();
-            long thread = Thread.currentThread().getId();
-            long before = threads.getThreadAllocatedBytes(thread);
-            int cycles = 10_000;
-            for (int i = 0; i < cycles; i++) {
+            long perCycle = Allocations.perCall(10_000, () -> {
                 platform.actionThread().cycle();
                 clock.advanceNanos(10_000_000L);
-            }
-            long perCycle = (threads.getThreadAllocatedBytes(thread) - before) / cycles;
+            });
             assertTrue(perCycle < 8, "a steady cycle allocated " + perCycle + " bytes");
         }
     }
@@ -110,16 +105,11 @@ class SteadyCycleAllocationTest {
                 platform.actionThread().cycle();
                 clock.advanceNanos(100_000_000L);
             }
-            com.sun.management.ThreadMXBean threads = (com.sun.management.ThreadMXBean) ManagementFactory.getThreadMXBean();
-            long thread = Thread.currentThread().getId();
-            long before = threads.getThreadAllocatedBytes(thread);
-            int cycles = 10_000;
-            for (int i = 0; i < cycles; i++) {
+            long perCycle = Allocations.perCall(10_000, () -> {
                 platform.runDetached(drive);
                 platform.actionThread().cycle();
                 clock.advanceNanos(100_000_000L);
-            }
-            long perCycle = (threads.getThreadAllocatedBytes(thread) - before) / cycles;
+            });
             assertTrue(perCycle < 8, "a refresh and its cycle allocated " + perCycle + " bytes");
             assertTrue(platform.actionThread().actuatorsInUse().containsAll(Set.of("B", "C")),
                     "the refreshed drive still runs (its watchdog restarted by every refresh): " + platform.actionThread().actuatorsInUse());

@@ -5,7 +5,11 @@ import io.robomw.agents.host.protocol.Reply;
 import io.robomw.agents.host.rmi.HostEndpoint;
 import io.robomw.agents.host.rmi.Session;
 import java.io.IOException;
+import java.lang.invoke.MethodHandles;
+import java.lang.invoke.VarHandle;
+import java.nio.ByteOrder;
 import java.nio.charset.StandardCharsets;
+import java.util.Objects;
 
 /**
  * The frames of agent wire protocol version {@value #VERSION}: a host's transfers (an agent hopping
@@ -80,7 +84,7 @@ public final class WireFrames {
 
         /** @return the header at {@code off} in {@code b} ({@value #HEADER} bytes there) */
         public static Header read(byte[] b, int off) {
-            java.util.Objects.checkFromIndexSize(off, HEADER, b.length);
+            Objects.checkFromIndexSize(off, HEADER, b.length);
             return new Header(b[off] & 0xFF, b[off + 1] & 0xFF, (long) LONGS.get(b, off + 2), (long) LONGS.get(b, off + 10),
                     (int) INTS.get(b, off + 18) & 0xFFFF_FFFFL);
         }
@@ -107,8 +111,8 @@ public final class WireFrames {
         INTS.set(into, 18, length);
     }
 
-    private static final java.lang.invoke.VarHandle LONGS = java.lang.invoke.MethodHandles.byteArrayViewVarHandle(long[].class, java.nio.ByteOrder.BIG_ENDIAN);
-    private static final java.lang.invoke.VarHandle INTS = java.lang.invoke.MethodHandles.byteArrayViewVarHandle(int[].class, java.nio.ByteOrder.BIG_ENDIAN);
+    private static final VarHandle LONGS = MethodHandles.byteArrayViewVarHandle(long[].class, ByteOrder.BIG_ENDIAN);
+    private static final VarHandle INTS = MethodHandles.byteArrayViewVarHandle(int[].class, ByteOrder.BIG_ENDIAN);
 
     /** @return the body of a FRAME_REFUSED reply: the reason, cut to {@value #MAX_REASON_BYTES} bytes */
     static byte[] reason(String why) {

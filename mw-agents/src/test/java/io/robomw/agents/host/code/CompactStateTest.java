@@ -2,12 +2,12 @@ package io.robomw.agents.host.code;
 
 import io.robomw.agents.host.trip.VisitorAgent;
 import io.robomw.api.Agent;
+import io.robomw.testkit.Allocations;
 import org.junit.jupiter.api.Test;
 
 import java.io.ByteArrayOutputStream;
 import java.io.IOException;
 import java.io.Serializable;
-import java.lang.management.ManagementFactory;
 import java.nio.charset.StandardCharsets;
 import java.util.List;
 
@@ -165,33 +165,21 @@ class CompactStateTest {
             c = allocatedBy(() -> {
                 sink.reset();
                 CODEC.writeCompact(a, sink);
-                return null;
             });
             s = allocatedBy(() -> {
                 sink.reset();
                 StateCodec.write(a, sink);
-                return null;
             });
         }
         System.out.printf("writing the state: %d bytes allocated (compact), %d (standard)%n", c, s);
         assertTrue(c < 0.5 * s, "compact " + c + " bytes per write against standard " + s);
     }
 
-    private interface Step {
-        Object run() throws Exception;
-    }
-
-    /** @return the bytes this thread allocated per run of {@code step}, the median of 5 batches of 200 runs */
-    private static long allocatedBy(Step step) throws Exception {
-        com.sun.management.ThreadMXBean threads = (com.sun.management.ThreadMXBean) ManagementFactory.getThreadMXBean();
-        long id = Thread.currentThread().getId();
+    /** @return the median over 5 batches of the bytes a call of the step allocates */
+    private static long allocatedBy(Allocations.Step step) throws Exception {
         long[] batches = new long[5];
         for (int b = 0; b < batches.length; b++) {
-            long before = threads.getThreadAllocatedBytes(id);
-            for (int i = 0; i < 200; i++) {
-                step.run();
-            }
-            batches[b] = (threads.getThreadAllocatedBytes(id) - before) / 200;
+            batches[b] = Allocations.perCall(200, step);
         }
         java.util.Arrays.sort(batches);
         return batches[batches.length / 2];
