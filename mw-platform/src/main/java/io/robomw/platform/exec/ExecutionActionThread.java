@@ -338,12 +338,13 @@ public final class ExecutionActionThread implements AutoCloseable {
      * @param cause the failure
      */
     public void linkFailed(String link, Throwable cause) {
-        long throughTicket;
+        RobotLinkException failure = new RobotLinkException("robot '" + robot + "': link " + link + " failed: "
+                + cause.getMessage() + "; its motors were stopped", cause);
         synchronized (this) {
-            throughTicket = lastTicket;
+            // Replaces a report the cycle has not taken yet (the link failed, came back and failed again before the next
+            // cycle): this one covers everything queued up to now, the earlier one only what was queued before it.
+            LINK_FAILURE.setVolatile(this, new LinkFailure(failure, lastTicket));
         }
-        LINK_FAILURE.compareAndSet(this, null, new LinkFailure(new RobotLinkException("robot '" + robot + "': link " + link + " failed: "
-                + cause.getMessage() + "; its motors were stopped", cause), throughTicket));
         wake();
     }
 

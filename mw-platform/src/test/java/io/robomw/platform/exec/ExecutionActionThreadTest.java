@@ -309,6 +309,24 @@ class ExecutionActionThreadTest {
     }
 
     @Test
+    void aSecondLinkFailureReportedBeforeTheFirstIsConsumedEndsWhatWasQueuedBeforeIt() {
+        // the link failed, came back and failed again before the action thread's next cycle (a busy machine):
+        // a command queued while it was back must end with the second failure, not run when the link returns
+        CompletableFuture<Void> first = thread.submit(normal("first", new AtomicBoolean(), "A"));
+        thread.linkFailed("urbi 127.0.0.1:54000", new IOException("connection reset"));
+        CompletableFuture<Void> whileBack = thread.submit(normal("while-back", new AtomicBoolean(), "B"));
+        thread.linkFailed("urbi 127.0.0.1:54000", new IOException("connection reset again"));
+        CompletableFuture<Void> after = thread.submit(normal("after", new AtomicBoolean(true), "C"));
+        thread.cycle();
+
+        assertInstanceOf(RobotLinkException.class, failure(first));
+        RobotLinkException e = assertInstanceOf(RobotLinkException.class, failure(whileBack), "not left waiting on a link that is down");
+        assertTrue(e.getMessage().contains("again"), "it ends with the failure that came after it: " + e.getMessage());
+        assertFalse(thread.actuatorsInUse().contains("B"), "it never took its actuators");
+        assertTrue(after.isDone() && !after.isCompletedExceptionally(), "the command submitted after the second report ran");
+    }
+
+    @Test
     void shouldEndContainerWhoseLogicThrowsAndKeepCycling() {
         Container bad = Container.builder("bad").requires("A").logic(now -> {
             throw new IllegalStateException("sensor exploded");
