@@ -54,7 +54,7 @@ import java.util.stream.Stream;
  *   acknowledged), and until its result is home (its stop at B ends the trip).</li>
  *   <li><b>Wire bytes per warm hop.</b> Bytes through both hosts' RMI server sockets (in + out:
  *   every byte of the A↔B connections once each way it is counted) around N warm round trips,
- *   divided by 2N hops, next to the agent's state as {@link StateCodec#write} makes it.</li>
+ *   divided by 2N hops, next to the agent's state as the host sends it ({@link StateCodec#writeCompact}).</li>
  * </ul>
  *
  * <p>Run: {@code bench/agents}. Not part of the normal test run.
@@ -370,7 +370,10 @@ public final class AgentBenchmark {
         Agent replica = agent(agentClass, payload, far, rounds);
         replica.itinerary().record(a.address(), io.robomw.api.Itinerary.Outcome.DONE, "");
         replica.itinerary().goToNext();
-        int state = StateCodec.write(replica).length;
+        // in the form the host sends it in (compact unless told to serve older hosts)
+        java.io.ByteArrayOutputStream compact = new java.io.ByteArrayOutputStream();
+        new StateCodec(java.util.List.of(), Long.MAX_VALUE).writeCompact(replica, compact);
+        int state = compact.size();
         Wire w = new Wire(payload, state, (after - before) / (2.0 * rounds));
         say(String.format(Locale.ROOT, "RoboMW wire per warm hop %8d B payload: %10.1f bytes, state %8d bytes, overhead %6.1f bytes (%d round trips)",
                 payload, w.perHop(), state, w.perHop() - state, rounds));

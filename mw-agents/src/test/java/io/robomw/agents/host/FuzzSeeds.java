@@ -91,6 +91,10 @@ public final class FuzzSeeds {
 
         new Seeds(resources, "io.robomw.agents.host.code.AgentStateFuzzTest").write("state", "visitor", state);
         new Seeds(resources, "io.robomw.agents.host.code.AgentStateFuzzTest").write("state", "itinerary", StateCodec.write(agent.itinerary()));
+        // the form hosts send agents in (StateCodec.COMPACT_MAGIC): class descriptors as name and fingerprint
+        java.io.ByteArrayOutputStream compact = new java.io.ByteArrayOutputStream();
+        new StateCodec(List.of(), 1 << 20).writeCompact(agent, compact);
+        new Seeds(resources, "io.robomw.agents.host.code.AgentStateFuzzTest").write("state", "visitor-compact", compact.toByteArray());
 
         Path journalDir = Files.createTempDirectory("journal-seed");
         try (JournalStore s = JournalStore.open(journalDir)) {

@@ -73,6 +73,35 @@ class SpinHandoffTest {
     }
 
     @Test
+    void anIdleThreadSpinsOnlyWhileItsConditionHoldsElseParksAtOnceAndStillGetsItsTask() throws Exception {
+        // The clock never moves: a thread that spins would spin until a task comes.
+        AtomicLong now = new AtomicLong(1_000_000_000L);
+        java.util.concurrent.atomic.AtomicBoolean few = new java.util.concurrent.atomic.AtomicBoolean(false);
+        SpinHandoff<String> q = new SpinHandoff<>(Duration.ofMillis(1), few::get, now::get);
+        java.util.concurrent.BlockingQueue<String> got = new java.util.concurrent.LinkedBlockingQueue<>();
+        Thread idle = new Thread(() -> {
+            try {
+                for (int i = 0; i < 2; i++) {
+                    got.add(q.poll(30, TimeUnit.SECONDS));
+                }
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        }, "spin-handoff-conditional");
+        idle.start();
+        Await.until("the idle thread parks at once: many agents run (the condition says no)", Duration.ofSeconds(10),
+                () -> idle.getState() == Thread.State.TIMED_WAITING);
+        assertEquals(0, q.spinning(), "it did not spin");
+        few.set(true);
+        Await.until("the parked thread takes the task", Duration.ofSeconds(10), () -> q.offer("parked"));
+        assertEquals("parked", got.poll(10, TimeUnit.SECONDS));
+        Await.until("its next wait spins: few agents run now", Duration.ofSeconds(10), () -> q.spinning() == 1);
+        assertTrue(q.offer("spun"), "the spinning thread takes the task");
+        assertEquals("spun", got.poll(10, TimeUnit.SECONDS));
+        idle.join(10_000);
+    }
+
+    @Test
     void aSpinOfZeroNeverSpinsAndAnOfferWithNobodyWaitingIsRefused() throws Exception {
         SpinHandoff<String> q = new SpinHandoff<>(Duration.ZERO, System::nanoTime);
         assertFalse(q.offer("nobody"), "no idle thread: the pool starts one");

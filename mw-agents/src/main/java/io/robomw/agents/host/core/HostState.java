@@ -54,7 +54,7 @@ public final class HostState {
     public final Map<UUID, AgentHandle> handles = new ConcurrentHashMap<>();
     /** What happened here lately, for watchers (a console): {@link Op#WATCH}. */
     public final HostActivity activity = new HostActivity();
-    /** Runs agents' stops, one pooled thread per agent at a time; its idle threads spin {@link #runnerSpinNanos} before they park. */
+    /** Runs agents' stops, one pooled thread per agent at a time; its idle threads spin {@link #runnerSpinNanos} before they park while {@link #fewAgentsRunning}. */
     public final ExecutorService runners;
     /** The hand-off queue of {@link #runners}: where a runner that sent a large agent on says it parks at once ({@link SpinHandoff#parkNext}). */
     public final SpinHandoff<Runnable> runnerHandoff;
@@ -62,6 +62,10 @@ public final class HostState {
     public final FrameBuffers frameBuffers = new FrameBuffers();
     /** How long a runner waits for work by spinning before it parks, ns (0: never spins). */
     public final long runnerSpinNanos;
+    /** How many of {@link #runners}' tasks run now (an agent's stop, its departure, ...). */
+    private final AtomicInteger running = new AtomicInteger();
+    /** The processors this JVM may use, as the runners' spin is decided on. */
+    private final int processors = Runtime.getRuntime().availableProcessors();
     /** Compute the tags of large agent wire frames while their bytes are being written ({@link WireWriter}). */
     public final ExecutorService wireTaggers;
     /** Runs the home's calls to its agents (messages, retract and dispose requests) and clone launches. */
@@ -99,8 +103,8 @@ public final class HostState {
         this.codec = codec;
         this.timeoutMillis = timeoutMillis;
         this.runnerSpinNanos = runnerSpin.toNanos();
-        this.runnerHandoff = new SpinHandoff<>(runnerSpin, System::nanoTime);
-        this.runners = pool(new OwnerThreads("agent-runner-" + name, failures), runnerHandoff);
+        this.runnerHandoff = new SpinHandoff<>(runnerSpin, this::fewAgentsRunning, System::nanoTime);
+        this.runners = new Runners(new OwnerThreads("agent-runner-" + name, failures), runnerHandoff, running);
         this.requests = pool(new OwnerThreads("agent-requests-" + name, failures), new java.util.concurrent.SynchronousQueue<>());
         this.wireTaggers = pool(new OwnerThreads("agent-wire-tag-" + name, failures), new java.util.concurrent.SynchronousQueue<>());
     }
@@ -144,6 +148,36 @@ public final class HostState {
      * back after {@value #IDLE_THREAD_SECONDS} s idle, so a burst of agents leaves no threads behind
      * on a host that runs for days.
      */
+    /**
+     * @return whether no more agents' tasks run here now than the machine has processors: only then
+     *         do the host's threads spin for what comes next (an idle runner for the next agent, a
+     *         runner that sent one on for its acknowledgement), as a processor is then likely idle to
+     *         spin on; with more at work, every spin takes a processor from a thread with work
+     */
+    public boolean fewAgentsRunning() {
+        return running.get() <= processors;
+    }
+
+    /** The runners' pool: counts the tasks running, for {@link #fewAgentsRunning}. */
+    private static final class Runners extends java.util.concurrent.ThreadPoolExecutor {
+        private final AtomicInteger running;
+
+        Runners(ThreadFactory threads, java.util.concurrent.BlockingQueue<Runnable> handoff, AtomicInteger running) {
+            super(0, Integer.MAX_VALUE, IDLE_THREAD_SECONDS, java.util.concurrent.TimeUnit.SECONDS, handoff, threads);
+            this.running = running;
+        }
+
+        @Override
+        protected void beforeExecute(Thread t, Runnable r) {
+            running.incrementAndGet();
+        }
+
+        @Override
+        protected void afterExecute(Runnable r, Throwable t) {
+            running.decrementAndGet();
+        }
+    }
+
     private static ExecutorService pool(ThreadFactory threads, java.util.concurrent.BlockingQueue<Runnable> handoff) {
         return new java.util.concurrent.ThreadPoolExecutor(0, Integer.MAX_VALUE, IDLE_THREAD_SECONDS, java.util.concurrent.TimeUnit.SECONDS,
                 handoff, threads);

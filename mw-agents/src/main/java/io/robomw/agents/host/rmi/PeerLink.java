@@ -77,6 +77,8 @@ public final class PeerLink {
     private volatile long wireDownUntil;
     /** How long a reply may spin before it blocks, ns. */
     private volatile long wireSpinNanos;
+    /** Whether a transfer spins for its reply now. */
+    private volatile java.util.function.BooleanSupplier worthSpinning = () -> true;
     private volatile java.util.concurrent.Executor wireTagger;
 
     /** How long transfers go over RMI after the host's agent wire could not be reached. */
@@ -131,7 +133,6 @@ public final class PeerLink {
         this.wireOff = true;
     }
 
-    /** @param spin how long a transfer waits for its reply by spinning before it blocks (0: never) */
     /**
      * @param tagger computes the tags of large frames while they are written ({@link WireWriter}), and runs the trims of
      *               surplus idle connections; {@code null}: the writing thread tags, and surplus idle connections are
@@ -141,8 +142,13 @@ public final class PeerLink {
         this.wireTagger = tagger;
     }
 
-    void wireSpin(java.time.Duration spin) {
+    /**
+     * @param spin          how long a transfer waits for its reply by spinning before it blocks (0: never)
+     * @param worthSpinning asked at each transfer: whether it spins (the host's {@code fewAgentsRunning})
+     */
+    void wireSpin(java.time.Duration spin, java.util.function.BooleanSupplier worthSpinning) {
         this.wireSpinNanos = spin.toNanos();
+        this.worthSpinning = worthSpinning;
     }
 
     /**
@@ -340,7 +346,7 @@ public final class PeerLink {
         }
         Reply r;
         try {
-            r = ch.call(seq.incrementAndGet(), opCode, frame.bytes, frame.bodyOffset(), frame.bodyLength(), wireSpinNanos);
+            r = ch.call(seq.incrementAndGet(), opCode, frame.bytes, frame.bodyOffset(), frame.bodyLength(), worthSpinning.getAsBoolean() ? wireSpinNanos : 0);
         } catch (IOException e) {
             ch.close();
             throw new PeerException("cannot reach agent host " + address + " on its agent wire (port " + port + "; the " + op + " may have reached it): "

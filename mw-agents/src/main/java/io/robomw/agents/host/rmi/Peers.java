@@ -121,7 +121,7 @@ public final class Peers {
         return links.computeIfAbsent(target, t -> {
             HostAddress a = HostAddress.parse(t);
             PeerLink l = new PeerLink(a, host.name, key, new HostSockets.Client(a.host(), tls, host.timeoutMillis), random, wireTls, host.timeoutMillis);
-            l.wireSpin(wireSpin);
+            l.wireSpin(wireSpin, host::fewAgentsRunning);
             l.wireTagger(host.wireTaggers);
             if (version2Only) {
                 l.proposeVersion2Only();

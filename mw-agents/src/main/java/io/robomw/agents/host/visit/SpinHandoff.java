@@ -21,6 +21,13 @@ import java.util.function.LongSupplier;
  * default on a machine with one processor, where a spinning thread only delays the one that
  * would hand it work) never spins, and this is then a {@link SynchronousQueue}.
  *
+ * <p>An idle thread spins only while {@code worthSpinning} says so: a host's runners, while no
+ * more agents run there than the machine has processors. With more at work, a task rarely
+ * finds a processor idle to spin on, and every thread that spun took one from the threads with
+ * work: hundreds of agents hopping among hosts that share two processors hopped with a p99 about
+ * twice as long with spinning runners as without, at no more hops a second (docs/benchmarks.md,
+ * "Many agents at once").
+ *
  * <p>How a task never strands: {@code unclaimed} counts the spinning threads no task has claimed.
  * An offer claims one (decrements it; none left: the task goes to a parked thread, or to none and
  * the pool starts a thread for it) and then puts its task in the slot; a spinning thread takes a
@@ -40,6 +47,7 @@ public final class SpinHandoff<E> extends AbstractQueue<E> implements BlockingQu
     private final AtomicInteger unclaimed = new AtomicInteger();
     private final AtomicInteger spinning = new AtomicInteger();
     private final long spinNanos;
+    private final java.util.function.BooleanSupplier worthSpinning;
     private final LongSupplier nanoTime;
     /** Set by a task on its own thread: that thread's next wait for a task parks without spinning ({@link #parkNext}). */
     private final ThreadLocal<boolean[]> parkNext = ThreadLocal.withInitial(() -> new boolean[1]);
@@ -49,10 +57,20 @@ public final class SpinHandoff<E> extends AbstractQueue<E> implements BlockingQu
      * @param nanoTime the clock the spin is measured on
      */
     public SpinHandoff(Duration spin, LongSupplier nanoTime) {
+        this(spin, () -> true, nanoTime);
+    }
+
+    /**
+     * @param spin          how long an idle thread spins before it parks; zero never spins
+     * @param worthSpinning asked as a thread becomes idle: whether it spins (else it parks at once)
+     * @param nanoTime      the clock the spin is measured on
+     */
+    public SpinHandoff(Duration spin, java.util.function.BooleanSupplier worthSpinning, LongSupplier nanoTime) {
         if (spin.isNegative()) {
             throw new IllegalArgumentException("a runner spin must be >= 0, got " + spin);
         }
         this.spinNanos = spin.toNanos();
+        this.worthSpinning = worthSpinning;
         this.nanoTime = nanoTime;
     }
 
@@ -131,11 +149,12 @@ public final class SpinHandoff<E> extends AbstractQueue<E> implements BlockingQu
 
     /**
      * Spins up to {@code nanos} for a task (longer only while a task that claimed this thread is
-     * on its way: between an offer's claim and its putting the task in the slot). An interrupt
+     * on its way: between an offer's claim and its putting the task in the slot), if
+     * {@code worthSpinning} says so. An interrupt
      * (the pool shutting down) is left set for the park that follows.
      */
     private E spin(long nanos) {
-        if (nanos <= 0) {
+        if (nanos <= 0 || !worthSpinning.getAsBoolean()) {
             return null;
         }
         spinning.incrementAndGet();
