@@ -105,8 +105,8 @@ final class HostCommand implements Callable<Integer> {
     String refusedServePassword;
 
     @Option(names = "--older-hosts", description = "talk to agent hosts of builds before agent protocol version 4, whose authentication does not bind the"
-            + " address it was meant for (a relay between the hosts goes unnoticed), and send agents' state in the standard form builds"
-            + " before the compact one (2026-11-29) read: for a cluster being upgraded")
+            + " address it was meant for (a relay between the hosts goes unnoticed): for a cluster being upgraded (hosts of version 4"
+            + " need no such leave: those that do not read the compact form of agent state get the standard one)")
     boolean olderHosts;
 
     @Option(names = "--owed-expiry", paramLabel = "DURATION", defaultValue = "PT24H",

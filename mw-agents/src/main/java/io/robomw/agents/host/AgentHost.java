@@ -129,6 +129,8 @@ public final class AgentHost implements AutoCloseable {
     private final int wirePort;
     private final Duration wireSpin;
     private final Duration wireReadSpin;
+    /** For tests: acts as a host of a build before the compact form of agent state (protocol version 4 at most). */
+    private final boolean beforeCompactForm;
     private final boolean version2Only;
     private final boolean olderHosts;
     private final WireServer.Limits wireLimits;
@@ -147,7 +149,7 @@ public final class AgentHost implements AutoCloseable {
         this.stopGrace = b.stopGrace;
         this.endpointSpin = b.endpointSpin;
         this.state = new HostState(new Place(), b.name, b.robot, new StateCodec(b.allowed, b.maxStateBytes,
-                b.olderHosts || b.version2Only ? StateCodec.Form.STANDARD : StateCodec.Form.COMPACT), (int) b.callTimeout.toMillis(),
+                b.beforeCompactForm || b.version2Only ? StateCodec.Form.STANDARD : StateCodec.Form.COMPACT), (int) b.callTimeout.toMillis(),
                 b.runnerSpin, b.failures);
         this.robot = new RobotTurns(b.name, b.robot);
         this.code = new CodeLoaders(state);
@@ -156,6 +158,7 @@ public final class AgentHost implements AutoCloseable {
         this.wireSpin = b.wireSpin;
         this.wireReadSpin = b.wireReadSpin;
         this.version2Only = b.version2Only;
+        this.beforeCompactForm = b.beforeCompactForm;
         this.olderHosts = b.olderHosts || b.version2Only;
         this.wireLimits = b.wireLimits != null ? b.wireLimits : WireServer.Limits.of(b.maxStateBytes, b.callTimeout);
         this.wireThreads = b.wireThreads;
@@ -208,7 +211,8 @@ public final class AgentHost implements AutoCloseable {
         HostConnections connections = new HostConnections(name, maxCall);
         HostSockets.Server serverSockets = new HostSockets.Server(bindAddress, ssl, counters, connections, endpointSpin.toNanos());
         HostSockets.Client clientSockets = new HostSockets.Client(bind, tls != null, state.timeoutMillis);
-        endpoint = new HostEndpoint(name, key, calls, version2Only ? Session.PROTOCOL_VERSION : Session.BOUND_VERSION, state.failures, connections);
+        endpoint = new HostEndpoint(name, key, calls, version2Only ? Session.PROTOCOL_VERSION : beforeCompactForm ? Session.BOUND_VERSION
+                : Session.COMPACT_VERSION, state.failures, connections);
         peers.wire(ssl, wireSpin, version2Only, !wire);
         peers.olderHosts(olderHosts);
         if (wire) {

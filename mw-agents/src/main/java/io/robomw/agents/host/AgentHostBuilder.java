@@ -44,6 +44,7 @@ public final class AgentHostBuilder {
     Duration wireReadSpin = Duration.ZERO;
     boolean version2Only;
     boolean olderHosts;
+    boolean beforeCompactForm;
     WireServer.Limits wireLimits;
     java.util.concurrent.ThreadFactory wireThreads;
     FailurePolicy failures = FailurePolicy.logging();
@@ -278,14 +279,23 @@ public final class AgentHostBuilder {
      * Lets this host's links talk to hosts of builds before agent protocol version 4 (for a
      * cluster upgraded host by host): a link to a host that refuses version 4 authenticates with
      * version 3, or 2, whose authentication does not bind the channel, so a relay between the two
-     * hosts goes unnoticed (docs/security.md). Off by default: such a link fails, saying why. Such
-     * a host also sends agents' state in Java serialization's standard form, which builds before the
-     * compact form (2026-11-29) read, instead of the compact one.
+     * hosts goes unnoticed (docs/security.md). Off by default: such a link fails, saying why.
+     * (Hosts of builds from version 4 on need no such leave: a link to a host that does not read the
+     * compact form of agent state, protocol version 5, sends it agents in the standard form.)
      *
      * @return this
      */
     public AgentHostBuilder olderHosts() {
         this.olderHosts = true;
+        return this;
+    }
+
+    /**
+     * For tests of mixed versions: the host acts as one of a build before the compact form of agent
+     * state (protocol versions up to 4; it writes the standard form and refuses the compact one).
+     */
+    AgentHostBuilder beforeCompactForm() {
+        this.beforeCompactForm = true;
         return this;
     }
 

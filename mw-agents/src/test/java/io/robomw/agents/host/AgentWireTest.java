@@ -146,8 +146,27 @@ class AgentWireTest {
         assertEquals(Session.PROTOCOL_VERSION, oldPeer.version(), "a host of this build takes version 2 from an old peer");
         PeerLink toNew = new PeerLink(HostAddress.parse(a.address()), "probe", KEY, new HostSockets.Client("127.0.0.1", false, 10_000), new SecureRandom());
         assertEquals(Reply.Status.OK, toNew.call(Op.LIST, new byte[0]).status());
-        assertEquals(Session.BOUND_VERSION, toNew.version());
+        assertEquals(Session.COMPACT_VERSION, toNew.version());
         assertEquals(a.wirePort(), toNew.wirePort(), "the answer names the host's wire port");
+    }
+
+    @Test
+    void aHostOfABuildBeforeTheCompactFormGetsAgentsInTheStandardFormWithoutLeave() throws Exception {
+        // no olderHosts(): a host of version 4 binds the channel as one of 5 does
+        AgentHost home = start(AgentHost.builder("home").clusterKey(KEY).noMessaging());
+        AgentHost old = start(AgentHost.builder("old").clusterKey(KEY).noMessaging().beforeCompactForm());
+        AgentHost a = start(AgentHost.builder("a").clusterKey(KEY).noMessaging());
+        VisitorAgent agent = new VisitorAgent().payload(10_000);
+        agent.itinerary().addStop(a.address()).addStop(old.address()).addStop(a.address()).addStop(old.address()).addStop(home.address());
+        assertEquals(List.of("a", "old", "a", "old", "home"), home.agency().startTrip(agent).result().get(20, TimeUnit.SECONDS),
+                "the old host read the agent a sent it, before and after their session was made (it refuses the compact form, as builds"
+                        + " before it did), and a read the one it sent back");
+        assertTrue(old.wireFramesServed() >= 1, "on the old host's agent wire");
+
+        PeerLink toOld = new PeerLink(HostAddress.parse(old.address()), "probe", KEY, new HostSockets.Client("127.0.0.1", false, 10_000), new SecureRandom());
+        assertEquals(Reply.Status.OK, toOld.call(Op.LIST, new byte[0]).status());
+        assertEquals(Session.BOUND_VERSION, toOld.version(), "the link fell back from 5 to 4 by itself");
+        assertEquals(old.wirePort(), toOld.wirePort());
     }
 
     @Test
@@ -163,7 +182,7 @@ class AgentWireTest {
         homeWireServes(home, 2); // a's news that the agent arrived there, and the transfer home: on home's wire
         PeerLink toOff = new PeerLink(HostAddress.parse(off.address()), "probe", KEY, new HostSockets.Client("127.0.0.1", false, 10_000), new SecureRandom());
         assertEquals(Reply.Status.OK, toOff.call(Op.LIST, new byte[0]).status());
-        assertEquals(Session.BOUND_VERSION, toOff.version(), "it speaks version 4");
+        assertEquals(Session.COMPACT_VERSION, toOff.version(), "it speaks version 5");
         assertEquals(0, toOff.wirePort(), "and offers no wire");
     }
 }

@@ -246,9 +246,13 @@ class CallAuthenticationTest {
 
     @Test
     void aPeerOfAnotherProtocolVersionIsRefusedNamingBoth() throws IOException {
-        Handshake h = authenticate(KEY, 5, CallAuthenticator.AES_256_GCM, CallAuthenticator.AES_256_GCM);
+        Handshake h = authenticate(KEY, 6, CallAuthenticator.AES_256_GCM, CallAuthenticator.AES_256_GCM);
         assertEquals(Session.AUTH_REFUSED, h.answer()[0]);
-        assertTrue(refusal(h.answer()).contains("version 5; this host speaks versions 2, 3 and 4"), refusal(h.answer()));
+        assertTrue(refusal(h.answer()).contains("version 6; this host speaks versions 2, 3, 4 and 5"), refusal(h.answer()));
+        HostEndpoint beforeCompact = new HostEndpoint("host-h", KEY, (peer, op, m, off, len) -> Reply.ok(), Session.BOUND_VERSION);
+        byte[] refused = beforeCompact.authenticate(new byte[] {(byte) Session.COMPACT_VERSION, (byte) CallAuthenticator.AES_256_GCM, 0, 0});
+        assertTrue(refusal(refused).contains("protocol version 5; this host speaks versions 2, 3 and 4"),
+                "as a build before the compact form refuses it, in the words a peer falls back to 4 on: " + refusal(refused));
         // A protocol-1 request (no version byte: the peer name's u16 length first) reads as version 0.
         ByteArrayOutputStream old = new ByteArrayOutputStream();
         DataOutputStream out = new DataOutputStream(old);

@@ -50,7 +50,11 @@ public final class StateCodec {
     /** Most object references in one agent's state. */
     public static final int MAX_REFERENCES = 1_000_000;
 
-    /** The form in which a host writes the agents it sends ({@link #writeAgent}); it reads both. */
+    /**
+     * A form of an agent's state on the way to another host ({@link #writeAgent}): the compact one
+     * to hosts that read it (their sessions are of agent protocol version 5), the standard one to
+     * the others.
+     */
     public enum Form {
         /** Java serialization's own stream ({@code ACED 0005}): what every host reads, builds before the compact form too. */
         STANDARD,
@@ -63,7 +67,7 @@ public final class StateCodec {
     private final Form form;
 
     /**
-     * A codec that writes agents in the compact form.
+     * A codec that reads both forms and writes agents in the compact form to hosts that read it.
      *
      * @param extraAllowed class names the host's operator allows besides the agent's own classes
      * @param maxBytes     the largest state accepted, which also bounds every array's length
@@ -75,7 +79,9 @@ public final class StateCodec {
     /**
      * @param extraAllowed class names the host's operator allows besides the agent's own classes
      * @param maxBytes     the largest state accepted, which also bounds every array's length
-     * @param form         the form agents are sent in: {@link Form#STANDARD} for a host that talks to hosts of older builds
+     * @param form         {@link Form#COMPACT}; {@link Form#STANDARD} for a codec as builds before the compact form
+     *                     had (tests of mixed versions): it writes only the standard form and refuses
+     *                     the compact one ("invalid stream header"), as they did
      */
     public StateCodec(List<String> extraAllowed, long maxBytes, Form form) {
         this.allowList = PayloadAllowList.jdkDefaults().withNames(API_TYPES).withNames(extraAllowed);
@@ -84,14 +90,16 @@ public final class StateCodec {
     }
 
     /**
-     * Writes an agent that travels in this codec's {@link Form}.
+     * Writes an agent on its way to another host.
      *
      * @param agent an agent
      * @param to    where to write it
+     * @param reads the form the next host reads: {@link Form#STANDARD} for a host of a build before
+     *              the compact form (its session is of a protocol version before 5)
      * @throws IOException if something in it is not serializable (the message names the class), or the stream fails
      */
-    public void writeAgent(Serializable agent, java.io.OutputStream to) throws IOException {
-        if (form == Form.COMPACT) {
+    public void writeAgent(Serializable agent, java.io.OutputStream to, Form reads) throws IOException {
+        if (form == Form.COMPACT && reads == Form.COMPACT) {
             writeCompact(agent, to);
         } else {
             write(agent, to);
@@ -367,9 +375,13 @@ public final class StateCodec {
             if (magic == (ObjectStreamConstants.STREAM_MAGIC & 0xFFFF) && version == ObjectStreamConstants.STREAM_VERSION) {
                 return;
             }
-            if (magic == COMPACT_MAGIC && version == COMPACT_VERSION) {
+            if (magic == COMPACT_MAGIC && version == COMPACT_VERSION && form == Form.COMPACT) {
                 compact = true;
                 return;
+            }
+            if (form == Form.STANDARD) {
+                // as a build before the compact form read it (tests of mixed versions)
+                throw new StreamCorruptedException(String.format("invalid stream header: %04X%04X", magic, version));
             }
             throw new StreamCorruptedException(String.format("state stream header %04x %04x is neither Java serialization's (aced 0005) nor"
                     + " this host's compact form (%04x %04x): written by a newer host?", magic, version, COMPACT_MAGIC, COMPACT_VERSION));

@@ -54,7 +54,7 @@ public final class HostState {
     public final Map<UUID, AgentHandle> handles = new ConcurrentHashMap<>();
     /** What happened here lately, for watchers (a console): {@link Op#WATCH}. */
     public final HostActivity activity = new HostActivity();
-    /** Runs agents' stops, one pooled thread per agent at a time; its idle threads spin {@link #runnerSpinNanos} before they park while {@link #fewAgentsRunning}. */
+    /** Runs agents' stops, one pooled thread per agent at a time; its idle threads spin {@link #runnerSpinNanos} before they park while {@link #fewAgentsLately}. */
     public final ExecutorService runners;
     /** The hand-off queue of {@link #runners}: where a runner that sent a large agent on says it parks at once ({@link SpinHandoff#parkNext}). */
     public final SpinHandoff<Runnable> runnerHandoff;
@@ -62,10 +62,10 @@ public final class HostState {
     public final FrameBuffers frameBuffers = new FrameBuffers();
     /** How long a runner waits for work by spinning before it parks, ns (0: never spins). */
     public final long runnerSpinNanos;
-    /** How many of {@link #runners}' tasks run now (an agent's stop, its departure, ...). */
-    private final AtomicInteger running = new AtomicInteger();
-    /** The processors this JVM may use, as the runners' spin is decided on. */
-    private final int processors = Runtime.getRuntime().availableProcessors();
+    /** How many threads {@link #runners} has: one per agent at work at once lately (an idle one ends after {@value #IDLE_THREAD_SECONDS} s). */
+    private final AtomicInteger runnerThreads = new AtomicInteger();
+    /** The most runner threads with which the host's threads still spin: twice the processors this JVM may use. */
+    private final int fewThreads = 2 * Runtime.getRuntime().availableProcessors();
     /** Compute the tags of large agent wire frames while their bytes are being written ({@link WireWriter}). */
     public final ExecutorService wireTaggers;
     /** Runs the home's calls to its agents (messages, retract and dispose requests) and clone launches. */
@@ -103,8 +103,8 @@ public final class HostState {
         this.codec = codec;
         this.timeoutMillis = timeoutMillis;
         this.runnerSpinNanos = runnerSpin.toNanos();
-        this.runnerHandoff = new SpinHandoff<>(runnerSpin, this::fewAgentsRunning, System::nanoTime);
-        this.runners = new Runners(new OwnerThreads("agent-runner-" + name, failures), runnerHandoff, running);
+        this.runnerHandoff = new SpinHandoff<>(runnerSpin, this::fewAgentsLately, System::nanoTime);
+        this.runners = pool(counted(new OwnerThreads("agent-runner-" + name, failures), runnerThreads), runnerHandoff);
         this.requests = pool(new OwnerThreads("agent-requests-" + name, failures), new java.util.concurrent.SynchronousQueue<>());
         this.wireTaggers = pool(new OwnerThreads("agent-wire-tag-" + name, failures), new java.util.concurrent.SynchronousQueue<>());
     }
@@ -149,33 +149,31 @@ public final class HostState {
      * on a host that runs for days.
      */
     /**
-     * @return whether no more agents' tasks run here now than the machine has processors: only then
-     *         do the host's threads spin for what comes next (an idle runner for the next agent, a
-     *         runner that sent one on for its acknowledgement), as a processor is then likely idle to
-     *         spin on; with more at work, every spin takes a processor from a thread with work
+     * @return whether the host has had few agents at work at once lately: no more runner threads
+     *         (each kept {@value #IDLE_THREAD_SECONDS} s after its last agent) than twice the
+     *         processors. Only then do the host's threads spin for what comes next (an idle runner for
+     *         the next agent, a runner woken for an arriving one, a runner that sent one on for its
+     *         acknowledgement): one agent or a few going back and forth find a processor idle to spin
+     *         on and start sooner; with many at once, every spin takes a processor from a thread with
+     *         work and the hosts carry fewer hops, later (docs/benchmarks.md, "Many agents at once")
      */
-    public boolean fewAgentsRunning() {
-        return running.get() <= processors;
+    public boolean fewAgentsLately() {
+        return runnerThreads.get() <= fewThreads;
     }
 
-    /** The runners' pool: counts the tasks running, for {@link #fewAgentsRunning}. */
-    private static final class Runners extends java.util.concurrent.ThreadPoolExecutor {
-        private final AtomicInteger running;
-
-        Runners(ThreadFactory threads, java.util.concurrent.BlockingQueue<Runnable> handoff, AtomicInteger running) {
-            super(0, Integer.MAX_VALUE, IDLE_THREAD_SECONDS, java.util.concurrent.TimeUnit.SECONDS, handoff, threads);
-            this.running = running;
-        }
-
-        @Override
-        protected void beforeExecute(Thread t, Runnable r) {
-            running.incrementAndGet();
-        }
-
-        @Override
-        protected void afterExecute(Runnable r, Throwable t) {
-            running.decrementAndGet();
-        }
+    /** @return the factory, counting in {@code live} the threads it made that have not ended */
+    private static ThreadFactory counted(ThreadFactory threads, AtomicInteger live) {
+        return r -> {
+            Thread t = threads.newThread(() -> {
+                try {
+                    r.run();
+                } finally {
+                    live.decrementAndGet();
+                }
+            });
+            live.incrementAndGet();
+            return t;
+        };
     }
 
     private static ExecutorService pool(ThreadFactory threads, java.util.concurrent.BlockingQueue<Runnable> handoff) {

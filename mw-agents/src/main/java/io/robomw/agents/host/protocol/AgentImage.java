@@ -114,15 +114,16 @@ public record AgentImage(UUID id, long hop, Kind kind, boolean fromHome, String 
      * @param agent    the agent whose state travels (this image's own state is not used)
      * @param expected about how long the image will be (its length when it last travelled)
      * @param buffers  where a large frame's array is taken from if one fits (give it back once the transfer is over)
-     * @param codec    the host's state codec, which writes the state in the host's form (compact unless it talks to older hosts)
+     * @param codec    the host's state codec
+     * @param reads    the form of state the next host reads ({@link StateCodec#writeAgent})
      * @return the frame
      * @throws IOException if the agent is not serializable
      */
-    public Frame frame(java.io.Serializable agent, int expected, FrameBuffers buffers, StateCodec codec) throws IOException {
+    public Frame frame(java.io.Serializable agent, int expected, FrameBuffers buffers, StateCodec codec, StateCodec.Form reads) throws IOException {
         Frame.Buffer out = new Frame.Buffer(expected, buffers.take(Session.HEADER + Math.max(64, expected) + Session.MAC));
         ByteBuffer h = header(0);
         out.write(h.array(), 0, h.position());
-        codec.writeAgent(agent, out);
+        codec.writeAgent(agent, out, reads);
         return out.finish();
     }
 

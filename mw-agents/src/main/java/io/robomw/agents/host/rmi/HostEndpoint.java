@@ -70,7 +70,7 @@ public final class HostEndpoint implements AgentHostRemote {
     private final ThrottledWarnings droppedCalls = new ThrottledWarnings(LOG, Duration.ofSeconds(1));
 
     private final FailurePolicy failures;
-    /** The highest protocol version this endpoint takes: {@link Session#BOUND_VERSION}, or a lower one to act as a host of a build before it. */
+    /** The highest protocol version this endpoint takes: {@link Session#COMPACT_VERSION}, or a lower one to act as a host of a build before it. */
     private final int highestVersion;
     /** The state of the RMI connections calls come on, or {@code null} for an endpoint called directly (tests). */
     private final HostConnections connections;
@@ -81,11 +81,11 @@ public final class HostEndpoint implements AgentHostRemote {
     private volatile int port;
 
     public HostEndpoint(String hostName, ClusterKey key, Handler handler) {
-        this(hostName, key, handler, Session.BOUND_VERSION);
+        this(hostName, key, handler, Session.COMPACT_VERSION);
     }
 
     /**
-     * @param highestVersion {@link Session#BOUND_VERSION}, or a lower version for an endpoint that
+     * @param highestVersion {@link Session#COMPACT_VERSION}, or a lower version for an endpoint that
      *                       refuses the versions above it as older builds do (tests of mixed versions)
      */
     public HostEndpoint(String hostName, ClusterKey key, Handler handler, int highestVersion) {

@@ -35,14 +35,17 @@ import java.util.concurrent.atomic.AtomicLong;
  * restarted) is made again once per call; a failed call drops the stub so the next call looks it
  * up afresh. Thread-safe: calls from several threads share the session.
  *
- * <p><b>Versions.</b> It proposes agent protocol version 4 ({@link Session#BOUND_VERSION}): its
- * authentication names the address it meant to reach (the host's RMI address, resolved), so a
- * host behind a relay refuses it and the link fails saying so. A host that takes it names its
+ * <p><b>Versions.</b> It proposes agent protocol version 5 ({@link Session#COMPACT_VERSION}): version 4
+ * ({@link Session#BOUND_VERSION}), whose authentication names the address it meant to reach (the
+ * host's RMI address, resolved), so a host behind a relay refuses it and the link fails saying so,
+ * and whose host reads agent states in the compact form. A host that takes it names its
  * agent wire's port, and transfers and arrival news then go there ({@link WireChannel}, a few connections kept per
- * link, one call at a time each), every other call over RMI. A host of a build before version 4
- * refuses it; the link then fails saying so, unless it may talk to older builds
- * ({@link #olderHosts()}): it then authenticates again with version 3 (and 2 if that is refused,
- * every call over RMI) until it loses the connection (then it proposes 4 again). A wire it cannot
+ * link, one call at a time each), every other call over RMI. A host of a build before the compact
+ * form refuses 5; the link then authenticates with 4 and agents go to that host in the standard
+ * form. A host of a build before version 4 refuses that too; the link then fails saying so, unless
+ * it may talk to older builds ({@link #olderHosts()}): it then authenticates again with version 3
+ * (and 2 if that is refused, every call over RMI). A link proposes 5 again once it loses the
+ * connection (the host may have been upgraded). A wire it cannot
  * connect to (a firewall that lets only the RMI port through) sends that transfer over RMI, and the
  * next ones for {@value #WIRE_RETRY_MILLIS} ms.
  */
@@ -69,8 +72,11 @@ public final class PeerLink {
     private Session session;
     /** The host's agent wire port for the session, 0 when it offered none. */
     private int wirePort;
-    /** The protocol version to propose: 4, or 3 or 2 after a host refused the higher ones (only with {@link #olderHosts}; until the link is dropped). */
-    private int proposeVersion = Session.BOUND_VERSION;
+    /**
+     * The protocol version to propose: 5; 4 after a host refused 5 (a build before the compact form); 3 or 2 after it
+     * refused 4 too (only with {@link #olderHosts}); until the link is dropped.
+     */
+    private int proposeVersion = Session.COMPACT_VERSION;
     /** Whether it may fall back to versions before 4, which do not bind the channel. */
     private boolean olderHosts;
     /** Until when (System.nanoTime) transfers go over RMI because the wire could not be reached; 0: not. */
@@ -144,7 +150,7 @@ public final class PeerLink {
 
     /**
      * @param spin          how long a transfer waits for its reply by spinning before it blocks (0: never)
-     * @param worthSpinning asked at each transfer: whether it spins (the host's {@code fewAgentsRunning})
+     * @param worthSpinning asked at each transfer: whether it spins (the host's {@code fewAgentsLately})
      */
     void wireSpin(java.time.Duration spin, java.util.function.BooleanSupplier worthSpinning) {
         this.wireSpinNanos = spin.toNanos();
@@ -434,13 +440,13 @@ public final class PeerLink {
         }
     }
 
-    /** Forgets the stub and session (and proposes version 4 again: the host may have been upgraded); the next call connects again. */
+    /** Forgets the stub and session (and proposes version 5 again: the host may have been upgraded); the next call connects again. */
     public synchronized void drop() {
         stub = null;
         session = null;
         closeIdleWires();
-        if (proposeVersion != Session.BOUND_VERSION && !version2Only) {
-            proposeVersion = Session.BOUND_VERSION;
+        if (proposeVersion != Session.COMPACT_VERSION && !version2Only) {
+            proposeVersion = Session.COMPACT_VERSION;
         }
     }
 
@@ -464,7 +470,8 @@ public final class PeerLink {
             String refusal = authenticate(proposeVersion, attempt);
             while (refusal != null && proposeVersion > Session.PROTOCOL_VERSION && refusal.contains("protocol version " + proposeVersion + ";")) {
                 // A host of an older build. The refusal is not authenticated: a relay could forge it to talk the link down to a
-                // version that does not bind the channel, so the link goes down only when told it may.
+                // version that does not bind the channel, so the link goes below 4 only when told it may (5 to 4 costs only the
+                // compact form of agent state).
                 if (proposeVersion == Session.BOUND_VERSION && !olderHosts) {
                     stub = null;
                     throw new PeerException("host " + address + " does not speak agent protocol version " + Session.BOUND_VERSION + " (" + refusal

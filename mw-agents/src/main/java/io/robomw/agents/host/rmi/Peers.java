@@ -1,5 +1,6 @@
 package io.robomw.agents.host.rmi;
 
+import io.robomw.agents.host.code.StateCodec;
 import io.robomw.agents.host.ClusterKey;
 import io.robomw.agents.host.HostAddress;
 import io.robomw.agents.host.HostDescription;
@@ -77,6 +78,17 @@ public final class Peers {
 
     /**
      * @param target a host's address
+     * @return the form of agent state it reads ({@link io.robomw.agents.host.visit.HopSender#stateFormOf}); this host reads both
+     */
+    public StateCodec.Form stateFormOf(String target) {
+        if (target.equals(host.address)) {
+            return StateCodec.Form.COMPACT;
+        }
+        return link(target).version() >= Session.COMPACT_VERSION ? StateCodec.Form.COMPACT : StateCodec.Form.STANDARD;
+    }
+
+    /**
+     * @param target a host's address
      * @return what it says of itself
      * @throws PeerException if it cannot be reached, refuses, or answers something that is not a description
      */
@@ -121,7 +133,7 @@ public final class Peers {
         return links.computeIfAbsent(target, t -> {
             HostAddress a = HostAddress.parse(t);
             PeerLink l = new PeerLink(a, host.name, key, new HostSockets.Client(a.host(), tls, host.timeoutMillis), random, wireTls, host.timeoutMillis);
-            l.wireSpin(wireSpin, host::fewAgentsRunning);
+            l.wireSpin(wireSpin, host::fewAgentsLately);
             l.wireTagger(host.wireTaggers);
             if (version2Only) {
                 l.proposeVersion2Only();

@@ -52,11 +52,15 @@ import java.util.Arrays;
  * a real host (a registry entry rewritten, an address the peer was given) is thus refused by the
  * host, and the peer is told so; it cannot rewrite the target without breaking the proof.
  *
- * <p>Peers of this build propose 4; a host of this build takes 2, 3 and 4 (peers of builds before
- * 4 are served as before: their own sessions are not bound). A host of a build before 4 refuses
- * it, naming its versions; a peer of this build then gives up with an error saying so, unless it
+ * <p>Version {@value #COMPACT_VERSION} is version 4 from a host that reads agent states in the
+ * compact form: over a session of an earlier version, a peer sends agents in Java serialization's
+ * standard form. Peers of this build propose 5; a host of this build takes 2 to 5 (peers of builds
+ * before 4 are served as before: their own sessions are not bound). A host of a build before the
+ * compact form refuses 5, naming its versions; a peer of this build then authenticates with 4 (5
+ * and 4 bind the channel alike, so a forged refusal gains a relay nothing). A host of a build
+ * before 4 refuses that too; a peer of this build then gives up with an error saying so, unless it
  * was told to talk to older builds ({@link io.robomw.agents.host.AgentHostBuilder#olderHosts()}): it then
- * authenticates again with 3 (and 2 if that is refused too) and proposes 4 again after it loses the
+ * authenticates again with 3 (and 2 if that is refused too) and proposes 5 again after it loses the
  * connection. A peer never falls back on its own: the refusal is not authenticated, so a relay
  * could forge one to talk it down to an unbound version. Any other version is refused with a
  * reason naming both (a version-1 request reads as version 0: its name's length comes first), and
@@ -122,9 +126,16 @@ public final class Session {
     public static final int WIRE_VERSION = 3;
     /**
      * Agent protocol version 4: version 3 with the channel bound (the request's target, inside both
-     * proofs, must be the host's own address). What peers of this build propose.
+     * proofs, must be the host's own address).
      */
     public static final int BOUND_VERSION = 4;
+    /**
+     * Agent protocol version 5: version 4, from a host that reads agent states in the compact form
+     * ({@link io.robomw.agents.host.code.StateCodec#writeCompact}). What peers of this build propose;
+     * over a session of an earlier version, agents travel in Java serialization's standard form,
+     * which every build reads.
+     */
+    public static final int COMPACT_VERSION = 5;
     public static final int HEADER = 8 + 8 + 1;
     /** The first byte of an authentication answer that accepts the peer. */
     public static final byte AUTH_ACCEPTED = 0;

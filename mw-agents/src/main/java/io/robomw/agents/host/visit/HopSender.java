@@ -10,6 +10,7 @@ import io.robomw.agents.host.protocol.Reply;
 import io.robomw.agents.host.rmi.PeerException;
 import io.robomw.agents.host.rmi.Peers;
 import io.robomw.agents.host.code.CodeArchive;
+import io.robomw.agents.host.code.StateCodec;
 import io.robomw.api.AgentStatus;
 import io.robomw.api.Itinerary;
 import org.slf4j.Logger;
@@ -37,6 +38,16 @@ public final class HopSender {
     public HopSender(HostState host, Peers peers) {
         this.host = host;
         this.peers = peers;
+    }
+
+    /**
+     * @param target a host
+     * @return the form of agent state it reads: compact if this host's session with it is of agent
+     *         protocol version 5 or later; standard, which every build reads, for a host of a build
+     *         before it, and while this host has no session with it yet (its first agent there)
+     */
+    StateCodec.Form stateFormOf(String target) {
+        return peers.stateFormOf(target);
     }
 
     /**

@@ -21,11 +21,11 @@ import java.util.function.LongSupplier;
  * default on a machine with one processor, where a spinning thread only delays the one that
  * would hand it work) never spins, and this is then a {@link SynchronousQueue}.
  *
- * <p>An idle thread spins only while {@code worthSpinning} says so: a host's runners, while no
- * more agents run there than the machine has processors. With more at work, a task rarely
- * finds a processor idle to spin on, and every thread that spun took one from the threads with
- * work: hundreds of agents hopping among hosts that share two processors hopped with a p99 about
- * twice as long with spinning runners as without, at no more hops a second (docs/benchmarks.md,
+ * <p>An idle thread spins only while {@code worthSpinning} says so: a host's runners, while the
+ * host has had few agents at once lately (no more runner threads than twice the processors).
+ * With many at work, a task rarely finds a processor idle to spin on, and every thread that spun
+ * took one from the threads with work: a thousand agents hopping among four hosts that share two
+ * processors hopped with about twice the p99 with spinning runners as without (docs/benchmarks.md,
  * "Many agents at once").
  *
  * <p>How a task never strands: {@code unclaimed} counts the spinning threads no task has claimed.

@@ -61,8 +61,8 @@ public final class Transfers {
         CompletableFuture<HostedAgent> accepted = new CompletableFuture<>();
         host.runners.execute(() -> {
             // The runner usually starts before the agent is stored: spin for it as an idle runner
-            // would (bounded, and only while few agents run here), rather than park and be woken again.
-            long until = System.nanoTime() + (host.fewAgentsRunning() ? host.runnerSpinNanos : 0);
+            // would (bounded, and only while the host has had few agents at once lately), rather than park and be woken again.
+            long until = System.nanoTime() + (host.fewAgentsLately() ? host.runnerSpinNanos : 0);
             while (!accepted.isDone() && System.nanoTime() - until < 0) {
                 Thread.yield();
             }

@@ -248,7 +248,7 @@ public final class Trips {
             AgentImage image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.TRIP, h.home.equals(host.address), h.home, h.digest, h.eventSeq, NO_STATE);
             Frame frame;
             try {
-                frame = image.frame(h.agent, h.imageSize, host.frameBuffers, host.codec);
+                frame = image.frame(h.agent, h.imageSize, host.frameBuffers, host.codec, hops.stateFormOf(target));
             } catch (IOException e) {
                 h.agent.attach(host.contextOf(h));
                 return new Departure(false, null, "its state is not serializable: " + e.getMessage());
@@ -354,7 +354,7 @@ public final class Trips {
         AgentImage image = new AgentImage(h.id, h.hop + 1, AgentImage.Kind.HOMECOMING, h.home.equals(host.address), h.home, h.digest, h.eventSeq, NO_STATE);
         Frame frame;
         try {
-            frame = image.frame(h.agent, h.imageSize, host.frameBuffers, host.codec);
+            frame = image.frame(h.agent, h.imageSize, host.frameBuffers, host.codec, hops.stateFormOf(h.home));
         } catch (IOException e) {
             finish(h, AgentEvent.Kind.RESULT);
             return;

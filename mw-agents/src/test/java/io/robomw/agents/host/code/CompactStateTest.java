@@ -44,17 +44,25 @@ class CompactStateTest {
     }
 
     @Test
-    void aHostThatTalksToOlderHostsSendsAgentsInTheFormEveryBuildReads() throws Exception {
+    void anAgentGoesToAHostBeforeTheCompactFormInTheFormEveryBuildReadsAndSuchAHostRefusesTheCompactOne() throws Exception {
         ArchiveClassLoader code = agentCode();
         Agent a = agent(code);
         ByteArrayOutputStream standard = new ByteArrayOutputStream();
-        new StateCodec(List.of(), 1 << 20, StateCodec.Form.STANDARD).writeAgent(a, standard);
+        CODEC.writeAgent(a, standard, StateCodec.Form.STANDARD);
         assertArrayEquals(new byte[] {(byte) 0xAC, (byte) 0xED, 0x00, 0x05}, java.util.Arrays.copyOf(standard.toByteArray(), 4));
         assertArrayEquals(StateCodec.write(a), standard.toByteArray(), "Java serialization's own stream, as builds before the compact form wrote");
         ByteArrayOutputStream compact = new ByteArrayOutputStream();
-        CODEC.writeAgent(a, compact);
-        assertArrayEquals(new byte[] {0x52, 0x4D, 0x00, 0x01}, java.util.Arrays.copyOf(compact.toByteArray(), 4), "the default: compact");
+        CODEC.writeAgent(a, compact, StateCodec.Form.COMPACT);
+        assertArrayEquals(new byte[] {0x52, 0x4D, 0x00, 0x01}, java.util.Arrays.copyOf(compact.toByteArray(), 4), "to a host that reads it: compact");
         assertEquals(a.itinerary().stops(), CODEC.read(standard.toByteArray(), code, Agent.class).itinerary().stops());
+
+        StateCodec before = new StateCodec(List.of(), 1 << 20, StateCodec.Form.STANDARD);
+        ByteArrayOutputStream written = new ByteArrayOutputStream();
+        before.writeAgent(a, written, StateCodec.Form.COMPACT);
+        assertArrayEquals(standard.toByteArray(), written.toByteArray(), "a codec as builds before the compact form had writes the standard form only");
+        StateRejectedException refused = assertThrows(StateRejectedException.class, () -> before.read(compact.toByteArray(), code, Agent.class));
+        assertTrue(refused.getMessage().contains("invalid stream header: 524D0001"), "as those builds refused it: " + refused.getMessage());
+        assertEquals(a.itinerary().stops(), before.read(standard.toByteArray(), code, Agent.class).itinerary().stops());
     }
 
     @Test

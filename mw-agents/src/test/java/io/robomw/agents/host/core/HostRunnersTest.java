@@ -13,7 +13,7 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
-/** A host's runner threads: they spin for the next agent only while few agents run there. */
+/** A host's runner threads: they spin for the next agent only while the host has had few agents at once lately. */
 class HostRunnersTest {
 
     /** A spin far longer than a host's (at most 10 ms): a runner that spins is seen spinning. */
@@ -28,11 +28,21 @@ class HostRunnersTest {
     }
 
     @Test
-    void withMoreAgentsRunningThanProcessorsAnIdleRunnerParksAtOnceAndSpinsAgainWhenFewRun() throws Exception {
-        int processors = Runtime.getRuntime().availableProcessors();
-        assertTrue(host.fewAgentsRunning(), "none run yet");
-        CountDownLatch started = new CountDownLatch(processors + 1);
-        for (int i = 0; i <= processors; i++) {
+    void withFewAgentsAtOnceAnIdleRunnerSpinsForTheNext() throws Exception {
+        assertTrue(host.fewAgentsLately(), "no agent yet");
+        CountDownLatch ran = new CountDownLatch(1);
+        host.runners.execute(ran::countDown);
+        assertTrue(ran.await(10, TimeUnit.SECONDS));
+        assertTrue(host.fewAgentsLately(), "one runner thread");
+        Await.until("the idle runner spins for the next agent", Duration.ofSeconds(10), () -> host.runnerHandoff.spinning() == 1);
+        assertTrue(host.runnerHandoff.offer(() -> { }), "the spinning runner takes the next agent at once");
+    }
+
+    @Test
+    void withManyAgentsAtOnceLatelyIdleRunnersParkAtOnce() throws Exception {
+        int many = 2 * Runtime.getRuntime().availableProcessors() + 1;
+        CountDownLatch started = new CountDownLatch(many);
+        for (int i = 0; i < many; i++) {
             host.runners.execute(() -> {
                 started.countDown();
                 try {
@@ -43,28 +53,12 @@ class HostRunnersTest {
             });
         }
         assertTrue(started.await(10, TimeUnit.SECONDS));
-        assertFalse(host.fewAgentsRunning(), (processors + 1) + " agents run on " + processors + " processors");
-        // a short task's runner becomes idle while the others still run: it parks without spinning
-        CountDownLatch shortDone = new CountDownLatch(1);
-        host.runners.execute(shortDone::countDown);
-        assertTrue(shortDone.await(10, TimeUnit.SECONDS));
-        Await.until("the short task's runner parks at once (one that spun would for 3 s)", Duration.ofSeconds(2),
-                () -> !hasRunnerIn(Thread.State.RUNNABLE));
-        assertEquals(0, host.runnerHandoff.spinning(), "no runner spins while more agents run than there are processors");
-
+        assertFalse(host.fewAgentsLately(), many + " agents at once on " + Runtime.getRuntime().availableProcessors() + " processors");
         release.countDown();
-        Await.until("the agents' stops end", Duration.ofSeconds(10), host::fewAgentsRunning);
-        CountDownLatch again = new CountDownLatch(1);
-        host.runners.execute(again::countDown);
-        assertTrue(again.await(10, TimeUnit.SECONDS));
-        Await.until("with few agents running, an idle runner spins for the next",
-                Duration.ofSeconds(10), () -> {
-                    if (host.runnerHandoff.spinning() > 0) {
-                        return true;
-                    }
-                    host.runners.execute(() -> { });
-                    return false;
-                });
+        // their runners are idle now, and kept for the next agents: none spins (one that did would for 3 s)
+        Await.until("every runner parks at once", Duration.ofSeconds(2), () -> !hasRunnerIn(Thread.State.RUNNABLE));
+        assertEquals(0, host.runnerHandoff.spinning(), "no runner spins");
+        assertFalse(host.fewAgentsLately(), "the host had many agents at once lately: its threads stay for " + HostState.IDLE_THREAD_SECONDS + " s");
     }
 
     /** @return whether a runner thread of this host is in the state (a spinning one yields, so it is RUNNABLE) */
