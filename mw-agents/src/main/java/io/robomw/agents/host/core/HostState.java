@@ -144,11 +144,6 @@ public final class HostState {
     }
 
     /**
-     * A pool that grows with the work (a thread per agent running at once) and gives its threads
-     * back after {@value #IDLE_THREAD_SECONDS} s idle, so a burst of agents leaves no threads behind
-     * on a host that runs for days.
-     */
-    /**
      * @return whether the host has had few agents at work at once lately: no more runner threads
      *         (each kept {@value #IDLE_THREAD_SECONDS} s after its last agent) than twice the
      *         processors. Only then do the host's threads spin for what comes next (an idle runner for
@@ -176,6 +171,11 @@ public final class HostState {
         };
     }
 
+    /**
+     * A pool that grows with the work (a thread per agent running at once) and gives its threads
+     * back after {@value #IDLE_THREAD_SECONDS} s idle, so a burst of agents leaves no threads behind
+     * on a host that runs for days.
+     */
     private static ExecutorService pool(ThreadFactory threads, java.util.concurrent.BlockingQueue<Runnable> handoff) {
         return new java.util.concurrent.ThreadPoolExecutor(0, Integer.MAX_VALUE, IDLE_THREAD_SECONDS, java.util.concurrent.TimeUnit.SECONDS,
                 handoff, threads);

@@ -1,9 +1,9 @@
 package io.robomw.agents.host.rmi;
 
-import io.robomw.agents.host.code.StateCodec;
 import io.robomw.agents.host.ClusterKey;
 import io.robomw.agents.host.HostAddress;
 import io.robomw.agents.host.HostDescription;
+import io.robomw.agents.host.code.StateCodec;
 import io.robomw.agents.host.core.HostState;
 import io.robomw.agents.host.protocol.Frame;
 import io.robomw.agents.host.protocol.Op;
