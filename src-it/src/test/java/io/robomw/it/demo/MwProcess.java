@@ -44,7 +44,21 @@ public final class MwProcess implements AutoCloseable {
     }
 
     public static MwProcess start(String name, String... args) throws IOException {
-        return start(name, false, args);
+        return start(name, false, List.of(), args);
+    }
+
+    /**
+     * Starts it with a home folder of its own ({@code user.home}): what it keeps across runs (its
+     * replay windows in {@code ~/.robomw/replay}, one process at a time per file) is then the test's
+     * alone, not shared with the other tests' processes running at the same time.
+     *
+     * @param name its name
+     * @param home the home folder
+     * @param args the command and its options
+     * @return the process
+     */
+    public static MwProcess startWithHome(String name, Path home, String... args) throws IOException {
+        return start(name, false, List.of("-Duser.home=" + home.toAbsolutePath()), args);
     }
 
     /**
@@ -55,15 +69,16 @@ public final class MwProcess implements AutoCloseable {
      * @return the process
      */
     public static MwProcess startAsOnATerminal(String name, String... args) throws IOException {
-        return start(name, true, args);
+        return start(name, true, List.of(), args);
     }
 
-    private static MwProcess start(String name, boolean merged, String... args) throws IOException {
+    private static MwProcess start(String name, boolean merged, List<String> jvm, String... args) throws IOException {
         Path logs = Path.of("target", "it-logs");
         Files.createDirectories(logs);
         List<String> command = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
                 "--enable-native-access=ALL-UNNAMED"));
         command.addAll(QUICK_JVM);
+        command.addAll(jvm);
         command.addAll(List.of("-Dmw.home=" + CHECKOUT, "-cp", middlewareOnlyClassPath(), "io.robomw.cli.Mw"));
         command.addAll(List.of(args));
         ProcessBuilder pb = new ProcessBuilder(command).directory(CHECKOUT.toFile());

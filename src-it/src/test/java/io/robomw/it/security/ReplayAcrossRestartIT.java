@@ -191,25 +191,27 @@ class ReplayAcrossRestartIT {
                 }, () -> seen[0]);
                 captured = seen[0].lines().filter(l -> l.startsWith("robomw/presence/")).findFirst().orElseThrow().strip().split(" ", 2);
                 assertTrue(new String(HexFormat.of().parseHex(captured[1])).contains("status online"), seen[0]);
-                assertTrue(agents(at, key, out -> out.contains(address) && !out.contains("offline since")).contains(name + "  online"));
+                assertTrue(agents(at, key, dir.resolve("home"), out -> out.contains(address) && !out.contains("offline since")).contains(name + "  online"));
             }
             // the host is gone: this user's mw agents sees it offline (and keeps the newest presence it took, across its runs)
-            agents(at, key, out -> out.contains("offline since"));
+            agents(at, key, dir.resolve("home"), out -> out.contains("offline since"));
             Path frame = Files.write(dir.resolve("presence.frame"), HexFormat.of().parseHex(captured[1]));
             MqttClients.Run replayed = MqttClients.pub(port, null, null, "-r", "-q", "1", "-t", captured[0], "-f", frame.toString());
             assertEquals(0, replayed.status(), replayed.output());
-            String listed = agents(at, key, out -> out.contains("presence record ignored") || out.contains(name + "  online"));
+            String listed = agents(at, key, dir.resolve("home"), out -> out.contains("presence record ignored") || out.contains(name + "  online"));
             assertFalse(listed.contains(name + "  online"), "the replayed presence lists the host online again, at an address nobody serves: " + listed);
             assertTrue(listed.contains("1 signed presence record ignored: older than one taken before"), listed);
         }
     }
 
     /** Runs mw agents --cluster (a new process each time) until its output passes, and returns that output. */
-    private static String agents(String at, Path key, java.util.function.Predicate<String> done) {
+    private static String agents(String at, Path key, Path home, java.util.function.Predicate<String> done) {
         String[] listed = {""};
         // a reader takes what the broker sends within a moment of quiet: on a loaded machine it may ask again
         Await.until("mw agents --cluster", Duration.ofSeconds(120), () -> {
-            try (MwProcess agents = MwProcess.start("replay-presence-agents", "agents", "--cluster", at, "--key-file", key.toString())) {
+            // a home of its own: another test's mw agents running at the same time would hold ~/.robomw/replay's presence
+            // window (one process at a time), and this one's would then not outlive its run
+            try (MwProcess agents = MwProcess.startWithHome("replay-presence-agents", home, "agents", "--cluster", at, "--key-file", key.toString())) {
                 agents.waitFor(Duration.ofSeconds(60));
                 listed[0] = agents.output();
                 return done.test(listed[0]);
