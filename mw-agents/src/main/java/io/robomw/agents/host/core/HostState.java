@@ -64,8 +64,13 @@ public final class HostState {
     public final long runnerSpinNanos;
     /** How many threads {@link #runners} has: one per agent at work at once lately (an idle one ends after {@value #IDLE_THREAD_SECONDS} s). */
     private final AtomicInteger runnerThreads = new AtomicInteger();
-    /** The most runner threads with which the host's threads still spin: twice the processors this JVM may use. */
-    private final int fewThreads = 2 * Runtime.getRuntime().availableProcessors();
+    /**
+     * The most runner threads with which the host's threads still spin: eight times the processors this JVM may use. One
+     * agent going back and forth between two hosts keeps more than a few (the runner that sent it on still waits for its
+     * acknowledgement as it comes back; at twice the processors its spins stopped: warm A→B→A 27 → 48 µs); a thousand
+     * among four hosts keep hundreds.
+     */
+    private final int fewThreads = 8 * Runtime.getRuntime().availableProcessors();
     /** Compute the tags of large agent wire frames while their bytes are being written ({@link WireWriter}). */
     public final ExecutorService wireTaggers;
     /** Runs the home's calls to its agents (messages, retract and dispose requests) and clone launches. */
@@ -145,7 +150,7 @@ public final class HostState {
 
     /**
      * @return whether the host has had few agents at work at once lately: no more runner threads
-     *         (each kept {@value #IDLE_THREAD_SECONDS} s after its last agent) than twice the
+     *         (each kept {@value #IDLE_THREAD_SECONDS} s after its last agent) than eight times the
      *         processors. Only then do the host's threads spin for what comes next (an idle runner for
      *         the next agent, a runner woken for an arriving one, a runner that sent one on for its
      *         acknowledgement): one agent or a few going back and forth find a processor idle to spin

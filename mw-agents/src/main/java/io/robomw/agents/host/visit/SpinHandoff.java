@@ -22,7 +22,7 @@ import java.util.function.LongSupplier;
  * would hand it work) never spins, and this is then a {@link SynchronousQueue}.
  *
  * <p>An idle thread spins only while {@code worthSpinning} says so: a host's runners, while the
- * host has had few agents at once lately (no more runner threads than twice the processors).
+ * host has had few agents at once lately (no more runner threads than eight times the processors).
  * With many at work, a task rarely finds a processor idle to spin on, and every thread that spun
  * took one from the threads with work: a thousand agents hopping among four hosts that share two
  * processors hopped with about twice the p99 with spinning runners as without (docs/benchmarks.md,

@@ -40,7 +40,7 @@ class HostRunnersTest {
 
     @Test
     void withManyAgentsAtOnceLatelyIdleRunnersParkAtOnce() throws Exception {
-        int many = 2 * Runtime.getRuntime().availableProcessors() + 1;
+        int many = 8 * Runtime.getRuntime().availableProcessors() + 1;
         CountDownLatch started = new CountDownLatch(many);
         for (int i = 0; i < many; i++) {
             host.runners.execute(() -> {
