@@ -155,7 +155,7 @@ public final class HostState {
      *         the next agent, a runner woken for an arriving one, a runner that sent one on for its
      *         acknowledgement): one agent or a few going back and forth find a processor idle to spin
      *         on and start sooner; with many at once, every spin takes a processor from a thread with
-     *         work and the hosts carry fewer hops, later (docs/benchmarks.md, "Many agents at once")
+     *         work and hops wait longer for one (docs/benchmarks.md, "Many agents at once")
      */
     public boolean fewAgentsLately() {
         return runnerThreads.get() <= fewThreads;
