@@ -44,6 +44,8 @@ public final class MotorLinkSide {
     private final Feedback feedback = new Feedback();
     /** Whether a just-in-time stop may wait for its moment: the link side has a thread of its own. */
     private volatile boolean mayWait = true;
+    /** Whether the driver has been polled since this link side was made; link side. */
+    private boolean polled;
 
     MotorLinkSide(MotorPlatform motors, MotorPort[] ports, MotorDriver driver, RotationPredictor predictor, MotorHandOff handOff) {
         this.motors = motors;
@@ -83,6 +85,14 @@ public final class MotorLinkSide {
      *                          again, and the stops waiting for them fail with it
      */
     public int service() throws IOException {
+        if (!polled) {
+            // Read the brick before anything is sent: a rotation counts from where its motor's
+            // counter stands when it starts, and a command given right after opening would
+            // otherwise start before any reading, from 0, which a counter need not show (an NXT's
+            // tacho count kept from before; the Intelligent Interface's impulse wheel, half a tick).
+            driver.poll(feedback);
+            polled = true;
+        }
         handOff.take();
         for (MotorPort p : ports) {
             if (p.brakeAtLimit) {

@@ -186,6 +186,27 @@ class MotorPlatformTest {
         assertEquals(0.0, motors.speed.get("C"));
     }
 
+    /**
+     * A rotation commanded before the link side's first poll (right after opening) counts from
+     * where the brick's counter stands, not from 0: an NXT's tacho count kept from before, or the
+     * Intelligent Interface's impulse wheel, which starts mid-tooth at half a tick. Counted from 0,
+     * the first reading looked like 500° of turning and B stopped at once (and a motor turning
+     * the other way would look short of its target by as much: the driver's own limit stops it,
+     * and the command waits until it fails as blocked).
+     */
+    @Test
+    void aRotationCommandedBeforeTheFirstReadingCountsFromWhereTheCounterStands() throws Exception {
+        motors.position.put("B", 500.0);
+        motors.position.put("C", -40.0);
+        open();
+        CompletableFuture<Void> move = platform.run(MotorCommand.of("move", List.of(
+                MotorTarget.rotate("B", 720, 360), MotorTarget.rotate("C", -360, 180))));
+        stepUntilDone(move, 1000);
+        move.get(0, TimeUnit.SECONDS);
+        step();
+        assertEquals(500 + 720, motors.position.get("B"), 360 * PERIOD.toMillis() / 2000.0, "B within half a cycle of travel");
+        assertEquals(-40 - 360, motors.position.get("C"), 180 * PERIOD.toMillis() / 2000.0);
+    }
     @Test
     void shouldSendOnlyChangedMotorsToTheDriver() throws Exception {
         open();
