@@ -222,6 +222,7 @@ public final class LinkAgent implements AutoCloseable {
             }
             lastReopen = BrickChannel.LINK_TIME.nanoTime();
             LOG.debug("robot '{}': reopening {}", robot, describe());
+            motors.linkSide().linkReopened();
             if (channel != null) {
                 try {
                     channel.reopen();

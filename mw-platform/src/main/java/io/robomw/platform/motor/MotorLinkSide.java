@@ -44,8 +44,8 @@ public final class MotorLinkSide {
     private final Feedback feedback = new Feedback();
     /** Whether a just-in-time stop may wait for its moment: the link side has a thread of its own. */
     private volatile boolean mayWait = true;
-    /** Whether the driver has been polled since this link side was made; link side. */
-    private boolean polled;
+    /** Whether the driver has been polled since the link was opened or last reopened; link side. */
+    private volatile boolean polled;
 
     MotorLinkSide(MotorPlatform motors, MotorPort[] ports, MotorDriver driver, RotationPredictor predictor, MotorHandOff handOff) {
         this.motors = motors;
@@ -60,6 +60,15 @@ public final class MotorLinkSide {
     /** Serviced inline on the cycling thread: a stop just in time does not wait. */
     void inline() {
         mayWait = false;
+    }
+
+    /**
+     * Says that the link was reopened: the brick may have been switched off and on meanwhile and
+     * its counters started again, so the next {@link #service} reads it before it sends anything.
+     * Any thread (the link agent calls it as it reopens the link).
+     */
+    public void linkReopened() {
+        polled = false;
     }
 
     /** @return where the driver reports what it reads */
@@ -89,7 +98,9 @@ public final class MotorLinkSide {
             // Read the brick before anything is sent: a rotation counts from where its motor's
             // counter stands when it starts, and a command given right after opening would
             // otherwise start before any reading, from 0, which a counter need not show (an NXT's
-            // tacho count kept from before; the Intelligent Interface's impulse wheel, half a tick).
+            // tacho count kept from before; the Intelligent Interface's impulse wheel, half a
+            // tick); right after a reopen, from the reading before the loss, which a brick
+            // switched off and on meanwhile no longer shows.
             driver.poll(feedback);
             polled = true;
         }

@@ -44,6 +44,7 @@ class MotorPlatformTest {
     private final ManualClock clock = new ManualClock();
     private final FakeMotors motors = new FakeMotors();
     private BrickPlatform platform;
+    private MotorPlatform motorPlatform;
 
     /**
      * Motors that integrate their speed over simulated time; records what the link side sent. Optionally
@@ -140,7 +141,7 @@ class MotorPlatformTest {
                 List.of(new SensorChannel("left-tacho", io.robomw.api.SensorType.TACHO, "B", Map.of()),
                         new SensorChannel("sonar", io.robomw.api.SensorType.SONAR, "S4", Map.of())),
                 PERIOD, Duration.ofMillis(500), clock, PlatformServices.none(), io.robomw.api.spi.Cycling.BY_OWNER, io.robomw.api.spi.FailurePolicy.logging());
-        MotorPlatform motorPlatform = new MotorPlatform(config, motors);
+        motorPlatform = new MotorPlatform(config, motors);
         SensorPlatform sensors = new SensorPlatform(motorPlatform) {
             @Override
             public Sensor createSensor(SensorChannel sensorObject) {
@@ -206,6 +207,26 @@ class MotorPlatformTest {
         step();
         assertEquals(500 + 720, motors.position.get("B"), 360 * PERIOD.toMillis() / 2000.0, "B within half a cycle of travel");
         assertEquals(-40 - 360, motors.position.get("C"), 180 * PERIOD.toMillis() / 2000.0);
+    }
+
+    /**
+     * The same right after the link agent reopened the link: the brick may have been switched off
+     * and on meanwhile (its counters back at 0), and a command admitted as soon as the link is up
+     * again counts from the brick's reading, not from the last one before the loss.
+     */
+    @Test
+    void aRotationCommandedRightAfterTheLinkIsReopenedCountsFromTheBricksNewReading() throws Exception {
+        open();
+        CompletableFuture<Void> first = platform.run(MotorCommand.of("first", List.of(MotorTarget.rotate("B", 90, 360))));
+        stepUntilDone(first, 100);
+        step();
+        motors.position.put("B", 0.0); // switched off and on while the link was away
+        motorPlatform.linkSide().linkReopened();
+        CompletableFuture<Void> move = platform.run(MotorCommand.of("move", List.of(MotorTarget.rotate("B", 360, 360))));
+        stepUntilDone(move, 1000);
+        move.get(0, TimeUnit.SECONDS);
+        step();
+        assertEquals(360, motors.position.get("B"), 360 * PERIOD.toMillis() / 2000.0, "B within half a cycle of travel from where the brick stood");
     }
     @Test
     void shouldSendOnlyChangedMotorsToTheDriver() throws Exception {
