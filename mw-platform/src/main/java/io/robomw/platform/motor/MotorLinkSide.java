@@ -12,7 +12,8 @@ import java.util.concurrent.locks.LockSupport;
  * The link side of a {@link MotorPlatform}: what the brick's link agent runs once a round. It
  * takes the states the action side published, adds the stops the link side decides itself, hands
  * the batch to the {@link MotorDriver}, then polls it; the driver's readings come back through
- * {@link #feedback()}.
+ * {@link #feedback()}. A rotation counts from a reading: the first round after the link was opened
+ * or reopened reads the brick before it sends anything.
  *
  * <h2>Stops the link side decides</h2>
  * <ul>
@@ -86,7 +87,9 @@ public final class MotorLinkSide {
     }
 
     /**
-     * One round: sends the published states and the link side's own stops, then polls.
+     * One round: sends the published states and the link side's own stops, then polls. The first
+     * round after the link was opened or {@linkplain #linkReopened reopened} polls before it sends
+     * too, so that a rotation started in it counts from the brick's own reading.
      *
      * @return the round's work: 1 if it sent a batch, plus the motors the driver watches move
      * @throws IOException if the link failed: the states taken are sent with the next round
