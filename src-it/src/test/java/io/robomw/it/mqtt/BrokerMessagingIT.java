@@ -220,6 +220,32 @@ abstract class BrokerMessagingIT {
         }
     }
 
+    /**
+     * Sensor-sized messages fill the queue by their bytes long before its count: with the broker
+     * away, 100 KB scans wait up to {@code max-queued-bytes} (1 MiB here; 64 MiB by default), not
+     * {@code max-queued} of them (10,000: a gigabyte), and the next is refused naming the broker.
+     */
+    @Test
+    void whileTheBrokerIsAwaySensorSizedMessagesWaitUpToMaxQueuedBytes() throws Exception {
+        try (Broker own = Broker.start(kind(), name("bytes-broker"));
+             MessagingNode bounded = MessagingNode.builder(name("bytes")).bind(own.address() + "?max-queued-bytes=1048576").build()) {
+            own.stop();
+            byte[] scan = new byte[100_000];
+            int accepted = 0;
+            io.robomw.api.MessagingException refused = null;
+            for (int i = 0; i < 1000 && refused == null; i++) {
+                try {
+                    bounded.publishMessage("scans", scan, "count", null);
+                    accepted++;
+                } catch (io.robomw.api.MessagingException e) {
+                    refused = e;
+                }
+            }
+            assertTrue(refused != null && accepted >= 1 && accepted <= 10, accepted + " scans of 100 KB were accepted with the broker away");
+            assertTrue(refused.getMessage().contains(own.address()) && refused.getMessage().contains("max-queued-bytes 1048576"), refused.getMessage());
+        }
+    }
+
     @Test
     void aRemoteRobotIsDrivenThroughTheBroker() throws Exception {
         Path world = Path.of(getClass().getResource("/robots/sim-world.yaml").toURI());

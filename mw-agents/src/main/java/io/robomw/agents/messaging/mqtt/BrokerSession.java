@@ -66,9 +66,10 @@ import java.util.concurrent.atomic.AtomicLong;
  * <p><b>Losing the broker.</b> Once connected, a lost connection is logged and retried with
  * growing pauses (0.1 s to 5 s) until the node closes; subscriptions are made again if the broker
  * lost the session, and messages not yet acknowledged are sent again. Up to {@code max-queued}
- * messages wait meanwhile; beyond that a send fails at once with a {@link MessagingException}
- * saying since when the broker is unreachable. While connected, a full queue is back-pressure: a
- * send waits up to the send timeout for room.
+ * messages, of {@code max-queued-bytes} together, wait meanwhile; beyond that a send fails at once
+ * with a {@link MessagingException} saying since when the broker is unreachable. While connected,
+ * a full queue is back-pressure: a send waits up to the send timeout for room. (The bytes bound
+ * is what holds for sensor-sized messages: ten thousand camera frames would not fit in a heap.)
  *
  * <p>Thread-safe.
  */
@@ -88,6 +89,9 @@ final class BrokerSession implements Link, Endpoint {
     private final ExecutorService delivery;
     private final java.util.concurrent.atomic.AtomicReference<Thread> deliveryThread = new java.util.concurrent.atomic.AtomicReference<>();
     private final Semaphore queued;
+    /** The bytes of the messages waiting for the broker, in KiB: {@code max-queued-bytes}. */
+    private final Semaphore queuedKib;
+    private final int maxQueuedKib;
     private final Set<String> subscribed = ConcurrentHashMap.newKeySet();
     private final Map<String, Boolean> requestSubscriptions = new ConcurrentHashMap<>();
     private final Map<String, com.hivemq.client.mqtt.datatypes.MqttTopic> topicCache = new ConcurrentHashMap<>();
@@ -109,6 +113,8 @@ final class BrokerSession implements Link, Endpoint {
         this.topics = options.topics();
         this.qos = options.qos() == 0 ? MqttQos.AT_MOST_ONCE : MqttQos.AT_LEAST_ONCE;
         this.queued = new Semaphore(options.maxQueued());
+        this.maxQueuedKib = (int) Math.min(Integer.MAX_VALUE, options.maxQueuedBytes() / 1024);
+        this.queuedKib = new Semaphore(maxQueuedKib);
         this.replyTopic = topics.replies(options.clientId());
         this.maxFrameBytes = context.settings().maxFrameSize();
         java.util.concurrent.ThreadFactory threads = context.threads("mqtt-in-" + options.host() + ":" + options.port());
@@ -324,7 +330,8 @@ final class BrokerSession implements Link, Endpoint {
         if (closed) {
             throw new IOException("the session with broker " + address + " is closed");
         }
-        acquireQueuePlace();
+        int kib = kibOf(payload);
+        acquireQueuePlace(kib);
         var builder = Mqtt5Publish.builder().topic(topic).qos(qos).payload(payload);
         Mqtt5Publish p;
         if (responseTopic != null) {
@@ -338,11 +345,11 @@ final class BrokerSession implements Link, Endpoint {
         try {
             sent = client.publish(p);
         } catch (RuntimeException e) {
-            queued.release();
+            releaseQueuePlace(kib);
             throw new IOException("broker " + address + ": " + e.getMessage(), e);
         }
         sent.whenComplete((result, failure) -> {
-            queued.release();
+            releaseQueuePlace(kib);
             Throwable error = failure != null ? failure : result.getError().orElse(null);
             if (error != null) {
                 long n = failedSends.incrementAndGet();
@@ -354,25 +361,53 @@ final class BrokerSession implements Link, Endpoint {
         });
     }
 
-    private void acquireQueuePlace() throws IOException {
+    /** @return the KiB a payload takes of {@code max-queued-bytes}: at least 1, at most all of it (a larger message waits alone) */
+    private int kibOf(byte[] payload) {
+        return (int) Math.max(1, Math.min(maxQueuedKib, (payload.length + 1023L) / 1024));
+    }
+
+    private void releaseQueuePlace(int kib) {
+        queuedKib.release(kib);
+        queued.release();
+    }
+
+    /**
+     * Takes a place in the queue to the broker for a message of {@code kib}: one of
+     * {@code max-queued} and its bytes of {@code max-queued-bytes}. While the broker is unreachable
+     * a full queue refuses at once; while connected a send waits up to the send timeout for room.
+     */
+    private void acquireQueuePlace(int kib) throws IOException {
         if (queued.tryAcquire()) {
-            return;
+            if (queuedKib.tryAcquire(kib)) {
+                return;
+            }
+            queued.release();
         }
         Instant lost = lostSince;
         if (!connected && lost != null) {
-            throw new MessagingException("node '" + context.nodeName() + "': broker " + address + " is unreachable since " + lost + " and "
-                    + options.maxQueued() + " messages already wait for it (max-queued); this one was not sent");
+            throw new MessagingException("node '" + context.nodeName() + "': broker " + address + " is unreachable since " + lost
+                    + " and the messages waiting for it fill the queue (" + queueLimits() + "); this one was not sent");
         }
         Duration limit = context.settings().sendTimeout();
+        long deadline = System.nanoTime() + limit.toNanos();
         try {
-            if (!queued.tryAcquire(limit.toNanos(), TimeUnit.NANOSECONDS)) {
-                throw new MessagingException("node '" + context.nodeName() + "': broker " + address + " took none of the " + options.maxQueued()
-                        + " messages waiting for it within " + limit + "; this one was not sent");
+            if (queued.tryAcquire(limit.toNanos(), TimeUnit.NANOSECONDS)) {
+                if (queuedKib.tryAcquire(kib, Math.max(0, deadline - System.nanoTime()), TimeUnit.NANOSECONDS)) {
+                    return;
+                }
+                queued.release();
             }
+            throw new MessagingException("node '" + context.nodeName() + "': broker " + address + " took none of the messages waiting for it ("
+                    + queueLimits() + ") within " + limit + "; this one was not sent");
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
             throw new IOException("interrupted while waiting for room in the queue to " + address, e);
         }
+    }
+
+    /** @return the queue's bounds, as a message names them */
+    private String queueLimits() {
+        return "max-queued " + options.maxQueued() + " messages, max-queued-bytes " + options.maxQueuedBytes();
     }
 
     com.hivemq.client.mqtt.datatypes.MqttTopic topic(String name) {
@@ -500,8 +535,8 @@ final class BrokerSession implements Link, Endpoint {
         int attempt = c.getReconnector().getAttempts();
         if (lostSince == null) {
             lostSince = Instant.now();
-            LOG.warn("node '{}': lost broker {} ({}: {}); reconnecting, up to {} messages wait meanwhile", context.nodeName(), address,
-                    c.getSource(), rootMessage(c.getCause()), options.maxQueued());
+            LOG.warn("node '{}': lost broker {} ({}: {}); reconnecting, messages wait meanwhile ({})", context.nodeName(), address,
+                    c.getSource(), rootMessage(c.getCause()), queueLimits());
         } else {
             LOG.debug("node '{}': broker {} still unreachable after {} attempts: {}", context.nodeName(), address, attempt, rootMessage(c.getCause()));
         }

@@ -21,6 +21,9 @@ import java.util.Set;
  * <tr><td>{@code qos}</td><td>1</td><td>0 (at most once) or 1 (at least once) for everything sent</td></tr>
  * <tr><td>{@code keep-alive}</td><td>10</td><td>seconds; a broker that is silent for 1.5 times that is taken as lost</td></tr>
  * <tr><td>{@code max-queued}</td><td>10000</td><td>messages that may wait for the broker (in flight or while it is away)</td></tr>
+ * <tr><td>{@code max-queued-bytes}</td><td>67108864 (64 MiB)</td><td>bytes of messages that may wait for the broker, together:
+ *     sensor-sized messages (a scan, a camera frame) reach it long before {@code max-queued}; one message larger than it
+ *     waits alone</td></tr>
  * <tr><td>{@code credentials}</td><td>the environment</td><td>a file with {@code username=} and {@code password=} lines
  *     ({@link BrokerCredentials})</td></tr>
  * <tr><td>{@code truststore}</td><td>the JVM's</td><td>{@code mqtts}: a PKCS#12 or JKS file of the certificates to trust
@@ -39,14 +42,18 @@ import java.util.Set;
  * @param qos                  0 or 1
  * @param keepAliveSeconds     the keep-alive
  * @param maxQueued            messages that may wait for the broker
+ * @param maxQueuedBytes       bytes of messages that may wait for the broker, together
  * @param credentials          the credentials file, or {@code null} for the environment
  * @param trustStore           the trust store file, or {@code null}
  */
 public record MqttOptions(boolean tls, String host, int port, MqttTopics topics, String clientId, long sessionExpirySeconds,
-                          int qos, int keepAliveSeconds, int maxQueued, Path credentials, Path trustStore) {
+                          int qos, int keepAliveSeconds, int maxQueued, long maxQueuedBytes, Path credentials, Path trustStore) {
 
-    private static final Set<String> KNOWN = Set.of("client-id", "session-expiry", "qos", "keep-alive", "max-queued", "credentials",
-            "truststore", "password");
+    /** {@code max-queued-bytes} unless the address says otherwise: 64 MiB. */
+    public static final long DEFAULT_MAX_QUEUED_BYTES = 64L << 20;
+
+    private static final Set<String> KNOWN = Set.of("client-id", "session-expiry", "qos", "keep-alive", "max-queued", "max-queued-bytes",
+            "credentials", "truststore", "password");
 
     /**
      * @param a        an mqtt or mqtts address
@@ -65,6 +72,7 @@ public record MqttOptions(boolean tls, String host, int port, MqttTopics topics,
         int qos = (int) number(a, "qos", 1, 0, 1);
         int keepAlive = (int) number(a, "keep-alive", 10, 1, 65_535);
         int maxQueued = (int) number(a, "max-queued", 10_000, 1, 1_000_000);
+        long maxQueuedBytes = number(a, "max-queued-bytes", DEFAULT_MAX_QUEUED_BYTES, 1024, 1L << 40);
         String clientId = a.query().get("client-id");
         if (clientId == null || clientId.isEmpty()) {
             clientId = expiry > 0 ? topics.prefix().replace('/', '-') + "-" + nodeName
@@ -72,7 +80,7 @@ public record MqttOptions(boolean tls, String host, int port, MqttTopics topics,
         }
         String credentials = a.query().get("credentials");
         String trust = a.query().get("truststore");
-        return new MqttOptions(a.scheme().equals("mqtts"), a.host(), a.port(), topics, clientId, expiry, qos, keepAlive, maxQueued,
+        return new MqttOptions(a.scheme().equals("mqtts"), a.host(), a.port(), topics, clientId, expiry, qos, keepAlive, maxQueued, maxQueuedBytes,
                 credentials == null || credentials.isEmpty() ? null : Path.of(credentials), trust == null || trust.isEmpty() ? null : Path.of(trust));
     }
 
