@@ -173,16 +173,24 @@ class MotorPlatformTest {
         assertTrue(f.isDone(), "not done after " + maxCycles + " cycles");
     }
 
-    @Test
-    void shouldStopEachMotorWithinHalfCycleOfItsTarget() throws Exception {
-        open();
+    /**
+     * Turns B 720° at 360°/s and C −360° at 180°/s to the end, one cycle more, and checks that each
+     * stopped within half a cycle of travel of where it started plus its target.
+     */
+    private void turnBothAndCheckTheyStopFrom(double b, double c) throws Exception {
         CompletableFuture<Void> move = platform.run(MotorCommand.of("move", List.of(
                 MotorTarget.rotate("B", 720, 360), MotorTarget.rotate("C", -360, 180))));
         stepUntilDone(move, 1000);
         move.get(0, TimeUnit.SECONDS);
         step();
-        assertEquals(720, motors.position.get("B"), 360 * PERIOD.toMillis() / 2000.0, "B within half a cycle of travel");
-        assertEquals(-360, motors.position.get("C"), 180 * PERIOD.toMillis() / 2000.0);
+        assertEquals(b + 720, motors.position.get("B"), 360 * PERIOD.toMillis() / 2000.0, "B within half a cycle of travel");
+        assertEquals(c - 360, motors.position.get("C"), 180 * PERIOD.toMillis() / 2000.0);
+    }
+
+    @Test
+    void shouldStopEachMotorWithinHalfCycleOfItsTarget() throws Exception {
+        open();
+        turnBothAndCheckTheyStopFrom(0, 0);
         assertEquals(0.0, motors.speed.get("B"));
         assertEquals(0.0, motors.speed.get("C"));
     }
@@ -200,13 +208,7 @@ class MotorPlatformTest {
         motors.position.put("B", 500.0);
         motors.position.put("C", -40.0);
         open();
-        CompletableFuture<Void> move = platform.run(MotorCommand.of("move", List.of(
-                MotorTarget.rotate("B", 720, 360), MotorTarget.rotate("C", -360, 180))));
-        stepUntilDone(move, 1000);
-        move.get(0, TimeUnit.SECONDS);
-        step();
-        assertEquals(500 + 720, motors.position.get("B"), 360 * PERIOD.toMillis() / 2000.0, "B within half a cycle of travel");
-        assertEquals(-40 - 360, motors.position.get("C"), 180 * PERIOD.toMillis() / 2000.0);
+        turnBothAndCheckTheyStopFrom(500, -40);
     }
 
     /**

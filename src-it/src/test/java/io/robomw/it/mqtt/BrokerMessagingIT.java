@@ -205,18 +205,9 @@ abstract class BrokerMessagingIT {
         try (Broker own = Broker.start(kind(), name("bounded-broker"));
              MessagingNode bounded = MessagingNode.builder(name("bounded")).bind(own.address() + "?max-queued=20").build()) {
             own.stop();
-            int accepted = 0;
-            io.robomw.api.MessagingException refused = null;
-            for (int i = 0; i < 100 && refused == null; i++) {
-                try {
-                    bounded.publishMessage("bounded", i, "count", null);
-                    accepted++;
-                } catch (io.robomw.api.MessagingException e) {
-                    refused = e;
-                }
-            }
-            assertTrue(refused != null && accepted <= 20, accepted + " publications were accepted with the broker away");
-            assertTrue(refused.getMessage().contains(own.address()), refused.getMessage());
+            Refusal r = publishUntilRefused(bounded, "bounded", i -> i, 100);
+            assertTrue(r.refused() != null && r.accepted() <= 20, r.accepted() + " publications were accepted with the broker away");
+            assertTrue(r.refused().getMessage().contains(own.address()), r.refused().getMessage());
         }
     }
 
@@ -231,19 +222,27 @@ abstract class BrokerMessagingIT {
              MessagingNode bounded = MessagingNode.builder(name("bytes")).bind(own.address() + "?max-queued-bytes=1048576").build()) {
             own.stop();
             byte[] scan = new byte[100_000];
-            int accepted = 0;
-            io.robomw.api.MessagingException refused = null;
-            for (int i = 0; i < 1000 && refused == null; i++) {
-                try {
-                    bounded.publishMessage("scans", scan, "count", null);
-                    accepted++;
-                } catch (io.robomw.api.MessagingException e) {
-                    refused = e;
-                }
-            }
-            assertTrue(refused != null && accepted >= 1 && accepted <= 10, accepted + " scans of 100 KB were accepted with the broker away");
-            assertTrue(refused.getMessage().contains(own.address()) && refused.getMessage().contains("max-queued-bytes 1048576"), refused.getMessage());
+            Refusal r = publishUntilRefused(bounded, "scans", i -> scan, 1000);
+            assertTrue(r.refused() != null && r.accepted() >= 1 && r.accepted() <= 10, r.accepted() + " scans of 100 KB were accepted with the broker away");
+            String message = r.refused().getMessage();
+            assertTrue(message.contains(own.address()) && message.contains("max-queued-bytes 1048576"), message);
         }
+    }
+
+    /** How many publications a node took before it refused one, and the refusal ({@code null} if it took them all). */
+    private record Refusal(int accepted, io.robomw.api.MessagingException refused) {
+    }
+
+    private static Refusal publishUntilRefused(MessagingNode node, String topic, java.util.function.IntFunction<java.io.Serializable> payload,
+                                               int most) {
+        for (int i = 0; i < most; i++) {
+            try {
+                node.publishMessage(topic, payload.apply(i), "count", null);
+            } catch (io.robomw.api.MessagingException e) {
+                return new Refusal(i, e);
+            }
+        }
+        return new Refusal(most, null);
     }
 
     @Test
