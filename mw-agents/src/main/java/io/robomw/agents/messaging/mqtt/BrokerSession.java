@@ -36,10 +36,11 @@ import java.util.concurrent.ExecutionException;
 import java.util.concurrent.ExecutorService;
 import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.ThreadPoolExecutor;
-import java.util.concurrent.Semaphore;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.TimeoutException;
 import java.util.concurrent.atomic.AtomicLong;
+import java.util.concurrent.locks.Condition;
+import java.util.concurrent.locks.ReentrantLock;
 
 /**
  * One node's MQTT 5 connection to one broker (HiveMQ MQTT client): the node's link there and its
@@ -88,10 +89,13 @@ final class BrokerSession implements Link, Endpoint {
     private final Mqtt5AsyncClient client;
     private final ExecutorService delivery;
     private final java.util.concurrent.atomic.AtomicReference<Thread> deliveryThread = new java.util.concurrent.atomic.AtomicReference<>();
-    private final Semaphore queued;
-    /** The bytes of the messages waiting for the broker, in KiB: {@code max-queued-bytes}. */
-    private final Semaphore queuedKib;
-    private final int maxQueuedKib;
+    /** Guards {@link #queuedMessages} and {@link #queuedBytes}; {@link #room} is signalled as messages leave the queue. */
+    private final ReentrantLock queueLock = new ReentrantLock();
+    private final Condition room = queueLock.newCondition();
+    /** Messages waiting for the broker (in flight or while it is away), at most {@code max-queued}. */
+    private int queuedMessages;
+    /** Their bytes together, at most {@code max-queued-bytes} (but for one larger message, which waits alone). */
+    private long queuedBytes;
     private final Set<String> subscribed = ConcurrentHashMap.newKeySet();
     private final Map<String, Boolean> requestSubscriptions = new ConcurrentHashMap<>();
     private final Map<String, com.hivemq.client.mqtt.datatypes.MqttTopic> topicCache = new ConcurrentHashMap<>();
@@ -112,9 +116,6 @@ final class BrokerSession implements Link, Endpoint {
         this.context = context;
         this.topics = options.topics();
         this.qos = options.qos() == 0 ? MqttQos.AT_MOST_ONCE : MqttQos.AT_LEAST_ONCE;
-        this.queued = new Semaphore(options.maxQueued());
-        this.maxQueuedKib = (int) Math.min(Integer.MAX_VALUE, options.maxQueuedBytes() / 1024);
-        this.queuedKib = new Semaphore(maxQueuedKib);
         this.replyTopic = topics.replies(options.clientId());
         this.maxFrameBytes = context.settings().maxFrameSize();
         java.util.concurrent.ThreadFactory threads = context.threads("mqtt-in-" + options.host() + ":" + options.port());
@@ -330,8 +331,8 @@ final class BrokerSession implements Link, Endpoint {
         if (closed) {
             throw new IOException("the session with broker " + address + " is closed");
         }
-        int kib = kibOf(payload);
-        acquireQueuePlace(kib);
+        int bytes = payload.length;
+        acquireQueuePlace(bytes);
         var builder = Mqtt5Publish.builder().topic(topic).qos(qos).payload(payload);
         Mqtt5Publish p;
         if (responseTopic != null) {
@@ -345,11 +346,11 @@ final class BrokerSession implements Link, Endpoint {
         try {
             sent = client.publish(p);
         } catch (RuntimeException e) {
-            releaseQueuePlace(kib);
+            releaseQueuePlace(bytes);
             throw new IOException("broker " + address + ": " + e.getMessage(), e);
         }
         sent.whenComplete((result, failure) -> {
-            releaseQueuePlace(kib);
+            releaseQueuePlace(bytes);
             Throwable error = failure != null ? failure : result.getError().orElse(null);
             if (error != null) {
                 long n = failedSends.incrementAndGet();
@@ -361,47 +362,54 @@ final class BrokerSession implements Link, Endpoint {
         });
     }
 
-    /** @return the KiB a payload takes of {@code max-queued-bytes}: at least 1, at most all of it (a larger message waits alone) */
-    private int kibOf(byte[] payload) {
-        return (int) Math.max(1, Math.min(maxQueuedKib, (payload.length + 1023L) / 1024));
+    /** @return whether a message of this many bytes fits in the queue now (one larger than max-queued-bytes: when it is empty); under the lock */
+    private boolean fits(int bytes) {
+        return queuedMessages == 0 || (queuedMessages < options.maxQueued() && queuedBytes + bytes <= options.maxQueuedBytes());
     }
 
-    private void releaseQueuePlace(int kib) {
-        queuedKib.release(kib);
-        queued.release();
+    private void releaseQueuePlace(int bytes) {
+        queueLock.lock();
+        try {
+            queuedMessages--;
+            queuedBytes -= bytes;
+            room.signalAll();
+        } finally {
+            queueLock.unlock();
+        }
     }
 
     /**
-     * Takes a place in the queue to the broker for a message of {@code kib}: one of
-     * {@code max-queued} and its bytes of {@code max-queued-bytes}. While the broker is unreachable
-     * a full queue refuses at once; while connected a send waits up to the send timeout for room.
+     * Takes a place in the queue to the broker for a message of this many bytes: one of
+     * {@code max-queued}, and its bytes of {@code max-queued-bytes}. While the broker is
+     * unreachable a full queue refuses at once; while connected a send waits up to the send
+     * timeout for room.
      */
-    private void acquireQueuePlace(int kib) throws IOException {
-        if (queued.tryAcquire()) {
-            if (queuedKib.tryAcquire(kib)) {
-                return;
-            }
-            queued.release();
-        }
-        Instant lost = lostSince;
-        if (!connected && lost != null) {
-            throw new MessagingException("node '" + context.nodeName() + "': broker " + address + " is unreachable since " + lost
-                    + " and the messages waiting for it fill the queue (" + queueLimits() + "); this one was not sent");
-        }
-        Duration limit = context.settings().sendTimeout();
-        long deadline = System.nanoTime() + limit.toNanos();
+    private void acquireQueuePlace(int bytes) throws IOException {
+        queueLock.lock();
         try {
-            if (queued.tryAcquire(limit.toNanos(), TimeUnit.NANOSECONDS)) {
-                if (queuedKib.tryAcquire(kib, Math.max(0, deadline - System.nanoTime()), TimeUnit.NANOSECONDS)) {
-                    return;
+            if (!fits(bytes)) {
+                Instant lost = lostSince;
+                if (!connected && lost != null) {
+                    throw new MessagingException("node '" + context.nodeName() + "': broker " + address + " is unreachable since " + lost
+                            + " and the messages waiting for it fill the queue (" + queueLimits() + "); this one was not sent");
                 }
-                queued.release();
+                Duration limit = context.settings().sendTimeout();
+                long left = limit.toNanos();
+                while (!fits(bytes)) {
+                    if (left <= 0) {
+                        throw new MessagingException("node '" + context.nodeName() + "': broker " + address + " took none of the messages waiting"
+                                + " for it (" + queueLimits() + ") within " + limit + "; this one was not sent");
+                    }
+                    left = room.awaitNanos(left);
+                }
             }
-            throw new MessagingException("node '" + context.nodeName() + "': broker " + address + " took none of the messages waiting for it ("
-                    + queueLimits() + ") within " + limit + "; this one was not sent");
+            queuedMessages++;
+            queuedBytes += bytes;
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
             throw new IOException("interrupted while waiting for room in the queue to " + address, e);
+        } finally {
+            queueLock.unlock();
         }
     }
 
