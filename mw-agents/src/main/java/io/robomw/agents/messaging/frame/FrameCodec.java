@@ -177,7 +177,12 @@ public final class FrameCodec {
         if (length > Integer.MAX_VALUE - 16) {
             throw new IllegalArgumentException("frame of " + length + " bytes is too large to encode");
         }
+        int payloadAt = HEADER_LENGTH + sender.length + receiver.length + topic.length + function.length;
         byte[] out = new byte[(int) length];
+        // The payload first, right after the allocation: the compiler then zeroes only the bytes around it
+        // (the header, the names, the MAC), not a sensor-sized payload it is about to overwrite (a third
+        // of the encoding's time at 1 MiB, measured 2026-11-29).
+        System.arraycopy(payload, 0, out, payloadAt, payload.length);
         SHORT.set(out, MAGIC_OFFSET, (short) MAGIC);
         out[VERSION_OFFSET] = (byte) (sealed ? SEALED_VERSION : VERSION);
         out[KIND_OFFSET] = (byte) frame.kind().code();
@@ -203,8 +208,6 @@ public final class FrameCodec {
         System.arraycopy(topic, 0, out, at, topic.length);
         at += topic.length;
         System.arraycopy(function, 0, out, at, function.length);
-        at += function.length;
-        System.arraycopy(payload, 0, out, at, payload.length);
         return out;
     }
 
