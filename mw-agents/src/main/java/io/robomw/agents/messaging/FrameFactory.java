@@ -6,6 +6,7 @@ import io.robomw.agents.messaging.frame.FrameKind;
 import io.robomw.agents.messaging.frame.NameBytes;
 import io.robomw.agents.messaging.security.FrameMac;
 import io.robomw.agents.messaging.security.PayloadCodec;
+import io.robomw.agents.messaging.spi.Publication;
 import io.robomw.api.MessagingException;
 
 import javax.crypto.SecretKey;
@@ -62,6 +63,24 @@ final class FrameFactory {
         return encode(kind, numbers.incrementAndGet(), correlationId, receiver, topic, object, function, key);
     }
 
+    /**
+     * A new publication: as {@link #message} of a {@code PUBLISH}, but one without a password whose
+     * payload is sensor-sized is not encoded into a frame yet: it may travel apart ({@link Publication}).
+     */
+    Publication publication(String topic, Serializable object, String function, SecretKey key) {
+        if (key != null) {
+            return Publication.whole(message(FrameKind.PUBLISH, "", topic, object, function, key).bytes());
+        }
+        long n = numbers.incrementAndGet();
+        Frame f = frame(FrameKind.PUBLISH, n, correlationId(n), "", topic, object, function, null);
+        if (f.payload().length < Publication.APART_FROM_BYTES) {
+            return Publication.whole(checked(FrameCodec.encode(f, false, false, names), topic));
+        }
+        Publication p = Publication.apart(f, names);
+        checked(p.length(), topic);
+        return p;
+    }
+
     /** A subscription or unsubscription for {@code topic}. */
     byte[] control(FrameKind kind, String topic) {
         return message(kind, "", topic, null, "", null).bytes();
@@ -80,6 +99,17 @@ final class FrameFactory {
 
     private byte[] encode(FrameKind kind, long number, UUID correlationId, String receiver, String topic, Serializable object,
                           String function, SecretKey key) {
+        Frame f = frame(kind, number, correlationId, receiver, topic, object, function, key);
+        byte[] bytes = checked(FrameCodec.encode(f, key != null, key != null, names), topic);
+        if (key != null) {
+            mac.sign(key, bytes);
+        }
+        return bytes;
+    }
+
+    /** @return the frame, its payload encoded (and sealed with a key), not yet encoded itself */
+    private Frame frame(FrameKind kind, long number, UUID correlationId, String receiver, String topic, Serializable object,
+                        String function, SecretKey key) {
         PayloadCodec.Encoded payload;
         try {
             payload = payloads.encode(object);
@@ -87,16 +117,20 @@ final class FrameFactory {
             throw new MessagingException("node '" + node + "' cannot send on topic '" + topic + "': " + e.getMessage(), e);
         }
         byte[] body = key == null ? payload.bytes() : sealer.seal(key, source, number, payload.bytes());
-        Frame f = new Frame(kind, 0, source, number, correlationId, nowMicros(), node, receiver, topic,
+        return new Frame(kind, 0, source, number, correlationId, nowMicros(), node, receiver, topic,
                 function == null ? "" : function, payload.type(), body, key != null);
-        byte[] bytes = FrameCodec.encode(f, key != null, key != null, names);
-        if (bytes.length > maxFrameSize) {
-            throw new MessagingException("node '" + node + "': a frame on topic '" + topic + "' would be " + bytes.length
+    }
+
+    /** @return the frame, if it is within the maximum frame size */
+    private byte[] checked(byte[] frame, String topic) {
+        checked(frame.length, topic);
+        return frame;
+    }
+
+    private void checked(long length, String topic) {
+        if (length > maxFrameSize) {
+            throw new MessagingException("node '" + node + "': a frame on topic '" + topic + "' would be " + length
                     + " bytes, above the maximum frame size of " + maxFrameSize + "; send less, or raise maxFrameSize on both sides");
         }
-        if (key != null) {
-            mac.sign(key, bytes);
-        }
-        return bytes;
     }
 }

@@ -10,6 +10,7 @@ import io.robomw.agents.messaging.security.TopicKeys;
 import io.robomw.agents.messaging.spi.Channel;
 import io.robomw.agents.messaging.spi.Endpoint;
 import io.robomw.agents.messaging.spi.Link;
+import io.robomw.agents.messaging.spi.Publication;
 import io.robomw.agents.messaging.spi.Transport;
 import io.robomw.agents.messaging.spi.TransportContext;
 import io.robomw.agents.messaging.spi.TransportProvider;
@@ -502,7 +503,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
             remember(topic);
         }
         topics.checkIfRegistered(topic, key);
-        byte[] frame = frames.message(FrameKind.PUBLISH, "", topic, object, function, key).bytes();
+        Publication publication = frames.publication(topic, object, function, key);
         List<Channel> subscribers = remoteSubscribers.of(topic);
         int limit = settings.maxFrameSize();
         for (int i = 0; i < subscribers.size(); i++) {
@@ -517,14 +518,15 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         if (joinedGroup) {
             limit = Math.min(limit, MessagingSettings.MAX_DATAGRAM);
         }
-        if (frame.length > limit) {
-            throw new MessagingException("node '" + name + "': a publication of " + frame.length + " bytes on '" + topic
+        long length = publication.length();
+        if (length > limit) {
+            throw new MessagingException("node '" + name + "': a publication of " + length + " bytes on '" + topic
                     + "' does not fit one datagram (limit " + limit + " bytes) for a UDP or multicast subscriber; nothing was sent");
         }
         for (int i = 0; i < subscribers.size(); i++) {
             Channel c = subscribers.get(i);
             try {
-                c.send(frame);
+                c.sendPublication(publication);
                 counters.out();
             } catch (IOException e) {
                 LOG.warn("node '{}': closing {}, a subscriber of '{}': {}", name, c.peer(), topic, e.getMessage());
@@ -534,7 +536,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         }
         for (Channel b : viaBrokers ? brokers : Set.<Channel>of()) {
             try {
-                b.send(frame);
+                b.sendPublication(publication);
                 counters.out();
             } catch (IOException e) {
                 LOG.warn("node '{}': cannot publish on '{}' through {}: {}", name, topic, b.peer(), e.getMessage());
@@ -543,7 +545,7 @@ public final class MessagingNode implements Messaging, AutoCloseable {
         }
         for (Endpoint e : broadcasters) {
             try {
-                if (e.broadcast(frame)) {
+                if (e.broadcast(publication.frame())) {
                     counters.out();
                 }
             } catch (IOException ex) {

@@ -115,6 +115,9 @@ public final class FuzzSeeds {
         byte[] frame = FrameCodec.encode(new Frame(FrameKind.PUBLISH, 5, 0x1122334455667788L, 9, new UUID(1, 2), 1_000_000L, "a", "b", "t", "f",
                 text.type(), text.bytes(), false), false);
         frames.write("frame", "publish", frame);
+        byte[] head = FrameCodec.encode(new Frame(FrameKind.PUBLISH_SHARED, 0, 0x1122334455667788L, 9, new UUID(1, 2), 1_000_000L, "a", "", "t", "f",
+                1, new byte[0], false), false);
+        frames.write("apartHead", "head", io.robomw.agents.messaging.mqtt.ApartHead.encode(head).getBytes(java.nio.charset.StandardCharsets.US_ASCII));
         byte[] twice = new byte[frame.length * 2];
         System.arraycopy(frame, 0, twice, 0, frame.length);
         System.arraycopy(frame, 0, twice, frame.length, frame.length);

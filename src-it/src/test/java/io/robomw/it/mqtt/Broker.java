@@ -137,6 +137,27 @@ public final class Broker implements AutoCloseable {
         launch();
     }
 
+    /**
+     * Freezes the broker (SIGSTOP): its connections stay open but it reads, answers and
+     * acknowledges nothing, as a broker that stalls does, until {@link #resume()}.
+     */
+    public void pause() throws IOException, InterruptedException {
+        signal("STOP");
+    }
+
+    /** Lets a {@link #pause() paused} broker go on (SIGCONT). */
+    public void resume() throws IOException, InterruptedException {
+        signal("CONT");
+    }
+
+    private void signal(String name) throws IOException, InterruptedException {
+        Process kill = new ProcessBuilder("kill", "-" + name, Long.toString(process.pid())).redirectErrorStream(true).start();
+        if (!kill.waitFor(30, TimeUnit.SECONDS) || kill.exitValue() != 0) {
+            kill.destroyForcibly();
+            fail("kill -" + name + " " + process.pid() + " failed: " + new String(kill.getInputStream().readAllBytes()));
+        }
+    }
+
     /** Stops it gracefully (SIGTERM; forcibly after 30 s). */
     public void stop() {
         if (process == null) {

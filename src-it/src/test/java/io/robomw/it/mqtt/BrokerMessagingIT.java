@@ -125,16 +125,7 @@ abstract class BrokerMessagingIT {
         local.subscribeMessage("sensors/light", null);
         local.addMessageListener("sensors/guarded", "pw", guarded::add);
         local.subscribeMessage("sensors/guarded", "pw");
-        int port = Integer.parseInt(broker.address().substring(broker.address().lastIndexOf(':') + 1));
-        var deviceBuilder = com.hivemq.client.mqtt.MqttClient.builder().useMqttVersion5().identifier(name("device"))
-                .serverHost("127.0.0.1").serverPort(port);
-        // mw broker lets in only its user (issue 37): the device gives the credentials the broker generated for this machine
-        io.robomw.agents.messaging.mqtt.BrokerCredentials user = io.robomw.agents.messaging.mqtt.BrokerCredentials.load(null, java.util.Map.of(), "127.0.0.1");
-        if (user.username() != null && broker.kind() == Broker.Kind.EMBEDDED) {
-            deviceBuilder = deviceBuilder.simpleAuth().username(user.username()).password(user.password()).applySimpleAuth();
-        }
-        var device = deviceBuilder.buildBlocking();
-        device.connect();
+        var device = plainDevice(name("device"));
         try {
             device.publishWith().topic("robomw/pub/sensors/guarded").qos(com.hivemq.client.mqtt.datatypes.MqttQos.AT_LEAST_ONCE)
                     .payload("forged".getBytes(java.nio.charset.StandardCharsets.UTF_8)).send();
@@ -200,6 +191,62 @@ abstract class BrokerMessagingIT {
         }
     }
 
+    /** A plain MQTT client (no RoboMW), connected to the shared broker. */
+    private com.hivemq.client.mqtt.mqtt5.Mqtt5BlockingClient plainDevice(String id) throws java.io.IOException {
+        int port = Integer.parseInt(broker.address().substring(broker.address().lastIndexOf(':') + 1));
+        var deviceBuilder = com.hivemq.client.mqtt.MqttClient.builder().useMqttVersion5().identifier(id).serverHost("127.0.0.1").serverPort(port);
+        // mw broker lets in only its user (issue 37): the device gives the credentials the broker generated for this machine
+        io.robomw.agents.messaging.mqtt.BrokerCredentials user = io.robomw.agents.messaging.mqtt.BrokerCredentials.load(null, java.util.Map.of(), "127.0.0.1");
+        if (user.username() != null && broker.kind() == Broker.Kind.EMBEDDED) {
+            deviceBuilder = deviceBuilder.simpleAuth().username(user.username()).password(user.password()).applySimpleAuth();
+        }
+        var device = deviceBuilder.buildBlocking();
+        device.connect();
+        return device;
+    }
+
+    /**
+     * A sensor-sized publication without a password travels apart from its frame: a RoboMW
+     * subscriber gets the whole message, and a plain MQTT client gets the scan's bytes as they are
+     * (the frame's head beside them, as the user property {@code robomw-frame}). A PUBLISH whose
+     * head is not one is dropped as malformed, counted, and the node goes on.
+     */
+    @Test
+    void aSensorSizedPublicationIsThePlainPayloadForAnMqttClientAndAWholeMessageForANode() throws Exception {
+        byte[] scan = new byte[100_000];
+        new java.util.Random(36).nextBytes(scan);
+        java.util.concurrent.BlockingQueue<Message> got = new java.util.concurrent.LinkedBlockingQueue<>();
+        local.addMessageListener("sensors/scan", null, got::add);
+        local.subscribeMessage("sensors/scan", null);
+        var device = plainDevice(name("scan-reader"));
+        try (var seen = device.publishes(com.hivemq.client.mqtt.MqttGlobalPublishFilter.ALL);
+             MessagingNode scanner = MessagingNode.builder(name("scanner")).bind(broker.address()).build()) {
+            device.subscribeWith().topicFilter("robomw/pub/sensors/scan").qos(com.hivemq.client.mqtt.datatypes.MqttQos.AT_LEAST_ONCE).send();
+            scanner.publishMessage("sensors/scan", scan, "lidar", null);
+            Message m = got.poll(WAIT.toSeconds(), TimeUnit.SECONDS);
+            assertTrue(m != null, "the scan reached the subscribed node");
+            assertTrue(java.util.Arrays.equals(scan, (byte[]) m.payload()), "the node got the scan's bytes");
+            assertEquals(name("scanner"), m.sender());
+            var raw = seen.receive(WAIT.toSeconds(), TimeUnit.SECONDS).orElseThrow(() -> new AssertionError("the plain client got nothing"));
+            assertTrue(java.util.Arrays.equals(scan, raw.getPayloadAsBytes()), "the plain client got the scan's bytes as they are, "
+                    + raw.getPayloadAsBytes().length + " bytes");
+            assertTrue(raw.getUserProperties().asList().stream().anyMatch(u -> u.getName().toString().equals("robomw-frame")),
+                    "the frame's head is beside them: " + raw.getUserProperties());
+
+            long malformed = local.stats().dropped(io.robomw.agents.messaging.DropReason.MALFORMED);
+            device.publishWith().topic("robomw/pub/sensors/scan").qos(com.hivemq.client.mqtt.datatypes.MqttQos.AT_LEAST_ONCE)
+                    .userProperties().add("robomw-frame", "not a head!").applyUserProperties().payload(scan).send();
+            Await.until("the PUBLISH with a bad head counted as malformed", WAIT,
+                    () -> local.stats().dropped(io.robomw.agents.messaging.DropReason.MALFORMED) > malformed, () -> String.valueOf(local.stats()));
+            scanner.publishMessage("sensors/scan", scan, "lidar", null);
+            Message again = got.poll(WAIT.toSeconds(), TimeUnit.SECONDS);
+            assertTrue(again != null && java.util.Arrays.equals(scan, (byte[]) again.payload()), "the node went on: the next scan arrived");
+            assertTrue(got.isEmpty(), "the bad one was not delivered: " + got);
+        } finally {
+            device.disconnect();
+        }
+    }
+
     @Test
     void whileTheBrokerIsAwayAtMostMaxQueuedMessagesWaitAndTheNextIsRefusedNamingTheBroker() throws Exception {
         try (Broker own = Broker.start(kind(), name("bounded-broker"));
@@ -226,6 +273,44 @@ abstract class BrokerMessagingIT {
             assertTrue(r.refused() != null && r.accepted() >= 1 && r.accepted() <= 10, r.accepted() + " scans of 100 KB were accepted with the broker away");
             String message = r.refused().getMessage();
             assertTrue(message.contains(own.address()) && message.contains("max-queued-bytes 1048576"), message);
+        }
+    }
+
+    /**
+     * A sender faster than the broker is held at {@code max-in-flight} while connected, not left to
+     * pile messages up in the client: with the broker stalled (SIGSTOP: the connection stays up),
+     * 8 publications are taken, the ninth waits the send timeout and is refused naming the bound.
+     * Once the broker goes on, sending goes on and every publication taken arrives, in order.
+     */
+    @Test
+    void whileConnectedASenderFasterThanTheBrokerIsHeldAtMaxInFlight() throws Exception {
+        java.util.concurrent.BlockingQueue<Message> got = new java.util.concurrent.LinkedBlockingQueue<>();
+        try (Broker own = Broker.start(kind(), name("window-broker"));
+             MessagingNode reader = MessagingNode.builder(name("window-reader")).bind(own.address()).build();
+             MessagingNode sender = MessagingNode.builder(name("window"))
+                     .settings(io.robomw.agents.messaging.MessagingSettings.defaults().withSendTimeout(Duration.ofSeconds(2)))
+                     .bind(own.address() + "?max-in-flight=8").build()) {
+            reader.addMessageListener("window", null, got::add);
+            reader.subscribeMessage("window", null);
+            Refusal r;
+            own.pause();
+            try {
+                r = publishUntilRefused(sender, "window", i -> i, 100);
+            } finally {
+                own.resume();
+            }
+            assertEquals(8, r.accepted(), "publications taken while the broker acknowledged none");
+            assertTrue(r.refused().getMessage().contains("max-in-flight 8") && r.refused().getMessage().contains(own.address()),
+                    r.refused().getMessage());
+            sender.publishMessage("window", 8, "count", null);
+            List<Object> arrived = new ArrayList<>();
+            Await.until("the 9 publications at the reader", WAIT, () -> {
+                for (Message m; (m = got.poll()) != null; ) {
+                    arrived.add(m.payload());
+                }
+                return arrived.size() >= 9;
+            }, arrived::toString);
+            assertEquals(List.of(0, 1, 2, 3, 4, 5, 6, 7, 8), arrived);
         }
     }
 

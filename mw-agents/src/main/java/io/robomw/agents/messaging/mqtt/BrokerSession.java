@@ -12,14 +12,18 @@ import com.hivemq.client.mqtt.mqtt5.message.connect.connack.Mqtt5ConnAck;
 import com.hivemq.client.mqtt.mqtt5.message.publish.Mqtt5Publish;
 import com.hivemq.client.mqtt.mqtt5.message.publish.Mqtt5PublishResult;
 import com.hivemq.client.mqtt.mqtt5.message.subscribe.suback.Mqtt5SubAck;
+import com.hivemq.client.mqtt.mqtt5.datatypes.Mqtt5UserProperties;
+import com.hivemq.client.mqtt.mqtt5.datatypes.Mqtt5UserProperty;
 import com.hivemq.client.mqtt.mqtt5.message.subscribe.suback.Mqtt5SubAckReasonCode;
 import io.robomw.agents.messaging.Address;
 import io.robomw.agents.messaging.DropReason;
 import io.robomw.agents.messaging.PresenceRecord;
+import io.robomw.agents.messaging.frame.FrameException;
 import io.robomw.agents.messaging.frame.FrameKind;
 import io.robomw.agents.messaging.spi.Channel;
 import io.robomw.agents.messaging.spi.Endpoint;
 import io.robomw.agents.messaging.spi.Link;
+import io.robomw.agents.messaging.spi.Publication;
 import io.robomw.agents.messaging.spi.TransportContext;
 import io.robomw.api.MessagingException;
 import org.slf4j.Logger;
@@ -28,6 +32,7 @@ import org.slf4j.LoggerFactory;
 import java.io.IOException;
 import java.time.Duration;
 import java.time.Instant;
+import java.util.List;
 import java.util.Map;
 import java.util.Set;
 import java.util.concurrent.CompletableFuture;
@@ -49,7 +54,11 @@ import java.util.concurrent.locks.ReentrantLock;
  *
  * <p>What each frame the node hands it becomes ({@link MqttTopics} has the topics):
  * <ul>
- * <li>a publication: a PUBLISH on {@code PREFIX/pub/TOPIC};</li>
+ * <li>a publication: a PUBLISH on {@code PREFIX/pub/TOPIC}; one without a password whose payload
+ *     is at least {@value Publication#APART_FROM_BYTES} bytes travels apart from its frame: the
+ *     PUBLISH's payload is the publication's payload itself (a plain MQTT client reads a scan's
+ *     bytes as they are), and its frame without the payload, a {@code PUBLISH_SHARED} head, is the
+ *     user property {@value ApartHead#PROPERTY}, in base64 ({@link Publication});</li>
  * <li>a request: a PUBLISH on {@code PREFIX/msg/RECEIVER} with this client's reply topic as the
  *     MQTT 5 response topic and the correlation id as correlation data; the receiver's reply goes
  *     back there ({@link ReplyRoute});</li>
@@ -68,9 +77,16 @@ import java.util.concurrent.locks.ReentrantLock;
  * growing pauses (0.1 s to 5 s) until the node closes; subscriptions are made again if the broker
  * lost the session, and messages not yet acknowledged are sent again. Up to {@code max-queued}
  * messages, of {@code max-queued-bytes} together, wait meanwhile; beyond that a send fails at once
- * with a {@link MessagingException} saying since when the broker is unreachable. While connected,
- * a full queue is back-pressure: a send waits up to the send timeout for room. (The bytes bound
+ * with a {@link MessagingException} saying since when the broker is unreachable. (The bytes bound
  * is what holds for sensor-sized messages: ten thousand camera frames would not fit in a heap.)
+ *
+ * <p><b>Back-pressure while connected.</b> At most {@code max-in-flight} messages (64 by default)
+ * are handed to the client and not yet acknowledged; a send beyond them, or beyond the queue's
+ * bounds, waits up to the send timeout for the broker's acknowledgements, then fails naming the
+ * bounds. A sender faster than the broker is held there rather than piling messages up inside the
+ * client, where hundreds of 100 KB scans cost a fifth of the throughput (issue 36). If the broker
+ * is lost while a send waits, the send joins the queue of what waits for its return (or is
+ * refused if that is full); if the session closes, it fails.
  *
  * <p>Thread-safe.
  */
@@ -80,6 +96,8 @@ final class BrokerSession implements Link, Endpoint {
     private static final long MAX_RECONNECT_DELAY_MS = 5_000;
     /** Bytes an MQTT PUBLISH adds to a frame (fixed header, topic, properties), kept free below the broker's packet limit. */
     private static final int PUBLISH_OVERHEAD = 1024;
+    /** The longest head sent apart (its base64 fits {@link #PUBLISH_OVERHEAD} with the topic); a longer one's publication travels whole. */
+    private static final int MAX_APART_HEAD = 384;
 
     private final MqttOptions options;
     private final Address address;
@@ -92,7 +110,7 @@ final class BrokerSession implements Link, Endpoint {
     /** Guards {@link #queuedMessages} and {@link #queuedBytes}; {@link #room} is signalled as messages leave the queue. */
     private final ReentrantLock queueLock = new ReentrantLock();
     private final Condition room = queueLock.newCondition();
-    /** Messages waiting for the broker (in flight or while it is away), at most {@code max-queued}. */
+    /** Messages waiting for the broker (in flight or while it is away), at most {@code max-queued}, and while connected {@code max-in-flight}. */
     private int queuedMessages;
     /** Their bytes together, at most {@code max-queued-bytes} (but for one larger message, which waits alone). */
     private long queuedBytes;
@@ -255,6 +273,17 @@ final class BrokerSession implements Link, Endpoint {
     }
 
     @Override
+    public void sendPublication(Publication publication) throws IOException {
+        if (!publication.travelsApart() || publication.head().length > MAX_APART_HEAD) {
+            send(publication.frame());
+            return;
+        }
+        byte[] head = publication.head();
+        Mqtt5UserProperties apart = Mqtt5UserProperties.of(Mqtt5UserProperty.of(ApartHead.PROPERTY, ApartHead.encode(head)));
+        publish(topic(topics.publication(FramePeek.topic(head))), publication.payload(), null, null, null, apart);
+    }
+
+    @Override
     public int maxFrameBytes() {
         return maxFrameBytes;
     }
@@ -291,6 +320,7 @@ final class BrokerSession implements Link, Endpoint {
             return;
         }
         closed = true;
+        roomChanged();
         context.presence().removeListener(presenceListener);
         try {
             if (connected) {
@@ -328,12 +358,20 @@ final class BrokerSession implements Link, Endpoint {
     /** {@link #publish(com.hivemq.client.mqtt.datatypes.MqttTopic, byte[], String, byte[])}, for a reply: its correlation data. */
     void publish(com.hivemq.client.mqtt.datatypes.MqttTopic topic, byte[] payload, String responseTopic, byte[] correlation,
                  byte[] replyCorrelation) throws IOException {
+        publish(topic, payload, responseTopic, correlation, replyCorrelation, null);
+    }
+
+    private void publish(com.hivemq.client.mqtt.datatypes.MqttTopic topic, byte[] payload, String responseTopic, byte[] correlation,
+                         byte[] replyCorrelation, Mqtt5UserProperties properties) throws IOException {
         if (closed) {
             throw new IOException("the session with broker " + address + " is closed");
         }
         int bytes = payload.length;
         acquireQueuePlace(bytes);
         var builder = Mqtt5Publish.builder().topic(topic).qos(qos).payload(payload);
+        if (properties != null) {
+            builder.userProperties(properties);
+        }
         Mqtt5Publish p;
         if (responseTopic != null) {
             p = builder.responseTopic(responseTopic).correlationData(correlation).build();
@@ -362,9 +400,24 @@ final class BrokerSession implements Link, Endpoint {
         });
     }
 
-    /** @return whether a message of this many bytes fits in the queue now (one larger than max-queued-bytes: when it is empty); under the lock */
+    /**
+     * @return whether a message of this many bytes may join the queue now: within {@code max-queued}, within
+     *         {@code max-in-flight} while connected, and within {@code max-queued-bytes} (one larger: when the queue is
+     *         empty); under the lock
+     */
     private boolean fits(int bytes) {
-        return queuedMessages == 0 || (queuedMessages < options.maxQueued() && queuedBytes + bytes <= options.maxQueuedBytes());
+        int most = connected ? Math.min(options.maxQueued(), options.maxInFlight()) : options.maxQueued();
+        return queuedMessages == 0 || (queuedMessages < most && queuedBytes + bytes <= options.maxQueuedBytes());
+    }
+
+    /** Wakes the senders waiting for room: the connection came or went, or the session closed, and what fits changed with it. */
+    private void roomChanged() {
+        queueLock.lock();
+        try {
+            room.signalAll();
+        } finally {
+            queueLock.unlock();
+        }
     }
 
     private void releaseQueuePlace(int bytes) {
@@ -380,28 +433,30 @@ final class BrokerSession implements Link, Endpoint {
 
     /**
      * Takes a place in the queue to the broker for a message of this many bytes: one of
-     * {@code max-queued}, and its bytes of {@code max-queued-bytes}. While the broker is
-     * unreachable a full queue refuses at once; while connected a send waits up to the send
-     * timeout for room.
+     * {@code max-queued} (of {@code max-in-flight} while connected), and its bytes of
+     * {@code max-queued-bytes}. While the broker is unreachable a full queue refuses at once;
+     * while connected a send waits up to the send timeout for room, and if the broker is lost
+     * meanwhile, the away rule holds from then on.
      */
     private void acquireQueuePlace(int bytes) throws IOException {
         queueLock.lock();
         try {
-            if (!fits(bytes)) {
+            Duration limit = context.settings().sendTimeout();
+            long left = limit.toNanos();
+            while (!fits(bytes)) {
                 Instant lost = lostSince;
+                if (closed) {
+                    throw new IOException("the session with broker " + address + " closed while a message waited for room; it was not sent");
+                }
                 if (!connected && lost != null) {
                     throw new MessagingException("node '" + context.nodeName() + "': broker " + address + " is unreachable since " + lost
                             + " and the messages waiting for it fill the queue (" + queueLimits() + "); this one was not sent");
                 }
-                Duration limit = context.settings().sendTimeout();
-                long left = limit.toNanos();
-                while (!fits(bytes)) {
-                    if (left <= 0) {
-                        throw new MessagingException("node '" + context.nodeName() + "': broker " + address + " took none of the messages waiting"
-                                + " for it (" + queueLimits() + ") within " + limit + "; this one was not sent");
-                    }
-                    left = room.awaitNanos(left);
+                if (left <= 0) {
+                    throw new MessagingException("node '" + context.nodeName() + "': broker " + address + " acknowledged none of the "
+                            + queuedMessages + " messages waiting for it (" + queueLimits() + ") within " + limit + "; this one was not sent");
                 }
+                left = room.awaitNanos(left);
             }
             queuedMessages++;
             queuedBytes += bytes;
@@ -415,7 +470,8 @@ final class BrokerSession implements Link, Endpoint {
 
     /** @return the queue's bounds, as a message names them */
     private String queueLimits() {
-        return "max-queued " + options.maxQueued() + " messages, max-queued-bytes " + options.maxQueuedBytes();
+        return "max-in-flight " + options.maxInFlight() + " while connected, max-queued " + options.maxQueued() + " messages, max-queued-bytes "
+                + options.maxQueuedBytes();
     }
 
     com.hivemq.client.mqtt.datatypes.MqttTopic topic(String name) {
@@ -507,7 +563,11 @@ final class BrokerSession implements Link, Endpoint {
                 from = new ReplyRoute(this, p.getResponseTopic().map(Object::toString).orElse(null),
                         p.getCorrelationData().map(b -> { byte[] c = new byte[b.remaining()]; b.duplicate().get(c); return c; }).orElse(null));
             }
-            if (FramePeek.isFrame(bytes.array(), bytes.offset(), bytes.length())) {
+            byte[] head = apartHead(p, t);
+            if (head != null) {
+                // a publication whose payload travelled apart: the node takes it as the PUBLISH its head stands for
+                context.onFrame(head, 0, head.length, bytes.owned(), from);
+            } else if (FramePeek.isFrame(bytes.array(), bytes.offset(), bytes.length())) {
                 context.onFrame(bytes.array(), bytes.offset(), bytes.length(), from);
             } else if (t.startsWith(topics.publicationPrefix())) {
                 byte[] frame = ForeignPublication.frame(topics.topicOfPublication(t), bytes.copy(), p);
@@ -515,6 +575,8 @@ final class BrokerSession implements Link, Endpoint {
             } else {
                 context.dropped(DropReason.MALFORMED, address + " topic " + t, "a " + bytes.length() + "-byte message that is not a RoboMW frame");
             }
+        } catch (FrameException e) {
+            context.dropped(e.reason(), address + " topic " + p.getTopic(), e.getMessage());
         } catch (Throwable e) {
             context.failures().surviveOrRethrow(Thread.currentThread().getName(), e);
             LOG.warn("node '{}': a message from broker {} on {} could not be handled: {}", context.nodeName(), address, p.getTopic(), e.toString());
@@ -525,6 +587,25 @@ final class BrokerSession implements Link, Endpoint {
         }
     }
 
+    /**
+     * @return the head of a publication whose payload travelled apart ({@value ApartHead#PROPERTY}), decoded, or
+     *         {@code null} if the PUBLISH has none
+     * @throws FrameException if the property is not base64, or is on a topic that is not a publication's
+     */
+    private byte[] apartHead(Mqtt5Publish p, String topic) throws FrameException {
+        List<? extends Mqtt5UserProperty> properties = p.getUserProperties().asList();
+        for (int i = 0; i < properties.size(); i++) {
+            Mqtt5UserProperty property = properties.get(i);
+            if (property.getName().toString().equals(ApartHead.PROPERTY)) {
+                if (!topic.startsWith(topics.publicationPrefix())) {
+                    throw new FrameException(DropReason.MALFORMED, "a payload apart from its frame on topic " + topic + ", which is not a publication's");
+                }
+                return ApartHead.decode(property.getValue().toString());
+            }
+        }
+        return null;
+    }
+
     private void onConnected() {
         boolean wasLost = lostSince != null;
         connected = true;
@@ -533,6 +614,7 @@ final class BrokerSession implements Link, Endpoint {
             lostSince = null;
             announce();
         }
+        roomChanged();
     }
 
     private void onDisconnected(MqttClientDisconnectedContext c) {
@@ -548,6 +630,7 @@ final class BrokerSession implements Link, Endpoint {
         } else {
             LOG.debug("node '{}': broker {} still unreachable after {} attempts: {}", context.nodeName(), address, attempt, rootMessage(c.getCause()));
         }
+        roomChanged();
         long delay = Math.min(MAX_RECONNECT_DELAY_MS, 100L << Math.min(attempt, 6));
         c.getReconnector().reconnect(true).resubscribeIfSessionExpired(true).republishIfSessionExpired(true)
                 .delay(delay, TimeUnit.MILLISECONDS);

@@ -20,6 +20,9 @@ import java.util.Set;
  *     the QoS 1 messages for them) after the client is gone; 0 is a clean session</td></tr>
  * <tr><td>{@code qos}</td><td>1</td><td>0 (at most once) or 1 (at least once) for everything sent</td></tr>
  * <tr><td>{@code keep-alive}</td><td>10</td><td>seconds; a broker that is silent for 1.5 times that is taken as lost</td></tr>
+ * <tr><td>{@code max-in-flight}</td><td>64</td><td>while connected, messages handed to the broker and not yet acknowledged;
+ *     a send beyond them waits (up to the send timeout) for the broker's acknowledgements, so a fast sender does not pile
+ *     messages up in the client (brokers take 10-20 at once: their Receive Maximum)</td></tr>
  * <tr><td>{@code max-queued}</td><td>10000</td><td>messages that may wait for the broker (in flight or while it is away)</td></tr>
  * <tr><td>{@code max-queued-bytes}</td><td>67108864 (64 MiB)</td><td>bytes of messages that may wait for the broker, together:
  *     sensor-sized messages (a scan, a camera frame) reach it long before {@code max-queued}; one message larger than it
@@ -41,18 +44,22 @@ import java.util.Set;
  * @param sessionExpirySeconds 0 for a clean session
  * @param qos                  0 or 1
  * @param keepAliveSeconds     the keep-alive
+ * @param maxInFlight          while connected, messages sent and not yet acknowledged
  * @param maxQueued            messages that may wait for the broker
  * @param maxQueuedBytes       bytes of messages that may wait for the broker, together
  * @param credentials          the credentials file, or {@code null} for the environment
  * @param trustStore           the trust store file, or {@code null}
  */
 public record MqttOptions(boolean tls, String host, int port, MqttTopics topics, String clientId, long sessionExpirySeconds,
-                          int qos, int keepAliveSeconds, int maxQueued, long maxQueuedBytes, Path credentials, Path trustStore) {
+                          int qos, int keepAliveSeconds, int maxInFlight, int maxQueued, long maxQueuedBytes, Path credentials, Path trustStore) {
 
     /** {@code max-queued-bytes} unless the address says otherwise: 64 MiB. */
     public static final long DEFAULT_MAX_QUEUED_BYTES = 64L << 20;
 
-    private static final Set<String> KNOWN = Set.of("client-id", "session-expiry", "qos", "keep-alive", "max-queued", "max-queued-bytes",
+    /** {@code max-in-flight} unless the address says otherwise: what a sensor stream needs to keep a broker's receive window full. */
+    public static final int DEFAULT_MAX_IN_FLIGHT = 64;
+
+    private static final Set<String> KNOWN = Set.of("client-id", "session-expiry", "qos", "keep-alive", "max-in-flight", "max-queued", "max-queued-bytes",
             "credentials", "truststore", "password");
 
     /**
@@ -71,6 +78,7 @@ public record MqttOptions(boolean tls, String host, int port, MqttTopics topics,
         long expiry = number(a, "session-expiry", 0, 0, 0xFFFF_FFFFL);
         int qos = (int) number(a, "qos", 1, 0, 1);
         int keepAlive = (int) number(a, "keep-alive", 10, 1, 65_535);
+        int maxInFlight = (int) number(a, "max-in-flight", DEFAULT_MAX_IN_FLIGHT, 1, 65_535);
         int maxQueued = (int) number(a, "max-queued", 10_000, 1, 1_000_000);
         long maxQueuedBytes = number(a, "max-queued-bytes", DEFAULT_MAX_QUEUED_BYTES, 1024, 1L << 40);
         String clientId = a.query().get("client-id");
@@ -80,7 +88,7 @@ public record MqttOptions(boolean tls, String host, int port, MqttTopics topics,
         }
         String credentials = a.query().get("credentials");
         String trust = a.query().get("truststore");
-        return new MqttOptions(a.scheme().equals("mqtts"), a.host(), a.port(), topics, clientId, expiry, qos, keepAlive, maxQueued, maxQueuedBytes,
+        return new MqttOptions(a.scheme().equals("mqtts"), a.host(), a.port(), topics, clientId, expiry, qos, keepAlive, maxInFlight, maxQueued, maxQueuedBytes,
                 credentials == null || credentials.isEmpty() ? null : Path.of(credentials), trust == null || trust.isEmpty() ? null : Path.of(trust));
     }
 

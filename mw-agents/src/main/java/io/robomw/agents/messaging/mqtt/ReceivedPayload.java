@@ -41,6 +41,15 @@ record ReceivedPayload(byte[] array, int offset, int length) {
         return new ReceivedPayload(copy, 0, copy.length);
     }
 
+    /**
+     * @return the payload as an array of its own: the client's array itself when it holds exactly the
+     *         payload (the client made it for this one PUBLISH, hands it to the session's one flow, and
+     *         reads it no more), else a copy
+     */
+    byte[] owned() {
+        return offset == 0 && length == array.length ? array : copy();
+    }
+
     /** @return the payload in an array of its own (for what outlives the delivery) */
     byte[] copy() {
         return Arrays.copyOfRange(array, offset, offset + length);

@@ -20,6 +20,19 @@ public interface Channel {
      */
     void send(byte[] frame) throws IOException;
 
+    /**
+     * Sends one publication: by default its whole frame ({@link #send}). A transport that carries a
+     * payload apart from its frame (an MQTT broker: the PUBLISH's payload) sends the
+     * {@link Publication#head() head} and the {@link Publication#payload() payload} of one that
+     * {@link Publication#travelsApart() travels apart}, without copying the payload into a frame.
+     *
+     * @param publication the publication
+     * @throws IOException as {@link #send}
+     */
+    default void sendPublication(Publication publication) throws IOException {
+        send(publication.frame());
+    }
+
     /** @return the largest frame this channel can carry (one datagram for UDP and multicast) */
     default int maxFrameBytes() {
         return Integer.MAX_VALUE;

@@ -4,6 +4,7 @@ import com.code_intelligence.jazzer.api.FuzzedDataProvider;
 import com.code_intelligence.jazzer.junit.FuzzTest;
 import io.robomw.agents.messaging.PresenceRecord;
 import io.robomw.agents.messaging.discovery.BeaconRecord;
+import io.robomw.agents.messaging.mqtt.ApartHead;
 import io.robomw.agents.messaging.io.FrameStreamReader;
 import io.robomw.agents.messaging.security.PayloadAllowList;
 import io.robomw.agents.messaging.security.PayloadCodec;
@@ -21,7 +22,8 @@ import java.io.IOException;
  * Fuzz tests of what a messaging node decodes from the network (docs/fuzzing.md): a datagram or
  * framed stream as one frame, a byte stream cut into frames, a frame's payload, a node's presence
  * and its discovery beacon, the shared-memory handshake and the references a subscriber takes
- * payloads out of a segment by. The only refusals allowed are {@link FrameException} (with its drop
+ * payloads out of a segment by, the head of a publication whose payload travelled apart through an
+ * MQTT broker. The only refusals allowed are {@link FrameException} (with its drop
  * reason), {@link IOException} at the end of a stream, {@link PayloadRejectedException}, and an
  * {@link IllegalArgumentException} from the presence and beacon records.
  */
@@ -90,6 +92,21 @@ class MessageFramesFuzzTest {
         byte[] again = b.encode();
         if (again.length > BeaconRecord.MAX_BYTES || !BeaconRecord.decode(again, "fuzz").equals(b)) {
             throw new AssertionError("a beacon does not survive its own encoding: " + b);
+        }
+    }
+
+    /**
+     * The user property a broker delivers beside a payload that travelled apart from its frame
+     * ({@link ApartHead}): refused with {@link FrameException}, or a head the node decodes as it
+     * decodes any frame.
+     */
+    @FuzzTest
+    void apartHead(byte[] input) {
+        try {
+            byte[] head = ApartHead.decode(new String(input, java.nio.charset.StandardCharsets.UTF_8));
+            FrameCodec.decode(head, 0, head.length, MAX_FRAME);
+        } catch (FrameException refused) {
+            // the documented refusal
         }
     }
 

@@ -61,6 +61,9 @@ class MqttTopicsTest {
         assertEquals(MqttOptions.DEFAULT_MAX_QUEUED_BYTES, o.maxQueuedBytes());
         assertEquals(1L << 20, MqttOptions.of(Address.parse("mqtt://broker?max-queued-bytes=1048576"), "n").maxQueuedBytes());
         assertThrows(IllegalArgumentException.class, () -> MqttOptions.of(Address.parse("mqtt://broker?max-queued-bytes=10"), "n"));
+        assertEquals(MqttOptions.DEFAULT_MAX_IN_FLIGHT, o.maxInFlight());
+        assertEquals(8, MqttOptions.of(Address.parse("mqtt://broker?max-in-flight=8"), "n").maxInFlight());
+        assertThrows(IllegalArgumentException.class, () -> MqttOptions.of(Address.parse("mqtt://broker?max-in-flight=0"), "n"));
         assertEquals("lab-dispatcher", o.clientId(), "a persistent session gets a client id that survives a restart");
         assertEquals(Path.of("/etc/mw/mqtt"), o.credentials());
         assertEquals("mqtts://broker:8883/lab", o.sessionKey());
