@@ -42,7 +42,12 @@ import java.util.concurrent.atomic.AtomicLong;
  * <li>both are warmed before either is measured;</li>
  * <li>both publishers have at most the broker's receive maximum unacknowledged (Mosquitto: 20);
  *     beyond it the bare publisher waits when {@value #IN_FLIGHT_DEFAULT} wait in its client, RoboMW
- *     when its {@code max-queued} (10,000) or {@code max-queued-bytes} (64 MiB: 64 payloads of 1 MiB) do.</li>
+ *     when its {@code max-in-flight} (64 by default) do (until 2026-11-29: when its {@code max-queued}, 10,000,
+ *     or {@code max-queued-bytes}, 64 MiB, did: hundreds of 100 KB payloads piled up in its client, at a fifth of
+ *     its throughput).</li>
+ * <li>RoboMW's publications here carry no password, so their payloads travel apart from their
+ *     frames (docs/messaging.md): a subscriber node is handed the client's array, the bare callback
+ *     copies it ({@code getPayloadAsBytes()}, the only way to an array its public API has).</li>
  * </ul>
  */
 public final class SensorMqttBenchmark {
