@@ -41,15 +41,29 @@ public record SharedReference(long sequence, int offset, int length) {
      */
     public static byte[] frameFor(byte[] publication, long sequence, int offset) {
         int length = payloadLength(publication, 0);
-        int head = publication.length - length;
-        byte[] out = new byte[head + BYTES];
-        System.arraycopy(publication, 0, out, 0, head);
+        return frameFor(publication, publication.length - length, length, sequence, offset);
+    }
+
+    /**
+     * Makes the reference frame that stands for a publication, from its head.
+     *
+     * @param head     the first {@code headLength} bytes of an encoded {@link FrameKind#PUBLISH} frame without an HMAC (its
+     *                 header and names), or the head of a publication that travels apart ({@link io.robomw.agents.messaging.spi.Publication#head()})
+     * @param headLength how many bytes of {@code head} are its header and names
+     * @param length   the publication's payload length
+     * @param sequence its record's sequence
+     * @param offset   its record's offset in the ring
+     * @return the head with this reference as its payload, of kind {@link FrameKind#PUBLISH_SHARED}
+     */
+    public static byte[] frameFor(byte[] head, int headLength, int length, long sequence, int offset) {
+        byte[] out = new byte[headLength + BYTES];
+        System.arraycopy(head, 0, out, 0, headLength);
         out[FrameCodec.KIND_OFFSET] = (byte) FrameKind.PUBLISH_SHARED.code();
         INT.set(out, FrameCodec.FRAME_LENGTH_OFFSET, out.length);
         INT.set(out, FrameCodec.PAYLOAD_LENGTH_OFFSET, BYTES);
-        LONG.set(out, head, sequence);
-        INT.set(out, head + 8, offset);
-        INT.set(out, head + 12, length);
+        LONG.set(out, headLength, sequence);
+        INT.set(out, headLength + 8, offset);
+        INT.set(out, headLength + 12, length);
         return out;
     }
 

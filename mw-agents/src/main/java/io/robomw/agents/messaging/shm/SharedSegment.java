@@ -3,6 +3,8 @@ package io.robomw.agents.messaging.shm;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
+import io.robomw.agents.messaging.spi.Publication;
+
 import java.io.IOException;
 import java.nio.ByteBuffer;
 import java.nio.ByteOrder;
@@ -82,8 +84,8 @@ public final class SharedSegment implements AutoCloseable {
     private long sequence;
     /** The record written last: the next subscriber of the same publication gets it too. */
     private Record newest;
-    /** The publication in {@link #newest} (only the newest is kept: a record in the ring needs no array). */
-    private byte[] newestPublication;
+    /** The publication in {@link #newest}, its frame or its {@link Publication} (only the newest is kept: a record in the ring needs no array). */
+    private Object newestPublication;
     private volatile boolean closed;
     /** Unlinks the file if the JVM ends before {@link #close} (System.exit, SIGTERM); removed by close. */
     private final Thread unlinkAtExit;
@@ -325,14 +327,43 @@ public final class SharedSegment implements AutoCloseable {
      * @throws IOException if the segment is closed, the payload cannot fit, or the wait was interrupted
      */
     public void send(byte[] publication, Subscriber to, Queue queue, long sendTimeoutNanos) throws IOException {
+        int length = SharedReference.payloadLength(publication, 0);
+        send(publication, publication, publication.length - length, length, publication.length - length, to, queue, sendTimeoutNanos);
+    }
+
+    /**
+     * {@link #send(byte[], Subscriber, Queue, long)} of a publication that travels apart from its
+     * frame: its payload is written into the ring from where it is, never copied into a frame.
+     *
+     * @param publication      a publication that {@link Publication#travelsApart() travels apart}
+     * @param to               an active subscriber
+     * @param queue            its connection's queue
+     * @param sendTimeoutNanos how long to wait for room before the laggards are closed
+     * @throws IOException as {@link #send(byte[], Subscriber, Queue, long)}
+     */
+    public void send(Publication publication, Subscriber to, Queue queue, long sendTimeoutNanos) throws IOException {
+        byte[] head = publication.head();
+        byte[] payload = publication.payload();
+        send(publication, payload, 0, payload.length, head.length, to, queue, sendTimeoutNanos);
+    }
+
+    /**
+     * @param key        what identifies the publication (the same object for each of its subscribers)
+     * @param src        where its payload is
+     * @param payloadAt  where in {@code src}
+     * @param length     its payload's length
+     * @param headLength the length of its head (header and names): the first bytes of its frame, or of its {@link Publication#head()}
+     */
+    private void send(Object key, byte[] src, int payloadAt, int length, int headLength, Subscriber to, Queue queue, long sendTimeoutNanos)
+            throws IOException {
         lock.lock();
         try {
             if (closed) {
                 throw new IOException("shared-memory segment " + file + " is closed");
             }
             Record r = newest;
-            if (r == null || newestPublication != publication || to.lastSent >= r.sequence) {
-                r = write(publication, sendTimeoutNanos);
+            if (r == null || newestPublication != key || to.lastSent >= r.sequence) {
+                r = write(key, src, payloadAt, length, headLength, sendTimeoutNanos);
             }
             queue.send(r.referenceFrame);
             to.lastSent = r.sequence;
@@ -342,8 +373,7 @@ public final class SharedSegment implements AutoCloseable {
     }
 
     /** Writes a publication's payload into a new record, waiting for room. Under the lock (let go while it naps). */
-    private Record write(byte[] publication, long sendTimeoutNanos) throws IOException {
-        int length = SharedReference.payloadLength(publication, 0);
+    private Record write(Object key, byte[] src, int payloadAt, int length, int headLength, long sendTimeoutNanos) throws IOException {
         int bytes = SegmentLayout.recordBytes(length);
         if (bytes > dataBytes) {
             throw new IOException("a payload of " + length + " bytes does not fit the shared-memory ring of " + dataBytes + " bytes (" + file + ")");
@@ -388,13 +418,13 @@ public final class SharedSegment implements AutoCloseable {
         head += pad + bytes;
         long seq = ++sequence;
         int base = dataOffset + offset;
-        map.put(base + SegmentLayout.RECORD_HEADER, publication, publication.length - length, length);
+        map.put(base + SegmentLayout.RECORD_HEADER, src, payloadAt, length);
         map.putInt(base + SegmentLayout.RECORD_LENGTH_OFFSET, length);
         SegmentLayout.LONG.setRelease((ByteBuffer) map, base, seq);
-        Record r = new Record(seq, start, head, SharedReference.frameFor(publication, seq, offset));
+        Record r = new Record(seq, start, head, SharedReference.frameFor(key instanceof Publication p ? p.head() : src, headLength, length, seq, offset));
         live.addLast(r);
         newest = r;
-        newestPublication = publication;
+        newestPublication = key;
         return r;
     }
 

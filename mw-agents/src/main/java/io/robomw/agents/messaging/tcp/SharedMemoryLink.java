@@ -10,6 +10,7 @@ import io.robomw.agents.messaging.shm.Handshake;
 import io.robomw.agents.messaging.shm.SegmentView;
 import io.robomw.agents.messaging.shm.SharedReference;
 import io.robomw.agents.messaging.shm.SharedSegment;
+import io.robomw.agents.messaging.spi.Publication;
 import io.robomw.agents.messaging.spi.TransportContext;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -204,6 +205,27 @@ final class SharedMemoryLink {
         }
         if (accepted) {
             segment.send(frame, outlet, out::send, sendTimeoutNanos);
+            return true;
+        }
+        offer(out);
+        return false;
+    }
+
+    /**
+     * {@link #trySend} of a publication that travels apart from its frame: through the segment, its
+     * payload is written into the ring from where it is, and its whole frame is never made.
+     *
+     * @param publication a publication that {@link Publication#travelsApart() travels apart} (unsigned, sensor-sized)
+     * @param out         the connection's queue
+     * @return whether it was sent (else the caller sends its frame over TCP)
+     * @throws IOException as the queue's send, or if the segment stayed full
+     */
+    boolean trySend(Publication publication, OutboundBuffer out) throws IOException {
+        if (!peerAsked || publication.length() < threshold) {
+            return false;
+        }
+        if (accepted) {
+            segment.send(publication, outlet, out::send, sendTimeoutNanos);
             return true;
         }
         offer(out);

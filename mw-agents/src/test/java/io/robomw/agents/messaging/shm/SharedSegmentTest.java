@@ -101,6 +101,26 @@ class SharedSegmentTest {
         assertArrayEquals(payloadOf(p), b.takeNext());
     }
 
+    /**
+     * A publication that travels apart (its payload never copied into a frame) is written into the
+     * ring once for all its subscribers, and its reference frame is the one its whole frame gets.
+     */
+    @Test
+    void aPublicationSentApartIsWrittenOnceAndReferencedAsItsWholeFrameIs() throws Exception {
+        SharedSegment segment = segment(RING, 4);
+        Sub a = new Sub(segment);
+        Sub b = new Sub(segment);
+        byte[] whole = publication(100_000, 1);
+        Frame f = FrameCodec.decode(whole, 0, whole.length, Integer.MAX_VALUE);
+        io.robomw.agents.messaging.spi.Publication apart = io.robomw.agents.messaging.spi.Publication.apart(f, null);
+        segment.send(apart, a.cell, r -> a.queued.add(r.clone()), LONG_TIMEOUT);
+        segment.send(apart, b.cell, r -> b.queued.add(r.clone()), LONG_TIMEOUT);
+        assertArrayEquals(a.queued.get(0), b.queued.get(0), "one record, one reference frame for both");
+        assertArrayEquals(SharedReference.frameFor(whole, 1, 0), a.queued.get(0), "the reference its whole frame would get");
+        assertArrayEquals(payloadOf(whole), a.takeNext());
+        assertArrayEquals(payloadOf(whole), b.takeNext());
+    }
+
     @Test
     void theRingWrapsAroundAndEveryPayloadComesOutIntactInOrder() throws Exception {
         SharedSegment segment = segment(RING, 4);
