@@ -247,6 +247,33 @@ abstract class BrokerMessagingIT {
         }
     }
 
+    /**
+     * A camera's driver refills its frame buffer as soon as {@code publishMessage} returned: what
+     * was published is the frame as it was then, even when it waits in the queue for a broker that
+     * is away and is sent only after it is back.
+     */
+    @Test
+    void aSensorSizedPublicationIsTakenAsItWasWhenPublishMessageReturned() throws Exception {
+        java.util.concurrent.BlockingQueue<Message> got = new java.util.concurrent.LinkedBlockingQueue<>();
+        try (Broker own = Broker.start(kind(), name("reuse-broker"));
+             MessagingNode reader = MessagingNode.builder(name("reuse-reader")).bind(own.address() + "?session-expiry=600&client-id=" + name("reuse-reader")).build();
+             MessagingNode camera = MessagingNode.builder(name("camera")).bind(own.address()).build()) {
+            reader.addMessageListener("frames", null, got::add);
+            reader.subscribeMessage("frames", null);
+            byte[] buffer = new byte[200_000];
+            java.util.Arrays.fill(buffer, (byte) 1);
+            own.stop();
+            camera.publishMessage("frames", buffer, "image", null);
+            java.util.Arrays.fill(buffer, (byte) 2);
+            own.restart();
+            Message m = got.poll(WAIT.toSeconds(), TimeUnit.SECONDS);
+            assertTrue(m != null, "the frame arrived once the broker was back");
+            byte[] frame = (byte[]) m.payload();
+            assertEquals(200_000, frame.length);
+            assertTrue(frame[0] == 1 && frame[199_999] == 1, "the frame as published (1), not as the buffer was refilled after (2): " + frame[0]);
+        }
+    }
+
     @Test
     void whileTheBrokerIsAwayAtMostMaxQueuedMessagesWaitAndTheNextIsRefusedNamingTheBroker() throws Exception {
         try (Broker own = Broker.start(kind(), name("bounded-broker"));

@@ -280,7 +280,10 @@ final class BrokerSession implements Link, Endpoint {
         }
         byte[] head = publication.head();
         Mqtt5UserProperties apart = Mqtt5UserProperties.of(Mqtt5UserProperty.of(ApartHead.PROPERTY, ApartHead.encode(head)));
-        publish(topic(topics.publication(FramePeek.topic(head))), publication.payload(), null, null, null, apart);
+        // The client keeps the payload until the broker acknowledged it (and sends it again after a reconnection), long
+        // after publishMessage returned and its caller may refill the array (a camera's buffer): it gets a copy of its own,
+        // made in one pass (clone() does not zero the array first, as a frame's allocation did before its payload was copied in).
+        publish(topic(topics.publication(FramePeek.topic(head))), publication.payload().clone(), null, null, null, apart);
     }
 
     @Override

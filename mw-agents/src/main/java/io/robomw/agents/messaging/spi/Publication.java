@@ -93,6 +93,11 @@ public final class Publication {
     }
 
     /**
+     * The payload as the caller gave it (a {@code byte[]} payload is its very array): read it only
+     * during {@link Channel#sendPublication}, since the caller may change the array once
+     * {@code publishMessage} returned; a transport that keeps it longer (an MQTT client, until the
+     * broker's acknowledgement) copies it.
+     *
      * @return the encoded payload, not copied (do not change it)
      * @throws IllegalStateException if the publication travels whole
      */
