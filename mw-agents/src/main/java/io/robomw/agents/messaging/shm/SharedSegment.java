@@ -1,9 +1,8 @@
 package io.robomw.agents.messaging.shm;
 
+import io.robomw.agents.messaging.spi.Publication;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
-
-import io.robomw.agents.messaging.spi.Publication;
 
 import java.io.IOException;
 import java.nio.ByteBuffer;
