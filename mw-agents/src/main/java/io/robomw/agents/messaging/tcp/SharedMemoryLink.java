@@ -203,12 +203,7 @@ final class SharedMemoryLink {
                 || (frame[FrameCodec.FLAGS_OFFSET] & FrameCodec.FLAG_MAC) != 0) {
             return false;
         }
-        if (accepted) {
-            segment.send(frame, outlet, out::send, sendTimeoutNanos);
-            return true;
-        }
-        offer(out);
-        return false;
+        return throughSegment((seg, to, queue, timeout) -> seg.send(frame, to, queue, timeout), out);
     }
 
     /**
@@ -224,8 +219,18 @@ final class SharedMemoryLink {
         if (!peerAsked || publication.length() < threshold) {
             return false;
         }
+        return throughSegment((seg, to, queue, timeout) -> seg.send(publication, to, queue, timeout), out);
+    }
+
+    /** One way into the segment: a whole frame, or a publication that travels apart. */
+    private interface SegmentWrite {
+        void send(SharedSegment segment, SharedSegment.Subscriber to, SharedSegment.Queue queue, long sendTimeoutNanos) throws IOException;
+    }
+
+    /** Writes through the segment once the peer accepted; before, queues the offer (if not yet) and lets the caller use TCP. */
+    private boolean throughSegment(SegmentWrite write, OutboundBuffer out) throws IOException {
         if (accepted) {
-            segment.send(publication, outlet, out::send, sendTimeoutNanos);
+            write.send(segment, outlet, out::send, sendTimeoutNanos);
             return true;
         }
         offer(out);

@@ -5,6 +5,7 @@ import io.robomw.agents.messaging.frame.FrameCodec;
 import io.robomw.agents.messaging.frame.FrameException;
 import io.robomw.agents.messaging.frame.FrameKind;
 import io.robomw.agents.messaging.security.PayloadCodec;
+import io.robomw.agents.messaging.spi.Publication;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -69,6 +70,10 @@ class SharedSegmentTest {
             segment.send(publication, cell, f -> queued.add(f.clone()), timeout);
         }
 
+        void send(SharedSegment segment, Publication publication, long timeout) throws IOException {
+            segment.send(publication, cell, f -> queued.add(f.clone()), timeout);
+        }
+
         /** Takes the oldest queued reference out, as the connection's reader would. */
         byte[] takeNext() throws FrameException {
             byte[] f = queued.remove(0);
@@ -108,17 +113,16 @@ class SharedSegmentTest {
     @Test
     void aPublicationSentApartIsWrittenOnceAndReferencedAsItsWholeFrameIs() throws Exception {
         SharedSegment segment = segment(RING, 4);
-        Sub a = new Sub(segment);
-        Sub b = new Sub(segment);
         byte[] whole = publication(100_000, 1);
-        Frame f = FrameCodec.decode(whole, 0, whole.length, Integer.MAX_VALUE);
-        io.robomw.agents.messaging.spi.Publication apart = io.robomw.agents.messaging.spi.Publication.apart(f, null);
-        segment.send(apart, a.cell, r -> a.queued.add(r.clone()), LONG_TIMEOUT);
-        segment.send(apart, b.cell, r -> b.queued.add(r.clone()), LONG_TIMEOUT);
-        assertArrayEquals(a.queued.get(0), b.queued.get(0), "one record, one reference frame for both");
-        assertArrayEquals(SharedReference.frameFor(whole, 1, 0), a.queued.get(0), "the reference its whole frame would get");
-        assertArrayEquals(payloadOf(whole), a.takeNext());
-        assertArrayEquals(payloadOf(whole), b.takeNext());
+        Publication apart = Publication.apart(FrameCodec.decode(whole, 0, whole.length, Integer.MAX_VALUE), null);
+        List<Sub> both = List.of(new Sub(segment), new Sub(segment));
+        for (Sub s : both) {
+            s.send(segment, apart, LONG_TIMEOUT);
+        }
+        for (Sub s : both) {
+            assertArrayEquals(SharedReference.frameFor(whole, 1, 0), s.queued.get(0), "record 1 at offset 0, referenced as its whole frame would be");
+            assertArrayEquals(payloadOf(whole), s.takeNext());
+        }
     }
 
     @Test
