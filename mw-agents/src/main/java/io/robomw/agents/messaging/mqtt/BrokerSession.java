@@ -30,6 +30,7 @@ import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 import java.io.IOException;
+import java.nio.ByteBuffer;
 import java.time.Duration;
 import java.time.Instant;
 import java.util.List;
@@ -118,6 +119,8 @@ final class BrokerSession implements Link, Endpoint {
     private final Map<String, Boolean> requestSubscriptions = new ConcurrentHashMap<>();
     private final Map<String, com.hivemq.client.mqtt.datatypes.MqttTopic> topicCache = new ConcurrentHashMap<>();
     private final AtomicLong failedSends = new AtomicLong();
+    /** Where the payloads of publications that travel apart are copied for the client (at most 16 MiB of them kept unused). */
+    private final PayloadBuffers buffers;
     private final Runnable presenceListener = this::announce;
     private final String replyTopic;
     /** When this session was made, the time of its will: every presence it announces carries it ({@link PresenceRecord#since()}). */
@@ -136,6 +139,7 @@ final class BrokerSession implements Link, Endpoint {
         this.qos = options.qos() == 0 ? MqttQos.AT_MOST_ONCE : MqttQos.AT_LEAST_ONCE;
         this.replyTopic = topics.replies(options.clientId());
         this.maxFrameBytes = context.settings().maxFrameSize();
+        this.buffers = new PayloadBuffers(Math.min(options.maxQueuedBytes(), 16L << 20));
         java.util.concurrent.ThreadFactory threads = context.threads("mqtt-in-" + options.host() + ":" + options.port());
         // One thread, in order; after close, what the client still hands over (the end of its flows) is dropped.
         this.delivery = new ThreadPoolExecutor(1, 1, 0, TimeUnit.MILLISECONDS, new LinkedBlockingQueue<>(), r -> {
@@ -282,8 +286,8 @@ final class BrokerSession implements Link, Endpoint {
         Mqtt5UserProperties apart = Mqtt5UserProperties.of(Mqtt5UserProperty.of(ApartHead.PROPERTY, ApartHead.encode(head)));
         // The client keeps the payload until the broker acknowledged it (and sends it again after a reconnection), long
         // after publishMessage returned and its caller may refill the array (a camera's buffer): it gets a copy of its own,
-        // made in one pass (clone() does not zero the array first, as a frame's allocation did before its payload was copied in).
-        publish(topic(topics.publication(FramePeek.topic(head))), publication.payload().clone(), null, null, null, apart);
+        // in a direct buffer, which it sends as it is (a heap payload it would copy once more into one of its own).
+        publish(topic(topics.publication(FramePeek.topic(head))), publication.payload(), null, null, null, apart, true);
     }
 
     @Override
@@ -361,17 +365,29 @@ final class BrokerSession implements Link, Endpoint {
     /** {@link #publish(com.hivemq.client.mqtt.datatypes.MqttTopic, byte[], String, byte[])}, for a reply: its correlation data. */
     void publish(com.hivemq.client.mqtt.datatypes.MqttTopic topic, byte[] payload, String responseTopic, byte[] correlation,
                  byte[] replyCorrelation) throws IOException {
-        publish(topic, payload, responseTopic, correlation, replyCorrelation, null);
+        publish(topic, payload, responseTopic, correlation, replyCorrelation, null, false);
     }
 
+    /**
+     * @param copied whether the client gets a copy of the payload ({@link #buffers}), so that the caller may change it
+     *               once this returned; else the array itself, which nobody may change
+     */
     private void publish(com.hivemq.client.mqtt.datatypes.MqttTopic topic, byte[] payload, String responseTopic, byte[] correlation,
-                         byte[] replyCorrelation, Mqtt5UserProperties properties) throws IOException {
+                         byte[] replyCorrelation, Mqtt5UserProperties properties, boolean copied) throws IOException {
         if (closed) {
             throw new IOException("the session with broker " + address + " is closed");
         }
         int bytes = payload.length;
         acquireQueuePlace(bytes);
-        var builder = Mqtt5Publish.builder().topic(topic).qos(qos).payload(payload);
+        // copied only once it has a place in the queue (what waits for one holds no buffer); a pooled buffer only at QoS 1,
+        // where the client is done with it once the broker acknowledged it (at QoS 0 it reports a message sent, not written)
+        ByteBuffer buffer = copied && qos == MqttQos.AT_LEAST_ONCE ? buffers.copyOf(payload) : null;
+        var builder = Mqtt5Publish.builder().topic(topic).qos(qos);
+        if (buffer != null) {
+            builder.payload(buffer);
+        } else {
+            builder.payload(copied ? payload.clone() : payload);
+        }
         if (properties != null) {
             builder.userProperties(properties);
         }
@@ -388,9 +404,16 @@ final class BrokerSession implements Link, Endpoint {
             sent = client.publish(p);
         } catch (RuntimeException e) {
             releaseQueuePlace(bytes);
+            if (buffer != null) {
+                buffers.release(buffer);
+            }
             throw new IOException("broker " + address + ": " + e.getMessage(), e);
         }
         sent.whenComplete((result, failure) -> {
+            // acknowledged (or given up): the client no longer reads the payload
+            if (buffer != null) {
+                buffers.release(buffer);
+            }
             releaseQueuePlace(bytes);
             Throwable error = failure != null ? failure : result.getError().orElse(null);
             if (error != null) {
