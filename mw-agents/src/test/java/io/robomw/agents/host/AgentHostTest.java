@@ -282,6 +282,10 @@ class AgentHostTest {
         VisitorAgent agent = new VisitorAgent().holdUntilReleased();
         agent.itinerary().addStop(a.address());
         AgentRef ref = home.agency().startTrip(agent);
+        List<java.io.Serializable> reports = new java.util.concurrent.CopyOnWriteArrayList<>();
+        ref.addReportListener(reports::add);
+        // retracted from its stop at a: a retract sent at once may find it not yet gone, and it comes back having visited nothing
+        await(() -> reports.contains("at a"));
         var retracted = ref.retract();
         await(() -> {
             safeSend(ref, "release");
