@@ -199,6 +199,8 @@ public final class Calls implements HostEndpoint.Handler {
             h.disposeRequested = true;
         }
         h.leaveAskedAt = System.currentTimeMillis();
+        // read before the interrupt: the callback it ends clears it as it returns, and the robot would be left running
+        boolean drives = h.drives;
         Thread interrupted = h.interruptWork();
         if (interrupted == null) {
             h.leaveAskedAt = 0;
@@ -208,8 +210,8 @@ public final class Calls implements HostEndpoint.Handler {
         // An operator means now (as the Aglets runtime stops an aglet's threads when it leaves): the
         // callback is interrupted, the robot's current command stopped, and the agent leaves once it returns.
         LOG.info("host {}: {} requested for agent {}; its callback is interrupted{} and the {} takes effect when it returns", host.name, op, id,
-                h.drives ? " and the robot's command stopped" : "", op);
-        if (h.drives && host.robot != null) {
+                drives ? " and the robot's command stopped" : "", op);
+        if (drives && host.robot != null) {
             java.util.concurrent.CompletableFuture.runAsync(() -> stopRobotFor(h, op), host.requests);
         }
         java.util.concurrent.CompletableFuture.delayedExecutor(LEAVE_GRACE.toMillis(), java.util.concurrent.TimeUnit.MILLISECONDS, host.requests)
