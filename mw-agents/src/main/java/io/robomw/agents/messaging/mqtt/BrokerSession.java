@@ -278,11 +278,11 @@ final class BrokerSession implements Link, Endpoint {
 
     @Override
     public void sendPublication(Publication publication) throws IOException {
-        if (!publication.travelsApart() || publication.head().length > MAX_APART_HEAD) {
+        byte[] head = publication.travelsApart() ? publication.head() : null;
+        if (head == null || head.length > MAX_APART_HEAD) {
             send(publication.frame());
             return;
         }
-        byte[] head = publication.head();
         Mqtt5UserProperties apart = Mqtt5UserProperties.of(Mqtt5UserProperty.of(ApartHead.PROPERTY, ApartHead.encode(head)));
         // The client keeps the payload until the broker acknowledged it (and sends it again after a reconnection), long
         // after publishMessage returned and its caller may refill the array (a camera's buffer): it gets a copy of its own,

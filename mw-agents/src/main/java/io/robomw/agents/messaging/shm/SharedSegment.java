@@ -327,7 +327,8 @@ public final class SharedSegment implements AutoCloseable {
      */
     public void send(byte[] publication, Subscriber to, Queue queue, long sendTimeoutNanos) throws IOException {
         int length = SharedReference.payloadLength(publication, 0);
-        send(publication, publication, publication.length - length, length, publication.length - length, to, queue, sendTimeoutNanos);
+        int headLength = publication.length - length;
+        send(new Outgoing(publication, publication, headLength, publication, headLength, length), to, queue, sendTimeoutNanos);
     }
 
     /**
@@ -343,26 +344,31 @@ public final class SharedSegment implements AutoCloseable {
     public void send(Publication publication, Subscriber to, Queue queue, long sendTimeoutNanos) throws IOException {
         byte[] head = publication.head();
         byte[] payload = publication.payload();
-        send(publication, payload, 0, payload.length, head.length, to, queue, sendTimeoutNanos);
+        send(new Outgoing(publication, head, head.length, payload, 0, payload.length), to, queue, sendTimeoutNanos);
     }
 
     /**
-     * @param key        what identifies the publication (the same object for each of its subscribers)
-     * @param src        where its payload is
-     * @param payloadAt  where in {@code src}
-     * @param length     its payload's length
-     * @param headLength the length of its head (header and names): the first bytes of its frame, or of its {@link Publication#head()}
+     * A publication on its way into the ring.
+     *
+     * @param key        what identifies it (the same object for each of its subscribers): its frame, or its {@link Publication}
+     * @param head       an array starting with its head (header and names): its frame, or its {@link Publication#head()}
+     * @param headLength the head's length
+     * @param payload    an array holding its payload
+     * @param payloadAt  where in {@code payload}
+     * @param length     the payload's length
      */
-    private void send(Object key, byte[] src, int payloadAt, int length, int headLength, Subscriber to, Queue queue, long sendTimeoutNanos)
-            throws IOException {
+    private record Outgoing(Object key, byte[] head, int headLength, byte[] payload, int payloadAt, int length) {
+    }
+
+    private void send(Outgoing out, Subscriber to, Queue queue, long sendTimeoutNanos) throws IOException {
         lock.lock();
         try {
             if (closed) {
                 throw new IOException("shared-memory segment " + file + " is closed");
             }
             Record r = newest;
-            if (r == null || newestPublication != key || to.lastSent >= r.sequence) {
-                r = write(key, src, payloadAt, length, headLength, sendTimeoutNanos);
+            if (r == null || newestPublication != out.key() || to.lastSent >= r.sequence) {
+                r = write(out, sendTimeoutNanos);
             }
             queue.send(r.referenceFrame);
             to.lastSent = r.sequence;
@@ -372,7 +378,8 @@ public final class SharedSegment implements AutoCloseable {
     }
 
     /** Writes a publication's payload into a new record, waiting for room. Under the lock (let go while it naps). */
-    private Record write(Object key, byte[] src, int payloadAt, int length, int headLength, long sendTimeoutNanos) throws IOException {
+    private Record write(Outgoing out, long sendTimeoutNanos) throws IOException {
+        int length = out.length();
         int bytes = SegmentLayout.recordBytes(length);
         if (bytes > dataBytes) {
             throw new IOException("a payload of " + length + " bytes does not fit the shared-memory ring of " + dataBytes + " bytes (" + file + ")");
@@ -417,13 +424,13 @@ public final class SharedSegment implements AutoCloseable {
         head += pad + bytes;
         long seq = ++sequence;
         int base = dataOffset + offset;
-        map.put(base + SegmentLayout.RECORD_HEADER, src, payloadAt, length);
+        map.put(base + SegmentLayout.RECORD_HEADER, out.payload(), out.payloadAt(), length);
         map.putInt(base + SegmentLayout.RECORD_LENGTH_OFFSET, length);
         SegmentLayout.LONG.setRelease((ByteBuffer) map, base, seq);
-        Record r = new Record(seq, start, head, SharedReference.frameFor(key instanceof Publication p ? p.head() : src, headLength, length, seq, offset));
+        Record r = new Record(seq, start, head, SharedReference.frameFor(out.head(), out.headLength(), length, seq, offset));
         live.addLast(r);
         newest = r;
-        newestPublication = key;
+        newestPublication = out.key();
         return r;
     }
 

@@ -25,6 +25,8 @@ public final class Publication {
     /** The smallest payload that travels apart from its frame: 64 KiB (a laser scan, a camera frame). */
     public static final int APART_FROM_BYTES = 64 * 1024;
 
+    private static final byte[] EMPTY = new byte[0];
+
     private final Frame frame;
     private final NameBytes names;
     private byte[] whole;
@@ -107,6 +109,4 @@ public final class Publication {
         }
         return frame.payload();
     }
-
-    private static final byte[] EMPTY = new byte[0];
 }
