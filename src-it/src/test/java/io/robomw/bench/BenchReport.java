@@ -144,6 +144,8 @@ public final class BenchReport {
             new Case("many.jade.heap-per-parked", "1,000 agents waiting at one container, JADE: live heap per agent (baseline)", false, null, List.of(), ""),
             new Case("many.robomw.lost", "1,000 agents, RoboMW: agents not home at the end", false, null, List.of(), "0"),
             new Case("many.jade.lost", "1,000 agents, JADE: agents not home at the end", false, null, List.of(), ""),
+            new Case("many.robomw.park-lost", "1,000 agents sent to wait at one host, RoboMW: agents that did not arrive", false, null, List.of(), "0"),
+            new Case("many.jade.park-lost", "1,000 agents sent to wait at one container, JADE: agents that did not arrive", false, null, List.of(), ""),
             new Case("many.robomw.paced.p50", "1,000 agents paced at 50 % of RoboMW's saturated rate: hop latency p50", false, "many.jade.paced.p50", List.of(), ""),
             new Case("many.jade.paced.p50", "1,000 agents paced at 50 % of JADE's saturated rate: hop latency p50 (baseline)", false, null, List.of(), ""),
             new Case("many.robomw.paced.p99", "1,000 agents paced at 50 % of RoboMW's saturated rate: hop latency p99", false, "many.jade.paced.p99", List.of(), "< 5,000 µs"),
