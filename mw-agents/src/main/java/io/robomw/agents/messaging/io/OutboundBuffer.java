@@ -73,14 +73,20 @@ public final class OutboundBuffer {
      */
     private record Shared(int at, byte[] frame) {
     }
+
+    /**
+     * A batch taken to be written.
+     *
+     * @param bytes  the buffer holding it
+     * @param length its bytes in {@code bytes}
+     * @param shared its large frames, in order
+     */
+    private record Batch(byte[] bytes, int length, java.util.ArrayList<Shared> shared) {
+    }
     private static final byte[] EMPTY = new byte[0];
     private static final int LINGER_BYTES = 32 * 1024;
     /** A sender writes the waiting batch itself once it is this large (see {@link #writeFullBatch}). */
     private static final int SENDER_BATCH_BYTES = 16 * 1024;
-    /** Batches senders have written, under the lock: the writer thread leaves a stream its senders write. */
-    private long senderBatches;
-    /** The length of the batch {@link #takeBatch} took, under the lock. */
-    private int batchLength;
     private static final long LINGER_NANOS = 50_000;
     /** Naps of {@link #LINGER_NANOS} the writer takes on an empty buffer before it waits to be signalled (about 1 ms). */
     private static final int IDLE_POLLS = 16;
@@ -107,6 +113,8 @@ public final class OutboundBuffer {
     private volatile boolean closed;
     private boolean writerWaiting;
     private boolean batchTaken;
+    /** Batches senders have written, under the lock: the writer thread leaves a stream its senders write. */
+    private long senderBatches;
     private Writer writer;
     private volatile Thread writerThread;
     private volatile long writingSinceNanos;
@@ -222,34 +230,23 @@ public final class OutboundBuffer {
             return;
         }
         try {
-            byte[] batch;
-            int length;
-            java.util.ArrayList<Shared> shared;
+            Batch batch;
             lock.lock();
             try {
                 if (closed || batchTaken || used < SENDER_BATCH_BYTES) {
                     return;
                 }
                 batch = takeBatch();
-                length = batchLength;
-                shared = spareShared;
                 senderBatches++;
             } finally {
                 lock.unlock();
             }
             try {
-                writeTimed(writer, batch, length, shared);
+                writeTimed(writer, batch);
             } finally {
-                shared.clear();
                 lock.lock();
                 try {
-                    batchTaken = false;
-                    hasRoom.signalAll();
-                    if (writerWaiting) {
-                        // it may wait for this batch to be written (see writeLoop)
-                        writerWaiting = false;
-                        hasData.signal();
-                    }
+                    batchWritten(batch);
                 } finally {
                     lock.unlock();
                 }
@@ -259,21 +256,34 @@ public final class OutboundBuffer {
         }
     }
 
-    /** Swaps the buffers and marks the batch taken (with the lock held): @return the batch; its length in {@link #batchLength} */
-    private byte[] takeBatch() {
-        byte[] batch = fill;
-        batchLength = used;
+    /** Swaps the buffers and marks the batch taken (with the lock held): @return the batch */
+    private Batch takeBatch() {
+        Batch batch = new Batch(fill, used, fillShared);
         fill = spare;
-        spare = batch;
-        java.util.ArrayList<Shared> shared = fillShared;
+        spare = batch.bytes();
         fillShared = spareShared;
-        spareShared = shared;
+        spareShared = batch.shared();
         sharedBytes = 0;
         setUsed(0);
         urgentWaiting = false;
         batchTaken = true;
         hasRoom.signalAll();
         return batch;
+    }
+
+    /**
+     * Ends a batch's write, on whichever thread wrote it (with the lock held): the caller's large
+     * frames are not kept beyond their write, the next batch may be taken, and a writer thread
+     * waiting for this one to be written (see {@link #writeLoop}) looks again.
+     */
+    private void batchWritten(Batch batch) {
+        batch.shared().clear();
+        batchTaken = false;
+        hasRoom.signalAll();
+        if (writerWaiting) {
+            writerWaiting = false;
+            hasData.signal();
+        }
     }
 
     /**
@@ -514,9 +524,7 @@ public final class OutboundBuffer {
     private void writeLoop(Writer out) throws IOException {
         int idlePolls = 0;
         while (true) {
-            byte[] batch;
-            int length;
-            java.util.ArrayList<Shared> shared;
+            Batch batch;
             lockAsWriter();
             try {
                 // a batch a sender is writing comes first, even once closed (it is not written yet)
@@ -556,19 +564,15 @@ public final class OutboundBuffer {
                     }
                 }
                 batch = takeBatch();
-                length = batchLength;
-                shared = spareShared;
             } finally {
                 lock.unlock();
             }
             writeLock.lock();
             try {
-                writeTimed(out, batch, length, shared);
+                writeTimed(out, batch);
             } finally {
-                shared.clear(); // the caller's large frames are not kept beyond their write
                 lockAsWriter();
-                batchTaken = false;
-                hasRoom.signalAll();
+                batchWritten(batch);
                 lock.unlock();
                 writeLock.unlock();
             }
@@ -623,6 +627,11 @@ public final class OutboundBuffer {
         } finally {
             lingering = false;
         }
+    }
+
+    /** Writes a batch taken from the buffers. */
+    private void writeTimed(Writer out, Batch batch) throws IOException {
+        writeTimed(out, batch.bytes(), batch.length(), batch.shared());
     }
 
     /** Writes {@code buf}'s first {@code length} bytes, each large frame's rest after its head. */
